@@ -1,0 +1,46 @@
+# Helpers for Refracta's tests.
+#
+# refracta_add_gtest(NAME <name> SOURCES <files...> LINK <targets...> [LABELS <labels...>]
+#                    [TIMEOUT <s>] [ENVIRONMENT <vars...>])
+# builds one GoogleTest executable and registers it as one ctest test. Every test gets a private
+# PoCL kernel cache and Refracta binary cache inside the build tree, so timings and results never
+# depend on a warm home directory.
+include(GoogleTest)
+
+set(REFRACTA_TEST_ENVIRONMENT
+  "POCL_CACHE_DIR=${CMAKE_BINARY_DIR}/Testing/pocl-cache"
+  "REFRACTA_KERNEL_CACHE_DIR=${CMAKE_BINARY_DIR}/Testing/kernel-cache"
+  "REFRACTA_DATA_DIR=${CMAKE_SOURCE_DIR}/Data"
+  "REFRACTA_TEST_OUTPUT_DIR=${CMAKE_BINARY_DIR}/Testing/Temporary"
+  "REFRACTA_BASELINE_DIR=${CMAKE_SOURCE_DIR}/Testing/Baselines")
+
+function (refracta_add_gtest)
+  cmake_parse_arguments(PARSE_ARGV 0 arg "" "NAME;TIMEOUT" "SOURCES;LINK;LABELS;ENVIRONMENT")
+  add_executable(${arg_NAME} ${arg_SOURCES})
+  target_link_libraries(${arg_NAME} PRIVATE ${arg_LINK} GTest::gtest GTest::gtest_main)
+  add_test(NAME ${arg_NAME} COMMAND ${arg_NAME} --gtest_color=no)
+  if (NOT arg_TIMEOUT)
+    set(arg_TIMEOUT 300)
+  endif ()
+  set_tests_properties(${arg_NAME} PROPERTIES
+    TIMEOUT ${arg_TIMEOUT}
+    LABELS "${arg_LABELS}"
+    ENVIRONMENT "${REFRACTA_TEST_ENVIRONMENT};${arg_ENVIRONMENT}")
+endfunction ()
+
+# refracta_add_python_test(NAME <name> SCRIPT <file> [LABELS ...] [ARGS ...])
+# runs a script with Debian's VTK Python and the build tree's refracta package on PYTHONPATH.
+function (refracta_add_python_test)
+  cmake_parse_arguments(PARSE_ARGV 0 arg "" "NAME;SCRIPT;TIMEOUT" "LABELS;ARGS")
+  if (NOT REFRACTA_WRAP_PYTHON)
+    return ()
+  endif ()
+  add_test(NAME ${arg_NAME} COMMAND "${Python3_EXECUTABLE}" "${arg_SCRIPT}" ${arg_ARGS})
+  if (NOT arg_TIMEOUT)
+    set(arg_TIMEOUT 300)
+  endif ()
+  set_tests_properties(${arg_NAME} PROPERTIES
+    TIMEOUT ${arg_TIMEOUT}
+    LABELS "python;${arg_LABELS}"
+    ENVIRONMENT "${REFRACTA_TEST_ENVIRONMENT};PYTHONPATH=${CMAKE_BINARY_DIR}/${REFRACTA_PYTHON_SITE}")
+endfunction ()

@@ -1,0 +1,270 @@
+// Tests of vtkMediumValidator and vtkRefractaMedium: every kind of bad medium is rejected with a
+// message naming the array, the voxel and the value; a good medium passes.
+#include "vtkCellData.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMediumValidator.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkRefractaMedium.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace
+{
+constexpr int Nx = 4, Ny = 5, Nz = 6;
+
+vtkIdType PointId(int i, int j, int k)
+{
+  return i + Nx * (j + Ny * k);
+}
+
+// A valid medium with every array, filled with in-range values that vary per voxel.
+vtkSmartPointer<vtkImageData> MakeMedium()
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(Nx, Ny, Nz);
+  image->SetSpacing(0.5, 0.25, 1.0);
+  image->SetOrigin(-1, -1, -1);
+  for (int id = 0; id < vtkRefractaMedium::NUMBER_OF_ARRAYS; ++id)
+  {
+    vtkNew<vtkFloatArray> array;
+    array->SetName(vtkRefractaMedium::GetArrayName(id));
+    array->SetNumberOfComponents(vtkRefractaMedium::GetNumberOfComponents(id));
+    array->SetNumberOfTuples(image->GetNumberOfPoints());
+    for (vtkIdType v = 0; v < array->GetNumberOfValues(); ++v)
+    {
+      const double t = (v % 7) / 7.0; // in [0, 1)
+      double value = 0.0;
+      switch (id)
+      {
+        case vtkRefractaMedium::REFRACTIVE_INDEX:
+          value = 1.0 + 0.5 * t;
+          break;
+        case vtkRefractaMedium::REFRACTIVE_INDEX_GRADIENT:
+          value = t - 0.5;
+          break;
+        case vtkRefractaMedium::ANISOTROPY:
+          value = 1.8 * t - 0.9;
+          break;
+        default:
+          value = t;
+      }
+      array->SetValue(v, static_cast<float>(value));
+    }
+    image->GetPointData()->AddArray(array);
+  }
+  return image;
+}
+
+void SetValue(vtkImageData* image, const char* name, vtkIdType point, int comp, double value)
+{
+  image->GetPointData()->GetArray(name)->SetComponent(point, comp, value);
+}
+
+std::string Validate(vtkImageData* image, bool expectValid = false)
+{
+  vtkNew<vtkMediumValidator> validator;
+  const bool valid = validator->Validate(image);
+  EXPECT_EQ(valid, expectValid) << validator->GetErrorMessage();
+  EXPECT_EQ(valid, validator->GetNumberOfErrors() == 0);
+  return validator->GetErrorMessage();
+}
+
+bool Contains(const std::string& text, const std::string& part)
+{
+  return text.find(part) != std::string::npos;
+}
+}
+
+TEST(RefractaMedium, ConventionsMatchSpec)
+{
+  EXPECT_STREQ(vtkRefractaMedium::GetArrayName(vtkRefractaMedium::EXTINCTION), "Extinction");
+  EXPECT_EQ(vtkRefractaMedium::GetArrayId("RefractiveIndexGradient"),
+    vtkRefractaMedium::REFRACTIVE_INDEX_GRADIENT);
+  EXPECT_EQ(vtkRefractaMedium::GetArrayId("Density"), -1);
+  EXPECT_EQ(vtkRefractaMedium::GetArrayName(99), nullptr);
+  const int comps[] = { 1, 3, 3, 3, 1, 3, 1 };
+  for (int id = 0; id < vtkRefractaMedium::NUMBER_OF_ARRAYS; ++id)
+  {
+    EXPECT_EQ(vtkRefractaMedium::GetNumberOfComponents(id), comps[id]) << id;
+  }
+  EXPECT_EQ(vtkRefractaMedium::GetDefaultValue(vtkRefractaMedium::REFRACTIVE_INDEX), 1.0);
+  EXPECT_EQ(vtkRefractaMedium::GetDefaultValue(vtkRefractaMedium::OCCUPANCY), 1.0);
+  EXPECT_EQ(vtkRefractaMedium::GetDefaultValue(vtkRefractaMedium::EXTINCTION), 0.0);
+  EXPECT_FALSE(vtkRefractaMedium::IsValueValid(vtkRefractaMedium::ANISOTROPY, 1.0));
+  EXPECT_TRUE(vtkRefractaMedium::IsValueValid(vtkRefractaMedium::ANISOTROPY, 0.999));
+  EXPECT_TRUE(vtkRefractaMedium::IsValueValid(vtkRefractaMedium::ALBEDO, 1.0));
+  EXPECT_FALSE(vtkRefractaMedium::IsValueValid(vtkRefractaMedium::REFRACTIVE_INDEX, 0.99));
+}
+
+TEST(MediumValidator, AcceptsGoodMedium)
+{
+  auto image = MakeMedium();
+  Validate(image, true);
+  // Optional arrays may be missing, and double arrays are as good as float ones.
+  image->GetPointData()->RemoveArray("Anisotropy");
+  image->GetPointData()->RemoveArray("Emission");
+  vtkNew<vtkDoubleArray> n;
+  n->DeepCopy(image->GetPointData()->GetArray("RefractiveIndex"));
+  image->GetPointData()->AddArray(n);
+  Validate(image, true);
+  // A single voxel is a valid (if small) medium.
+  vtkNew<vtkImageData> one;
+  one->SetDimensions(1, 1, 1);
+  vtkNew<vtkFloatArray> ext;
+  ext->SetName("Extinction");
+  ext->SetNumberOfComponents(3);
+  ext->SetNumberOfTuples(1);
+  ext->Fill(2.0);
+  one->GetPointData()->AddArray(ext);
+  Validate(one, true);
+}
+
+TEST(MediumValidator, RejectsNaNAndInfinity)
+{
+  auto image = MakeMedium();
+  SetValue(image, "Extinction", PointId(1, 2, 3), 2, std::numeric_limits<double>::quiet_NaN());
+  const std::string msg = Validate(image);
+  EXPECT_TRUE(Contains(msg, "'Extinction'")) << msg;
+  EXPECT_TRUE(Contains(msg, "voxel (1, 2, 3)")) << msg;
+  EXPECT_TRUE(Contains(msg, "component 2")) << msg;
+  EXPECT_TRUE(Contains(msg, "nan")) << msg;
+
+  image = MakeMedium();
+  SetValue(image, "RefractiveIndex", PointId(3, 4, 5), 0, std::numeric_limits<double>::infinity());
+  const std::string inf = Validate(image);
+  EXPECT_TRUE(Contains(inf, "'RefractiveIndex'") && Contains(inf, "voxel (3, 4, 5)")) << inf;
+  EXPECT_TRUE(Contains(inf, "inf")) << inf;
+}
+
+TEST(MediumValidator, RejectsOutOfRangeValues)
+{
+  struct Case
+  {
+    const char* Array;
+    int Component;
+    double Value;
+    const char* Rule;
+  };
+  const Case cases[] = {
+    { "Extinction", 0, -0.5, ">= 0" },
+    { "Emission", 1, -1e-3, ">= 0" },
+    { "RefractiveIndex", 0, 0.9, ">= 1" },
+    { "Albedo", 1, 1.2, "[0, 1]" },
+    { "Albedo", 0, -0.1, "[0, 1]" },
+    { "Anisotropy", 0, 1.0, "(-1, 1)" },
+    { "Anisotropy", 0, -1.5, "(-1, 1)" },
+    { "Occupancy", 0, 1.01, "[0, 1]" },
+  };
+  for (const Case& c : cases)
+  {
+    auto image = MakeMedium();
+    SetValue(image, c.Array, PointId(2, 0, 1), c.Component, c.Value);
+    SetValue(image, c.Array, PointId(3, 3, 3), c.Component, c.Value);
+    const std::string msg = Validate(image);
+    EXPECT_TRUE(Contains(msg, std::string("'") + c.Array + "'")) << msg;
+    EXPECT_TRUE(Contains(msg, "has 2 invalid value(s)")) << msg;
+    EXPECT_TRUE(Contains(msg, "voxel (2, 0, 1)")) << msg;
+    EXPECT_TRUE(Contains(msg, c.Rule)) << msg;
+  }
+}
+
+TEST(MediumValidator, RejectsWrongLayout)
+{
+  auto image = MakeMedium();
+  vtkNew<vtkFloatArray> oneComponent;
+  oneComponent->SetName("Albedo");
+  oneComponent->SetNumberOfTuples(image->GetNumberOfPoints());
+  oneComponent->Fill(0.5);
+  image->GetPointData()->AddArray(oneComponent);
+  std::string msg = Validate(image);
+  EXPECT_TRUE(Contains(msg, "'Albedo' has 1 component(s); it must have 3")) << msg;
+
+  image = MakeMedium();
+  vtkNew<vtkFloatArray> shortArray;
+  shortArray->SetName("RefractiveIndex");
+  shortArray->SetNumberOfTuples(7);
+  shortArray->Fill(1.0);
+  image->GetPointData()->AddArray(shortArray);
+  msg = Validate(image);
+  EXPECT_TRUE(Contains(msg, "has 7 tuples but the grid has 120 points")) << msg;
+
+  image = MakeMedium();
+  vtkNew<vtkStringArray> text;
+  text->SetName("Occupancy");
+  text->SetNumberOfValues(image->GetNumberOfPoints());
+  image->GetPointData()->AddArray(text);
+  msg = Validate(image);
+  EXPECT_TRUE(Contains(msg, "'Occupancy' is a vtkStringArray")) << msg;
+
+  image = MakeMedium();
+  vtkNew<vtkFloatArray> cells;
+  cells->SetName("Emission");
+  cells->SetNumberOfComponents(3);
+  cells->SetNumberOfTuples(image->GetNumberOfCells());
+  cells->Fill(0.0);
+  image->GetPointData()->RemoveArray("Emission");
+  image->GetCellData()->AddArray(cells);
+  msg = Validate(image);
+  EXPECT_TRUE(Contains(msg, "'Emission' is cell data")) << msg;
+}
+
+TEST(MediumValidator, RejectsDegenerateGrids)
+{
+  EXPECT_TRUE(Contains(Validate(nullptr), "null"));
+
+  vtkNew<vtkImageData> empty;
+  EXPECT_TRUE(Contains(Validate(empty), "empty"));
+
+  auto image = MakeMedium();
+  image->SetSpacing(1.0, 0.0, 1.0);
+  EXPECT_TRUE(Contains(Validate(image), "axis 1"));
+  image->SetSpacing(1.0, 1.0, -2.0);
+  EXPECT_TRUE(Contains(Validate(image), "axis 2"));
+  image->SetSpacing(1.0, 1.0, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_TRUE(Contains(Validate(image), "finite and > 0"));
+  image->SetSpacing(1.0, 1.0, 1.0);
+  image->SetOrigin(0.0, std::numeric_limits<double>::infinity(), 0.0);
+  EXPECT_TRUE(Contains(Validate(image), "origin"));
+  image->SetOrigin(1e6, 1e6, 1e6); // far from the origin is fine
+  Validate(image, true);
+  image->SetDirectionMatrix(1, 0, 0, 1, 0, 0, 0, 0, 1);
+  EXPECT_TRUE(Contains(Validate(image), "direction matrix"));
+}
+
+TEST(MediumValidator, RejectsImageWithoutMediumArrays)
+{
+  vtkNew<vtkImageData> ct;
+  ct->SetDimensions(3, 3, 3);
+  vtkNew<vtkFloatArray> scalars;
+  scalars->SetName("Density");
+  scalars->SetNumberOfTuples(27);
+  scalars->Fill(1.0);
+  ct->GetPointData()->SetScalars(scalars);
+  EXPECT_TRUE(Contains(Validate(ct), "none of the medium point arrays"));
+
+  vtkNew<vtkMediumValidator> lenient;
+  lenient->RequireMediumArrayOff();
+  EXPECT_TRUE(lenient->Validate(ct));
+}
+
+TEST(MediumValidator, ReportsEveryBadArray)
+{
+  auto image = MakeMedium();
+  SetValue(image, "Albedo", 0, 0, 2.0);
+  SetValue(image, "Anisotropy", 5, 0, 1.0);
+  vtkNew<vtkMediumValidator> validator;
+  EXPECT_FALSE(validator->Validate(image));
+  EXPECT_EQ(validator->GetNumberOfErrors(), 2);
+  EXPECT_TRUE(Contains(validator->GetError(0), "'Albedo'"));
+  EXPECT_TRUE(Contains(validator->GetError(1), "'Anisotropy'"));
+  EXPECT_EQ(validator->GetError(2), nullptr);
+}

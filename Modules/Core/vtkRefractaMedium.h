@@ -1,0 +1,112 @@
+/**
+ * @class   vtkRefractaMedium
+ * @brief   The conventions of a Refracta medium: array names, component counts, units, defaults.
+ *
+ * A Refracta medium is a vtkImageData whose point data carries the arrays below. Values live at
+ * the grid points (voxel centres); the passes interpolate them trilinearly. Lengths are the
+ * image's world units (origin, spacing and direction matrix honoured) and coefficients are per
+ * world unit. Every array is optional; a missing one takes the default listed here, but a medium
+ * must carry at least one of them (otherwise it is some other image, e.g. an unmapped CT scan).
+ *
+ * | array                     | comps | unit / range                  | default            |
+ * |---------------------------|-------|-------------------------------|--------------------|
+ * | RefractiveIndex           | 1     | n >= 1                        | 1                  |
+ * | RefractiveIndexGradient   | 3     | 1 / world unit                | central differences of n |
+ * | Extinction                | 3     | sigma_t >= 0, 1 / world unit  | 0 (RGB)            |
+ * | Albedo                    | 3     | sigma_s / sigma_t in [0, 1]   | 0 (RGB)            |
+ * | Anisotropy                | 1     | Henyey-Greenstein g, abs(g)<1 | 0                  |
+ * | Emission                  | 3     | radiance / world unit, >= 0   | 0 (RGB)            |
+ * | Occupancy                 | 1     | fraction of voxel, [0, 1]     | 1                  |
+ *
+ * This class only holds the conventions (static methods); it is never instantiated by the
+ * passes, but New() exists so that it can be wrapped and printed.
+ */
+#ifndef vtkRefractaMedium_h
+#define vtkRefractaMedium_h
+
+#include "RefractaCoreModule.h" // for export macro
+#include "vtkObject.h"
+
+class REFRACTACORE_EXPORT vtkRefractaMedium : public vtkObject
+{
+public:
+  static vtkRefractaMedium* New();
+  vtkTypeMacro(vtkRefractaMedium, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Identifiers of the medium arrays, in the order of the table above.
+   */
+  enum ArrayId
+  {
+    REFRACTIVE_INDEX = 0,
+    REFRACTIVE_INDEX_GRADIENT,
+    EXTINCTION,
+    ALBEDO,
+    ANISOTROPY,
+    EMISSION,
+    OCCUPANCY,
+    NUMBER_OF_ARRAYS
+  };
+
+  ///@{
+  /**
+   * Array names as they appear in the point data.
+   */
+  static const char* RefractiveIndexName() { return "RefractiveIndex"; }
+  static const char* RefractiveIndexGradientName() { return "RefractiveIndexGradient"; }
+  static const char* ExtinctionName() { return "Extinction"; }
+  static const char* AlbedoName() { return "Albedo"; }
+  static const char* AnisotropyName() { return "Anisotropy"; }
+  static const char* EmissionName() { return "Emission"; }
+  static const char* OccupancyName() { return "Occupancy"; }
+  ///@}
+
+  /**
+   * Name of the array with the given id, or nullptr for an id out of range.
+   */
+  static const char* GetArrayName(int id);
+
+  /**
+   * Id of the array with the given name, or -1 if the name is not a medium array.
+   */
+  static int GetArrayId(const char* name);
+
+  /**
+   * Number of components the array must have (1 or 3), or 0 for an id out of range.
+   */
+  static int GetNumberOfComponents(int id);
+
+  /**
+   * Value every component takes when the array is missing. The gradient's default is 0 here;
+   * passes that need it compute it from RefractiveIndex when that array exists.
+   */
+  static double GetDefaultValue(int id);
+
+  /**
+   * Smallest and largest valid value of a component (inclusive unless noted in
+   * IsValueValid), used by vtkMediumValidator.
+   */
+  static void GetValidRange(int id, double range[2]);
+
+  /**
+   * True when `value` is a valid component value for array `id` (finite, and within the valid
+   * range; Anisotropy excludes -1 and 1).
+   */
+  static bool IsValueValid(int id, double value);
+
+  /**
+   * Human-readable statement of the valid range, e.g. "finite and >= 1".
+   */
+  static const char* GetValidRangeDescription(int id);
+
+protected:
+  vtkRefractaMedium() = default;
+  ~vtkRefractaMedium() override = default;
+
+private:
+  vtkRefractaMedium(const vtkRefractaMedium&) = delete;
+  void operator=(const vtkRefractaMedium&) = delete;
+};
+
+#endif

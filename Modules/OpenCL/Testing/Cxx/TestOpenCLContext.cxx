@@ -1,0 +1,223 @@
+// Tests of vtkOpenCLContext on the machine's OpenCL device (PoCL's CPU device in CI): an
+// embedded kernel runs and its result is checked; a broken kernel yields the build log and the
+// process survives; programs come from the memory cache and, in a new context (a new process),
+// from the disk binary cache instead of being recompiled; a bad device selection is explained.
+#include "vtkCommand.h"
+#include "vtkNew.h"
+#include "vtkOpenCLContext.h"
+#include "vtkOpenCLKernelLibrary.h"
+#include "vtkTestErrorObserver.h"
+
+#include <vtksys/Directory.hxx>
+#include <vtksys/SystemTools.hxx>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace
+{
+bool Contains(const std::string& text, const std::string& part)
+{
+  return text.find(part) != std::string::npos;
+}
+
+std::string FreshCacheDirectory(const char* name)
+{
+  const char* base = std::getenv("REFRACTA_TEST_OUTPUT_DIR");
+  std::string dir = std::string(base ? base : ".") + "/" + name;
+  vtksys::SystemTools::RemoveADirectory(dir);
+  return dir;
+}
+}
+
+TEST(OpenCLKernelLibrary, EmbedsKernelFiles)
+{
+  EXPECT_GE(vtkOpenCLKernelLibrary::GetNumberOfKernelFiles(), 2);
+  const char* source = vtkOpenCLKernelLibrary::GetKernelSource("selftest.cl");
+  ASSERT_NE(source, nullptr);
+  EXPECT_TRUE(Contains(source, "__kernel void refracta_saxpy"));
+  EXPECT_EQ(vtkOpenCLKernelLibrary::GetKernelSource("missing.cl"), nullptr);
+}
+
+TEST(OpenCLContext, SaxpyRunsAndIsCorrect)
+{
+  vtkOpenCLContext* context = vtkOpenCLContext::GetDefault();
+  ASSERT_TRUE(context->Initialize()) << context->GetLastErrorMessage();
+  std::cout << "device: " << context->GetDeviceName() << " on " << context->GetPlatformName()
+            << "\n";
+
+  cl_program program = context->GetProgram({ "refracta_atomics.cl", "selftest.cl" }, "");
+  ASSERT_NE(program, nullptr) << context->GetLastErrorMessage();
+  vtkOpenCLKernel kernel = context->CreateKernel(program, "refracta_saxpy");
+  ASSERT_TRUE(kernel);
+
+  const unsigned int n = 100003; // not a multiple of any work-group size
+  std::vector<float> x(n), y(n);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    x[i] = static_cast<float>(i % 1000) * 0.5f;
+    y[i] = static_cast<float>(i % 17);
+  }
+  vtkOpenCLBuffer xBuffer =
+    context->CreateBuffer(CL_MEM_READ_ONLY, n * sizeof(float), x.data(), "x");
+  vtkOpenCLBuffer yBuffer =
+    context->CreateBuffer(CL_MEM_READ_WRITE, n * sizeof(float), y.data(), "y");
+  ASSERT_TRUE(xBuffer && yBuffer);
+  const float a = 3.0f;
+  ASSERT_EQ(vtkOpenCLSetKernelArgs(kernel.Get(), a, xBuffer.Get(), yBuffer.Get(), n), CL_SUCCESS);
+  const size_t global = n, local = 64;
+  ASSERT_TRUE(context->RunKernel(kernel.Get(), 1, &global, &local, "refracta_saxpy"));
+  std::vector<float> result(n);
+  ASSERT_TRUE(context->ReadBuffer(yBuffer.Get(), n * sizeof(float), result.data()));
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    ASSERT_EQ(result[i], a * x[i] + y[i]) << "at " << i;
+  }
+}
+
+TEST(OpenCLContext, BrokenKernelReportsBuildLog)
+{
+  vtkNew<vtkOpenCLContext> context;
+  ASSERT_TRUE(context->Initialize());
+  vtkNew<vtkTest::ErrorObserver> observer;
+  context->AddObserver(vtkCommand::ErrorEvent, observer);
+  const std::string broken = "__kernel void broken(__global float* x)\n"
+                             "{\n"
+                             "  x[get_global_id(0)] = undeclared_variable * 2.0f;\n"
+                             "}\n";
+  cl_program program = context->GetProgramFromSource(broken, "-DFOO=1", "broken.cl");
+  EXPECT_EQ(program, nullptr);
+  ASSERT_TRUE(observer->GetError());
+  const std::string msg = observer->GetErrorMessage();
+  EXPECT_TRUE(Contains(msg, "clBuildProgram")) << msg;
+  EXPECT_TRUE(Contains(msg, "CL_BUILD_PROGRAM_FAILURE (-11)")) << msg;
+  EXPECT_TRUE(Contains(msg, "broken.cl")) << msg;
+  EXPECT_TRUE(Contains(msg, "-DFOO=1")) << msg;
+  EXPECT_TRUE(Contains(msg, "Build log:")) << msg;
+  EXPECT_TRUE(Contains(msg, "undeclared_variable")) << msg; // the compiler's own words
+  EXPECT_EQ(context->GetNumberOfSourceBuilds(), 0);
+
+  // A good program still builds in the same context afterwards.
+  observer->Clear();
+  EXPECT_NE(context->GetProgram({ "refracta_atomics.cl", "selftest.cl" }, ""), nullptr);
+  EXPECT_FALSE(observer->GetError());
+}
+
+TEST(OpenCLContext, ErrorsNameCallAndCode)
+{
+  vtkNew<vtkOpenCLContext> context;
+  ASSERT_TRUE(context->Initialize());
+  vtkNew<vtkTest::ErrorObserver> observer;
+  context->AddObserver(vtkCommand::ErrorEvent, observer);
+
+  cl_program program = context->GetProgram({ "no_such_file.cl" }, "");
+  EXPECT_EQ(program, nullptr);
+  EXPECT_TRUE(Contains(observer->GetErrorMessage(), "no_such_file.cl"));
+  EXPECT_TRUE(Contains(observer->GetErrorMessage(), "selftest.cl")); // lists what exists
+  observer->Clear();
+
+  program = context->GetProgram({ "refracta_atomics.cl", "selftest.cl" }, "");
+  ASSERT_NE(program, nullptr);
+  vtkOpenCLKernel kernel = context->CreateKernel(program, "no_such_kernel");
+  EXPECT_FALSE(kernel);
+  EXPECT_TRUE(Contains(observer->GetErrorMessage(), "clCreateKernel(no_such_kernel)"));
+  EXPECT_TRUE(Contains(observer->GetErrorMessage(), "CL_INVALID_KERNEL_NAME"));
+  observer->Clear();
+
+  EXPECT_FALSE(context->Check(CL_OUT_OF_RESOURCES, "clFakeCall"));
+  EXPECT_TRUE(Contains(observer->GetErrorMessage(), "clFakeCall failed with CL_OUT_OF_RESOURCES (-5)"));
+  EXPECT_STREQ(vtkOpenCLContext::GetErrorName(-30), "CL_INVALID_VALUE");
+  EXPECT_STREQ(vtkOpenCLContext::GetErrorName(-1001), "CL_PLATFORM_NOT_FOUND_KHR");
+}
+
+TEST(OpenCLContext, ProgramsAreCachedInMemoryAndOnDisk)
+{
+  const std::string cacheDir = FreshCacheDirectory("binary-cache-test");
+  const std::vector<std::string> files = { "refracta_atomics.cl", "selftest.cl" };
+  {
+    vtkNew<vtkOpenCLContext> first;
+    first->SetBinaryCacheDirectory(cacheDir.c_str());
+    ASSERT_NE(first->GetProgram(files, "-DREFRACTA_FIXED_SCALE=1024.0f"), nullptr);
+    EXPECT_EQ(first->GetNumberOfSourceBuilds(), 1);
+    EXPECT_EQ(first->GetNumberOfBinaryLoads(), 0);
+    // Same source and options: the memory cache answers.
+    ASSERT_NE(first->GetProgram(files, "-DREFRACTA_FIXED_SCALE=1024.0f"), nullptr);
+    EXPECT_EQ(first->GetNumberOfMemoryCacheHits(), 1);
+    EXPECT_EQ(first->GetNumberOfSourceBuilds(), 1);
+    // Other options are another program.
+    ASSERT_NE(first->GetProgram(files, "-DREFRACTA_FIXED_SCALE=2048.0f"), nullptr);
+    EXPECT_EQ(first->GetNumberOfSourceBuilds(), 2);
+  }
+  {
+    vtkNew<vtkOpenCLContext> second; // stands for a second process start
+    second->SetBinaryCacheDirectory(cacheDir.c_str());
+    cl_program program = second->GetProgram(files, "-DREFRACTA_FIXED_SCALE=1024.0f");
+    ASSERT_NE(program, nullptr);
+    EXPECT_EQ(second->GetNumberOfSourceBuilds(), 0);
+    EXPECT_EQ(second->GetNumberOfBinaryLoads(), 1);
+    // The program loaded from a binary runs.
+    vtkOpenCLKernel kernel = second->CreateKernel(program, "refracta_saxpy");
+    EXPECT_TRUE(kernel);
+  }
+  {
+    // A corrupt binary is ignored and the source compiled instead.
+    vtksys::Directory listing;
+    ASSERT_TRUE(listing.Load(cacheDir));
+    for (unsigned long i = 0; i < listing.GetNumberOfFiles(); ++i)
+    {
+      const std::string name = listing.GetFile(i);
+      if (name.size() > 6 && name.substr(name.size() - 6) == ".clbin")
+      {
+        FILE* f = std::fopen((cacheDir + "/" + name).c_str(), "wb");
+        std::fputs("not a binary", f);
+        std::fclose(f);
+      }
+    }
+    vtkNew<vtkOpenCLContext> third;
+    third->SetBinaryCacheDirectory(cacheDir.c_str());
+    EXPECT_NE(third->GetProgram(files, "-DREFRACTA_FIXED_SCALE=1024.0f"), nullptr);
+    EXPECT_EQ(third->GetNumberOfSourceBuilds(), 1);
+  }
+}
+
+TEST(OpenCLContext, DeviceSelection)
+{
+  const std::string devices = vtkOpenCLContext::ListDevices();
+  EXPECT_TRUE(Contains(devices, "0:0")) << devices;
+
+  vtkNew<vtkOpenCLContext> byIndex;
+  byIndex->SetDeviceSelection("0:0");
+  EXPECT_TRUE(byIndex->Initialize());
+
+  vtkNew<vtkOpenCLContext> byName;
+  byName->SetDeviceSelection(vtkOpenCLContext::GetDefault()->GetPlatformName());
+  EXPECT_TRUE(byName->Initialize()) << byName->GetLastErrorMessage();
+  EXPECT_STREQ(byName->GetPlatformName(), vtkOpenCLContext::GetDefault()->GetPlatformName());
+
+  vtkNew<vtkOpenCLContext> missing;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  missing->AddObserver(vtkCommand::ErrorEvent, observer);
+  missing->SetDeviceSelection("no-such-device-xyz");
+  EXPECT_FALSE(missing->Initialize());
+  EXPECT_FALSE(missing->Initialize()); // stays failed, no crash on a second call
+  const std::string msg = observer->GetErrorMessage();
+  EXPECT_TRUE(Contains(msg, "no-such-device-xyz")) << msg;
+  EXPECT_TRUE(Contains(msg, "0:0")) << msg; // lists what is there
+  // Anything needing the device now fails cleanly.
+  EXPECT_EQ(missing->GetProgram({ "selftest.cl" }, ""), nullptr);
+  EXPECT_FALSE(missing->CreateBuffer(CL_MEM_READ_WRITE, 16, nullptr, "probe"));
+}
+
+TEST(OpenCLContext, FixedPointScale)
+{
+  EXPECT_EQ(vtkOpenCLContext::ChooseFixedPointScale(1.0), std::ldexp(1.0, 62));
+  EXPECT_EQ(vtkOpenCLContext::ChooseFixedPointScale(1000.0), std::ldexp(1.0, 52));
+  EXPECT_LE(1000.0 * vtkOpenCLContext::ChooseFixedPointScale(1000.0), std::ldexp(1.0, 62));
+  EXPECT_EQ(vtkOpenCLContext::ChooseFixedPointScale(0.0), std::ldexp(1.0, 32));
+  EXPECT_EQ(vtkOpenCLContext::ChooseFixedPointScale(-5.0), std::ldexp(1.0, 32));
+}

@@ -1,0 +1,255 @@
+/**
+ * @class   vtkOpenCLContext
+ * @brief   The OpenCL device, context, queue and program cache shared by Refracta's passes.
+ *
+ * Device choice, in order:
+ * 1. SetDeviceSelection(), if called with a non-empty string;
+ * 2. else the environment variable REFRACTA_OPENCL_DEVICE;
+ * 3. else the first GPU of any platform, else the first CPU device (PoCL on Debian), else the
+ *    first device of any kind.
+ * A selection string is "gpu", "cpu", "P:D" (platform index P, device index D, as listed by
+ * ListDevices()), or any other text, matched case-insensitively against
+ * "<platform name> <device name> <vendor>".
+ *
+ * Programs are built from the embedded files of vtkOpenCLKernelLibrary with -D options and
+ * cached twice: in memory (one cl_program per source + options), and as device binaries on disk
+ * in a user cache directory, so that a second process start loads the binary instead of
+ * compiling. The directory is REFRACTA_KERNEL_CACHE_DIR if set, else
+ * $XDG_CACHE_HOME/refracta/kernels, else $HOME/.cache/refracta/kernels. A cache entry's key is a
+ * hash of the source, the options, the Refracta version and the platform, device and driver
+ * versions, so a driver update never loads a stale binary.
+ *
+ * Every OpenCL failure becomes a vtkErrorMacro message naming the call, the error code's name
+ * and number, and the device; a failed program build adds the build log and which lines of the
+ * concatenated source came from which file. No OpenCL platform at all gives one message that says
+ * what to install; Initialize() then returns false and every pass that needs the device fails
+ * cleanly.
+ *
+ * Accumulation: Refracta's passes add float deposits with 64-bit fixed point (see
+ * Kernels/refracta_atomics.cl and ChooseFixedPointScale()): exact, order-independent and so
+ * deterministic per seed on every device, and it needs only cl_khr_int64_base_atomics.
+ */
+#ifndef vtkOpenCLContext_h
+#define vtkOpenCLContext_h
+
+#include "RefractaOpenCLModule.h" // for export macro
+#include "vtkObject.h"
+
+#include <map>    // for the program cache
+#include <mutex>  // for the program cache
+#include <string> // for std::string
+#include <vector> // for std::vector
+
+#ifndef __VTK_WRAP__
+#include "vtkOpenCLHandle.h" // for vtkOpenCLKernel, vtkOpenCLBuffer
+#endif
+
+class REFRACTAOPENCL_EXPORT vtkOpenCLContext : public vtkObject
+{
+public:
+  static vtkOpenCLContext* New();
+  vtkTypeMacro(vtkOpenCLContext, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * The process-wide context the passes use unless they are given another one. Created on
+   * first use; Initialize() it (cheap once done) before use.
+   */
+  static vtkOpenCLContext* GetDefault();
+
+  ///@{
+  /**
+   * Device selection string (see the class description); overrides REFRACTA_OPENCL_DEVICE.
+   * Changing it after Initialize() has no effect. Default: empty.
+   */
+  vtkSetStringMacro(DeviceSelection);
+  vtkGetStringMacro(DeviceSelection);
+  ///@}
+
+  /**
+   * Select the device and create the context and queue. Returns true on success. Idempotent:
+   * later calls return the first call's result without retrying a failure.
+   */
+  bool Initialize();
+
+  /**
+   * True after a successful Initialize().
+   */
+  bool IsReady() const { return this->Ready; }
+
+  /**
+   * Message of the last error this context reported (empty if none).
+   */
+  const char* GetLastErrorMessage() const { return this->LastErrorMessage.c_str(); }
+
+  ///@{
+  /**
+   * Facts about the selected device (valid after Initialize()).
+   */
+  const char* GetPlatformName() const { return this->PlatformName.c_str(); }
+  const char* GetDeviceName() const { return this->DeviceName.c_str(); }
+  const char* GetDeviceVendor() const { return this->DeviceVendor.c_str(); }
+  const char* GetDeviceVersion() const { return this->DeviceVersion.c_str(); }
+  const char* GetDriverVersion() const { return this->DriverVersion.c_str(); }
+  bool GetIsGPU() const { return this->IsGPU; }
+  int GetNumberOfComputeUnits() const { return this->ComputeUnits; }
+  double GetGlobalMemoryMiB() const { return this->GlobalMemoryBytes / 1048576.0; }
+  double GetMaximumAllocationMiB() const { return this->MaxAllocationBytes / 1048576.0; }
+  bool HasExtension(const char* name) const;
+  ///@}
+
+  /**
+   * One line per OpenCL device on this machine: "P:D  platform  /  device  (type)".
+   * Returns a message instead when there is no platform.
+   */
+  static std::string ListDevices();
+
+  /**
+   * Name of an OpenCL error code, e.g. "CL_INVALID_VALUE" for -30.
+   */
+  static const char* GetErrorName(int code);
+
+  /**
+   * Power-of-two scale for 64-bit fixed-point accumulation such that a sum of magnitude up to
+   * `largestSum` stays below 2^62: the resolution of one deposit is then 1/scale. Returns 2^32
+   * for a non-positive or non-finite argument.
+   */
+  static double ChooseFixedPointScale(double largestSum);
+
+  ///@{
+  /**
+   * On-disk binary cache. The directory defaults as described above; UseBinaryCache (default
+   * on) turns the disk cache off entirely (the memory cache always works).
+   */
+  vtkSetStringMacro(BinaryCacheDirectory);
+  vtkGetStringMacro(BinaryCacheDirectory);
+  vtkSetMacro(UseBinaryCache, bool);
+  vtkGetMacro(UseBinaryCache, bool);
+  vtkBooleanMacro(UseBinaryCache, bool);
+  ///@}
+
+  ///@{
+  /**
+   * How programs were obtained since this context was created: compiled from source, loaded
+   * from a disk binary, or found in the memory cache.
+   */
+  vtkGetMacro(NumberOfSourceBuilds, int);
+  vtkGetMacro(NumberOfBinaryLoads, int);
+  vtkGetMacro(NumberOfMemoryCacheHits, int);
+  ///@}
+
+  /**
+   * Compile a program from embedded kernel files (comma-separated names, in order) and options,
+   * and report whether it built. For scripts and diagnostics; C++ passes use GetProgram().
+   */
+  bool BuildProgram(const char* kernelFiles, const char* options);
+
+#ifndef __VTK_WRAP__
+  cl_context GetContext() const { return this->Context; }
+  cl_device_id GetDevice() const { return this->Device; }
+  cl_command_queue GetQueue() const { return this->Queue; }
+
+  /**
+   * The program made of the named embedded files (concatenated in order) built with `options`
+   * (e.g. "-DSTEPS=8"). Owned by the context: do not release it. Returns nullptr after
+   * reporting an error (on `reporter` if given, else on this context).
+   */
+  cl_program GetProgram(const std::vector<std::string>& kernelFiles, const std::string& options,
+    vtkObject* reporter = nullptr);
+
+  /**
+   * The same for a source given as text; `label` names it in messages.
+   */
+  cl_program GetProgramFromSource(const std::string& source, const std::string& options,
+    const std::string& label, vtkObject* reporter = nullptr);
+
+  /**
+   * A kernel of a program, or an empty handle after reporting an error.
+   */
+  vtkOpenCLKernel CreateKernel(cl_program program, const char* name, vtkObject* reporter = nullptr);
+
+  /**
+   * A buffer of `bytes` bytes (copied from `hostData` when given), or an empty handle after
+   * reporting an error; `what` names the buffer in messages.
+   */
+  vtkOpenCLBuffer CreateBuffer(cl_mem_flags flags, size_t bytes, const void* hostData,
+    const char* what, vtkObject* reporter = nullptr);
+
+  ///@{
+  /**
+   * Blocking transfers and a zero fill, reporting errors; return true on success.
+   */
+  bool WriteBuffer(cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter = nullptr);
+  bool ReadBuffer(cl_mem buffer, size_t bytes, void* data, vtkObject* reporter = nullptr);
+  bool ZeroBuffer(cl_mem buffer, size_t bytes, vtkObject* reporter = nullptr);
+  ///@}
+
+  /**
+   * Enqueue a kernel over `dimensions` global sizes (each rounded up to a multiple of the local
+   * size when one is given; kernels guard their range). Returns true on success.
+   */
+  bool RunKernel(cl_kernel kernel, cl_uint dimensions, const size_t* globalSize,
+    const size_t* localSize, const char* label, vtkObject* reporter = nullptr);
+
+  /**
+   * clFinish on the queue, reporting errors.
+   */
+  bool Finish(vtkObject* reporter = nullptr);
+
+  /**
+   * Report `status` as an error naming `call` when it is not CL_SUCCESS; returns true when it
+   * is CL_SUCCESS.
+   */
+  bool Check(cl_int status, const char* call, vtkObject* reporter = nullptr);
+#endif
+
+protected:
+  vtkOpenCLContext();
+  ~vtkOpenCLContext() override;
+
+  void ReportError(const std::string& message, vtkObject* reporter);
+  bool SelectDevice();
+  std::string ResolveCacheDirectory() const;
+  std::string CacheKey(const std::string& source, const std::string& options) const;
+
+  char* DeviceSelection = nullptr;
+  char* BinaryCacheDirectory = nullptr;
+  bool UseBinaryCache = true;
+  bool Initialized = false;
+  bool Ready = false;
+  int NumberOfSourceBuilds = 0;
+  int NumberOfBinaryLoads = 0;
+  int NumberOfMemoryCacheHits = 0;
+
+  std::string PlatformName;
+  std::string PlatformVersion;
+  std::string DeviceName;
+  std::string DeviceVendor;
+  std::string DeviceVersion;
+  std::string DriverVersion;
+  std::string Extensions;
+  bool IsGPU = false;
+  int ComputeUnits = 0;
+  double GlobalMemoryBytes = 0;
+  double MaxAllocationBytes = 0;
+  std::string LastErrorMessage;
+
+#ifndef __VTK_WRAP__
+  cl_platform_id Platform = nullptr;
+  cl_device_id Device = nullptr;
+  cl_context Context = nullptr;
+  cl_command_queue Queue = nullptr;
+  cl_program BuildFromSource(const std::string& source, const std::string& options,
+    const std::string& label, vtkObject* reporter);
+  cl_program LoadBinary(const std::string& path, const std::string& options);
+  void SaveBinary(cl_program program, const std::string& path);
+  std::map<std::string, cl_program> Programs;
+  std::mutex ProgramsMutex;
+#endif
+
+private:
+  vtkOpenCLContext(const vtkOpenCLContext&) = delete;
+  void operator=(const vtkOpenCLContext&) = delete;
+};
+
+#endif

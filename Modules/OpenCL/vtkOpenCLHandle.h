@@ -1,0 +1,98 @@
+/**
+ * @file    vtkOpenCLHandle.h
+ * @brief   Move-only owners of OpenCL objects and a variadic kernel-argument setter.
+ *
+ * vtkOpenCLHandle<cl_mem> (alias vtkOpenCLBuffer), vtkOpenCLHandle<cl_kernel>
+ * (vtkOpenCLKernel) and vtkOpenCLHandle<cl_event> (vtkOpenCLEvent) release their object when
+ * they go out of scope, so an early return on an error path leaks nothing.
+ */
+#ifndef vtkOpenCLHandle_h
+#define vtkOpenCLHandle_h
+
+#ifndef __VTK_WRAP__
+
+#include <CL/cl.h>
+
+#include <utility> // for std::exchange
+
+template <typename T>
+struct vtkOpenCLReleaser;
+template <>
+struct vtkOpenCLReleaser<cl_mem>
+{
+  static void Release(cl_mem h) { clReleaseMemObject(h); }
+};
+template <>
+struct vtkOpenCLReleaser<cl_kernel>
+{
+  static void Release(cl_kernel h) { clReleaseKernel(h); }
+};
+template <>
+struct vtkOpenCLReleaser<cl_event>
+{
+  static void Release(cl_event h) { clReleaseEvent(h); }
+};
+
+template <typename T>
+class vtkOpenCLHandle
+{
+public:
+  vtkOpenCLHandle() = default;
+  explicit vtkOpenCLHandle(T handle)
+    : Handle(handle)
+  {
+  }
+  ~vtkOpenCLHandle() { this->Reset(); }
+  vtkOpenCLHandle(vtkOpenCLHandle&& other) noexcept
+    : Handle(std::exchange(other.Handle, nullptr))
+  {
+  }
+  vtkOpenCLHandle& operator=(vtkOpenCLHandle&& other) noexcept
+  {
+    if (this != &other)
+    {
+      this->Reset(std::exchange(other.Handle, nullptr));
+    }
+    return *this;
+  }
+  vtkOpenCLHandle(const vtkOpenCLHandle&) = delete;
+  vtkOpenCLHandle& operator=(const vtkOpenCLHandle&) = delete;
+
+  T Get() const { return this->Handle; }
+  explicit operator bool() const { return this->Handle != nullptr; }
+  void Reset(T handle = nullptr)
+  {
+    if (this->Handle)
+    {
+      vtkOpenCLReleaser<T>::Release(this->Handle);
+    }
+    this->Handle = handle;
+  }
+
+private:
+  T Handle = nullptr;
+};
+
+using vtkOpenCLBuffer = vtkOpenCLHandle<cl_mem>;
+using vtkOpenCLKernel = vtkOpenCLHandle<cl_kernel>;
+using vtkOpenCLEvent = vtkOpenCLHandle<cl_event>;
+
+/**
+ * Sets kernel arguments 0, 1, ... from the values given (each passed by address with its size;
+ * pass cl_mem for buffers). Returns the first error, or CL_SUCCESS.
+ */
+template <typename... Args>
+cl_int vtkOpenCLSetKernelArgs(cl_kernel kernel, const Args&... args)
+{
+  cl_int status = CL_SUCCESS;
+  cl_uint index = 0;
+  // Fold over the arguments; stop setting once one call has failed.
+  ((status = (status == CL_SUCCESS ? clSetKernelArg(kernel, index, sizeof(Args), &args) : status),
+     ++index),
+    ...);
+  return status;
+}
+
+#endif // __VTK_WRAP__
+#endif
+// VTK-HeaderTest-Exclude: vtkOpenCLHandle.h

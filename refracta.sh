@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Refracta's set-up, build, render and test entry point (idempotent).
+#
+#   ./refracta.sh render [refracta-render args...]   install what is missing, build, render
+#   ./refracta.sh test                               install what is missing, build, run ctest
+#   ./refracta.sh build                              install what is missing, build
+#
+# Environment: BUILD_DIR (default ./build), JOBS (default: number of cores),
+# CTEST_ARGS (extra arguments for ctest, e.g. "-L long" or "-LE long").
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+build_dir="${BUILD_DIR:-$here/build}"
+jobs="${JOBS:-$(nproc)}"
+
+# Debian bookworm packages the project needs to build and test.
+packages=(
+  build-essential cmake pkg-config
+  libvtk9-dev python3-vtk9 python3-numpy
+  pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo
+  libcgal-dev libgmp-dev libmpfr-dev libglm-dev
+  libosmesa6-dev xvfb xauth
+  libgtest-dev libbenchmark-dev
+)
+
+install_missing_packages() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+      missing+=("$p")
+    fi
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "refracta: installing ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  install_missing_packages
+  if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+    cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release
+  fi
+  cmake --build "$build_dir" -j "$jobs"
+}
+
+# Kernel caches inside the build tree: results and timings never depend on a warm home directory.
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$build_dir/pocl-cache}"
+
+command="${1:-}"
+[ $# -gt 0 ] && shift
+case "$command" in
+  build)
+    build
+    ;;
+  render)
+    build
+    "$build_dir/bin/refracta-render" "$@"
+    ;;
+  test)
+    build
+    # Render-window tests need an X server: Debian's VTK is an X11 build, so run the suite under
+    # a virtual framebuffer (Mesa's software rasterizer) when no display is present.
+    runner=()
+    if [ -z "${DISPLAY:-}" ]; then
+      runner=(xvfb-run -a -s "-screen 0 1280x1024x24")
+    fi
+    cd "$build_dir"
+    # shellcheck disable=SC2086
+    "${runner[@]}" ctest --output-on-failure -j "$jobs" ${CTEST_ARGS:--LE long}
+    ;;
+  *)
+    echo "usage: $0 {render|test|build} [args...]" >&2
+    exit 2
+    ;;
+esac
