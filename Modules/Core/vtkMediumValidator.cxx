@@ -170,8 +170,8 @@ bool vtkMediumValidator::CheckArrayLayout(vtkImageData* medium, int id)
   }
   else if (array->GetNumberOfComponents() != expected)
   {
-    msg << "has " << array->GetNumberOfComponents() << " component(s); it must have "
-        << expected << ".";
+    msg << "has " << array->GetNumberOfComponents() << " component(s); it must have " << expected
+        << ".";
   }
   else if (array->GetNumberOfTuples() != medium->GetNumberOfPoints())
   {

@@ -109,8 +109,7 @@ void vtkRefractaMedium::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   for (int id = 0; id < NUMBER_OF_ARRAYS; ++id)
   {
-    os << indent << Conventions[id].Name << ": " << Conventions[id].Components
-       << " component(s), " << Conventions[id].RangeDescription
-       << ", default " << Conventions[id].Default << "\n";
+    os << indent << Conventions[id].Name << ": " << Conventions[id].Components << " component(s), "
+       << Conventions[id].RangeDescription << ", default " << Conventions[id].Default << "\n";
   }
 }

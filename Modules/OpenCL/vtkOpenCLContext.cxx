@@ -111,7 +111,7 @@ cl_int EnumerateDevices(std::vector<DeviceEntry>& entries)
   {
     cl_uint numberOfDevices = 0;
     if (clGetDeviceIDs(platforms[p], CL_DEVICE_TYPE_ALL, 0, nullptr, &numberOfDevices) !=
-        CL_SUCCESS)
+      CL_SUCCESS)
     {
       continue;
     }
@@ -132,7 +132,8 @@ cl_int EnumerateDevices(std::vector<DeviceEntry>& entries)
 int FindSelectedDevice(const std::vector<DeviceEntry>& entries, const std::string& selection)
 {
   const std::string wanted = Lowercase(selection);
-  auto firstOfType = [&](cl_device_type type) {
+  auto firstOfType = [&](cl_device_type type)
+  {
     for (size_t i = 0; i < entries.size(); ++i)
     {
       if (entries[i].Type & type)
@@ -440,7 +441,8 @@ bool vtkOpenCLContext::SelectDevice()
   this->DriverVersion = DeviceString(entry.Device, CL_DRIVER_VERSION);
   this->Extensions = DeviceString(entry.Device, CL_DEVICE_EXTENSIONS);
   this->IsGPU = (entry.Type & CL_DEVICE_TYPE_GPU) != 0;
-  this->ComputeUnits = static_cast<int>(DeviceValue<cl_uint>(entry.Device, CL_DEVICE_MAX_COMPUTE_UNITS));
+  this->ComputeUnits =
+    static_cast<int>(DeviceValue<cl_uint>(entry.Device, CL_DEVICE_MAX_COMPUTE_UNITS));
   this->GlobalMemoryBytes =
     static_cast<double>(DeviceValue<cl_ulong>(entry.Device, CL_DEVICE_GLOBAL_MEM_SIZE));
   this->MaxAllocationBytes =
@@ -454,7 +456,8 @@ bool vtkOpenCLContext::SelectDevice()
   {
     return false;
   }
-  this->Queue = clCreateCommandQueue(this->Context, this->Device, CL_QUEUE_PROFILING_ENABLE, &error);
+  this->Queue =
+    clCreateCommandQueue(this->Context, this->Device, CL_QUEUE_PROFILING_ENABLE, &error);
   if (!this->Check(error, "clCreateCommandQueue"))
   {
     return false;
@@ -585,8 +588,8 @@ cl_program vtkOpenCLContext::GetProgramFromSource(const std::string& source,
     if (!directory.empty())
     {
       char name[32];
-      std::snprintf(name, sizeof(name), "%016llx.clbin",
-        static_cast<unsigned long long>(Fnv1a(key)));
+      std::snprintf(
+        name, sizeof(name), "%016llx.clbin", static_cast<unsigned long long>(Fnv1a(key)));
       binaryPath = directory + "/" + name;
     }
   }
@@ -630,8 +633,8 @@ cl_program vtkOpenCLContext::BuildFromSource(const std::string& source, const st
   {
     std::ostringstream msg;
     msg << "OpenCL call clBuildProgram failed with " << GetErrorName(error) << " (" << error
-        << ") on device '" << this->DeviceName << "' for program [" << label
-        << "] with options '" << options << "'. Build log:\n"
+        << ") on device '" << this->DeviceName << "' for program [" << label << "] with options '"
+        << options << "'. Build log:\n"
         << BuildLog(program, this->Device);
     clReleaseProgram(program);
     this->ReportError(msg.str(), reporter);
@@ -681,7 +684,8 @@ void vtkOpenCLContext::SaveBinary(cl_program program, const std::string& path)
 {
   size_t size = 0;
   if (clGetProgramInfo(program, CL_PROGRAM_BINARY_SIZES, sizeof(size), &size, nullptr) !=
-      CL_SUCCESS || size == 0)
+      CL_SUCCESS ||
+    size == 0)
   {
     return;
   }
@@ -698,7 +702,8 @@ void vtkOpenCLContext::SaveBinary(cl_program program, const std::string& path)
     return;
   }
   // Write then rename, so a concurrent process never reads a half-written binary.
-  const std::string temporary = path + ".tmp" + std::to_string(reinterpret_cast<std::uintptr_t>(this));
+  const std::string temporary =
+    path + ".tmp" + std::to_string(reinterpret_cast<std::uintptr_t>(this));
   {
     std::ofstream out(temporary, std::ios::binary);
     out.write(reinterpret_cast<const char*>(binary.data()), static_cast<std::streamsize>(size));
@@ -756,7 +761,8 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
 {
   if (!this->Initialize())
   {
-    this->ReportError(std::string("Cannot create buffer ") + what + ": no OpenCL device.", reporter);
+    this->ReportError(
+      std::string("Cannot create buffer ") + what + ": no OpenCL device.", reporter);
     return vtkOpenCLBuffer();
   }
   if (hostData)
@@ -777,11 +783,12 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
 }
 
 //------------------------------------------------------------------------------
-bool vtkOpenCLContext::WriteBuffer(cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter)
+bool vtkOpenCLContext::WriteBuffer(
+  cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter)
 {
   return bytes == 0 ||
-    this->Check(clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr,
-                  nullptr),
+    this->Check(
+      clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
       "clEnqueueWriteBuffer", reporter);
 }
 
@@ -822,9 +829,8 @@ bool vtkOpenCLContext::RunKernel(cl_kernel kernel, cl_uint dimensions, const siz
     }
   }
   const std::string call = std::string("clEnqueueNDRangeKernel(") + label + ")";
-  return this->Check(
-    clEnqueueNDRangeKernel(this->Queue, kernel, dimensions, nullptr, global, localSize, 0, nullptr,
-      nullptr),
+  return this->Check(clEnqueueNDRangeKernel(this->Queue, kernel, dimensions, nullptr, global,
+                       localSize, 0, nullptr, nullptr),
     call.c_str(), reporter);
 }
 

@@ -145,9 +145,18 @@ public:
   bool BuildProgram(const char* kernelFiles, const char* options);
 
 #ifndef __VTK_WRAP__
-  cl_context GetContext() const { return this->Context; }
-  cl_device_id GetDevice() const { return this->Device; }
-  cl_command_queue GetQueue() const { return this->Queue; }
+  cl_context GetContext() const
+  {
+    return this->Context;
+  }
+  cl_device_id GetDevice() const
+  {
+    return this->Device;
+  }
+  cl_command_queue GetQueue() const
+  {
+    return this->Queue;
+  }
 
   /**
    * The program made of the named embedded files (concatenated in order) built with `options`

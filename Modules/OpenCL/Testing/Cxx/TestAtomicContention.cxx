@@ -32,16 +32,16 @@ struct Accumulation
   double Seconds = 0;
 };
 
-Accumulation RunFixed(vtkOpenCLContext* context, const std::vector<float>& values,
-  unsigned int targets, double scale)
+Accumulation RunFixed(
+  vtkOpenCLContext* context, const std::vector<float>& values, unsigned int targets, double scale)
 {
   Accumulation out;
   const std::string options = "-DREFRACTA_FIXED_SCALE=" + std::to_string(scale) + "f";
   cl_program program = context->GetProgram({ "refracta_atomics.cl", "selftest.cl" }, options);
   EXPECT_NE(program, nullptr);
   vtkOpenCLKernel kernel = context->CreateKernel(program, "refracta_atomic_fixed_contention");
-  vtkOpenCLBuffer in = context->CreateBuffer(
-    CL_MEM_READ_ONLY, values.size() * sizeof(float), values.data(), "values");
+  vtkOpenCLBuffer in =
+    context->CreateBuffer(CL_MEM_READ_ONLY, values.size() * sizeof(float), values.data(), "values");
   vtkOpenCLBuffer sums =
     context->CreateBuffer(CL_MEM_READ_WRITE, targets * sizeof(std::int64_t), nullptr, "sums");
   EXPECT_TRUE(context->ZeroBuffer(sums.Get(), targets * sizeof(std::int64_t)));
@@ -87,8 +87,8 @@ TEST(AtomicAdd, FixedPointIsExactUnderContention)
       const double perTarget = static_cast<double>(n / targets + 1);
       EXPECT_LE(std::abs(first.Sums[t] / scale - exactSums[t]), perTarget * 0.5 / scale + 1e-9);
     }
-    std::cout << "fixed point, " << n << " deposits into " << targets << " address(es): "
-              << n / first.Seconds / 1e6 << " M deposits/s\n";
+    std::cout << "fixed point, " << n << " deposits into " << targets
+              << " address(es): " << n / first.Seconds / 1e6 << " M deposits/s\n";
   }
 }
 

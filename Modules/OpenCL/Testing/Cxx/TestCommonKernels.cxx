@@ -59,7 +59,8 @@ std::vector<float> RunRng(vtkOpenCLContext* context, cl_uint seed, cl_uint count
 {
   cl_program program = context->GetProgram(Files, "");
   vtkOpenCLKernel kernel = context->CreateKernel(program, "refracta_test_rng");
-  vtkOpenCLBuffer out = context->CreateBuffer(CL_MEM_WRITE_ONLY, size_t(n) * count * 4, nullptr, "u");
+  vtkOpenCLBuffer out =
+    context->CreateBuffer(CL_MEM_WRITE_ONLY, size_t(n) * count * 4, nullptr, "u");
   EXPECT_EQ(vtkOpenCLSetKernelArgs(kernel.Get(), seed, count, out.Get(), n), CL_SUCCESS);
   const size_t global = n;
   EXPECT_TRUE(context->RunKernel(kernel.Get(), 1, &global, nullptr, "rng"));

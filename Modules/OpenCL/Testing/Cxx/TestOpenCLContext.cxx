@@ -130,7 +130,8 @@ TEST(OpenCLContext, ErrorsNameCallAndCode)
   observer->Clear();
 
   EXPECT_FALSE(context->Check(CL_OUT_OF_RESOURCES, "clFakeCall"));
-  EXPECT_TRUE(Contains(observer->GetErrorMessage(), "clFakeCall failed with CL_OUT_OF_RESOURCES (-5)"));
+  EXPECT_TRUE(
+    Contains(observer->GetErrorMessage(), "clFakeCall failed with CL_OUT_OF_RESOURCES (-5)"));
   EXPECT_STREQ(vtkOpenCLContext::GetErrorName(-30), "CL_INVALID_VALUE");
   EXPECT_STREQ(vtkOpenCLContext::GetErrorName(-1001), "CL_PLATFORM_NOT_FOUND_KHR");
 }
