@@ -127,13 +127,14 @@ double vtkMediumMaterial::EvaluateDensity(const double x[3]) const
     for (int c = 0; c < 8; ++c)
     {
       const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
-      const double w = (di ? t[0] : 1.0 - t[0]) * (dj ? t[1] : 1.0 - t[1]) *
-        (dk ? t[2] : 1.0 - t[2]);
+      const double w =
+        (di ? t[0] : 1.0 - t[0]) * (dj ? t[1] : 1.0 - t[1]) * (dk ? t[2] : 1.0 - t[2]);
       if (w == 0.0)
       {
         continue;
       }
-      const vtkIdType id = (i0[0] + di - ext[0]) + nx * ((i0[1] + dj - ext[2]) + ny * (i0[2] + dk - ext[4]));
+      const vtkIdType id =
+        (i0[0] + di - ext[0]) + nx * ((i0[1] + dj - ext[2]) + ny * (i0[2] + dk - ext[4]));
       d += w * array->GetComponent(id, 0);
     }
   }
@@ -232,7 +233,8 @@ void vtkMediumMaterial::PrintSelf(ostream& os, vtkIndent indent)
      << this->Emission[2] << ")\n";
   os << indent << "DensityFunction: " << this->DensityFunction << "\n";
   os << indent << "DensityImage: " << this->DensityImage << "\n";
-  os << indent << "DensityArrayName: "
-     << (this->DensityArrayName ? this->DensityArrayName : "(none)") << "\n";
+  os << indent
+     << "DensityArrayName: " << (this->DensityArrayName ? this->DensityArrayName : "(none)")
+     << "\n";
   os << indent << "DensityScalesRefractiveIndex: " << this->DensityScalesRefractiveIndex << "\n";
 }

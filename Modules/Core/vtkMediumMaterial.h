@@ -148,8 +148,8 @@ public:
    * The material's properties with a given density d applied (see the class documentation):
    * n, sigma_t (RGB), albedo (RGB), g, emission (RGB).
    */
-  void GetPropertiesAtDensity(
-    double d, double& n, double extinction[3], double albedo[3], double& g, double emission[3]) const;
+  void GetPropertiesAtDensity(double d, double& n, double extinction[3], double albedo[3],
+    double& g, double emission[3]) const;
 
   /**
    * Copy every property from another material (the density field objects are shared, not
