@@ -1,6 +1,13 @@
 // The benchmark helpers compute medians correctly, write a CSV that reads back, and (with an X
 // server) write a non-empty PNG plot.
 #include "RefractaBenchmark.h"
+#include "RefractaScenes.h"
+
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkMediumValidator.h"
+#include "vtkNew.h"
+#include "vtkSceneAnalysis.h"
 
 #include <cstdlib>
 #include <fstream>
@@ -38,6 +45,32 @@ int main(int argc, char* argv[])
   std::getline(in, header);
   std::getline(in, row);
   check(header == "photons,seconds" && row == "65536,0.01235", "CSV content");
+
+  // Every procedural scene is a valid medium with the facts it is designed to have.
+  for (const auto& scene : refracta::scenes::AllScenes(24))
+  {
+    vtkNew<vtkMediumValidator> validator;
+    check(validator->Validate(scene.Medium), scene.Name.c_str());
+    vtkNew<vtkSceneAnalysis> analysis;
+    analysis->SetMedium(scene.Medium);
+    for (const auto& light : scene.Lights)
+    {
+      analysis->AddLight(light);
+    }
+    check(analysis->Analyze() && analysis->GetNumberOfPoweredLights() == 1, "scene is analysable");
+    std::cout << scene.Name << ": " << analysis->GetSummary() << "\n";
+    if (scene.Name == "glass-sphere-in-fog")
+    {
+      check(analysis->GetRefractiveIndexRange()[1] > 1.45, "glass reaches n = 1.5");
+      check(analysis->GetHasScattering(), "fog scatters");
+    }
+    if (scene.Name == "dense-high-albedo")
+    {
+      // 60 per unit across a cube of side 0.4 (smoothed edges): tau about 24.
+      const double tau = analysis->GetMaximumOpticalThickness();
+      check(tau > 22 && tau < 26, "dense object tau about 24");
+    }
+  }
 
   if (std::getenv("DISPLAY"))
   {
