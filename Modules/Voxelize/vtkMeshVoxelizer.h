@@ -201,6 +201,7 @@ public:
   enum Stages
   {
     STAGE_VALIDATION = 0, ///< mesh checks and repairs (CGAL)
+    STAGE_ALLOCATION,     ///< allocating and first-touching the output arrays (page faults)
     STAGE_INSIDE,         ///< one-sample inside test of every voxel, surface voxel detection
     STAGE_SUPERSAMPLING,  ///< fractional occupancy and materials of the surface voxels
     STAGE_MATERIALS,      ///< materials of the voxels entirely inside or outside
