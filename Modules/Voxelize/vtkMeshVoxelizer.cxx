@@ -27,6 +27,10 @@
 #include <numeric>
 #include <sstream>
 
+#if defined(__linux__)
+#include <sys/mman.h> // madvise
+#endif
+
 vtkStandardNewMacro(vtkMeshVoxelizer);
 
 namespace
@@ -252,6 +256,24 @@ public:
     this->Occ[v] = static_cast<float>(std::min(1.0, std::max(0.0, 1.0 - fractions[0])));
   }
 };
+
+// Ask Linux for transparent huge pages on a large fresh buffer: first-touching 60 bytes per voxel
+// in 4 KiB pages costs seconds at 256^3 on machines with expensive page faults (VMs).
+void AdviseHugePages(void* data, size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const std::uintptr_t huge = 2u << 20;
+  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + huge - 1) & ~(huge - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(huge - 1);
+  if (end > begin)
+  {
+    madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+  }
+#else
+  (void)data;
+  (void)bytes;
+#endif
+}
 
 vtkSmartPointer<vtkFloatArray> NewArray(int id, vtkIdType tuples)
 {
@@ -660,6 +682,7 @@ int vtkMeshVoxelizer::RequestData(
          gArray.Get(), emArray.Get(), occArray.Get() })
   {
     float* data = a->GetPointer(0);
+    AdviseHugePages(data, a->GetNumberOfValues() * sizeof(float));
     vtkSMPTools::For(0, a->GetNumberOfValues(),
       [data](vtkIdType begin, vtkIdType end) { std::fill(data + begin, data + end, 0.0f); });
   }
