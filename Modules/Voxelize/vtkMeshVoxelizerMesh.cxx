@@ -415,6 +415,11 @@ bool PreparedMesh::Prepare(vtkPolyData* input, int connection, bool checkSelfInt
                 "CGAL::Polygon_mesh_processing::autorefine) or split it into separate inputs");
   }
   this->Impl->Side.reset(new SideOf(this->Impl->Surface));
+#ifndef CGAL_HAS_THREADS
+  // Without CGAL's thread support the lazy AABB-tree build is not locked: build it now, while
+  // single-threaded (a query inside the bounding box triggers it).
+  this->Classify(c);
+#endif
   return true;
 }
 

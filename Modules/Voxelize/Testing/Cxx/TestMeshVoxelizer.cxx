@@ -2,6 +2,7 @@
 // faces through voxel centres, n inside, gradient direction, nesting (innermost wins), material
 // mixing rules, heterogeneous materials, and every invalid-mesh message.
 #include "vtkAppendPolyData.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCubeSource.h"
 #include "vtkExecutive.h"
@@ -27,6 +28,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -115,7 +117,16 @@ TEST(MeshVoxelizer, SphereVolumeAt64Cubed)
   vox->SetMaterial(0, Material(1.5));
   vox->SetDimensions(64, 64, 64);
   vox->SetPadding(0.1);
+  std::vector<double> progress;
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&progress);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* clientData, void* callData)
+    { static_cast<std::vector<double>*>(clientData)->push_back(*static_cast<double*>(callData)); });
+  vox->AddObserver(vtkCommand::ProgressEvent, onProgress);
   vox->Update();
+  ASSERT_GT(progress.size(), 10u); // every stage reports
+  EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
+  EXPECT_EQ(progress.back(), 1.0);
   vtkImageData* out = vox->GetOutput();
   ASSERT_EQ(out->GetNumberOfPoints(), 64 * 64 * 64);
   const double analytic = 4.0 / 3.0 * Pi * r * r * r;
