@@ -383,6 +383,27 @@ TEST(MeshVoxelizer, NestedMeshesInnermostWins)
   EXPECT_NEAR(SumOccupancy(out) / (4.0 / 3.0 * Pi * 0.512), 1.0, 0.02);
 }
 
+TEST(MeshVoxelizer, MeshWithACavity)
+{
+  // One mesh of two nested spheres: the space between them is inside (a hollow shell).
+  vtkNew<vtkAppendPolyData> shell;
+  shell->AddInputData(Sphere(0.8, 100));
+  shell->AddInputData(Sphere(0.5, 100));
+  shell->Update();
+  vtkNew<vtkMeshVoxelizer> vox;
+  vox->AddInputData(shell->GetOutput());
+  vox->SetMaterial(0, Material(1.3));
+  vox->SetBounds(-1, 1, -1, 1, -1, 1);
+  vox->SetDimensions(40, 40, 40);
+  vox->SetSmoothingWindow(1);
+  vox->Update();
+  const double expected = 4.0 / 3.0 * Pi * (0.512 - 0.125);
+  EXPECT_NEAR(SumOccupancy(vox->GetOutput()) / expected, 1.0, 0.005);
+  const float* n = Array(vox->GetOutput(), "RefractiveIndex");
+  EXPECT_FLOAT_EQ(n[20 + 40 * (20 + 40 * 20)], 1.0f); // (0.025, 0.025, 0.025): the cavity
+  EXPECT_FLOAT_EQ(n[33 + 40 * (20 + 40 * 20)], 1.3f); // x = 0.675: in the shell
+}
+
 TEST(MeshVoxelizer, MixingConservesScatteringAndAbsorption)
 {
   // Cube faces at x = 0.05 + ... on voxel centres: face voxels are exactly half inside (S = 4).
@@ -606,6 +627,13 @@ TEST(MeshVoxelizer, InvalidMeshesGiveTheirMessages)
                 { TetFaces[0], TetFaces[1], TetFaces[2], TetFaces[3], { 0, 4, 5 }, { 0, 6, 4 },
                   { 0, 5, 6 }, { 4, 6, 5 } }),
     "not a 2-manifold at some vertex");
+
+  // The 6-vertex projective plane: closed and manifold, but no orientation exists.
+  ExpectError(
+    Mesh({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 1, 0.3 }, { 0.2, 0.7, 1 } },
+      { { 0, 1, 2 }, { 0, 2, 3 }, { 0, 3, 4 }, { 0, 4, 5 }, { 0, 5, 1 }, { 1, 2, 4 }, { 2, 3, 5 },
+        { 3, 4, 1 }, { 4, 5, 2 }, { 5, 1, 3 } }),
+    "not orientable");
 
   // Repairs: one face flipped, and the whole mesh inside out. Volume stays 1/6.
   auto oneFlipped = TetFaces;
