@@ -724,7 +724,14 @@ int vtkMeshVoxelizer::RequestData(
   }
   std::atomic<vtkIdType> fallbacks(0);
   const vtkIdType numRows = static_cast<vtkIdType>(g.N[1]) * g.N[2];
-  const double tolerance = 1e-9 * g.S[0];
+  // Crossings closer than this to a sample are decided by an exact orientation test; it covers
+  // the rounding of the interpolated crossing x (relative to the coordinates' magnitude).
+  double maxAbsX = std::max(std::abs(g.O[0] - g.S[0]), std::abs(g.O[0] + g.N[0] * g.S[0]));
+  for (const auto& m : meshes)
+  {
+    maxAbsX = std::max(maxAbsX, std::max(std::abs(m->Bounds[0]), std::abs(m->Bounds[1])));
+  }
+  const double tolerance = 1e-9 * g.S[0] + 1e-12 * maxAbsX;
   const bool surfaceOnly = this->SupersampleSurfaceOnly;
   const int progressBlocks = 10;
 

@@ -273,6 +273,42 @@ TEST(MeshVoxelizer, FacesThroughVoxelCentresShowNoSpeckle)
   }
 }
 
+TEST(MeshVoxelizer, FacesThroughVoxelCentresFarFromTheOrigin)
+{
+  // The same box moved to (1e5, -3e4, 2e5) (exactly representable): still no speckle.
+  const double shift[3] = { 1e5, -3e4, 2e5 };
+  vtkNew<vtkTessellatedBoxSource> box;
+  box->SetBounds(shift[0] - 0.5625, shift[0] + 0.5625, shift[1] - 0.5625, shift[1] + 0.5625,
+    shift[2] - 0.5625, shift[2] + 0.5625);
+  box->SetLevel(8);
+  box->QuadsOff();
+  box->DuplicateSharedPointsOff();
+  box->Update();
+  for (int S : { 1, 4 })
+  {
+    vtkNew<vtkMeshVoxelizer> vox;
+    vox->AddInputData(box->GetOutput());
+    vox->SetBounds(
+      shift[0] - 1, shift[0] + 1, shift[1] - 1, shift[1] + 1, shift[2] - 1, shift[2] + 1);
+    vox->SetDimensions(16, 16, 16);
+    vox->SetSupersampling(S);
+    vox->Update();
+    const float* occ = Array(vox->GetOutput(), "Occupancy");
+    ASSERT_NE(occ, nullptr);
+    for (int k = 4; k < 12; ++k)
+      for (int j = 4; j < 12; ++j)
+      {
+        ASSERT_EQ(occ[3 + 16 * (j + 16 * k)], 0.5f) << "S=" << S;  // face x = -0.5625
+        ASSERT_EQ(occ[12 + 16 * (j + 16 * k)], 0.5f) << "S=" << S; // face x = +0.5625
+        ASSERT_EQ(occ[j + 16 * (3 + 16 * k)], 0.5f) << "S=" << S;  // face y
+        ASSERT_EQ(occ[8 + 16 * (j + 16 * k)], 1.0f) << "S=" << S;  // inside
+      }
+    // S = 4: the exact volume. S = 1: 8^3 inner voxels, faces, edges and corners all at 1/2.
+    const double voxels = S == 4 ? 729.0 : 512 + 0.5 * (6 * 64 + 12 * 8 + 8);
+    EXPECT_NEAR(SumOccupancy(vox->GetOutput()), voxels / 512.0, 1e-9) << "S=" << S;
+  }
+}
+
 TEST(MeshVoxelizer, IndexInsideAndGradientAlongTheNormal)
 {
   const double R = 0.6;
