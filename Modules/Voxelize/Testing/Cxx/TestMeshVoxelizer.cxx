@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -570,6 +571,10 @@ TEST(MeshVoxelizer, SpacingModeAndPipeline)
     EXPECT_GE(out->GetOrigin()[a] + (ext[2 * a + 1] + 0.5) * 0.1, b[2 * a + 1] + 0.05 - 1e-12);
   }
   EXPECT_EQ(ext[1], 10); // ceil(1.1 / 0.1) = 11 voxels
+  std::ostringstream printed;
+  vox->Print(printed);
+  EXPECT_NE(printed.str().find("SizingMode: SPACING"), std::string::npos);
+  EXPECT_NE(printed.str().find("StageTime(supersampling)"), std::string::npos);
   // Spacing 0 in the SPACING mode is refused with a message.
   vtkNew<vtkTest::ErrorObserver> observer;
   vox->AddObserver(vtkCommand::ErrorEvent, observer);
