@@ -196,7 +196,8 @@ int main(int argc, char* argv[])
     }
   }
   table.Print("vtkMeshVoxelizer, " + std::to_string(mesh->GetNumberOfPolys()) +
-    "-triangle mesh (median seconds per stage; *_vs_near_surface: this row / the near-surface row)");
+    "-triangle mesh (median seconds per stage; *_vs_near_surface: this row / the near-surface "
+    "row)");
   if (!table.WriteCsv(csv))
   {
     std::cerr << "could not write " << csv << "\n";
