@@ -14,10 +14,10 @@
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMediumValidator.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkRefractaMedium.h"
-#include "vtkNew.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
@@ -59,11 +59,26 @@ struct V3
   double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
   double& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
 };
-inline V3 operator+(const V3& a, const V3& b) { return { a.x + b.x, a.y + b.y, a.z + b.z }; }
-inline V3 operator-(const V3& a, const V3& b) { return { a.x - b.x, a.y - b.y, a.z - b.z }; }
-inline V3 operator*(double s, const V3& a) { return { s * a.x, s * a.y, s * a.z }; }
-inline V3 operator*(const V3& a, const V3& b) { return { a.x * b.x, a.y * b.y, a.z * b.z }; }
-inline V3 operator-(const V3& a) { return { -a.x, -a.y, -a.z }; }
+inline V3 operator+(const V3& a, const V3& b)
+{
+  return { a.x + b.x, a.y + b.y, a.z + b.z };
+}
+inline V3 operator-(const V3& a, const V3& b)
+{
+  return { a.x - b.x, a.y - b.y, a.z - b.z };
+}
+inline V3 operator*(double s, const V3& a)
+{
+  return { s * a.x, s * a.y, s * a.z };
+}
+inline V3 operator*(const V3& a, const V3& b)
+{
+  return { a.x * b.x, a.y * b.y, a.z * b.z };
+}
+inline V3 operator-(const V3& a)
+{
+  return { -a.x, -a.y, -a.z };
+}
 inline V3& operator+=(V3& a, const V3& b)
 {
   a.x += b.x;
@@ -71,18 +86,27 @@ inline V3& operator+=(V3& a, const V3& b)
   a.z += b.z;
   return a;
 }
-inline double Dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline double Dot(const V3& a, const V3& b)
+{
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 inline V3 Cross(const V3& a, const V3& b)
 {
   return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
 }
-inline double Norm(const V3& a) { return std::sqrt(Dot(a, a)); }
+inline double Norm(const V3& a)
+{
+  return std::sqrt(Dot(a, a));
+}
 inline V3 Normalized(const V3& a)
 {
   const double l = Norm(a);
   return l > 0 ? (1.0 / l) * a : V3(0, 0, 1);
 }
-inline double MaxComp(const V3& a) { return std::max(a.x, std::max(a.y, a.z)); }
+inline double MaxComp(const V3& a)
+{
+  return std::max(a.x, std::max(a.y, a.z));
+}
 
 // Orthonormal basis around a unit vector (Duff et al. 2017, branchless).
 inline void Basis(const V3& n, V3& t, V3& b)
@@ -343,7 +367,8 @@ struct Medium
     Diagonal = Norm(Hi - Lo);
     const int64_t n = static_cast<int64_t>(N[0]) * N[1] * N[2];
     vtkPointData* pd = medium->GetPointData();
-    auto load = [&](int id, std::vector<double>& out) -> bool {
+    auto load = [&](int id, std::vector<double>& out) -> bool
+    {
       const int nc = vtkRefractaMedium::GetNumberOfComponents(id);
       vtkDataArray* arr = pd->GetArray(vtkRefractaMedium::GetArrayName(id));
       out.assign(static_cast<size_t>(n * nc), vtkRefractaMedium::GetDefaultValue(id));
@@ -450,14 +475,14 @@ struct Medium
 struct Light
 {
   bool Directional = true;
-  V3 Colour;       // E (directional) or I (point / spot) per channel
-  V3 Towards;      // directional: unit direction from the scene towards the light
+  V3 Colour;           // E (directional) or I (point / spot) per channel
+  V3 Towards;          // directional: unit direction from the scene towards the light
   double OmcDelta = 0; // directional: 1 - cos(delta)
   double Radiance = 0; // directional: 1 / (pi sin^2 delta) ; sphere: 1 / (pi r^2)
-  V3 Centre;       // point / spot
+  V3 Centre;           // point / spot
   double Radius = 0;
   bool Spot = false;
-  V3 Axis;         // spot axis (unit, from the light towards its focal point)
+  V3 Axis; // spot axis (unit, from the light towards its focal point)
   double CosCone = -1;
   double Exponent = 0;
 
@@ -538,10 +563,10 @@ struct Light
 // Tracing along a (possibly curved) ray inside the box.
 struct RayState
 {
-  V3 X;          // position, grid-local
-  V3 V;          // n dx/ds, |V| = n (curved rays); unused for straight rays
-  V3 Dir;        // unit travel direction
-  double H = 0;  // integrator step proposal
+  V3 X;         // position, grid-local
+  V3 V;         // n dx/ds, |V| = n (curved rays); unused for straight rays
+  V3 Dir;       // unit travel direction
+  double H = 0; // integrator step proposal
 };
 
 enum class Event
@@ -558,7 +583,7 @@ struct Tracer
   double Tol = 1e-7;
   double MaxStep = 1;
   const std::vector<Light>* Lights = nullptr; // spheres to test, or nullptr
-  int64_t StepBudget = 50000000;             // per Advance call; guards against Zeno loops
+  int64_t StepBudget = 50000000;              // per Advance call; guards against Zeno loops
 
   double StraightExit(const V3& x, const V3& d) const
   {
@@ -614,13 +639,13 @@ struct Tracer
                         a42 = -56.0 / 15, a43 = 32.0 / 9, a51 = 19372.0 / 6561,
                         a52 = -25360.0 / 2187, a53 = 64448.0 / 6561, a54 = -212.0 / 729,
                         a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247,
-                        a64 = 49.0 / 176, a65 = -5103.0 / 18656, b1 = 35.0 / 384,
-                        b3 = 500.0 / 1113, b4 = 125.0 / 192, b5 = -2187.0 / 6784,
-                        b6 = 11.0 / 84, e1 = 35.0 / 384 - 5179.0 / 57600,
-                        e3 = 500.0 / 1113 - 7571.0 / 16695, e4 = 125.0 / 192 - 393.0 / 640,
-                        e5 = -2187.0 / 6784 + 92097.0 / 339200, e6 = 11.0 / 84 - 187.0 / 2100,
-                        e7 = -1.0 / 40;
-    auto f = [this](const V3& px, const V3& pv, V3& dx, V3& dv) {
+                        a64 = 49.0 / 176, a65 = -5103.0 / 18656, b1 = 35.0 / 384, b3 = 500.0 / 1113,
+                        b4 = 125.0 / 192, b5 = -2187.0 / 6784, b6 = 11.0 / 84,
+                        e1 = 35.0 / 384 - 5179.0 / 57600, e3 = 500.0 / 1113 - 7571.0 / 16695,
+                        e4 = 125.0 / 192 - 393.0 / 640, e5 = -2187.0 / 6784 + 92097.0 / 339200,
+                        e6 = 11.0 / 84 - 187.0 / 2100, e7 = -1.0 / 40;
+    auto f = [this](const V3& px, const V3& pv, V3& dx, V3& dv)
+    {
       double n;
       M->IndexAndGradient(px, n, dv);
       dx = (1.0 / n) * pv;
@@ -638,13 +663,10 @@ struct Tracer
     xn = x + h * (b1 * kx[0] + b3 * kx[2] + b4 * kx[3] + b5 * kx[4] + b6 * kx[5]);
     vn = v + h * (b1 * kv[0] + b3 * kv[2] + b4 * kv[3] + b5 * kv[4] + b6 * kv[5]);
     f(xn, vn, kx[6], kv[6]);
-    const V3 ex =
-      h * (e1 * kx[0] + e3 * kx[2] + e4 * kx[3] + e5 * kx[4] + e6 * kx[5] + e7 * kx[6]);
-    const V3 ev =
-      h * (e1 * kv[0] + e3 * kv[2] + e4 * kv[3] + e5 * kv[4] + e6 * kv[5] + e7 * kv[6]);
+    const V3 ex = h * (e1 * kx[0] + e3 * kx[2] + e4 * kx[3] + e5 * kx[4] + e6 * kx[5] + e7 * kx[6]);
+    const V3 ev = h * (e1 * kv[0] + e3 * kv[2] + e4 * kv[3] + e5 * kv[4] + e6 * kv[5] + e7 * kv[6]);
     const double sx = Tol * M->MinSpacing, sv = Tol * M->NMax;
-    return std::max(
-      std::max(std::abs(ex.x), std::max(std::abs(ex.y), std::abs(ex.z))) / sx,
+    return std::max(std::max(std::abs(ex.x), std::max(std::abs(ex.y), std::abs(ex.z))) / sx,
       std::max(std::abs(ev.x), std::max(std::abs(ev.y), std::abs(ev.z))) / sv);
   }
 
@@ -1335,8 +1357,8 @@ int vtkReferenceRenderer::RequestData(
   }
   scene.Background = V3(this->BackgroundColor);
   const double radius = this->LightRadius > 0 ? this->LightRadius : 0.01 * m.Diagonal;
-  BuildLights(m, this->Lights, this->Camera, this->DirectionalLightAngularRadius, radius,
-    scene.Lights);
+  BuildLights(
+    m, this->Lights, this->Camera, this->DirectionalLightAngularRadius, radius, scene.Lights);
   scene.MaxDepth = this->MaximumScatteringDepth;
   scene.RouletteDepth = this->RouletteDepth;
   scene.MaxVertices = this->MaximumPathVertices;
@@ -1377,7 +1399,8 @@ int vtkReferenceRenderer::RequestData(
   std::vector<double> mean(3 * numPixels), stderrs(3 * numPixels);
   std::atomic<int64_t> truncated(0);
 
-  auto renderPixels = [&](vtkIdType begin, vtkIdType end) {
+  auto renderPixels = [&](vtkIdType begin, vtkIdType end)
+  {
     int64_t localTrunc = 0;
     for (vtkIdType p = begin; p < end; ++p)
     {
@@ -1480,7 +1503,8 @@ int vtkReferenceRenderer::RequestData(
 
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  auto addField = [output](const char* name, double value, bool integer) {
+  auto addField = [output](const char* name, double value, bool integer)
+  {
     if (integer)
     {
       vtkNew<vtkIntArray> a;
@@ -1511,8 +1535,8 @@ void vtkReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Camera: " << this->Camera.Get() << "\n";
   os << indent << "Lights: " << this->Lights->GetNumberOfItems() << "\n";
   os << indent << "ImageSize: " << this->ImageSize[0] << " x " << this->ImageSize[1] << "\n";
-  os << indent << "BackgroundColor: " << this->BackgroundColor[0] << " "
-     << this->BackgroundColor[1] << " " << this->BackgroundColor[2] << "\n";
+  os << indent << "BackgroundColor: " << this->BackgroundColor[0] << " " << this->BackgroundColor[1]
+     << " " << this->BackgroundColor[2] << "\n";
   os << indent << "EnvironmentMap: " << this->EnvironmentMap.Get() << "\n";
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
@@ -1521,8 +1545,7 @@ void vtkReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumPathVertices: " << this->MaximumPathVertices << "\n";
   os << indent << "IntegratorTolerance: " << this->IntegratorTolerance << "\n";
   os << indent << "MaximumStep: " << this->MaximumStep << "\n";
-  os << indent << "DirectionalLightAngularRadius: " << this->DirectionalLightAngularRadius
-     << "\n";
+  os << indent << "DirectionalLightAngularRadius: " << this->DirectionalLightAngularRadius << "\n";
   os << indent << "LightRadius: " << this->LightRadius << "\n";
   os << indent << "PixelJitter: " << this->PixelJitter << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";

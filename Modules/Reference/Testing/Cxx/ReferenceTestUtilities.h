@@ -42,7 +42,8 @@ inline vtkSmartPointer<vtkImageData> MakeMedium(const int dims[3], const double 
   img->SetSpacing(spacing[0], spacing[1], spacing[2]);
   img->SetOrigin(origin[0], origin[1], origin[2]);
   const vtkIdType n = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
-  auto make = [&](const char* name, int nc) {
+  auto make = [&](const char* name, int nc)
+  {
     vtkNew<vtkDoubleArray> a;
     a->SetName(name);
     a->SetNumberOfComponents(nc);
@@ -87,8 +88,8 @@ inline int Spp(int n)
   return std::max(1, static_cast<int>(n * (f > 0 ? f : 1.0)));
 }
 
-inline vtkSmartPointer<vtkImageData> Homogeneous(const int dims[3], const double spacing[3],
-  const double origin[3], const Voxel& v)
+inline vtkSmartPointer<vtkImageData> Homogeneous(
+  const int dims[3], const double spacing[3], const double origin[3], const Voxel& v)
 {
   return MakeMedium(dims, spacing, origin, [&](int, int, int, Voxel& out) { out = v; });
 }
@@ -107,8 +108,8 @@ inline vtkSmartPointer<vtkCamera> ParallelCamera(
 }
 
 // Directional light coming FROM direction `towards` (unit, pointing at the light).
-inline vtkSmartPointer<vtkLight> Directional(const double towards[3], double e, double r = 1,
-  double g = 1, double b = 1)
+inline vtkSmartPointer<vtkLight> Directional(
+  const double towards[3], double e, double r = 1, double g = 1, double b = 1)
 {
   auto l = vtkSmartPointer<vtkLight>::New();
   l->SetLightTypeToSceneLight();
@@ -158,7 +159,8 @@ inline double HFunction(double w, double mu)
   for (int i = 0; i < n; ++i)
   {
     double z = std::cos(Pi * (i + 0.75) / (n + 0.5));
-    auto legendre = [n](double zz, double& pn, double& dpn) {
+    auto legendre = [n](double zz, double& pn, double& dpn)
+    {
       double p0 = 1, p1 = zz;
       for (int k = 2; k <= n; ++k)
       {
@@ -184,7 +186,8 @@ inline double HFunction(double w, double mu)
     wt[i] = 1.0 / ((1 - z * z) * dpn * dpn); // weight on [0, 1]: half of 2 / ((1 - z^2) P'^2)
     x[i] = 0.5 * (1 - z);
   }
-  auto inv = [&](double m) {
+  auto inv = [&](double m)
+  {
     double s = 0;
     for (int j = 0; j < n; ++j)
     {

@@ -34,8 +34,7 @@ TEST(ReferenceConvergence, SemiInfiniteChandrasekhar)
     for (double thv : { 0.0, 45.0, 75.0 })
     {
       const double t = vtkMath::RadiansFromDegrees(thv), mu = std::cos(t);
-      const double dop[3] = { std::sin(t), 0, -mu }, focal[3] = { 0, 0, top },
-                   up[3] = { 0, 1, 0 };
+      const double dop[3] = { std::sin(t), 0, -mu }, focal[3] = { 0, 0, top }, up[3] = { 0, 1, 0 };
       vtkNew<vtkReferenceRenderer> r;
       r->SetInputData(medium);
       r->SetCamera(ParallelCamera(focal, dop, up, 1.0));
@@ -45,9 +44,9 @@ TEST(ReferenceConvergence, SemiInfiniteChandrasekhar)
       r->Update();
       const Pooled p = Pool(r->GetOutput());
       const double expected = w * HFunction(w, mu) * HFunction(w, 1.0) / (4 * Pi * (mu + 1.0));
-      std::cout << "w " << w << " mu " << mu << ": " << p.Mean[0] << " +- " << p.Error[0]
-                << " (" << 100 * p.Error[0] / expected << "%), Chandrasekhar " << expected
-                << ", rel. diff " << (p.Mean[0] - expected) / expected << "\n";
+      std::cout << "w " << w << " mu " << mu << ": " << p.Mean[0] << " +- " << p.Error[0] << " ("
+                << 100 * p.Error[0] / expected << "%), Chandrasekhar " << expected << ", rel. diff "
+                << (p.Mean[0] - expected) / expected << "\n";
       EXPECT_NEAR(p.Mean[0], expected, 4 * p.Error[0]);
       EXPECT_LT(p.Error[0], 0.01 * expected);
     }

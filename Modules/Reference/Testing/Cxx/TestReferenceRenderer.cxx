@@ -50,11 +50,11 @@ TEST(ReferenceRenderer, HenyeyGreensteinSamplingChiSquare)
     // handled by integrating in log(1 - cos) for the forward part).
     // q = 1 - cos theta for g >= 0 and 1 + cos theta for g < 0, so that the peak is at q = 0
     // where the logarithmic bins are finest.
-    auto pdfOmc = [g](double q) {
-      return 2 * Pi * vtkReferenceRenderer::HenyeyGreensteinPhase(g, g >= 0 ? 1 - q : q - 1);
-    };
+    auto pdfOmc = [g](double q)
+    { return 2 * Pi * vtkReferenceRenderer::HenyeyGreensteinPhase(g, g >= 0 ? 1 - q : q - 1); };
     // Integrate over omc in [a, b] with the substitution omc = exp(t).
-    auto integrate = [&](double a, double b, bool moment) {
+    auto integrate = [&](double a, double b, bool moment)
+    {
       const int m = 400;
       const double ta = std::log(a), tb = std::log(b), h = (tb - ta) / m;
       double s = 0;
@@ -104,8 +104,8 @@ TEST(ReferenceRenderer, HenyeyGreensteinSamplingChiSquare)
       const double sgn = g >= 0 ? -1 : 1;
       const double d[3] = { in[0] + sgn * out[0], in[1] + sgn * out[1], in[2] + sgn * out[2] };
       const double omc = 0.5 * vtkMath::Dot(d, d);
-      const int b = static_cast<int>(std::upper_bound(edges.begin(), edges.end(), omc) -
-                      edges.begin()) - 1;
+      const int b =
+        static_cast<int>(std::upper_bound(edges.begin(), edges.end(), omc) - edges.begin()) - 1;
       counts[std::min(std::max(b, 0), bins - 1)] += 1;
       const double a = std::atan2(vtkMath::Dot(out, t2), vtkMath::Dot(out, t1));
       azCos += std::cos(a);
@@ -155,25 +155,26 @@ TEST(ReferenceRenderer, CurvedRayLinearGradient)
   const double n0 = 1.2, a = 0.08;
   const int dims[3] = { 21, 21, 5 };
   const double spacing[3] = { 0.5, 0.5, 0.5 }, origin[3] = { 0, 0, 0 };
-  auto medium = MakeMedium(dims, spacing, origin, [&](int, int j, int, Voxel& v) {
-    v.N = n0 + a * j * spacing[1];
-  });
+  auto medium = MakeMedium(
+    dims, spacing, origin, [&](int, int j, int, Voxel& v) { v.N = n0 + a * j * spacing[1]; });
   vtkNew<vtkReferenceRenderer> r;
   const double alpha = vtkMath::RadiansFromDegrees(25.0);
   const double x0[3] = { 0.5, 1.0, 1.0 };
   const double d0[3] = { std::cos(alpha), std::sin(alpha), 0 };
   const double ns = n0 + a * x0[1];
   const double C = ns * std::cos(alpha), k = a / C;
-  auto sOfX = [&](double x) {
+  auto sOfX = [&](double x)
+  {
     return (ns * std::sinh(k * x) / k + a * std::tan(alpha) * (std::cosh(k * x) - 1) / (k * k)) / C;
   };
-  auto yOfX = [&](double x) {
-    return (ns * std::cosh(k * x) + a * std::tan(alpha) / k * std::sinh(k * x) - n0) / a;
-  };
+  auto yOfX = [&](double x)
+  { return (ns * std::cosh(k * x) + a * std::tan(alpha) / k * std::sinh(k * x) - n0) / a; };
   // Travel until x has advanced by 8 (stays inside [0, 10] in x and y).
   const double dx = 8.0;
   const double arc = sOfX(dx);
-  for (double tol : { 1e-5, 1e-7, 1e-9 })
+  // Large steps allowed so that the error control (not the step cap) sets the accuracy.
+  r->SetMaximumStep(100);
+  for (double tol : { 1e-4, 1e-6, 1e-8 })
   {
     r->SetIntegratorTolerance(tol);
     double x1[3], d1[3];
@@ -189,9 +190,11 @@ TEST(ReferenceRenderer, CurvedRayLinearGradient)
     std::cout << "tol " << tol << ": steps " << steps << ", |dx err| " << errX << ", |y err| "
               << errY << ", |slope err| " << errSlope << ", bend " << std::atan(slope) - alpha
               << " rad\n";
-    EXPECT_LT(errY, 2000 * tol + 1e-9);
-    EXPECT_LT(errX, 2000 * tol + 1e-9);
-    EXPECT_LT(errSlope, 2000 * tol + 1e-9);
+    // Local tolerance tol (relative to the 0.5 spacing) per step: the global error stays within
+    // a few tol x steps x spacing.
+    EXPECT_LT(errY, 10 * tol * steps * 0.5 + 1e-10);
+    EXPECT_LT(errX, 10 * tol * steps * 0.5 + 1e-10);
+    EXPECT_LT(errSlope, 10 * tol * steps + 1e-10);
     EXPECT_NEAR(d1[2], 0.0, 1e-12);
   }
   // The bend is large enough that a straight line would fail the test above by far.
@@ -286,7 +289,8 @@ TEST(ReferenceRenderer, EmissionAbsorptionCubeMatchesStraightLine)
     lo[a] = -0.5 * spacing[a];
     hi[a] = (dims[a] - 0.5) * spacing[a];
   }
-  auto chord = [&](const double ow[3], const double dw[3]) {
+  auto chord = [&](const double ow[3], const double dw[3])
+  {
     // To local: D^T (p - o).
     double o[3], d[3];
     const double po[3] = { ow[0] - origin[0], ow[1] - origin[1], ow[2] - origin[2] };
@@ -332,6 +336,7 @@ TEST(ReferenceRenderer, EmissionAbsorptionCubeMatchesStraightLine)
   r->SetImageSize(W, H);
   r->SetSamplesPerPixel(Spp(32));
   r->SetBackgroundColor(bg[0], bg[1], bg[2]);
+  r->SetSeed(0);
   r->Update();
   vtkImageData* out = r->GetOutput();
   vtkDataArray* hdr = out->GetPointData()->GetArray("HDR");
@@ -346,8 +351,12 @@ TEST(ReferenceRenderer, EmissionAbsorptionCubeMatchesStraightLine)
   vtkMath::Normalize(right);
   vtkMath::Cross(right, dop, vup);
   const double th = std::tan(vtkMath::RadiansFromDegrees(35.0) / 2);
-  double z2 = 0, maxZ = 0, resid = 0, var = 0;
-  int hitPixels = 0;
+  // Pooled per channel (the three channels of a grey medium share their paths, so they are not
+  // independent); per-pixel z-scores only where the chord is at least 0.2 (>= 4 expected
+  // tentative collisions), since with 32 samples a pixel that a ray barely grazes has a badly
+  // estimated standard error.
+  double z2 = 0, maxZ = 0, resid[3] = { 0, 0, 0 }, var[3] = { 0, 0, 0 };
+  int hitPixels = 0, zPixels = 0;
   for (int j = 0; j < H; ++j)
   {
     for (int i = 0; i < W; ++i)
@@ -373,23 +382,32 @@ TEST(ReferenceRenderer, EmissionAbsorptionCubeMatchesStraightLine)
           continue;
         }
         ASSERT_GT(err, 0) << "pixel " << i << "," << j;
-        const double zz = (got - expected) / err;
-        z2 += zz * zz;
-        maxZ = std::max(maxZ, std::abs(zz));
-        resid += got - expected;
-        var += err * err;
-        ++hitPixels;
+        resid[c] += got - expected;
+        var[c] += err * err;
+        hitPixels += c == 0 ? 1 : 0;
+        if (l >= 0.2)
+        {
+          const double zz = (got - expected) / err;
+          z2 += zz * zz;
+          maxZ = std::max(maxZ, std::abs(zz));
+          ++zPixels;
+        }
       }
     }
   }
-  ASSERT_GT(hitPixels, 100);
-  std::cout << "emission-absorption: " << hitPixels << " pixel channels, mean z^2 " << z2 / hitPixels
-            << ", max |z| " << maxZ << ", pooled residual " << resid / hitPixels << " +- "
-            << std::sqrt(var) / hitPixels << "\n";
-  EXPECT_LT(std::abs(resid), 4 * std::sqrt(var));
+  ASSERT_GT(hitPixels, 50);
+  ASSERT_GT(zPixels, 100);
+  std::cout << "emission-absorption: " << hitPixels << " pixels hit, mean z^2 " << z2 / zPixels
+            << " over " << zPixels << " pixel channels, max |z| " << maxZ << "\n";
+  for (int c = 0; c < 3; ++c)
+  {
+    std::cout << "  channel " << c << ": pooled residual " << resid[c] / hitPixels << " +- "
+              << std::sqrt(var[c]) / hitPixels << "\n";
+    EXPECT_LT(std::abs(resid[c]), 4 * std::sqrt(var[c]));
+  }
   // With 32 samples the per-pixel standard errors are themselves noisy: E[z^2] ~ 1.1.
-  EXPECT_LT(z2 / hitPixels, 1.6);
-  EXPECT_GT(z2 / hitPixels, 0.6);
+  EXPECT_LT(z2 / zPixels, 1.6);
+  EXPECT_GT(z2 / zPixels, 0.6);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -440,9 +458,8 @@ TEST(ReferenceRenderer, SlabSingleScatteringDirectionalLight)
     const double colour[3] = { 1.0, 0.5, 0.25 };
     for (int c = 0; c < 3; ++c)
     {
-      std::cout << (reflect ? "reflected" : "transmitted") << " channel " << c << ": "
-                << pl.Mean[c] << " +- " << pl.Error[c] << ", analytic " << expected * colour[c]
-                << "\n";
+      std::cout << (reflect ? "reflected" : "transmitted") << " channel " << c << ": " << pl.Mean[c]
+                << " +- " << pl.Error[c] << ", analytic " << expected * colour[c] << "\n";
       EXPECT_NEAR(pl.Mean[c], expected * colour[c], 4 * pl.Error[c]);
       EXPECT_LT(pl.Error[c], 0.05 * expected * colour[c]); // the test has power
     }
@@ -495,7 +512,8 @@ TEST(ReferenceRenderer, PointAndSpotLightSingleScattering)
     vtkDataArray* hdr = out->GetPointData()->GetArray("HDR");
     vtkDataArray* se = out->GetPointData()->GetArray("StandardError");
     // Quadrature reference per pixel (the camera ray is along -z through x, y).
-    auto boxLen = [&](const double o[3], const double d[3], double tmax) {
+    auto boxLen = [&](const double o[3], const double d[3], double tmax)
+    {
       double t0 = 0, t1 = tmax;
       for (int a = 0; a < 3; ++a)
       {
@@ -542,8 +560,8 @@ TEST(ReferenceRenderer, PointAndSpotLightSingleScattering)
             const double ca = -vtkMath::Dot(dl, axis);
             Iw = ca >= std::cos(vtkMath::RadiansFromDegrees(cone)) ? I * std::pow(ca, expo) : 0;
           }
-          ref += tcam * sigma * w * vtkReferenceRenderer::HenyeyGreensteinPhase(g, cosT) * Iw /
-            r2 * tl * h;
+          ref += tcam * sigma * w * vtkReferenceRenderer::HenyeyGreensteinPhase(g, cosT) * Iw / r2 *
+            tl * h;
         }
         const vtkIdType id = i + 12 * j;
         resid += hdr->GetComponent(id, 0) - ref;
@@ -593,12 +611,78 @@ TEST(ReferenceRenderer, SemiInfiniteMultipleScatteringChandrasekhar)
     const double expected =
       E * w * 1.0 * HFunction(w, mu) * HFunction(w, 1.0) / (4 * Pi * (mu + 1.0));
     std::cout << "semi-infinite w = " << w << ", mu = " << mu << ": " << p.Mean[0] << " +- "
-              << p.Error[0] << ", Chandrasekhar " << expected
-              << ", seconds " << FieldValue(r->GetOutput(), "RenderSeconds") << "\n";
+              << p.Error[0] << ", Chandrasekhar " << expected << ", seconds "
+              << FieldValue(r->GetOutput(), "RenderSeconds") << "\n";
     EXPECT_NEAR(p.Mean[0], expected, 4 * p.Error[0]);
     EXPECT_LT(p.Error[0], 0.05 * expected);
     EXPECT_EQ(p.Mean[0], p.Mean[1]); // grey: one path carries RGB
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rendering along curved rays: an emission-absorption medium with n = n0 + a y seen along +x by a
+// parallel camera. A view ray entering horizontally at height y0 bends upwards; its arc length
+// to the far face is s = sinh(k dx) / k with k = a / n(y0), so per pixel
+// L = eps / sigma (1 - exp(-sigma s)) + L_bg exp(-sigma s). (A straight-line answer, s = dx, is
+// off by up to 30%.)
+TEST(ReferenceRenderer, CurvedViewRaysEmissionAbsorption)
+{
+  const double n0 = 1.0, a = 0.3, sigma = 0.1, eps = 0.5, bg = 0.2;
+  const int dims[3] = { 11, 21, 3 };
+  const double spacing[3] = { 0.5, 0.5, 0.5 }, origin[3] = { 0, 0, 0 };
+  auto medium = MakeMedium(dims, spacing, origin,
+    [&](int, int j, int, Voxel& v)
+    {
+      v.N = n0 + a * j * spacing[1];
+      for (int c = 0; c < 3; ++c)
+      {
+        v.Sigma[c] = sigma;
+        v.Emission[c] = eps;
+      }
+    });
+  const int W = 2, H = 16;
+  const double focal[3] = { 2.5, 4.5, 0.5 }, dop[3] = { 1, 0, 0 }, up[3] = { 0, 1, 0 };
+  const double scale = 3.5;
+  vtkNew<vtkReferenceRenderer> r;
+  r->SetInputData(medium);
+  r->SetCamera(ParallelCamera(focal, dop, up, scale));
+  r->SetImageSize(W, H);
+  r->SetSamplesPerPixel(Spp(64));
+  r->SetBackgroundColor(bg, bg, bg);
+  r->Update();
+  vtkDataArray* hdr = r->GetOutput()->GetPointData()->GetArray("HDR");
+  vtkDataArray* se = r->GetOutput()->GetPointData()->GetArray("StandardError");
+  ASSERT_NE(hdr, nullptr);
+  const double dx = 5.5; // from x = -0.25 to 5.25
+  double resid = 0, var = 0, z2 = 0, maxRelStraight = 0;
+  int count = 0;
+  for (int j = 0; j < H; ++j)
+  {
+    const double y0 = focal[1] + (2 * (j + 0.5) / H - 1) * scale;
+    const double ns = n0 + a * y0, k = a / ns;
+    const double yEnd = (ns * std::cosh(k * dx) - n0) / a;
+    ASSERT_LT(yEnd, (dims[1] - 1) * spacing[1]); // stays where n is exactly linear
+    const double s = std::sinh(k * dx) / k;
+    const double T = std::exp(-sigma * s);
+    const double expected = eps / sigma * (1 - T) + bg * T;
+    const double straight = eps / sigma * (1 - std::exp(-sigma * dx)) + bg * std::exp(-sigma * dx);
+    maxRelStraight = std::max(maxRelStraight, std::abs(straight - expected) / expected);
+    for (int i = 0; i < W; ++i)
+    {
+      const double got = hdr->GetComponent(i + W * j, 0), err = se->GetComponent(i + W * j, 0);
+      ASSERT_GT(err, 0);
+      resid += got - expected;
+      var += err * err;
+      z2 += (got - expected) * (got - expected) / (err * err);
+      ++count;
+    }
+  }
+  std::cout << "curved view rays: pooled residual " << resid / count << " +- "
+            << std::sqrt(var) / count << ", mean z^2 " << z2 / count
+            << ", straight-line answer off by up to " << 100 * maxRelStraight << "%\n";
+  EXPECT_GT(maxRelStraight, 0.1);
+  EXPECT_LT(std::abs(resid), 4 * std::sqrt(var));
+  EXPECT_LT(z2 / count, 1.8);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -608,21 +692,24 @@ TEST(ReferenceRenderer, DeterministicPerSeed)
 {
   const int dims[3] = { 8, 8, 8 };
   const double spacing[3] = { 0.1, 0.1, 0.1 }, origin[3] = { 0, 0, 0 };
-  auto medium = MakeMedium(dims, spacing, origin, [](int i, int j, int k, Voxel& v) {
-    v.N = 1.0 + 0.05 * i + 0.02 * j * k / 8.0;
-    v.G = 0.4;
-    v.Sigma[0] = 2 + i;
-    v.Sigma[1] = 3;
-    v.Sigma[2] = 1 + k;
-    v.Albedo[0] = v.Albedo[1] = v.Albedo[2] = 0.7;
-    v.Emission[1] = 0.1 * j;
-  });
+  auto medium = MakeMedium(dims, spacing, origin,
+    [](int i, int j, int k, Voxel& v)
+    {
+      v.N = 1.0 + 0.05 * i + 0.02 * j * k / 8.0;
+      v.G = 0.4;
+      v.Sigma[0] = 2 + i;
+      v.Sigma[1] = 3;
+      v.Sigma[2] = 1 + k;
+      v.Albedo[0] = v.Albedo[1] = v.Albedo[2] = 0.7;
+      v.Emission[1] = 0.1 * j;
+    });
   const double towards[3] = { 0.3, 0.4, 0.866 };
   vtkNew<vtkCamera> cam;
   cam->SetPosition(0.4, -1.5, 0.9);
   cam->SetFocalPoint(0.35, 0.35, 0.35);
   cam->SetViewUp(0, 0, 1);
-  auto render = [&](unsigned int seed) {
+  auto render = [&](unsigned int seed)
+  {
     vtkNew<vtkReferenceRenderer> r;
     r->SetInputData(medium);
     r->SetCamera(cam);
@@ -700,15 +787,17 @@ TEST(ReferenceRenderer, HardInputsStayFinite)
               << FieldValue(r->GetOutput(), "TruncatedPaths") << "\n";
   }
   // Steep index step, point light in the medium, curved rays.
-  auto medium = MakeMedium(dims, spacing, origin, [](int i, int, int, Voxel& v) {
-    v.N = i < 3 ? 1.0 : 2.5;
-    v.G = 0.9;
-    for (int c = 0; c < 3; ++c)
+  auto medium = MakeMedium(dims, spacing, origin,
+    [](int i, int, int, Voxel& v)
     {
-      v.Sigma[c] = 0.3;
-      v.Albedo[c] = 0.95;
-    }
-  });
+      v.N = i < 3 ? 1.0 : 2.5;
+      v.G = 0.9;
+      for (int c = 0; c < 3; ++c)
+      {
+        v.Sigma[c] = 0.3;
+        v.Albedo[c] = 0.95;
+      }
+    });
   vtkNew<vtkLight> pl;
   pl->PositionalOn();
   pl->SetConeAngle(180);
@@ -784,7 +873,8 @@ TEST(ReferenceRenderer, BadInputsGiveClearErrors)
   good.Sigma[0] = good.Sigma[1] = good.Sigma[2] = 1;
   auto medium = Homogeneous(dims, spacing, origin, good);
   const double focal[3] = { 1, 1, 1 }, dop[3] = { 0, 0, -1 }, up[3] = { 0, 1, 0 };
-  auto run = [](vtkReferenceRenderer* r, const char* expect) {
+  auto run = [](vtkReferenceRenderer* r, const char* expect)
+  {
     vtkNew<vtkTest::ErrorObserver> obs, execObs;
     r->AddObserver(vtkCommand::ErrorEvent, obs);
     r->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, execObs);
