@@ -151,11 +151,13 @@ inline Pooled Pool(vtkImageData* out)
 // H(mu) = 1 / (1 - (w / 2) mu int_0^1 H(mu') / (mu + mu') dmu') on a 64-point Gauss-Legendre grid;
 // H at `mu` by the same relation. (The equivalent form with sqrt(1 - w) converges to a spurious
 // solution at w = 1 under this iteration.)
-inline double HFunction(double w, double mu)
+inline double HFunction(double w, double mu);
+
+// Gauss-Legendre nodes and weights on [0, 1].
+inline void GaussLegendre(int n, std::vector<double>& x, std::vector<double>& wt)
 {
-  const int n = 64;
-  std::vector<double> x(n), wt(n), h(n, 1.0);
-  // Gauss-Legendre nodes on [0, 1] by Newton iteration.
+  x.assign(n, 0);
+  wt.assign(n, 0);
   for (int i = 0; i < n; ++i)
   {
     double z = std::cos(Pi * (i + 0.75) / (n + 0.5));
@@ -183,9 +185,16 @@ inline double HFunction(double w, double mu)
       }
     }
     legendre(z, pn, dpn);
-    wt[i] = 1.0 / ((1 - z * z) * dpn * dpn); // weight on [0, 1]: half of 2 / ((1 - z^2) P'^2)
+    wt[i] = 1.0 / ((1 - z * z) * dpn * dpn); // half of 2 / ((1 - z^2) P'^2)
     x[i] = 0.5 * (1 - z);
   }
+}
+
+inline double HFunction(double w, double mu)
+{
+  const int n = 64;
+  std::vector<double> x, wt, h(n, 1.0);
+  GaussLegendre(n, x, wt);
   auto inv = [&](double m)
   {
     double s = 0;

@@ -620,6 +620,54 @@ TEST(ReferenceRenderer, SemiInfiniteMultipleScatteringChandrasekhar)
 }
 
 // ---------------------------------------------------------------------------------------------
+// Total diffuse reflectance (plane albedo) of the semi-infinite isotropic medium under a normal
+// beam: A = 1 - H(1) sqrt(1 - w) (Chandrasekhar 1950; van de Hulst 1980). The reflected flux
+// 2 pi int I(mu) mu dmu / E is integrated from renders at 6 Gauss-Legendre view angles; the same
+// quadrature applied to the exact I(mu) checks that the quadrature error is negligible.
+TEST(ReferenceRenderer, SemiInfinitePlaneAlbedo)
+{
+  const double w = 0.8;
+  const int dims[3] = { 3, 3, 3 };
+  const double spacing[3] = { 100, 100, 10 }, origin[3] = { -100, -100, 0 };
+  Voxel v;
+  for (int c = 0; c < 3; ++c)
+  {
+    v.Sigma[c] = 1.0;
+    v.Albedo[c] = w;
+  }
+  auto medium = Homogeneous(dims, spacing, origin, v);
+  const double towards[3] = { 0, 0, 1 };
+  std::vector<double> mu, wt;
+  GaussLegendre(6, mu, wt);
+  double albedoMC = 0, var = 0, albedoQuad = 0;
+  for (size_t q = 0; q < mu.size(); ++q)
+  {
+    const double t = std::acos(mu[q]);
+    const double dop[3] = { std::sin(t), 0, -mu[q] }, focal[3] = { 0, 0, 25 }, up[3] = { 0, 1, 0 };
+    vtkNew<vtkReferenceRenderer> r;
+    r->SetInputData(medium);
+    r->SetCamera(ParallelCamera(focal, dop, up, 1.0));
+    r->AddLight(Directional(towards, 1.0));
+    r->SetImageSize(8, 8);
+    r->SetSamplesPerPixel(Spp(64));
+    r->SetSeed(static_cast<unsigned int>(q));
+    r->Update();
+    const Pooled p = Pool(r->GetOutput());
+    const double f = 2 * Pi * wt[q] * mu[q];
+    albedoMC += f * p.Mean[0];
+    var += f * f * p.Error[0] * p.Error[0];
+    albedoQuad += f * w * HFunction(w, mu[q]) * HFunction(w, 1.0) / (4 * Pi * (mu[q] + 1));
+  }
+  const double published = 1 - HFunction(w, 1.0) * std::sqrt(1 - w);
+  std::cout << "plane albedo w = " << w << ": Monte Carlo " << albedoMC << " +- " << std::sqrt(var)
+            << ", quadrature of exact I " << albedoQuad << ", 1 - H(1) sqrt(1 - w) = " << published
+            << "\n";
+  EXPECT_NEAR(albedoQuad, published, 1e-3);
+  EXPECT_NEAR(albedoMC, albedoQuad, 4 * std::sqrt(var));
+  EXPECT_LT(std::sqrt(var), 0.03 * published);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Rendering along curved rays: an emission-absorption medium with n = n0 + a y seen along +x by a
 // parallel camera. A view ray entering horizontally at height y0 bends upwards; its arc length
 // to the far face is s = sinh(k dx) / k with k = a / n(y0), so per pixel
