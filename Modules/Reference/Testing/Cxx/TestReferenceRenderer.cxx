@@ -197,6 +197,29 @@ TEST(ReferenceRenderer, CurvedRayLinearGradient)
     EXPECT_LT(errSlope, 10 * tol * steps + 1e-10);
     EXPECT_NEAR(d1[2], 0.0, 1e-12);
   }
+  // Leaving the box through the face x = 10.25: from there on a straight line in the exit
+  // direction.
+  {
+    r->SetIntegratorTolerance(1e-9);
+    const double dxFace = 10.25 - x0[0];
+    ASSERT_LT(yOfX(dxFace), 10.0); // exits through the x face, where n is exactly linear
+    const double dndx =
+      ns * k * std::sinh(k * dxFace) + a * std::tan(alpha) * std::cosh(k * dxFace);
+    const double slope = dndx / a;
+    const double ex[3] = { 1 / std::sqrt(1 + slope * slope), slope / std::sqrt(1 + slope * slope),
+      0 };
+    const double extra = 3.0;
+    double x1[3], d1[3];
+    r->TraceRay(medium, x0, d0, sOfX(dxFace) + extra, x1, d1);
+    const double expected[3] = { 10.25 + extra * ex[0], yOfX(dxFace) + extra * ex[1], x0[2] };
+    std::cout << "exit: end point error " << std::abs(x1[0] - expected[0]) << ", "
+              << std::abs(x1[1] - expected[1]) << "\n";
+    for (int i = 0; i < 3; ++i)
+    {
+      EXPECT_NEAR(x1[i], expected[i], 2e-4); // exit located within 1e-4 voxel (0.5e-4 here)
+      EXPECT_NEAR(d1[i], ex[i], 1e-6);
+    }
+  }
   // The bend is large enough that a straight line would fail the test above by far.
   EXPECT_GT(std::abs(yOfX(dx) - (x0[1] + dx * std::tan(alpha))), 0.3);
 
@@ -731,6 +754,76 @@ TEST(ReferenceRenderer, CurvedViewRaysEmissionAbsorption)
   EXPECT_GT(maxRelStraight, 0.1);
   EXPECT_LT(std::abs(resid), 4 * std::sqrt(var));
   EXPECT_LT(z2 / count, 1.8);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The curved-ray machinery (RK5(4) view rays, curved light connections with chord-sphere tests
+// and exit discs) against the straight-line fast path: n = 1 + 1e-7 y bends rays by less than
+// 1e-6 over the box, so with the same seed both images must agree to far better than their
+// standard errors, in a multiple-scattering scene with a point light inside the medium and a
+// directional light.
+TEST(ReferenceRenderer, CurvedMachineryMatchesStraightPathInTheLimit)
+{
+  const int dims[3] = { 6, 6, 6 };
+  const double spacing[3] = { 0.2, 0.2, 0.2 }, origin[3] = { 0, 0, 0 };
+  auto build = [&](double gradient)
+  {
+    return MakeMedium(dims, spacing, origin,
+      [&](int i, int j, int k, Voxel& v)
+      {
+        v.N = 1.0 + gradient * j * spacing[1];
+        v.G = 0.3;
+        for (int c = 0; c < 3; ++c)
+        {
+          v.Sigma[c] = 1.0 + 0.5 * ((i + k) % 3);
+          v.Albedo[c] = 0.8;
+        }
+      });
+  };
+  vtkNew<vtkLight> pl;
+  pl->PositionalOn();
+  pl->SetConeAngle(180);
+  pl->SetPosition(0.5, 0.5, 0.5);
+  pl->SetIntensity(0.5);
+  const double towards[3] = { 0.3, 0.2, 0.93 };
+  vtkNew<vtkCamera> cam;
+  cam->SetPosition(0.5, -2.0, 1.2);
+  cam->SetFocalPoint(0.5, 0.5, 0.5);
+  cam->SetViewUp(0, 0, 1);
+  cam->SetViewAngle(40);
+  Pooled p[2];
+  std::vector<double> img[2];
+  for (int curved = 0; curved <= 1; ++curved)
+  {
+    auto medium = build(curved ? 1e-7 : 0.0);
+    vtkNew<vtkReferenceRenderer> r;
+    r->SetInputData(medium);
+    r->SetCamera(cam);
+    r->AddLight(pl);
+    r->AddLight(Directional(towards, 1.0));
+    r->SetLightRadius(0.05);
+    r->SetImageSize(12, 12);
+    r->SetSamplesPerPixel(Spp(16));
+    r->SetSeed(9);
+    r->Update();
+    p[curved] = Pool(r->GetOutput());
+    vtkDataArray* hdr = r->GetOutput()->GetPointData()->GetArray("HDR");
+    for (vtkIdType i = 0; i < 144; ++i)
+    {
+      img[curved].push_back(hdr->GetComponent(i, 0));
+    }
+  }
+  int identical = 0;
+  for (int i = 0; i < 144; ++i)
+  {
+    identical += std::abs(img[0][i] - img[1][i]) <= 1e-4 * std::abs(img[0][i]) + 1e-12 ? 1 : 0;
+  }
+  std::cout << "straight " << p[0].Mean[0] << " +- " << p[0].Error[0]
+            << ", curved (n = 1 + 1e-7 y) " << p[1].Mean[0] << " +- " << p[1].Error[0]
+            << ", pixels equal to 1e-4: " << identical << " / 144\n";
+  EXPECT_GT(p[0].Mean[0], 0);
+  EXPECT_NEAR(p[1].Mean[0], p[0].Mean[0], p[0].Error[0]);
+  EXPECT_GE(identical, 120);
 }
 
 // ---------------------------------------------------------------------------------------------
