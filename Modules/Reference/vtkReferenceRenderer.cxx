@@ -313,8 +313,13 @@ struct Medium
       }
     }
   }
+  // Arrays that are missing or uniform are stored as a single tuple (see Load).
   double Sample1(const std::vector<double>& a, const Stencil& st) const
   {
+    if (a.size() == 1)
+    {
+      return a[0];
+    }
     double r = 0;
     for (int c = 0; c < 8; ++c)
     {
@@ -324,6 +329,10 @@ struct Medium
   }
   V3 Sample3(const std::vector<double>& a, const Stencil& st) const
   {
+    if (a.size() == 3)
+    {
+      return V3(a.data());
+    }
     V3 r;
     for (int c = 0; c < 8; ++c)
     {
@@ -367,15 +376,33 @@ struct Medium
     Diagonal = Norm(Hi - Lo);
     const int64_t n = static_cast<int64_t>(N[0]) * N[1] * N[2];
     vtkPointData* pd = medium->GetPointData();
+    // A missing array, or one whose tuples are all equal, is kept as a single tuple: memory
+    // (8 bytes per component per voxel otherwise) and a faster lookup.
+    auto shrinkIfUniform = [n](std::vector<double>& out, int nc)
+    {
+      for (int64_t i = 1; i < n; ++i)
+      {
+        for (int c = 0; c < nc; ++c)
+        {
+          if (out[i * nc + c] != out[c])
+          {
+            return;
+          }
+        }
+      }
+      out.resize(nc);
+      out.shrink_to_fit();
+    };
     auto load = [&](int id, std::vector<double>& out) -> bool
     {
       const int nc = vtkRefractaMedium::GetNumberOfComponents(id);
       vtkDataArray* arr = pd->GetArray(vtkRefractaMedium::GetArrayName(id));
-      out.assign(static_cast<size_t>(n * nc), vtkRefractaMedium::GetDefaultValue(id));
       if (!arr)
       {
+        out.assign(nc, vtkRefractaMedium::GetDefaultValue(id));
         return false;
       }
+      out.resize(static_cast<size_t>(n * nc));
       for (int64_t i = 0; i < n; ++i)
       {
         for (int c = 0; c < nc; ++c)
@@ -383,6 +410,7 @@ struct Medium
           out[i * nc + c] = arr->GetComponent(i, c);
         }
       }
+      shrinkIfUniform(out, nc);
       return true;
     };
     load(vtkRefractaMedium::REFRACTIVE_INDEX, Index);
@@ -392,10 +420,15 @@ struct Medium
     load(vtkRefractaMedium::ANISOTROPY, G);
     load(vtkRefractaMedium::EMISSION, Emission);
 
-    if (!hasGradient)
+    if (!hasGradient && Index.size() == 1)
+    {
+      Gradient.assign(3, 0.0);
+    }
+    else if (!hasGradient)
     {
       // Per-voxel central differences of n (one-sided at the edge voxels, 0 along an axis with a
       // single voxel), interpolated trilinearly afterwards like any other array.
+      Gradient.assign(static_cast<size_t>(3 * n), 0.0);
       for (int k = 0; k < N[2]; ++k)
       {
         for (int j = 0; j < N[1]; ++j)
@@ -408,7 +441,6 @@ struct Medium
             {
               if (N[a] < 2)
               {
-                Gradient[3 * id + a] = 0;
                 continue;
               }
               int lo[3] = { i, j, k }, hi[3] = { i, j, k };
@@ -421,18 +453,23 @@ struct Medium
           }
         }
       }
+      shrinkIfUniform(Gradient, 3);
     }
-    const double n0 = Index[0];
+    auto at = [](const std::vector<double>& v, int nc, int64_t i)
+    { return &v[v.size() == static_cast<size_t>(nc) ? 0 : i * nc]; };
+    const int64_t nIndex = static_cast<int64_t>(Index.size());
+    const int64_t nGrad = static_cast<int64_t>(Gradient.size()) / 3;
     StraightRays = true;
     NMax = 1;
-    for (int64_t i = 0; i < n; ++i)
+    for (int64_t i = 0; i < nIndex; ++i)
     {
       NMax = std::max(NMax, Index[i]);
-      if (Index[i] != n0 || Gradient[3 * i] != 0 || Gradient[3 * i + 1] != 0 ||
-        Gradient[3 * i + 2] != 0)
-      {
-        StraightRays = false;
-      }
+      StraightRays = StraightRays && Index[i] == Index[0];
+    }
+    for (int64_t i = 0; i < nGrad; ++i)
+    {
+      const double* g = at(Gradient, 3, i);
+      StraightRays = StraightRays && g[0] == 0 && g[1] == 0 && g[2] == 0;
     }
     Grey = true;
     HasEmission = false;
@@ -440,9 +477,9 @@ struct Medium
     Majorant[0] = Majorant[1] = Majorant[2] = 0;
     for (int64_t i = 0; i < n; ++i)
     {
-      const double* s = &Sigma[3 * i];
-      const double* a = &Albedo[3 * i];
-      const double* e = &Emission[3 * i];
+      const double* s = at(Sigma, 3, i);
+      const double* a = at(Albedo, 3, i);
+      const double* e = at(Emission, 3, i);
       if (s[0] != s[1] || s[0] != s[2] || a[0] != a[1] || a[0] != a[2])
       {
         Grey = false;
@@ -583,7 +620,7 @@ struct Tracer
   double Tol = 1e-7;
   double MaxStep = 1;
   const std::vector<Light>* Lights = nullptr; // spheres to test, or nullptr
-  int64_t StepBudget = 50000000;              // per Advance call; guards against Zeno loops
+  int64_t StepBudget = 1000000;               // steps per Advance call: bounds trapped (TIR) rays
 
   double StraightExit(const V3& x, const V3& d) const
   {
