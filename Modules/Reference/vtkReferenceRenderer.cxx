@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <limits>
 #include <sstream>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkReferenceRenderer);
@@ -1045,18 +1046,21 @@ struct Scene
   }
 };
 
-// Converts the renderer's lights to the grid-local frame.
-void BuildLights(const Medium& m, vtkLightCollection* lights, vtkCamera* camera, double deltaDeg,
-  double radius, std::vector<Light>& out)
+// Converts the renderer's lights to the grid-local frame. Returns an error message for a light
+// whose direction is undefined or whose intensity is invalid (empty when all are usable).
+std::string BuildLights(const Medium& m, vtkLightCollection* lights, vtkCamera* camera,
+  double deltaDeg, double radius, std::vector<Light>& out)
 {
   out.clear();
   if (!lights)
   {
-    return;
+    return std::string();
   }
   lights->InitTraversal();
+  int index = -1;
   while (vtkLight* vl = lights->GetNextItem())
   {
+    ++index;
     if (!vl->GetSwitch())
     {
       continue;
@@ -1071,6 +1075,23 @@ void BuildLights(const Medium& m, vtkLightCollection* lights, vtkCamera* camera,
     {
       vl->GetTransformedPosition(pos);
       vl->GetTransformedFocalPoint(foc);
+    }
+    const bool needsDirection = !vl->GetPositional() || vl->GetConeAngle() < 90;
+    const double sep[3] = { pos[0] - foc[0], pos[1] - foc[1], pos[2] - foc[2] };
+    if (needsDirection && !(vtkMath::Norm(sep) > 0))
+    {
+      std::ostringstream msg;
+      msg << "Light " << index << " is " << (vl->GetPositional() ? "a spot" : "a directional")
+          << " light whose position equals its focal point, so its direction is undefined; give "
+             "it a position different from its focal point.";
+      return msg.str();
+    }
+    if (!std::isfinite(vl->GetIntensity()) || vl->GetIntensity() < 0)
+    {
+      std::ostringstream msg;
+      msg << "Light " << index << " has intensity " << vl->GetIntensity()
+          << "; it must be finite and >= 0.";
+      return msg.str();
     }
     double col[3];
     vl->GetDiffuseColor(col);
@@ -1102,6 +1123,7 @@ void BuildLights(const Medium& m, vtkLightCollection* lights, vtkCamera* camera,
     }
     out.push_back(l);
   }
+  return std::string();
 }
 
 inline unsigned char ToneMap(double v, double exposure)
@@ -1394,8 +1416,13 @@ int vtkReferenceRenderer::RequestData(
   }
   scene.Background = V3(this->BackgroundColor);
   const double radius = this->LightRadius > 0 ? this->LightRadius : 0.01 * m.Diagonal;
-  BuildLights(
+  const std::string lightError = BuildLights(
     m, this->Lights, this->Camera, this->DirectionalLightAngularRadius, radius, scene.Lights);
+  if (!lightError.empty())
+  {
+    vtkErrorMacro(<< lightError);
+    return 0;
+  }
   scene.MaxDepth = this->MaximumScatteringDepth;
   scene.RouletteDepth = this->RouletteDepth;
   scene.MaxVertices = this->MaximumPathVertices;
@@ -1434,11 +1461,11 @@ int vtkReferenceRenderer::RequestData(
   const uint64_t seed = this->Seed;
   const int64_t numPixels = static_cast<int64_t>(W) * H;
   std::vector<double> mean(3 * numPixels), stderrs(3 * numPixels);
-  std::atomic<int64_t> truncated(0);
+  std::atomic<int64_t> truncated(0), nonFinite(0);
 
   auto renderPixels = [&](vtkIdType begin, vtkIdType end)
   {
-    int64_t localTrunc = 0;
+    int64_t localTrunc = 0, localNonFinite = 0;
     for (vtkIdType p = begin; p < end; ++p)
     {
       const int i = static_cast<int>(p % W), j = static_cast<int>(p / W);
@@ -1474,6 +1501,13 @@ int vtkReferenceRenderer::RequestData(
           }
         }
         localTrunc += trunc ? 1 : 0;
+        if (!std::isfinite(val.x) || !std::isfinite(val.y) || !std::isfinite(val.z))
+        {
+          // Never expected; counted and reported (field data NonFiniteSamples) rather than
+          // spreading a NaN through the image.
+          ++localNonFinite;
+          val = V3();
+        }
         for (int c = 0; c < 3; ++c)
         {
           sum[c] += val[c];
@@ -1496,6 +1530,7 @@ int vtkReferenceRenderer::RequestData(
       }
     }
     truncated += localTrunc;
+    nonFinite += localNonFinite;
   };
 
   // Rows in blocks so that progress can be reported (and aborts honoured) between parallel runs.
@@ -1561,6 +1596,7 @@ int vtkReferenceRenderer::RequestData(
   addField("RenderSeconds", seconds, false);
   addField("Seed", static_cast<double>(this->Seed), false);
   addField("TruncatedPaths", static_cast<double>(truncated.load()), false);
+  addField("NonFiniteSamples", static_cast<double>(nonFinite.load()), false);
   addField("LightRadius", radius, false);
   return 1;
 }

@@ -11,7 +11,8 @@
  *   (sample standard deviation / sqrt(N)); -1 when SamplesPerPixel is 1 (undefined);
  * - `RGB` (unsigned char, 3, the active scalars): clamp(Exposure * HDR, 0, 1), then the sRGB
  *   transfer function, then round(255 x);
- * and field data `SamplesPerPixel`, `RenderSeconds`, `Seed`, `TruncatedPaths`, `LightRadius`.
+ * and field data `SamplesPerPixel`, `RenderSeconds`, `Seed`, `TruncatedPaths`, `NonFiniteSamples`
+ * (samples that came out NaN/Inf, dropped and counted; 0 expected), `LightRadius`.
  * Pixel (i, j) is point (i, j, 0); j = 0 is the bottom row (VTK's convention).
  *
  * The physics are those of Documentation/Physics.md, solved without approximation:

@@ -923,6 +923,7 @@ TEST(ReferenceRenderer, HardInputsStayFinite)
       }
     }
     EXPECT_GT(sum, 0) << "g = " << g;
+    EXPECT_EQ(FieldValue(r->GetOutput(), "NonFiniteSamples"), 0);
     std::cout << "albedo 1, g = " << g << ": mean " << sum / 192 << ", "
               << FieldValue(r->GetOutput(), "RenderSeconds") << " s, truncated "
               << FieldValue(r->GetOutput(), "TruncatedPaths") << "\n";
@@ -1078,6 +1079,18 @@ TEST(ReferenceRenderer, BadInputsGiveClearErrors)
     r->SetBackgroundColor(-1, 0, 0);
     r->SetImageSize(4, 4);
     run(r, "BackgroundColor");
+  }
+  {
+    vtkNew<vtkReferenceRenderer> r;
+    r->SetInputData(medium);
+    r->SetCamera(ParallelCamera(focal, dop, up, 1.0));
+    vtkNew<vtkLight> degenerate; // directional, position == focal point
+    degenerate->PositionalOff();
+    degenerate->SetPosition(1, 2, 3);
+    degenerate->SetFocalPoint(1, 2, 3);
+    r->AddLight(degenerate);
+    r->SetImageSize(4, 4);
+    run(r, "direction is undefined");
   }
   // TraceRay on an invalid medium.
   {
