@@ -214,6 +214,94 @@ struct Medium
   double MinSpacing = 1;
   double Diagonal = 1;
   double Majorant[3] = { 0, 0, 0 };
+  // Blocks of BlockSize^3 interpolation cells where n is constant and grad n is 0 over the whole
+  // trilinear footprint: curved rays cross them in one straight move instead of RK steps.
+  static constexpr int BlockSize = 4;
+  int NB[3] = { 1, 1, 1 };
+  std::vector<unsigned char> Flat;
+
+  // When p lies in a flat block, the straight distance along unit d to leave it (the first and
+  // last blocks extend to infinity, as the field is clamped beyond the edge voxels).
+  bool FlatBlock(const V3& p, const V3& d, double& tLeave) const
+  {
+    if (Flat.empty())
+    {
+      return false;
+    }
+    int b[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const double u = std::min(std::max(p[a] / S[a], 0.0), static_cast<double>(N[a] - 1));
+      b[a] = std::min(static_cast<int>(u / BlockSize), NB[a] - 1);
+    }
+    if (!Flat[b[0] + NB[0] * (b[1] + static_cast<size_t>(NB[1]) * b[2])])
+    {
+      return false;
+    }
+    tLeave = Inf;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (d[a] > 0 && b[a] < NB[a] - 1)
+      {
+        const double upper = std::min((b[a] + 1) * BlockSize, N[a] - 1) * S[a];
+        tLeave = std::min(tLeave, (upper - p[a]) / d[a]);
+      }
+      else if (d[a] < 0 && b[a] > 0)
+      {
+        const double lower = b[a] * BlockSize * S[a];
+        tLeave = std::min(tLeave, (lower - p[a]) / d[a]);
+      }
+    }
+    tLeave = std::max(tLeave, 0.0);
+    return true;
+  }
+
+  void BuildFlatBlocks()
+  {
+    Flat.clear();
+    if (StraightRays || (Index.size() == 1 && Gradient.size() == 3))
+    {
+      return; // everything straight, or a uniform non-zero gradient: nothing flat to skip
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      NB[a] = std::max(1, (N[a] - 1 + BlockSize - 1) / BlockSize);
+    }
+    Flat.assign(static_cast<size_t>(NB[0]) * NB[1] * NB[2], 0);
+    auto nAt = [this](int64_t id) { return Index.size() == 1 ? Index[0] : Index[id]; };
+    auto gAt = [this](int64_t id) { return &Gradient[Gradient.size() == 3 ? 0 : 3 * id]; };
+    for (int bz = 0; bz < NB[2]; ++bz)
+    {
+      for (int by = 0; by < NB[1]; ++by)
+      {
+        for (int bx = 0; bx < NB[0]; ++bx)
+        {
+          const int b[3] = { bx, by, bz };
+          int lo[3], hi[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            lo[a] = b[a] * BlockSize;
+            hi[a] = std::min((b[a] + 1) * BlockSize, N[a] - 1);
+          }
+          const double n0 = nAt(lo[0] + N[0] * (lo[1] + static_cast<int64_t>(N[1]) * lo[2]));
+          bool flat = true;
+          for (int k = lo[2]; k <= hi[2] && flat; ++k)
+          {
+            for (int j = lo[1]; j <= hi[1] && flat; ++j)
+            {
+              for (int i = lo[0]; i <= hi[0] && flat; ++i)
+              {
+                const int64_t id = i + N[0] * (j + static_cast<int64_t>(N[1]) * k);
+                const double* g = gAt(id);
+                flat = nAt(id) == n0 && g[0] == 0 && g[1] == 0 && g[2] == 0;
+              }
+            }
+          }
+          Flat[bx + NB[0] * (by + static_cast<size_t>(NB[1]) * bz)] = flat ? 1 : 0;
+        }
+      }
+    }
+  }
 
   V3 ToLocalPoint(const double p[3]) const
   {
@@ -492,6 +580,7 @@ struct Medium
         HasScattering = HasScattering || (s[c] > 0 && a[c] > 0);
       }
     }
+    BuildFlatBlocks();
     if (HasEmission)
     {
       // Emission is estimated at tentative collisions: at least 4 per smallest voxel length.
@@ -742,6 +831,33 @@ struct Tracer
         return Event::Stuck;
       }
       const double tExit = StraightExit(r.X, r.Dir);
+      double tBlock;
+      if (M->FlatBlock(r.X, r.Dir, tBlock))
+      {
+        // n constant and grad n = 0 here: the ray is exactly straight until it leaves the block
+        // (overshooting by hMin / 2 so that it does not stall on the block face, where grad n
+        // is still exactly 0).
+        const double len = std::min(dist - moved, std::min(tExit, tBlock + 0.5 * hMin));
+        ++steps;
+        if (Lights)
+        {
+          double tHit = Inf;
+          CheckSpheres(r.X, r.Dir, len, tHit, hit);
+          if (tHit < Inf)
+          {
+            r.X = r.X + tHit * r.Dir;
+            moved += tHit;
+            return Event::HitLight;
+          }
+        }
+        r.X = r.X + len * r.Dir;
+        moved += len;
+        if (len >= tExit)
+        {
+          return Event::Exited;
+        }
+        continue;
+      }
       double h = std::min(std::min(r.H, hMax), dist - moved);
       h = std::min(h, std::max(tExit, hMin));
       h = std::max(h, std::min(hMin, dist - moved));
