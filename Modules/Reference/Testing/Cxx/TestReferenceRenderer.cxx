@@ -436,18 +436,20 @@ TEST(ReferenceRenderer, EmissionAbsorptionCubeMatchesStraightLine)
 // ---------------------------------------------------------------------------------------------
 // Single scattering (MaximumScatteringDepth = 1) by a laterally wide slab lit by a directional
 // light: reflected radiance w E p(Theta) mu0 / (mu + mu0) (1 - exp(-tau (1/mu + 1/mu0))) and
-// transmitted w E p(Theta) mu0 / (mu0 - mu) (exp(-tau/mu0) - exp(-tau/mu)), HG phase g = 0.5.
+// transmitted w E p(Theta) mu0 / (mu0 - mu) (exp(-tau/mu0) - exp(-tau/mu)), HG phase g = 0.5,
+// per channel.
 TEST(ReferenceRenderer, SlabSingleScatteringDirectionalLight)
 {
   const int dims[3] = { 3, 3, 4 };
   const double spacing[3] = { 40, 40, 0.25 }, origin[3] = { -40, -40, 0 };
-  const double tau = 1.0, w = 0.8, g = 0.5, E = 3.0;
+  // Non-grey (one path per channel): optical thickness and albedo differ per channel.
+  const double tauC[3] = { 1.0, 0.5, 2.0 }, wC[3] = { 0.8, 0.6, 0.9 }, g = 0.5, E = 3.0;
   Voxel v;
   v.G = g;
   for (int c = 0; c < 3; ++c)
   {
-    v.Sigma[c] = tau / 1.0; // thickness 4 * 0.25 = 1
-    v.Albedo[c] = w;
+    v.Sigma[c] = tauC[c] / 1.0; // thickness 4 * 0.25 = 1
+    v.Albedo[c] = wC[c];
   }
   auto medium = Homogeneous(dims, spacing, origin, v);
   const double zc = 0.5 * (-0.125 + 0.875); // slab from z = -0.125 to 0.875
@@ -474,13 +476,14 @@ TEST(ReferenceRenderer, SlabSingleScatteringDirectionalLight)
     // Outgoing travel direction towards the camera is -dop.
     const double out[3] = { -dop[0], -dop[1], -dop[2] };
     const double p = vtkReferenceRenderer::HenyeyGreensteinPhase(g, vtkMath::Dot(travelIn, out));
-    const double expected = reflect
-      ? w * E * p * mu0 / (mu + mu0) * (1 - std::exp(-tau * (1 / mu + 1 / mu0)))
-      : w * E * p * mu0 / (mu0 - mu) * (std::exp(-tau / mu0) - std::exp(-tau / mu));
     const Pooled pl = Pool(r->GetOutput());
     const double colour[3] = { 1.0, 0.5, 0.25 };
     for (int c = 0; c < 3; ++c)
     {
+      const double tau = tauC[c], w = wC[c];
+      const double expected = reflect
+        ? w * E * p * mu0 / (mu + mu0) * (1 - std::exp(-tau * (1 / mu + 1 / mu0)))
+        : w * E * p * mu0 / (mu0 - mu) * (std::exp(-tau / mu0) - std::exp(-tau / mu));
       std::cout << (reflect ? "reflected" : "transmitted") << " channel " << c << ": " << pl.Mean[c]
                 << " +- " << pl.Error[c] << ", analytic " << expected * colour[c] << "\n";
       EXPECT_NEAR(pl.Mean[c], expected * colour[c], 4 * pl.Error[c]);
