@@ -24,9 +24,9 @@
  *   voxels), in both cases interpolated trilinearly like every other array (so grad n is
  *   continuous, which the error control needs). Where n is the same in every voxel and there is no
  *   gradient array, rays are straight lines (fast path); otherwise blocks of 4^3 cells whose whole
- *   trilinear footprint has one n and zero grad n are crossed in one straight move. Outside the box
- * rays are straight and the medium is empty; the ray direction is continuous across the box faces
- * (no refraction at the faces: the box face is not an interface, see Physics.md);
+ *   trilinear footprint has one n and zero grad n are crossed in one straight move. Outside the
+ *   box rays are straight and the medium is empty; the ray direction is continuous across the box
+ *   faces (no refraction at the faces: the box face is not an interface, see Physics.md);
  * - free flights by delta tracking against a global majorant (max sigma_t, raised to
  *   4 / (smallest spacing) where there is emission so that emission is sampled at least 4 times
  *   per voxel), positions along the curved path being advanced by arc length;
