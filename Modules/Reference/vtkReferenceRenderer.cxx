@@ -213,12 +213,12 @@ struct Medium
   double NMax = 1;
   double MinSpacing = 1;
   double Diagonal = 1;
-  double Majorant[3] = { 0, 0, 0 };
   // Blocks of BlockSize^3 interpolation cells where n is constant and grad n is 0 over the whole
   // trilinear footprint: curved rays cross them in one straight move instead of RK steps.
   static constexpr int BlockSize = 4;
   int NB[3] = { 1, 1, 1 };
   std::vector<unsigned char> Flat;
+  std::vector<double> BlockMajorant; // 3 per block
 
   // When p lies in a flat block, the straight distance along unit d to leave it (the first and
   // last blocks extend to infinity, as the field is clamped beyond the edge voxels).
@@ -229,11 +229,7 @@ struct Medium
       return false;
     }
     int b[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      const double u = std::min(std::max(p[a] / S[a], 0.0), static_cast<double>(N[a] - 1));
-      b[a] = std::min(static_cast<int>(u / BlockSize), NB[a] - 1);
-    }
+    BlockOf(p, b);
     if (!Flat[b[0] + NB[0] * (b[1] + static_cast<size_t>(NB[1]) * b[2])])
     {
       return false;
@@ -256,16 +252,105 @@ struct Medium
     return true;
   }
 
+  // Block b of point p (u clamped to the voxel range, as the fields are).
+  void BlockOf(const V3& p, int b[3]) const
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const double u = std::min(std::max(p[a] / S[a], 0.0), static_cast<double>(N[a] - 1));
+      b[a] = std::min(static_cast<int>(u / BlockSize), NB[a] - 1);
+    }
+  }
+
+  // Local majorant of sigma_t (channel ch) at p, valid within the Euclidean distance dSafe of p:
+  // each block's majorant covers its trilinear footprint grown by one voxel on every side, and a
+  // path of arc length d stays within distance d of its start.
+  void LocalMajorant(const V3& p, int ch, double& m, double& dSafe) const
+  {
+    int b[3];
+    BlockOf(p, b);
+    m = BlockMajorant[3 * (b[0] + NB[0] * (b[1] + static_cast<size_t>(NB[1]) * b[2])) + ch];
+    dSafe = Inf;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (b[a] > 0)
+      {
+        dSafe = std::min(dSafe, p[a] - (b[a] * BlockSize - 1) * S[a]);
+      }
+      if (b[a] < NB[a] - 1)
+      {
+        dSafe = std::min(dSafe, ((b[a] + 1) * BlockSize + 1) * S[a] - p[a]);
+      }
+    }
+    dSafe = std::max(dSafe, 0.0);
+  }
+
+  void BuildBlockMajorants()
+  {
+    BlockMajorant.assign(3 * static_cast<size_t>(NB[0]) * NB[1] * NB[2], 0.0);
+    auto at = [this](const std::vector<double>& v, int64_t id)
+    { return &v[v.size() == 3 ? 0 : 3 * id]; };
+    for (int bz = 0; bz < NB[2]; ++bz)
+    {
+      for (int by = 0; by < NB[1]; ++by)
+      {
+        for (int bx = 0; bx < NB[0]; ++bx)
+        {
+          const int b[3] = { bx, by, bz };
+          int lo[3], hi[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            // Points within one voxel of the block region [bB, (b+1)B] interpolate voxels
+            // bB - 1 .. (b+1)B + 2.
+            lo[a] = std::max(b[a] * BlockSize - 1, 0);
+            hi[a] = std::min((b[a] + 1) * BlockSize + 2, N[a] - 1);
+          }
+          double m[3] = { 0, 0, 0 };
+          bool emission = false;
+          for (int k = lo[2]; k <= hi[2]; ++k)
+          {
+            for (int j = lo[1]; j <= hi[1]; ++j)
+            {
+              for (int i = lo[0]; i <= hi[0]; ++i)
+              {
+                const int64_t id = i + N[0] * (j + static_cast<int64_t>(N[1]) * k);
+                const double* sg = at(Sigma, id);
+                const double* e = at(Emission, id);
+                for (int c = 0; c < 3; ++c)
+                {
+                  m[c] = std::max(m[c], sg[c]);
+                  emission = emission || e[c] > 0;
+                }
+              }
+            }
+          }
+          if (emission)
+          {
+            // Emission is estimated at tentative collisions: at least 4 per smallest spacing.
+            for (int c = 0; c < 3; ++c)
+            {
+              m[c] = std::max(m[c], 4.0 / MinSpacing);
+            }
+          }
+          if (Grey)
+          {
+            m[0] = m[1] = m[2] = std::max(m[0], std::max(m[1], m[2]));
+          }
+          double* out = &BlockMajorant[3 * (bx + NB[0] * (by + static_cast<size_t>(NB[1]) * bz))];
+          out[0] = m[0];
+          out[1] = m[1];
+          out[2] = m[2];
+        }
+      }
+    }
+  }
+
   void BuildFlatBlocks()
   {
     Flat.clear();
     if (StraightRays || (Index.size() == 1 && Gradient.size() == 3))
     {
       return; // everything straight, or a uniform non-zero gradient: nothing flat to skip
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      NB[a] = std::max(1, (N[a] - 1 + BlockSize - 1) / BlockSize);
     }
     Flat.assign(static_cast<size_t>(NB[0]) * NB[1] * NB[2], 0);
     auto nAt = [this](int64_t id) { return Index.size() == 1 ? Index[0] : Index[id]; };
@@ -563,7 +648,6 @@ struct Medium
     Grey = true;
     HasEmission = false;
     HasScattering = false;
-    Majorant[0] = Majorant[1] = Majorant[2] = 0;
     for (int64_t i = 0; i < n; ++i)
     {
       const double* s = at(Sigma, 3, i);
@@ -575,25 +659,16 @@ struct Medium
       }
       for (int c = 0; c < 3; ++c)
       {
-        Majorant[c] = std::max(Majorant[c], s[c]);
         HasEmission = HasEmission || e[c] > 0;
         HasScattering = HasScattering || (s[c] > 0 && a[c] > 0);
       }
     }
+    for (int a = 0; a < 3; ++a)
+    {
+      NB[a] = std::max(1, (N[a] - 1 + BlockSize - 1) / BlockSize);
+    }
     BuildFlatBlocks();
-    if (HasEmission)
-    {
-      // Emission is estimated at tentative collisions: at least 4 per smallest voxel length.
-      for (int c = 0; c < 3; ++c)
-      {
-        Majorant[c] = std::max(Majorant[c], 4.0 / MinSpacing);
-      }
-    }
-    if (Grey)
-    {
-      const double m = std::max(Majorant[0], std::max(Majorant[1], Majorant[2]));
-      Majorant[0] = Majorant[1] = Majorant[2] = m;
-    }
+    BuildBlockMajorants();
   }
 };
 
@@ -913,6 +988,30 @@ struct Tracer
   }
 };
 
+// Delta/ratio tracking step with piecewise-constant (per block) majorants: moves the ray until
+// the majorant optical length `tau` is used up (Reached: a tentative collision, its majorant in
+// `m`) or the ray leaves the box or hits a light.
+Event AdvanceOptical(const Tracer& tr, RayState& r, double tau, int ch, int& hit, double& m)
+{
+  int64_t steps = 0;
+  for (int64_t guard = 0; guard < 10000000; ++guard)
+  {
+    double dSafe, moved;
+    tr.M->LocalMajorant(r.X, ch, m, dSafe);
+    if (m > 0 && m * dSafe >= tau)
+    {
+      return tr.Advance(r, tau / m, moved, hit, steps);
+    }
+    const Event ev = tr.Advance(r, dSafe, moved, hit, steps);
+    if (ev != Event::Reached)
+    {
+      return ev;
+    }
+    tau -= m * moved;
+  }
+  return Event::Stuck;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Everything a path needs.
 struct Scene
@@ -995,17 +1094,14 @@ struct Scene
   // channel `ch` matters for the transmittance (all three when grey).
   V3 Connect(const V3& x, const V3& w, int ch, bool grey, Rng& rng, bool& truncated) const
   {
-    const double majorant = M.Majorant[ch];
     double weight = 1;
     RayState ray;
     TLight.Start(ray, x, w);
-    int64_t steps = 0;
     for (;;)
     {
-      const double dist = majorant > 0 ? -std::log(1 - rng.Uniform()) / majorant : Inf;
-      double moved;
+      double majorant;
       int hit;
-      const Event ev = TLight.Advance(ray, dist, moved, hit, steps);
+      const Event ev = AdvanceOptical(TLight, ray, -std::log(1 - rng.Uniform()), ch, hit, majorant);
       if (ev == Event::Stuck)
       {
         truncated = true;
@@ -1059,22 +1155,19 @@ struct Scene
       }
       origin = origin + t0 * dir;
     }
-    const double majorant = M.Majorant[ch];
     const bool lightsPresent = !Lights.empty();
     const double nLights = static_cast<double>(Lights.size());
     double beta = 1;
     int depth = 0;
     RayState ray;
     T.Start(ray, origin, dir);
-    int64_t steps = 0;
     for (;;)
     {
-      const double dist = majorant > 0 ? -std::log(1 - rng.Uniform()) / majorant : Inf;
-      double moved;
+      double majorant;
       int hit;
       // The path's own rays never test light spheres: lights are not seen by view rays, and
       // scattered light reaching a light unscattered is the connections' business.
-      const Event ev = T.Advance(ray, dist, moved, hit, steps);
+      const Event ev = AdvanceOptical(T, ray, -std::log(1 - rng.Uniform()), ch, hit, majorant);
       if (ev == Event::Stuck)
       {
         truncated = true;

@@ -27,9 +27,11 @@
  *   trilinear footprint has one n and zero grad n are crossed in one straight move. Outside the
  *   box rays are straight and the medium is empty; the ray direction is continuous across the box
  *   faces (no refraction at the faces: the box face is not an interface, see Physics.md);
- * - free flights by delta tracking against a global majorant (max sigma_t, raised to
- *   4 / (smallest spacing) where there is emission so that emission is sampled at least 4 times
- *   per voxel), positions along the curved path being advanced by arc length;
+ * - free flights by delta tracking (ratio tracking for light connections) against per-block
+ *   majorants: blocks of 4^3 cells, each majorant the largest sigma_t over the block's trilinear
+ *   footprint grown by one voxel (valid for any path within one voxel of the block), raised to
+ *   4 / (smallest spacing) where the footprint emits so that emission is sampled at least 4 times
+ *   per voxel; positions along the curved path are advanced by arc length;
  * - emission eps is collected along the view ray up to its first real collision (estimator
  *   eps / majorant at every tentative collision); it is seen, it does not illuminate;
  * - the background (BackgroundColor or the EnvironmentMap) is added only to view rays that leave
