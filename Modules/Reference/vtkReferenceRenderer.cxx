@@ -209,7 +209,6 @@ struct Medium
   bool StraightRays = true;
   bool Grey = true;
   bool HasEmission = false;
-  bool HasScattering = false;
   double NMax = 1;
   double MinSpacing = 1;
   double Diagonal = 1;
@@ -647,7 +646,6 @@ struct Medium
     }
     Grey = true;
     HasEmission = false;
-    HasScattering = false;
     for (int64_t i = 0; i < n; ++i)
     {
       const double* s = at(Sigma, 3, i);
@@ -660,7 +658,6 @@ struct Medium
       for (int c = 0; c < 3; ++c)
       {
         HasEmission = HasEmission || e[c] > 0;
-        HasScattering = HasScattering || (s[c] > 0 && a[c] > 0);
       }
     }
     for (int a = 0; a < 3; ++a)
@@ -1092,7 +1089,7 @@ struct Scene
   // transmittance to the light, estimated by ratio tracking (the tentative-collision weights
   // (1 - sigma_t / majorant) multiply; Russian roulette once the weight is small). Only the
   // channel `ch` matters for the transmittance (all three when grey).
-  V3 Connect(const V3& x, const V3& w, int ch, bool grey, Rng& rng, bool& truncated) const
+  V3 Connect(const V3& x, const V3& w, int ch, Rng& rng, bool& truncated) const
   {
     double weight = 1;
     RayState ray;
@@ -1120,7 +1117,6 @@ struct Scene
       M.MakeStencil(ray.X, st);
       const double sigma = M.Sample3(M.Sigma, st)[ch];
       weight *= std::max(0.0, 1 - sigma / majorant);
-      (void)grey;
       if (weight < 0.1)
       {
         if (weight <= 0 || rng.Uniform() >= 0.5)
@@ -1241,7 +1237,7 @@ struct Scene
         const double q = 0.5 * p + 0.5 * lightPdf / nLights;
         if (q > 0 && p > 0)
         {
-          const V3 li = Connect(ray.X, w, ch, channel < 0, rng, truncated);
+          const V3 li = Connect(ray.X, w, ch, rng, truncated);
           result += (beta * p / q) * (mask * li);
         }
       }
