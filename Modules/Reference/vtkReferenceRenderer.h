@@ -1,0 +1,292 @@
+/**
+ * @class   vtkReferenceRenderer
+ * @brief   CPU, double-precision, unbiased Monte Carlo renderer of a Refracta medium: the ground
+ *          truth the OpenCL pipeline is measured against.
+ *
+ * Input port 0 is a medium (vtkImageData with the arrays of vtkRefractaMedium; validated with
+ * vtkMediumValidator, missing arrays take their defaults). The output is a W x H x 1 vtkImageData
+ * with point arrays
+ * - `HDR` (float, 4 components): linear RGB radiance, A = 1;
+ * - `StandardError` (float, 3): per pixel standard error of the mean of the samples
+ *   (sample standard deviation / sqrt(N)); -1 when SamplesPerPixel is 1 (undefined);
+ * - `RGB` (unsigned char, 3, the active scalars): clamp(Exposure * HDR, 0, 1), then the sRGB
+ *   transfer function, then round(255 x);
+ * and field data `SamplesPerPixel`, `RenderSeconds`, `Seed`, `TruncatedPaths`, `NonFiniteSamples`
+ * (samples that came out NaN/Inf, dropped and counted; 0 expected), `LightRadius`.
+ * Pixel (i, j) is point (i, j, 0); j = 0 is the bottom row (VTK's convention).
+ *
+ * The physics are those of Documentation/Physics.md, solved without approximation:
+ * - rays follow d/ds(n dx/ds) = grad n in the grid-local frame, integrated in arc length s with
+ *   an adaptive Dormand-Prince RK5(4) step with error control on (x, v = n dx/ds), |v| renormalised
+ *   to n after each step (IntegratorTolerance, MaximumStep). n and all other fields are sampled
+ *   trilinearly, clamped to the edge voxels. grad n is the `RefractiveIndexGradient` array when
+ *   present, else per-voxel central differences of `RefractiveIndex` (one-sided at the edge
+ *   voxels), in both cases interpolated trilinearly like every other array (so grad n is
+ *   continuous, which the error control needs). Where n is the same in every voxel and there is no
+ *   gradient array, rays are straight lines (fast path); otherwise blocks of 4^3 cells whose whole
+ *   trilinear footprint has one n and zero grad n are crossed in one straight move. Outside the
+ *   box rays are straight and the medium is empty; the ray direction is continuous across the box
+ *   faces (no refraction at the faces: the box face is not an interface, see Physics.md);
+ * - free flights by delta tracking (ratio tracking for light connections) against per-block
+ *   majorants: blocks of 4^3 cells, each majorant the largest sigma_t over the block's trilinear
+ *   footprint grown by one voxel (valid for any path within one voxel of the block), raised to
+ *   4 / (smallest spacing) where the footprint emits so that emission is sampled at least 4 times
+ *   per voxel; positions along the curved path are advanced by arc length;
+ * - emission eps is collected along the view ray up to its first real collision (estimator
+ *   eps / majorant at every tentative collision); it is seen, it does not illuminate;
+ * - the background (BackgroundColor or the EnvironmentMap) is added only to view rays that leave
+ *   the medium unscattered; it illuminates nothing;
+ * - at a real collision the path scatters with probability albedo (else it is absorbed) into a
+ *   direction drawn from the one-sample MIS mixture 0.5 HG + 0.5 (uniform cone towards one light,
+ *   chosen uniformly), weighted by HG / mixture (<= 2). The CURVED ray is then traced from there:
+ *   if it reaches a light without a real collision the light's radiance is added. The mixture pdf
+ *   is positive wherever HG is, so this stays unbiased where rays bend. Russian roulette from
+ *   depth RouletteDepth (survival = min(1, max throughput)).
+ * - Channels: when Extinction and Albedo are grey (the three components equal in every voxel) one
+ *   path carries RGB; otherwise each sample traces one path per channel.
+ *
+ * **Lights** (vtkLight, scene or camera lights through GetTransformedPosition/FocalPoint,
+ * headlights at the camera; switched-off lights ignored; colour = DiffuseColor * Intensity).
+ * Delta lights cannot be reached by a curved ray, so lights have a small extent:
+ * - directional: a disc at infinity of angular radius DirectionalLightAngularRadius (degrees,
+ *   default 0.5) around the direction the light comes from, uniform radiance E / (pi sin^2 delta)
+ *   so that its irradiance on a plane perpendicular to it is E;
+ * - point / spot: a sphere of radius LightRadius (world units; default 0 = 1% of the medium's
+ *   diagonal) whose radiance towards a direction w is I(w) / (pi r^2) (I(w) = the intensity of
+ *   Physics.md, cos^e inside the cone for spots), so its radiant intensity is I(w).
+ * As the extents go to 0 the image converges to the delta-light answer (error O(extent^2)). Lights
+ * are not seen directly by view rays (like the pipeline's view pass). A ray is tested against
+ * light spheres on each integrator chord.
+ *
+ * **Camera**: vtkCamera converted to the grid-local frame; perspective with the vertical full
+ * ViewAngle and aspect W / H, or parallel with ParallelScale = half the viewport height; rays
+ * through pixel centres ((i + 0.5) / W, (j + 0.5) / H), or jittered in the pixel when PixelJitter
+ * is on (off by default, to compare pixel for pixel with the pipeline). Window centre, view shear
+ * and UseHorizontalViewAngle are ignored.
+ *
+ * **Environment map**: an equirectangular vtkImageData (Wx x Hy x 1, point scalars with 3 or 4
+ * components; unsigned char values are divided by 255, others used as linear radiance). A WORLD
+ * direction d (the medium's direction matrix is applied) maps to
+ * u = (atan2(d_y, d_x) + pi) / (2 pi), v = (asin(d_z) + pi / 2) / pi, looked up bilinearly with
+ * pixel centres at ((i + 0.5) / Wx, (j + 0.5) / Hy), wrapping in u and clamping in v (row 0 is
+ * the -z pole). When set it replaces BackgroundColor.
+ *
+ * **Determinism**: every pixel has its own random stream derived from (Seed, pixel index), and a
+ * pixel is rendered by a single thread, so an image is bit-identical for a seed whatever the number
+ * of threads.
+ */
+#ifndef vtkReferenceRenderer_h
+#define vtkReferenceRenderer_h
+
+#include "RefractaReferenceModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+#include "vtkSmartPointer.h" // for members
+
+class vtkCamera;
+class vtkLight;
+class vtkLightCollection;
+
+class REFRACTAREFERENCE_EXPORT vtkReferenceRenderer : public vtkImageAlgorithm
+{
+public:
+  static vtkReferenceRenderer* New();
+  vtkTypeMacro(vtkReferenceRenderer, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The camera (world coordinates). Required.
+   */
+  void SetCamera(vtkCamera* camera);
+  vtkCamera* GetCamera();
+  ///@}
+
+  ///@{
+  /**
+   * The lights (world coordinates). None by default: then only emission and the background are
+   * seen.
+   */
+  void AddLight(vtkLight* light);
+  void RemoveAllLights();
+  void SetLights(vtkLightCollection* lights);
+  vtkLightCollection* GetLights();
+  ///@}
+
+  ///@{
+  /**
+   * Output image size in pixels, each in [1, 16384]. Default 256 x 256.
+   */
+  void SetImageSize(int width, int height);
+  vtkGetVector2Macro(ImageSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * Uniform background radiance (linear RGB, >= 0), seen by unscattered view rays. Default black.
+   */
+  vtkSetVector3Macro(BackgroundColor, double);
+  vtkGetVector3Macro(BackgroundColor, double);
+  ///@}
+
+  ///@{
+  /**
+   * Equirectangular environment image replacing the background colour (see the class
+   * documentation for the mapping). Default none.
+   */
+  void SetEnvironmentMap(vtkImageData* image);
+  vtkImageData* GetEnvironmentMap();
+  ///@}
+
+  ///@{
+  /**
+   * Monte Carlo samples (paths) per pixel, >= 1. Default 16.
+   */
+  vtkSetClampMacro(SamplesPerPixel, int, 1, 1 << 24);
+  vtkGetMacro(SamplesPerPixel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Seed of the random streams. Default 0.
+   */
+  vtkSetMacro(Seed, unsigned int);
+  vtkGetMacro(Seed, unsigned int);
+  ///@}
+
+  ///@{
+  /**
+   * Largest number of scattering events along a path: 0 shows only unscattered view rays
+   * (emission and background), 1 single scattering, -1 (default) unlimited (Russian roulette).
+   */
+  vtkSetClampMacro(MaximumScatteringDepth, int, -1, VTK_INT_MAX);
+  vtkGetMacro(MaximumScatteringDepth, int);
+  ///@}
+
+  ///@{
+  /**
+   * Scattering depth from which Russian roulette terminates paths (survival probability
+   * min(1, largest throughput component)). Default 8.
+   */
+  vtkSetClampMacro(RouletteDepth, int, 1, VTK_INT_MAX);
+  vtkGetMacro(RouletteDepth, int);
+  ///@}
+
+  ///@{
+  /**
+   * Safety limit on scattering events per path (a path reaching it is dropped and counted in the
+   * field data `TruncatedPaths`, a bias the user can see). Default 100000.
+   */
+  vtkSetClampMacro(MaximumPathVertices, int, 1, VTK_INT_MAX);
+  vtkGetMacro(MaximumPathVertices, int);
+  ///@}
+
+  ///@{
+  /**
+   * Local error tolerance of the RK5(4) integrator per step, relative to the smallest voxel
+   * spacing (position) and to the largest n (v = n dx/ds). Default 1e-7.
+   */
+  vtkSetClampMacro(IntegratorTolerance, double, 1e-14, 1e-1);
+  vtkGetMacro(IntegratorTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Largest integrator step in units of the smallest voxel spacing. Default 1.
+   */
+  vtkSetClampMacro(MaximumStep, double, 1e-4, 1e3);
+  vtkGetMacro(MaximumStep, double);
+  ///@}
+
+  ///@{
+  /**
+   * Angular radius of directional lights, degrees, in [1e-4, 45]. Default 0.5.
+   */
+  vtkSetClampMacro(DirectionalLightAngularRadius, double, 1e-4, 45.0);
+  vtkGetMacro(DirectionalLightAngularRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * Radius of point and spot light spheres, world units; 0 (default) means 1% of the medium's
+   * diagonal.
+   */
+  vtkSetClampMacro(LightRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(LightRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * Jitter view rays uniformly inside their pixel (anti-aliasing). Off by default: rays go
+   * through pixel centres like the pipeline's.
+   */
+  vtkSetMacro(PixelJitter, bool);
+  vtkGetMacro(PixelJitter, bool);
+  vtkBooleanMacro(PixelJitter, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Exposure multiplying HDR before the 8-bit tone mapping (clamp, sRGB). Default 1.
+   */
+  vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Exposure, double);
+  ///@}
+
+  /**
+   * Henyey-Greenstein phase function (per steradian), g in (-1, 1), cosTheta between the incoming
+   * and outgoing travel directions; evaluated without cancellation near abs(g) = 1.
+   */
+  static double HenyeyGreensteinPhase(double g, double cosTheta);
+
+  /**
+   * Draw an outgoing direction from HG around the travel direction `in` (unit) with the uniform
+   * numbers u1 (for cos theta) and u2 (for the azimuth) in [0, 1).
+   */
+  static void SampleHenyeyGreenstein(
+    double g, const double in[3], double u1, double u2, double out[3]);
+
+  /**
+   * Integrate a ray through `medium` (world coordinates) with this renderer's integrator settings,
+   * ignoring extinction: from `origin` in the unit `direction`, for `arcLength` world units of
+   * path (straight outside the medium). Writes the end point and the unit end direction. Returns
+   * the number of accepted integrator steps, or -1 when the medium is invalid.
+   */
+  int TraceRay(vtkImageData* medium, const double origin[3], const double direction[3],
+    double arcLength, double endPoint[3], double endDirection[3]);
+
+protected:
+  vtkReferenceRenderer();
+  ~vtkReferenceRenderer() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  vtkMTimeType GetMTime() override;
+
+  vtkSmartPointer<vtkCamera> Camera;
+  vtkSmartPointer<vtkLightCollection> Lights;
+  vtkSmartPointer<vtkImageData> EnvironmentMap;
+  int ImageSize[2] = { 256, 256 };
+  double BackgroundColor[3] = { 0.0, 0.0, 0.0 };
+  int SamplesPerPixel = 16;
+  unsigned int Seed = 0;
+  int MaximumScatteringDepth = -1;
+  int RouletteDepth = 8;
+  int MaximumPathVertices = 100000;
+  double IntegratorTolerance = 1e-7;
+  double MaximumStep = 1.0;
+  double DirectionalLightAngularRadius = 0.5;
+  double LightRadius = 0.0;
+  bool PixelJitter = false;
+  double Exposure = 1.0;
+
+private:
+  vtkReferenceRenderer(const vtkReferenceRenderer&) = delete;
+  void operator=(const vtkReferenceRenderer&) = delete;
+};
+
+#endif
