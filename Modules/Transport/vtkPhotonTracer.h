@@ -36,8 +36,8 @@
  *    every step's chord is walked voxel by voxel, attenuating with sigma_t sampled in each voxel
  *    piece and depositing sigma_s's share of the loss there.
  * 4. Smoothing (optional): the paper's 3x3x3 filter, total-conserving.
- * Only the work the medium needs is compiled in: straight rays (no gradient or octree lookups)
- * when n is constant, no piece walk when nothing attenuates, no deposits when nothing scatters
+ * Only the work the medium needs is compiled in: straight rays (no gradient or octree lookups;
+ * a RefractiveIndexGradient array is then ignored) when n is constant, no piece walk when nothing attenuates, no deposits when nothing scatters
  * (see GetUsedCurvedRays() etc.).
  *
  * Lengths of the step knobs are in voxels (multiples of the smallest spacing). Results are
