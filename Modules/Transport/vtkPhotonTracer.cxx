@@ -836,8 +836,7 @@ int vtkPhotonTracer::RequestData(
     {
       return 0;
     }
-    this->UpdateProgress(
-      0.1 + 0.8 * std::min(1.0, static_cast<double>(first + chunk) / photons));
+    this->UpdateProgress(0.1 + 0.8 * std::min(1.0, static_cast<double>(first + chunk) / photons));
   }
   std::vector<cl_long> tally(21), count(8);
   if (!ctx->ReadBuffer(tallies.Get(), 21 * sizeof(cl_long), tally.data(), this) ||

@@ -37,8 +37,8 @@
  *    piece and depositing sigma_s's share of the loss there.
  * 4. Smoothing (optional): the paper's 3x3x3 filter, total-conserving.
  * Only the work the medium needs is compiled in: straight rays (no gradient or octree lookups;
- * a RefractiveIndexGradient array is then ignored) when n is constant, no piece walk when nothing attenuates, no deposits when nothing scatters
- * (see GetUsedCurvedRays() etc.).
+ * a RefractiveIndexGradient array is then ignored) when n is constant, no piece walk when nothing
+ * attenuates, no deposits when nothing scatters (see GetUsedCurvedRays() etc.).
  *
  * Lengths of the step knobs are in voxels (multiples of the smallest spacing). Results are
  * deterministic for a Seed on a given device (64-bit fixed-point accumulation).

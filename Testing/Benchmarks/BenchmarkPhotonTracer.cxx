@@ -229,10 +229,12 @@ int main(int argc, char* argv[])
               "L2 error vs 0.25-voxel |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
-  auto report = [&](const Result& r) {
+  auto report = [&](const Result& r)
+  {
     const double rate = r.Steps / r.Marching;
-    std::printf("| 2^%d | %s | %.3g | %.3g | %.2f | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f | %.0f | "
-                "%.0f | %.4f |\n",
+    std::printf(
+      "| 2^%d | %s | %.3g | %.3g | %.2f | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f | %.0f | "
+      "%.0f | %.4f |\n",
       static_cast<int>(std::lround(std::log2(r.Photons))), r.Mode.c_str(), r.Steps, r.Pieces,
       rate / 1e6, r.Pieces / r.Marching / 1e6, r.Octree, r.Generation, r.Marching, r.Smoothing,
       r.Total, r.DeviceMiB, r.RssMiB, r.Error);
