@@ -299,6 +299,21 @@ TEST(PhotonTracer, EmittedPowerOfLights)
     EXPECT_NEAR(emitted[2] / emitted[0], 0.25, 1e-6);
     EXPECT_EQ(Field(out, "PhotonsMissed"), 0);
   }
+  // Spot outside the box whose 5-degree cone lies inside the box's face: the sampled cap is the
+  // spot cone (narrower than the box's), every photon enters, full spot power.
+  {
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->SetNumberOfPhotons(N);
+    const double e = 10, cone = 5;
+    tracer->AddLight(Positional({ 0.45, 0.35, -2 }, { 0.45, 0.35, 0 }, cone, e, 4.0));
+    auto out = Trace(tracer, medium);
+    const double c = std::cos(vtkMath::RadiansFromDegrees(cone));
+    const double power = 4.0 * 2 * vtkMath::Pi() * (1 - std::pow(c, e + 1)) / (e + 1);
+    const double omega = 2 * vtkMath::Pi() * (1 - c);
+    const double se = 4.0 * omega * 0.5 * (1 - std::pow(c, e)) / std::sqrt(N);
+    EXPECT_NEAR(Field(out, "EnergyEmitted"), power, 5 * se);
+    EXPECT_EQ(Field(out, "PhotonsMissed"), 0);
+  }
   // Oblique directional light: E times the box's projected area.
   {
     vtkNew<vtkPhotonTracer> tracer;
@@ -612,4 +627,69 @@ TEST(PhotonTracer, RejectsBadInput)
   EXPECT_FALSE(observer->GetError());
   EXPECT_EQ(tracer->GetOutput()->GetNumberOfPoints(), 64);
   EXPECT_EQ(Field(tracer->GetOutput(), "EnergyEmitted"), 0);
+}
+
+// Photons start on the proxy box (the voxels that differ from empty space) instead of the whole
+// medium: same physics, fewer wasted photons. A 0.4 x 0.4 x 0.4 absorbing block in a 3.2-wide
+// empty grid, lit along z: both runs must give the analytic absorbed power
+// E A (1 - exp(-sigma L)) within 1% (straight parallel rays: the only error is the lateral
+// sampling of the block's face, ~0.1% with these counts), and the proxy walks fewer voxels.
+TEST(PhotonTracer, ProxyBoundsGiveTheSameAnswer)
+{
+  const double s = 0.1;
+  auto medium = MakeMedium(32, 32, 32, s,
+    [&](double x, double y, double z)
+    {
+      Voxel v;
+      const bool inBlock =
+        std::abs(x - 1.55) < 0.2 && std::abs(y - 1.55) < 0.2 && std::abs(z - 1.55) < 0.2;
+      v.Extinction = inBlock ? std::array<double, 3>{ 2, 2, 2 } : std::array<double, 3>{ 0, 0, 0 };
+      return v;
+    });
+  double absorbed[2], missed[2]; // missed: voxel pieces walked
+  for (int proxy = 0; proxy < 2; ++proxy)
+  {
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->SetUseProxyBounds(proxy == 1);
+    tracer->SetNumberOfPhotons(1 << 15);
+    tracer->AddLight(Directional({ 1.55, 1.55, -5 }, { 1.55, 1.55, 0 }, 1.0));
+    auto out = Trace(tracer, medium);
+    absorbed[proxy] = Field(out, "EnergyAbsorbed");
+    missed[proxy] = Field(out, "TotalVoxelPieces");
+  }
+  // The block covers voxels 14..17 (4 voxels, 0.4 wide) on each axis; sigma_t is sampled
+  // trilinearly, so the absorbing region is the block's voxel boxes blurred by one voxel: the
+  // analytic reference integrates the trilinear profile along z per (x, y) footprint.
+  // Straight rays along z at lateral position (x, y): optical depth = 2 * integral of the
+  // trilinear tent product; computed here by fine quadrature.
+  auto tent = [&](double u) { // 1D interpolated indicator of voxels 14..17 at voxel coordinate u
+    const double c = std::clamp(u, 0.0, 31.0);
+    const int i0 = static_cast<int>(std::floor(c));
+    const double f = c - i0;
+    auto ind = [](int i) { return (i >= 14 && i <= 17) ? 1.0 : 0.0; };
+    return (1 - f) * ind(i0) + f * ind(std::min(i0 + 1, 31));
+  };
+  double expected = 0;
+  const int q = 400;
+  for (int a = 0; a < q; ++a)
+  {
+    for (int b = 0; b < q; ++b)
+    {
+      const double u = 12.0 + 8.0 * (a + 0.5) / q, w = 12.0 + 8.0 * (b + 0.5) / q;
+      double tau = 0;
+      for (int k = 0; k < 80; ++k)
+      {
+        tau += 2.0 * tent(u) * tent(w) * tent(12.0 + 8.0 * (k + 0.5) / 80) * (8.0 / 80) * s;
+      }
+      expected += (1 - std::exp(-tau)) * (8.0 * s / q) * (8.0 * s / q);
+    }
+  }
+  for (int proxy = 0; proxy < 2; ++proxy)
+  {
+    EXPECT_NEAR(absorbed[proxy], expected, 0.01 * expected) << "proxy " << proxy;
+  }
+  // With the proxy every photon starts at the block's neighbourhood (0.8 wide instead of 3.2,
+  // so 16x more of them cross the block) and skips the empty voxels in front: 20 voxels walked
+  // per photon instead of 32.
+  EXPECT_LT(missed[1], 0.7 * missed[0]);
 }
