@@ -1,0 +1,422 @@
+// The hard-case suite (ctest label `stability`): inputs at the edges of what the physics and the
+// numbers allow, run through every pass that exists. For each case and each pass it checks that
+// every output value is finite, that no energy is created (the photon pass's books close and
+// deposit no more than was emitted; images are non-negative), that the run terminates within its
+// caps (no invalid photon, no photon left at the step cap unless reported), and, where an answer
+// is known, the answer.
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkEffectPlan.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkMatrix3x3.h"
+#include "vtkNew.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPointData.h"
+#include "vtkReferenceRenderer.h"
+#include "vtkSceneAnalysis.h"
+#include "vtkSmartPointer.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace
+{
+struct Voxel
+{
+  double N = 1.0;
+  double SigmaT = 0.0;
+  double Albedo = 0.0;
+  double G = 0.0;
+};
+
+// A case: a medium, its lights, a camera, and what is known about the answer.
+struct HardCase
+{
+  std::string Name;
+  vtkSmartPointer<vtkImageData> Medium;
+  std::vector<vtkSmartPointer<vtkLight>> Lights;
+  vtkSmartPointer<vtkCamera> Camera;
+  bool NothingInteracts = false; // vacuum-like: every emitted photon escapes, nothing scatters
+  bool NoLightPower = false;     // nothing is emitted at all
+  bool Opaque = false;           // nothing gets through: no photon escapes with power
+  bool Conservative = false;     // albedo 1: nothing is absorbed
+};
+
+using Field = std::function<Voxel(double, double, double)>; // at grid-local voxel centres
+
+vtkSmartPointer<vtkImageData> MakeMedium(std::array<int, 3> dims, std::array<double, 3> spacing,
+  const Field& f, std::array<double, 3> origin = { 0, 0, 0 }, bool withGradient = false)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(dims.data());
+  image->SetSpacing(spacing.data());
+  image->SetOrigin(origin.data());
+  auto add = [&](const char* name, int comps)
+  {
+    vtkNew<vtkFloatArray> a;
+    a->SetName(name);
+    a->SetNumberOfComponents(comps);
+    a->SetNumberOfTuples(image->GetNumberOfPoints());
+    a->Fill(0.0);
+    image->GetPointData()->AddArray(a);
+    return a.GetPointer();
+  };
+  vtkFloatArray* n = add("RefractiveIndex", 1);
+  vtkFloatArray* ext = add("Extinction", 3);
+  vtkFloatArray* alb = add("Albedo", 3);
+  vtkFloatArray* g = add("Anisotropy", 1);
+  for (int k = 0; k < dims[2]; ++k)
+  {
+    for (int j = 0; j < dims[1]; ++j)
+    {
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        const vtkIdType id =
+          i + static_cast<vtkIdType>(dims[0]) * (j + static_cast<vtkIdType>(dims[1]) * k);
+        const Voxel v = f(i * spacing[0], j * spacing[1], k * spacing[2]);
+        n->SetValue(id, static_cast<float>(v.N));
+        g->SetValue(id, static_cast<float>(v.G));
+        for (int c = 0; c < 3; ++c)
+        {
+          ext->SetComponent(id, c, v.SigmaT);
+          alb->SetComponent(id, c, v.Albedo);
+        }
+      }
+    }
+  }
+  if (withGradient)
+  {
+    add("RefractiveIndexGradient", 3); // deliberately zero: a sharp step with no smoothing at all
+  }
+  return image;
+}
+
+vtkSmartPointer<vtkLight> Light(bool positional, std::array<double, 3> at, std::array<double, 3> to,
+  double intensity, double coneAngle = 180)
+{
+  auto light = vtkSmartPointer<vtkLight>::New();
+  light->SetPositional(positional);
+  light->SetPosition(at.data());
+  light->SetFocalPoint(to.data());
+  light->SetIntensity(intensity);
+  light->SetConeAngle(coneAngle);
+  return light;
+}
+
+vtkSmartPointer<vtkCamera> Camera(std::array<double, 3> at, std::array<double, 3> to)
+{
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->SetPosition(at.data());
+  camera->SetFocalPoint(to.data());
+  camera->SetViewUp(0, 1, 0);
+  if (std::abs(at[0] - to[0]) < 1e-9 && std::abs(at[2] - to[2]) < 1e-9)
+  {
+    camera->SetViewUp(0, 0, 1);
+  }
+  return camera;
+}
+
+double Smooth(double d, double width)
+{
+  return 0.5 * (1.0 - std::tanh(d / width));
+}
+
+std::vector<HardCase> MakeCases()
+{
+  const int n = 16;
+  const double h = 1.0 / n;
+  const std::array<double, 3> centre = { 0.5 - 0.5 * h, 0.5 - 0.5 * h, 0.5 - 0.5 * h };
+  auto fromAbove = [&] { return Light(false, { centre[0], 3, centre[2] }, centre, 1.0); };
+  auto front = [&] { return Camera({ centre[0], centre[1], 3.0 }, centre); };
+  auto fog = [](double sigmaT, double albedo, double g)
+  {
+    return [=](double, double, double)
+    {
+      Voxel v;
+      v.SigmaT = sigmaT;
+      v.Albedo = albedo;
+      v.G = g;
+      return v;
+    };
+  };
+  auto sphere = [&](double index, double width)
+  {
+    return [=](double x, double y, double z)
+    {
+      Voxel v;
+      const double r = std::sqrt(
+        std::pow(x - centre[0], 2) + std::pow(y - centre[1], 2) + std::pow(z - centre[2], 2));
+      v.N = 1.0 + (index - 1.0) * Smooth(r - 0.3, width);
+      v.SigmaT = 0.05;
+      v.Albedo = 0.5;
+      return v;
+    };
+  };
+  std::vector<HardCase> cases;
+  auto add = [&](std::string name, vtkSmartPointer<vtkImageData> medium,
+               std::vector<vtkSmartPointer<vtkLight>> lights) -> HardCase&
+  {
+    cases.push_back({ std::move(name), medium, std::move(lights), front() });
+    return cases.back();
+  };
+  add("albedo 0.999", MakeMedium({ n, n, n }, { h, h, h }, fog(5.0, 0.999, 0.0)), { fromAbove() });
+  add("albedo 1", MakeMedium({ n, n, n }, { h, h, h }, fog(5.0, 1.0, 0.0)), { fromAbove() })
+    .Conservative = true;
+  add("optical depth 1e4 per voxel", MakeMedium({ n, n, n }, { h, h, h }, fog(1e4 / h, 0.5, 0.0)),
+    { fromAbove() })
+    .Opaque = true;
+  add("extinction 0 everywhere", MakeMedium({ n, n, n }, { h, h, h }, sphere(1.5, 2 * h)), {})
+    .NothingInteracts = true;
+  cases.back().Medium->GetPointData()->GetArray("Extinction")->Fill(0.0);
+  cases.back().Lights = { fromAbove() };
+  add("index jump 1 to 2.4, unsmoothed",
+    MakeMedium({ n, n, n }, { h, h, h },
+      [&](double, double y, double)
+      {
+        Voxel v;
+        v.N = y < 0.5 ? 1.0 : 2.4;
+        v.SigmaT = 0.1;
+        v.Albedo = 0.5;
+        return v;
+      }),
+    { Light(false, { 0, 3, 0.2 }, { 1, 0, 0.7 }, 1.0) });
+  add("total internal reflection in n = 2.4 sphere",
+    MakeMedium({ n, n, n }, { h, h, h }, sphere(2.4, h)),
+    { Light(true, { centre[0] + 0.2, centre[1], centre[2] }, { 1, centre[1], centre[2] }, 1.0) });
+  add("grazing rays on an interface",
+    MakeMedium({ n, n, n }, { h, h, h },
+      [&](double, double y, double)
+      {
+        Voxel v;
+        v.N = 1.0 + 0.5 * Smooth(0.5 - y, h);
+        v.SigmaT = 0.2;
+        v.Albedo = 0.7;
+        return v;
+      }),
+    { Light(false, { -3, 0.5 + 3e-3, 0.5 }, { 1, 0.5, 0.5 }, 1.0) });
+  add("caustic focal point of a ball lens", MakeMedium({ n, n, n }, { h, h, h }, sphere(1.5, h)),
+    { Light(false, { centre[0], centre[1], -3 }, centre, 1.0) });
+  add("g = 0.999", MakeMedium({ n, n, n }, { h, h, h }, fog(3.0, 0.9, 0.999)), { fromAbove() });
+  add("g = -0.999", MakeMedium({ n, n, n }, { h, h, h }, fog(3.0, 0.9, -0.999)), { fromAbove() });
+  add("1x1x1 grid", MakeMedium({ 1, 1, 1 }, { 0.5, 0.5, 0.5 }, fog(2.0, 0.8, 0.3)),
+    { Light(false, { 0, 3, 0 }, { 0, 0, 0 }, 1.0) });
+  cases.back().Camera = Camera({ 0, 0, 3 }, { 0, 0, 0 });
+  add("1x1x512 grid",
+    MakeMedium({ 1, 1, 512 }, { 0.01, 0.01, 0.01 },
+      [](double, double, double z)
+      {
+        Voxel v;
+        v.SigmaT = 3.0;
+        v.Albedo = 0.9;
+        v.N = 1.0 + 0.3 * z;
+        return v;
+      }),
+    { Light(false, { 0, 0, -3 }, { 0, 0, 1 }, 1.0) });
+  cases.back().Camera = Camera({ 3, 0, 2.5 }, { 0, 0, 2.5 });
+  add("strongly anisotropic spacing",
+    MakeMedium({ 8, 8, 8 }, { 1.0, 0.01, 10.0 }, sphere(1.3, 0.02)),
+    { Light(false, { 3.5, 3, 35 }, { 3.5, 0, 35 }, 1.0) });
+  cases.back().Camera = Camera({ 3.5, 0.035, 150 }, { 3.5, 0.035, 35 });
+  add("origin at 1e6", MakeMedium({ n, n, n }, { h, h, h }, sphere(1.5, 2 * h), { 1e6, 1e6, 1e6 }),
+    { Light(false, { 1e6 + 0.5, 1e6 + 3, 1e6 + 0.5 }, { 1e6 + 0.5, 1e6, 1e6 + 0.5 }, 1.0) });
+  cases.back().Camera =
+    Camera({ 1e6 + 0.47, 1e6 + 0.47, 1e6 + 3 }, { 1e6 + 0.47, 1e6 + 0.47, 1e6 + 0.47 });
+  add("light inside the medium", MakeMedium({ n, n, n }, { h, h, h }, fog(2.0, 0.8, 0.0)),
+    { Light(true, centre, { 1, centre[1], centre[2] }, 1.0) });
+  add("zero-intensity light", MakeMedium({ n, n, n }, { h, h, h }, fog(2.0, 0.8, 0.0)),
+    { Light(false, { 0.5, 3, 0.5 }, centre, 0.0) })
+    .NoLightPower = true;
+  add("all vacuum", MakeMedium({ n, n, n }, { h, h, h }, fog(0.0, 0.0, 0.0)), { fromAbove() })
+    .NothingInteracts = true;
+  return cases;
+}
+
+double FieldValue(vtkImageData* image, const char* name, int component = 0)
+{
+  vtkDataArray* a = image->GetFieldData()->GetArray(name);
+  return a ? a->GetComponent(0, component) : std::nan("");
+}
+
+// Every component of every point array is finite (and non-negative where it must be).
+void ExpectFiniteArrays(
+  vtkImageData* image, const std::vector<std::string>& nonNegative, const std::string& what)
+{
+  vtkPointData* pd = image->GetPointData();
+  for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = pd->GetArray(a);
+    if (!array)
+    {
+      continue;
+    }
+    const std::string name = array->GetName() ? array->GetName() : "";
+    const bool mustBePositive =
+      std::find(nonNegative.begin(), nonNegative.end(), name) != nonNegative.end();
+    vtkIdType bad = 0;
+    for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+    {
+      for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+      {
+        const double v = array->GetComponent(t, c);
+        bad += (!std::isfinite(v) || (mustBePositive && v < 0)) ? 1 : 0;
+      }
+    }
+    EXPECT_EQ(bad, 0) << what << ": array " << name;
+  }
+}
+
+class HardCases : public ::testing::TestWithParam<int>
+{
+};
+
+const std::vector<HardCase>& Cases()
+{
+  static const std::vector<HardCase> cases = MakeCases();
+  return cases;
+}
+}
+
+TEST_P(HardCases, SceneAnalysisIsFinite)
+{
+  const HardCase& c = Cases()[GetParam()];
+  vtkNew<vtkSceneAnalysis> analysis;
+  analysis->SetMedium(c.Medium);
+  for (const auto& light : c.Lights)
+  {
+    analysis->AddLight(light);
+  }
+  ASSERT_TRUE(analysis->Analyze()) << c.Name;
+  EXPECT_TRUE(std::isfinite(analysis->GetMaximumBendingAngle())) << c.Name;
+  EXPECT_TRUE(std::isfinite(analysis->GetMaximumOpticalThickness())) << c.Name;
+  EXPECT_TRUE(std::isfinite(analysis->GetOpticalThicknessTowardLight(0))) << c.Name;
+  vtkNew<vtkEffectPlan> plan;
+  ASSERT_TRUE(plan->Decide(analysis));
+  if (c.NothingInteracts)
+  {
+    EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::ABSORPTION)) << c.Name;
+  }
+}
+
+TEST_P(HardCases, PhotonTracerStaysFiniteAndConservesEnergy)
+{
+  const HardCase& c = Cases()[GetParam()];
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->SetInputData(c.Medium);
+  for (const auto& light : c.Lights)
+  {
+    tracer->AddLight(light);
+  }
+  tracer->SetNumberOfPhotons(1 << 14);
+  tracer->SetSeed(7);
+  tracer->Update();
+  vtkImageData* out = tracer->GetOutput();
+  ASSERT_EQ(out->GetNumberOfPoints(), c.Medium->GetNumberOfPoints()) << c.Name;
+  ExpectFiniteArrays(out, { "Radiance" }, c.Name);
+
+  EXPECT_EQ(FieldValue(out, "TerminatedInvalid"), 0) << c.Name;
+  // Every photon ends in exactly one way: missed the medium, escaped, roulette, or the step cap.
+  EXPECT_EQ(FieldValue(out, "PhotonsMissed") + FieldValue(out, "TerminatedEscaped") +
+      FieldValue(out, "TerminatedRoulette") + FieldValue(out, "TerminatedStepCap"),
+    FieldValue(out, "NumberOfPhotons"))
+    << c.Name;
+  const double voxelVolume =
+    c.Medium->GetSpacing()[0] * c.Medium->GetSpacing()[1] * c.Medium->GetSpacing()[2];
+  vtkDataArray* radiance = out->GetPointData()->GetArray("Radiance");
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    const double emitted = FieldValue(out, "EnergyEmitted", ch);
+    const double absorbed = FieldValue(out, "EnergyAbsorbed", ch);
+    const double escaped = FieldValue(out, "EnergyEscaped", ch);
+    const double scattered = FieldValue(out, "EnergyScattered", ch);
+    const double remaining = FieldValue(out, "EnergyRemaining", ch);
+    for (double e : { emitted, absorbed, escaped, scattered })
+    {
+      ASSERT_TRUE(std::isfinite(e)) << c.Name;
+      EXPECT_GE(e, -1e-9) << c.Name;
+    }
+    // The books close: nothing created, nothing lost.
+    EXPECT_NEAR(absorbed + escaped + scattered + remaining, emitted, 1e-3 * emitted + 1e-9)
+      << c.Name << " channel " << ch;
+    double deposited = 0.0;
+    for (vtkIdType t = 0; t < radiance->GetNumberOfTuples(); ++t)
+    {
+      deposited += radiance->GetComponent(t, ch) * voxelVolume;
+    }
+    EXPECT_LE(deposited, emitted * (1 + 1e-3) + 1e-9) << c.Name;
+    if (c.NoLightPower)
+    {
+      EXPECT_EQ(emitted, 0.0) << c.Name;
+      EXPECT_EQ(deposited, 0.0) << c.Name;
+    }
+    if (c.Opaque)
+    {
+      // exp(-1e4) is 0 in any precision: what enters is absorbed or scattered in the first voxel.
+      EXPECT_LE(escaped, 1e-9 * emitted) << c.Name;
+      EXPECT_NEAR(absorbed, 0.5 * emitted, 1e-3 * emitted) << c.Name; // albedo 0.5
+    }
+    if (c.Conservative)
+    {
+      EXPECT_EQ(absorbed, 0.0) << c.Name;
+    }
+    if (c.NothingInteracts)
+    {
+      EXPECT_EQ(scattered, 0.0) << c.Name;
+      EXPECT_EQ(absorbed, 0.0) << c.Name;
+      EXPECT_NEAR(escaped, emitted, 1e-6 * emitted) << c.Name;
+    }
+  }
+}
+
+TEST_P(HardCases, ReferenceRendererStaysFinite)
+{
+  const HardCase& c = Cases()[GetParam()];
+  vtkNew<vtkReferenceRenderer> reference;
+  reference->SetInputData(c.Medium);
+  for (const auto& light : c.Lights)
+  {
+    reference->AddLight(light);
+  }
+  reference->SetCamera(c.Camera);
+  reference->SetImageSize(8, 8);
+  reference->SetSamplesPerPixel(2);
+  reference->SetBackgroundColor(0.25, 0.5, 0.75);
+  reference->Update();
+  vtkImageData* image = reference->GetOutput();
+  ASSERT_EQ(image->GetNumberOfPoints(), 64) << c.Name;
+  ExpectFiniteArrays(image, { "HDR" }, c.Name);
+  EXPECT_EQ(FieldValue(image, "NonFiniteSamples"), 0) << c.Name;
+  if (c.Name == "all vacuum")
+  {
+    // Nothing in the way: every pixel is exactly the background.
+    vtkDataArray* hdr = image->GetPointData()->GetArray("HDR");
+    for (vtkIdType p = 0; p < 64; ++p)
+    {
+      EXPECT_EQ(hdr->GetComponent(p, 0), 0.25);
+      EXPECT_EQ(hdr->GetComponent(p, 1), 0.5);
+      EXPECT_EQ(hdr->GetComponent(p, 2), 0.75);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Stability, HardCases,
+  ::testing::Range(0, static_cast<int>(MakeCases().size())),
+  [](const ::testing::TestParamInfo<int>& info)
+  {
+    std::string name = Cases()[info.param].Name;
+    for (char& ch : name)
+    {
+      if (!std::isalnum(static_cast<unsigned char>(ch)))
+      {
+        ch = '_';
+      }
+    }
+    return name;
+  });
