@@ -21,7 +21,8 @@
 //
 // Work layout: one work-item per pixel, global size (width, height); pixel (i, j) has row j = 0 at
 // the bottom (VTK's image convention). Output: hdr[4 * (i + width * j)] = (R, G, B, A) with
-// A = 1 - mean transmittance of the path; steps[i + width * j] = number of steps marched.
+// A = 1 - mean transmittance of the path; steps[i + width * j] = number of steps marched;
+// transmittanceOut[4 * (i + width * j)] = the path's RGB transmittance (w = 0), for compositing.
 //
 // Options (-D): REFRACTA_CURVED, REFRACTA_PARALLEL (parallel projection), REFRACTA_HAS_SINGLE
 // (Radiance + RadianceDirection + Anisotropy given), REFRACTA_HAS_MULTIPLE (MultipleScattering
@@ -116,7 +117,7 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   const float stepLength, const int maxSteps, const float cutoff, const float4 background,
   __global const float* environment, const int2 envSize, const float4 envRight,
   const float4 envUp, const float4 envFront, __global const float* depthLimit,
-  __global float* hdr, __global uint* steps)
+  __global float* hdr, __global uint* steps, __global float* transmittanceOut)
 {
   const int pi = (int)get_global_id(0);
   const int pj = (int)get_global_id(1);
@@ -253,4 +254,5 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   const float alpha = 1.0f - (transmittance.x + transmittance.y + transmittance.z) / 3.0f;
   vstore4((float4)(radianceSum, alpha), pixel, hdr);
   steps[pixel] = count;
+  vstore4((float4)(transmittance, 0.0f), pixel, transmittanceOut);
 }

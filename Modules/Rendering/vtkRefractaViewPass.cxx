@@ -517,7 +517,7 @@ bool vtkRefractaViewPass::ComputeRayFrame(vtkCamera* camera, vtkImageData* mediu
 
 //------------------------------------------------------------------------------
 bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMatrix4x4* propMatrix,
-  const float* depthLimit, std::vector<float>& hdr)
+  const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance)
 {
   Internals& in = *this->Internal;
   if (!in.Medium)
@@ -654,13 +654,15 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 16, nullptr, "HDR image", this);
   vtkOpenCLBuffer stepBuffer =
     context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 4, nullptr, "step counts", this);
+  vtkOpenCLBuffer transmittanceBuffer =
+    context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 16, nullptr, "transmittance image", this);
   vtkOpenCLBuffer depthBuffer;
   if (depthLimit)
   {
     depthBuffer = context->CreateBuffer(
       CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, pixels * 4, depthLimit, "depth limits", this);
   }
-  if (!hdrBuffer || !stepBuffer || (depthLimit && !depthBuffer))
+  if (!hdrBuffer || !stepBuffer || !transmittanceBuffer || (depthLimit && !depthBuffer))
   {
     return false;
   }
@@ -708,7 +710,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     buf(in.RadianceDirection), buf(in.Multiple), Float4(frame.Eye), Float4(frame.U),
     Float4(frame.V), Float4(frame.W), w, h, stepLength, maxSteps, cutoff, background,
     env ? in.EnvironmentBuffer.Get() : in.Dummy.Get(), envSize, envRight, envUp, envFront,
-    buf(depthBuffer), hdrBuffer.Get(), stepBuffer.Get());
+    buf(depthBuffer), hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get());
   if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this))
   {
     return false;
@@ -720,6 +722,12 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   if (!context->RunKernel(kernel.Get(), 2, global, nullptr, "refracta_view_pass", this) ||
     !context->ReadBuffer(hdrBuffer.Get(), pixels * 16, hdr.data(), this) ||
     !context->ReadBuffer(stepBuffer.Get(), pixels * 4, steps.data(), this))
+  {
+    return false;
+  }
+  if (transmittance &&
+    (transmittance->resize(pixels * 4),
+      !context->ReadBuffer(transmittanceBuffer.Get(), pixels * 16, transmittance->data(), this)))
   {
     return false;
   }

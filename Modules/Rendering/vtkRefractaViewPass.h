@@ -139,10 +139,12 @@ public:
    * Render W x H pixels for `camera` (world coordinates). `propMatrix` (may be nullptr) maps the
    * medium's data coordinates to world (a vtkVolume's matrix). `depthLimit` (may be nullptr; W H
    * floats) caps each pixel's path length in the medium's world units (opaque geometry).
-   * Fills `hdr` with W H RGBA floats (A = 1 - mean transmittance). Returns false after an error.
+   * Fills `hdr` with W H RGBA floats (A = 1 - mean transmittance) and, when given,
+   * `transmittance` with W H RGBA floats (the path's RGB transmittance, A = 0). Returns false
+   * after an error.
    */
   bool Render(vtkCamera* camera, int width, int height, vtkMatrix4x4* propMatrix,
-    const float* depthLimit, std::vector<float>& hdr);
+    const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance = nullptr);
 
   ///@{
   /**
