@@ -4,6 +4,8 @@
 #   ./refracta.sh render [refracta-render args...]   install what is missing, build, render
 #   ./refracta.sh test                               install what is missing, build, run ctest
 #   ./refracta.sh build                              install what is missing, build
+#   ./refracta.sh sanitize                           build in build-asan with AddressSanitizer and
+#                                                    UndefinedBehaviorSanitizer, run the C++ tests
 #
 # Environment: BUILD_DIR (default ./build), JOBS (default: number of cores),
 # CTEST_ARGS (extra arguments for ctest, e.g. "-L long" or "-LE long").
@@ -41,7 +43,7 @@ install_missing_packages() {
 build() {
   install_missing_packages
   if [ ! -f "$build_dir/CMakeCache.txt" ]; then
-    cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release
+    cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release "$@"
   fi
   cmake --build "$build_dir" -j "$jobs"
 }
@@ -71,8 +73,25 @@ case "$command" in
     # shellcheck disable=SC2086
     "${runner[@]}" ctest --output-on-failure -j "$jobs" ${CTEST_ARGS:--LE long}
     ;;
+  sanitize)
+    # Host code instrumented; kernels run inside PoCL's own (uninstrumented) code. Leak checking is
+    # off because the OpenCL ICD loader and PoCL keep allocations alive until exit by design.
+    # Python tests are excluded: Debian's interpreter is not built with the sanitizers.
+    build_dir="${BUILD_DIR:-$here/build-asan}"
+    build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DREFRACTA_SANITIZE=address,undefined \
+      -DREFRACTA_WRAP_PYTHON=OFF
+    export ASAN_OPTIONS="detect_leaks=0:abort_on_error=1:${ASAN_OPTIONS:-}"
+    export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:${UBSAN_OPTIONS:-}"
+    runner=()
+    if [ -z "${DISPLAY:-}" ]; then
+      runner=(xvfb-run -a -s "-screen 0 1280x1024x24")
+    fi
+    cd "$build_dir"
+    # shellcheck disable=SC2086
+    "${runner[@]}" ctest --output-on-failure -j "$jobs" ${CTEST_ARGS:--LE long}
+    ;;
   *)
-    echo "usage: $0 {render|test|build} [args...]" >&2
+    echo "usage: $0 {render|test|build|sanitize} [args...]" >&2
     exit 2
     ;;
 esac

@@ -14,12 +14,29 @@
  *
  * Values outside the valid ranges are clamped by the setters (vtkSetClampMacro semantics), so a
  * material is always valid.
+ *
+ * **Heterogeneous materials.** A material may carry a dimensionless density field d(x) >= 0 (for
+ * example a particle density), given either as a vtkImplicitFunction (DensityFunction, evaluated
+ * at the point) or as a point-data array of a vtkImageData (DensityImage + DensityArrayName,
+ * trilinear between the image's points, 0 outside its bounds). Without either, d = 1 everywhere.
+ * Negative or NaN values of d count as 0. The density scales the extinction and the emission at a
+ * point: sigma_t(x) = d(x) Extinction, eps(x) = d(x) Emission; albedo and anisotropy are
+ * unchanged. When DensityScalesRefractiveIndex is on (default off), the refractive index follows
+ * the Gladstone-Dale relation n(x) = 1 + d(x) (RefractiveIndex - 1). EvaluateDensity() and
+ * EvaluateProperties() give the values at a point; they are safe to call from several threads at
+ * once provided the implicit function is (VTK's analytic ones are).
  */
 #ifndef vtkMediumMaterial_h
 #define vtkMediumMaterial_h
 
 #include "RefractaCoreModule.h" // for export macro
 #include "vtkObject.h"
+
+#include <string> // for std::string
+
+class vtkDataArray;
+class vtkImageData;
+class vtkImplicitFunction;
 
 class REFRACTACORE_EXPORT vtkMediumMaterial : public vtkObject
 {
@@ -80,20 +97,84 @@ public:
    */
   void GetScattering(double rgb[3]) const;
 
+  ///@{
   /**
-   * Copy every property from another material.
+   * Density field given by an implicit function (dimensionless, values < 0 count as 0). Takes
+   * precedence over DensityImage when both are set. Default nullptr (d = 1).
+   */
+  void SetDensityFunction(vtkImplicitFunction* function);
+  vtkGetObjectMacro(DensityFunction, vtkImplicitFunction);
+  ///@}
+
+  ///@{
+  /**
+   * Density field given by the point-data array DensityArrayName (first component) of an image,
+   * interpolated trilinearly at a point (the image's origin and spacing honoured; its direction
+   * matrix must be the identity); 0 outside the image's bounds. Default nullptr (d = 1).
+   */
+  void SetDensityImage(vtkImageData* image);
+  vtkGetObjectMacro(DensityImage, vtkImageData);
+  vtkSetStringMacro(DensityArrayName);
+  vtkGetStringMacro(DensityArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * When on, the density also scales n - 1 (Gladstone-Dale). Default off.
+   */
+  vtkSetMacro(DensityScalesRefractiveIndex, bool);
+  vtkGetMacro(DensityScalesRefractiveIndex, bool);
+  vtkBooleanMacro(DensityScalesRefractiveIndex, bool);
+  ///@}
+
+  /**
+   * True when the material has a density field (a function, or an image with its array).
+   */
+  bool IsHeterogeneous() const;
+
+  /**
+   * Check that the density field can be evaluated: an image density needs a non-empty
+   * DensityArrayName naming a numeric point-data array of the image and an identity direction
+   * matrix. Returns false and fills `why` otherwise. A homogeneous material is always usable.
+   */
+  bool CheckDensity(std::string& why) const;
+
+  /**
+   * Density d(x) at a world point x (1 for a homogeneous material; >= 0 and finite otherwise).
+   */
+  double EvaluateDensity(const double x[3]) const;
+
+  /**
+   * The material's properties with a given density d applied (see the class documentation):
+   * n, sigma_t (RGB), albedo (RGB), g, emission (RGB).
+   */
+  void GetPropertiesAtDensity(double d, double& n, double extinction[3], double albedo[3],
+    double& g, double emission[3]) const;
+
+  /**
+   * Copy every property from another material (the density field objects are shared, not
+   * copied).
    */
   void DeepCopy(vtkMediumMaterial* other);
 
+  /**
+   * Modification time including the density function's and image's.
+   */
+  vtkMTimeType GetMTime() override;
+
 protected:
   vtkMediumMaterial() = default;
-  ~vtkMediumMaterial() override = default;
+  ~vtkMediumMaterial() override;
 
   double RefractiveIndex = 1.0;
   double Extinction[3] = { 0.0, 0.0, 0.0 };
   double Albedo[3] = { 0.0, 0.0, 0.0 };
   double Anisotropy = 0.0;
   double Emission[3] = { 0.0, 0.0, 0.0 };
+  vtkImplicitFunction* DensityFunction = nullptr;
+  vtkImageData* DensityImage = nullptr;
+  char* DensityArrayName = nullptr;
+  bool DensityScalesRefractiveIndex = false;
 
 private:
   vtkMediumMaterial(const vtkMediumMaterial&) = delete;

@@ -1,0 +1,315 @@
+// Tests of vtkSceneAnalysis (facts with analytic values) and vtkEffectPlan (decisions, the
+// threshold switch, overrides, records).
+#include "vtkCommand.h"
+#include "vtkEffectPlan.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkSceneAnalysis.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+#include "vtkTestErrorObserver.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+namespace
+{
+// A cube of n^3 voxels of the given spacing; fill(i, j, k, arrays...) sets per-voxel values.
+struct Voxel
+{
+  double N = 1.0;
+  double SigmaT = 0.0;
+  double Albedo = 0.0;
+  double Emission = 0.0;
+};
+
+vtkSmartPointer<vtkImageData> MakeMedium(
+  int nx, int ny, int nz, double spacing, const std::function<Voxel(int, int, int)>& fill)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(nx, ny, nz);
+  image->SetSpacing(spacing, spacing, spacing);
+  auto make = [&](const char* name, int comps)
+  {
+    vtkNew<vtkFloatArray> a;
+    a->SetName(name);
+    a->SetNumberOfComponents(comps);
+    a->SetNumberOfTuples(image->GetNumberOfPoints());
+    image->GetPointData()->AddArray(a);
+    return a.GetPointer();
+  };
+  vtkFloatArray* n = make("RefractiveIndex", 1);
+  vtkFloatArray* ext = make("Extinction", 3);
+  vtkFloatArray* alb = make("Albedo", 3);
+  vtkFloatArray* emi = make("Emission", 3);
+  for (int k = 0; k < nz; ++k)
+  {
+    for (int j = 0; j < ny; ++j)
+    {
+      for (int i = 0; i < nx; ++i)
+      {
+        const vtkIdType p = i + nx * (j + ny * k);
+        const Voxel v = fill(i, j, k);
+        n->SetValue(p, v.N);
+        for (int c = 0; c < 3; ++c)
+        {
+          ext->SetComponent(p, c, v.SigmaT);
+          alb->SetComponent(p, c, v.Albedo);
+          emi->SetComponent(p, c, v.Emission);
+        }
+      }
+    }
+  }
+  return image;
+}
+
+vtkSmartPointer<vtkLight> MakeDirectionalLight(double intensity)
+{
+  auto light = vtkSmartPointer<vtkLight>::New();
+  light->SetPositional(false);
+  light->SetPosition(-10, 0.5, 0.5);
+  light->SetFocalPoint(0, 0.5, 0.5); // travels along +x
+  light->SetIntensity(intensity);
+  return light;
+}
+
+void Plan(vtkImageData* medium, vtkLight* light, vtkEffectPlan* plan, vtkSceneAnalysis* analysis)
+{
+  analysis->SetMedium(medium);
+  analysis->RemoveAllLights();
+  if (light)
+  {
+    analysis->AddLight(light);
+  }
+  ASSERT_TRUE(analysis->Analyze());
+  ASSERT_TRUE(plan->Decide(analysis));
+}
+}
+
+TEST(SceneAnalysis, PureAbsorption)
+{
+  // 20 voxels of 0.1 with sigma_t = 0.5: tau = 1 along every axis.
+  auto medium = MakeMedium(20, 20, 20, 0.1,
+    [](int, int, int)
+    {
+      Voxel v;
+      v.SigmaT = 0.5;
+      return v;
+    });
+  vtkNew<vtkSceneAnalysis> analysis;
+  vtkNew<vtkEffectPlan> plan;
+  auto light = MakeDirectionalLight(1.0);
+  Plan(medium, light, plan, analysis);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    EXPECT_NEAR(analysis->GetMaximumOpticalThickness(axis), 1.0, 1e-6);
+  }
+  EXPECT_EQ(analysis->GetMaximumBendingAngle(), 0.0);
+  EXPECT_FALSE(analysis->GetHasScattering());
+  EXPECT_DOUBLE_EQ(analysis->GetOccupiedFraction(), 1.0);
+  // Toward a light along +x: the deepest probe sits 15/16 of the way across the box [-0.05,
+  // 1.95], marched in half-voxel steps (so within one step).
+  EXPECT_NEAR(analysis->GetOpticalThicknessTowardLight(0), 0.5 * (15.0 / 16.0) * 2.0, 0.5 * 0.05);
+
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::REFRACTION));
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::ABSORPTION));
+  EXPECT_NEAR(
+    plan->GetEstimatedContribution(vtkEffectPlan::ABSORPTION), 1.0 - std::exp(-1.0), 1e-6);
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::EMISSION));
+  EXPECT_FALSE(plan->GetEmptySpaceSkipping());
+}
+
+TEST(SceneAnalysis, LinearIndexGradientBendsRays)
+{
+  // n = 1 + a y with a = 0.2 per unit, on 11^3 voxels of spacing 0.1 (y in [0, 1]).
+  const double a = 0.2, s = 0.1;
+  auto medium = MakeMedium(11, 11, 11, s,
+    [&](int, int j, int)
+    {
+      Voxel v;
+      v.N = 1.0 + a * j * s;
+      return v;
+    });
+  vtkNew<vtkSceneAnalysis> analysis;
+  vtkNew<vtkEffectPlan> plan;
+  Plan(medium, nullptr, plan, analysis);
+  // Central differences of a linear field are exact: abs(grad n) = a everywhere. The largest
+  // line integral of a / n runs along x at y = 0 (n = 1): 11 voxels * 0.1 * 0.2 = 0.22.
+  EXPECT_NEAR(analysis->GetMaximumBendingAngle(), 11 * s * a, 1e-6);
+  EXPECT_NEAR(analysis->GetRefractiveIndexRange()[1], 1.2, 1e-6);
+  const double diagonal = std::sqrt(3.0) * 11 * s;
+  EXPECT_NEAR(analysis->GetMaximumDisplacementInVoxels(), 11 * s * a * diagonal / s, 1e-5);
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::REFRACTION));
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::ABSORPTION));
+  EXPECT_DOUBLE_EQ(analysis->GetOccupiedFraction(), 10.0 / 11.0); // the y = 0 layer is vacuum
+  EXPECT_FALSE(plan->GetEmptySpaceSkipping());                    // 91% occupied
+}
+
+TEST(EffectPlan, MultipleScatteringSwitchesAtItsThreshold)
+{
+  // Fog: sigma_t = 0.1, albedo 0.9 over 2 units: tau = 0.2, tau_s = 0.18.
+  auto fog = MakeMedium(20, 20, 20, 0.1,
+    [](int, int, int)
+    {
+      Voxel v;
+      v.SigmaT = 0.1;
+      v.Albedo = 0.9;
+      return v;
+    });
+  const double single = 1.0 - std::exp(-0.18);
+  const double q = 0.9 * (1.0 - std::exp(-0.2));
+  const double multiple = single * q / (1.0 - q); // about 0.0316
+  vtkNew<vtkSceneAnalysis> analysis;
+  vtkNew<vtkEffectPlan> plan;
+  auto light = MakeDirectionalLight(2.0);
+  plan->SetTolerance(multiple * 0.99); // just below the estimate: on
+  Plan(fog, light, plan, analysis);
+  EXPECT_NEAR(plan->GetEstimatedContribution(vtkEffectPlan::MULTIPLE_SCATTERING), multiple, 1e-5);
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
+  plan->SetTolerance(multiple * 1.01); // just above: off, single scattering stays
+  ASSERT_TRUE(plan->Decide(analysis));
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
+  EXPECT_NE(std::string(plan->GetReason(vtkEffectPlan::MULTIPLE_SCATTERING)).find("off"),
+    std::string::npos);
+
+  // Quality presets move the tolerance: draft (0.05) drops it, production (0.005) keeps it.
+  plan->SetQuality(vtkEffectPlan::DRAFT);
+  ASSERT_TRUE(plan->Decide(analysis));
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
+  plan->SetQuality(vtkEffectPlan::PRODUCTION);
+  ASSERT_TRUE(plan->Decide(analysis));
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
+}
+
+TEST(EffectPlan, ScatteringNeedsAPoweredLight)
+{
+  auto fog = MakeMedium(8, 8, 8, 0.25,
+    [](int, int, int)
+    {
+      Voxel v;
+      v.SigmaT = 1.0;
+      v.Albedo = 0.8;
+      return v;
+    });
+  vtkNew<vtkSceneAnalysis> analysis;
+  vtkNew<vtkEffectPlan> plan;
+  Plan(fog, nullptr, plan, analysis);
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
+  auto dark = MakeDirectionalLight(0.0);
+  Plan(fog, dark, plan, analysis);
+  EXPECT_EQ(analysis->GetNumberOfPoweredLights(), 0);
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
+  auto off = MakeDirectionalLight(1.0);
+  off->SwitchOff();
+  Plan(fog, off, plan, analysis);
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
+  auto on = MakeDirectionalLight(1.0);
+  Plan(fog, on, plan, analysis);
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING)); // tau = 2, albedo 0.8
+}
+
+TEST(EffectPlan, EmissionOnlyAndOverrides)
+{
+  auto glow = MakeMedium(6, 6, 6, 1.0,
+    [](int i, int, int)
+    {
+      Voxel v;
+      v.Emission = i == 3 ? 2.0 : 0.0;
+      return v;
+    });
+  vtkNew<vtkSceneAnalysis> analysis;
+  vtkNew<vtkEffectPlan> plan;
+  Plan(glow, nullptr, plan, analysis);
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::EMISSION));
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::ABSORPTION));
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::REFRACTION));
+  EXPECT_TRUE(plan->GetEmptySpaceSkipping()); // one slab of six occupied
+
+  plan->SetEffectMode(vtkEffectPlan::REFRACTION, vtkEffectPlan::FORCE_ON);
+  plan->SetEffectMode(vtkEffectPlan::EMISSION, vtkEffectPlan::FORCE_OFF);
+  ASSERT_TRUE(plan->Decide(analysis));
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::REFRACTION));
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::EMISSION));
+  EXPECT_NE(
+    std::string(plan->GetReason(vtkEffectPlan::REFRACTION)).find("forced"), std::string::npos);
+  EXPECT_NE(plan->GetSummary().find("Refraction on (forced)"), std::string::npos)
+    << plan->GetSummary();
+
+  vtkNew<vtkFieldData> fd;
+  plan->RecordInFieldData(fd);
+  analysis->RecordInFieldData(fd);
+  ASSERT_NE(fd->GetArray("PlanEnabled"), nullptr);
+  EXPECT_EQ(fd->GetArray("PlanEnabled")->GetComponent(vtkEffectPlan::REFRACTION, 0), 1);
+  EXPECT_EQ(fd->GetArray("PlanEnabled")->GetComponent(vtkEffectPlan::EMISSION, 0), 0);
+  ASSERT_NE(fd->GetAbstractArray("PlanSummary"), nullptr);
+  EXPECT_NE(fd->GetArray("AnalysisMaximumEmission"), nullptr);
+  EXPECT_EQ(fd->GetArray("AnalysisMaximumEmission")->GetComponent(0, 0), 2.0);
+}
+
+TEST(EffectPlan, BadInputsAreReported)
+{
+  vtkNew<vtkSceneAnalysis> analysis;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  analysis->AddObserver(vtkCommand::ErrorEvent, observer);
+  EXPECT_FALSE(analysis->Analyze()); // no medium
+  EXPECT_NE(observer->GetErrorMessage().find("null"), std::string::npos);
+  observer->Clear();
+  auto bad = MakeMedium(2, 2, 2, 1.0,
+    [](int, int, int)
+    {
+      Voxel v;
+      v.Albedo = 1.5;
+      return v;
+    });
+  analysis->SetMedium(bad);
+  EXPECT_FALSE(analysis->Analyze());
+  EXPECT_NE(observer->GetErrorMessage().find("'Albedo'"), std::string::npos);
+
+  vtkNew<vtkEffectPlan> plan;
+  vtkNew<vtkTest::ErrorObserver> planObserver;
+  plan->AddObserver(vtkCommand::ErrorEvent, planObserver);
+  EXPECT_FALSE(plan->Decide(nullptr));
+  plan->SetEffectMode(17, vtkEffectPlan::FORCE_ON);
+  EXPECT_NE(planObserver->GetErrorMessage().find("SetEffectMode(17"), std::string::npos);
+  EXPECT_FALSE(plan->IsEnabled(17));
+}
+
+TEST(SceneAnalysis, TinyAndThinGrids)
+{
+  auto one = MakeMedium(1, 1, 1, 0.5,
+    [](int, int, int)
+    {
+      Voxel v;
+      v.SigmaT = 4.0;
+      v.N = 1.5;
+      return v;
+    });
+  vtkNew<vtkSceneAnalysis> analysis;
+  vtkNew<vtkEffectPlan> plan;
+  Plan(one, nullptr, plan, analysis);
+  EXPECT_NEAR(analysis->GetMaximumOpticalThickness(), 2.0, 1e-6);
+  EXPECT_EQ(analysis->GetMaximumBendingAngle(), 0.0); // one voxel has no gradient
+  auto line = MakeMedium(1, 1, 512, 0.01,
+    [](int, int, int k)
+    {
+      Voxel v;
+      v.SigmaT = k < 256 ? 1.0 : 0.0;
+      return v;
+    });
+  Plan(line, nullptr, plan, analysis);
+  EXPECT_NEAR(analysis->GetMaximumOpticalThickness(2), 2.56, 1e-5);
+  EXPECT_NEAR(analysis->GetMaximumOpticalThickness(0), 0.01, 1e-6);
+  EXPECT_DOUBLE_EQ(analysis->GetOccupiedFraction(), 0.5);
+}

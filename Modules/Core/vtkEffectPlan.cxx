@@ -1,0 +1,239 @@
+#include "vtkEffectPlan.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkSceneAnalysis.h"
+#include "vtkStringArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+vtkStandardNewMacro(vtkEffectPlan);
+
+namespace
+{
+const char* const EffectNames[vtkEffectPlan::NUMBER_OF_EFFECTS] = { "Refraction", "Absorption",
+  "SingleScattering", "MultipleScattering", "Emission" };
+
+bool IsEffect(int effect)
+{
+  return effect >= 0 && effect < vtkEffectPlan::NUMBER_OF_EFFECTS;
+}
+}
+
+//------------------------------------------------------------------------------
+const char* vtkEffectPlan::GetEffectName(int effect)
+{
+  return IsEffect(effect) ? EffectNames[effect] : nullptr;
+}
+
+//------------------------------------------------------------------------------
+void vtkEffectPlan::SetQuality(int quality)
+{
+  switch (quality)
+  {
+    case DRAFT:
+      this->SetTolerance(0.05);
+      break;
+    case INTERACTIVE:
+      this->SetTolerance(0.02);
+      break;
+    case PRODUCTION:
+      this->SetTolerance(0.005);
+      break;
+    default:
+      vtkErrorMacro("Unknown quality preset "
+        << quality << "; use DRAFT (0), INTERACTIVE (1) or PRODUCTION (2).");
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkEffectPlan::SetEffectMode(int effect, int mode)
+{
+  if (!IsEffect(effect) || mode < AUTOMATIC || mode > FORCE_OFF)
+  {
+    vtkErrorMacro("SetEffectMode(" << effect << ", " << mode << "): effect must be in [0, "
+                                   << NUMBER_OF_EFFECTS - 1
+                                   << "] and mode AUTOMATIC (0), FORCE_ON (1) or FORCE_OFF (2).");
+    return;
+  }
+  if (this->Modes[effect] != mode)
+  {
+    this->Modes[effect] = mode;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkEffectPlan::GetEffectMode(int effect) const
+{
+  return IsEffect(effect) ? this->Modes[effect] : AUTOMATIC;
+}
+
+//------------------------------------------------------------------------------
+bool vtkEffectPlan::IsEnabled(int effect) const
+{
+  return IsEffect(effect) && this->Enabled[effect];
+}
+
+//------------------------------------------------------------------------------
+double vtkEffectPlan::GetEstimatedContribution(int effect) const
+{
+  return IsEffect(effect) ? this->Estimates[effect] : 0.0;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkEffectPlan::GetReason(int effect) const
+{
+  return IsEffect(effect) ? this->Reasons[effect].c_str() : "";
+}
+
+//------------------------------------------------------------------------------
+void vtkEffectPlan::DecideEffect(int effect, double estimate, const char* detail)
+{
+  this->Estimates[effect] = estimate;
+  std::ostringstream reason;
+  if (this->Modes[effect] == FORCE_ON || this->Modes[effect] == FORCE_OFF)
+  {
+    this->Enabled[effect] = this->Modes[effect] == FORCE_ON;
+    reason << (this->Enabled[effect] ? "on" : "off") << ": forced (estimated change " << estimate
+           << ")";
+  }
+  else
+  {
+    this->Enabled[effect] = estimate > this->Tolerance;
+    reason << (this->Enabled[effect] ? "on" : "off") << ": estimated change " << estimate
+           << (this->Enabled[effect] ? " > " : " <= ") << "tolerance " << this->Tolerance;
+  }
+  if (detail && *detail)
+  {
+    reason << " (" << detail << ")";
+  }
+  this->Reasons[effect] = reason.str();
+}
+
+//------------------------------------------------------------------------------
+bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
+{
+  if (!analysis)
+  {
+    vtkErrorMacro("Decide() needs a vtkSceneAnalysis that has been run (Analyze()).");
+    return false;
+  }
+  std::ostringstream detail;
+
+  detail << "bending " << analysis->GetMaximumBendingAngle() << " rad";
+  this->DecideEffect(REFRACTION, analysis->GetMaximumDisplacementInVoxels(), detail.str().c_str());
+
+  const double tau = analysis->GetMaximumOpticalThickness();
+  detail.str("");
+  detail << "tau_max " << tau;
+  this->DecideEffect(ABSORPTION, -std::expm1(-tau), detail.str().c_str());
+
+  const bool lit = analysis->GetNumberOfPoweredLights() > 0;
+  const double tauS = analysis->GetMaximumScatteringThickness();
+  const double single = (lit && analysis->GetHasScattering()) ? -std::expm1(-tauS) : 0.0;
+  detail.str("");
+  detail << "tau_s " << tauS << ", " << analysis->GetNumberOfPoweredLights() << " powered light(s)";
+  this->DecideEffect(SINGLE_SCATTERING, single, detail.str().c_str());
+
+  // Each further order of scattering carries at most q of the previous one.
+  const double q = std::min(analysis->GetAlbedoRange()[1] * -std::expm1(-tau), 1.0);
+  const double multiple = q >= 1.0 ? (single > 0.0 ? 1.0 : 0.0) : single * q / (1.0 - q);
+  detail.str("");
+  detail << "q = " << q;
+  this->DecideEffect(MULTIPLE_SCATTERING, std::min(multiple, 1.0), detail.str().c_str());
+
+  detail.str("");
+  detail << "max emission " << analysis->GetMaximumEmission();
+  this->DecideEffect(EMISSION, analysis->GetHasEmission() ? 1.0 : 0.0, detail.str().c_str());
+
+  // Without absorption there is no extinction, hence no scattering to simulate.
+  if (!this->Enabled[ABSORPTION] && this->Modes[ABSORPTION] != FORCE_ON)
+  {
+    for (int effect : { SINGLE_SCATTERING, MULTIPLE_SCATTERING })
+    {
+      if (this->Enabled[effect] && this->Modes[effect] == AUTOMATIC)
+      {
+        this->Enabled[effect] = false;
+        this->Reasons[effect] = "off: extinction is negligible, so nothing scatters";
+      }
+    }
+  }
+  if (!this->Enabled[SINGLE_SCATTERING] && this->Enabled[MULTIPLE_SCATTERING] &&
+    this->Modes[MULTIPLE_SCATTERING] == AUTOMATIC)
+  {
+    this->Enabled[MULTIPLE_SCATTERING] = false;
+    this->Reasons[MULTIPLE_SCATTERING] = "off: no single scattering to spread";
+  }
+  this->EmptySpaceSkipping = analysis->GetOccupiedFraction() < 0.9;
+  this->Decided = true;
+  this->Modified();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkEffectPlan::GetSummary() const
+{
+  if (!this->Decided)
+  {
+    return "plan not decided";
+  }
+  std::ostringstream s;
+  for (int e = 0; e < NUMBER_OF_EFFECTS; ++e)
+  {
+    s << (e ? ", " : "") << EffectNames[e] << " " << (this->Enabled[e] ? "on" : "off");
+    if (this->Modes[e] != AUTOMATIC)
+    {
+      s << " (forced)";
+    }
+  }
+  s << "; empty-space skipping " << (this->EmptySpaceSkipping ? "on" : "off") << "; tolerance "
+    << this->Tolerance;
+  return s.str();
+}
+
+//------------------------------------------------------------------------------
+void vtkEffectPlan::RecordInFieldData(vtkFieldData* fieldData) const
+{
+  if (!fieldData)
+  {
+    return;
+  }
+  vtkNew<vtkIntArray> enabled;
+  enabled->SetName("PlanEnabled");
+  vtkNew<vtkDoubleArray> estimates;
+  estimates->SetName("PlanEstimatedContribution");
+  for (int e = 0; e < NUMBER_OF_EFFECTS; ++e)
+  {
+    enabled->InsertNextValue(this->Enabled[e] ? 1 : 0);
+    estimates->InsertNextValue(this->Estimates[e]);
+  }
+  vtkNew<vtkDoubleArray> tolerance;
+  tolerance->SetName("PlanTolerance");
+  tolerance->InsertNextValue(this->Tolerance);
+  vtkNew<vtkStringArray> summary;
+  summary->SetName("PlanSummary");
+  summary->InsertNextValue(this->GetSummary());
+  fieldData->AddArray(enabled);
+  fieldData->AddArray(estimates);
+  fieldData->AddArray(tolerance);
+  fieldData->AddArray(summary);
+}
+
+//------------------------------------------------------------------------------
+void vtkEffectPlan::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
+  for (int e = 0; e < NUMBER_OF_EFFECTS; ++e)
+  {
+    static const char* const modes[] = { "automatic", "forced on", "forced off" };
+    os << indent << EffectNames[e] << ": " << modes[this->Modes[e]] << "; "
+       << (this->Decided ? this->Reasons[e] : std::string("not decided")) << "\n";
+  }
+}

@@ -1,0 +1,151 @@
+/**
+ * @class   vtkEffectPlan
+ * @brief   Which light-transport effects a scene needs, decided from a vtkSceneAnalysis.
+ *
+ * For each effect the plan estimates how much the image would change, relative to its own
+ * magnitude, if the effect were skipped, and turns the effect off when that estimate is at or
+ * below the Tolerance. Every estimate is an upper bound built from the analysis:
+ *
+ * | effect | off means | estimate of the relative change when off |
+ * |---|---|---|
+ * | Refraction | straight rays, no gradient lookups | largest displacement of a bent ray, in voxels
+ * (a shift of d voxels changes a pixel by at most d times the largest relative contrast between
+ * neighbouring voxels, taken as 1) | | Absorption | extinction ignored everywhere (then nothing
+ * scatters either) | 1 - exp(-tau_max) | | SingleScattering | no photon pass | 1 - exp(-tau_s,max)
+ * if a powered light exists, else 0 | | MultipleScattering | no Lattice-Boltzmann pass | SS * q /
+ * (1 - q), q = albedo_max (1 - exp(-tau_max)): every further order of scattering is at most q times
+ * the previous | | Emission | emission ignored | 1 if anything emits, else 0 |
+ *
+ * Each effect can be forced on or off (SetEffectMode), overriding the decision; the plan
+ * records why it chose what it chose. EmptySpaceSkipping, a lossless optimisation, is planned
+ * when less than 90% of the volume is occupied. The plan prints itself (PrintSelf), summarises
+ * itself on one line (GetSummary), and writes itself into field data (RecordInFieldData), so that
+ * every output of a run says what was simulated.
+ *
+ * Quality presets set the tolerance: Draft 0.05, Interactive 0.02, Production 0.005.
+ */
+#ifndef vtkEffectPlan_h
+#define vtkEffectPlan_h
+
+#include "RefractaCoreModule.h" // for export macro
+#include "vtkObject.h"
+
+#include <string> // for std::string
+
+class vtkFieldData;
+class vtkSceneAnalysis;
+
+class REFRACTACORE_EXPORT vtkEffectPlan : public vtkObject
+{
+public:
+  static vtkEffectPlan* New();
+  vtkTypeMacro(vtkEffectPlan, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Effect
+  {
+    REFRACTION = 0,
+    ABSORPTION,
+    SINGLE_SCATTERING,
+    MULTIPLE_SCATTERING,
+    EMISSION,
+    NUMBER_OF_EFFECTS
+  };
+
+  enum Mode
+  {
+    AUTOMATIC = 0,
+    FORCE_ON,
+    FORCE_OFF
+  };
+
+  enum Quality
+  {
+    DRAFT = 0,
+    INTERACTIVE,
+    PRODUCTION
+  };
+
+  ///@{
+  /**
+   * Largest relative image change an effect may cause and still be skipped. Default 0.01.
+   */
+  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkGetMacro(Tolerance, double);
+  ///@}
+
+  /**
+   * Set the tolerance from a quality preset (DRAFT 0.05, INTERACTIVE 0.02, PRODUCTION 0.005).
+   */
+  void SetQuality(int quality);
+
+  ///@{
+  /**
+   * Force an effect on or off, or leave it to the analysis (AUTOMATIC, the default).
+   */
+  void SetEffectMode(int effect, int mode);
+  int GetEffectMode(int effect) const;
+  ///@}
+
+  /**
+   * Decide every effect from the analysis (which must have been run). Returns false for a null
+   * analysis.
+   */
+  bool Decide(vtkSceneAnalysis* analysis);
+
+  /**
+   * Whether an effect is simulated (after Decide()).
+   */
+  bool IsEnabled(int effect) const;
+
+  /**
+   * The estimated relative image change if the effect were skipped.
+   */
+  double GetEstimatedContribution(int effect) const;
+
+  /**
+   * Why the effect is on or off, e.g. "off: estimated change 0.002 <= tolerance 0.01".
+   */
+  const char* GetReason(int effect) const;
+
+  /**
+   * Whether passes should skip empty space (fewer than 90% of voxels occupied).
+   */
+  vtkGetMacro(EmptySpaceSkipping, bool);
+
+  /**
+   * Name of an effect ("Refraction", "Absorption", ...), or nullptr out of range.
+   */
+  static const char* GetEffectName(int effect);
+
+  /**
+   * One line: "refraction on (...), absorption on, ...".
+   */
+  std::string GetSummary() const;
+
+  /**
+   * Write the plan as field data: "PlanEnabled" (one 0/1 per effect, in enum order),
+   * "PlanEstimatedContribution", "PlanTolerance" and "PlanSummary" (a string array).
+   */
+  void RecordInFieldData(vtkFieldData* fieldData) const;
+
+protected:
+  vtkEffectPlan() = default;
+  ~vtkEffectPlan() override = default;
+
+  void DecideEffect(int effect, double estimate, const char* detail);
+
+  double Tolerance = 0.01;
+  int Modes[NUMBER_OF_EFFECTS] = { AUTOMATIC, AUTOMATIC, AUTOMATIC, AUTOMATIC, AUTOMATIC };
+  bool Enabled[NUMBER_OF_EFFECTS] = { true, true, true, true, true };
+  double Estimates[NUMBER_OF_EFFECTS] = { 0, 0, 0, 0, 0 };
+  std::string Reasons[NUMBER_OF_EFFECTS];
+  bool EmptySpaceSkipping = false;
+  bool Decided = false;
+
+private:
+  vtkEffectPlan(const vtkEffectPlan&) = delete;
+  void operator=(const vtkEffectPlan&) = delete;
+};
+
+#endif

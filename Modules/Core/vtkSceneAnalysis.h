@@ -1,0 +1,171 @@
+/**
+ * @class   vtkSceneAnalysis
+ * @brief   Cheap facts about a medium and its lights that decide which effects a render needs.
+ *
+ * One vtkSMPTools pass over the medium (plus a few hundred straight probe rays per light) gives:
+ * - the refractive-index range and the largest bending a ray can suffer crossing the volume,
+ *   bounded by the integral of abs(grad n) / n along grid lines (radians), and the displacement
+ *   that bending causes over the volume's diagonal, in voxels;
+ * - the optical thickness tau along the three main axes (largest over all grid lines, per RGB
+ *   channel) and toward each light (largest over probe rays through the light's footprint);
+ * - the same for scattering only (tau_s, with sigma_s = albedo * sigma_t);
+ * - the single-scattering albedo range, whether anything scatters or emits, how much of the
+ *   volume is occupied (voxels that differ from vacuum), and how many lights carry power.
+ * vtkEffectPlan turns these facts and a tolerance into decisions.
+ *
+ * Optical thickness uses the voxel values as piecewise-constant along grid lines (sum of
+ * sigma_t * spacing), which is what the passes' trilinear interpolation integrates to within
+ * the interpolation error.
+ */
+#ifndef vtkSceneAnalysis_h
+#define vtkSceneAnalysis_h
+
+#include "RefractaCoreModule.h" // for export macro
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // for members
+
+#include <string> // for std::string
+#include <vector> // for std::vector
+
+class vtkFieldData;
+class vtkImageData;
+class vtkLight;
+class vtkLightCollection;
+
+class REFRACTACORE_EXPORT vtkSceneAnalysis : public vtkObject
+{
+public:
+  static vtkSceneAnalysis* New();
+  vtkTypeMacro(vtkSceneAnalysis, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The medium to analyse (a vtkImageData with Refracta arrays).
+   */
+  void SetMedium(vtkImageData* medium);
+  vtkImageData* GetMedium();
+  ///@}
+
+  ///@{
+  /**
+   * The lights (world coordinates). Switched-off lights and lights without power are counted
+   * as absent.
+   */
+  void AddLight(vtkLight* light);
+  void RemoveAllLights();
+  void SetLights(vtkLightCollection* lights);
+  int GetNumberOfLights() const { return static_cast<int>(this->Lights.size()); }
+  ///@}
+
+  /**
+   * Compute the facts. Returns false (with a vtkErrorMacro naming the problem) when the medium
+   * is missing or invalid; the facts are then those of an empty scene.
+   */
+  bool Analyze();
+
+  ///@{
+  /**
+   * Refractive index range over the voxels.
+   */
+  vtkGetVector2Macro(RefractiveIndexRange, double);
+  ///@}
+
+  /**
+   * Upper bound of the total bending angle of a ray crossing the volume along a grid line
+   * (radians): the largest sum of abs(grad n) / n * spacing along any grid line.
+   */
+  vtkGetMacro(MaximumBendingAngle, double);
+
+  /**
+   * MaximumBendingAngle times the volume's diagonal, divided by the smallest spacing: how many
+   * voxels a bent ray can end up away from a straight one.
+   */
+  vtkGetMacro(MaximumDisplacementInVoxels, double);
+
+  /**
+   * Largest optical thickness (any RGB channel) along grid lines of axis 0, 1 or 2.
+   */
+  double GetMaximumOpticalThickness(int axis) const;
+
+  /**
+   * Largest optical thickness over the three axes and all channels.
+   */
+  vtkGetMacro(MaximumOpticalThickness, double);
+
+  /**
+   * Largest scattering optical thickness (sigma_s = albedo * sigma_t) over axes and channels.
+   */
+  vtkGetMacro(MaximumScatteringThickness, double);
+
+  /**
+   * Largest optical thickness along probe rays from light `i` through the volume (0 for a
+   * light without power or out of range).
+   */
+  double GetOpticalThicknessTowardLight(int i) const;
+
+  ///@{
+  /**
+   * Single-scattering albedo range over voxels with extinction > 0 ([0, 0] if none).
+   */
+  vtkGetVector2Macro(AlbedoRange, double);
+  ///@}
+
+  ///@{
+  /**
+   * Whether any voxel scatters (sigma_s > 0) or emits (emission > 0), and the largest emission.
+   */
+  vtkGetMacro(HasScattering, bool);
+  vtkGetMacro(HasEmission, bool);
+  vtkGetMacro(MaximumEmission, double);
+  ///@}
+
+  /**
+   * Fraction of voxels that differ from vacuum (n > 1, extinction > 0 or emission > 0).
+   */
+  vtkGetMacro(OccupiedFraction, double);
+
+  /**
+   * Number of lights that are switched on and carry power.
+   */
+  vtkGetMacro(NumberOfPoweredLights, int);
+
+  /**
+   * Write the facts as field-data arrays named "Analysis<Fact>".
+   */
+  void RecordInFieldData(vtkFieldData* fieldData) const;
+
+  /**
+   * The facts on one line.
+   */
+  std::string GetSummary() const;
+
+protected:
+  vtkSceneAnalysis();
+  ~vtkSceneAnalysis() override;
+
+  void Reset();
+
+  vtkSmartPointer<vtkImageData> Medium;
+  std::vector<vtkSmartPointer<vtkLight>> Lights;
+
+  double RefractiveIndexRange[2] = { 1.0, 1.0 };
+  double MaximumBendingAngle = 0.0;
+  double MaximumDisplacementInVoxels = 0.0;
+  double AxisOpticalThickness[3] = { 0.0, 0.0, 0.0 };
+  double MaximumOpticalThickness = 0.0;
+  double MaximumScatteringThickness = 0.0;
+  std::vector<double> LightOpticalThickness;
+  double AlbedoRange[2] = { 0.0, 0.0 };
+  bool HasScattering = false;
+  bool HasEmission = false;
+  double MaximumEmission = 0.0;
+  double OccupiedFraction = 0.0;
+  int NumberOfPoweredLights = 0;
+
+private:
+  vtkSceneAnalysis(const vtkSceneAnalysis&) = delete;
+  void operator=(const vtkSceneAnalysis&) = delete;
+};
+
+#endif
