@@ -5,7 +5,7 @@
  *
  * Input port 0: the medium (vtkImageData, validated with vtkMediumValidator). Input port 1
  * (optional): the lighting volume on the same grid with point arrays `Radiance` (S1, RGB) and
- * `RadianceDirection` (unit mean travel direction, world frame) and/or `MultipleScattering`
+ * `RadianceDirection` (unit mean travel direction, grid-local frame) and/or `MultipleScattering`
  * (S_ms, RGB), as written by vtkPhotonTracer and vtkLatticeBoltzmannLighting. Without it the
  * image holds emission, absorption and the background only.
  *

@@ -388,8 +388,8 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     FetchFloats(radiance, 3, values);
     in.Radiance = context->CreateBuffer(
       CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4, values.data(), "Radiance", this);
+    // RadianceDirection is stored in the grid-local frame (vtkPhotonTracer, Physics.md).
     FetchFloats(direction, 3, values);
-    RotateToLocal(in.Direction, values);
     in.RadianceDirection = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
       values.size() * 4, values.data(), "RadianceDirection", this);
     if (!in.Radiance || !in.RadianceDirection)

@@ -32,7 +32,7 @@
  *   Defaults: right (1, 0, 0), up (0, 1, 0), as vtkRenderer's environment.
  *
  * The lighting volume must be on the medium's grid and carry `Radiance` (S1, RGB) with
- * `RadianceDirection` (3, world frame), and/or `MultipleScattering` (S_ms, RGB).
+ * `RadianceDirection` (3, unit, in the grid-local frame), and/or `MultipleScattering` (S_ms, RGB).
  */
 #ifndef vtkRefractaViewPass_h
 #define vtkRefractaViewPass_h

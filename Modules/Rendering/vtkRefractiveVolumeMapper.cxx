@@ -20,10 +20,7 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
-#if __has_include("vtkPhotonTracer.h")
 #include "vtkPhotonTracer.h"
-#define REFRACTA_HAVE_PHOTON_TRACER 1
-#endif
 
 #include <algorithm>
 #include <cmath>
@@ -48,6 +45,7 @@ struct vtkRefractiveVolumeMapper::Internals
   // Light stage.
   vtkSmartPointer<vtkImageData> Lighting;
   std::string LightKey;
+  vtkSmartPointer<vtkPhotonTracer> Tracer = vtkSmartPointer<vtkPhotonTracer>::New();
 
   // View stage.
   std::string ViewKey;
@@ -151,11 +149,7 @@ vtkRefractaViewPass* vtkRefractiveVolumeMapper::GetViewPass()
 
 bool vtkRefractiveVolumeMapper::HasLightPasses()
 {
-#ifdef REFRACTA_HAVE_PHOTON_TRACER
   return true;
-#else
-  return false;
-#endif
 }
 
 void vtkRefractiveVolumeMapper::ReleaseGraphicsResources(vtkWindow*)
@@ -281,13 +275,64 @@ bool vtkRefractiveVolumeMapper::UpdateLighting(vtkRenderer* renderer, vtkVolume*
     return true;
   }
   in.Lighting = nullptr;
-#ifdef REFRACTA_HAVE_PHOTON_TRACER
-  vtkNew<vtkPhotonTracer> tracer;
-  if (!vtkPhotonTracerRunForRenderer(tracer, in.Medium, renderer, volume, this))
+  // Only the effects the scene needs: nothing scatters -> no light pass at all.
+  bool scatters = false;
+  if (vtkDataArray* albedo = in.Medium->GetPointData()->GetArray(vtkRefractaMedium::AlbedoName()))
   {
-    return false;
+    vtkDataArray* extinction =
+      in.Medium->GetPointData()->GetArray(vtkRefractaMedium::ExtinctionName());
+    double range[2];
+    for (int c = 0; c < 3 && extinction && !scatters; ++c)
+    {
+      albedo->GetRange(range, c);
+      const double a = range[1];
+      extinction->GetRange(range, c);
+      scatters = a > 0 && range[1] > 0;
+    }
   }
-#endif
+  // The renderer's lights in the medium's data coordinates (through the inverse prop matrix).
+  vtkNew<vtkMatrix4x4> toData;
+  vtkMatrix4x4::Invert(volume->GetMatrix(), toData);
+  vtkPhotonTracer* tracer = in.Tracer;
+  tracer->RemoveAllLights();
+  int lightCount = 0;
+  lights->InitTraversal(it);
+  while (vtkLight* light = lights->GetNextLight(it))
+  {
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    vtkNew<vtkLight> copy;
+    copy->DeepCopy(light);
+    copy->SetLightTypeToSceneLight();
+    copy->SetTransformMatrix(nullptr);
+    double p[4] = { 0, 0, 0, 1 }, f[4] = { 0, 0, 0, 1 };
+    light->GetTransformedPosition(p);
+    light->GetTransformedFocalPoint(f);
+    toData->MultiplyPoint(p, p);
+    toData->MultiplyPoint(f, f);
+    copy->SetPosition(p[0] / p[3], p[1] / p[3], p[2] / p[3]);
+    copy->SetFocalPoint(f[0] / f[3], f[1] / f[3], f[2] / f[3]);
+    tracer->AddLight(copy);
+    ++lightCount;
+  }
+  if (scatters && lightCount > 0)
+  {
+    tracer->SetContext(in.ViewPass->GetContext());
+    tracer->SetInputData(in.Medium);
+    tracer->SetNumberOfPhotons(this->NumberOfPhotons);
+    tracer->SetSeed(static_cast<unsigned int>(this->Seed));
+    tracer->Update();
+    if (tracer->GetOutput()->GetNumberOfPoints() == 0)
+    {
+      vtkErrorMacro("The light pass (vtkPhotonTracer) failed; see its error above.");
+      return false;
+    }
+    in.Lighting = vtkSmartPointer<vtkImageData>::New();
+    in.Lighting->ShallowCopy(tracer->GetOutput());
+    ++this->NumberOfLightPassRuns;
+  }
   if (!in.ViewPass->SetLighting(in.Lighting))
   {
     in.Lighting = nullptr;

@@ -16,6 +16,7 @@
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkExecutive.h"
+#include "vtkLight.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -23,6 +24,7 @@
 #include "vtkRefractiveVolumeMapper.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
 #include "vtkSphereSource.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkTransferFunctionMedium.h"
@@ -42,9 +44,24 @@ const double Sigma[3] = { 1.0, 2.0, 3.0 };
 const double Top = 1.0 + 0.5 / 15; // box top in z
 const double Depth = 16.0 / 15;
 
+// One window for the whole process: every X connection is a chance for the virtual X server of
+// a loaded machine to refuse one, so the tests share a single connection.
+vtkRenderWindow* SharedWindow()
+{
+  static vtkSmartPointer<vtkRenderWindow> window;
+  if (!window)
+  {
+    window = vtkSmartPointer<vtkRenderWindow>::New();
+    window->SetOffScreenRendering(1);
+    window->SetSize(Size, Size);
+    window->SetMultiSamples(0);
+  }
+  return window;
+}
+
 struct Scene
 {
-  vtkNew<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderWindow> Window = SharedWindow();
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkVolume> Volume;
   vtkNew<vtkRefractiveVolumeMapper> Mapper;
@@ -53,9 +70,7 @@ struct Scene
 
   Scene()
   {
-    this->Window->SetOffScreenRendering(1);
-    this->Window->SetSize(Size, Size);
-    this->Window->SetMultiSamples(0);
+    this->Window->GetRenderers()->RemoveAllItems();
     this->Window->AddRenderer(this->Renderer);
     this->Renderer->SetBackground(1, 1, 1);
     this->Volume->SetMapper(this->Mapper);
@@ -277,6 +292,9 @@ TEST(RefractiveVolumeMapper, ScalarInputThroughTransferFunctions)
   // so rays stay straight; no emission in the mapper's default).
   Scene scene;
   scene.Renderer->RemoveActor(scene.Front);
+  // No lights: the albedo (from the colour function) has nothing to scatter; pure absorption.
+  scene.Renderer->AutomaticLightCreationOff();
+  scene.Renderer->RemoveAllLights();
   scene.Volume->SetProperty(property);
   scene.Mapper->SetInputData(scalars);
   vtkSmartPointer<vtkImageData> image = scene.Capture();
@@ -300,4 +318,58 @@ TEST(RefractiveVolumeMapper, ScalarInputThroughTransferFunctions)
   mapping->Update();
   EXPECT_NE(errors->GetErrorMessage().find("components"), std::string::npos);
   EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+TEST(RefractiveVolumeMapper, LightPassesRunOnlyWhenLightsChange)
+{
+  // A scattering fog lit by a scene light: the photon tracer runs for the light, not for the
+  // camera.
+  Scene scene;
+  scene.Renderer->RemoveActor(scene.Front);
+  scene.Renderer->SetBackground(0, 0, 0);
+  auto fog = refracta_test::MakeGrid(20, 20, 20, 1.0 / 19);
+  refracta_test::AddConstant(fog, "Extinction", 3, 2.0, 2.0, 2.0);
+  refracta_test::AddConstant(fog, "Albedo", 3, 0.8, 0.8, 0.8);
+  scene.Mapper->SetInputData(fog);
+  scene.Mapper->SetNumberOfPhotons(1 << 14);
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetPosition(3, 0.5, 0.5);
+  light->SetFocalPoint(0.5, 0.5, 0.5);
+  light->SetIntensity(2.0);
+  scene.Renderer->RemoveAllLights();
+  scene.Renderer->AddLight(light);
+  scene.Renderer->AutomaticLightCreationOff();
+
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 1);
+  ASSERT_NE(scene.Mapper->GetLighting(), nullptr);
+  EXPECT_NE(scene.Mapper->GetLighting()->GetPointData()->GetArray("Radiance"), nullptr);
+  // The fog is lit: the medium's radiance shows (the background is black).
+  vtkSmartPointer<vtkImageData> lit = scene.Capture();
+  double sum = 0;
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(lit->GetPointData()->GetScalars());
+  for (vtkIdType i = 0; i < rgb->GetNumberOfValues(); ++i)
+  {
+    sum += rgb->GetValue(i);
+  }
+  EXPECT_GT(sum, 0.0);
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 1);
+  const int views = scene.Mapper->GetNumberOfViewPassRuns();
+
+  scene.Renderer->GetActiveCamera()->Elevation(15);
+  scene.Renderer->GetActiveCamera()->OrthogonalizeViewUp();
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 1) << "a camera move must not re-light";
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), views + 1);
+
+  light->SetIntensity(4.0);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 2) << "a light change re-lights";
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), views + 2);
+  EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 1);
+  light->SetIntensity(2.0);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 3);
 }

@@ -73,12 +73,8 @@ Scene MakeScene(bool rotated)
   vtkMath::Normalize(dir);
   refracta_test::AddConstant(scene.Lighting, "RadianceDirection", 3, dir[0], dir[1], dir[2]);
   refracta_test::AddConstant(scene.Lighting, "MultipleScattering", 3, Sms[0], Sms[1], Sms[2]);
-  // The stored direction is in world coordinates; the analytic answer works in the local frame.
-  const double* d = scene.Medium->GetDirectionMatrix()->GetData();
-  for (int r = 0; r < 3; ++r)
-  {
-    scene.LightDirLocal[r] = d[0 * 3 + r] * dir[0] + d[1 * 3 + r] * dir[1] + d[2 * 3 + r] * dir[2];
-  }
+  // The stored direction is in the grid-local frame (Physics.md).
+  std::copy(dir, dir + 3, scene.LightDirLocal);
   return scene;
 }
 
