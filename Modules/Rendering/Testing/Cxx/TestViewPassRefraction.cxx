@@ -21,6 +21,7 @@
 #include "vtkMath.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaViewPass.h"
+#include "vtkTexture.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
@@ -208,7 +209,10 @@ TEST(ViewPassRefraction, ConstantIndexDoesNotBend)
   renderer->SetInputData(GrinSphere(true));
   renderer->SetCamera(TopCamera());
   renderer->SetImageSize(16, 16);
-  renderer->SetEnvironmentMap(DirectionEnvironment());
+  // The environment given as a vtkTexture this time (its input image is used).
+  vtkNew<vtkTexture> texture;
+  texture->SetInputData(DirectionEnvironment());
+  renderer->SetEnvironmentTexture(texture);
   renderer->SetRayModeToCurved();
   renderer->Update();
   EXPECT_FALSE(renderer->GetViewPass()->GetLastCurved());
