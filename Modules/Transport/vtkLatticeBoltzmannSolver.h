@@ -1,0 +1,306 @@
+/**
+ * @class   vtkLatticeBoltzmannSolver
+ * @brief   OpenCL Lattice-Boltzmann lighting solver (Geist et al. 2004, Bernabei et al. III-C).
+ *
+ * The solver behind vtkLatticeBoltzmannLighting, usable on its own (tests, benchmarks, the
+ * concurrent photon/diffusion schedule). It owns the device buffers of one grid:
+ * - the lattice state f_i (power per unit volume travelling along lattice direction i, RGB),
+ *   for the 6 principal directions (D3Q6, the paper's choice) or the 18 directions of the original
+ *   LBL (D3Q18: 6 axes and 12 face diagonals, no rest direction);
+ * - per-voxel coefficients derived from the medium: the probability T = exp(-sigma_t len) of
+ *   crossing the voxel uncollided along each direction (len = the step length along it), the
+ *   albedo and the Henyey-Greenstein g;
+ * - the source S1 (power per unit volume scattered out of the direct beam, the photon pass's
+ *   `Radiance`) and, for SourceDistribution = PHASE_FUNCTION, its mean direction.
+ *
+ * One lattice step: collide (uncollided part keeps its direction; of the scattered part the
+ * fraction |g| goes forward (g > 0) or backward (g < 0) and the rest is spread evenly over the Q
+ * directions; the absorbed part leaves the lattice) and stream to the neighbour; the source is
+ * injected each step like scattered light. Iterating converges to the steady state
+ * f = sum_k M^k s, the diffuse field of light scattered at least once. See Kernels/lbl.cl for the
+ * update and the correction of the paper's Theta matrix.
+ *
+ * Units. With f in power per unit volume, the multiple-scattering output is
+ * S_ms(r) = a sum_i (1 - T_i) f_i(r) = sigma_s phi_ms, where the fluence of the diffuse field is
+ * phi_ms = sum_i f_i (1 - T_i) / sigma_t (the expected path length of a packet in the voxel,
+ * exactly len_i where sigma_t = 0).
+ *
+ * Blocks (D3Q6 only; D3Q18 always runs unblocked): BlockSize b > 0 partitions the grid into b^3
+ * blocks that iterate StepsPerExchange steps locally and exchange density through alternating
+ * interface buffers (Fig. 5). StepsPerExchange = 1 is step for step the global update; larger
+ * values reach the same steady state.
+ *
+ * Termination (Solve()): every CheckInterval steps the summed density at sparse probe voxels
+ * (every ProbeSpacing-th voxel per axis) is read back; the residual is
+ * sum |p_new - p_old| / sum |p_new| / (steps between the checks), the relative change per step.
+ * Solve() stops when it falls below Tolerance (Converged), at MaximumIterations, or when a probe
+ * stops being finite (an error).
+ */
+#ifndef vtkLatticeBoltzmannSolver_h
+#define vtkLatticeBoltzmannSolver_h
+
+#include "RefractaTransportModule.h" // for export macro
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // for the context
+
+#include <vector> // for std::vector
+
+#ifndef __VTK_WRAP__
+#include "vtkOpenCLHandle.h" // for buffers and kernels
+#endif
+
+class vtkOpenCLContext;
+
+class REFRACTATRANSPORT_EXPORT vtkLatticeBoltzmannSolver : public vtkObject
+{
+public:
+  static vtkLatticeBoltzmannSolver* New();
+  vtkTypeMacro(vtkLatticeBoltzmannSolver, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum LatticeType
+  {
+    D3Q6 = 6,
+    D3Q18 = 18
+  };
+  enum BoundaryType
+  {
+    VACUUM = 0,     ///< density leaving the grid is lost (no light reflected by the faces)
+    REFLECTIVE = 1, ///< density leaving the grid comes back in the opposite direction
+  };
+  enum SourceDistributionType
+  {
+    ISOTROPIC_SOURCE = 0,      ///< S1 is spread evenly over the lattice directions
+    PHASE_FUNCTION_SOURCE = 1, ///< S1 is spread by the HG phase around its mean direction
+  };
+
+  ///@{
+  /**
+   * Lattice: 6 (D3Q6, default) or 18 (D3Q18). Other values are refused with an error.
+   */
+  void SetLattice(int lattice);
+  vtkGetMacro(Lattice, int);
+  ///@}
+
+  ///@{
+  /**
+   * Block edge b in voxels (D3Q6 only); 0 runs the unblocked (global) update. Default 4.
+   */
+  vtkSetClampMacro(BlockSize, int, 0, 8);
+  vtkGetMacro(BlockSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * Lattice steps a block iterates between interface exchanges: a power of two in [1, 64]
+   * (others are rounded down to one). Default 4.
+   */
+  void SetStepsPerExchange(int steps);
+  vtkGetMacro(StepsPerExchange, int);
+  ///@}
+
+  ///@{
+  /**
+   * Boundary of the grid's faces. Default VACUUM.
+   */
+  vtkSetClampMacro(Boundary, int, VACUUM, REFLECTIVE);
+  vtkGetMacro(Boundary, int);
+  ///@}
+
+  ///@{
+  /**
+   * How the source S1 enters the lattice. Default PHASE_FUNCTION_SOURCE (falls back to isotropic
+   * in voxels without a source direction).
+   */
+  vtkSetClampMacro(SourceDistribution, int, ISOTROPIC_SOURCE, PHASE_FUNCTION_SOURCE);
+  vtkGetMacro(SourceDistribution, int);
+  ///@}
+
+  ///@{
+  /**
+   * Convergence: relative change of the probe density per step below Tolerance (default 1e-4),
+   * checked every CheckInterval steps (default 8, rounded up to StepsPerExchange in blocked
+   * mode), probes every ProbeSpacing voxels per axis (default 8), at most MaximumIterations
+   * steps (default 5000).
+   */
+  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkGetMacro(Tolerance, double);
+  vtkSetClampMacro(CheckInterval, int, 1, 4096);
+  vtkGetMacro(CheckInterval, int);
+  vtkSetClampMacro(ProbeSpacing, int, 1, 4096);
+  vtkGetMacro(ProbeSpacing, int);
+  vtkSetClampMacro(MaximumIterations, int, 0, 1 << 30);
+  vtkGetMacro(MaximumIterations, int);
+  ///@}
+
+  /**
+   * The OpenCL context (default: vtkOpenCLContext::GetDefault()).
+   */
+  void SetContext(vtkOpenCLContext* context);
+  vtkOpenCLContext* GetContext();
+
+  ///@{
+  /**
+   * Results of the last Solve(): lattice steps done (since the last ResetState()), the last
+   * residual (-1 before any check), whether it converged.
+   */
+  vtkGetMacro(Iterations, int);
+  vtkGetMacro(Residual, double);
+  vtkGetMacro(Converged, bool);
+  ///@}
+
+  /**
+   * Number of lattice steps run by Iterate() and Solve() since ResetState().
+   */
+  int GetStepsDone() const { return this->Iterations; }
+
+  /**
+   * Exact asymptotic decay length, along a lattice axis, of this lattice's steady state in a
+   * homogeneous medium (sigma_t, albedo a < 1, g >= 0, cubic voxels of edge h): the 1/kappa of
+   * the decaying mode f_i ~ exp(-kappa x), from the dispersion relation
+   * 1 = sum_j w (1 - |g|) a (1 - T_j) / (exp(-kappa h c_jx) - rho_j),
+   * rho_j = T_j + a (1 - T_j) g. Returns 0 when there is no decaying mode (a >= 1).
+   */
+  static double LatticeDecayLength(int lattice, double sigmaT, double albedo, double g, double h);
+
+  /**
+   * Diffusion limit of the D3Q6 lattice: L^2 = h^2 (1 + rho) / (6 (1 - rho) (1 - q)), with
+   * rho = T + a (1 - T) g the direction persistence and q = T + a (1 - T) the survival per step
+   * (D_lattice = h^2 (1 + rho) / (6 (1 - rho)) per step). It tends to the continuum
+   * 1 / sqrt(3 sigma_a sigma_t') as sigma_t h -> 0.
+   */
+  static double D3Q6DiffusionLength(double sigmaT, double albedo, double g, double h);
+
+#ifndef __VTK_WRAP__
+  /**
+   * Allocate the buffers for a grid of dims voxels with the given spacing and upload the medium
+   * (interleaved RGB arrays of dims[0]*dims[1]*dims[2] tuples; nullptr means 0; anisotropy one
+   * value per voxel or nullptr for 0). Resets the state and the source. Returns false after
+   * reporting an error.
+   */
+  bool Initialize(const int dims[3], const double spacing[3], const float* extinction,
+    const float* albedo, const float* anisotropy);
+
+  /**
+   * Upload the source S1 (interleaved RGB, power per unit volume) and optionally its mean
+   * direction (interleaved xyz, any length; zero means no direction). nullptr clears it.
+   */
+  bool SetSource(const float* s1, const float* direction);
+
+  /**
+   * The planar source buffer (3 planes of S1, then 3 of direction when PHASE_FUNCTION_SOURCE),
+   * for producers that write the source on the device (the concurrent photon schedule).
+   */
+  cl_mem GetSourceBuffer() const { return this->Source.Get(); }
+
+  /**
+   * Zero the lattice state (and interfaces) and the step count.
+   */
+  bool ResetState();
+
+  /**
+   * Run n lattice steps (rounded up to StepsPerExchange in blocked mode); enqueues and, when
+   * `wait` is true, waits. Returns false after reporting an error.
+   */
+  bool Iterate(int n, bool wait = true);
+
+  /**
+   * Iterate from the current state until converged, MaximumIterations or an error. `progress`
+   * (optional) is called with the fraction of MaximumIterations done.
+   */
+  bool Solve();
+
+  /**
+   * The residual now (probes compared with the previous call); use between Iterate() calls.
+   * Returns false on a non-finite probe. `stepsSinceLast` normalises it per step.
+   */
+  bool CheckConvergence(int stepsSinceLast, double& residual);
+
+  /**
+   * The state in planar layout (Q * 3 planes of N floats), global-equivalent in blocked mode.
+   */
+  bool ReadState(std::vector<float>& state);
+
+  /**
+   * Total density per channel, summed in double: the state plus the density in transit in the
+   * interface buffers (blocked mode). With sigma_a = 0 and reflective faces it is conserved.
+   */
+  bool ComputeTotalDensity(double total[3]);
+
+  /**
+   * Power absorbed per channel by the next step from the current state (host, double), the
+   * quantity the total density loses per step when the faces reflect and there is no source.
+   */
+  bool ComputeAbsorbedNextStep(double absorbed[3]);
+
+  /**
+   * S_ms = sigma_s phi_ms per voxel (interleaved RGB, N tuples).
+   */
+  bool ComputeMultipleScattering(float* out);
+
+  /**
+   * Step-length class of each direction and the lengths (filled by Initialize()).
+   */
+  const std::vector<double>& GetClassLengths() const { return this->ClassLengths; }
+#endif
+
+  /**
+   * Number of voxels of the initialized grid.
+   */
+  vtkIdType GetNumberOfVoxels() const { return this->NumberOfVoxels; }
+
+protected:
+  vtkLatticeBoltzmannSolver();
+  ~vtkLatticeBoltzmannSolver() override;
+
+  bool UseBlocks() const { return this->BlockSize > 0 && this->Lattice == D3Q6; }
+  bool BuildKernels();
+  bool ReadProbes(std::vector<float>& values);
+
+  int Lattice = D3Q6;
+  int BlockSize = 4;
+  int StepsPerExchange = 4;
+  int Boundary = VACUUM;
+  int SourceDistribution = PHASE_FUNCTION_SOURCE;
+  double Tolerance = 1e-4;
+  int CheckInterval = 8;
+  int ProbeSpacing = 8;
+  int MaximumIterations = 5000;
+
+  int Iterations = 0;
+  double Residual = -1.0;
+  bool Converged = false;
+
+  vtkSmartPointer<vtkOpenCLContext> Context;
+  int Dims[4] = { 0, 0, 0, 0 };
+  int NumberOfBlocks[4] = { 0, 0, 0, 0 };
+  vtkIdType NumberOfVoxels = 0;
+  std::vector<int> DirectionClass;
+  std::vector<double> ClassLengths;
+  std::vector<float> HostCoefficients; // planar, kept for the host-side absorption sum
+  std::vector<float> PreviousProbes;
+  size_t NumberOfProbes = 0;
+  int BuiltKey[6] = { -1, -1, -1, -1, -1, -1 };
+  int InterfaceParity = 0;
+
+#ifndef __VTK_WRAP__
+  vtkOpenCLBuffer State[2];
+  vtkOpenCLBuffer Interface[2];
+  vtkOpenCLBuffer Coefficients;
+  vtkOpenCLBuffer Source;
+  vtkOpenCLBuffer Probes;
+  vtkOpenCLBuffer ProbeValues;
+  vtkOpenCLKernel StepKernel;
+  vtkOpenCLKernel BlockKernel;
+  vtkOpenCLKernel FinalizeKernel;
+  vtkOpenCLKernel ProbeKernel;
+  vtkOpenCLKernel ScatteredKernel;
+  int Current = 0;
+#endif
+
+private:
+  vtkLatticeBoltzmannSolver(const vtkLatticeBoltzmannSolver&) = delete;
+  void operator=(const vtkLatticeBoltzmannSolver&) = delete;
+};
+
+#endif
