@@ -69,12 +69,14 @@ inline void lbl_source_weights(__global const float* src, size_t n, size_t v, fl
   {
     const float3 u = d / len;
     float sum = 0.0f;
+    #pragma unroll
     for (int i = 0; i < LBL_Q; ++i)
     {
       const float3 c = normalize((float3)((float)lbl_cx[i], (float)lbl_cy[i], (float)lbl_cz[i]));
       w[i] = refracta_hg_phase(dot(u, c), g);
       sum += w[i];
     }
+    #pragma unroll
     for (int i = 0; i < LBL_Q; ++i)
     {
       w[i] /= sum;
@@ -82,6 +84,7 @@ inline void lbl_source_weights(__global const float* src, size_t n, size_t v, fl
     return;
   }
 #endif
+  #pragma unroll
   for (int i = 0; i < LBL_Q; ++i)
   {
     w[i] = 1.0f / (float)LBL_Q;
@@ -96,12 +99,14 @@ inline void lbl_collide(const float* fin, float* out, const float* t, float a, f
   const float gb = fmax(-g, 0.0f);
   float collided[LBL_Q];
   float sum = 0.0f;
+  #pragma unroll
   for (int j = 0; j < LBL_Q; ++j)
   {
     collided[j] = (1.0f - t[lbl_class[j]]) * fin[j];
     sum += collided[j];
   }
   const float iso = a * (1.0f - gf - gb) * sum / (float)LBL_Q;
+  #pragma unroll
   for (int i = 0; i < LBL_Q; ++i)
   {
     out[i] = t[lbl_class[i]] * fin[i] + a * gf * collided[i] + a * gb * collided[i ^ 1] + iso +
@@ -127,20 +132,24 @@ __kernel void lbl_step(__global const float* fcur, __global float* fnext,
   const float g = coef[LBL_COEF_G * n + v];
   float wsrc[LBL_Q];
   lbl_source_weights(src, n, v, g, wsrc);
+  #pragma unroll
   for (int ch = 0; ch < 3; ++ch)
   {
     float t[LBL_NCLASS];
+    #pragma unroll
     for (int c = 0; c < LBL_NCLASS; ++c)
     {
       t[c] = coef[(c * 3 + ch) * n + v];
     }
     const float a = coef[(LBL_COEF_ALBEDO + ch) * n + v];
     float fin[LBL_Q], out[LBL_Q];
+    #pragma unroll
     for (int i = 0; i < LBL_Q; ++i)
     {
       fin[i] = fcur[(i * 3 + ch) * n + v];
     }
     lbl_collide(fin, out, t, a, g, src[ch * n + v], wsrc);
+    #pragma unroll
     for (int i = 0; i < LBL_Q; ++i)
     {
       const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
@@ -219,9 +228,11 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
   float g = 0.0f;
   float inflow[LBL_Q][3], outAcc[LBL_Q][3];
   bool inbound[LBL_Q];
+  #pragma unroll
   for (int i = 0; i < LBL_Q; ++i)
   {
     inbound[i] = false;
+    #pragma unroll
     for (int ch = 0; ch < 3; ++ch)
     {
       inflow[i][ch] = 0.0f;
@@ -234,8 +245,10 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
   {
     g = coef[LBL_COEF_G * n + v];
     lbl_source_weights(src, n, v, g, wsrc);
+    #pragma unroll
     for (int ch = 0; ch < 3; ++ch)
     {
+      #pragma unroll
       for (int c = 0; c < LBL_NCLASS; ++c)
       {
         t[ch][c] = coef[(c * 3 + ch) * n + v];
@@ -243,6 +256,7 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
       a[ch] = coef[(LBL_COEF_ALBEDO + ch) * n + v];
       q[ch] = src[ch * n + v];
     }
+    #pragma unroll
     for (int i = 0; i < LBL_Q; ++i)
     {
       const int nb = lbl_inbound_block(i, x, y, z, dims, nblocks);
@@ -250,6 +264,7 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
       {
         inbound[i] = true;
         const size_t base = ((size_t)(nb * 6 + i) * LBL_B * LBL_B + lbl_face_pos(i, lx, ly, lz)) * 3;
+        #pragma unroll
         for (int ch = 0; ch < 3; ++ch)
         {
           inflow[i][ch] = ifaceIn[base + ch] * LBL_INV_SUBSTEPS;
@@ -265,15 +280,18 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
     __local float* nxt = (s & 1) ? bufA : bufB;
     if (active)
     {
+      #pragma unroll
       for (int ch = 0; ch < 3; ++ch)
       {
         float fin[LBL_Q], out[LBL_Q];
+        #pragma unroll
         for (int i = 0; i < LBL_Q; ++i)
         {
           // Entries streaming in from a neighbour block come from the interface, 1/m per substep.
           fin[i] = inbound[i] ? inflow[i][ch] : cur[(i * 3 + ch) * LBL_B3 + lid];
         }
         lbl_collide(fin, out, t[ch], a[ch], g, q[ch], wsrc);
+        #pragma unroll
         for (int i = 0; i < LBL_Q; ++i)
         {
           const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
@@ -301,8 +319,10 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
   if (active)
   {
     __local float* last = ((LBL_SUBSTEPS - 1) & 1) ? bufA : bufB;
+    #pragma unroll
     for (int i = 0; i < LBL_Q; ++i)
     {
+      #pragma unroll
       for (int ch = 0; ch < 3; ++ch)
       {
         // Entries fed by the interface are rewritten by lbl_block_finalize.
@@ -315,6 +335,7 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
       if (inGrid && !inBlock)
       {
         const size_t base = ((size_t)(blk * 6 + i) * LBL_B * LBL_B + lbl_face_pos(i, lx, ly, lz)) * 3;
+        #pragma unroll
         for (int ch = 0; ch < 3; ++ch)
         {
           ifaceOut[base + ch] = outAcc[i][ch];
@@ -337,6 +358,7 @@ __kernel void lbl_block_finalize(
   }
   const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
   const size_t v = refracta_voxel_index(dims, x, y, z);
+  #pragma unroll
   for (int i = 0; i < LBL_Q; ++i)
   {
     const int nb = lbl_inbound_block(i, x, y, z, dims, nblocks);
@@ -344,6 +366,7 @@ __kernel void lbl_block_finalize(
     {
       const size_t base = ((size_t)(nb * 6 + i) * LBL_B * LBL_B +
                             lbl_face_pos(i, x % LBL_B, y % LBL_B, z % LBL_B)) * 3;
+      #pragma unroll
       for (int ch = 0; ch < 3; ++ch)
       {
         state[(i * 3 + ch) * n + v] = iface[base + ch] * LBL_INV_SUBSTEPS;
@@ -365,9 +388,11 @@ __kernel void lbl_probes(__global const float* state, __global const uint* probe
   }
   const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
   const size_t v = probes[p];
+  #pragma unroll
   for (int ch = 0; ch < 3; ++ch)
   {
     float sum = 0.0f;
+    #pragma unroll
     for (int i = 0; i < LBL_Q; ++i)
     {
       sum += state[(i * 3 + ch) * n + v];
@@ -389,9 +414,11 @@ __kernel void lbl_scattered(
   }
   const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
   const size_t v = refracta_voxel_index(dims, x, y, z);
+  #pragma unroll
   for (int ch = 0; ch < 3; ++ch)
   {
     float sum = 0.0f;
+    #pragma unroll
     for (int i = 0; i < LBL_Q; ++i)
     {
       sum += (1.0f - coef[(lbl_class[i] * 3 + ch) * n + v]) * state[(i * 3 + ch) * n + v];

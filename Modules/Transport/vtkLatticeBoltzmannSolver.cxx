@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 vtkStandardNewMacro(vtkLatticeBoltzmannSolver);
@@ -130,19 +131,30 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
   const size_t planes = static_cast<size_t>(nclass) * 3 + 4;
   this->HostCoefficients.assign(planes * n, 0.0f);
   float* coef = this->HostCoefficients.data();
+  const double meanEdge = std::cbrt(spacing[0] * spacing[1] * spacing[2]);
+  this->NumberOfThickVoxels = 0;
   for (size_t v = 0; v < n; ++v)
   {
     for (int ch = 0; ch < 3; ++ch)
     {
       const double st = extinction ? std::max(0.0, double(extinction[v * 3 + ch])) : 0.0;
+      const double a = albedo ? std::min(1.0, std::max(0.0, double(albedo[v * 3 + ch]))) : 0.0;
+      const double g = anisotropy ? std::min(0.9999, std::max(-0.9999, double(anisotropy[v]))) : 0.0;
       for (int c = 0; c < nclass; ++c)
       {
-        coef[(c * 3 + ch) * n + v] = static_cast<float>(std::exp(-st * this->ClassLengths[c]));
+        const double p = CollisionProbability(
+          q, this->CollisionModel, st, a, g, this->ClassLengths[c], meanEdge);
+        if (this->CollisionModel == DIFFUSION_MATCHED && c == 0 && p >= 1.0 && st > 0)
+        {
+          ++this->NumberOfThickVoxels;
+        }
+        // The kernels take the transmittance T = 1 - p.
+        coef[(c * 3 + ch) * n + v] = static_cast<float>(1.0 - p);
       }
-      coef[(nclass * 3 + ch) * n + v] =
-        albedo ? std::min(1.0f, std::max(0.0f, albedo[v * 3 + ch])) : 0.0f;
+      coef[(nclass * 3 + ch) * n + v] = static_cast<float>(a);
     }
-    coef[(nclass * 3 + 3) * n + v] = anisotropy ? anisotropy[v] : 0.0f;
+    coef[(nclass * 3 + 3) * n + v] =
+      anisotropy ? std::min(0.9999f, std::max(-0.9999f, anisotropy[v])) : 0.0f;
   }
   this->Coefficients = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
     planes * n * sizeof(float), coef, "LBL coefficients", this);
@@ -160,7 +172,8 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
   }
 
   // Probes: every ProbeSpacing-th voxel per axis, offset by half a spacing.
-  std::vector<cl_uint> probes;
+  this->SourceIsZero = true;
+  this->GridProbes.clear();
   const int p = this->ProbeSpacing;
   auto axis = [p](int d) {
     std::vector<int> c;
@@ -176,21 +189,83 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
     {
       for (int x : axis(dims[0]))
       {
-        probes.push_back(static_cast<cl_uint>(x + size_t(dims[0]) * (y + size_t(dims[1]) * z)));
+        this->GridProbes.push_back(
+          static_cast<cl_uint>(x + size_t(dims[0]) * (y + size_t(dims[1]) * z)));
       }
     }
   }
-  this->NumberOfProbes = probes.size();
-  this->Probes = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-    probes.size() * sizeof(cl_uint), probes.data(), "LBL probes", this);
-  this->ProbeValues = context->CreateBuffer(
-    CL_MEM_READ_WRITE, probes.size() * 3 * sizeof(float), nullptr, "LBL probe values", this);
-  if (!this->Probes || !this->ProbeValues)
+  this->ProbeValues = context->CreateBuffer(CL_MEM_READ_WRITE,
+    (this->GridProbes.size() + MaxSourceProbes) * 3 * sizeof(float), nullptr,
+    "LBL probe values", this);
+  if (!this->ProbeValues || !this->SetProbes({}))
   {
     return false;
   }
   this->BuiltKey[0] = -1;
   return this->BuildKernels() && this->ResetState();
+}
+
+//------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::SetProbes(const std::vector<cl_uint>& extra)
+{
+  std::vector<cl_uint> probes = this->GridProbes;
+  probes.insert(probes.end(), extra.begin(), extra.end());
+  this->NumberOfProbes = probes.size();
+  this->Probes = this->GetContext()->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+    probes.size() * sizeof(cl_uint), probes.data(), "LBL probes", this);
+  this->PreviousProbes.assign(this->NumberOfProbes * 3, 0.0f);
+  return static_cast<bool>(this->Probes);
+}
+
+//------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::UpdateSourceProbes()
+{
+  // The sparse grid of probes can miss a small source entirely (light from a point source needs
+  // as many steps as its Manhattan distance to reach a probe), which would read as "converged"
+  // at once. The voxels with the strongest source are probes too; a source that is zero
+  // everywhere is known to give a zero field.
+  const size_t n = static_cast<size_t>(this->NumberOfVoxels);
+  std::vector<float> planes(3 * n);
+  if (!this->GetContext()->ReadBuffer(
+        this->Source.Get(), planes.size() * sizeof(float), planes.data(), this))
+  {
+    return false;
+  }
+  std::vector<std::pair<float, cl_uint>> strongest;
+  for (size_t v = 0; v < n; ++v)
+  {
+    const float total = planes[v] + planes[n + v] + planes[2 * n + v];
+    if (total > 0 && (strongest.size() < MaxSourceProbes || total > strongest.back().first))
+    {
+      if (strongest.size() == MaxSourceProbes)
+      {
+        strongest.pop_back();
+      }
+      strongest.emplace_back(total, static_cast<cl_uint>(v));
+      std::sort(strongest.begin(), strongest.end(),
+        [](const std::pair<float, cl_uint>& a, const std::pair<float, cl_uint>& b) {
+          return a.first > b.first;
+        });
+    }
+  }
+  this->SourceIsZero = strongest.empty();
+  std::vector<cl_uint> extra;
+  for (const auto& e : strongest)
+  {
+    extra.push_back(e.second);
+  }
+  std::vector<float> keep = this->PreviousProbes;
+  if (!this->SetProbes(extra))
+  {
+    return false;
+  }
+  // Keep the comparison baseline of the grid probes; the new ones start from the state now.
+  std::vector<float> now;
+  if (this->StepKernel && this->ReadProbes(now))
+  {
+    this->PreviousProbes = now;
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -325,7 +400,8 @@ bool vtkLatticeBoltzmannSolver::SetSource(const float* s1, const float* directio
     }
   }
   return this->GetContext()->WriteBuffer(
-    this->Source.Get(), planar.size() * sizeof(float), planar.data(), this);
+           this->Source.Get(), planar.size() * sizeof(float), planar.data(), this) &&
+    this->UpdateSourceProbes();
 }
 
 //------------------------------------------------------------------------------
@@ -423,7 +499,7 @@ bool vtkLatticeBoltzmannSolver::CheckConvergence(int stepsSinceLast, double& res
   {
     return false;
   }
-  double change = 0, norm = 0;
+  double peak = 0;
   for (size_t k = 0; k < values.size(); ++k)
   {
     if (!std::isfinite(values[k]))
@@ -433,11 +509,29 @@ bool vtkLatticeBoltzmannSolver::CheckConvergence(int stepsSinceLast, double& res
                                                               << this->Iterations << " steps.");
       return false;
     }
-    change += std::abs(double(values[k]) - double(this->PreviousProbes[k]));
-    norm += std::abs(double(values[k]));
+    peak = std::max(peak, std::abs(double(values[k])));
+  }
+  // Largest relative change of any probe and channel; probes darker than ProbeFloor times the
+  // brightest are measured relative to that floor (they hardly matter, and deep in an absorbing
+  // medium they may never stop changing in relative terms at float precision). A sum over the
+  // probes instead would be dominated by the bright source voxels, which settle long before the
+  // far field does.
+  double change = 0;
+  const double floor = ProbeFloor * peak;
+  for (size_t k = 0; k < values.size(); ++k)
+  {
+    const double now = values[k];
+    const double delta = std::abs(now - double(this->PreviousProbes[k]));
+    if (delta > 0)
+    {
+      change = std::max(change, delta / std::max(std::abs(now), floor));
+    }
   }
   this->PreviousProbes = values;
-  residual = norm > 0 ? change / norm / std::max(1, stepsSinceLast) : 0.0;
+  // All probes dark: converged only when there is no source at all (light still on its way to
+  // the probes otherwise).
+  residual = peak > 0 ? change / std::max(1, stepsSinceLast)
+                      : (this->SourceIsZero ? 0.0 : std::numeric_limits<double>::infinity());
   return true;
 }
 
@@ -599,22 +693,42 @@ bool vtkLatticeBoltzmannSolver::ComputeMultipleScattering(float* out)
 }
 
 //------------------------------------------------------------------------------
+double vtkLatticeBoltzmannSolver::CollisionProbability(
+  int lattice, int model, double sigmaT, double albedo, double g, double len, double h)
+{
+  if (model == EXPONENTIAL_COLLISION)
+  {
+    return 1.0 - std::exp(-sigmaT * len);
+  }
+  const double s2 = lattice == D3Q18 ? 5.0 / 9.0 : 1.0 / 3.0;
+  const double tau = sigmaT * h;
+  const double k = 1.0 - albedo * g;
+  const double p =
+    (-3 * s2 * tau * tau * k + std::sqrt(9 * s2 * s2 * std::pow(tau, 4) * k * k + 48 * s2 * tau * tau)) /
+    4;
+  return std::min(1.0, std::max(0.0, p));
+}
+
+//------------------------------------------------------------------------------
 double vtkLatticeBoltzmannSolver::LatticeDecayLength(
-  int lattice, double sigmaT, double albedo, double g, double h)
+  int lattice, int model, double sigmaT, double albedo, double g, double h)
 {
   if (!(albedo < 1.0) || (lattice != 6 && lattice != 18) || !(h > 0))
   {
     return 0.0;
   }
-  g = std::max(0.0, g);
+  if (g < 0)
+  {
+    return LatticeDiffusionLength(lattice, model, sigmaT, albedo, g, h);
+  }
   const int q = lattice;
   double rho[18], s[18];
   for (int j = 0; j < q; ++j)
   {
     const double len = h * std::sqrt(double(Cx[j] * Cx[j] + Cy[j] * Cy[j] + Cz[j] * Cz[j]));
-    const double t = std::exp(-sigmaT * len);
-    rho[j] = t + albedo * (1 - t) * g;
-    s[j] = albedo * (1 - t) * (1 - g) / q;
+    const double p = CollisionProbability(lattice, model, sigmaT, albedo, g, len, h);
+    rho[j] = 1 - p + albedo * p * g;
+    s[j] = albedo * p * (1 - g) / q;
   }
   auto f = [&](double kappa) {
     double sum = 0;
@@ -641,8 +755,7 @@ double vtkLatticeBoltzmannSolver::LatticeDecayLength(
   for (int it = 0; it < 200; ++it)
   {
     const double mid = 0.5 * (lo + hi);
-    const double value = f(mid);
-    if (value < 0)
+    if (f(mid) < 0)
     {
       lo = mid;
     }
@@ -655,17 +768,19 @@ double vtkLatticeBoltzmannSolver::LatticeDecayLength(
 }
 
 //------------------------------------------------------------------------------
-double vtkLatticeBoltzmannSolver::D3Q6DiffusionLength(
-  double sigmaT, double albedo, double g, double h)
+double vtkLatticeBoltzmannSolver::LatticeDiffusionLength(
+  int lattice, int model, double sigmaT, double albedo, double g, double h)
 {
-  const double t = std::exp(-sigmaT * h);
-  const double rho = t + albedo * (1 - t) * std::max(0.0, g);
-  const double q = t + albedo * (1 - t);
-  if (!(q < 1))
+  // Uses the axis step's probability (all directions share it in the diffusion-matched model).
+  const double p = CollisionProbability(lattice, model, sigmaT, albedo, g, h, h);
+  const double rho = 1 - p * (1 - albedo * g);
+  const double loss = (1 - albedo) * p;
+  const double s2 = lattice == D3Q18 ? 5.0 / 9.0 : 1.0 / 3.0;
+  if (!(loss > 0))
   {
     return 0.0;
   }
-  return h * std::sqrt((1 + rho) / (6 * (1 - rho) * (1 - q)));
+  return h * std::sqrt(s2 * (1 + rho) / (2 * (1 - rho) * loss));
 }
 
 //------------------------------------------------------------------------------
@@ -678,6 +793,9 @@ void vtkLatticeBoltzmannSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Boundary: " << (this->Boundary == VACUUM ? "vacuum" : "reflective") << "\n";
   os << indent << "SourceDistribution: "
      << (this->SourceDistribution == ISOTROPIC_SOURCE ? "isotropic" : "phase function") << "\n";
+  os << indent << "CollisionModel: "
+     << (this->CollisionModel == DIFFUSION_MATCHED ? "diffusion matched" : "exponential") << "\n";
+  os << indent << "NumberOfThickVoxels: " << this->NumberOfThickVoxels << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
   os << indent << "CheckInterval: " << this->CheckInterval << "\n";
   os << indent << "ProbeSpacing: " << this->ProbeSpacing << "\n";

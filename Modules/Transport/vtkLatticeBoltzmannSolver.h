@@ -31,8 +31,9 @@
  * values reach the same steady state.
  *
  * Termination (Solve()): every CheckInterval steps the summed density at sparse probe voxels
- * (every ProbeSpacing-th voxel per axis) is read back; the residual is
- * sum |p_new - p_old| / sum |p_new| / (steps between the checks), the relative change per step.
+ * (every ProbeSpacing-th voxel per axis, plus the 8 voxels with the strongest source) is read
+ * back; the residual is max over probes and channels of |p_new - p_old| / max(p_new, 1e-4 *
+ * brightest probe) / (steps between the checks), the largest relative change per step.
  * Solve() stops when it falls below Tolerance (Converged), at MaximumIterations, or when a probe
  * stops being finite (an error).
  */
@@ -154,22 +155,61 @@ public:
    */
   int GetStepsDone() const { return this->Iterations; }
 
+  enum CollisionModelType
+  {
+    EXPONENTIAL_COLLISION = 0, ///< p = 1 - exp(-sigma_t len): the voxel's exact transmittance
+    DIFFUSION_MATCHED = 1,     ///< p chosen so that the lattice diffuses like the continuum
+  };
+
+  ///@{
   /**
-   * Exact asymptotic decay length, along a lattice axis, of this lattice's steady state in a
-   * homogeneous medium (sigma_t, albedo a < 1, g >= 0, cubic voxels of edge h): the 1/kappa of
-   * the decaying mode f_i ~ exp(-kappa x), from the dispersion relation
-   * 1 = sum_j w (1 - |g|) a (1 - T_j) / (exp(-kappa h c_jx) - rho_j),
-   * rho_j = T_j + a (1 - T_j) g. Returns 0 when there is no decaying mode (a >= 1).
+   * How the per-step collision probability p of a voxel is derived from sigma_t.
+   * EXPONENTIAL_COLLISION: p = 1 - exp(-sigma_t len) along each direction (len its step length):
+   * a packet crossing the voxel is attenuated exactly, but the lattice can collide at most once
+   * per step, so its diffusion length exceeds the continuum's by a factor ~1 + sigma_t h / 4.
+   * DIFFUSION_MATCHED (default): p (the same for every direction) solves
+   * L_lattice(p) = 1 / sqrt(3 sigma_a sigma_t') with the lattice's diffusion limit
+   * L^2 = h^2 s2 (1 + rho) / (2 (1 - rho) (1 - a) p), rho = 1 - p (1 - a g), s2 = 1/3 (D3Q6) or
+   * 5/9 (D3Q18), h the cube root of the voxel volume:
+   * p = (-3 s2 tau^2 k + sqrt(9 s2^2 tau^4 k^2 + 48 s2 tau^2)) / 4, tau = sigma_t h, k = 1 - a g.
+   * p tends to tau (D3Q6) for thin voxels and is clamped to 1 for optically thick ones
+   * (tau > sqrt(2 / (2 - k)) for D3Q6), where no lattice of this resolution can diffuse as little
+   * as the medium does; GetNumberOfThickVoxels() counts them.
    */
-  static double LatticeDecayLength(int lattice, double sigmaT, double albedo, double g, double h);
+  vtkSetClampMacro(CollisionModel, int, EXPONENTIAL_COLLISION, DIFFUSION_MATCHED);
+  vtkGetMacro(CollisionModel, int);
+  ///@}
 
   /**
-   * Diffusion limit of the D3Q6 lattice: L^2 = h^2 (1 + rho) / (6 (1 - rho) (1 - q)), with
-   * rho = T + a (1 - T) g the direction persistence and q = T + a (1 - T) the survival per step
-   * (D_lattice = h^2 (1 + rho) / (6 (1 - rho)) per step). It tends to the continuum
-   * 1 / sqrt(3 sigma_a sigma_t') as sigma_t h -> 0.
+   * Voxel channels whose DIFFUSION_MATCHED p was clamped to 1 in the last Initialize().
    */
-  static double D3Q6DiffusionLength(double sigmaT, double albedo, double g, double h);
+  vtkGetMacro(NumberOfThickVoxels, vtkIdType);
+
+  /**
+   * Per-step collision probability of a direction of step length `len` in a voxel of mean edge
+   * h (see CollisionModel).
+   */
+  static double CollisionProbability(
+    int lattice, int model, double sigmaT, double albedo, double g, double len, double h);
+
+  /**
+   * Exact asymptotic decay length, along a lattice axis, of the lattice's steady state in a
+   * homogeneous medium (sigma_t, albedo a < 1, g, cubic voxels of edge h): the 1/kappa of the
+   * decaying mode f_i ~ exp(-kappa x), from the dispersion relation
+   * 1 = sum_j (1/Q) (1 - |g|) a p_j / (exp(-kappa h c_jx) - rho_j), rho_j = 1 - p_j + a p_j g+,
+   * (g >= 0; for g < 0 it uses the diffusion limit). Returns 0 when there is no decaying mode.
+   */
+  static double LatticeDecayLength(
+    int lattice, int model, double sigmaT, double albedo, double g, double h);
+
+  /**
+   * Diffusion limit of the lattice: L^2 = h^2 s2 (1 + rho) / (2 (1 - rho) (1 - q)), with
+   * rho = 1 - p (1 - a g) the direction persistence, q = 1 - (1 - a) p the survival per step and
+   * s2 the mean square step per axis (1/3 for D3Q6, 5/9 for D3Q18): the lattice's diffusion
+   * coefficient is D = h^2 s2 (1 + rho) / (2 (1 - rho)) per step.
+   */
+  static double LatticeDiffusionLength(
+    int lattice, int model, double sigmaT, double albedo, double g, double h);
 
 #ifndef __VTK_WRAP__
   /**
@@ -192,6 +232,12 @@ public:
    * for producers that write the source on the device (the concurrent photon schedule).
    */
   cl_mem GetSourceBuffer() const { return this->Source.Get(); }
+
+  /**
+   * Re-read the source buffer and add its strongest voxels to the convergence probes; call it
+   * after writing the source on the device (SetSource() calls it).
+   */
+  bool UpdateSourceProbes();
 
   /**
    * Zero the lattice state (and interfaces) and the step count.
@@ -256,6 +302,9 @@ protected:
   bool UseBlocks() const { return this->BlockSize > 0 && this->Lattice == D3Q6; }
   bool BuildKernels();
   bool ReadProbes(std::vector<float>& values);
+  bool SetProbes(const std::vector<cl_uint>& extra);
+  static constexpr size_t MaxSourceProbes = 8;
+  static constexpr double ProbeFloor = 1e-4;
 
   int Lattice = D3Q6;
   int BlockSize = 4;
@@ -266,6 +315,8 @@ protected:
   int CheckInterval = 8;
   int ProbeSpacing = 8;
   int MaximumIterations = 5000;
+  int CollisionModel = DIFFUSION_MATCHED;
+  vtkIdType NumberOfThickVoxels = 0;
 
   int Iterations = 0;
   double Residual = -1.0;
@@ -280,6 +331,10 @@ protected:
   std::vector<float> HostCoefficients; // planar, kept for the host-side absorption sum
   std::vector<float> PreviousProbes;
   size_t NumberOfProbes = 0;
+  bool SourceIsZero = true;
+#ifndef __VTK_WRAP__
+  std::vector<cl_uint> GridProbes;
+#endif
   int BuiltKey[6] = { -1, -1, -1, -1, -1, -1 };
   int InterfaceParity = 0;
 
