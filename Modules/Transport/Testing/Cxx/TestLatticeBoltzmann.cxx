@@ -18,6 +18,9 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkTestErrorObserver.h"
+#include "vtkExecutive.h"
+#include "vtkCommand.h"
+#include "vtkSmartPointer.h"
 
 #include <gtest/gtest.h>
 
@@ -423,4 +426,168 @@ TEST(LatticeBoltzmann, PhaseFunctionSourceIsDirected)
   }
   EXPECT_NEAR(ratio[0], 1.0, 1e-4);
   EXPECT_GT(ratio[1], 2.0);
+}
+
+namespace
+{
+vtkSmartPointer<vtkImageData> MakeImage(int n, double spacing)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, n);
+  image->SetSpacing(spacing, spacing, spacing);
+  image->SetOrigin(1e3, -2, 5);
+  return image;
+}
+
+vtkSmartPointer<vtkFloatArray> MakeArray(const char* name, int comps, vtkIdType n, float value)
+{
+  auto array = vtkSmartPointer<vtkFloatArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(comps);
+  array->SetNumberOfTuples(n);
+  array->Fill(value);
+  return array;
+}
+}
+
+// The filter on a synthetic lighting volume (the photon tracer's output format): outputs and
+// field data, and the steady-state energy balance that fixes the units: with mirror faces
+// nothing escapes, so all the injected S1 is absorbed, sum S1 = sum sigma_a phi_ms =
+// sum S_ms (1 - a) / a.
+TEST(LatticeBoltzmannLighting, OutputsAndEnergyBalance)
+{
+  const int n = 20;
+  const double h = 0.25;
+  vtkSmartPointer<vtkImageData> medium = MakeImage(n, h);
+  const vtkIdType count = medium->GetNumberOfPoints();
+  const float albedo = 0.8f;
+  medium->GetPointData()->AddArray(MakeArray("Extinction", 3, count, 2.0f));
+  medium->GetPointData()->AddArray(MakeArray("Albedo", 3, count, albedo));
+  medium->GetPointData()->AddArray(MakeArray("Anisotropy", 1, count, 0.3f));
+  vtkSmartPointer<vtkImageData> lighting = MakeImage(n, h);
+  auto radiance = MakeArray("Radiance", 3, count, 0.0f);
+  auto direction = MakeArray("RadianceDirection", 3, count, 0.0f);
+  double injected[3] = { 0, 0, 0 };
+  for (vtkIdType v = 0; v < count; ++v)
+  {
+    const int x = v % n;
+    if (x < 5) // a beam entering through the -x face
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const float value = (c + 1) * std::exp(-0.5f * x);
+        radiance->SetComponent(v, c, value);
+        injected[c] += value;
+      }
+      direction->SetComponent(v, 0, 1.0);
+    }
+  }
+  lighting->GetPointData()->AddArray(radiance);
+  lighting->GetPointData()->AddArray(direction);
+  auto photonField = MakeArray("EnergyEmitted", 3, 1, 7.0f);
+  lighting->GetFieldData()->AddArray(photonField);
+
+  vtkNew<vtkLatticeBoltzmannLighting> filter;
+  filter->SetInputData(medium);
+  filter->SetLightingData(lighting);
+  filter->SetBoundary(1);
+  filter->SetTolerance(1e-7);
+  filter->SetMaximumIterations(20000);
+  filter->Update();
+  vtkImageData* out = filter->GetOutput();
+  ASSERT_EQ(out->GetNumberOfPoints(), count);
+  EXPECT_DOUBLE_EQ(out->GetOrigin()[0], 1e3);
+  EXPECT_DOUBLE_EQ(out->GetSpacing()[1], h);
+  ASSERT_NE(out->GetPointData()->GetArray("Radiance"), nullptr);
+  ASSERT_NE(out->GetPointData()->GetArray("RadianceDirection"), nullptr);
+  EXPECT_EQ(out->GetPointData()->GetArray("Radiance")->GetComponent(0, 2), radiance->GetComponent(0, 2));
+  vtkDataArray* ms = out->GetPointData()->GetArray("MultipleScattering");
+  ASSERT_NE(ms, nullptr);
+  ASSERT_EQ(ms->GetNumberOfComponents(), 3);
+  ASSERT_NE(out->GetFieldData()->GetArray("EnergyEmitted"), nullptr);
+  vtkDataArray* iterations = out->GetFieldData()->GetArray("LatticeBoltzmannIterations");
+  vtkDataArray* residual = out->GetFieldData()->GetArray("LatticeBoltzmannResidual");
+  vtkDataArray* converged = out->GetFieldData()->GetArray("LatticeBoltzmannConverged");
+  ASSERT_TRUE(iterations && residual && converged);
+  EXPECT_EQ(converged->GetTuple1(0), 1);
+  EXPECT_GT(iterations->GetTuple1(0), 8);
+  EXPECT_LT(residual->GetTuple1(0), 1e-7);
+  double absorbed[3] = { 0, 0, 0 };
+  for (vtkIdType v = 0; v < count; ++v)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double value = ms->GetComponent(v, c);
+      ASSERT_TRUE(std::isfinite(value));
+      ASSERT_GE(value, 0);
+      absorbed[c] += value * (1 - albedo) / albedo;
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    std::printf("channel %d: injected S1 sum %.6f, absorbed sum %.6f (rel. diff %.2e), %d steps\n",
+      c, injected[c], absorbed[c], std::abs(absorbed[c] / injected[c] - 1),
+      int(iterations->GetTuple1(0)));
+    EXPECT_NEAR(absorbed[c], injected[c], 1e-3 * injected[c]);
+  }
+}
+
+// Bad inputs: a message naming the input, RequestData fails, the output stays empty.
+TEST(LatticeBoltzmannLighting, RejectsBadInput)
+{
+  const int n = 6;
+  auto makeMedium = [&]() {
+    vtkSmartPointer<vtkImageData> medium = MakeImage(n, 1.0);
+    medium->GetPointData()->AddArray(MakeArray("Extinction", 3, medium->GetNumberOfPoints(), 1));
+    medium->GetPointData()->AddArray(MakeArray("Albedo", 3, medium->GetNumberOfPoints(), 0.5));
+    return medium;
+  };
+  auto makeLighting = [&](int size) {
+    vtkSmartPointer<vtkImageData> lighting = MakeImage(size, 1.0);
+    lighting->GetPointData()->AddArray(
+      MakeArray("Radiance", 3, lighting->GetNumberOfPoints(), 1));
+    return lighting;
+  };
+  struct Case
+  {
+    const char* What;
+    vtkSmartPointer<vtkImageData> Medium, Lighting;
+    const char* Expected;
+  };
+  std::vector<Case> cases;
+  cases.push_back({ "no lighting", makeMedium(), nullptr, "port 1" });
+  cases.push_back({ "grid mismatch", makeMedium(), makeLighting(n + 1), "medium's grid" });
+  {
+    vtkSmartPointer<vtkImageData> lighting = makeLighting(n);
+    vtkDataArray::SafeDownCast(lighting->GetPointData()->GetArray("Radiance"))
+      ->SetComponent(3, 1, -1.0);
+    cases.push_back({ "negative radiance", makeMedium(), lighting, ">= 0" });
+  }
+  {
+    vtkSmartPointer<vtkImageData> lighting = MakeImage(n, 1.0);
+    lighting->GetPointData()->AddArray(MakeArray("Radiance", 1, lighting->GetNumberOfPoints(), 1));
+    cases.push_back({ "one-component radiance", makeMedium(), lighting, "3 components" });
+  }
+  {
+    vtkSmartPointer<vtkImageData> medium = makeMedium();
+    vtkDataArray::SafeDownCast(medium->GetPointData()->GetArray("Albedo"))->SetComponent(0, 0, 2.0);
+    cases.push_back({ "albedo 2", medium, makeLighting(n), "Input 0" });
+  }
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkLatticeBoltzmannLighting> filter;
+    vtkNew<vtkTest::ErrorObserver> errors;
+    filter->AddObserver(vtkCommand::ErrorEvent, errors);
+    filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    filter->SetInputData(c.Medium);
+    if (c.Lighting)
+    {
+      filter->SetLightingData(c.Lighting);
+    }
+    filter->Update();
+    EXPECT_TRUE(errors->GetError()) << c.What;
+    EXPECT_NE(errors->GetErrorMessage().find(c.Expected), std::string::npos)
+      << c.What << ": " << errors->GetErrorMessage();
+    EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0) << c.What;
+  }
 }
