@@ -1,0 +1,455 @@
+// photon_trace.cl: photon generation from lights and adaptive curved-path photon marching
+// (Sun et al. 2008, sections 4.3, 4.4 and 5.3; conventions of Documentation/Physics.md).
+// Prepend refracta_atomics.cl and refracta_common.cl.
+//
+// photon_generate: one work-item per photon of one light. Photon i takes point i of a 2D
+// rank-1 lattice (Roberts' R2 sequence in 32-bit fixed point, rotated by a seed-derived offset:
+// low-discrepancy, deterministic) and maps it onto the light's footprint on the proxy box:
+//   directional light: a rectangle perpendicular to the travel direction covering the box's
+//     projection; photon power = E * (rectangle area) / N;
+//   point/spot light: a spherical cap of directions (the cone around the box's bounding sphere,
+//     or the spot cone when that is narrower, or the whole sphere when the light is inside);
+//     photon power = I(direction) * (cap solid angle) / N, with I = I0 cos^e(theta) inside a
+//     spot's cone and 0 outside.
+// The photon then starts where its ray enters the proxy box (or at the light when the light is
+// inside it). A photon that misses the box gets power 0 and is counted as missed by the marcher.
+//
+// photon_march: one work-item per photon, marching it to termination. Each step advances x and
+// v = n dx/ds along the ray equation (x' = v / n, v' = grad n) with a midpoint (RK2) update,
+// step = clamp(octree step, MIN_STEP, MAX_STEP or CAP_STEP), |dv| bounded by MAX_TURN * n and
+// |v| renormalised to n. The chord of the step is walked voxel by voxel (3D DDA, the paper's line
+// rasterisation): in each piece sigma_t and the albedo are sampled at the piece's midpoint,
+// the power lost over the piece, P (1 - exp(-sigma_t l)), is split into absorbed and scattered,
+// and the scattered part is deposited into that voxel's Radiance accumulator (with the piece's
+// direction weighted by it into the RadianceDirection accumulator). Termination: the photon
+// leaves the domain (escaped), Russian roulette below ROULETTE x its initial power (killed;
+// survivors are boosted by 1/q and the boost is tallied so the books close), the step cap
+// MAX_STEPS (its power is tallied as remaining), or a non-finite state (never expected; counted).
+//
+// Variants (-D, 0 or 1): REFRACT (curved rays with n and grad n lookups; 0: straight rays, one
+// step to the exit), ADAPTIVE (octree step; 0: FIXED_STEP), EXTINCTION (anything attenuates; 0:
+// no piece walk at all), DEPOSIT (anything scatters; 0: no radiance accumulation).
+// Lengths (MIN_STEP, MAX_STEP, CAP_STEP, FIXED_STEP) are in world units; EXT_STEP_LIMIT is an
+// optical depth (0: off); ROULETTE a fraction of the initial power; REFRACTA_FIXED_SCALE the
+// fixed-point scale of refracta_atomics.cl.
+//
+// Tallies (fixed point, REFRACTA_FIXED_SCALE): tallies[3 * T + c] for T = 0 emitted, 1 absorbed,
+// 2 escaped, 3 scattered, 4 remaining at the step cap or on an invalid state, 5 killed by
+// roulette, 6 added to roulette survivors. Counters (plain integers): 0 photons marched, 1 missed,
+// 2 escaped, 3 roulette, 4 step cap, 5 invalid, 6 steps, 7 voxel pieces.
+
+#ifndef REFRACT
+#define REFRACT 1
+#endif
+#ifndef ADAPTIVE
+#define ADAPTIVE 1
+#endif
+#ifndef EXTINCTION
+#define EXTINCTION 1
+#endif
+#ifndef DEPOSIT
+#define DEPOSIT 1
+#endif
+#ifndef MIN_STEP
+#define MIN_STEP 1.0f
+#endif
+#ifndef MAX_STEP
+#define MAX_STEP 64.0f
+#endif
+#ifndef CAP_STEP
+#define CAP_STEP 8.0f
+#endif
+#ifndef FIXED_STEP
+#define FIXED_STEP 1.0f
+#endif
+#ifndef MAX_STEPS
+#define MAX_STEPS 10000
+#endif
+#ifndef EXT_STEP_LIMIT
+#define EXT_STEP_LIMIT 0.0f
+#endif
+#ifndef ROULETTE
+#define ROULETTE 0.001f
+#endif
+#ifndef MAX_TURN
+#define MAX_TURN 0.5f
+#endif
+
+// R2 sequence generators (plastic number) as 32-bit fractions.
+#define PHOTON_R2_A1 3242174889u
+#define PHOTON_R2_A2 2447445413u
+
+__kernel void photon_generate(__global float4* photonPos, __global float4* photonDir,
+  __global float4* photonPower, const uint offset, const uint count, const int positional,
+  const float4 origin, const float4 axis, const float4 basis1, const float4 basis2,
+  const float4 spot, const float4 params, const float4 intensity, const float4 boxLo,
+  const float4 boxHi, const uint rotation1, const uint rotation2)
+{
+  const uint i = (uint)get_global_id(0);
+  if (i >= count)
+  {
+    return;
+  }
+  const float xi1 = (float)((rotation1 + (i + 1u) * PHOTON_R2_A1) >> 8) * (1.0f / 16777216.0f);
+  const float xi2 = (float)((rotation2 + (i + 1u) * PHOTON_R2_A2) >> 8) * (1.0f / 16777216.0f);
+  float3 start;
+  float3 dir;
+  float3 power;
+  if (!positional)
+  {
+    // basis1/basis2 carry the rectangle's full edge vectors.
+    start = origin.xyz + xi1 * basis1.xyz + xi2 * basis2.xyz;
+    dir = axis.xyz;
+    power = intensity.xyz * params.z;
+  }
+  else
+  {
+    // params.w = 1 - cos(cap half-angle), computed in double on the host: the cap of a distant
+    // light is tiny and 1 - cos would cancel in float.
+    const float oneMinusCos = xi1 * params.w;
+    const float cosT = 1.0f - oneMinusCos;
+    const float sinT = sqrt(fmax(0.0f, oneMinusCos * (2.0f - oneMinusCos)));
+    const float phi = 2.0f * REFRACTA_PI * xi2;
+    dir = normalize(cosT * axis.xyz + sinT * (cos(phi) * basis1.xyz + sin(phi) * basis2.xyz));
+    start = origin.xyz;
+    float falloff = 1.0f;
+    if (spot.w > -1.5f)
+    {
+      const float c = dot(dir, spot.xyz);
+      falloff = c >= spot.w ? (params.y > 0.0f ? pow(fmax(c, 0.0f), params.y) : 1.0f) : 0.0f;
+    }
+    power = intensity.xyz * (falloff * params.z);
+  }
+  float t0;
+  float t1;
+  const bool inside = all(start >= boxLo.xyz) && all(start <= boxHi.xyz);
+  if (!inside)
+  {
+    if (refracta_intersect_box(start, dir, boxLo.xyz, boxHi.xyz, &t0, &t1) && t1 > t0)
+    {
+      start += t0 * dir;
+    }
+    else
+    {
+      power = (float3)(0.0f);
+    }
+  }
+  const uint o = offset + i;
+  photonPos[o] = (float4)(start, 0.0f);
+  photonDir[o] = (float4)(dir, 0.0f);
+  photonPower[o] = (float4)(power, 0.0f);
+}
+
+// Per-photon state and private tallies.
+typedef struct
+{
+  float3 power;
+  float threshold;
+  float3 absorbed;
+  float3 scattered;
+  float3 killed;
+  float3 gained;
+  uint rng;
+  uint pieces;
+  int dead;
+} photon_state;
+
+#if EXTINCTION
+// One voxel piece: attenuate, split the loss, deposit the scattered part, then roulette.
+inline void photon_piece(photon_state* ps, float3 mid, float length, float3 direction,
+  size_t voxel, __global const float* extinction, __global const float* albedo, int4 dims,
+  volatile __global long* radiance, volatile __global long* directionSum)
+{
+  const float3 sigmaT = refracta_sample3(extinction, dims, mid);
+  const float3 lost = ps->power * (-expm1(-sigmaT * length));
+  ps->power = fmax(ps->power - lost, (float3)(0.0f));
+  ps->pieces++;
+#if DEPOSIT
+  const float3 sc = lost * clamp(refracta_sample3(albedo, dims, mid), 0.0f, 1.0f);
+  ps->scattered += sc;
+  ps->absorbed += lost - sc;
+  const float w = sc.x + sc.y + sc.z;
+  if (w > 0.0f)
+  {
+    refracta_atomic_add_fixed(radiance + 3 * voxel, sc.x);
+    refracta_atomic_add_fixed(radiance + 3 * voxel + 1, sc.y);
+    refracta_atomic_add_fixed(radiance + 3 * voxel + 2, sc.z);
+    refracta_atomic_add_fixed(directionSum + 3 * voxel, w * direction.x);
+    refracta_atomic_add_fixed(directionSum + 3 * voxel + 1, w * direction.y);
+    refracta_atomic_add_fixed(directionSum + 3 * voxel + 2, w * direction.z);
+  }
+#else
+  ps->absorbed += lost;
+#endif
+  const float m = fmax(ps->power.x, fmax(ps->power.y, ps->power.z));
+  if (m < ps->threshold)
+  {
+    const float q = m / ps->threshold;
+    if (refracta_rng_uniform(&ps->rng) >= q)
+    {
+      ps->killed += ps->power;
+      ps->power = (float3)(0.0f);
+      ps->dead = 1;
+    }
+    else
+    {
+      const float3 boosted = ps->power / q;
+      ps->gained += boosted - ps->power;
+      ps->power = boosted;
+    }
+  }
+}
+
+// Walks the chord x0 -> x0 + t1 * (x1 - x0) (grid-local, t1 in [0, 1]) voxel by voxel.
+inline void photon_walk(photon_state* ps, float3 x0, float3 x1, float t1, int4 dims,
+  float4 spacing, __global const float* extinction, __global const float* albedo,
+  volatile __global long* radiance, volatile __global long* directionSum)
+{
+  const float3 a = refracta_to_voxel(x0, spacing) + 0.5f; // voxel i spans [i, i + 1) here
+  const float3 du = refracta_to_voxel(x1, spacing) + 0.5f - a;
+  const float worldLength = length(x1 - x0);
+  if (!(worldLength > 0.0f) || !(t1 > 0.0f))
+  {
+    return;
+  }
+  const float3 direction = (x1 - x0) / worldLength;
+  const int3 hiCell = (int3)(dims.x - 1, dims.y - 1, dims.z - 1);
+  int3 cell = clamp(convert_int3_rtn(a), (int3)(0), hiCell);
+  const int3 stepDir = (int3)(du.x > 0.0f ? 1 : (du.x < 0.0f ? -1 : 0),
+    du.y > 0.0f ? 1 : (du.y < 0.0f ? -1 : 0), du.z > 0.0f ? 1 : (du.z < 0.0f ? -1 : 0));
+  const float3 tDelta = fabs((float3)(1.0f) / du);
+  float3 tNext;
+  tNext.x = du.x > 0.0f ? ((float)(cell.x + 1) - a.x) / du.x
+                        : (du.x < 0.0f ? ((float)cell.x - a.x) / du.x : INFINITY);
+  tNext.y = du.y > 0.0f ? ((float)(cell.y + 1) - a.y) / du.y
+                        : (du.y < 0.0f ? ((float)cell.y - a.y) / du.y : INFINITY);
+  tNext.z = du.z > 0.0f ? ((float)(cell.z + 1) - a.z) / du.z
+                        : (du.z < 0.0f ? ((float)cell.z - a.z) / du.z : INFINITY);
+  tNext = fmax(tNext, (float3)(0.0f));
+  float t = 0.0f;
+  // A chord of length L voxels crosses at most L_x + L_y + L_z + 3 voxels: never a hang.
+  const int guard = (int)(fabs(du.x) + fabs(du.y) + fabs(du.z)) + 8;
+  for (int it = 0; it < guard && !ps->dead; ++it)
+  {
+    const float tEnd = fmin(fmin(fmin(tNext.x, tNext.y), tNext.z), t1);
+    if (tEnd > t)
+    {
+      const float3 mid = a + du * (0.5f * (t + tEnd)) - 0.5f;
+      photon_piece(ps, mid, (tEnd - t) * worldLength, direction,
+        refracta_voxel_index(dims, cell.x, cell.y, cell.z), extinction, albedo, dims, radiance,
+        directionSum);
+      t = tEnd;
+    }
+    if (tEnd >= t1)
+    {
+      break;
+    }
+    if (tNext.x <= tNext.y && tNext.x <= tNext.z)
+    {
+      cell.x += stepDir.x;
+      tNext.x += tDelta.x;
+    }
+    else if (tNext.y <= tNext.z)
+    {
+      cell.y += stepDir.y;
+      tNext.y += tDelta.y;
+    }
+    else
+    {
+      cell.z += stepDir.z;
+      tNext.z += tDelta.z;
+    }
+    if (any(cell < (int3)(0)) || any(cell > hiCell))
+    {
+      break; // rounding at the domain's face: the rest of the chord is outside
+    }
+  }
+}
+#endif
+
+#if REFRACT
+// Step length at x for unit direction d (world units).
+inline float photon_step(float3 x, float3 d, __global const uchar* octree,
+  __global const float* extinction, int4 dims, float4 spacing)
+{
+#if ADAPTIVE
+  const float3 u = refracta_to_voxel(x, spacing);
+  const int3 c = clamp(convert_int3_rte(u), (int3)(0), (int3)(dims.x - 1, dims.y - 1, dims.z - 1));
+  const uchar code = octree[refracta_voxel_index(dims, c.x, c.y, c.z)];
+  const int level = code & 0x1f;
+  const int3 lo = (c >> level) << level;
+  const float3 blo = (convert_float3(lo) - 0.5f) * spacing.xyz;
+  const float3 bhi = (convert_float3(lo + (1 << level)) - 0.5f) * spacing.xyz;
+  const float3 inv = (float3)(1.0f) / d;
+  const float3 tmax = fmax((blo - x) * inv, (bhi - x) * inv);
+  const float exitT = fmax(fmin(fmin(tmax.x, tmax.y), tmax.z), 0.0f);
+  const float minSpacing = fmin(fmin(spacing.x, spacing.y), spacing.z);
+  float h = clamp(exitT + 1e-3f * minSpacing, MIN_STEP, (code & 0x80) ? CAP_STEP : MAX_STEP);
+#else
+  float h = FIXED_STEP;
+#endif
+#if EXTINCTION
+  if (EXT_STEP_LIMIT > 0.0f)
+  {
+    const float3 st = refracta_sample3(extinction, dims, refracta_to_voxel(x, spacing));
+    const float m = fmax(st.x, fmax(st.y, st.z));
+    if (m > 0.0f)
+    {
+      h = fmax(fmin(h, EXT_STEP_LIMIT / m), ADAPTIVE ? MIN_STEP : 0.0f);
+    }
+  }
+#endif
+  return h;
+}
+
+// dv bounded to MAX_TURN * n: a steep index step turns a ray over several steps, never at once.
+inline float3 photon_bounded(float3 dv, float n)
+{
+  const float m = length(dv);
+  const float limit = MAX_TURN * n;
+  return m > limit ? dv * (limit / m) : dv;
+}
+#endif
+
+__kernel void photon_march(__global const float4* photonPos, __global const float4* photonDir,
+  __global const float4* photonPower, const uint count, __global const float* refractiveIndex,
+  __global const float* gradient, __global const float* extinction, __global const float* albedo,
+  __global const uchar* octree, const int4 dims, const float4 spacing,
+  volatile __global long* radiance, volatile __global long* directionSum,
+  volatile __global long* tallies, volatile __global long* counters, const uint seed,
+  const uint first)
+{
+  // Launched in chunks (for progress reports); the stream depends on the photon, not the chunk.
+  const uint id = first + (uint)get_global_id(0);
+  if (id >= count)
+  {
+    return;
+  }
+  photon_state ps;
+  ps.power = photonPower[id].xyz;
+  const float p0 = fmax(ps.power.x, fmax(ps.power.y, ps.power.z));
+  if (!(p0 > 0.0f))
+  {
+    atom_add(counters + 1, 1L);
+    return;
+  }
+  ps.threshold = ROULETTE * p0;
+  ps.absorbed = ps.scattered = ps.killed = ps.gained = (float3)(0.0f);
+  ps.rng = refracta_rng_seed(seed, id);
+  ps.pieces = 0;
+  ps.dead = 0;
+  const float3 emitted = ps.power;
+  float3 remaining = (float3)(0.0f);
+  float3 escaped = (float3)(0.0f);
+  int steps = 0;
+  int outcome = 2; // counter index: 2 escaped, 3 roulette, 4 step cap, 5 invalid
+  float3 lo;
+  float3 hi;
+  refracta_domain(dims, spacing, &lo, &hi);
+  float3 x = photonPos[id].xyz;
+  const float3 d0 = normalize(photonDir[id].xyz);
+
+#if !REFRACT
+  // Straight ray: a single step from the start to the domain's exit.
+  float t0;
+  float t1;
+  if (refracta_intersect_box(x, d0, lo, hi, &t0, &t1) && t1 > 0.0f)
+  {
+    steps = 1;
+#if EXTINCTION
+    photon_walk(&ps, x + t0 * d0, x + t1 * d0, 1.0f, dims, spacing, extinction, albedo, radiance,
+      directionSum);
+#endif
+  }
+#else
+  float3 v = d0 * refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
+  for (;;)
+  {
+    if (steps >= MAX_STEPS)
+    {
+      outcome = 4;
+      break;
+    }
+    const float n0 = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
+    const float3 dir = v / length(v);
+    const float h = photon_step(x, dir, octree, extinction, dims, spacing);
+    // Midpoint (RK2) update of x' = v / n, v' = grad n.
+    const float3 g0 = refracta_sample3(gradient, dims, refracta_to_voxel(x, spacing));
+    const float3 xm = x + (0.5f * h / n0) * v;
+    const float3 vm = v + photon_bounded(0.5f * h * g0, n0);
+    const float3 um = refracta_to_voxel(xm, spacing);
+    const float nm = refracta_sample1(refractiveIndex, dims, um);
+    const float3 gm = refracta_sample3(gradient, dims, um);
+    const float3 x1 = x + (h / nm) * vm;
+    float3 v1 = v + photon_bounded(h * gm, nm);
+    const float n1 = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x1, spacing));
+    const float speed = length(v1);
+    v1 = speed > 1e-6f * n1 ? v1 * (n1 / speed) : dir * n1;
+    ++steps;
+    if (!all(isfinite(x1)) || !all(isfinite(v1)))
+    {
+      outcome = 5;
+      break;
+    }
+    float e0;
+    float e1;
+    const bool inBox = all(x1 >= lo) && all(x1 <= hi);
+    float tExit = 1.0f;
+    if (!inBox)
+    {
+      tExit = refracta_intersect_box(x, x1 - x, lo, hi, &e0, &e1) ? clamp(e1, 0.0f, 1.0f) : 0.0f;
+    }
+#if EXTINCTION
+    photon_walk(&ps, x, x1, tExit, dims, spacing, extinction, albedo, radiance, directionSum);
+    if (ps.dead)
+    {
+      break;
+    }
+#endif
+    if (!inBox)
+    {
+      break;
+    }
+    x = x1;
+    v = v1;
+  }
+#endif
+  if (ps.dead)
+  {
+    outcome = 3;
+  }
+  else if (outcome == 2)
+  {
+    escaped = ps.power;
+  }
+  else
+  {
+    remaining = ps.power;
+  }
+
+  refracta_atomic_add_fixed(tallies + 0, emitted.x);
+  refracta_atomic_add_fixed(tallies + 1, emitted.y);
+  refracta_atomic_add_fixed(tallies + 2, emitted.z);
+  refracta_atomic_add_fixed(tallies + 3, ps.absorbed.x);
+  refracta_atomic_add_fixed(tallies + 4, ps.absorbed.y);
+  refracta_atomic_add_fixed(tallies + 5, ps.absorbed.z);
+  refracta_atomic_add_fixed(tallies + 6, escaped.x);
+  refracta_atomic_add_fixed(tallies + 7, escaped.y);
+  refracta_atomic_add_fixed(tallies + 8, escaped.z);
+  refracta_atomic_add_fixed(tallies + 9, ps.scattered.x);
+  refracta_atomic_add_fixed(tallies + 10, ps.scattered.y);
+  refracta_atomic_add_fixed(tallies + 11, ps.scattered.z);
+  refracta_atomic_add_fixed(tallies + 12, remaining.x);
+  refracta_atomic_add_fixed(tallies + 13, remaining.y);
+  refracta_atomic_add_fixed(tallies + 14, remaining.z);
+  refracta_atomic_add_fixed(tallies + 15, ps.killed.x);
+  refracta_atomic_add_fixed(tallies + 16, ps.killed.y);
+  refracta_atomic_add_fixed(tallies + 17, ps.killed.z);
+  refracta_atomic_add_fixed(tallies + 18, ps.gained.x);
+  refracta_atomic_add_fixed(tallies + 19, ps.gained.y);
+  refracta_atomic_add_fixed(tallies + 20, ps.gained.z);
+  atom_add(counters + 0, 1L);
+  atom_add(counters + outcome, 1L);
+  atom_add(counters + 6, (long)steps);
+  atom_add(counters + 7, (long)ps.pieces);
+}

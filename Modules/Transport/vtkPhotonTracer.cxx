@@ -1,0 +1,1008 @@
+#include "vtkPhotonTracer.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMediumValidator.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenCLContext.h"
+#include "vtkPointData.h"
+#include "vtkRefractaMedium.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkPhotonTracer);
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double Seconds(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// A float literal for -D options that the OpenCL compiler reads back as the same float.
+std::string FloatLiteral(double value)
+{
+  std::ostringstream s;
+  s.precision(9);
+  s << std::scientific << static_cast<float>(value) << "f";
+  return s.str();
+}
+
+cl_int4 Int4(const int d[3])
+{
+  cl_int4 v;
+  v.s[0] = d[0];
+  v.s[1] = d[1];
+  v.s[2] = d[2];
+  v.s[3] = 0;
+  return v;
+}
+
+cl_float4 Float4(double x, double y, double z, double w = 0.0)
+{
+  cl_float4 v;
+  v.s[0] = static_cast<float>(x);
+  v.s[1] = static_cast<float>(y);
+  v.s[2] = static_cast<float>(z);
+  v.s[3] = static_cast<float>(w);
+  return v;
+}
+
+cl_float4 Float4(const double a[3], double w = 0.0)
+{
+  return Float4(a[0], a[1], a[2], w);
+}
+
+uint32_t SplitMix(uint64_t& state)
+{
+  uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return static_cast<uint32_t>((z ^ (z >> 31)) >> 32);
+}
+
+double Dot(const double a[3], const double b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+bool Normalize(double a[3])
+{
+  const double m = std::sqrt(Dot(a, a));
+  if (!(m > 0.0) || !std::isfinite(m))
+  {
+    return false;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    a[c] /= m;
+  }
+  return true;
+}
+
+// Two unit vectors completing `a` (unit) to an orthonormal basis.
+void Basis(const double a[3], double b1[3], double b2[3])
+{
+  const double h[3] = { std::fabs(a[0]) < 0.9 ? 1.0 : 0.0, std::fabs(a[0]) < 0.9 ? 0.0 : 1.0, 0.0 };
+  // b1 = normalize(h x a), b2 = a x b1
+  b1[0] = h[1] * a[2] - h[2] * a[1];
+  b1[1] = h[2] * a[0] - h[0] * a[2];
+  b1[2] = h[0] * a[1] - h[1] * a[0];
+  Normalize(b1);
+  b2[0] = a[1] * b1[2] - a[2] * b1[1];
+  b2[1] = a[2] * b1[0] - a[0] * b1[2];
+  b2[2] = a[0] * b1[1] - a[1] * b1[0];
+}
+
+// The medium's arrays as float, with defaults and the facts that choose the kernel variant.
+struct Medium
+{
+  int Dims[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  size_t Voxels = 0;
+  std::vector<float> N, Gradient, Extinction, Albedo;
+  bool HasGradient = false;
+  bool Curved = false;
+  bool Attenuates = false;
+  bool Scatters = false;
+  double Lo[3], Hi[3];           // domain box, grid-local
+  double ProxyLo[3], ProxyHi[3]; // photon start box, grid-local
+};
+
+void CopyArray(
+  vtkDataArray* array, int comps, float fallback, size_t voxels, std::vector<float>& out)
+{
+  out.assign(voxels * comps, fallback);
+  if (!array)
+  {
+    return;
+  }
+  for (size_t v = 0; v < voxels; ++v)
+  {
+    for (int c = 0; c < comps; ++c)
+    {
+      out[v * comps + c] = static_cast<float>(array->GetComponent(static_cast<vtkIdType>(v), c));
+    }
+  }
+}
+
+void LoadMedium(vtkImageData* image, bool useProxy, Medium& m)
+{
+  image->GetDimensions(m.Dims);
+  image->GetSpacing(m.Spacing);
+  m.Voxels = static_cast<size_t>(m.Dims[0]) * m.Dims[1] * m.Dims[2];
+  vtkPointData* pd = image->GetPointData();
+  vtkDataArray* n = pd->GetArray(vtkRefractaMedium::RefractiveIndexName());
+  vtkDataArray* g = pd->GetArray(vtkRefractaMedium::RefractiveIndexGradientName());
+  vtkDataArray* e = pd->GetArray(vtkRefractaMedium::ExtinctionName());
+  vtkDataArray* a = pd->GetArray(vtkRefractaMedium::AlbedoName());
+  CopyArray(n, 1, 1.0f, m.Voxels, m.N);
+  CopyArray(e, 3, 0.0f, m.Voxels, m.Extinction);
+  CopyArray(a, 3, 0.0f, m.Voxels, m.Albedo);
+  m.HasGradient = g != nullptr;
+  if (g)
+  {
+    CopyArray(g, 3, 0.0f, m.Voxels, m.Gradient);
+  }
+  const auto range = std::minmax_element(m.N.begin(), m.N.end());
+  m.Curved = *range.second > *range.first;
+  int lo[3] = { m.Dims[0], m.Dims[1], m.Dims[2] };
+  int hi[3] = { -1, -1, -1 };
+  for (size_t v = 0; v < m.Voxels; ++v)
+  {
+    bool interesting = m.N[v] != 1.0f;
+    for (int c = 0; c < 3; ++c)
+    {
+      const float st = m.Extinction[3 * v + c];
+      m.Attenuates = m.Attenuates || st > 0.0f;
+      m.Scatters = m.Scatters || (st > 0.0f && m.Albedo[3 * v + c] > 0.0f);
+      interesting = interesting || st > 0.0f;
+    }
+    if (interesting)
+    {
+      const int ijk[3] = { static_cast<int>(v % m.Dims[0]),
+        static_cast<int>((v / m.Dims[0]) % m.Dims[1]),
+        static_cast<int>(v / (static_cast<size_t>(m.Dims[0]) * m.Dims[1])) };
+      for (int c = 0; c < 3; ++c)
+      {
+        lo[c] = std::min(lo[c], ijk[c]);
+        hi[c] = std::max(hi[c], ijk[c]);
+      }
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    m.Lo[c] = -0.5 * m.Spacing[c];
+    m.Hi[c] = (m.Dims[c] - 0.5) * m.Spacing[c];
+    m.ProxyLo[c] = m.Lo[c];
+    m.ProxyHi[c] = m.Hi[c];
+  }
+  // The proxy grows the interesting voxels by two: trilinear sampling and the gradient reach one
+  // voxel further each.
+  if (useProxy && hi[0] >= 0)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      m.ProxyLo[c] = std::max(m.Lo[c], (lo[c] - 2.5) * m.Spacing[c]);
+      m.ProxyHi[c] = std::min(m.Hi[c], (hi[c] + 2.5) * m.Spacing[c]);
+    }
+  }
+}
+
+// One light converted to the grid-local frame, as the generation kernel takes it.
+struct LightSetup
+{
+  bool Positional = false;
+  double Origin[3], Axis[3], Basis1[3], Basis2[3];
+  double SpotAxis[3] = { 0, 0, 1 };
+  double SpotCos = -2.0; // < -1.5: no spot cone
+  double Exponent = 0.0;
+  double OneMinusCos = 2.0;
+  double Measure = 0.0; // solid angle of the sampled cap, or area of the directional rectangle
+  double Colour[3];
+  double Bound = 0.0; // largest channel of the power sent towards the box
+  unsigned int Photons = 0;
+};
+
+// Device buffers with bookkeeping of the bytes allocated.
+struct Allocator
+{
+  vtkOpenCLContext* Context;
+  vtkObject* Reporter;
+  double Bytes = 0;
+  vtkOpenCLBuffer Make(cl_mem_flags flags, size_t bytes, const void* data, const char* what)
+  {
+    bytes = std::max<size_t>(bytes, 16);
+    this->Bytes += static_cast<double>(bytes);
+    return this->Context->CreateBuffer(flags, bytes, data, what, this->Reporter);
+  }
+};
+
+bool Run1D(vtkOpenCLContext* ctx, cl_kernel kernel, size_t count, const char* label, vtkObject* r)
+{
+  const size_t local = 64;
+  const size_t global = std::max<size_t>(count, 1);
+  return ctx->RunKernel(kernel, 1, &global, &local, label, r);
+}
+
+// Builds the octree level array of `nBuffer` into `octree` (one byte per voxel).
+bool RunOctree(vtkOpenCLContext* ctx, vtkObject* reporter, Allocator& alloc, cl_mem nBuffer,
+  const int dims[3], double eps, double eps2, vtkOpenCLBuffer& octree)
+{
+  const std::string options = "-DEPS=" + FloatLiteral(eps) + " -DEPS2=" + FloatLiteral(eps2);
+  cl_program program = ctx->GetProgram(
+    { "refracta_atomics.cl", "refracta_common.cl", "photon_octree.cl" }, options, reporter);
+  if (!program)
+  {
+    return false;
+  }
+  // Level k has ceil(N / 2^k) nodes per axis; the top level is a single node.
+  std::vector<std::array<int, 3>> levelDims;
+  std::vector<cl_uint> offsets;
+  size_t total = 0;
+  for (int k = 0;; ++k)
+  {
+    std::array<int, 3> d;
+    for (int c = 0; c < 3; ++c)
+    {
+      d[c] = (dims[c] + (1 << k) - 1) >> k;
+    }
+    levelDims.push_back(d);
+    offsets.push_back(static_cast<cl_uint>(total));
+    total += static_cast<size_t>(d[0]) * d[1] * d[2];
+    if (d[0] == 1 && d[1] == 1 && d[2] == 1)
+    {
+      break;
+    }
+  }
+  const size_t voxels = static_cast<size_t>(dims[0]) * dims[1] * dims[2];
+  vtkOpenCLBuffer pyramid =
+    alloc.Make(CL_MEM_READ_WRITE, total * 2 * sizeof(float), nullptr, "octree pyramid");
+  vtkOpenCLBuffer offsetBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+    offsets.size() * sizeof(cl_uint), offsets.data(), "octree level offsets");
+  octree = alloc.Make(CL_MEM_READ_WRITE, voxels, nullptr, "octree");
+  if (!pyramid || !offsetBuffer || !octree)
+  {
+    return false;
+  }
+  vtkOpenCLKernel base = ctx->CreateKernel(program, "photon_pyramid_base", reporter);
+  vtkOpenCLKernel reduce = ctx->CreateKernel(program, "photon_pyramid_reduce", reporter);
+  vtkOpenCLKernel label = ctx->CreateKernel(program, "photon_octree_label", reporter);
+  if (!base || !reduce || !label)
+  {
+    return false;
+  }
+  const cl_int4 d0 = Int4(dims);
+  const cl_uint count0 = static_cast<cl_uint>(voxels);
+  cl_mem pyr = pyramid.Get();
+  if (!ctx->Check(vtkOpenCLSetKernelArgs(base.Get(), nBuffer, d0, pyr, count0),
+        "clSetKernelArg(photon_pyramid_base)", reporter) ||
+    !Run1D(ctx, base.Get(), voxels, "photon_pyramid_base", reporter))
+  {
+    return false;
+  }
+  for (size_t k = 1; k < levelDims.size(); ++k)
+  {
+    const cl_int4 fineDims = Int4(levelDims[k - 1].data());
+    const cl_int4 coarseDims = Int4(levelDims[k].data());
+    const size_t count = static_cast<size_t>(coarseDims.s[0]) * coarseDims.s[1] * coarseDims.s[2];
+    const cl_uint n = static_cast<cl_uint>(count);
+    if (!ctx->Check(vtkOpenCLSetKernelArgs(
+                      reduce.Get(), pyr, offsets[k - 1], fineDims, offsets[k], coarseDims, n),
+          "clSetKernelArg(photon_pyramid_reduce)", reporter) ||
+      !Run1D(ctx, reduce.Get(), count, "photon_pyramid_reduce", reporter))
+    {
+      return false;
+    }
+  }
+  const cl_int levels = static_cast<cl_int>(levelDims.size());
+  return ctx->Check(vtkOpenCLSetKernelArgs(
+                      label.Get(), pyr, offsetBuffer.Get(), levels, d0, octree.Get(), count0),
+           "clSetKernelArg(photon_octree_label)", reporter) &&
+    Run1D(ctx, label.Get(), voxels, "photon_octree_label", reporter) && ctx->Finish(reporter);
+}
+}
+
+//------------------------------------------------------------------------------
+vtkPhotonTracer::vtkPhotonTracer()
+{
+  this->Lights = vtkSmartPointer<vtkLightCollection>::New();
+  this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(1);
+}
+
+vtkPhotonTracer::~vtkPhotonTracer() = default;
+
+void vtkPhotonTracer::AddLight(vtkLight* light)
+{
+  if (light)
+  {
+    this->Lights->AddItem(light);
+    this->Modified();
+  }
+}
+
+void vtkPhotonTracer::RemoveAllLights()
+{
+  this->Lights->RemoveAllItems();
+  this->Modified();
+}
+
+void vtkPhotonTracer::SetLights(vtkLightCollection* lights)
+{
+  this->Lights = lights ? vtkSmartPointer<vtkLightCollection>(lights)
+                        : vtkSmartPointer<vtkLightCollection>::New();
+  this->Modified();
+}
+
+vtkLightCollection* vtkPhotonTracer::GetLights()
+{
+  return this->Lights;
+}
+
+void vtkPhotonTracer::SetContext(vtkOpenCLContext* context)
+{
+  if (this->Context != context)
+  {
+    this->Context = context;
+    this->Modified();
+  }
+}
+
+vtkOpenCLContext* vtkPhotonTracer::GetContext()
+{
+  return this->Context ? this->Context.Get() : vtkOpenCLContext::GetDefault();
+}
+
+vtkMTimeType vtkPhotonTracer::GetMTime()
+{
+  // A light changed after being added must re-run the pass.
+  vtkMTimeType t = this->Superclass::GetMTime();
+  vtkLight* light;
+  vtkCollectionSimpleIterator it;
+  for (this->Lights->InitTraversal(it); (light = this->Lights->GetNextLight(it));)
+  {
+    t = std::max(t, light->GetMTime());
+  }
+  return t;
+}
+
+int vtkPhotonTracer::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::BuildOctree(vtkImageData* medium, vtkImageData* octreeOut)
+{
+  vtkNew<vtkMediumValidator> validator;
+  if (!octreeOut || !validator->Validate(medium))
+  {
+    vtkErrorMacro("BuildOctree needs a valid medium and an output image: "
+      << (octreeOut ? validator->GetErrorMessage() : "the output image is null"));
+    return false;
+  }
+  vtkOpenCLContext* ctx = this->GetContext();
+  if (!ctx->Initialize())
+  {
+    vtkErrorMacro("No OpenCL device: " << ctx->GetLastErrorMessage());
+    return false;
+  }
+  Medium m;
+  LoadMedium(medium, false, m);
+  Allocator alloc{ ctx, this };
+  vtkOpenCLBuffer nBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+    m.Voxels * sizeof(float), m.N.data(), "RefractiveIndex");
+  vtkOpenCLBuffer octree;
+  if (!nBuffer ||
+    !RunOctree(ctx, this, alloc, nBuffer.Get(), m.Dims, this->PrimaryTolerance,
+      this->SecondaryTolerance, octree))
+  {
+    return false;
+  }
+  std::vector<unsigned char> codes(m.Voxels);
+  if (!ctx->ReadBuffer(octree.Get(), m.Voxels, codes.data(), this))
+  {
+    return false;
+  }
+  octreeOut->Initialize();
+  octreeOut->CopyStructure(medium);
+  vtkNew<vtkUnsignedCharArray> level;
+  level->SetName("OctreeLevel");
+  level->SetNumberOfTuples(static_cast<vtkIdType>(m.Voxels));
+  vtkNew<vtkUnsignedCharArray> limited;
+  limited->SetName("OctreeStepLimited");
+  limited->SetNumberOfTuples(static_cast<vtkIdType>(m.Voxels));
+  for (size_t v = 0; v < m.Voxels; ++v)
+  {
+    level->SetValue(static_cast<vtkIdType>(v), codes[v] & 0x1f);
+    limited->SetValue(static_cast<vtkIdType>(v), (codes[v] & 0x80) ? 1 : 0);
+  }
+  octreeOut->GetPointData()->AddArray(level);
+  octreeOut->GetPointData()->AddArray(limited);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkPhotonTracer::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!output)
+  {
+    vtkErrorMacro("The output is not a vtkImageData.");
+    return 0;
+  }
+  output->Initialize();
+  this->OctreeSeconds = this->GenerationSeconds = this->MarchingSeconds = 0;
+  this->SmoothingSeconds = this->PeakDeviceMemoryBytes = 0;
+  this->UsedCurvedRays = this->UsedExtinction = this->UsedDeposit = false;
+  this->UsedOctree = this->ComputedGradient = false;
+
+  vtkNew<vtkMediumValidator> validator;
+  if (!validator->Validate(input))
+  {
+    vtkErrorMacro("Input 0 is not a valid Refracta medium: " << validator->GetErrorMessage());
+    return 0;
+  }
+
+  // ---- Lights, converted to the grid-local frame in double precision ----
+  const double* origin = input->GetOrigin();
+  vtkMatrix3x3* dir = input->GetDirectionMatrix();
+  int extent[6];
+  input->GetExtent(extent);
+  Medium m;
+  LoadMedium(input, this->UseProxyBounds, m);
+  auto toLocalPoint = [&](const double p[3], double out[3])
+  {
+    const double rel[3] = { p[0] - origin[0], p[1] - origin[1], p[2] - origin[2] };
+    for (int r = 0; r < 3; ++r)
+    {
+      out[r] = dir->GetElement(0, r) * rel[0] + dir->GetElement(1, r) * rel[1] +
+        dir->GetElement(2, r) * rel[2] - extent[2 * r] * m.Spacing[r];
+    }
+  };
+  auto toLocalVector = [&](const double d[3], double out[3])
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      out[r] =
+        dir->GetElement(0, r) * d[0] + dir->GetElement(1, r) * d[1] + dir->GetElement(2, r) * d[2];
+    }
+  };
+  const double boxCentre[3] = { 0.5 * (m.ProxyLo[0] + m.ProxyHi[0]),
+    0.5 * (m.ProxyLo[1] + m.ProxyHi[1]), 0.5 * (m.ProxyLo[2] + m.ProxyHi[2]) };
+  const double halfDiag[3] = { 0.5 * (m.ProxyHi[0] - m.ProxyLo[0]),
+    0.5 * (m.ProxyHi[1] - m.ProxyLo[1]), 0.5 * (m.ProxyHi[2] - m.ProxyLo[2]) };
+  const double boxRadius = std::sqrt(Dot(halfDiag, halfDiag));
+
+  std::vector<LightSetup> lights;
+  vtkLight* light;
+  vtkCollectionSimpleIterator it;
+  int lightIndex = 0;
+  for (this->Lights->InitTraversal(it); (light = this->Lights->GetNextLight(it)); ++lightIndex)
+  {
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    double pw[3], fw[3], colour[3];
+    light->GetTransformedPosition(pw);
+    light->GetTransformedFocalPoint(fw);
+    light->GetDiffuseColor(colour);
+    const double intensity = light->GetIntensity();
+    bool finite = std::isfinite(intensity);
+    for (int c = 0; c < 3; ++c)
+    {
+      finite = finite && std::isfinite(pw[c]) && std::isfinite(fw[c]) && std::isfinite(colour[c]);
+    }
+    if (!finite || intensity < 0 || colour[0] < 0 || colour[1] < 0 || colour[2] < 0)
+    {
+      vtkErrorMacro("Light " << lightIndex
+                             << " has a non-finite position, focal point, colour or intensity, or "
+                                "a negative intensity or colour; all must be finite and >= 0.");
+      return 0;
+    }
+    LightSetup ls;
+    ls.Positional = light->GetPositional();
+    for (int c = 0; c < 3; ++c)
+    {
+      ls.Colour[c] = colour[c] * intensity;
+    }
+    double p[3], f[3], axisWorld[3] = { fw[0] - pw[0], fw[1] - pw[1], fw[2] - pw[2] };
+    toLocalPoint(pw, p);
+    toLocalPoint(fw, f);
+    double axis[3];
+    toLocalVector(axisWorld, axis);
+    const bool isSpot = ls.Positional && light->GetConeAngle() < 90.0;
+    if ((!ls.Positional || isSpot) && !Normalize(axis))
+    {
+      vtkErrorMacro("Light " << lightIndex
+                             << " is directional or a spot but its position equals its focal "
+                                "point; they must differ to give a direction.");
+      return 0;
+    }
+    if (isSpot && !(light->GetConeAngle() > 0.0))
+    {
+      vtkErrorMacro("Light " << lightIndex << " has cone angle " << light->GetConeAngle()
+                             << "; a spot needs (0, 90) degrees, a point light >= 90.");
+      return 0;
+    }
+    const double maxColour = std::max({ ls.Colour[0], ls.Colour[1], ls.Colour[2] });
+    if (!ls.Positional)
+    {
+      // Rectangle perpendicular to the direction covering the box's projection.
+      double b1[3], b2[3];
+      Basis(axis, b1, b2);
+      double umin = 1e300, umax = -1e300, wmin = 1e300, wmax = -1e300, dmin = 1e300;
+      for (int corner = 0; corner < 8; ++corner)
+      {
+        const double q[3] = { (corner & 1) ? m.ProxyHi[0] : m.ProxyLo[0],
+          (corner & 2) ? m.ProxyHi[1] : m.ProxyLo[1], (corner & 4) ? m.ProxyHi[2] : m.ProxyLo[2] };
+        umin = std::min(umin, Dot(q, b1));
+        umax = std::max(umax, Dot(q, b1));
+        wmin = std::min(wmin, Dot(q, b2));
+        wmax = std::max(wmax, Dot(q, b2));
+        dmin = std::min(dmin, Dot(q, axis));
+      }
+      const double back = dmin - 0.01 * boxRadius - 1e-6;
+      for (int c = 0; c < 3; ++c)
+      {
+        ls.Origin[c] = b1[c] * umin + b2[c] * wmin + axis[c] * back;
+        ls.Axis[c] = axis[c];
+        ls.Basis1[c] = b1[c] * (umax - umin);
+        ls.Basis2[c] = b2[c] * (wmax - wmin);
+      }
+      ls.Measure = (umax - umin) * (wmax - wmin);
+    }
+    else
+    {
+      std::copy(p, p + 3, ls.Origin);
+      double toBox[3] = { boxCentre[0] - p[0], boxCentre[1] - p[1], boxCentre[2] - p[2] };
+      const double distance = std::sqrt(Dot(toBox, toBox));
+      bool inside = true;
+      for (int c = 0; c < 3; ++c)
+      {
+        inside = inside && p[c] >= m.ProxyLo[c] && p[c] <= m.ProxyHi[c];
+      }
+      double capAxis[3] = { 0, 0, 1 };
+      ls.OneMinusCos = 2.0; // whole sphere
+      if (!inside && distance > boxRadius * (1 + 1e-9))
+      {
+        const double s = boxRadius / distance;
+        ls.OneMinusCos = s * s / (1.0 + std::sqrt(1.0 - s * s));
+        for (int c = 0; c < 3; ++c)
+        {
+          capAxis[c] = toBox[c] / distance;
+        }
+      }
+      if (isSpot)
+      {
+        const double half = vtkMath::RadiansFromDegrees(light->GetConeAngle());
+        const double spotOmc = 2.0 * std::sin(0.5 * half) * std::sin(0.5 * half);
+        std::copy(axis, axis + 3, ls.SpotAxis);
+        ls.SpotCos = std::cos(half);
+        ls.Exponent = light->GetExponent();
+        if (spotOmc < ls.OneMinusCos)
+        {
+          ls.OneMinusCos = spotOmc;
+          std::copy(axis, axis + 3, capAxis);
+        }
+      }
+      std::copy(capAxis, capAxis + 3, ls.Axis);
+      Basis(ls.Axis, ls.Basis1, ls.Basis2);
+      ls.Measure = 2.0 * vtkMath::Pi() * ls.OneMinusCos;
+    }
+    ls.Bound = maxColour * ls.Measure;
+    if (ls.Bound > 0)
+    {
+      lights.push_back(ls);
+    }
+  }
+
+  // ---- Photon budget: proportional to each light's power towards the box ----
+  double totalBound = 0;
+  for (const auto& ls : lights)
+  {
+    totalBound += ls.Bound;
+  }
+  unsigned int assigned = 0;
+  std::vector<std::pair<double, size_t>> remainders;
+  for (size_t l = 0; l < lights.size(); ++l)
+  {
+    const double share = this->NumberOfPhotons * lights[l].Bound / totalBound;
+    lights[l].Photons = static_cast<unsigned int>(std::floor(share));
+    assigned += lights[l].Photons;
+    remainders.emplace_back(share - std::floor(share), l);
+  }
+  std::sort(remainders.rbegin(), remainders.rend());
+  for (size_t r = 0;
+       assigned < static_cast<unsigned int>(this->NumberOfPhotons) && r < remainders.size();
+       ++r, ++assigned)
+  {
+    lights[remainders[r].second].Photons++;
+  }
+  const size_t photons = this->NumberOfPhotons;
+
+  // ---- Device ----
+  vtkOpenCLContext* ctx = this->GetContext();
+  if (!ctx->Initialize())
+  {
+    vtkErrorMacro("No OpenCL device for the photon pass: " << ctx->GetLastErrorMessage());
+    return 0;
+  }
+  this->UsedCurvedRays = m.Curved;
+  this->UsedExtinction = m.Attenuates;
+  this->UsedDeposit = m.Scatters;
+  this->UsedOctree = m.Curved && this->AdaptiveStepping;
+  this->ComputedGradient = m.Curved && !m.HasGradient;
+
+  Allocator alloc{ ctx, this };
+  const size_t voxels = m.Voxels;
+  const cl_int4 dims = Int4(m.Dims);
+  const cl_float4 spacing = Float4(m.Spacing);
+  const cl_uint voxelCount = static_cast<cl_uint>(voxels);
+  const double voxelUnit = std::min({ m.Spacing[0], m.Spacing[1], m.Spacing[2] });
+
+  // Stage 1: gradient (if needed) and octree.
+  auto start = Clock::now();
+  vtkOpenCLBuffer nBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+    (m.Curved ? voxels : 1) * sizeof(float), m.N.data(), "RefractiveIndex");
+  vtkOpenCLBuffer gradBuffer;
+  vtkOpenCLBuffer octree;
+  if (!nBuffer)
+  {
+    return 0;
+  }
+  if (m.Curved && m.HasGradient)
+  {
+    gradBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * 3 * sizeof(float),
+      m.Gradient.data(), "RefractiveIndexGradient");
+  }
+  else if (m.Curved)
+  {
+    cl_program program = ctx->GetProgram(
+      { "refracta_atomics.cl", "refracta_common.cl", "photon_octree.cl" }, "", this);
+    gradBuffer = alloc.Make(CL_MEM_READ_WRITE, voxels * 3 * sizeof(float), nullptr, "gradient");
+    vtkOpenCLKernel kernel =
+      program ? ctx->CreateKernel(program, "photon_gradient", this) : vtkOpenCLKernel();
+    if (!kernel || !gradBuffer ||
+      !ctx->Check(vtkOpenCLSetKernelArgs(
+                    kernel.Get(), nBuffer.Get(), dims, spacing, gradBuffer.Get(), voxelCount),
+        "clSetKernelArg(photon_gradient)", this) ||
+      !Run1D(ctx, kernel.Get(), voxels, "photon_gradient", this))
+    {
+      return 0;
+    }
+  }
+  else
+  {
+    gradBuffer = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "gradient (unused)");
+  }
+  if (this->UsedOctree)
+  {
+    if (!RunOctree(ctx, this, alloc, nBuffer.Get(), m.Dims, this->PrimaryTolerance,
+          this->SecondaryTolerance, octree))
+    {
+      return 0;
+    }
+  }
+  else
+  {
+    octree = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "octree (unused)");
+  }
+  if (!gradBuffer || !octree || !ctx->Finish(this))
+  {
+    return 0;
+  }
+  this->OctreeSeconds = Seconds(start);
+  this->UpdateProgress(0.05);
+
+  // Stage 2: generation.
+  start = Clock::now();
+  // The device works in units of the total power sent towards the box (`unit`), so that one
+  // compiled program serves every light set up. Every sum (a voxel's deposits, a tally, a
+  // direction sum weighted by three channels) is then bounded by 1, plus roulette boosts; 16
+  // leaves room for both. The host multiplies the results back by `unit`.
+  const double unit = totalBound > 0 ? totalBound : 1.0;
+  const double scale = vtkOpenCLContext::ChooseFixedPointScale(16.0) / unit;
+  const double deviceScale = vtkOpenCLContext::ChooseFixedPointScale(16.0);
+  std::ostringstream scaleLiteral;
+  scaleLiteral << "0x1p" << std::ilogb(deviceScale) << "f";
+  std::ostringstream options;
+  options << "-DREFRACTA_FIXED_SCALE=" << scaleLiteral.str() << " -DREFRACT=" << m.Curved
+          << " -DADAPTIVE=" << this->AdaptiveStepping << " -DEXTINCTION=" << m.Attenuates
+          << " -DDEPOSIT=" << m.Scatters
+          << " -DMIN_STEP=" << FloatLiteral(this->MinimumStep * voxelUnit)
+          << " -DMAX_STEP=" << FloatLiteral(this->MaximumStep * voxelUnit) << " -DCAP_STEP="
+          << FloatLiteral(std::min(this->SecondaryStepLimit, this->MaximumStep) * voxelUnit)
+          << " -DFIXED_STEP=" << FloatLiteral(this->FixedStep * voxelUnit)
+          << " -DMAX_STEPS=" << this->MaximumNumberOfSteps
+          << " -DEXT_STEP_LIMIT=" << FloatLiteral(this->ExtinctionStepLimit)
+          << " -DROULETTE=" << FloatLiteral(this->RouletteThreshold)
+          << " -DMAX_TURN=" << FloatLiteral(this->MaximumTurn);
+  cl_program trace = ctx->GetProgram(
+    { "refracta_atomics.cl", "refracta_common.cl", "photon_trace.cl" }, options.str(), this);
+  if (!trace)
+  {
+    return 0;
+  }
+  vtkOpenCLBuffer pos =
+    alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_float4), nullptr, "photon positions");
+  vtkOpenCLBuffer dirs =
+    alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_float4), nullptr, "photon directions");
+  vtkOpenCLBuffer power =
+    alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_float4), nullptr, "photon powers");
+  if (!pos || !dirs || !power || !ctx->ZeroBuffer(power.Get(), photons * sizeof(cl_float4), this))
+  {
+    return 0;
+  }
+  vtkOpenCLKernel generate = ctx->CreateKernel(trace, "photon_generate", this);
+  if (!generate)
+  {
+    return 0;
+  }
+  uint64_t seedState = 0x5eedULL ^ (static_cast<uint64_t>(this->Seed) << 17);
+  cl_uint offset = 0;
+  for (const auto& ls : lights)
+  {
+    const cl_uint count = ls.Photons;
+    const cl_uint r1 = SplitMix(seedState);
+    const cl_uint r2 = SplitMix(seedState);
+    if (count == 0)
+    {
+      continue;
+    }
+    const cl_int positional = ls.Positional ? 1 : 0;
+    const cl_float4 params =
+      Float4(1.0 - ls.OneMinusCos, ls.Exponent, ls.Measure / count, ls.OneMinusCos);
+    if (!ctx->Check(vtkOpenCLSetKernelArgs(generate.Get(), pos.Get(), dirs.Get(), power.Get(),
+                      offset, count, positional, Float4(ls.Origin), Float4(ls.Axis),
+                      Float4(ls.Basis1), Float4(ls.Basis2), Float4(ls.SpotAxis, ls.SpotCos), params,
+                      Float4(ls.Colour[0] / unit, ls.Colour[1] / unit, ls.Colour[2] / unit),
+                      Float4(m.ProxyLo), Float4(m.ProxyHi), r1, r2),
+          "clSetKernelArg(photon_generate)", this) ||
+      !Run1D(ctx, generate.Get(), count, "photon_generate", this))
+    {
+      return 0;
+    }
+    offset += count;
+  }
+  if (!ctx->Finish(this))
+  {
+    return 0;
+  }
+  this->GenerationSeconds = Seconds(start);
+  this->UpdateProgress(0.1);
+
+  // Stage 3: marching.
+  start = Clock::now();
+  const size_t accumulators = m.Scatters ? voxels * 3 : 1;
+  vtkOpenCLBuffer extBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+    (m.Attenuates ? voxels * 3 : 1) * sizeof(float), m.Extinction.data(), "Extinction");
+  vtkOpenCLBuffer albBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+    (m.Scatters ? voxels * 3 : 1) * sizeof(float), m.Albedo.data(), "Albedo");
+  vtkOpenCLBuffer radFixed =
+    alloc.Make(CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "radiance accumulator");
+  vtkOpenCLBuffer dirFixed =
+    alloc.Make(CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "direction accumulator");
+  vtkOpenCLBuffer tallies = alloc.Make(CL_MEM_READ_WRITE, 21 * sizeof(cl_long), nullptr, "tallies");
+  vtkOpenCLBuffer counters =
+    alloc.Make(CL_MEM_READ_WRITE, 8 * sizeof(cl_long), nullptr, "counters");
+  vtkOpenCLKernel march = ctx->CreateKernel(trace, "photon_march", this);
+  if (!extBuffer || !albBuffer || !radFixed || !dirFixed || !tallies || !counters || !march ||
+    !ctx->ZeroBuffer(radFixed.Get(), accumulators * sizeof(cl_long), this) ||
+    !ctx->ZeroBuffer(dirFixed.Get(), accumulators * sizeof(cl_long), this) ||
+    !ctx->ZeroBuffer(tallies.Get(), 21 * sizeof(cl_long), this) ||
+    !ctx->ZeroBuffer(counters.Get(), 8 * sizeof(cl_long), this))
+  {
+    return 0;
+  }
+  const cl_uint photonCount = static_cast<cl_uint>(photons);
+  const cl_uint seed = this->Seed;
+  const size_t chunk = size_t(1) << 16;
+  for (size_t first = 0; first < photons; first += chunk)
+  {
+    const cl_uint firstId = static_cast<cl_uint>(first);
+    if (!ctx->Check(
+          vtkOpenCLSetKernelArgs(march.Get(), pos.Get(), dirs.Get(), power.Get(), photonCount,
+            nBuffer.Get(), gradBuffer.Get(), extBuffer.Get(), albBuffer.Get(), octree.Get(), dims,
+            spacing, radFixed.Get(), dirFixed.Get(), tallies.Get(), counters.Get(), seed, firstId),
+          "clSetKernelArg(photon_march)", this) ||
+      !Run1D(ctx, march.Get(), std::min(chunk, photons - first), "photon_march", this) ||
+      !ctx->Finish(this))
+    {
+      return 0;
+    }
+    this->UpdateProgress(0.1 + 0.8 * std::min(1.0, static_cast<double>(first + chunk) / photons));
+  }
+  std::vector<cl_long> tally(21), count(8);
+  if (!ctx->ReadBuffer(tallies.Get(), 21 * sizeof(cl_long), tally.data(), this) ||
+    !ctx->ReadBuffer(counters.Get(), 8 * sizeof(cl_long), count.data(), this))
+  {
+    return 0;
+  }
+  this->MarchingSeconds = Seconds(start);
+
+  // Stage 4: resolve, smooth, normalise.
+  start = Clock::now();
+  vtkNew<vtkFloatArray> radiance;
+  radiance->SetName("Radiance");
+  radiance->SetNumberOfComponents(3);
+  radiance->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
+  vtkNew<vtkFloatArray> direction;
+  direction->SetName("RadianceDirection");
+  direction->SetNumberOfComponents(3);
+  direction->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
+  if (!m.Scatters)
+  {
+    radiance->FillValue(0.0f);
+    direction->FillValue(0.0f);
+  }
+  else
+  {
+    cl_program smooth = ctx->GetProgram({ "refracta_common.cl", "radiance_smooth.cl" }, "", this);
+    vtkOpenCLBuffer radA =
+      alloc.Make(CL_MEM_READ_WRITE, voxels * 3 * sizeof(float), nullptr, "radiance");
+    vtkOpenCLBuffer dirA =
+      alloc.Make(CL_MEM_READ_WRITE, voxels * 3 * sizeof(float), nullptr, "direction");
+    vtkOpenCLBuffer radB, dirB;
+    if (this->Smoothing)
+    {
+      radB = alloc.Make(CL_MEM_READ_WRITE, voxels * 3 * sizeof(float), nullptr, "radiance");
+      dirB = alloc.Make(CL_MEM_READ_WRITE, voxels * 3 * sizeof(float), nullptr, "direction");
+    }
+    if (!smooth || !radA || !dirA || (this->Smoothing && (!radB || !dirB)))
+    {
+      return 0;
+    }
+    vtkOpenCLKernel resolve = ctx->CreateKernel(smooth, "radiance_resolve", this);
+    vtkOpenCLKernel filter = ctx->CreateKernel(smooth, "radiance_smooth", this);
+    vtkOpenCLKernel normalize = ctx->CreateKernel(smooth, "radiance_normalize", this);
+    if (!resolve || !filter || !normalize)
+    {
+      return 0;
+    }
+    const float radianceFactor =
+      static_cast<float>(1.0 / (scale * m.Spacing[0] * m.Spacing[1] * m.Spacing[2]));
+    const float directionFactor = static_cast<float>(1.0 / scale);
+    if (!ctx->Check(vtkOpenCLSetKernelArgs(resolve.Get(), radFixed.Get(), dirFixed.Get(),
+                      radianceFactor, directionFactor, radA.Get(), dirA.Get(), voxelCount),
+          "clSetKernelArg(radiance_resolve)", this) ||
+      !Run1D(ctx, resolve.Get(), voxels, "radiance_resolve", this))
+    {
+      return 0;
+    }
+    cl_mem radOut = radA.Get();
+    cl_mem dirOut = dirA.Get();
+    if (this->Smoothing)
+    {
+      if (!ctx->Check(
+            vtkOpenCLSetKernelArgs(filter.Get(), radA.Get(), dims, radB.Get(), voxelCount),
+            "clSetKernelArg(radiance_smooth)", this) ||
+        !Run1D(ctx, filter.Get(), voxels, "radiance_smooth", this) ||
+        !ctx->Check(vtkOpenCLSetKernelArgs(filter.Get(), dirA.Get(), dims, dirB.Get(), voxelCount),
+          "clSetKernelArg(radiance_smooth)", this) ||
+        !Run1D(ctx, filter.Get(), voxels, "radiance_smooth", this))
+      {
+        return 0;
+      }
+      radOut = radB.Get();
+      dirOut = dirB.Get();
+    }
+    if (!ctx->Check(vtkOpenCLSetKernelArgs(normalize.Get(), dirOut, voxelCount),
+          "clSetKernelArg(radiance_normalize)", this) ||
+      !Run1D(ctx, normalize.Get(), voxels, "radiance_normalize", this) ||
+      !ctx->ReadBuffer(radOut, voxels * 3 * sizeof(float), radiance->GetPointer(0), this) ||
+      !ctx->ReadBuffer(dirOut, voxels * 3 * sizeof(float), direction->GetPointer(0), this))
+    {
+      return 0;
+    }
+  }
+  this->SmoothingSeconds = Seconds(start);
+  this->PeakDeviceMemoryBytes = alloc.Bytes;
+
+  // ---- Output ----
+  output->CopyStructure(input);
+  output->GetPointData()->AddArray(radiance);
+  output->GetPointData()->SetScalars(radiance);
+  output->GetPointData()->AddArray(direction);
+  vtkFieldData* fd = output->GetFieldData();
+  auto addCount = [&](const char* name, long long value)
+  {
+    vtkNew<vtkTypeInt64Array> a;
+    a->SetName(name);
+    a->InsertNextValue(value);
+    fd->AddArray(a);
+  };
+  addCount("NumberOfPhotons", static_cast<long long>(photons));
+  addCount("PhotonsMarched", count[0]);
+  addCount("PhotonsMissed", count[1]);
+  addCount("TerminatedEscaped", count[2]);
+  addCount("TerminatedRoulette", count[3]);
+  addCount("TerminatedStepCap", count[4]);
+  addCount("TerminatedInvalid", count[5]);
+  addCount("TotalSteps", count[6]);
+  addCount("TotalVoxelPieces", count[7]);
+  auto energy = [&](int t, int c) { return static_cast<double>(tally[3 * t + c]) / scale; };
+  auto addEnergy = [&](const char* name, const std::array<double, 3>& v)
+  {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->SetNumberOfComponents(3);
+    a->InsertNextTuple(v.data());
+    fd->AddArray(a);
+  };
+  std::array<double, 3> e[7], remaining;
+  for (int t = 0; t < 7; ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      e[t][c] = energy(t, c);
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    remaining[c] = e[4][c] + e[5][c] - e[6][c];
+  }
+  addEnergy("EnergyEmitted", e[0]);
+  addEnergy("EnergyAbsorbed", e[1]);
+  addEnergy("EnergyEscaped", e[2]);
+  addEnergy("EnergyScattered", e[3]);
+  addEnergy("EnergyRemaining", remaining);
+  addEnergy("EnergyRouletteKilled", e[5]);
+  addEnergy("EnergyRouletteGained", e[6]);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfLights: " << this->Lights->GetNumberOfItems() << "\n";
+  os << indent << "NumberOfPhotons: " << this->NumberOfPhotons << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "PrimaryTolerance: " << this->PrimaryTolerance << "\n";
+  os << indent << "SecondaryTolerance: " << this->SecondaryTolerance << "\n";
+  os << indent << "SecondaryStepLimit: " << this->SecondaryStepLimit << " voxels\n";
+  os << indent << "MinimumStep: " << this->MinimumStep << " voxels\n";
+  os << indent << "MaximumStep: " << this->MaximumStep << " voxels\n";
+  os << indent << "AdaptiveStepping: " << this->AdaptiveStepping << "\n";
+  os << indent << "FixedStep: " << this->FixedStep << " voxels\n";
+  os << indent << "ExtinctionStepLimit: " << this->ExtinctionStepLimit << "\n";
+  os << indent << "RouletteThreshold: " << this->RouletteThreshold << "\n";
+  os << indent << "MaximumNumberOfSteps: " << this->MaximumNumberOfSteps << "\n";
+  os << indent << "MaximumTurn: " << this->MaximumTurn << "\n";
+  os << indent << "Smoothing: " << this->Smoothing << "\n";
+  os << indent << "UseProxyBounds: " << this->UseProxyBounds << "\n";
+  os << indent << "Stage seconds (octree, generation, marching, smoothing): " << this->OctreeSeconds
+     << ", " << this->GenerationSeconds << ", " << this->MarchingSeconds << ", "
+     << this->SmoothingSeconds << "\n";
+  os << indent << "PeakDeviceMemoryBytes: " << this->PeakDeviceMemoryBytes << "\n";
+  os << indent << "Plan: curved " << this->UsedCurvedRays << ", extinction " << this->UsedExtinction
+     << ", deposit " << this->UsedDeposit << ", octree " << this->UsedOctree
+     << ", gradient computed " << this->ComputedGradient << "\n";
+}

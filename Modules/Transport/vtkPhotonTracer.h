@@ -1,0 +1,266 @@
+/**
+ * @class   vtkPhotonTracer
+ * @brief   Light pass of Sun et al. 2008: photons from vtkLights marched along curved paths
+ *          through a Refracta medium, depositing the in-scattered power into a radiance volume.
+ *
+ * Input port 0: a Refracta medium (vtkImageData, see vtkRefractaMedium; validated with
+ * vtkMediumValidator). Lights: AddLight(), RemoveAllLights(), SetLights(); switched-off lights
+ * are ignored (Documentation/Physics.md: directional irradiance E, point intensity I, spot
+ * I cos^e inside the cone; colour x intensity). The host converts every light into the grid-local
+ * frame in double precision, so an origin at 1e6 loses nothing.
+ *
+ * Output: a vtkImageData on the medium's grid with float point arrays
+ * - `Radiance` (3): S1 = sigma_s * fluence of the unscattered (refracted, attenuated) beam, the
+ *   power per unit volume scattered out of it (sigma_s is inside it);
+ * - `RadianceDirection` (3): the power-weighted mean travel direction of the deposits, unit
+ *   length (zero where nothing was deposited), in the grid-local frame;
+ * and field data: `NumberOfPhotons` (generated), `PhotonsMarched`, `PhotonsMissed` (generated but
+ * carrying no power into the volume: missed the box or fell outside a spot's cone), `TotalSteps`,
+ * `TotalVoxelPieces` (voxel crossings deposited), `TerminatedEscaped`, `TerminatedRoulette`,
+ * `TerminatedStepCap`, `TerminatedInvalid` (non-finite state; expected 0), and RGB energies
+ * `EnergyEmitted`, `EnergyAbsorbed`, `EnergyEscaped`, `EnergyScattered`, `EnergyRemaining`,
+ * `EnergyRouletteKilled`, `EnergyRouletteGained`. The books close exactly (up to float and
+ * fixed-point rounding): Emitted = Absorbed + Escaped + Scattered + Remaining, where Remaining =
+ * power carried at the step cap + RouletteKilled - RouletteGained (the last two are equal in
+ * expectation: Russian roulette is unbiased).
+ *
+ * Work, in stages (each timed, see Get*Seconds()):
+ * 1. Octree (only when n varies and AdaptiveStepping is on): the dense level array built on the
+ *    device from a min/max pyramid of n, with PrimaryTolerance eps (unlimited step inside a node)
+ *    and SecondaryTolerance eps' (step capped at SecondaryStepLimit voxels), any grid size.
+ * 2. Generation: NumberOfPhotons shared among the lights in proportion to their power towards
+ *    the volume; low-discrepancy (R2) samples over each light's footprint on the medium's box, or
+ *    on the tighter proxy box around the voxels that differ from empty space (UseProxyBounds).
+ * 3. Marching: step = clamp(octree step, MinimumStep, MaximumStep) (or FixedStep), midpoint
+ *    update of x' = v/n, v' = grad n with |dv| <= MaximumTurn * n and |v| renormalised to n;
+ *    every step's chord is walked voxel by voxel, attenuating with sigma_t sampled in each voxel
+ *    piece and depositing sigma_s's share of the loss there.
+ * 4. Smoothing (optional): the paper's 3x3x3 filter, total-conserving.
+ * Only the work the medium needs is compiled in: straight rays (no gradient or octree lookups;
+ * a RefractiveIndexGradient array is then ignored) when n is constant, no piece walk when nothing
+ * attenuates, no deposits when nothing scatters (see GetUsedCurvedRays() etc.).
+ *
+ * Lengths of the step knobs are in voxels (multiples of the smallest spacing). Results are
+ * deterministic for a Seed on a given device (64-bit fixed-point accumulation).
+ */
+#ifndef vtkPhotonTracer_h
+#define vtkPhotonTracer_h
+
+#include "RefractaTransportModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+#include "vtkSmartPointer.h" // for members
+
+class vtkLight;
+class vtkLightCollection;
+class vtkOpenCLContext;
+
+class REFRACTATRANSPORT_EXPORT vtkPhotonTracer : public vtkImageAlgorithm
+{
+public:
+  static vtkPhotonTracer* New();
+  vtkTypeMacro(vtkPhotonTracer, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The lights (world coordinates). SetLights() replaces the collection (nullptr: none).
+   */
+  void AddLight(vtkLight* light);
+  void RemoveAllLights();
+  void SetLights(vtkLightCollection* lights);
+  vtkLightCollection* GetLights();
+  ///@}
+
+  ///@{
+  /**
+   * OpenCL context; nullptr (default) means vtkOpenCLContext::GetDefault().
+   */
+  void SetContext(vtkOpenCLContext* context);
+  vtkOpenCLContext* GetContext();
+  ///@}
+
+  ///@{
+  /**
+   * Number of photons generated over all lights. Default 65536.
+   */
+  vtkSetClampMacro(NumberOfPhotons, int, 1, 1 << 28);
+  vtkGetMacro(NumberOfPhotons, int);
+  ///@}
+
+  ///@{
+  /**
+   * Seed of the random streams (Russian roulette) and of the sample rotations. Default 1.
+   */
+  vtkSetMacro(Seed, unsigned int);
+  vtkGetMacro(Seed, unsigned int);
+  ///@}
+
+  ///@{
+  /**
+   * Octree tolerances on the refractive index range within a node (section 4.2 and 5.3):
+   * primary eps (default 0.005): unlimited step inside the node; secondary eps' (default 0.02):
+   * step capped at SecondaryStepLimit voxels (default 8). eps' <= eps disables the secondary.
+   */
+  vtkSetClampMacro(PrimaryTolerance, double, 0.0, 1e30);
+  vtkGetMacro(PrimaryTolerance, double);
+  vtkSetClampMacro(SecondaryTolerance, double, 0.0, 1e30);
+  vtkGetMacro(SecondaryTolerance, double);
+  vtkSetClampMacro(SecondaryStepLimit, double, 1e-3, 1e6);
+  vtkGetMacro(SecondaryStepLimit, double);
+  ///@}
+
+  ///@{
+  /**
+   * Adaptive step bounds in voxels: MinimumStep (default 1), MaximumStep (default 64).
+   */
+  vtkSetClampMacro(MinimumStep, double, 1e-3, 1e6);
+  vtkGetMacro(MinimumStep, double);
+  vtkSetClampMacro(MaximumStep, double, 1e-3, 1e6);
+  vtkGetMacro(MaximumStep, double);
+  ///@}
+
+  ///@{
+  /**
+   * AdaptiveStepping on (default): octree steps; off: every step is FixedStep voxels
+   * (default 1). Irrelevant when n is constant (rays go straight to the exit in one step).
+   */
+  vtkSetMacro(AdaptiveStepping, bool);
+  vtkGetMacro(AdaptiveStepping, bool);
+  vtkBooleanMacro(AdaptiveStepping, bool);
+  vtkSetClampMacro(FixedStep, double, 1e-3, 1e6);
+  vtkGetMacro(FixedStep, double);
+  ///@}
+
+  ///@{
+  /**
+   * Largest optical depth (max over RGB of sigma_t at the step's start x length) of one curved
+   * step; 0 (default) is off. Attenuation is integrated voxel by voxel whatever the step, so
+   * this only shortens steps; see the README for whether it helps.
+   */
+  vtkSetClampMacro(ExtinctionStepLimit, double, 0.0, 1e30);
+  vtkGetMacro(ExtinctionStepLimit, double);
+  ///@}
+
+  ///@{
+  /**
+   * Russian roulette threshold as a fraction of a photon's initial power (largest channel):
+   * below it a photon survives with probability power / threshold and is boosted to the
+   * threshold. Default 0.001; 0 disables roulette.
+   */
+  vtkSetClampMacro(RouletteThreshold, double, 0.0, 1.0);
+  vtkGetMacro(RouletteThreshold, double);
+  ///@}
+
+  ///@{
+  /**
+   * Step cap per photon (default 10000): a photon still marching then stops, its power is
+   * counted in EnergyRemaining and TerminatedStepCap. Never a hang.
+   */
+  vtkSetClampMacro(MaximumNumberOfSteps, int, 1, 100000000);
+  vtkGetMacro(MaximumNumberOfSteps, int);
+  ///@}
+
+  ///@{
+  /**
+   * Largest change of v = n dx/ds in one step, as a fraction of n (default 0.5): a steep index
+   * step turns a ray over a few steps instead of throwing it out of the grid.
+   */
+  vtkSetClampMacro(MaximumTurn, double, 1e-3, 2.0);
+  vtkGetMacro(MaximumTurn, double);
+  ///@}
+
+  ///@{
+  /**
+   * Final 3x3x3 smoothing of Radiance and RadianceDirection (default on).
+   */
+  vtkSetMacro(Smoothing, bool);
+  vtkGetMacro(Smoothing, bool);
+  vtkBooleanMacro(Smoothing, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Start photons on the bounds of the voxels that differ from empty space (n != 1 or
+   * sigma_t > 0), grown by two voxels, instead of the whole medium box (default on).
+   */
+  vtkSetMacro(UseProxyBounds, bool);
+  vtkGetMacro(UseProxyBounds, bool);
+  vtkBooleanMacro(UseProxyBounds, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Wall-clock seconds of the last run's stages (device work included), and the device memory
+   * the last run allocated at its peak (bytes).
+   */
+  vtkGetMacro(OctreeSeconds, double);
+  vtkGetMacro(GenerationSeconds, double);
+  vtkGetMacro(MarchingSeconds, double);
+  vtkGetMacro(SmoothingSeconds, double);
+  vtkGetMacro(PeakDeviceMemoryBytes, double);
+  ///@}
+
+  ///@{
+  /**
+   * The plan of the last run: curved rays (n varies), attenuation, deposits (something
+   * scatters), octree built, gradient computed on the device.
+   */
+  vtkGetMacro(UsedCurvedRays, bool);
+  vtkGetMacro(UsedExtinction, bool);
+  vtkGetMacro(UsedDeposit, bool);
+  vtkGetMacro(UsedOctree, bool);
+  vtkGetMacro(ComputedGradient, bool);
+  ///@}
+
+  /**
+   * Build only the octree of `medium` into `octree` (same grid; unsigned char point arrays
+   * `OctreeLevel`, the leaf level, and `OctreeStepLimited`, 1 where the secondary tolerance
+   * applies). For inspection and tests. Returns false after reporting an error.
+   */
+  bool BuildOctree(vtkImageData* medium, vtkImageData* octree);
+
+protected:
+  vtkPhotonTracer();
+  ~vtkPhotonTracer() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  vtkMTimeType GetMTime() override;
+
+  vtkSmartPointer<vtkLightCollection> Lights;
+  vtkSmartPointer<vtkOpenCLContext> Context;
+  int NumberOfPhotons = 65536;
+  unsigned int Seed = 1;
+  double PrimaryTolerance = 0.005;
+  double SecondaryTolerance = 0.02;
+  double SecondaryStepLimit = 8.0;
+  double MinimumStep = 1.0;
+  double MaximumStep = 64.0;
+  bool AdaptiveStepping = true;
+  double FixedStep = 1.0;
+  double ExtinctionStepLimit = 0.0;
+  double RouletteThreshold = 0.001;
+  int MaximumNumberOfSteps = 10000;
+  double MaximumTurn = 0.5;
+  bool Smoothing = true;
+  bool UseProxyBounds = true;
+
+  double OctreeSeconds = 0;
+  double GenerationSeconds = 0;
+  double MarchingSeconds = 0;
+  double SmoothingSeconds = 0;
+  double PeakDeviceMemoryBytes = 0;
+  bool UsedCurvedRays = false;
+  bool UsedExtinction = false;
+  bool UsedDeposit = false;
+  bool UsedOctree = false;
+  bool ComputedGradient = false;
+
+private:
+  vtkPhotonTracer(const vtkPhotonTracer&) = delete;
+  void operator=(const vtkPhotonTracer&) = delete;
+  struct Internals;
+};
+
+#endif
