@@ -312,7 +312,8 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   this->StepKernel = context->CreateKernel(program, "lbl_step", this);
   this->ProbeKernel = context->CreateKernel(program, "lbl_probes", this);
   this->ScatteredKernel = context->CreateKernel(program, "lbl_scattered", this);
-  if (!this->StepKernel || !this->ProbeKernel || !this->ScatteredKernel)
+  this->SourceKernel = context->CreateKernel(program, "lbl_source_from_fixed", this);
+  if (!this->StepKernel || !this->ProbeKernel || !this->ScatteredKernel || !this->SourceKernel)
   {
     return false;
   }
@@ -402,6 +403,26 @@ bool vtkLatticeBoltzmannSolver::SetSource(const float* s1, const float* directio
   return this->GetContext()->WriteBuffer(
            this->Source.Get(), planar.size() * sizeof(float), planar.data(), this) &&
     this->UpdateSourceProbes();
+}
+
+//------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::SetSourceFromFixedPoint(
+  cl_mem radianceFixed, cl_mem directionFixed, double radianceFactor, double directionFactor)
+{
+  if (!this->BuildKernels())
+  {
+    return false;
+  }
+  vtkOpenCLContext* context = this->GetContext();
+  const cl_uint n = static_cast<cl_uint>(this->NumberOfVoxels);
+  const size_t global = n;
+  const size_t local = 64;
+  this->SourceIsZero = false; // unknown until UpdateSourceProbes() reads it back
+  return context->Check(vtkOpenCLSetKernelArgs(this->SourceKernel.Get(), radianceFixed,
+                          directionFixed, static_cast<float>(radianceFactor),
+                          static_cast<float>(directionFactor), this->Source.Get(), n),
+           "clSetKernelArg(lbl_source_from_fixed)", this) &&
+    context->RunKernel(this->SourceKernel.Get(), 1, &global, &local, "lbl_source_from_fixed", this);
 }
 
 //------------------------------------------------------------------------------

@@ -234,6 +234,14 @@ public:
   cl_mem GetSourceBuffer() const { return this->Source.Get(); }
 
   /**
+   * Enqueue (without waiting) the conversion of a photon pass's fixed-point accumulators
+   * (interleaved cl_long RGB and direction sums, see vtkPhotonTracer::SetChunkCallback) into the
+   * source buffer: S1 = radiance * radianceFactor.
+   */
+  bool SetSourceFromFixedPoint(
+    cl_mem radianceFixed, cl_mem directionFixed, double radianceFactor, double directionFactor);
+
+  /**
    * Re-read the source buffer and add its strongest voxels to the convergence probes; call it
    * after writing the source on the device (SetSource() calls it).
    */
@@ -350,6 +358,7 @@ protected:
   vtkOpenCLKernel FinalizeKernel;
   vtkOpenCLKernel ProbeKernel;
   vtkOpenCLKernel ScatteredKernel;
+  vtkOpenCLKernel SourceKernel;
   int Current = 0;
 #endif
 
