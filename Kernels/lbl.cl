@@ -116,7 +116,8 @@ inline void lbl_collide(const float* fin, float* out, const float* t, float a, f
 
 // ---------------------------------------------------------------------------------------------
 // Global (unblocked) step: one work-item per voxel, global (nx, ny, nz), local one x-row.
-// fnext must start zeroed: entries nothing streams into (from outside the grid) stay zero.
+// fnext must start zeroed: entries nothing streams into (from outside the grid) stay zero; it has
+// one scratch float past its Q * 3 * N state values.
 __kernel void lbl_step(__global const float* fcur, __global float* fnext,
   __global const float* coef, __global const float* src, const int4 dims)
 {
@@ -132,6 +133,15 @@ __kernel void lbl_step(__global const float* fcur, __global float* fnext,
   const float g = coef[LBL_COEF_G * n + v];
   float wsrc[LBL_Q];
   lbl_source_weights(src, n, v, g, wsrc);
+  long offset[LBL_Q];
+  bool inGrid[LBL_Q];
+  #pragma unroll
+  for (int i = 0; i < LBL_Q; ++i)
+  {
+    const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
+    inGrid[i] = tx >= 0 && ty >= 0 && tz >= 0 && tx < dims.x && ty < dims.y && tz < dims.z;
+    offset[i] = (long)lbl_cx[i] + (long)dims.x * ((long)lbl_cy[i] + (long)dims.y * lbl_cz[i]);
+  }
   #pragma unroll
   for (int ch = 0; ch < 3; ++ch)
   {
@@ -149,20 +159,18 @@ __kernel void lbl_step(__global const float* fcur, __global float* fnext,
       fin[i] = fcur[(i * 3 + ch) * n + v];
     }
     lbl_collide(fin, out, t, a, g, src[ch * n + v], wsrc);
+    // Branch-free stores (so that the work-item loop vectorises): a packet leaving the grid is
+    // written to its mirror entry (LBL_BOUNDARY 1) or to a scratch float past the state's end.
     #pragma unroll
     for (int i = 0; i < LBL_Q; ++i)
     {
-      const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
-      if (tx >= 0 && ty >= 0 && tz >= 0 && tx < dims.x && ty < dims.y && tz < dims.z)
-      {
-        fnext[(i * 3 + ch) * n + refracta_voxel_index(dims, tx, ty, tz)] = out[i];
-      }
+      const size_t inside = (size_t)(i * 3 + ch) * n + v + (size_t)offset[i];
 #if LBL_BOUNDARY == 1
-      else
-      {
-        fnext[((i ^ 1) * 3 + ch) * n + v] = out[i];
-      }
+      const size_t outside = (size_t)((i ^ 1) * 3 + ch) * n + v;
+#else
+      const size_t outside = (size_t)LBL_Q * 3 * n;
 #endif
+      fnext[inGrid[i] ? inside : outside] = out[i];
     }
   }
 }

@@ -125,14 +125,13 @@ int vtkLatticeBoltzmannLighting::RequestData(
   lighting->GetSpacing(lspacing);
   for (int a = 0; a < 3; ++a)
   {
-    if (dims[a] != ldims[a] ||
-      std::abs(spacing[a] - lspacing[a]) > 1e-6 * std::abs(spacing[a]))
+    if (dims[a] != ldims[a] || std::abs(spacing[a] - lspacing[a]) > 1e-6 * std::abs(spacing[a]))
     {
       vtkErrorMacro("Input 1 (lighting volume) has dimensions "
-        << ldims[0] << "x" << ldims[1] << "x" << ldims[2] << " and spacing " << lspacing[0]
-        << ", " << lspacing[1] << ", " << lspacing[2] << "; it must be on the medium's grid ("
-        << dims[0] << "x" << dims[1] << "x" << dims[2] << ", spacing " << spacing[0] << ", "
-        << spacing[1] << ", " << spacing[2] << ").");
+        << ldims[0] << "x" << ldims[1] << "x" << ldims[2] << " and spacing " << lspacing[0] << ", "
+        << lspacing[1] << ", " << lspacing[2] << "; it must be on the medium's grid (" << dims[0]
+        << "x" << dims[1] << "x" << dims[2] << ", spacing " << spacing[0] << ", " << spacing[1]
+        << ", " << spacing[2] << ").");
       return 0;
     }
   }
@@ -160,8 +159,7 @@ int vtkLatticeBoltzmannLighting::RequestData(
     }
   }
   vtkDataArray* direction = lighting->GetPointData()->GetArray("RadianceDirection");
-  if (direction &&
-    (direction->GetNumberOfComponents() != 3 || direction->GetNumberOfTuples() != n))
+  if (direction && (direction->GetNumberOfComponents() != 3 || direction->GetNumberOfTuples() != n))
   {
     vtkErrorMacro("Input 1: `RadianceDirection` must have 3 components and " << n << " tuples.");
     return 0;
@@ -177,6 +175,7 @@ int vtkLatticeBoltzmannLighting::RequestData(
   solver->SetStepsPerExchange(this->StepsPerExchange);
   solver->SetBoundary(this->Boundary);
   solver->SetSourceDistribution(this->SourceDistribution);
+  solver->SetCollisionModel(this->CollisionModel);
   solver->SetTolerance(this->Tolerance);
   solver->SetCheckInterval(this->CheckInterval);
   solver->SetProbeSpacing(this->ProbeSpacing);
@@ -241,6 +240,7 @@ void vtkLatticeBoltzmannLighting::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StepsPerExchange: " << this->StepsPerExchange << "\n";
   os << indent << "Boundary: " << this->Boundary << "\n";
   os << indent << "SourceDistribution: " << this->SourceDistribution << "\n";
+  os << indent << "CollisionModel: " << this->CollisionModel << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
   os << indent << "CheckInterval: " << this->CheckInterval << "\n";
   os << indent << "ProbeSpacing: " << this->ProbeSpacing << "\n";

@@ -23,8 +23,9 @@
  *
  * Knobs (all forwarded to vtkLatticeBoltzmannSolver): Lattice (6 or 18, default 6), BlockSize
  * (voxels, default 4; 0 = unblocked), StepsPerExchange (default 4), Boundary (default vacuum),
- * SourceDistribution (default phase function), Tolerance (default 1e-4), CheckInterval (steps,
- * default 8), ProbeSpacing (voxels, default 8), MaximumIterations (default 5000).
+ * SourceDistribution (default phase function), CollisionModel (default diffusion matched),
+ * Tolerance (default 1e-4), CheckInterval (steps, default 8), ProbeSpacing (voxels, default 8),
+ * MaximumIterations (default 5000).
  *
  * Bad input (an invalid medium, a missing or mismatched lighting volume, a `Radiance` that is
  * negative or not finite) is reported with vtkErrorMacro and leaves the output empty.
@@ -65,6 +66,8 @@ public:
   vtkGetMacro(Boundary, int);
   vtkSetClampMacro(SourceDistribution, int, 0, 1);
   vtkGetMacro(SourceDistribution, int);
+  vtkSetClampMacro(CollisionModel, int, 0, 1);
+  vtkGetMacro(CollisionModel, int);
   vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
   vtkGetMacro(Tolerance, double);
   vtkSetClampMacro(CheckInterval, int, 1, 4096);
@@ -93,6 +96,7 @@ protected:
   int StepsPerExchange = 4;
   int Boundary = 0;
   int SourceDistribution = 1;
+  int CollisionModel = 1;
   double Tolerance = 1e-4;
   int CheckInterval = 8;
   int ProbeSpacing = 8;

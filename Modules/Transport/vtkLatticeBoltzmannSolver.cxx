@@ -115,8 +115,8 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
   this->ClassLengths.clear();
   for (int i = 0; i < q; ++i)
   {
-    const double len = std::sqrt(std::pow(Cx[i] * spacing[0], 2) +
-      std::pow(Cy[i] * spacing[1], 2) + std::pow(Cz[i] * spacing[2], 2));
+    const double len = std::sqrt(std::pow(Cx[i] * spacing[0], 2) + std::pow(Cy[i] * spacing[1], 2) +
+      std::pow(Cz[i] * spacing[2], 2));
     auto it = std::find(this->ClassLengths.begin(), this->ClassLengths.end(), len);
     if (it == this->ClassLengths.end())
     {
@@ -139,11 +139,12 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
     {
       const double st = extinction ? std::max(0.0, double(extinction[v * 3 + ch])) : 0.0;
       const double a = albedo ? std::min(1.0, std::max(0.0, double(albedo[v * 3 + ch]))) : 0.0;
-      const double g = anisotropy ? std::min(0.9999, std::max(-0.9999, double(anisotropy[v]))) : 0.0;
+      const double g =
+        anisotropy ? std::min(0.9999, std::max(-0.9999, double(anisotropy[v]))) : 0.0;
       for (int c = 0; c < nclass; ++c)
       {
-        const double p = CollisionProbability(
-          q, this->CollisionModel, st, a, g, this->ClassLengths[c], meanEdge);
+        const double p =
+          CollisionProbability(q, this->CollisionModel, st, a, g, this->ClassLengths[c], meanEdge);
         if (this->CollisionModel == DIFFUSION_MATCHED && c == 0 && p >= 1.0 && st > 0)
         {
           ++this->NumberOfThickVoxels;
@@ -162,8 +163,9 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
     context->CreateBuffer(CL_MEM_READ_WRITE, 6 * n * sizeof(float), nullptr, "LBL source", this);
   for (int k = 0; k < 2; ++k)
   {
+    // One scratch float past the state: lbl_step's branch-free store target for vacuum.
     this->State[k] = context->CreateBuffer(
-      CL_MEM_READ_WRITE, size_t(q) * 3 * n * sizeof(float), nullptr, "LBL state", this);
+      CL_MEM_READ_WRITE, (size_t(q) * 3 * n + 1) * sizeof(float), nullptr, "LBL state", this);
   }
   if (!this->Coefficients || !this->Source || !this->State[0] || !this->State[1] ||
     !context->ZeroBuffer(this->Source.Get(), 6 * n * sizeof(float), this))
@@ -175,7 +177,8 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
   this->SourceIsZero = true;
   this->GridProbes.clear();
   const int p = this->ProbeSpacing;
-  auto axis = [p](int d) {
+  auto axis = [p](int d)
+  {
     std::vector<int> c;
     for (int i = std::min(p / 2, d - 1); i < d; i += p)
     {
@@ -195,8 +198,8 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
     }
   }
   this->ProbeValues = context->CreateBuffer(CL_MEM_READ_WRITE,
-    (this->GridProbes.size() + MaxSourceProbes) * 3 * sizeof(float), nullptr,
-    "LBL probe values", this);
+    (this->GridProbes.size() + MaxSourceProbes) * 3 * sizeof(float), nullptr, "LBL probe values",
+    this);
   if (!this->ProbeValues || !this->SetProbes({}))
   {
     return false;
@@ -243,9 +246,8 @@ bool vtkLatticeBoltzmannSolver::UpdateSourceProbes()
       }
       strongest.emplace_back(total, static_cast<cl_uint>(v));
       std::sort(strongest.begin(), strongest.end(),
-        [](const std::pair<float, cl_uint>& a, const std::pair<float, cl_uint>& b) {
-          return a.first > b.first;
-        });
+        [](const std::pair<float, cl_uint>& a, const std::pair<float, cl_uint>& b)
+        { return a.first > b.first; });
     }
   }
   this->SourceIsZero = strongest.empty();
@@ -292,8 +294,7 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   }
   vtkOpenCLContext* context = this->GetContext();
   std::ostringstream options;
-  options << "-DLBL_Q=" << q << " -DLBL_NCLASS=" << this->ClassLengths.size()
-          << " -DLBL_CLASSES={";
+  options << "-DLBL_Q=" << q << " -DLBL_NCLASS=" << this->ClassLengths.size() << " -DLBL_CLASSES={";
   for (int i = 0; i < q; ++i)
   {
     options << (i ? "," : "") << this->DirectionClass[i];
@@ -334,8 +335,8 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
     }
     for (int k = 0; k < 2; ++k)
     {
-      this->Interface[k] = context->CreateBuffer(CL_MEM_READ_WRITE,
-        blocks * 6 * b * b * 3 * sizeof(float), nullptr, "LBL interface", this);
+      this->Interface[k] = context->CreateBuffer(
+        CL_MEM_READ_WRITE, blocks * 6 * b * b * 3 * sizeof(float), nullptr, "LBL interface", this);
       if (!this->Interface[k])
       {
         return false;
@@ -356,7 +357,7 @@ bool vtkLatticeBoltzmannSolver::ResetState()
     return false;
   }
   vtkOpenCLContext* context = this->GetContext();
-  const size_t bytes = size_t(this->Lattice) * 3 * this->NumberOfVoxels * sizeof(float);
+  const size_t bytes = (size_t(this->Lattice) * 3 * this->NumberOfVoxels + 1) * sizeof(float);
   for (int k = 0; k < 2; ++k)
   {
     if (!context->ZeroBuffer(this->State[k].Get(), bytes, this))
@@ -451,9 +452,8 @@ bool vtkLatticeBoltzmannSolver::Iterate(int steps, bool wait)
       // Fig. 5: read the interface written by the previous launch, write the other one.
       cl_mem in = this->Interface[this->InterfaceParity].Get();
       cl_mem out = this->Interface[1 - this->InterfaceParity].Get();
-      if (!context->Check(vtkOpenCLSetKernelArgs(this->BlockKernel.Get(),
-                            this->State[0].Get(), this->Coefficients.Get(), this->Source.Get(),
-                            in, out, dims, nblocks),
+      if (!context->Check(vtkOpenCLSetKernelArgs(this->BlockKernel.Get(), this->State[0].Get(),
+                            this->Coefficients.Get(), this->Source.Get(), in, out, dims, nblocks),
             "clSetKernelArg(lbl_block)", this) ||
         !context->RunKernel(this->BlockKernel.Get(), 3, bglobal, blocal, "lbl_block", this))
       {
@@ -500,8 +500,8 @@ bool vtkLatticeBoltzmannSolver::ReadProbes(std::vector<float>& values)
   const size_t global = count;
   values.resize(this->NumberOfProbes * 3);
   cl_mem state = this->UseBlocks() ? this->State[0].Get() : this->State[this->Current].Get();
-  return context->Check(vtkOpenCLSetKernelArgs(this->ProbeKernel.Get(), state,
-                          this->Probes.Get(), this->ProbeValues.Get(), count, dims),
+  return context->Check(vtkOpenCLSetKernelArgs(this->ProbeKernel.Get(), state, this->Probes.Get(),
+                          this->ProbeValues.Get(), count, dims),
            "clSetKernelArg(lbl_probes)", this) &&
     context->RunKernel(this->ProbeKernel.Get(), 1, &global, nullptr, "lbl_probes", this) &&
     context->ReadBuffer(
@@ -525,9 +525,8 @@ bool vtkLatticeBoltzmannSolver::CheckConvergence(int stepsSinceLast, double& res
   {
     if (!std::isfinite(values[k]))
     {
-      vtkErrorMacro("The lattice density became non-finite (" << values[k] << ") at probe "
-                                                              << k / 3 << " after "
-                                                              << this->Iterations << " steps.");
+      vtkErrorMacro("The lattice density became non-finite ("
+        << values[k] << ") at probe " << k / 3 << " after " << this->Iterations << " steps.");
       return false;
     }
     peak = std::max(peak, std::abs(double(values[k])));
@@ -612,8 +611,7 @@ bool vtkLatticeBoltzmannSolver::ReadState(std::vector<float>& state)
   }
   state.resize(size_t(this->Lattice) * 3 * this->NumberOfVoxels);
   cl_mem buffer = this->UseBlocks() ? this->State[0].Get() : this->State[this->Current].Get();
-  return this->GetContext()->ReadBuffer(
-    buffer, state.size() * sizeof(float), state.data(), this);
+  return this->GetContext()->ReadBuffer(buffer, state.size() * sizeof(float), state.data(), this);
 }
 
 //------------------------------------------------------------------------------
@@ -724,8 +722,8 @@ double vtkLatticeBoltzmannSolver::CollisionProbability(
   const double s2 = lattice == D3Q18 ? 5.0 / 9.0 : 1.0 / 3.0;
   const double tau = sigmaT * h;
   const double k = 1.0 - albedo * g;
-  const double p =
-    (-3 * s2 * tau * tau * k + std::sqrt(9 * s2 * s2 * std::pow(tau, 4) * k * k + 48 * s2 * tau * tau)) /
+  const double p = (-3 * s2 * tau * tau * k +
+                     std::sqrt(9 * s2 * s2 * std::pow(tau, 4) * k * k + 48 * s2 * tau * tau)) /
     4;
   return std::min(1.0, std::max(0.0, p));
 }
@@ -751,7 +749,8 @@ double vtkLatticeBoltzmannSolver::LatticeDecayLength(
     rho[j] = 1 - p + albedo * p * g;
     s[j] = albedo * p * (1 - g) / q;
   }
-  auto f = [&](double kappa) {
+  auto f = [&](double kappa)
+  {
     double sum = 0;
     for (int j = 0; j < q; ++j)
     {

@@ -231,7 +231,10 @@ public:
    * The planar source buffer (3 planes of S1, then 3 of direction when PHASE_FUNCTION_SOURCE),
    * for producers that write the source on the device (the concurrent photon schedule).
    */
-  cl_mem GetSourceBuffer() const { return this->Source.Get(); }
+  cl_mem GetSourceBuffer() const
+  {
+    return this->Source.Get();
+  }
 
   /**
    * Enqueue (without waiting) the conversion of a photon pass's fixed-point accumulators
@@ -295,19 +298,28 @@ public:
   /**
    * Step-length class of each direction and the lengths (filled by Initialize()).
    */
-  const std::vector<double>& GetClassLengths() const { return this->ClassLengths; }
+  const std::vector<double>& GetClassLengths() const
+  {
+    return this->ClassLengths;
+  }
 #endif
 
   /**
    * Number of voxels of the initialized grid.
    */
-  vtkIdType GetNumberOfVoxels() const { return this->NumberOfVoxels; }
+  vtkIdType GetNumberOfVoxels() const
+  {
+    return this->NumberOfVoxels;
+  }
 
 protected:
   vtkLatticeBoltzmannSolver();
   ~vtkLatticeBoltzmannSolver() override;
 
-  bool UseBlocks() const { return this->BlockSize > 0 && this->Lattice == D3Q6; }
+  bool UseBlocks() const
+  {
+    return this->BlockSize > 0 && this->Lattice == D3Q6;
+  }
   bool BuildKernels();
   bool ReadProbes(std::vector<float>& values);
   bool SetProbes(const std::vector<cl_uint>& extra);

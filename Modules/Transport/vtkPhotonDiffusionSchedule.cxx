@@ -75,8 +75,8 @@ vtkLatticeBoltzmannSolver* vtkPhotonDiffusionSchedule::GetSolver()
 //------------------------------------------------------------------------------
 vtkMTimeType vtkPhotonDiffusionSchedule::GetMTime()
 {
-  return std::max({ this->Superclass::GetMTime(), static_cast<vtkObject*>(this->Tracer.GetPointer())->GetMTime(),
-    this->Solver->GetMTime() });
+  return std::max({ this->Superclass::GetMTime(),
+    static_cast<vtkObject*>(this->Tracer.GetPointer())->GetMTime(), this->Solver->GetMTime() });
 }
 
 //------------------------------------------------------------------------------
@@ -126,8 +126,9 @@ int vtkPhotonDiffusionSchedule::RequestData(
   bool callbackFailed = false;
   const int perChunk = this->DiffusionStepsPerChunk;
   this->Tracer->SetChunkCallback(
-    [solver, perChunk, &diffusionSteps, &callbackFailed](cl_mem rad, cl_mem dir, double rf,
-      double df, int) {
+    [solver, perChunk, &diffusionSteps, &callbackFailed](
+      cl_mem rad, cl_mem dir, double rf, double df, int)
+    {
       const int before = solver->GetStepsDone();
       if (!solver->SetSourceFromFixedPoint(rad, dir, rf, df) ||
         (perChunk > 0 && !solver->Iterate(perChunk, false)))

@@ -858,14 +858,14 @@ int vtkPhotonTracer::RequestData(
       for (size_t first = 0; first < photons; first += chunk)
       {
         const cl_uint firstId = static_cast<cl_uint>(first);
-        if (!ctx->Check(vtkOpenCLSetKernelArgs(marchChunk.Get(), pos.Get(), dirs.Get(),
-                          power.Get(), photonCount, nBuffer.Get(), gradBuffer.Get(),
-                          extBuffer.Get(), albBuffer.Get(), octree.Get(), dims, spacing,
-                          radFixed.Get(), dirFixed.Get(), tallies.Get(), counters.Get(), seed,
-                          firstId, state.Get(), status.Get(), k, active.Get()),
+        if (!ctx->Check(
+              vtkOpenCLSetKernelArgs(marchChunk.Get(), pos.Get(), dirs.Get(), power.Get(),
+                photonCount, nBuffer.Get(), gradBuffer.Get(), extBuffer.Get(), albBuffer.Get(),
+                octree.Get(), dims, spacing, radFixed.Get(), dirFixed.Get(), tallies.Get(),
+                counters.Get(), seed, firstId, state.Get(), status.Get(), k, active.Get()),
               "clSetKernelArg(photon_march_chunk)", this) ||
-          !Run1D(ctx, marchChunk.Get(), std::min(chunk, photons - first), "photon_march_chunk",
-            this))
+          !Run1D(
+            ctx, marchChunk.Get(), std::min(chunk, photons - first), "photon_march_chunk", this))
         {
           return 0;
         }

@@ -242,10 +242,12 @@ public:
    * them into S1 (power per unit volume) and direction sums, and the number of photons still
    * marching after this chunk (0 on the last call). Return false to abort the run (an error).
    */
-  using ChunkCallback = std::function<bool(
-    cl_mem radianceFixed, cl_mem directionFixed, double radianceFactor, double directionFactor,
-    int activePhotons)>;
-  void SetChunkCallback(ChunkCallback callback) { this->Callback = std::move(callback); }
+  using ChunkCallback = std::function<bool(cl_mem radianceFixed, cl_mem directionFixed,
+    double radianceFactor, double directionFactor, int activePhotons)>;
+  void SetChunkCallback(ChunkCallback callback)
+  {
+    this->Callback = std::move(callback);
+  }
 #endif
 
   /**

@@ -1,5 +1,5 @@
-// BenchmarkLatticeBoltzmann: cost of Refracta's Lattice-Boltzmann lighting (vtkLatticeBoltzmannSolver)
-// next to the device's memory bandwidth measured in the same run.
+// BenchmarkLatticeBoltzmann: cost of Refracta's Lattice-Boltzmann lighting
+// (vtkLatticeBoltzmannSolver) next to the device's memory bandwidth measured in the same run.
 //
 // For each grid size (64^3 and 128^3 by default; --large adds 256^3) and albedo (0.5, 0.9, 0.99)
 // it solves a homogeneous medium (sigma_t h = 0.5, g = 0) lit by a beam entering through the -x
@@ -10,11 +10,25 @@
 // OpenCL copy kernel over buffers of the state's size. Figures are medians of --repeats runs
 // (default 3). Writes CSV to --csv (default lbl_benchmark.csv).
 //
+// --table1 N runs instead the paper's Table I experiment on an N^3 medium entirely filled
+// (sigma_t h = 0.5, albedo 0.9, a sphere of index 1.2 in the middle so that rays curve; a
+// directional light, 65536 photons, fixed photon step of one voxel): total time of photon pass +
+// diffusion to convergence for the interleaved schedule with k = 2, 4, 8, 16, 32, 64 and for the
+// sequential one (march all, then diffuse), medians of --repeats runs.
+//
 // Usage: BenchmarkLatticeBoltzmann [--large] [--sizes 32,64] [--repeats N] [--csv file]
-//        [--max-steps N]
+//        [--max-steps N] [--isotropic] [--global-only] [--table1 N]
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkLatticeBoltzmannSolver.h"
+#include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
+#include "vtkPhotonDiffusionSchedule.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPointData.h"
 
 #include <algorithm>
 #include <chrono>
@@ -31,14 +45,98 @@ namespace
 {
 double Now()
 {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-    .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 double Median(std::vector<double> v)
 {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+double FieldValue(vtkImageData* image, const char* name)
+{
+  vtkDataArray* a = image->GetFieldData()->GetArray(name);
+  return a ? a->GetComponent(0, 0) : -1.0;
+}
+
+int RunTable1(int n, int repeats, const std::string& csv)
+{
+  auto medium = vtkSmartPointer<vtkImageData>::New();
+  medium->SetDimensions(n, n, n);
+  const vtkIdType count = medium->GetNumberOfPoints();
+  vtkNew<vtkFloatArray> ri, ext, alb;
+  ri->SetName("RefractiveIndex");
+  ri->SetNumberOfTuples(count);
+  ext->SetName("Extinction");
+  ext->SetNumberOfComponents(3);
+  ext->SetNumberOfTuples(count);
+  ext->Fill(0.5);
+  alb->SetName("Albedo");
+  alb->SetNumberOfComponents(3);
+  alb->SetNumberOfTuples(count);
+  alb->Fill(0.9);
+  for (vtkIdType v = 0; v < count; ++v)
+  {
+    const double x = v % n - 0.5 * n, y = (v / n) % n - 0.5 * n, z = v / (n * n) - 0.5 * n;
+    ri->SetValue(v, x * x + y * y + z * z < 0.09 * n * n ? 1.2f : 1.0f);
+  }
+  medium->GetPointData()->AddArray(ri);
+  medium->GetPointData()->AddArray(ext);
+  medium->GetPointData()->AddArray(alb);
+  std::ofstream out(csv);
+  out << "size,schedule,k,total_s,marching_s,final_solve_s,chunks,lbl_steps_during_marching,"
+         "lbl_steps_total\n";
+  std::printf(
+    "\n| schedule | k | total s | photon pass (+ interleaved diffusion) s | final solve s | "
+    "chunks | LBL steps during marching | LBL steps total |\n"
+    "|---|---|---|---|---|---|---|---|\n");
+  for (int k : { 0, 2, 4, 8, 16, 32, 64 })
+  {
+    std::vector<double> total, marching, solve;
+    double chunks = 0, during = 0, steps = 0;
+    for (int r = -1; r < repeats; ++r) // r = -1: warm-up (kernel builds), not timed
+    {
+      vtkNew<vtkPhotonDiffusionSchedule> schedule;
+      schedule->SetInputData(medium);
+      schedule->SetMode(
+        k == 0 ? vtkPhotonDiffusionSchedule::SEQUENTIAL : vtkPhotonDiffusionSchedule::INTERLEAVED);
+      schedule->SetStepsPerChunk(std::max(k, 1));
+      vtkNew<vtkLight> light;
+      light->SetPositional(false);
+      light->SetPosition(-10.0 * n, 0.3 * n, 0.4 * n);
+      light->SetFocalPoint(0, 0.3 * n, 0.4 * n);
+      schedule->GetPhotonTracer()->AddLight(light);
+      schedule->GetPhotonTracer()->SetNumberOfPhotons(65536);
+      schedule->GetPhotonTracer()->SetAdaptiveStepping(false);
+      schedule->GetPhotonTracer()->SetFixedStep(1.0);
+      schedule->Update();
+      vtkImageData* result = schedule->GetOutput();
+      if (result->GetNumberOfPoints() == 0)
+      {
+        return 1;
+      }
+      if (r < 0)
+      {
+        continue;
+      }
+      total.push_back(FieldValue(result, "ScheduleTotalSeconds"));
+      marching.push_back(FieldValue(result, "ScheduleMarchingSeconds"));
+      solve.push_back(FieldValue(result, "ScheduleFinalSolveSeconds"));
+      chunks = FieldValue(result, "ScheduleChunks");
+      during = FieldValue(result, "ScheduleDiffusionStepsDuringMarching");
+      steps = FieldValue(result, "LatticeBoltzmannIterations");
+    }
+    const char* name = k == 0 ? "sequential" : "interleaved";
+    std::printf("| %s | %s | %.2f | %.2f | %.2f | %g | %g | %g |\n", name,
+      k == 0 ? "-" : std::to_string(k).c_str(), Median(total), Median(marching), Median(solve),
+      chunks, during, steps);
+    std::fflush(stdout);
+    out << n << "," << name << "," << k << "," << Median(total) << "," << Median(marching) << ","
+        << Median(solve) << "," << chunks << "," << during << "," << steps << "\n";
+  }
+  std::printf("\nCSV written to %s\n", csv.c_str());
+  return 0;
 }
 
 // Copy bandwidth in bytes/s (read + write) over buffers of `bytes` bytes.
@@ -78,6 +176,7 @@ int main(int argc, char* argv[])
   int maxSteps = 5000;
   bool isotropic = false;
   bool globalOnly = false;
+  int table1 = 0;
   std::string csv = "lbl_benchmark.csv";
   for (int i = 1; i < argc; ++i)
   {
@@ -98,6 +197,10 @@ int main(int argc, char* argv[])
     else if (!std::strcmp(argv[i], "--isotropic"))
     {
       isotropic = true;
+    }
+    else if (!std::strcmp(argv[i], "--table1") && i + 1 < argc)
+    {
+      table1 = std::max(4, std::atoi(argv[++i]));
     }
     else if (!std::strcmp(argv[i], "--global-only"))
     {
@@ -129,6 +232,10 @@ int main(int argc, char* argv[])
   }
   std::printf("device: %s (%s), %d compute units\n", context->GetDeviceName(),
     context->GetPlatformName(), context->GetNumberOfComputeUnits());
+  if (table1 > 0)
+  {
+    return RunTable1(table1, repeats, csv);
+  }
   std::ofstream out(csv);
   out << "size,albedo,schedule,steps,converged,seconds,ms_per_step,mlups,effective_GBps,"
          "copy_GBps,ratio\n";
@@ -166,8 +273,12 @@ int main(int argc, char* argv[])
         std::vector<double> seconds;
         int steps = 0;
         bool converged = false;
-        for (int r = 0; r < repeats; ++r)
+        for (int r = -1; r < repeats; ++r) // r = -1: warm-up (kernel builds), not timed
         {
+          if (r < 0 && n > 64)
+          {
+            continue; // the 64^3 runs have built the kernels already
+          }
           vtkNew<vtkLatticeBoltzmannSolver> solver;
           solver->SetBlockSize(blocked ? 4 : 0);
           solver->SetStepsPerExchange(4);
@@ -186,7 +297,10 @@ int main(int argc, char* argv[])
           {
             return 1;
           }
-          seconds.push_back(Now() - t0);
+          if (r >= 0)
+          {
+            seconds.push_back(Now() - t0);
+          }
           steps = solver->GetIterations();
           converged = solver->GetConverged();
         }
@@ -198,9 +312,9 @@ int main(int argc, char* argv[])
           albedo, schedule, steps, converged ? "yes" : "no", 1e3 * t / steps, mlups,
           effective / 1e9, copy / 1e9, effective / copy);
         std::fflush(stdout);
-        out << n << "," << albedo << "," << schedule << "," << steps << "," << converged << ","
-            << t << "," << 1e3 * t / steps << "," << mlups << "," << effective / 1e9 << ","
-            << copy / 1e9 << "," << effective / copy << "\n";
+        out << n << "," << albedo << "," << schedule << "," << steps << "," << converged << "," << t
+            << "," << 1e3 * t / steps << "," << mlups << "," << effective / 1e9 << "," << copy / 1e9
+            << "," << effective / copy << "\n";
       }
     }
   }

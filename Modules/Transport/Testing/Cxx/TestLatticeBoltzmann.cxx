@@ -9,6 +9,8 @@
 // - albedo 0.999 and 1 stop cleanly with finite values;
 // - the phase-function source distribution makes a directed source diffuse forward;
 // - the filter's outputs, field data and error paths.
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -17,10 +19,8 @@
 #include "vtkLatticeBoltzmannSolver.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkTestErrorObserver.h"
-#include "vtkExecutive.h"
-#include "vtkCommand.h"
 #include "vtkSmartPointer.h"
+#include "vtkTestErrorObserver.h"
 
 #include <gtest/gtest.h>
 
@@ -87,8 +87,8 @@ vtkNew<vtkLatticeBoltzmannSolver> MakeSolver(
   solver->SetBlockSize(block);
   solver->SetStepsPerExchange(steps);
   solver->SetBoundary(boundary);
-  EXPECT_TRUE(solver->Initialize(
-    m.Dims, m.Spacing, m.Extinction.data(), m.Albedo.data(), m.G.data()));
+  EXPECT_TRUE(
+    solver->Initialize(m.Dims, m.Spacing, m.Extinction.data(), m.Albedo.data(), m.G.data()));
   return solver;
 }
 
@@ -123,8 +123,8 @@ TEST(LatticeBoltzmann, ConservesEnergyWithoutAbsorption)
   {
     int Lattice, Block, Steps;
   };
-  for (const Case& c : { Case{ 6, 0, 1 }, Case{ 6, 4, 1 }, Case{ 6, 4, 4 }, Case{ 6, 3, 8 },
-         Case{ 18, 0, 1 } })
+  for (const Case& c :
+    { Case{ 6, 0, 1 }, Case{ 6, 4, 1 }, Case{ 6, 4, 4 }, Case{ 6, 3, 8 }, Case{ 18, 0, 1 } })
   {
     vtkNew<vtkLatticeBoltzmannSolver> solver = MakeSolver(m, c.Lattice, c.Block, c.Steps, 1);
     Prime(solver, m, true);
@@ -167,8 +167,8 @@ TEST(LatticeBoltzmann, LosesExactlyTheAbsorbedPower)
         absorbedSum[ch] += absorbed[ch];
         if (absorbed[ch] > 1e-6 * start[ch])
         {
-          worstStep = std::max(worstStep,
-            std::abs((before[ch] - after[ch]) - absorbed[ch]) / absorbed[ch]);
+          worstStep =
+            std::max(worstStep, std::abs((before[ch] - after[ch]) - absorbed[ch]) / absorbed[ch]);
         }
       }
     }
@@ -305,8 +305,8 @@ void CheckGreensFunction(const GreenCase& k)
   const double sigmaA = k.SigmaT * (1 - k.Albedo);
   const double sigmaTr = sigmaA + k.SigmaT * k.Albedo * (1 - k.G);
   const double continuum = 1.0 / std::sqrt(3 * sigmaA * sigmaTr);
-  const double exact = vtkLatticeBoltzmannSolver::LatticeDecayLength(
-    k.Lattice, k.Model, k.SigmaT, k.Albedo, k.G, 1.0);
+  const double exact =
+    vtkLatticeBoltzmannSolver::LatticeDecayLength(k.Lattice, k.Model, k.SigmaT, k.Albedo, k.G, 1.0);
   const double diffusion = vtkLatticeBoltzmannSolver::LatticeDiffusionLength(
     k.Lattice, k.Model, k.SigmaT, k.Albedo, k.G, 1.0);
   const bool matched = k.Model == vtkLatticeBoltzmannSolver::DIFFUSION_MATCHED;
@@ -374,9 +374,10 @@ TEST(LatticeBoltzmann, HighAlbedoStopsCleanly)
         ASSERT_GE(v, 0.0f);
         peak = std::max(peak, double(v));
       }
-      std::printf("albedo %.3f boundary %d: %d steps, residual %.3e, converged %d, peak S_ms %.4g\n",
-        albedo, boundary, solver->GetIterations(), solver->GetResidual(),
-        int(solver->GetConverged()), peak);
+      std::printf(
+        "albedo %.3f boundary %d: %d steps, residual %.3e, converged %d, peak S_ms %.4g\n", albedo,
+        boundary, solver->GetIterations(), solver->GetResidual(), int(solver->GetConverged()),
+        peak);
       if (boundary == 0)
       {
         EXPECT_TRUE(solver->GetConverged());
@@ -500,7 +501,8 @@ TEST(LatticeBoltzmannLighting, OutputsAndEnergyBalance)
   EXPECT_DOUBLE_EQ(out->GetSpacing()[1], h);
   ASSERT_NE(out->GetPointData()->GetArray("Radiance"), nullptr);
   ASSERT_NE(out->GetPointData()->GetArray("RadianceDirection"), nullptr);
-  EXPECT_EQ(out->GetPointData()->GetArray("Radiance")->GetComponent(0, 2), radiance->GetComponent(0, 2));
+  EXPECT_EQ(
+    out->GetPointData()->GetArray("Radiance")->GetComponent(0, 2), radiance->GetComponent(0, 2));
   vtkDataArray* ms = out->GetPointData()->GetArray("MultipleScattering");
   ASSERT_NE(ms, nullptr);
   ASSERT_EQ(ms->GetNumberOfComponents(), 3);
@@ -536,16 +538,17 @@ TEST(LatticeBoltzmannLighting, OutputsAndEnergyBalance)
 TEST(LatticeBoltzmannLighting, RejectsBadInput)
 {
   const int n = 6;
-  auto makeMedium = [&]() {
+  auto makeMedium = [&]()
+  {
     vtkSmartPointer<vtkImageData> medium = MakeImage(n, 1.0);
     medium->GetPointData()->AddArray(MakeArray("Extinction", 3, medium->GetNumberOfPoints(), 1));
     medium->GetPointData()->AddArray(MakeArray("Albedo", 3, medium->GetNumberOfPoints(), 0.5));
     return medium;
   };
-  auto makeLighting = [&](int size) {
+  auto makeLighting = [&](int size)
+  {
     vtkSmartPointer<vtkImageData> lighting = MakeImage(size, 1.0);
-    lighting->GetPointData()->AddArray(
-      MakeArray("Radiance", 3, lighting->GetNumberOfPoints(), 1));
+    lighting->GetPointData()->AddArray(MakeArray("Radiance", 3, lighting->GetNumberOfPoints(), 1));
     return lighting;
   };
   struct Case

@@ -49,14 +49,16 @@ TEST(PhotonDiffusionSchedule, InterleavedMatchesSequential)
   const double h = 0.5;
   for (bool curved : { false, true })
   {
-    vtkSmartPointer<vtkImageData> medium = MakeMedium(20, 14, 16, h, [&](double x, double y, double z) {
-      Voxel v;
-      const double r2 = (x - 5) * (x - 5) + (y - 3.25) * (y - 3.25) + (z - 3.75) * (z - 3.75);
-      v.N = curved && r2 < 6.0 ? 1.3 : 1.0;
-      v.Extinction = { 1.2, 1.0, 0.8 };
-      v.Albedo = { 0.9, 0.95, 0.99 };
-      return v;
-    });
+    vtkSmartPointer<vtkImageData> medium = MakeMedium(20, 14, 16, h,
+      [&](double x, double y, double z)
+      {
+        Voxel v;
+        const double r2 = (x - 5) * (x - 5) + (y - 3.25) * (y - 3.25) + (z - 3.75) * (z - 3.75);
+        v.N = curved && r2 < 6.0 ? 1.3 : 1.0;
+        v.Extinction = { 1.2, 1.0, 0.8 };
+        v.Albedo = { 0.9, 0.95, 0.99 };
+        return v;
+      });
     vtkSmartPointer<vtkImageData> sequential =
       RunSchedule(medium, vtkPhotonDiffusionSchedule::SEQUENTIAL, 16);
     ASSERT_GT(sequential->GetNumberOfPoints(), 0);
@@ -86,8 +88,10 @@ TEST(PhotonDiffusionSchedule, InterleavedMatchesSequential)
       {
         for (int c = 0; c < 3; ++c)
         {
-          radDiff = std::max(radDiff, std::abs(radInt->GetComponent(t, c) - radSeq->GetComponent(t, c)));
-          msDiff = std::max(msDiff, std::abs(msInt->GetComponent(t, c) - msSeq->GetComponent(t, c)));
+          radDiff =
+            std::max(radDiff, std::abs(radInt->GetComponent(t, c) - radSeq->GetComponent(t, c)));
+          msDiff =
+            std::max(msDiff, std::abs(msInt->GetComponent(t, c) - msSeq->GetComponent(t, c)));
         }
       }
       const auto eSeq = Energy(sequential, "EnergyScattered");
