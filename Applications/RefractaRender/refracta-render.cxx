@@ -18,6 +18,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkJPEGReader.h"
+#include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLight.h"
 #include "vtkMediumMaterial.h"
 #include "vtkMediumValidator.h"
@@ -90,7 +91,8 @@ const char* const DefaultScene = R"JSON({
     { "type": "spot", "position": [0, 3, 0], "focal_point": [0, 0, 0], "cone_angle": 12,
       "exponent": 1, "color": [1.0, 0.95, 0.85], "intensity": 60 }
   ],
-  "quality": { "photons": 262144, "view_step": 1.0, "seed": 1 }
+  "quality": { "photons": 262144, "view_step": 1.0, "seed": 1,
+               "multiple_scattering": true, "multiple_scattering_tolerance": 0.001 }
 })JSON";
 
 // ---------------------------------------------------------------------------------------------
@@ -514,7 +516,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
   const json quality = scene.value("quality", json::object());
   CheckKeys(quality, "scene.quality",
     { "photons", "seed", "view_step", "ray_mode", "transmittance_cutoff", "photon_min_step",
-      "photon_smoothing" });
+      "photon_smoothing", "multiple_scattering", "multiple_scattering_tolerance" });
   const int photons = Integer(quality, "photons", "scene.quality", 1 << 18, 1, 1 << 28);
   const int seed = Integer(quality, "seed", "scene.quality", 1, 0, 2147483647);
   const double viewStep = Number(quality, "view_step", "scene.quality", 1.0, 0.01, 16.0);
@@ -523,6 +525,9 @@ int Render(const json& scene, const std::string& base, const Options& options)
   const double cutoff = Number(quality, "transmittance_cutoff", "scene.quality", 1e-4, 0.0, 1.0);
   const double photonMinStep = Number(quality, "photon_min_step", "scene.quality", 1.0, 1e-3, 1e6);
   const bool photonSmoothing = Boolean(quality, "photon_smoothing", "scene.quality", true);
+  const bool multipleScattering = Boolean(quality, "multiple_scattering", "scene.quality", true);
+  const double lblTolerance =
+    Number(quality, "multiple_scattering_tolerance", "scene.quality", 1e-4, 1e-8, 1.0);
 
   // --- medium ---
   Timer mediumTimer;
@@ -868,7 +873,6 @@ int Render(const json& scene, const std::string& base, const Options& options)
       throw std::runtime_error("the light pass (vtkPhotonTracer) failed (see the error above)");
     }
     lighting = tracer->GetOutput();
-    renderer->SetLightingData(lighting);
     lightReport = FieldDataToJson(lighting->GetFieldData());
     lightReport["octree_seconds"] = tracer->GetOctreeSeconds();
     lightReport["generation_seconds"] = tracer->GetGenerationSeconds();
@@ -876,14 +880,40 @@ int Render(const json& scene, const std::string& base, const Options& options)
     lightReport["smoothing_seconds"] = tracer->GetSmoothingSeconds();
     lightReport["curved_rays"] = tracer->GetUsedCurvedRays();
     lightReport["octree"] = tracer->GetUsedOctree();
+    lightReport["photon_seconds"] = lightTimer.Seconds();
+    if (multipleScattering)
+    {
+      // Multiple scattering: Lattice-Boltzmann lighting driven by the photon pass's S1.
+      Timer lblTimer;
+      vtkNew<vtkLatticeBoltzmannLighting> lbl;
+      lbl->SetInputData(mediumImage);
+      lbl->SetLightingData(lighting);
+      lbl->SetTolerance(lblTolerance);
+      lbl->Update();
+      if (lbl->GetOutput()->GetNumberOfPoints() == 0)
+      {
+        throw std::runtime_error("the multiple-scattering pass (vtkLatticeBoltzmannLighting) "
+                                 "failed (see the error above)");
+      }
+      lighting = lbl->GetOutput();
+      json lblReport = FieldDataToJson(lighting->GetFieldData());
+      lightReport["multiple_scattering"] = { { "iterations",
+                                               lblReport.value("LatticeBoltzmannIterations", 0.0) },
+        { "residual", lblReport.value("LatticeBoltzmannResidual", 0.0) },
+        { "converged", lblReport.value("LatticeBoltzmannConverged", 0.0) != 0.0 },
+        { "seconds", lblTimer.Seconds() } };
+    }
+    else
+    {
+      lightReport["multiple_scattering"] = "off (quality.multiple_scattering)";
+    }
+    renderer->SetLightingData(lighting);
   }
   else
   {
     lightReport["skipped"] =
       lightCount == 0 ? "no lights" : "nothing in the medium scatters (albedo or extinction 0)";
   }
-  lightReport["multiple_scattering"] =
-    "not in this build (vtkLatticeBoltzmannLighting not merged); single scattering only";
   timings["light_pass"] = lightTimer.Seconds();
 
   // --- view pass ---
@@ -964,7 +994,9 @@ int Render(const json& scene, const std::string& base, const Options& options)
     { "tone_mapping", toneMapping } };
   report["quality"] = { { "photons", photons }, { "seed", seed }, { "view_step", viewStep },
     { "ray_mode", rayMode }, { "transmittance_cutoff", cutoff },
-    { "photon_min_step", photonMinStep }, { "photon_smoothing", photonSmoothing } };
+    { "photon_min_step", photonMinStep }, { "photon_smoothing", photonSmoothing },
+    { "multiple_scattering", multipleScattering },
+    { "multiple_scattering_tolerance", lblTolerance } };
   report["medium"] = mediumReport;
   report["light_pass"] = lightReport;
   report["view_pass"] = { { "curved_rays", renderer->GetViewPass()->GetLastCurved() },
@@ -988,7 +1020,15 @@ int Render(const json& scene, const std::string& base, const Options& options)
     auto r = lightReport.value("EnergyRemaining", json::array());
     std::cout << "  light     " << lightReport.value("NumberOfPhotons", 0.0) << " photons, "
               << lightReport.value("TotalSteps", 0.0) << " steps, "
-              << timings["light_pass"].get<double>() << " s\n";
+              << lightReport.value("photon_seconds", 0.0) << " s\n";
+    if (lightReport["multiple_scattering"].is_object())
+    {
+      const json& ms = lightReport["multiple_scattering"];
+      std::cout << "  multiple  Lattice-Boltzmann " << ms["iterations"].get<double>()
+                << " iterations, residual " << ms["residual"].get<double>()
+                << (ms["converged"].get<bool>() ? " (converged), " : " (NOT converged), ")
+                << ms["seconds"].get<double>() << " s\n";
+    }
     if (e.size() == 3 && s.size() == 3 && a.size() == 3 && x.size() == 3 && r.size() == 3)
     {
       const double em = e[0].get<double>() + e[1].get<double>() + e[2].get<double>();

@@ -3,6 +3,7 @@
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix4x4.h"
@@ -247,7 +248,8 @@ bool vtkRefractiveVolumeMapper::UpdateLighting(vtkRenderer* renderer, vtkVolume*
   // Signature of every light that is on, in world coordinates, and of the volume's placement.
   std::ostringstream key;
   key.precision(17);
-  key << "lights:" << in.MediumKey << ":" << this->NumberOfPhotons << ":" << this->Seed;
+  key << "lights:" << in.MediumKey << ":" << this->NumberOfPhotons << ":" << this->Seed << ":"
+      << this->MultipleScattering;
   const double* m = volume->GetMatrix()->GetData();
   for (int i = 0; i < 16; ++i)
   {
@@ -331,6 +333,23 @@ bool vtkRefractiveVolumeMapper::UpdateLighting(vtkRenderer* renderer, vtkVolume*
     }
     in.Lighting = vtkSmartPointer<vtkImageData>::New();
     in.Lighting->ShallowCopy(tracer->GetOutput());
+    if (this->MultipleScattering)
+    {
+      // Multiple scattering: Lattice-Boltzmann lighting driven by the photon pass's S1.
+      vtkNew<vtkLatticeBoltzmannLighting> lbl;
+      lbl->SetContext(in.ViewPass->GetContext());
+      lbl->SetInputData(in.Medium);
+      lbl->SetLightingData(in.Lighting);
+      lbl->Update();
+      if (lbl->GetOutput()->GetNumberOfPoints() == 0)
+      {
+        vtkErrorMacro("The multiple-scattering pass (vtkLatticeBoltzmannLighting) failed; see "
+                      "its error above.");
+        in.Lighting = nullptr;
+        return false;
+      }
+      in.Lighting->ShallowCopy(lbl->GetOutput());
+    }
     ++this->NumberOfLightPassRuns;
   }
   if (!in.ViewPass->SetLighting(in.Lighting))
@@ -486,6 +505,7 @@ void vtkRefractiveVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "NumberOfPhotons: " << this->NumberOfPhotons << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "LightingData: " << this->Internal->LightingData.Get() << "\n";
   os << indent << "NumberOfMediumBuilds: " << this->NumberOfMediumBuilds << "\n";
   os << indent << "NumberOfLightPassRuns: " << this->NumberOfLightPassRuns << "\n";

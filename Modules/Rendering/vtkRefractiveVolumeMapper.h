@@ -15,7 +15,9 @@
  *    volume property (including its transfer functions) or a medium setting of this mapper
  *    (RefractiveIndexFunction, Anisotropy, EmissionScale) changes.
  * 2. **Light passes**: the lighting volume for the renderer's lights (vtkLight, switched on;
- *    converted into the medium's frame through the vtkVolume's matrix). Re-run when the medium
+ *    converted into the medium's frame through the vtkVolume's matrix): vtkPhotonTracer, then
+ *    vtkLatticeBoltzmannLighting when MultipleScattering is on (default); skipped when nothing in
+ *    the medium scatters. Re-run when the medium
  *    is rebuilt or any light changes (type, position, focal point, colour, intensity, cone angle,
  *    exponent, transform). A headlight or camera light moves with the camera, so for them a
  *    camera change is a light change. SetLightingData() supplies a precomputed lighting volume
@@ -101,6 +103,16 @@ public:
 
   ///@{
   /**
+   * Run vtkLatticeBoltzmannLighting after the photon pass to add multiple scattering
+   * (`MultipleScattering`, S_ms). Default on.
+   */
+  vtkSetMacro(MultipleScattering, bool);
+  vtkGetMacro(MultipleScattering, bool);
+  vtkBooleanMacro(MultipleScattering, bool);
+  ///@}
+
+  ///@{
+  /**
    * View-pass settings (see vtkRefractaViewPass): StepSize in voxels (default 1), RayMode
    * (default AUTO), TransmittanceCutoff (default 1e-4).
    */
@@ -169,6 +181,7 @@ protected:
   double Exposure = 1.0;
   int NumberOfPhotons = 1 << 18;
   int Seed = 1;
+  bool MultipleScattering = true;
   int NumberOfMediumBuilds = 0;
   int NumberOfLightPassRuns = 0;
   int NumberOfViewPassRuns = 0;

@@ -346,6 +346,7 @@ TEST(RefractiveVolumeMapper, LightPassesRunOnlyWhenLightsChange)
   EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 1);
   ASSERT_NE(scene.Mapper->GetLighting(), nullptr);
   EXPECT_NE(scene.Mapper->GetLighting()->GetPointData()->GetArray("Radiance"), nullptr);
+  EXPECT_NE(scene.Mapper->GetLighting()->GetPointData()->GetArray("MultipleScattering"), nullptr);
   // The fog is lit: the medium's radiance shows (the background is black).
   vtkSmartPointer<vtkImageData> lit = scene.Capture();
   double sum = 0;
