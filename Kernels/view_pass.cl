@@ -33,6 +33,50 @@
 #define REFRACTA_INV_4PI 0.0795774715459476679f
 #endif
 
+// Trilinear samples with a stencil computed once per step and shared by every field (the medium
+// and lighting arrays live on the same grid): refracta_make_stencil from refracta_common.cl.
+typedef struct
+{
+  size_t c[8];
+  float fx, fy, fz;
+} refracta_view_stencil;
+
+inline refracta_view_stencil refracta_view_make_stencil(int4 dims, float3 u)
+{
+  const refracta_stencil s = refracta_make_stencil(dims, u);
+  refracta_view_stencil v;
+  v.c[0] = refracta_voxel_index(dims, s.i0, s.j0, s.k0);
+  v.c[1] = refracta_voxel_index(dims, s.i1, s.j0, s.k0);
+  v.c[2] = refracta_voxel_index(dims, s.i0, s.j1, s.k0);
+  v.c[3] = refracta_voxel_index(dims, s.i1, s.j1, s.k0);
+  v.c[4] = refracta_voxel_index(dims, s.i0, s.j0, s.k1);
+  v.c[5] = refracta_voxel_index(dims, s.i1, s.j0, s.k1);
+  v.c[6] = refracta_voxel_index(dims, s.i0, s.j1, s.k1);
+  v.c[7] = refracta_voxel_index(dims, s.i1, s.j1, s.k1);
+  v.fx = s.fx;
+  v.fy = s.fy;
+  v.fz = s.fz;
+  return v;
+}
+
+inline float refracta_view_sample1(__global const float* f, const refracta_view_stencil* s)
+{
+  const float c00 = mix(f[s->c[0]], f[s->c[1]], s->fx);
+  const float c10 = mix(f[s->c[2]], f[s->c[3]], s->fx);
+  const float c01 = mix(f[s->c[4]], f[s->c[5]], s->fx);
+  const float c11 = mix(f[s->c[6]], f[s->c[7]], s->fx);
+  return mix(mix(c00, c10, s->fy), mix(c01, c11, s->fy), s->fz);
+}
+
+inline float3 refracta_view_sample3(__global const float* f, const refracta_view_stencil* s)
+{
+  const float3 c00 = mix(vload3(s->c[0], f), vload3(s->c[1], f), s->fx);
+  const float3 c10 = mix(vload3(s->c[2], f), vload3(s->c[3], f), s->fx);
+  const float3 c01 = mix(vload3(s->c[4], f), vload3(s->c[5], f), s->fx);
+  const float3 c11 = mix(vload3(s->c[6], f), vload3(s->c[7], f), s->fx);
+  return mix(mix(c00, c10, s->fy), mix(c01, c11, s->fy), s->fz);
+}
+
 // (1 - exp(-tau)) / tau per channel, without cancellation for small tau.
 inline float3 refracta_segment_weight(float3 tau)
 {
@@ -81,21 +125,22 @@ inline float3 refracta_background(float3 d, float4 background, __global const fl
 }
 
 // Source term Q at grid-local point x for a ray travelling in unit direction d.
-inline float3 refracta_view_source(float3 u, float3 d, int4 dims, __global const float* emission,
+inline float3 refracta_view_source(const refracta_view_stencil* st, float3 d,
+  __global const float* emission,
   __global const float* anisotropy, __global const float* radiance,
   __global const float* radianceDirection, __global const float* multiple)
 {
   float3 q = (float3)(0.0f);
 #ifdef REFRACTA_HAS_EMISSION
-  q += refracta_sample3(emission, dims, u);
+  q += refracta_view_sample3(emission, st);
 #endif
 #ifdef REFRACTA_HAS_SINGLE
-  const float3 s1 = refracta_sample3(radiance, dims, u);
+  const float3 s1 = refracta_view_sample3(radiance, st);
   if (s1.x + s1.y + s1.z > 0.0f)
   {
-    const float3 mean = refracta_sample3(radianceDirection, dims, u);
+    const float3 mean = refracta_view_sample3(radianceDirection, st);
     const float len = length(mean);
-    const float g = refracta_sample1(anisotropy, dims, u);
+    const float g = refracta_view_sample1(anisotropy, st);
     // w_o = -d (towards the camera); trilinear blending shortens unit vectors: re-normalise, and
     // fall back to the isotropic phase where the stored directions cancel.
     const float phase = len > 1e-6f ? refracta_hg_phase(dot(mean, -d) / len, g) : REFRACTA_INV_4PI;
@@ -103,7 +148,7 @@ inline float3 refracta_view_source(float3 u, float3 d, int4 dims, __global const
   }
 #endif
 #ifdef REFRACTA_HAS_MULTIPLE
-  q += REFRACTA_INV_4PI * refracta_sample3(multiple, dims, u);
+  q += REFRACTA_INV_4PI * refracta_view_sample3(multiple, st);
 #endif
   return q;
 }
@@ -205,10 +250,11 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
         len = fmax(limit - travelled, 0.0f);
         blocked = true;
       }
-      const float3 mid = refracta_to_voxel(x + (0.5f * len) * chord, spacing);
-      const float3 sigma = refracta_sample3(extinction, dims, mid);
+      const refracta_view_stencil st =
+        refracta_view_make_stencil(dims, refracta_to_voxel(x + (0.5f * len) * chord, spacing));
+      const float3 sigma = refracta_view_sample3(extinction, &st);
       const float3 q = refracta_view_source(
-        mid, chord, dims, emission, anisotropy, radiance, radianceDirection, multiple);
+        &st, chord, emission, anisotropy, radiance, radianceDirection, multiple);
       const float3 tau = sigma * len;
       radianceSum += transmittance * q * (len * refracta_segment_weight(tau));
       transmittance *= exp(-tau);
