@@ -23,6 +23,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libglm-dev
   libosmesa6-dev xvfb xauth
   libgtest-dev libbenchmark-dev
+  nlohmann-json3-dev
 )
 
 install_missing_packages() {

@@ -453,3 +453,216 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   atom_add(counters + 6, (long)steps);
   atom_add(counters + 7, (long)ps.pieces);
 }
+
+// ---------------------------------------------------------------------------------------------
+// photon_march_chunk (added for the interleaved photon/diffusion schedule of Bernabei et al.,
+// section III-B): the same marching as photon_march, resumable. Each launch advances every
+// photon by at most `chunkSteps` steps (curved rays: marcher steps; straight rays: segments of
+// one voxel edge, since a straight ray is otherwise a single step to the exit) and keeps its
+// state in `state` (8 float4 per photon: x, v, power + roulette threshold, absorbed, scattered,
+// killed, gained, emitted) and `status` (status 0 new / 1 marching / 2 done, steps, rng,
+// pieces). Deposits go to the same fixed-point accumulators as photon_march (they replace the
+// paper's Ray History Buffer and its OpenGL blending: the accumulation is atomic here); a
+// finished photon adds its tallies and counters exactly as photon_march does, so a chunked run
+// gives the same books and, step for step, the same deposits. `active` counts the photons still
+// marching after the launch. One work-item per photon (offset `first`).
+__kernel void photon_march_chunk(__global const float4* photonPos,
+  __global const float4* photonDir, __global const float4* photonPower, const uint count,
+  __global const float* refractiveIndex, __global const float* gradient,
+  __global const float* extinction, __global const float* albedo, __global const uchar* octree,
+  const int4 dims, const float4 spacing, volatile __global long* radiance,
+  volatile __global long* directionSum, volatile __global long* tallies,
+  volatile __global long* counters, const uint seed, const uint first, __global float4* state,
+  __global uint4* status, const uint chunkSteps, volatile __global int* active)
+{
+  const uint id = first + (uint)get_global_id(0);
+  if (id >= count)
+  {
+    return;
+  }
+  uint4 st = status[id];
+  if (st.x == 2u)
+  {
+    return;
+  }
+  __global float4* s = state + 8 * (size_t)id;
+  photon_state ps;
+  float3 x, v, emitted;
+  float3 lo;
+  float3 hi;
+  refracta_domain(dims, spacing, &lo, &hi);
+  if (st.x == 0u)
+  {
+    ps.power = photonPower[id].xyz;
+    const float p0 = fmax(ps.power.x, fmax(ps.power.y, ps.power.z));
+    if (!(p0 > 0.0f))
+    {
+      atom_add(counters + 1, 1L);
+      status[id] = (uint4)(2u, 0u, 0u, 0u);
+      return;
+    }
+    ps.threshold = ROULETTE * p0;
+    ps.absorbed = ps.scattered = ps.killed = ps.gained = (float3)(0.0f);
+    ps.rng = refracta_rng_seed(seed, id);
+    ps.pieces = 0;
+    emitted = ps.power;
+    x = photonPos[id].xyz;
+    const float3 d0 = normalize(photonDir[id].xyz);
+#if REFRACT
+    v = d0 * refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
+#else
+    // Straight ray: start at the box entry (photon_march's single step starts there too).
+    float t0;
+    float t1;
+    if (refracta_intersect_box(x, d0, lo, hi, &t0, &t1) && t1 > 0.0f)
+    {
+      x = x + t0 * d0;
+      v = d0;
+    }
+    else
+    {
+      v = (float3)(0.0f); // misses: escapes at once below
+    }
+#endif
+    st = (uint4)(1u, 0u, ps.rng, 0u);
+  }
+  else
+  {
+    x = s[0].xyz;
+    v = s[1].xyz;
+    ps.power = s[2].xyz;
+    ps.threshold = s[2].w;
+    ps.absorbed = s[3].xyz;
+    ps.scattered = s[4].xyz;
+    ps.killed = s[5].xyz;
+    ps.gained = s[6].xyz;
+    emitted = s[7].xyz;
+    ps.rng = st.z;
+    ps.pieces = st.w;
+  }
+  ps.dead = 0;
+  int steps = (int)st.y;
+  int outcome = -1; // -1 still marching; 2 escaped, 3 roulette, 4 step cap, 5 invalid
+#if !REFRACT
+  {
+    float t0;
+    float t1;
+    const float segment = fmin(spacing.x, fmin(spacing.y, spacing.z));
+    if (!(length(v) > 0.0f) || !refracta_intersect_box(x, v, lo, hi, &t0, &t1) || !(t1 > 0.0f))
+    {
+      outcome = 2;
+    }
+    for (uint c = 0; c < chunkSteps && outcome < 0; ++c)
+    {
+      const float len = fmin(segment, t1);
+      if (steps == 0)
+      {
+        steps = 1; // photon_march counts a straight ray as one step
+      }
+#if EXTINCTION
+      photon_walk(&ps, x, x + len * v, 1.0f, dims, spacing, extinction, albedo, radiance,
+        directionSum);
+#endif
+      x = x + len * v;
+      t1 -= len;
+      if (ps.dead)
+      {
+        outcome = 3;
+      }
+      else if (!(t1 > 1e-6f * segment))
+      {
+        outcome = 2;
+      }
+    }
+  }
+#else
+  for (uint c = 0; c < chunkSteps; ++c)
+  {
+    if (steps >= MAX_STEPS)
+    {
+      outcome = 4;
+      break;
+    }
+    const float n0 = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
+    const float3 dir = v / length(v);
+    const float h = photon_step(x, dir, octree, extinction, dims, spacing);
+    const float3 g0 = refracta_sample3(gradient, dims, refracta_to_voxel(x, spacing));
+    const float3 xm = x + (0.5f * h / n0) * v;
+    const float3 vm = v + photon_bounded(0.5f * h * g0, n0);
+    const float3 um = refracta_to_voxel(xm, spacing);
+    const float nm = refracta_sample1(refractiveIndex, dims, um);
+    const float3 gm = refracta_sample3(gradient, dims, um);
+    const float3 x1 = x + (h / nm) * vm;
+    float3 v1 = v + photon_bounded(h * gm, nm);
+    const float n1 = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x1, spacing));
+    const float speed = length(v1);
+    v1 = speed > 1e-6f * n1 ? v1 * (n1 / speed) : dir * n1;
+    ++steps;
+    if (!all(isfinite(x1)) || !all(isfinite(v1)))
+    {
+      outcome = 5;
+      break;
+    }
+    float e0;
+    float e1;
+    const bool inBox = all(x1 >= lo) && all(x1 <= hi);
+    float tExit = 1.0f;
+    if (!inBox)
+    {
+      tExit = refracta_intersect_box(x, x1 - x, lo, hi, &e0, &e1) ? clamp(e1, 0.0f, 1.0f) : 0.0f;
+    }
+#if EXTINCTION
+    photon_walk(&ps, x, x1, tExit, dims, spacing, extinction, albedo, radiance, directionSum);
+    if (ps.dead)
+    {
+      outcome = 3;
+      break;
+    }
+#endif
+    if (!inBox)
+    {
+      outcome = 2;
+      break;
+    }
+    x = x1;
+    v = v1;
+  }
+#endif
+  if (outcome < 0)
+  {
+    s[0] = (float4)(x, 0.0f);
+    s[1] = (float4)(v, 0.0f);
+    s[2] = (float4)(ps.power, ps.threshold);
+    s[3] = (float4)(ps.absorbed, 0.0f);
+    s[4] = (float4)(ps.scattered, 0.0f);
+    s[5] = (float4)(ps.killed, 0.0f);
+    s[6] = (float4)(ps.gained, 0.0f);
+    s[7] = (float4)(emitted, 0.0f);
+    status[id] = (uint4)(1u, (uint)steps, ps.rng, ps.pieces);
+    atomic_inc(active);
+    return;
+  }
+  float3 remaining = (float3)(0.0f);
+  float3 escaped = (float3)(0.0f);
+  if (outcome == 2)
+  {
+    escaped = ps.power;
+  }
+  else if (outcome != 3)
+  {
+    remaining = ps.power;
+  }
+  status[id] = (uint4)(2u, (uint)steps, ps.rng, ps.pieces);
+  const float3 books[7] = { emitted, ps.absorbed, escaped, ps.scattered, remaining, ps.killed,
+    ps.gained };
+  for (int t = 0; t < 7; ++t)
+  {
+    refracta_atomic_add_fixed(tallies + 3 * t + 0, books[t].x);
+    refracta_atomic_add_fixed(tallies + 3 * t + 1, books[t].y);
+    refracta_atomic_add_fixed(tallies + 3 * t + 2, books[t].z);
+  }
+  atom_add(counters + 0, 1L);
+  atom_add(counters + outcome, 1L);
+  atom_add(counters + 6, (long)steps);
+  atom_add(counters + 7, (long)ps.pieces);
+}

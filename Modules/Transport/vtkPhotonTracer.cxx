@@ -823,7 +823,70 @@ int vtkPhotonTracer::RequestData(
   const cl_uint photonCount = static_cast<cl_uint>(photons);
   const cl_uint seed = this->Seed;
   const size_t chunk = size_t(1) << 16;
-  for (size_t first = 0; first < photons; first += chunk)
+  this->NumberOfChunks = 0;
+  if (this->StepsPerChunk > 0)
+  {
+    // Chunked march (photon_march_chunk): all photons advance k steps per launch; the callback
+    // (e.g. the Lattice-Boltzmann diffusion of what is already deposited) is enqueued between
+    // launches.
+    vtkOpenCLKernel marchChunk = ctx->CreateKernel(trace, "photon_march_chunk", this);
+    vtkOpenCLBuffer state =
+      alloc.Make(CL_MEM_READ_WRITE, photons * 8 * sizeof(cl_float4), nullptr, "photon state");
+    vtkOpenCLBuffer status =
+      alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_uint4), nullptr, "photon status");
+    vtkOpenCLBuffer active = alloc.Make(CL_MEM_READ_WRITE, sizeof(cl_int), nullptr, "active");
+    if (!marchChunk || !state || !status || !active ||
+      !ctx->ZeroBuffer(status.Get(), photons * sizeof(cl_uint4), this))
+    {
+      return 0;
+    }
+    const double radianceFactor = 1.0 / (scale * m.Spacing[0] * m.Spacing[1] * m.Spacing[2]);
+    const cl_uint k = static_cast<cl_uint>(this->StepsPerChunk);
+    // Curved rays stop at MaximumNumberOfSteps; straight ones cross at most the grid's diagonal
+    // in voxel edges. The bound only guards against a hang.
+    const size_t bound = static_cast<size_t>(this->MaximumNumberOfSteps) + 4 +
+      static_cast<size_t>(2 * (m.Dims[0] + m.Dims[1] + m.Dims[2]) *
+        std::max({ m.Spacing[0], m.Spacing[1], m.Spacing[2] }) /
+        std::min({ m.Spacing[0], m.Spacing[1], m.Spacing[2] }));
+    int stillActive = 1;
+    for (size_t launch = 0; stillActive > 0 && launch * k <= bound; ++launch)
+    {
+      if (!ctx->ZeroBuffer(active.Get(), sizeof(cl_int), this))
+      {
+        return 0;
+      }
+      for (size_t first = 0; first < photons; first += chunk)
+      {
+        const cl_uint firstId = static_cast<cl_uint>(first);
+        if (!ctx->Check(
+              vtkOpenCLSetKernelArgs(marchChunk.Get(), pos.Get(), dirs.Get(), power.Get(),
+                photonCount, nBuffer.Get(), gradBuffer.Get(), extBuffer.Get(), albBuffer.Get(),
+                octree.Get(), dims, spacing, radFixed.Get(), dirFixed.Get(), tallies.Get(),
+                counters.Get(), seed, firstId, state.Get(), status.Get(), k, active.Get()),
+              "clSetKernelArg(photon_march_chunk)", this) ||
+          !Run1D(
+            ctx, marchChunk.Get(), std::min(chunk, photons - first), "photon_march_chunk", this))
+        {
+          return 0;
+        }
+      }
+      cl_int count = 0;
+      if (!ctx->ReadBuffer(active.Get(), sizeof(cl_int), &count, this))
+      {
+        return 0;
+      }
+      stillActive = count;
+      ++this->NumberOfChunks;
+      if (this->Callback &&
+        !this->Callback(radFixed.Get(), dirFixed.Get(), radianceFactor, 1.0 / scale, count))
+      {
+        vtkErrorMacro("The chunk callback failed after chunk " << this->NumberOfChunks << ".");
+        return 0;
+      }
+      this->UpdateProgress(0.1 + 0.8 * std::min(1.0, double(launch * k) / bound));
+    }
+  }
+  for (size_t first = 0; this->StepsPerChunk == 0 && first < photons; first += chunk)
   {
     const cl_uint firstId = static_cast<cl_uint>(first);
     if (!ctx->Check(
@@ -997,6 +1060,7 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNumberOfSteps: " << this->MaximumNumberOfSteps << "\n";
   os << indent << "MaximumTurn: " << this->MaximumTurn << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";
+  os << indent << "StepsPerChunk: " << this->StepsPerChunk << "\n";
   os << indent << "UseProxyBounds: " << this->UseProxyBounds << "\n";
   os << indent << "Stage seconds (octree, generation, marching, smoothing): " << this->OctreeSeconds
      << ", " << this->GenerationSeconds << ", " << this->MarchingSeconds << ", "

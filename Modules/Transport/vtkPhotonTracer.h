@@ -50,6 +50,11 @@
 #include "vtkImageAlgorithm.h"
 #include "vtkSmartPointer.h" // for members
 
+#ifndef __VTK_WRAP__
+#include "vtkOpenCLHandle.h" // for cl_mem in the chunk callback
+#include <functional>        // for the chunk callback
+#endif
+
 class vtkLight;
 class vtkLightCollection;
 class vtkOpenCLContext;
@@ -212,6 +217,39 @@ public:
   vtkGetMacro(ComputedGradient, bool);
   ///@}
 
+  ///@{
+  /**
+   * Chunked marching (for the interleaved photon/diffusion schedule, see
+   * vtkLatticeBoltzmannLighting's README section): with StepsPerChunk k > 0 every photon
+   * advances at most k steps per launch (curved rays: marcher steps; straight rays: one voxel
+   * edge per step) and the ChunkCallback runs after each launch has been enqueued, before the
+   * next one, with the deposit accumulators so far. Default 0: each photon is marched to its end
+   * in one launch. The result is the same either way (same steps, same deposits, same books).
+   */
+  vtkSetClampMacro(StepsPerChunk, int, 0, 1 << 24);
+  vtkGetMacro(StepsPerChunk, int);
+  ///@}
+
+  /**
+   * Launches of the last chunked march (0 when not chunked).
+   */
+  vtkGetMacro(NumberOfChunks, int);
+
+#ifndef __VTK_WRAP__
+  /**
+   * Called after each chunk (on the context's queue, nothing waited for): the fixed-point
+   * Radiance and direction-sum accumulators (interleaved RGB/xyz, cl_long), the factors that turn
+   * them into S1 (power per unit volume) and direction sums, and the number of photons still
+   * marching after this chunk (0 on the last call). Return false to abort the run (an error).
+   */
+  using ChunkCallback = std::function<bool(cl_mem radianceFixed, cl_mem directionFixed,
+    double radianceFactor, double directionFactor, int activePhotons)>;
+  void SetChunkCallback(ChunkCallback callback)
+  {
+    this->Callback = std::move(callback);
+  }
+#endif
+
   /**
    * Build only the octree of `medium` into `octree` (same grid; unsigned char point arrays
    * `OctreeLevel`, the leaf level, and `OctreeStepLimited`, 1 where the secondary tolerance
@@ -245,6 +283,11 @@ protected:
   double MaximumTurn = 0.5;
   bool Smoothing = true;
   bool UseProxyBounds = true;
+  int StepsPerChunk = 0;
+  int NumberOfChunks = 0;
+#ifndef __VTK_WRAP__
+  ChunkCallback Callback;
+#endif
 
   double OctreeSeconds = 0;
   double GenerationSeconds = 0;

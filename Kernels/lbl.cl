@@ -1,0 +1,465 @@
+// lbl.cl: Lattice-Boltzmann lighting (Geist et al. 2004; Bernabei et al. section III-C), the
+// multiple-scattering pass of Refracta. Prepend refracta_common.cl.
+//
+// State. f_i(r) (per RGB channel) is the power per unit volume travelling along lattice
+// direction c_i that is about to cross voxel r. It is stored planar:
+// f[(i * 3 + ch) * N + v], v = x + nx (y + ny z), N the number of voxels, so that a work-group of
+// one x-row reads and writes contiguous memory.
+//
+// One lattice step (collision in voxel r, then streaming to r + c_i), per channel, with
+// T_i = exp(-sigma_t * len_i) the probability of crossing the voxel uncollided along c_i
+// (len_i = |c_i * spacing|), a the albedo and g the Henyey-Greenstein anisotropy:
+//   out_i = T_i f_i                                   uncollided, keeps its direction
+//         + a (1 - T_i) g+ f_i                        forward part of the scattering (g > 0)
+//         + a (1 - T_opp(i)) g- f_opp(i)              backward part of the scattering (g < 0)
+//         + w_i a (1 - |g|) sum_j (1 - T_j) f_j      isotropic part, w_i = 1 / Q
+//         + q_i                                       source: S1 w_src,i (scattered out of the beam)
+//   absorbed = (1 - a) sum_j (1 - T_j) f_j
+// so sum_i out_i = sum_j f_j - absorbed + sum_i q_i exactly (column sums of the collision matrix
+// are T + a (1 - T) = 1 - absorbed fraction). The paper's Theta matrix (eq. 5) routes the absorbed
+// fraction into a rest density f_0 that is re-emitted isotropically one step later: it conserves
+// f_0 + sum f_i, i.e. turns absorption into delayed scattering. Here the absorbed power leaves the
+// lattice. The exponential T_i (instead of the paper's 1 - sigma_t) keeps every weight in [0, 1]
+// for any optical depth per voxel; to first order in sigma_t len the two agree.
+// Then out_i goes to f_i(r + c_i). Leaving the grid: vacuum (LBL_BOUNDARY 0: the power escapes)
+// or mirror (LBL_BOUNDARY 1: it comes back into f_opp(i)(r)).
+//
+// Build options (-D): LBL_Q (6 or 18 directions), LBL_NCLASS (number of distinct step lengths),
+// LBL_CLASSES (brace list: the length class of each direction), LBL_BOUNDARY (0 vacuum,
+// 1 mirror), LBL_SOURCE_PHASE (0: the source is isotropic; 1: it is distributed over the
+// directions by the HG phase function around the source direction), and for the blocked kernels
+// LBL_B (block edge b) and LBL_SUBSTEPS (lattice steps per interface exchange, a power of two).
+//
+// Coefficients: coef[(c * 3 + ch) * N + v] = T for length class c; coef[(LBL_NCLASS * 3 + ch) *
+// N + v] = albedo; coef[(LBL_NCLASS * 3 + 3) * N + v] = g. Source: src[ch * N + v] = S1 (power per
+// unit volume per step), and with LBL_SOURCE_PHASE src[(3 + a) * N + v] = the mean direction.
+
+#ifndef LBL_Q
+#define LBL_Q 6
+#endif
+#ifndef LBL_NCLASS
+#define LBL_NCLASS 1
+#endif
+#ifndef LBL_CLASSES
+#define LBL_CLASSES { 0, 0, 0, 0, 0, 0 }
+#endif
+#ifndef LBL_BOUNDARY
+#define LBL_BOUNDARY 0
+#endif
+#ifndef LBL_SOURCE_PHASE
+#define LBL_SOURCE_PHASE 0
+#endif
+
+// Directions come in opposite pairs (2k, 2k + 1), so opp(i) = i ^ 1.
+__constant int lbl_cx[18] = { 1, -1, 0, 0, 0, 0, 1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0 };
+__constant int lbl_cy[18] = { 0, 0, 1, -1, 0, 0, 1, -1, -1, 1, 0, 0, 0, 0, 1, -1, 1, -1 };
+__constant int lbl_cz[18] = { 0, 0, 0, 0, 1, -1, 0, 0, 0, 0, 1, -1, -1, 1, 1, -1, -1, 1 };
+__constant int lbl_class[LBL_Q] = LBL_CLASSES;
+
+#define LBL_COEF_ALBEDO (LBL_NCLASS * 3)
+#define LBL_COEF_G (LBL_NCLASS * 3 + 3)
+
+// Source weights over the directions for voxel v (sum 1).
+inline void lbl_source_weights(__global const float* src, size_t n, size_t v, float g, float* w)
+{
+#if LBL_SOURCE_PHASE
+  const float3 d = (float3)(src[3 * n + v], src[4 * n + v], src[5 * n + v]);
+  const float len = length(d);
+  if (len > 1e-6f)
+  {
+    const float3 u = d / len;
+    float sum = 0.0f;
+    #pragma unroll
+    for (int i = 0; i < LBL_Q; ++i)
+    {
+      const float3 c = normalize((float3)((float)lbl_cx[i], (float)lbl_cy[i], (float)lbl_cz[i]));
+      w[i] = refracta_hg_phase(dot(u, c), g);
+      sum += w[i];
+    }
+    #pragma unroll
+    for (int i = 0; i < LBL_Q; ++i)
+    {
+      w[i] /= sum;
+    }
+    return;
+  }
+#endif
+  #pragma unroll
+  for (int i = 0; i < LBL_Q; ++i)
+  {
+    w[i] = 1.0f / (float)LBL_Q;
+  }
+}
+
+// Collision of one channel: fin -> out (see the header).
+inline void lbl_collide(const float* fin, float* out, const float* t, float a, float g, float q,
+  const float* wsrc)
+{
+  const float gf = fmax(g, 0.0f);
+  const float gb = fmax(-g, 0.0f);
+  float collided[LBL_Q];
+  float sum = 0.0f;
+  #pragma unroll
+  for (int j = 0; j < LBL_Q; ++j)
+  {
+    collided[j] = (1.0f - t[lbl_class[j]]) * fin[j];
+    sum += collided[j];
+  }
+  const float iso = a * (1.0f - gf - gb) * sum / (float)LBL_Q;
+  #pragma unroll
+  for (int i = 0; i < LBL_Q; ++i)
+  {
+    out[i] = t[lbl_class[i]] * fin[i] + a * gf * collided[i] + a * gb * collided[i ^ 1] + iso +
+      q * wsrc[i];
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Global (unblocked) step: one work-item per voxel, global (nx, ny, nz), local one x-row.
+// fnext must start zeroed: entries nothing streams into (from outside the grid) stay zero; it has
+// one scratch float past its Q * 3 * N state values.
+__kernel void lbl_step(__global const float* fcur, __global float* fnext,
+  __global const float* coef, __global const float* src, const int4 dims)
+{
+  const int x = get_global_id(0);
+  const int y = get_global_id(1);
+  const int z = get_global_id(2);
+  if (x >= dims.x || y >= dims.y || z >= dims.z)
+  {
+    return;
+  }
+  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  const size_t v = refracta_voxel_index(dims, x, y, z);
+  const float g = coef[LBL_COEF_G * n + v];
+  float wsrc[LBL_Q];
+  lbl_source_weights(src, n, v, g, wsrc);
+  long offset[LBL_Q];
+  bool inGrid[LBL_Q];
+  #pragma unroll
+  for (int i = 0; i < LBL_Q; ++i)
+  {
+    const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
+    inGrid[i] = tx >= 0 && ty >= 0 && tz >= 0 && tx < dims.x && ty < dims.y && tz < dims.z;
+    offset[i] = (long)lbl_cx[i] + (long)dims.x * ((long)lbl_cy[i] + (long)dims.y * lbl_cz[i]);
+  }
+  #pragma unroll
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    float t[LBL_NCLASS];
+    #pragma unroll
+    for (int c = 0; c < LBL_NCLASS; ++c)
+    {
+      t[c] = coef[(c * 3 + ch) * n + v];
+    }
+    const float a = coef[(LBL_COEF_ALBEDO + ch) * n + v];
+    float fin[LBL_Q], out[LBL_Q];
+    #pragma unroll
+    for (int i = 0; i < LBL_Q; ++i)
+    {
+      fin[i] = fcur[(i * 3 + ch) * n + v];
+    }
+    lbl_collide(fin, out, t, a, g, src[ch * n + v], wsrc);
+    // Branch-free stores (so that the work-item loop vectorises): a packet leaving the grid is
+    // written to its mirror entry (LBL_BOUNDARY 1) or to a scratch float past the state's end.
+    #pragma unroll
+    for (int i = 0; i < LBL_Q; ++i)
+    {
+      const size_t inside = (size_t)(i * 3 + ch) * n + v + (size_t)offset[i];
+#if LBL_BOUNDARY == 1
+      const size_t outside = (size_t)((i ^ 1) * 3 + ch) * n + v;
+#else
+      const size_t outside = (size_t)LBL_Q * 3 * n;
+#endif
+      fnext[inGrid[i] ? inside : outside] = out[i];
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Blocked steps (Bernabei et al. III-C, D3Q6 only): the grid is cut into blocks of LBL_B^3
+// voxels; one work-group of LBL_B^3 work-items per block iterates LBL_SUBSTEPS lattice steps in
+// local memory. Density streaming out of the block is summed over the substeps per face voxel and
+// written to the block's own outgoing interface (6 faces x b^2 x RGB); density streaming in is
+// read from the neighbours' outgoing interfaces of the previous launch and injected as 1/m of it
+// at each of the m substeps (m a power of two, so the split is exact and energy is conserved to
+// the last bit). The host swaps the two interface buffers between launches (the alternation of
+// Fig. 5): a launch reads one and writes the other, so no location is read and written by
+// concurrent work-groups. With LBL_SUBSTEPS = 1 this is step for step the global update; with
+// m > 1 the transient differs, but the fixed point (the steady state) is the same: at the global
+// fixed point each face passes the same flux at every substep, and m of them summed, then split
+// by m, reproduces it.
+#ifdef LBL_B
+#define LBL_B3 (LBL_B * LBL_B * LBL_B)
+#define LBL_INV_SUBSTEPS (1.0f / (float)LBL_SUBSTEPS)
+
+// Position of local voxel (lx, ly, lz) on the block face crossed by direction i.
+inline int lbl_face_pos(int i, int lx, int ly, int lz)
+{
+  const int axis = i >> 1;
+  return axis == 0 ? ly + LBL_B * lz : (axis == 1 ? lx + LBL_B * lz : lx + LBL_B * ly);
+}
+
+// Linear index of the block that entry i of voxel (x, y, z) streams in from when that is another
+// block inside the grid; -1 when it streams from the same block or from outside the grid.
+inline int lbl_inbound_block(int i, int x, int y, int z, int4 dims, int4 nblocks)
+{
+  const int sx = x - lbl_cx[i], sy = y - lbl_cy[i], sz = z - lbl_cz[i];
+  if (sx < 0 || sy < 0 || sz < 0 || sx >= dims.x || sy >= dims.y || sz >= dims.z)
+  {
+    return -1;
+  }
+  const int bx = sx / LBL_B, by = sy / LBL_B, bz = sz / LBL_B;
+  if (bx == x / LBL_B && by == y / LBL_B && bz == z / LBL_B)
+  {
+    return -1;
+  }
+  return bx + nblocks.x * (by + nblocks.y * bz);
+}
+
+// Work layout: global (nbx, nby, nbz) * LBL_B, local (LBL_B, LBL_B, LBL_B).
+__kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_block(
+  __global float* state, __global const float* coef, __global const float* src,
+  __global const float* ifaceIn, __global float* ifaceOut, const int4 dims, const int4 nblocks)
+{
+  __local float bufA[LBL_Q * 3 * LBL_B3];
+  __local float bufB[LBL_Q * 3 * LBL_B3];
+  const int lx = get_local_id(0), ly = get_local_id(1), lz = get_local_id(2);
+  const int bx = get_group_id(0), by = get_group_id(1), bz = get_group_id(2);
+  const int x = bx * LBL_B + lx, y = by * LBL_B + ly, z = bz * LBL_B + lz;
+  const bool active = x < dims.x && y < dims.y && z < dims.z;
+  const int lid = lx + LBL_B * (ly + LBL_B * lz);
+  const int blk = bx + nblocks.x * (by + nblocks.y * bz);
+  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  const size_t v = active ? refracta_voxel_index(dims, x, y, z) : 0;
+
+  float t[3][LBL_NCLASS], a[3], q[3], wsrc[LBL_Q];
+  float g = 0.0f;
+  float inflow[LBL_Q][3], outAcc[LBL_Q][3];
+  bool inbound[LBL_Q];
+  #pragma unroll
+  for (int i = 0; i < LBL_Q; ++i)
+  {
+    inbound[i] = false;
+    #pragma unroll
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      inflow[i][ch] = 0.0f;
+      outAcc[i][ch] = 0.0f;
+      bufA[(i * 3 + ch) * LBL_B3 + lid] = active ? state[(i * 3 + ch) * n + v] : 0.0f;
+      bufB[(i * 3 + ch) * LBL_B3 + lid] = 0.0f;
+    }
+  }
+  if (active)
+  {
+    g = coef[LBL_COEF_G * n + v];
+    lbl_source_weights(src, n, v, g, wsrc);
+    #pragma unroll
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      #pragma unroll
+      for (int c = 0; c < LBL_NCLASS; ++c)
+      {
+        t[ch][c] = coef[(c * 3 + ch) * n + v];
+      }
+      a[ch] = coef[(LBL_COEF_ALBEDO + ch) * n + v];
+      q[ch] = src[ch * n + v];
+    }
+    #pragma unroll
+    for (int i = 0; i < LBL_Q; ++i)
+    {
+      const int nb = lbl_inbound_block(i, x, y, z, dims, nblocks);
+      if (nb >= 0)
+      {
+        inbound[i] = true;
+        const size_t base = ((size_t)(nb * 6 + i) * LBL_B * LBL_B + lbl_face_pos(i, lx, ly, lz)) * 3;
+        #pragma unroll
+        for (int ch = 0; ch < 3; ++ch)
+        {
+          inflow[i][ch] = ifaceIn[base + ch] * LBL_INV_SUBSTEPS;
+        }
+      }
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+
+  for (int s = 0; s < LBL_SUBSTEPS; ++s)
+  {
+    __local float* cur = (s & 1) ? bufB : bufA;
+    __local float* nxt = (s & 1) ? bufA : bufB;
+    if (active)
+    {
+      #pragma unroll
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        float fin[LBL_Q], out[LBL_Q];
+        #pragma unroll
+        for (int i = 0; i < LBL_Q; ++i)
+        {
+          // Entries streaming in from a neighbour block come from the interface, 1/m per substep.
+          fin[i] = inbound[i] ? inflow[i][ch] : cur[(i * 3 + ch) * LBL_B3 + lid];
+        }
+        lbl_collide(fin, out, t[ch], a[ch], g, q[ch], wsrc);
+        #pragma unroll
+        for (int i = 0; i < LBL_Q; ++i)
+        {
+          const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
+          const int ux = lx + lbl_cx[i], uy = ly + lbl_cy[i], uz = lz + lbl_cz[i];
+          if (tx < 0 || ty < 0 || tz < 0 || tx >= dims.x || ty >= dims.y || tz >= dims.z)
+          {
+#if LBL_BOUNDARY == 1
+            nxt[((i ^ 1) * 3 + ch) * LBL_B3 + lid] = out[i];
+#endif
+          }
+          else if (ux < 0 || uy < 0 || uz < 0 || ux >= LBL_B || uy >= LBL_B || uz >= LBL_B)
+          {
+            outAcc[i][ch] += out[i];
+          }
+          else
+          {
+            nxt[(i * 3 + ch) * LBL_B3 + ux + LBL_B * (uy + LBL_B * uz)] = out[i];
+          }
+        }
+      }
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+
+  if (active)
+  {
+    __local float* last = ((LBL_SUBSTEPS - 1) & 1) ? bufA : bufB;
+    #pragma unroll
+    for (int i = 0; i < LBL_Q; ++i)
+    {
+      #pragma unroll
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        // Entries fed by the interface are rewritten by lbl_block_finalize.
+        state[(i * 3 + ch) * n + v] = inbound[i] ? 0.0f : last[(i * 3 + ch) * LBL_B3 + lid];
+      }
+      const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
+      const int ux = lx + lbl_cx[i], uy = ly + lbl_cy[i], uz = lz + lbl_cz[i];
+      const bool inGrid = tx >= 0 && ty >= 0 && tz >= 0 && tx < dims.x && ty < dims.y && tz < dims.z;
+      const bool inBlock = ux >= 0 && uy >= 0 && uz >= 0 && ux < LBL_B && uy < LBL_B && uz < LBL_B;
+      if (inGrid && !inBlock)
+      {
+        const size_t base = ((size_t)(blk * 6 + i) * LBL_B * LBL_B + lbl_face_pos(i, lx, ly, lz)) * 3;
+        #pragma unroll
+        for (int ch = 0; ch < 3; ++ch)
+        {
+          ifaceOut[base + ch] = outAcc[i][ch];
+        }
+      }
+    }
+  }
+}
+
+// After a launch, writes into the state's interface-fed entries the density that will stream in
+// during the next substep (1/m of the interface), so that the state reads like a global state
+// (exactly the global state for m = 1). Work layout: one work-item per voxel, global (nx, ny, nz).
+__kernel void lbl_block_finalize(
+  __global float* state, __global const float* iface, const int4 dims, const int4 nblocks)
+{
+  const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
+  if (x >= dims.x || y >= dims.y || z >= dims.z)
+  {
+    return;
+  }
+  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  const size_t v = refracta_voxel_index(dims, x, y, z);
+  #pragma unroll
+  for (int i = 0; i < LBL_Q; ++i)
+  {
+    const int nb = lbl_inbound_block(i, x, y, z, dims, nblocks);
+    if (nb >= 0)
+    {
+      const size_t base = ((size_t)(nb * 6 + i) * LBL_B * LBL_B +
+                            lbl_face_pos(i, x % LBL_B, y % LBL_B, z % LBL_B)) * 3;
+      #pragma unroll
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        state[(i * 3 + ch) * n + v] = iface[base + ch] * LBL_INV_SUBSTEPS;
+      }
+    }
+  }
+}
+#endif
+
+// ---------------------------------------------------------------------------------------------
+// Convergence probes: out[p * 3 + ch] = sum_i f_i at voxel probes[p]. One work-item per probe.
+__kernel void lbl_probes(__global const float* state, __global const uint* probes,
+  __global float* out, const uint count, const int4 dims)
+{
+  const uint p = get_global_id(0);
+  if (p >= count)
+  {
+    return;
+  }
+  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  const size_t v = probes[p];
+  #pragma unroll
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    float sum = 0.0f;
+    #pragma unroll
+    for (int i = 0; i < LBL_Q; ++i)
+    {
+      sum += state[(i * 3 + ch) * n + v];
+    }
+    out[p * 3 + ch] = sum;
+  }
+}
+
+// The multiple-scattering source S_ms = sigma_s phi_ms: the power per unit volume that the diffuse
+// field loses to scattering in each voxel, a sum_i (1 - T_i) f_i, interleaved RGB (a VTK array).
+// One work-item per voxel, global (nx, ny, nz).
+__kernel void lbl_scattered(
+  __global const float* state, __global const float* coef, __global float* out, const int4 dims)
+{
+  const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
+  if (x >= dims.x || y >= dims.y || z >= dims.z)
+  {
+    return;
+  }
+  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  const size_t v = refracta_voxel_index(dims, x, y, z);
+  #pragma unroll
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    float sum = 0.0f;
+    #pragma unroll
+    for (int i = 0; i < LBL_Q; ++i)
+    {
+      sum += (1.0f - coef[(lbl_class[i] * 3 + ch) * n + v]) * state[(i * 3 + ch) * n + v];
+    }
+    out[v * 3 + ch] = coef[(LBL_COEF_ALBEDO + ch) * n + v] * sum;
+  }
+}
+
+// Plain copy (the memory-bandwidth reference of the benchmark): b[i] = a[i], float4 per item.
+__kernel void lbl_copy(__global const float4* a, __global float4* b, const ulong count)
+{
+  const size_t i = get_global_id(0);
+  if (i < count)
+  {
+    b[i] = a[i];
+  }
+}
+
+// The photon pass's fixed-point accumulators (interleaved, cl_long) -> the LBL source planes:
+// src[c * n + v] = S1 = radiance * radianceFactor, src[(3 + c) * n + v] = direction sums *
+// directionFactor (unnormalised; the source weights normalise it). One work-item per voxel.
+__kernel void lbl_source_from_fixed(__global const long* radianceFixed,
+  __global const long* directionFixed, const float radianceFactor, const float directionFactor,
+  __global float* src, const uint n)
+{
+  const size_t v = get_global_id(0);
+  if (v >= n)
+  {
+    return;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    src[c * (size_t)n + v] = (float)radianceFixed[3 * v + c] * radianceFactor;
+    src[(3 + c) * (size_t)n + v] = (float)directionFixed[3 * v + c] * directionFactor;
+  }
+}

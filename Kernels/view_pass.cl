@@ -1,0 +1,304 @@
+// view_pass.cl: the viewing pass (Sun et al. 2008, section 4.5; Bernabei et al., III-D).
+// Prepend refracta_common.cl.
+//
+// What it computes, per pixel (Documentation/Physics.md, "The view pass"):
+//   L = sum over steps of T [ p(g, cos) S1 + S_ms / (4 pi) + eps ] ds + T_exit L_bg(d_exit)
+// One view ray per pixel starts at the camera (perspective) or on the image plane (parallel),
+// enters the medium's box [-s/2, (N - 1/2) s] (grid-local frame) and marches in fixed steps of
+// STEP world units until it leaves the box, reaches the per-pixel depth limit (opaque geometry in
+// a render window), falls below the transmittance cutoff, or runs out of steps. Within a step the
+// medium is taken constant at the step's midpoint and the step is integrated exactly:
+//   L += T Q (1 - exp(-sigma_t ds)) / sigma_t,  T *= exp(-sigma_t ds)
+// so a constant medium gives the analytic emission-absorption answer for any step length.
+// cos = dot(RadianceDirection, w_o) with w_o the unit direction back towards the camera.
+//
+// Curved rays (-DREFRACTA_CURVED): the ray equation d/ds (n dx/ds) = grad n is integrated in the
+// optical parameter t (dt = ds / n), where x' = v, v' = n grad n = grad(n^2 / 2): a separable
+// Hamiltonian system, advanced with the symplectic Stormer-Verlet (kick-drift-kick) scheme, which
+// is second order where the papers' forward Euler is first order, and re-normalised to |v| = n
+// after each step so that the speed cannot drift. Straight rays (default) need neither n nor
+// grad n and step exactly along the chord, the last step clipped to the box exit.
+//
+// Work layout: one work-item per pixel, global size (width, height); pixel (i, j) has row j = 0 at
+// the bottom (VTK's image convention). Output: hdr[4 * (i + width * j)] = (R, G, B, A) with
+// A = 1 - mean transmittance of the path; steps[i + width * j] = number of steps marched;
+// transmittanceOut[4 * (i + width * j)] = the path's RGB transmittance (w = 0), for compositing.
+//
+// Options (-D): REFRACTA_CURVED, REFRACTA_PARALLEL (parallel projection), REFRACTA_HAS_SINGLE
+// (Radiance + RadianceDirection + Anisotropy given), REFRACTA_HAS_MULTIPLE (MultipleScattering
+// given), REFRACTA_HAS_EMISSION, REFRACTA_HAS_ENVIRONMENT (equirectangular background image),
+// REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length).
+
+#ifndef REFRACTA_INV_4PI
+#define REFRACTA_INV_4PI 0.0795774715459476679f
+#endif
+
+// Trilinear samples with a stencil computed once per step and shared by every field (the medium
+// and lighting arrays live on the same grid): refracta_make_stencil from refracta_common.cl.
+typedef struct
+{
+  size_t c[8];
+  float fx, fy, fz;
+} refracta_view_stencil;
+
+inline refracta_view_stencil refracta_view_make_stencil(int4 dims, float3 u)
+{
+  const refracta_stencil s = refracta_make_stencil(dims, u);
+  refracta_view_stencil v;
+  v.c[0] = refracta_voxel_index(dims, s.i0, s.j0, s.k0);
+  v.c[1] = refracta_voxel_index(dims, s.i1, s.j0, s.k0);
+  v.c[2] = refracta_voxel_index(dims, s.i0, s.j1, s.k0);
+  v.c[3] = refracta_voxel_index(dims, s.i1, s.j1, s.k0);
+  v.c[4] = refracta_voxel_index(dims, s.i0, s.j0, s.k1);
+  v.c[5] = refracta_voxel_index(dims, s.i1, s.j0, s.k1);
+  v.c[6] = refracta_voxel_index(dims, s.i0, s.j1, s.k1);
+  v.c[7] = refracta_voxel_index(dims, s.i1, s.j1, s.k1);
+  v.fx = s.fx;
+  v.fy = s.fy;
+  v.fz = s.fz;
+  return v;
+}
+
+inline float refracta_view_sample1(__global const float* f, const refracta_view_stencil* s)
+{
+  const float c00 = mix(f[s->c[0]], f[s->c[1]], s->fx);
+  const float c10 = mix(f[s->c[2]], f[s->c[3]], s->fx);
+  const float c01 = mix(f[s->c[4]], f[s->c[5]], s->fx);
+  const float c11 = mix(f[s->c[6]], f[s->c[7]], s->fx);
+  return mix(mix(c00, c10, s->fy), mix(c01, c11, s->fy), s->fz);
+}
+
+inline float3 refracta_view_sample3(__global const float* f, const refracta_view_stencil* s)
+{
+  const float3 c00 = mix(vload3(s->c[0], f), vload3(s->c[1], f), s->fx);
+  const float3 c10 = mix(vload3(s->c[2], f), vload3(s->c[3], f), s->fx);
+  const float3 c01 = mix(vload3(s->c[4], f), vload3(s->c[5], f), s->fx);
+  const float3 c11 = mix(vload3(s->c[6], f), vload3(s->c[7], f), s->fx);
+  return mix(mix(c00, c10, s->fy), mix(c01, c11, s->fy), s->fz);
+}
+
+// (1 - exp(-tau)) / tau per channel, without cancellation for small tau.
+inline float3 refracta_segment_weight(float3 tau)
+{
+  float3 w;
+  w.x = tau.x > 1e-3f ? -expm1(-tau.x) / tau.x : 1.0f - 0.5f * tau.x + tau.x * tau.x / 6.0f;
+  w.y = tau.y > 1e-3f ? -expm1(-tau.y) / tau.y : 1.0f - 0.5f * tau.y + tau.y * tau.y / 6.0f;
+  w.z = tau.z > 1e-3f ? -expm1(-tau.z) / tau.z : 1.0f - 0.5f * tau.z + tau.z * tau.z / 6.0f;
+  return w;
+}
+
+// Background radiance seen in grid-local direction d. The environment image (RGB floats, row 0 at
+// the bottom) is equirectangular in the frame (right, up, front) given in grid-local coordinates:
+// u = atan2(front, right) / (2 pi) + 1/2, v = atan2(up, |(right, front)|) / pi + 1/2.
+inline float3 refracta_background(float3 d, float4 background, __global const float* environment,
+  int2 envSize, float4 envRight, float4 envUp, float4 envFront)
+{
+#ifdef REFRACTA_HAS_ENVIRONMENT
+  const float x = dot(d, envRight.xyz);
+  const float y = dot(d, envUp.xyz);
+  const float z = dot(d, envFront.xyz);
+  const float u = atan2(z, x) * (0.5f / REFRACTA_PI) + 0.5f;
+  const float v = atan2(y, sqrt(x * x + z * z)) * (1.0f / REFRACTA_PI) + 0.5f;
+  // Bilinear between texel centres; wraps in u (longitude), clamps in v (latitude).
+  const float px = u * (float)envSize.x - 0.5f;
+  const float py = clamp(v * (float)envSize.y - 0.5f, 0.0f, (float)(envSize.y - 1));
+  const float fx0 = floor(px);
+  const float fy0 = floor(py);
+  const float ax = px - fx0;
+  const float ay = py - fy0;
+  int i0 = (int)fx0 % envSize.x;
+  if (i0 < 0)
+  {
+    i0 += envSize.x;
+  }
+  const int i1 = (i0 + 1) % envSize.x;
+  const int j0 = (int)fy0;
+  const int j1 = min(j0 + 1, envSize.y - 1);
+  const float3 c00 = vload3(i0 + envSize.x * j0, environment);
+  const float3 c10 = vload3(i1 + envSize.x * j0, environment);
+  const float3 c01 = vload3(i0 + envSize.x * j1, environment);
+  const float3 c11 = vload3(i1 + envSize.x * j1, environment);
+  return mix(mix(c00, c10, ax), mix(c01, c11, ax), ay);
+#else
+  return background.xyz;
+#endif
+}
+
+// Source term Q at grid-local point x for a ray travelling in unit direction d.
+inline float3 refracta_view_source(const refracta_view_stencil* st, float3 d,
+  __global const float* emission,
+  __global const float* anisotropy, __global const float* radiance,
+  __global const float* radianceDirection, __global const float* multiple)
+{
+  float3 q = (float3)(0.0f);
+#ifdef REFRACTA_HAS_EMISSION
+  q += refracta_view_sample3(emission, st);
+#endif
+#ifdef REFRACTA_HAS_SINGLE
+  const float3 s1 = refracta_view_sample3(radiance, st);
+  if (s1.x + s1.y + s1.z > 0.0f)
+  {
+    const float3 mean = refracta_view_sample3(radianceDirection, st);
+    const float len = length(mean);
+    const float g = refracta_view_sample1(anisotropy, st);
+    // w_o = -d (towards the camera); trilinear blending shortens unit vectors: re-normalise, and
+    // fall back to the isotropic phase where the stored directions cancel.
+    const float phase = len > 1e-6f ? refracta_hg_phase(dot(mean, -d) / len, g) : REFRACTA_INV_4PI;
+    q += phase * s1;
+  }
+#endif
+#ifdef REFRACTA_HAS_MULTIPLE
+  q += REFRACTA_INV_4PI * refracta_view_sample3(multiple, st);
+#endif
+  return q;
+}
+
+__kernel void refracta_view_pass(const int4 dims, const float4 spacing,
+  __global const float* extinction, __global const float* emission,
+  __global const float* anisotropy, __global const float* refractiveIndex,
+  __global const float* gradient, __global const float* radiance,
+  __global const float* radianceDirection, __global const float* multiple, const float4 eye,
+  const float4 camU, const float4 camV, const float4 camW, const int width, const int height,
+  const float stepLength, const int maxSteps, const float cutoff, const float4 background,
+  __global const float* environment, const int2 envSize, const float4 envRight,
+  const float4 envUp, const float4 envFront, __global const float* depthLimit,
+  __global float* hdr, __global uint* steps, __global float* transmittanceOut)
+{
+  const int pi = (int)get_global_id(0);
+  const int pj = (int)get_global_id(1);
+  if (pi >= width || pj >= height)
+  {
+    return;
+  }
+  const size_t pixel = (size_t)pi + (size_t)width * (size_t)pj;
+  const float sx = 2.0f * ((float)pi + 0.5f) / (float)width - 1.0f;
+  const float sy = 2.0f * ((float)pj + 0.5f) / (float)height - 1.0f;
+#ifdef REFRACTA_PARALLEL
+  const float3 origin = eye.xyz + sx * camU.xyz + sy * camV.xyz;
+  float3 d = normalize(camW.xyz);
+#else
+  const float3 origin = eye.xyz;
+  float3 d = normalize(camW.xyz + sx * camU.xyz + sy * camV.xyz);
+#endif
+#ifdef REFRACTA_HAS_DEPTH_LIMIT
+  const float limit = depthLimit[pixel];
+#else
+  const float limit = INFINITY;
+#endif
+
+  float3 lo, hi;
+  refracta_domain(dims, spacing, &lo, &hi);
+  float3 radianceSum = (float3)(0.0f);
+  float3 transmittance = (float3)(1.0f);
+  uint count = 0;
+  bool seesBackground = true; // false when stopped by geometry, the cutoff or the step cap
+  float t0, t1;
+  if (refracta_intersect_box(origin, d, lo, hi, &t0, &t1) && t0 < limit)
+  {
+    float travelled = t0;
+    float3 x = origin + t0 * d;
+#ifdef REFRACTA_CURVED
+    float n = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
+    float3 v = n * d;
+#endif
+    for (int s = 0; s < maxSteps; ++s)
+    {
+      bool leaves = false;
+      float len;
+      float3 chord; // unit direction of this step's chord
+#ifdef REFRACTA_CURVED
+      // Stormer-Verlet in the optical parameter t, dt = ds / n.
+      const float dt = stepLength / n;
+      const float3 accel = n * refracta_sample3(gradient, dims, refracta_to_voxel(x, spacing));
+      const float3 vHalf = v + 0.5f * dt * accel;
+      const float3 xNext = x + dt * vHalf;
+      const float nNext = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(xNext, spacing));
+      const float3 accelNext =
+        nNext * refracta_sample3(gradient, dims, refracta_to_voxel(xNext, spacing));
+      float3 vNext = vHalf + 0.5f * dt * accelNext;
+      const float speed = length(vNext);
+      vNext = speed > 0.0f ? vNext * (nNext / speed) : nNext * d;
+      const float3 step = xNext - x;
+      len = length(step);
+      chord = len > 0.0f ? step / len : d;
+      // Clip the chord to the box: the exit point is where the ray leaves the medium.
+      float e0, e1;
+      if (any(xNext < lo) || any(xNext > hi))
+      {
+        leaves = true;
+        if (refracta_intersect_box(x, chord, lo, hi, &e0, &e1))
+        {
+          len = clamp(e1, 0.0f, len);
+        }
+        else
+        {
+          len = 0.0f;
+        }
+      }
+#else
+      // Straight: exact positions from the entry parameter, no drift over many steps.
+      const float tA = t0 + (float)s * stepLength;
+      const float tB = fmin(tA + stepLength, t1);
+      leaves = tB >= t1;
+      len = fmax(tB - tA, 0.0f);
+      chord = d;
+      x = origin + tA * d;
+#endif
+      bool blocked = false;
+      if (travelled + len >= limit)
+      {
+        len = fmax(limit - travelled, 0.0f);
+        blocked = true;
+      }
+      const refracta_view_stencil st =
+        refracta_view_make_stencil(dims, refracta_to_voxel(x + (0.5f * len) * chord, spacing));
+      const float3 sigma = refracta_view_sample3(extinction, &st);
+      const float3 q = refracta_view_source(
+        &st, chord, emission, anisotropy, radiance, radianceDirection, multiple);
+      const float3 tau = sigma * len;
+      radianceSum += transmittance * q * (len * refracta_segment_weight(tau));
+      transmittance *= exp(-tau);
+      travelled += len;
+      ++count;
+      if (blocked)
+      {
+        seesBackground = false;
+        break;
+      }
+      if (leaves)
+      {
+#ifdef REFRACTA_CURVED
+        d = normalize(vNext);
+#endif
+        break;
+      }
+      if (fmax(transmittance.x, fmax(transmittance.y, transmittance.z)) < cutoff)
+      {
+        seesBackground = false;
+        break;
+      }
+#ifdef REFRACTA_CURVED
+      x = xNext;
+      v = vNext;
+      n = nNext;
+#endif
+      if (s + 1 == maxSteps)
+      {
+        seesBackground = false; // trapped (e.g. total internal reflection): no background
+      }
+    }
+  }
+  else if (limit < INFINITY)
+  {
+    seesBackground = false; // the ray meets opaque geometry before the medium
+  }
+  if (seesBackground)
+  {
+    radianceSum += transmittance *
+      refracta_background(d, background, environment, envSize, envRight, envUp, envFront);
+  }
+  const float alpha = 1.0f - (transmittance.x + transmittance.y + transmittance.z) / 3.0f;
+  vstore4((float4)(radianceSum, alpha), pixel, hdr);
+  steps[pixel] = count;
+  vstore4((float4)(transmittance, 0.0f), pixel, transmittanceOut);
+}

@@ -1,0 +1,376 @@
+// vtkRefractiveVolumeMapper in an offscreen vtkRenderWindow (run under xvfb-run), composited with
+// polydata actors, and vtkTransferFunctionMedium.
+//
+// Scene: a white background, an absorbing cube (sigma_t = (1, 2, 3), 16^3 grid, spacing 1/15, so
+// the box is 16/15 deep) seen by a parallel camera along -z, a flat-shaded sphere inside the cube
+// and a second one in front of it. Expected 8-bit pixels (VTK draws linear colour, no tone curve):
+// - outside the box: the background, 255;
+// - through the box only: 255 exp(-sigma 16/15);
+// - on the inner sphere: 255 colour exp(-sigma l), l from the box top to the sphere's surface;
+// - on the front sphere: its colour, untouched.
+// Tolerance 3/255 (8-bit rounding of both the geometry pass and the blend), checked at pixel
+// centres away from silhouettes. The cache is asserted by counting stage executions.
+#include "RenderingTestUtilities.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkExecutive.h"
+#include "vtkLight.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRefractaViewPass.h"
+#include "vtkRefractiveVolumeMapper.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
+#include "vtkSphereSource.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkTransferFunctionMedium.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+const int Size = 96;
+const double Sigma[3] = { 1.0, 2.0, 3.0 };
+const double Top = 1.0 + 0.5 / 15; // box top in z
+const double Depth = 16.0 / 15;
+
+// One window for the whole process: every X connection is a chance for the virtual X server of
+// a loaded machine to refuse one, so the tests share a single connection.
+vtkRenderWindow* SharedWindow()
+{
+  static vtkSmartPointer<vtkRenderWindow> window;
+  if (!window)
+  {
+    window = vtkSmartPointer<vtkRenderWindow>::New();
+    window->SetOffScreenRendering(1);
+    window->SetSize(Size, Size);
+    window->SetMultiSamples(0);
+  }
+  return window;
+}
+
+struct Scene
+{
+  vtkSmartPointer<vtkRenderWindow> Window = SharedWindow();
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkRefractiveVolumeMapper> Mapper;
+  vtkNew<vtkActor> Inner;
+  vtkNew<vtkActor> Front;
+
+  Scene()
+  {
+    this->Window->GetRenderers()->RemoveAllItems();
+    this->Window->AddRenderer(this->Renderer);
+    this->Renderer->SetBackground(1, 1, 1);
+    this->Volume->SetMapper(this->Mapper);
+    this->Renderer->AddVolume(this->Volume);
+    AddSphere(this->Inner, 0.5, 0.5, 0.5, 0.25, 0.2, 0.8, 0.4);
+    AddSphere(this->Front, 0.85, 0.85, 1.5, 0.1, 0.9, 0.3, 0.1);
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    camera->ParallelProjectionOn();
+    camera->SetParallelScale(0.6);
+    camera->SetFocalPoint(0.5, 0.5, 0.5);
+    camera->SetPosition(0.5, 0.5, 4);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetClippingRange(0.5, 8);
+  }
+
+  void AddSphere(
+    vtkActor* actor, double x, double y, double z, double r, double cr, double cg, double cb)
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetCenter(x, y, z);
+    sphere->SetRadius(r);
+    sphere->SetThetaResolution(64);
+    sphere->SetPhiResolution(64);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(sphere->GetOutputPort());
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetColor(cr, cg, cb);
+    actor->GetProperty()->SetAmbient(1.0);
+    actor->GetProperty()->SetDiffuse(0.0);
+    actor->GetProperty()->SetSpecular(0.0);
+    this->Renderer->AddActor(actor);
+  }
+
+  vtkSmartPointer<vtkImageData> Capture()
+  {
+    this->Window->Render();
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(this->Window);
+    grab->SetInputBufferTypeToRGB();
+    grab->ReadFrontBufferOff();
+    grab->Update();
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(grab->GetOutput());
+    return image;
+  }
+};
+
+vtkSmartPointer<vtkImageData> AbsorbingCube()
+{
+  auto medium = refracta_test::MakeGrid(16, 16, 16, 1.0 / 15);
+  refracta_test::AddConstant(medium, "Extinction", 3, Sigma[0], Sigma[1], Sigma[2]);
+  return medium;
+}
+
+// World (x, y) of pixel (i, j) for the parallel camera above (scale 0.6 about (0.5, 0.5)).
+void PixelXY(int i, int j, double& x, double& y)
+{
+  x = 0.5 + 0.6 * (2.0 * (i + 0.5) / Size - 1.0);
+  y = 0.5 + 0.6 * (2.0 * (j + 0.5) / Size - 1.0);
+}
+
+// Checks the composited pixels against the analytic answer; returns the number checked.
+int CheckComposite(vtkImageData* image, const double sigma[3], bool front = true)
+{
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  EXPECT_NE(rgb, nullptr);
+  const double innerColour[3] = { 0.2, 0.8, 0.4 }, frontColour[3] = { 0.9, 0.3, 0.1 };
+  const double h = 1.2 / Size; // pixel size in world units
+  const double lo = -0.5 / 15, hi = Top;
+  int checked = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      double x, y;
+      PixelXY(i, j, x, y);
+      const double rInner = std::hypot(x - 0.5, y - 0.5);
+      double rFront = std::hypot(x - 0.85, y - 0.85);
+      const bool inBox = x > lo + 2 * h && x < hi - 2 * h && y > lo + 2 * h && y < hi - 2 * h;
+      const bool outBox = x < lo - 2 * h || x > hi + 2 * h || y < lo - 2 * h || y > hi + 2 * h;
+      double expected[3];
+      if (!front)
+      {
+        rFront = 1.0;
+      }
+      if (rFront < 0.1 - 2 * h)
+      {
+        std::copy(frontColour, frontColour + 3, expected);
+      }
+      else if (rFront < 0.1 + 2 * h || std::abs(rInner - 0.25) < 2 * h || (!inBox && !outBox))
+      {
+        continue; // silhouettes and box edges: rasterisation decides
+      }
+      else if (outBox)
+      {
+        expected[0] = expected[1] = expected[2] = 1.0;
+      }
+      else if (rInner < 0.25)
+      {
+        const double l = Top - (0.5 + std::sqrt(0.0625 - rInner * rInner));
+        for (int c = 0; c < 3; ++c)
+        {
+          expected[c] = innerColour[c] * std::exp(-sigma[c] * l);
+        }
+      }
+      else
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          expected[c] = std::exp(-sigma[c] * Depth);
+        }
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        const double got = rgb->GetValue(3 * (i + Size * j) + c);
+        EXPECT_NEAR(got, 255.0 * expected[c], 3.0) << "pixel " << i << "," << j << " channel " << c;
+      }
+      ++checked;
+    }
+  }
+  return checked;
+}
+}
+
+TEST(RefractiveVolumeMapper, CompositesWithGeometryByDepth)
+{
+  Scene scene;
+  scene.Mapper->SetInputData(AbsorbingCube());
+  vtkSmartPointer<vtkImageData> image = scene.Capture();
+  EXPECT_GT(CheckComposite(image, Sigma), Size * Size / 2);
+  EXPECT_TRUE(refracta_test::MatchesBaseline(image, "MapperCompositing"));
+}
+
+TEST(RefractiveVolumeMapper, CacheRunsOnlyWhatChanged)
+{
+  Scene scene;
+  auto medium = AbsorbingCube();
+  // A synthetic lighting volume, supplied instead of the light passes.
+  vtkNew<vtkImageData> lighting;
+  lighting->CopyStructure(medium);
+  refracta_test::AddConstant(lighting, "MultipleScattering", 3, 0.5, 0.5, 0.5);
+  scene.Mapper->SetInputData(medium);
+  scene.Mapper->SetLightingData(lighting);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 1);
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), 1);
+  const int uploads = scene.Mapper->GetViewPass()->GetNumberOfUploads();
+  EXPECT_EQ(uploads, 2); // medium + lighting
+
+  // Nothing changed: the image is drawn again without running anything.
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), 1);
+
+  // Camera move: the view pass only.
+  scene.Renderer->GetActiveCamera()->Azimuth(10);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), 2);
+  EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 1);
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 0);
+  EXPECT_EQ(scene.Mapper->GetViewPass()->GetNumberOfUploads(), uploads);
+
+  // Geometry moves (depth buffer changes): the view pass again, nothing else.
+  scene.Inner->SetPosition(0.05, 0, 0);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), 3);
+  EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 1);
+
+  // The medium changes: everything.
+  medium->Modified();
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 2);
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), 4);
+  EXPECT_EQ(scene.Mapper->GetViewPass()->GetNumberOfUploads(), uploads + 2);
+}
+
+TEST(RefractiveVolumeMapper, ScalarInputThroughTransferFunctions)
+{
+  // A scalar field whose opacity function gives a = 1 - exp(-sigma d) per unit distance d: the
+  // same extinction as AbsorbingCube's red channel, grey.
+  auto scalars = refracta_test::MakeGrid(16, 16, 16, 1.0 / 15);
+  vtkFloatArray* density = refracta_test::AddConstant(scalars, "density", 1, 7.0);
+  scalars->GetPointData()->SetScalars(density);
+  const double unit = 0.5;
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0, 0);
+  opacity->AddPoint(10, 10 * (1 - std::exp(-2.0 * unit)) / 7.0); // a(7) = 1 - exp(-2 d)
+  vtkNew<vtkColorTransferFunction> colour;
+  colour->AddRGBPoint(0, 0, 0, 0);
+  colour->AddRGBPoint(10, 1, 0.5, 0.25);
+  vtkNew<vtkPiecewiseFunction> index;
+  index->AddPoint(0, 1.0);
+  index->AddPoint(10, 1.4);
+
+  vtkNew<vtkVolumeProperty> property;
+  property->SetScalarOpacity(opacity);
+  property->SetColor(colour);
+  property->SetScalarOpacityUnitDistance(unit);
+
+  vtkNew<vtkTransferFunctionMedium> mapping;
+  mapping->SetInputData(scalars);
+  mapping->SetVolumeProperty(property);
+  mapping->SetRefractiveIndexFunction(index);
+  mapping->SetAnisotropy(0.3);
+  mapping->SetEmissionScale(2.0);
+  mapping->Update();
+  vtkPointData* pd = mapping->GetOutput()->GetPointData();
+  double e[3], a[3];
+  pd->GetArray("Extinction")->GetTuple(100, e);
+  pd->GetArray("Albedo")->GetTuple(100, a);
+  EXPECT_NEAR(e[0], 2.0, 1e-5);
+  EXPECT_NEAR(e[2], 2.0, 1e-5);
+  EXPECT_NEAR(a[0], 0.7, 1e-6);
+  EXPECT_NEAR(a[1], 0.35, 1e-6);
+  EXPECT_NEAR(pd->GetArray("RefractiveIndex")->GetTuple1(5), 1.28, 1e-6);
+  EXPECT_NEAR(pd->GetArray("Anisotropy")->GetTuple1(5), 0.3, 1e-6);
+  EXPECT_NEAR(pd->GetArray("Emission")->GetComponent(5, 1), 2.0 * 0.35 * 2.0, 1e-5);
+
+  // Through the mapper: same transmittance as the medium with sigma = 2 (the index is constant,
+  // so rays stay straight; no emission in the mapper's default).
+  Scene scene;
+  scene.Renderer->RemoveActor(scene.Front);
+  // No lights: the albedo (from the colour function) has nothing to scatter; pure absorption.
+  scene.Renderer->AutomaticLightCreationOff();
+  scene.Renderer->RemoveAllLights();
+  scene.Volume->SetProperty(property);
+  scene.Mapper->SetInputData(scalars);
+  vtkSmartPointer<vtkImageData> image = scene.Capture();
+  const double grey[3] = { 2.0, 2.0, 2.0 };
+  EXPECT_GT(CheckComposite(image, grey, false), Size * Size / 2);
+  EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 1);
+  // Editing a transfer function re-runs the medium stage.
+  opacity->AddPoint(5, 0.1);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 2);
+
+  // Bad input: two-component scalars.
+  vtkNew<vtkTest::ErrorObserver> errors;
+  vtkNew<vtkImageData> twoComponents;
+  twoComponents->SetDimensions(4, 4, 4);
+  twoComponents->GetPointData()->SetScalars(
+    refracta_test::AddConstant(twoComponents, "v", 2, 1.0, 2.0));
+  mapping->AddObserver(vtkCommand::ErrorEvent, errors);
+  mapping->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  mapping->SetInputData(twoComponents);
+  mapping->Update();
+  EXPECT_NE(errors->GetErrorMessage().find("components"), std::string::npos);
+  EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+TEST(RefractiveVolumeMapper, LightPassesRunOnlyWhenLightsChange)
+{
+  // A scattering fog lit by a scene light: the photon tracer runs for the light, not for the
+  // camera.
+  Scene scene;
+  scene.Renderer->RemoveActor(scene.Front);
+  scene.Renderer->SetBackground(0, 0, 0);
+  auto fog = refracta_test::MakeGrid(20, 20, 20, 1.0 / 19);
+  refracta_test::AddConstant(fog, "Extinction", 3, 2.0, 2.0, 2.0);
+  refracta_test::AddConstant(fog, "Albedo", 3, 0.8, 0.8, 0.8);
+  scene.Mapper->SetInputData(fog);
+  scene.Mapper->SetNumberOfPhotons(1 << 14);
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetPosition(3, 0.5, 0.5);
+  light->SetFocalPoint(0.5, 0.5, 0.5);
+  light->SetIntensity(2.0);
+  scene.Renderer->RemoveAllLights();
+  scene.Renderer->AddLight(light);
+  scene.Renderer->AutomaticLightCreationOff();
+
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 1);
+  ASSERT_NE(scene.Mapper->GetLighting(), nullptr);
+  EXPECT_NE(scene.Mapper->GetLighting()->GetPointData()->GetArray("Radiance"), nullptr);
+  EXPECT_NE(scene.Mapper->GetLighting()->GetPointData()->GetArray("MultipleScattering"), nullptr);
+  // The fog is lit: the medium's radiance shows (the background is black).
+  vtkSmartPointer<vtkImageData> lit = scene.Capture();
+  double sum = 0;
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(lit->GetPointData()->GetScalars());
+  for (vtkIdType i = 0; i < rgb->GetNumberOfValues(); ++i)
+  {
+    sum += rgb->GetValue(i);
+  }
+  EXPECT_GT(sum, 0.0);
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 1);
+  const int views = scene.Mapper->GetNumberOfViewPassRuns();
+
+  scene.Renderer->GetActiveCamera()->Elevation(15);
+  scene.Renderer->GetActiveCamera()->OrthogonalizeViewUp();
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 1) << "a camera move must not re-light";
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), views + 1);
+
+  light->SetIntensity(4.0);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 2) << "a light change re-lights";
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), views + 2);
+  EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 1);
+  light->SetIntensity(2.0);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 3);
+}

@@ -1,0 +1,311 @@
+// The view pass against closed-form answers. A cube of constant extinction sigma, emission eps,
+// single-scattering source S1 (constant mean direction, HG g) and multiple-scattering source S_ms,
+// seen by straight rays, has per pixel
+//   L = Q (1 - exp(-sigma l)) / sigma + exp(-sigma l) L_bg,
+//   Q = eps + p_HG(g, dot(dir, -d)) S1 + S_ms / (4 pi),
+// with l the chord of the pixel's ray through the box [-s/2, (N - 1/2) s] (computed here in
+// double precision). Because the kernel integrates each step exactly for a constant medium, the
+// answer must hold for any step length, with perspective and parallel cameras, a rotated and
+// shifted grid (direction matrix, origin far from zero), and the output's alpha must be
+// 1 - mean transmittance. Tolerance: 2e-5 relative + 2e-6 absolute (float arithmetic over a few
+// hundred steps; a wrong chord, phase sign or transmittance gives errors of 1e-2 or more).
+#include "RenderingTestUtilities.h"
+
+#include "vtkCamera.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaViewPass.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace
+{
+const double Sigma[3] = { 1.5, 3.0, 0.4 };
+const double Eps[3] = { 0.3, 0.2, 0.1 };
+const double S1[3] = { 0.8, 0.5, 0.3 };
+const double Sms[3] = { 0.2, 0.4, 0.6 };
+const double G = 0.6;
+const double Background[3] = { 0.1, 0.25, 0.05 };
+
+double HG(double cosTheta, double g)
+{
+  return (1 - g * g) / (4 * vtkMath::Pi() * std::pow(1 + g * g - 2 * g * cosTheta, 1.5));
+}
+
+struct Scene
+{
+  vtkSmartPointer<vtkImageData> Medium;
+  vtkSmartPointer<vtkImageData> Lighting;
+  double LightDirLocal[3];
+};
+
+// A 12 x 10 x 8 grid, spacing 0.125, with an optional rotation and a far origin.
+Scene MakeScene(bool rotated)
+{
+  Scene scene;
+  const double origin[3] = { rotated ? 1e5 : 0.0, rotated ? -2e5 : 0.0, rotated ? 3e4 : 0.0 };
+  scene.Medium = refracta_test::MakeGrid(12, 10, 8, 0.125, origin);
+  if (rotated)
+  {
+    // Rotation by 30 degrees about z, then 20 degrees about x.
+    const double a = vtkMath::RadiansFromDegrees(30.0), b = vtkMath::RadiansFromDegrees(20.0);
+    const double rz[9] = { std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1 };
+    const double rx[9] = { 1, 0, 0, 0, std::cos(b), -std::sin(b), 0, std::sin(b), std::cos(b) };
+    double m[9];
+    vtkMatrix3x3::Multiply3x3(rx, rz, m);
+    scene.Medium->SetDirectionMatrix(m);
+  }
+  refracta_test::AddConstant(scene.Medium, "Extinction", 3, Sigma[0], Sigma[1], Sigma[2]);
+  refracta_test::AddConstant(scene.Medium, "Emission", 3, Eps[0], Eps[1], Eps[2]);
+  refracta_test::AddConstant(scene.Medium, "Anisotropy", 1, G);
+  scene.Lighting = vtkSmartPointer<vtkImageData>::New();
+  scene.Lighting->CopyStructure(scene.Medium);
+  refracta_test::AddConstant(scene.Lighting, "Radiance", 3, S1[0], S1[1], S1[2]);
+  double dir[3] = { 0.3, -0.8, 0.52 };
+  vtkMath::Normalize(dir);
+  refracta_test::AddConstant(scene.Lighting, "RadianceDirection", 3, dir[0], dir[1], dir[2]);
+  refracta_test::AddConstant(scene.Lighting, "MultipleScattering", 3, Sms[0], Sms[1], Sms[2]);
+  // The stored direction is in the grid-local frame (Physics.md).
+  std::copy(dir, dir + 3, scene.LightDirLocal);
+  return scene;
+}
+
+// Expected RGBA for every pixel, in double, from the same camera frame definition.
+std::vector<double> Expected(const Scene& scene, vtkCamera* camera, int w, int h)
+{
+  vtkRefractaViewPass::RayFrame f;
+  EXPECT_TRUE(vtkRefractaViewPass::ComputeRayFrame(camera, scene.Medium, nullptr, w, h, f));
+  int dims[3];
+  scene.Medium->GetDimensions(dims);
+  const double s = 0.125;
+  std::vector<double> result(size_t(w) * h * 4);
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      const double sx = 2.0 * (i + 0.5) / w - 1.0, sy = 2.0 * (j + 0.5) / h - 1.0;
+      double o[3], d[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        o[a] = f.Parallel ? f.Eye[a] + sx * f.U[a] + sy * f.V[a] : f.Eye[a];
+        d[a] = f.Parallel ? f.W[a] : f.W[a] + sx * f.U[a] + sy * f.V[a];
+      }
+      vtkMath::Normalize(d);
+      double t0 = 0, t1 = 1e300;
+      for (int a = 0; a < 3; ++a)
+      {
+        const double lo = -0.5 * s, hi = (dims[a] - 0.5) * s;
+        const double ta = (lo - o[a]) / d[a], tb = (hi - o[a]) / d[a];
+        t0 = std::max(t0, std::min(ta, tb));
+        t1 = std::min(t1, std::max(ta, tb));
+      }
+      const double chord = std::max(t1 - t0, 0.0);
+      const double cosTheta = -vtkMath::Dot(scene.LightDirLocal, d);
+      double meanT = 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double q = Eps[c] + HG(cosTheta, G) * S1[c] + Sms[c] / (4 * vtkMath::Pi());
+        const double tr = std::exp(-Sigma[c] * chord);
+        result[(i + size_t(w) * j) * 4 + c] = q * (1 - tr) / Sigma[c] + tr * Background[c];
+        meanT += tr / 3;
+      }
+      result[(i + size_t(w) * j) * 4 + 3] = 1 - meanT;
+    }
+  }
+  return result;
+}
+
+void CheckImage(vtkImageData* image, const std::vector<double>& expected, const char* what)
+{
+  ASSERT_NE(image->GetPointData()->GetArray("HDR"), nullptr) << what;
+  auto* hdr = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("HDR"));
+  ASSERT_NE(hdr, nullptr);
+  ASSERT_EQ(hdr->GetNumberOfValues(), static_cast<vtkIdType>(expected.size()));
+  double worst = 0;
+  int inside = 0;
+  for (size_t k = 0; k < expected.size(); ++k)
+  {
+    const double got = hdr->GetValue(static_cast<vtkIdType>(k));
+    const double err = std::abs(got - expected[k]) / (2e-5 * std::abs(expected[k]) + 2e-6);
+    worst = std::max(worst, err);
+    if (k % 4 == 3 && expected[k] > 0.01)
+    {
+      ++inside;
+    }
+  }
+  EXPECT_LE(worst, 1.0) << what << ": worst error in units of the tolerance";
+  // The camera must see the box in a good part of the image, and miss it elsewhere.
+  EXPECT_GT(inside, static_cast<int>(expected.size() / 4 / 10)) << what;
+  EXPECT_LT(inside, static_cast<int>(expected.size() / 4)) << what;
+}
+}
+
+TEST(ViewPassAnalytic, HomogeneousCubeMatchesClosedForm)
+{
+  for (bool rotated : { false, true })
+  {
+    Scene scene = MakeScene(rotated);
+    vtkNew<vtkCamera> camera;
+    // Look at the box centre from an oblique direction, in world coordinates.
+    double centreLocal[3] = { 11 * 0.0625, 9 * 0.0625, 7 * 0.0625 }, centre[3];
+    scene.Medium->TransformContinuousIndexToPhysicalPoint(
+      centreLocal[0] / 0.125, centreLocal[1] / 0.125, centreLocal[2] / 0.125, centre);
+    camera->SetFocalPoint(centre);
+    camera->SetPosition(centre[0] + 1.7, centre[1] + 1.1, centre[2] + 2.3);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetViewAngle(40);
+
+    vtkNew<vtkRefractaImageRenderer> renderer;
+    renderer->SetInputData(scene.Medium);
+    renderer->SetLightingData(scene.Lighting);
+    renderer->SetCamera(camera);
+    renderer->SetImageSize(48, 36);
+    renderer->SetBackgroundColor(Background[0], Background[1], Background[2]);
+    renderer->SetTransmittanceCutoff(0.0);
+    for (double step : { 1.0, 3.7, 0.25 })
+    {
+      renderer->SetStepSize(step);
+      renderer->Update();
+      CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36),
+        rotated ? "rotated perspective" : "perspective");
+      EXPECT_FALSE(renderer->GetViewPass()->GetLastCurved());
+      EXPECT_GT(renderer->GetOutput()->GetFieldData()->GetArray("TotalSteps")->GetTuple1(0), 0);
+    }
+    camera->ParallelProjectionOn();
+    camera->SetParallelScale(0.9);
+    renderer->SetStepSize(1.0);
+    renderer->Update();
+    CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36),
+      rotated ? "rotated parallel" : "parallel");
+  }
+}
+
+TEST(ViewPassAnalytic, StepsScaleWithStepSize)
+{
+  Scene scene = MakeScene(false);
+  vtkNew<vtkCamera> camera;
+  camera->SetFocalPoint(0.7, 0.6, 0.45);
+  camera->SetPosition(0.7, 0.6, 5);
+  vtkNew<vtkRefractaImageRenderer> renderer;
+  renderer->SetInputData(scene.Medium);
+  renderer->SetCamera(camera);
+  renderer->SetImageSize(32, 32);
+  renderer->SetTransmittanceCutoff(0.0);
+  renderer->SetStepSize(1.0);
+  renderer->Update();
+  const double steps1 = renderer->GetViewPass()->GetLastTotalSteps();
+  renderer->SetStepSize(0.5);
+  renderer->Update();
+  const double steps05 = renderer->GetViewPass()->GetLastTotalSteps();
+  // Halving the step roughly doubles the steps (each ray's last step is partial).
+  EXPECT_NEAR(steps05 / steps1, 2.0, 0.15);
+  // The lighting volume was optional: emission only (no 'Radiance' contribution).
+  auto* hdr = vtkFloatArray::SafeDownCast(renderer->GetOutput()->GetPointData()->GetArray("HDR"));
+  const float* centre = hdr->GetPointer(4 * (16 + 32 * 16));
+  const double chord = 1.0; // 8 voxels of 0.125 along z
+  EXPECT_NEAR(centre[0], Eps[0] / Sigma[0] * (1 - std::exp(-Sigma[0] * chord)), 2e-5);
+}
+
+TEST(ViewPassAnalytic, ToneMappingOperators)
+{
+  const float hdr[8] = { 0.0f, 0.5f, 2.0f, 1.0f, 0.0031308f, 1.0f, 100.0f, 1.0f };
+  vtkNew<vtkUnsignedCharArray> rgb;
+  vtkRefractaImageRenderer::ToneMap(hdr, 2, vtkRefractaImageRenderer::CLAMP, 1.0, rgb);
+  EXPECT_EQ(rgb->GetValue(0), 0);
+  EXPECT_EQ(rgb->GetValue(1), 188); // sRGB(0.5) = 0.7354 -> 187.5 -> 188
+  EXPECT_EQ(rgb->GetValue(2), 255);
+  EXPECT_EQ(rgb->GetValue(3), 10); // 12.92 * 0.0031308 * 255 = 10.3
+  vtkRefractaImageRenderer::ToneMap(hdr, 2, vtkRefractaImageRenderer::REINHARD, 2.0, rgb);
+  EXPECT_EQ(rgb->GetValue(1), 188); // 2 * 0.5 -> 1 / (1 + 1) = 0.5
+  vtkRefractaImageRenderer::ToneMap(hdr, 2, vtkRefractaImageRenderer::EXPONENTIAL, 1.0, rgb);
+  EXPECT_EQ(rgb->GetValue(5), 255); // 1 - exp(-100)
+}
+
+TEST(ViewPassAnalytic, BadInputsAreReported)
+{
+  Scene scene = MakeScene(false);
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0.7, 0.6, 5);
+  camera->SetFocalPoint(0.7, 0.6, 0.45);
+  vtkNew<vtkTest::ErrorObserver> errors;
+  vtkNew<vtkRefractaImageRenderer> renderer;
+  renderer->AddObserver(vtkCommand::ErrorEvent, errors);
+  renderer->GetViewPass()->AddObserver(vtkCommand::ErrorEvent, errors);
+  renderer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  renderer->SetInputData(scene.Medium);
+  renderer->SetImageSize(8, 8);
+
+  // No camera.
+  renderer->Update();
+  EXPECT_TRUE(errors->GetError());
+  EXPECT_NE(errors->GetErrorMessage().find("No camera"), std::string::npos);
+  EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 0);
+  errors->Clear();
+
+  // Invalid medium: negative extinction.
+  renderer->SetCamera(camera);
+  vtkNew<vtkImageData> bad;
+  bad->DeepCopy(scene.Medium);
+  vtkFloatArray::SafeDownCast(bad->GetPointData()->GetArray("Extinction"))->SetValue(5, -1.0f);
+  renderer->SetInputData(bad);
+  renderer->Update();
+  EXPECT_NE(errors->GetErrorMessage().find("Extinction"), std::string::npos);
+  EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 0);
+  errors->Clear();
+
+  // Lighting volume on another grid.
+  renderer->SetInputData(scene.Medium);
+  vtkNew<vtkImageData> other;
+  other->SetDimensions(3, 3, 3);
+  refracta_test::AddConstant(other, "Radiance", 3, 1, 1, 1);
+  refracta_test::AddConstant(other, "RadianceDirection", 3, 0, 0, 1);
+  renderer->SetLightingData(other);
+  renderer->Update();
+  EXPECT_NE(errors->GetErrorMessage().find("medium's grid"), std::string::npos);
+  EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 0);
+  errors->Clear();
+
+  // Radiance without its direction; NaN in the lighting volume.
+  vtkNew<vtkImageData> noDir;
+  noDir->CopyStructure(scene.Medium);
+  refracta_test::AddConstant(noDir, "Radiance", 3, 1, 1, 1);
+  renderer->SetLightingData(noDir);
+  renderer->Update();
+  EXPECT_NE(errors->GetErrorMessage().find("RadianceDirection"), std::string::npos);
+  errors->Clear();
+  refracta_test::AddConstant(noDir, "RadianceDirection", 3, 0, 0, 1)->SetValue(7, std::nanf(""));
+  renderer->Update();
+  EXPECT_NE(errors->GetErrorMessage().find("invalid value"), std::string::npos);
+  errors->Clear();
+
+  // Degenerate camera; bad environment image.
+  renderer->SetLightingData(nullptr);
+  camera->SetFocalPoint(camera->GetPosition());
+  renderer->Update();
+  EXPECT_NE(errors->GetErrorMessage().find("degenerate"), std::string::npos);
+  errors->Clear();
+  camera->SetFocalPoint(0.7, 0.6, 0.45);
+  vtkNew<vtkImageData> env;
+  env->SetDimensions(4, 4, 2);
+  refracta_test::AddConstant(env, "colour", 3, 1, 1, 1);
+  env->GetPointData()->SetActiveScalars("colour");
+  renderer->SetEnvironmentMap(env);
+  renderer->Update();
+  EXPECT_NE(errors->GetErrorMessage().find("environment map"), std::string::npos);
+  EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 0);
+  errors->Clear();
+
+  // And it recovers once the input is fixed.
+  renderer->SetEnvironmentMap(nullptr);
+  renderer->Update();
+  EXPECT_FALSE(errors->GetError());
+  EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 64);
+}

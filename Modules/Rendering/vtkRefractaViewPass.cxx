@@ -1,0 +1,768 @@
+#include "vtkRefractaViewPass.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMediumValidator.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenCLContext.h"
+#include "vtkPointData.h"
+#include "vtkRefractaMedium.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+vtkStandardNewMacro(vtkRefractaViewPass);
+
+namespace
+{
+// Copies an array's values into floats, `comps` components per tuple (fast path for floats).
+void FetchFloats(vtkDataArray* array, int comps, std::vector<float>& out)
+{
+  const vtkIdType n = array->GetNumberOfTuples();
+  out.resize(static_cast<size_t>(n) * comps);
+  if (auto* floats = vtkFloatArray::SafeDownCast(array))
+  {
+    std::copy(floats->GetPointer(0), floats->GetPointer(0) + out.size(), out.begin());
+    return;
+  }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < comps; ++c)
+    {
+      out[i * comps + c] = static_cast<float>(array->GetComponent(i, c));
+    }
+  }
+}
+
+// Rotates world-frame vectors (3 per tuple) into the grid-local frame: v_local = D^T v.
+void RotateToLocal(const double d[9], std::vector<float>& vectors)
+{
+  for (size_t i = 0; i + 2 < vectors.size(); i += 3)
+  {
+    const double x = vectors[i], y = vectors[i + 1], z = vectors[i + 2];
+    vectors[i] = static_cast<float>(d[0] * x + d[3] * y + d[6] * z);
+    vectors[i + 1] = static_cast<float>(d[1] * x + d[4] * y + d[7] * z);
+    vectors[i + 2] = static_cast<float>(d[2] * x + d[5] * y + d[8] * z);
+  }
+}
+
+cl_float4 Float4(const double v[3], double w = 0.0)
+{
+  cl_float4 r;
+  r.s[0] = static_cast<float>(v[0]);
+  r.s[1] = static_cast<float>(v[1]);
+  r.s[2] = static_cast<float>(v[2]);
+  r.s[3] = static_cast<float>(w);
+  return r;
+}
+}
+
+struct vtkRefractaViewPass::Internals
+{
+  vtkSmartPointer<vtkOpenCLContext> Context;
+  vtkSmartPointer<vtkImageData> Environment;
+
+  // Medium on the device.
+  vtkImageData* Medium = nullptr;
+  vtkMTimeType MediumTime = 0;
+  int Dims[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  double Origin[3] = { 0, 0, 0 };
+  double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  bool HasEmission = false;
+  bool Refractive = false;
+  vtkOpenCLBuffer Extinction, Emission, Anisotropy, Index, Gradient;
+
+  // Lighting on the device.
+  vtkImageData* Lighting = nullptr;
+  vtkMTimeType LightingTime = 0;
+  bool HasSingle = false;
+  bool HasMultiple = false;
+  vtkOpenCLBuffer Radiance, RadianceDirection, Multiple;
+
+  // Environment on the device.
+  vtkImageData* EnvironmentUploaded = nullptr;
+  vtkMTimeType EnvironmentTime = 0;
+  int EnvironmentSize[2] = { 0, 0 };
+  vtkOpenCLBuffer EnvironmentBuffer;
+
+  vtkOpenCLBuffer Dummy;
+
+  vtkOpenCLContext* GetContext()
+  {
+    if (!this->Context)
+    {
+      this->Context = vtkOpenCLContext::GetDefault();
+    }
+    return this->Context;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkRefractaViewPass::vtkRefractaViewPass()
+  : Internal(new Internals)
+{
+}
+
+vtkRefractaViewPass::~vtkRefractaViewPass() = default;
+
+//------------------------------------------------------------------------------
+void vtkRefractaViewPass::SetContext(vtkOpenCLContext* context)
+{
+  if (this->Internal->Context != context)
+  {
+    // Buffers belong to a context: drop them so they are uploaded again to the new one.
+    this->Internal.reset(new Internals);
+    this->Internal->Context = context;
+    this->Modified();
+  }
+}
+
+vtkOpenCLContext* vtkRefractaViewPass::GetContext()
+{
+  return this->Internal->GetContext();
+}
+
+void vtkRefractaViewPass::SetEnvironmentMap(vtkImageData* image)
+{
+  if (this->Internal->Environment != image)
+  {
+    this->Internal->Environment = image;
+    this->Modified();
+  }
+}
+
+vtkImageData* vtkRefractaViewPass::GetEnvironmentMap()
+{
+  return this->Internal->Environment;
+}
+
+bool vtkRefractaViewPass::GetMediumIsRefractive() const
+{
+  return this->Internal->Refractive;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
+{
+  Internals& in = *this->Internal;
+  vtkNew<vtkMediumValidator> validator;
+  if (!validator->Validate(medium))
+  {
+    vtkErrorMacro(
+      "The medium (input port 0) is not a valid Refracta medium: " << validator->GetErrorMessage());
+    in.Medium = nullptr;
+    return false;
+  }
+  if (in.Medium == medium && in.MediumTime == medium->GetMTime() && in.Extinction)
+  {
+    return true;
+  }
+  vtkOpenCLContext* context = in.GetContext();
+  if (!context->Initialize())
+  {
+    vtkErrorMacro("No OpenCL device: " << context->GetLastErrorMessage());
+    return false;
+  }
+  in.Medium = nullptr;
+  medium->GetDimensions(in.Dims);
+  medium->GetSpacing(in.Spacing);
+  medium->GetOrigin(in.Origin);
+  const double* d = medium->GetDirectionMatrix()->GetData();
+  std::copy(d, d + 9, in.Direction);
+  const size_t n = static_cast<size_t>(in.Dims[0]) * in.Dims[1] * in.Dims[2];
+  vtkPointData* pd = medium->GetPointData();
+
+  auto upload = [&](int id, const char* what, vtkOpenCLBuffer& buffer,
+                  std::vector<float>* keep = nullptr) -> bool
+  {
+    const int comps = vtkRefractaMedium::GetNumberOfComponents(id);
+    std::vector<float> values;
+    if (vtkDataArray* array = pd->GetArray(vtkRefractaMedium::GetArrayName(id)))
+    {
+      FetchFloats(array, comps, values);
+    }
+    else
+    {
+      values.assign(n * comps, static_cast<float>(vtkRefractaMedium::GetDefaultValue(id)));
+    }
+    buffer = context->CreateBuffer(
+      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4, values.data(), what, this);
+    if (keep)
+    {
+      *keep = std::move(values);
+    }
+    return static_cast<bool>(buffer);
+  };
+
+  if (!upload(vtkRefractaMedium::EXTINCTION, "Extinction", in.Extinction) ||
+    !upload(vtkRefractaMedium::ANISOTROPY, "Anisotropy", in.Anisotropy))
+  {
+    return false;
+  }
+  in.HasEmission = pd->GetArray(vtkRefractaMedium::EmissionName()) != nullptr;
+  if (in.HasEmission && !upload(vtkRefractaMedium::EMISSION, "Emission", in.Emission))
+  {
+    return false;
+  }
+  if (!in.HasEmission)
+  {
+    in.Emission.Reset();
+  }
+
+  // Refractive index: curved rays need n and grad n (grad n in the grid-local frame).
+  in.Refractive = false;
+  in.Index.Reset();
+  in.Gradient.Reset();
+  if (vtkDataArray* index = pd->GetArray(vtkRefractaMedium::RefractiveIndexName()))
+  {
+    double range[2];
+    index->GetRange(range, 0);
+    in.Refractive = range[1] - range[0] > 1e-6;
+  }
+  if (in.Refractive)
+  {
+    std::vector<float> nValues;
+    if (!upload(vtkRefractaMedium::REFRACTIVE_INDEX, "RefractiveIndex", in.Index, &nValues))
+    {
+      return false;
+    }
+    std::vector<float> gradient;
+    if (vtkDataArray* g = pd->GetArray(vtkRefractaMedium::RefractiveIndexGradientName()))
+    {
+      FetchFloats(g, 3, gradient);
+      RotateToLocal(in.Direction, gradient);
+    }
+    else
+    {
+      // Central differences (one-sided at the edges) along the grid axes.
+      gradient.assign(n * 3, 0.0f);
+      const int* dims = in.Dims;
+      for (int k = 0; k < dims[2]; ++k)
+      {
+        for (int j = 0; j < dims[1]; ++j)
+        {
+          for (int i = 0; i < dims[0]; ++i)
+          {
+            const int ijk[3] = { i, j, k };
+            const size_t idx =
+              i + static_cast<size_t>(dims[0]) * (j + static_cast<size_t>(dims[1]) * k);
+            for (int a = 0; a < 3; ++a)
+            {
+              if (dims[a] < 2)
+              {
+                continue;
+              }
+              int lo[3] = { i, j, k }, hi[3] = { i, j, k };
+              lo[a] = std::max(ijk[a] - 1, 0);
+              hi[a] = std::min(ijk[a] + 1, dims[a] - 1);
+              auto at = [&](const int* p)
+              {
+                return nValues[p[0] +
+                  static_cast<size_t>(dims[0]) * (p[1] + static_cast<size_t>(dims[1]) * p[2])];
+              };
+              gradient[idx * 3 + a] =
+                static_cast<float>((at(hi) - at(lo)) / ((hi[a] - lo[a]) * in.Spacing[a]));
+            }
+          }
+        }
+      }
+    }
+    in.Gradient = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      gradient.size() * 4, gradient.data(), "RefractiveIndexGradient", this);
+    if (!in.Gradient)
+    {
+      return false;
+    }
+  }
+  // A new medium invalidates the lighting volume's upload (it must match the grid).
+  in.Lighting = nullptr;
+  in.HasSingle = in.HasMultiple = false;
+  in.Radiance.Reset();
+  in.RadianceDirection.Reset();
+  in.Multiple.Reset();
+  in.Medium = medium;
+  in.MediumTime = medium->GetMTime();
+  ++this->NumberOfUploads;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
+{
+  Internals& in = *this->Internal;
+  if (!lighting)
+  {
+    in.Lighting = nullptr;
+    in.HasSingle = in.HasMultiple = false;
+    in.Radiance.Reset();
+    in.RadianceDirection.Reset();
+    in.Multiple.Reset();
+    return true;
+  }
+  if (!in.Medium)
+  {
+    vtkErrorMacro("SetLighting() needs a valid medium first.");
+    return false;
+  }
+  if (in.Lighting == lighting && in.LightingTime == lighting->GetMTime())
+  {
+    return true;
+  }
+  int dims[3];
+  lighting->GetDimensions(dims);
+  if (dims[0] != in.Dims[0] || dims[1] != in.Dims[1] || dims[2] != in.Dims[2])
+  {
+    vtkErrorMacro("The lighting volume (input port 1) has dimensions "
+      << dims[0] << " x " << dims[1] << " x " << dims[2] << " but the medium has " << in.Dims[0]
+      << " x " << in.Dims[1] << " x " << in.Dims[2]
+      << "; it must be computed on the medium's grid.");
+    return false;
+  }
+  vtkPointData* pd = lighting->GetPointData();
+  vtkDataArray* radiance = pd->GetArray("Radiance");
+  vtkDataArray* direction = pd->GetArray("RadianceDirection");
+  vtkDataArray* multiple = pd->GetArray("MultipleScattering");
+  const vtkIdType n = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  auto check = [&](vtkDataArray* a, const char* name, bool nonNegative) -> bool
+  {
+    if (a->GetNumberOfComponents() != 3 || a->GetNumberOfTuples() != n)
+    {
+      vtkErrorMacro("The lighting volume's point array '"
+        << name << "' has " << a->GetNumberOfComponents() << " components and "
+        << a->GetNumberOfTuples() << " tuples; it needs 3 components and " << n << " tuples.");
+      return false;
+    }
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const double v = a->GetComponent(i, c);
+        if (!std::isfinite(v) || (nonNegative && v < 0))
+        {
+          vtkErrorMacro("The lighting volume's point array '"
+            << name << "' has the invalid value " << v << " at tuple " << i << " component " << c
+            << "; values must be finite" << (nonNegative ? " and >= 0." : "."));
+          return false;
+        }
+      }
+    }
+    return true;
+  };
+  if (!radiance && !multiple)
+  {
+    vtkErrorMacro("The lighting volume (input port 1) has neither a 'Radiance' nor a "
+                  "'MultipleScattering' point array; a lighting volume from vtkPhotonTracer or "
+                  "vtkLatticeBoltzmannLighting carries at least one of them.");
+    return false;
+  }
+  if (radiance && !direction)
+  {
+    vtkErrorMacro("The lighting volume has 'Radiance' but no 'RadianceDirection' point array "
+                  "(the mean travel direction of the light, 3 components).");
+    return false;
+  }
+  if ((radiance &&
+        (!check(radiance, "Radiance", true) || !check(direction, "RadianceDirection", false))) ||
+    (multiple && !check(multiple, "MultipleScattering", true)))
+  {
+    return false;
+  }
+  vtkOpenCLContext* context = in.GetContext();
+  std::vector<float> values;
+  in.HasSingle = radiance != nullptr;
+  in.HasMultiple = multiple != nullptr;
+  in.Radiance.Reset();
+  in.RadianceDirection.Reset();
+  in.Multiple.Reset();
+  if (in.HasSingle)
+  {
+    FetchFloats(radiance, 3, values);
+    in.Radiance = context->CreateBuffer(
+      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4, values.data(), "Radiance", this);
+    // RadianceDirection is stored in the grid-local frame (vtkPhotonTracer, Physics.md).
+    FetchFloats(direction, 3, values);
+    in.RadianceDirection = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      values.size() * 4, values.data(), "RadianceDirection", this);
+    if (!in.Radiance || !in.RadianceDirection)
+    {
+      return false;
+    }
+  }
+  if (in.HasMultiple)
+  {
+    FetchFloats(multiple, 3, values);
+    in.Multiple = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
+      values.data(), "MultipleScattering", this);
+    if (!in.Multiple)
+    {
+      return false;
+    }
+  }
+  in.Lighting = lighting;
+  in.LightingTime = lighting->GetMTime();
+  ++this->NumberOfUploads;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaViewPass::ComputeRayFrame(vtkCamera* camera, vtkImageData* medium,
+  vtkMatrix4x4* propMatrix, int width, int height, RayFrame& frame)
+{
+  if (!camera || !medium || width < 1 || height < 1)
+  {
+    return false;
+  }
+  double pos[3], fp[3], up[3], w[3], r[3], u[3];
+  camera->GetPosition(pos);
+  camera->GetFocalPoint(fp);
+  camera->GetViewUp(up);
+  vtkMath::Subtract(fp, pos, w);
+  if (vtkMath::Normalize(w) == 0.0)
+  {
+    return false;
+  }
+  vtkMath::Cross(w, up, r);
+  if (vtkMath::Normalize(r) == 0.0)
+  {
+    return false;
+  }
+  vtkMath::Cross(r, w, u);
+  const double aspect = static_cast<double>(width) / height;
+  double halfW, halfH;
+  frame.Parallel = camera->GetParallelProjection() != 0;
+  if (frame.Parallel)
+  {
+    halfH = camera->GetParallelScale();
+    halfW = halfH * aspect;
+  }
+  else
+  {
+    const double t = std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2.0);
+    if (camera->GetUseHorizontalViewAngle())
+    {
+      halfW = t;
+      halfH = t / aspect;
+    }
+    else
+    {
+      halfH = t;
+      halfW = t * aspect;
+    }
+  }
+
+  // World -> data (inverse prop matrix) -> grid-local (D^T (p - o)), all in double.
+  vtkNew<vtkMatrix4x4> dataToLocal;
+  const double* d = medium->GetDirectionMatrix()->GetData();
+  const double* o = medium->GetOrigin();
+  for (int row = 0; row < 3; ++row)
+  {
+    double shift = 0;
+    for (int col = 0; col < 3; ++col)
+    {
+      dataToLocal->SetElement(row, col, d[col * 3 + row]);
+      shift -= d[col * 3 + row] * o[col];
+    }
+    dataToLocal->SetElement(row, 3, shift);
+  }
+  vtkNew<vtkMatrix4x4> worldToLocal;
+  if (propMatrix)
+  {
+    vtkNew<vtkMatrix4x4> inverse;
+    vtkMatrix4x4::Invert(propMatrix, inverse);
+    vtkMatrix4x4::Multiply4x4(dataToLocal, inverse, worldToLocal);
+  }
+  else
+  {
+    worldToLocal->DeepCopy(dataToLocal);
+  }
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int col = 0; col < 4; ++col)
+    {
+      frame.WorldToLocal[row][col] = worldToLocal->GetElement(row, col);
+    }
+  }
+  auto point = [&](const double p[3], double out[3])
+  {
+    for (int row = 0; row < 3; ++row)
+    {
+      out[row] = frame.WorldToLocal[row][0] * p[0] + frame.WorldToLocal[row][1] * p[1] +
+        frame.WorldToLocal[row][2] * p[2] + frame.WorldToLocal[row][3];
+    }
+  };
+  auto vector = [&](const double v[3], double scale, double out[3])
+  {
+    for (int row = 0; row < 3; ++row)
+    {
+      out[row] = scale *
+        (frame.WorldToLocal[row][0] * v[0] + frame.WorldToLocal[row][1] * v[1] +
+          frame.WorldToLocal[row][2] * v[2]);
+    }
+  };
+  point(pos, frame.Eye);
+  vector(r, halfW, frame.U);
+  vector(u, halfH, frame.V);
+  vector(w, 1.0, frame.W);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMatrix4x4* propMatrix,
+  const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance)
+{
+  Internals& in = *this->Internal;
+  if (!in.Medium)
+  {
+    vtkErrorMacro("Render() needs a valid medium (SetMedium() failed or was not called).");
+    return false;
+  }
+  if (!camera)
+  {
+    vtkErrorMacro("No camera: call SetCamera() with a vtkCamera.");
+    return false;
+  }
+  if (width < 1 || height < 1)
+  {
+    vtkErrorMacro("Image size " << width << " x " << height << " is invalid; both must be >= 1.");
+    return false;
+  }
+  RayFrame frame;
+  if (!ComputeRayFrame(camera, in.Medium, propMatrix, width, height, frame))
+  {
+    vtkErrorMacro("The camera is degenerate (position equals focal point, or view-up parallel "
+                  "to the view direction).");
+    return false;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    if (!std::isfinite(this->BackgroundColor[c]) || this->BackgroundColor[c] < 0)
+    {
+      vtkErrorMacro("BackgroundColor component " << c << " is " << this->BackgroundColor[c]
+                                                 << "; it must be finite and >= 0.");
+      return false;
+    }
+  }
+  vtkOpenCLContext* context = in.GetContext();
+
+  // Environment map: upload when changed.
+  vtkImageData* env = in.Environment;
+  if (env && (in.EnvironmentUploaded != env || in.EnvironmentTime != env->GetMTime()))
+  {
+    int ed[3];
+    env->GetDimensions(ed);
+    vtkDataArray* scalars = env->GetPointData()->GetScalars();
+    if (!scalars || ed[2] != 1 || ed[0] < 1 || ed[1] < 1 ||
+      (scalars->GetNumberOfComponents() != 3 && scalars->GetNumberOfComponents() != 4))
+    {
+      vtkErrorMacro("The environment map must be a 2D vtkImageData (W x H x 1) with RGB or RGBA "
+                    "point scalars; got "
+        << ed[0] << " x " << ed[1] << " x " << ed[2] << " with "
+        << (scalars ? scalars->GetNumberOfComponents() : 0) << " scalar components.");
+      return false;
+    }
+    const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
+    const int comps = scalars->GetNumberOfComponents();
+    std::vector<float> rgb(static_cast<size_t>(ed[0]) * ed[1] * 3);
+    for (vtkIdType i = 0; i < static_cast<vtkIdType>(ed[0]) * ed[1]; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        double v = scalars->GetComponent(i, c);
+        v = bytes ? v / 255.0 : v;
+        rgb[i * 3 + c] = std::isfinite(v) ? static_cast<float>(std::max(v, 0.0)) : 0.0f;
+      }
+    }
+    (void)comps;
+    in.EnvironmentBuffer = context->CreateBuffer(
+      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, rgb.size() * 4, rgb.data(), "environment map", this);
+    if (!in.EnvironmentBuffer)
+    {
+      return false;
+    }
+    in.EnvironmentSize[0] = ed[0];
+    in.EnvironmentSize[1] = ed[1];
+    in.EnvironmentUploaded = env;
+    in.EnvironmentTime = env->GetMTime();
+  }
+
+  const bool curved = this->RayMode == CURVED ? static_cast<bool>(in.Index)
+                                              : (this->RayMode == AUTO && in.Refractive);
+  if (this->RayMode == CURVED && !in.Index)
+  {
+    vtkDebugMacro("RayMode CURVED with a constant refractive index: rays are straight.");
+  }
+  std::string options;
+  if (curved)
+  {
+    options += " -DREFRACTA_CURVED";
+  }
+  if (frame.Parallel)
+  {
+    options += " -DREFRACTA_PARALLEL";
+  }
+  if (in.HasSingle)
+  {
+    options += " -DREFRACTA_HAS_SINGLE";
+  }
+  if (in.HasMultiple)
+  {
+    options += " -DREFRACTA_HAS_MULTIPLE";
+  }
+  if (in.HasEmission)
+  {
+    options += " -DREFRACTA_HAS_EMISSION";
+  }
+  if (env)
+  {
+    options += " -DREFRACTA_HAS_ENVIRONMENT";
+  }
+  if (depthLimit)
+  {
+    options += " -DREFRACTA_HAS_DEPTH_LIMIT";
+  }
+  cl_program program = context->GetProgram({ "refracta_common.cl", "view_pass.cl" }, options, this);
+  if (!program)
+  {
+    return false;
+  }
+  vtkOpenCLKernel kernel = context->CreateKernel(program, "refracta_view_pass", this);
+  if (!kernel)
+  {
+    return false;
+  }
+  if (!in.Dummy)
+  {
+    const float zero[4] = { 0, 0, 0, 0 };
+    in.Dummy = context->CreateBuffer(
+      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(zero), zero, "placeholder", this);
+    if (!in.Dummy)
+    {
+      return false;
+    }
+  }
+  const size_t pixels = static_cast<size_t>(width) * height;
+  vtkOpenCLBuffer hdrBuffer =
+    context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 16, nullptr, "HDR image", this);
+  vtkOpenCLBuffer stepBuffer =
+    context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 4, nullptr, "step counts", this);
+  vtkOpenCLBuffer transmittanceBuffer =
+    context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 16, nullptr, "transmittance image", this);
+  vtkOpenCLBuffer depthBuffer;
+  if (depthLimit)
+  {
+    depthBuffer = context->CreateBuffer(
+      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, pixels * 4, depthLimit, "depth limits", this);
+  }
+  if (!hdrBuffer || !stepBuffer || !transmittanceBuffer || (depthLimit && !depthBuffer))
+  {
+    return false;
+  }
+  auto buf = [&](const vtkOpenCLBuffer& b) { return b ? b.Get() : in.Dummy.Get(); };
+
+  const double minSpacing = std::min({ in.Spacing[0], in.Spacing[1], in.Spacing[2] });
+  const cl_int4 dims = { { in.Dims[0], in.Dims[1], in.Dims[2], 0 } };
+  const cl_float4 spacing = Float4(in.Spacing);
+  const cl_float stepLength = static_cast<float>(this->StepSize * minSpacing);
+  const cl_int maxSteps = this->MaxSteps > 0
+    ? this->MaxSteps
+    : static_cast<cl_int>(std::ceil(4.0 * (in.Dims[0] + in.Dims[1] + in.Dims[2]) / this->StepSize));
+  const cl_float cutoff = static_cast<float>(this->TransmittanceCutoff);
+  const cl_float4 background = Float4(this->BackgroundColor);
+
+  // Environment frame: world (right, up, front) -> grid-local, rotation only (prop and D).
+  double er[3], eu[3], ef[3];
+  std::copy(this->EnvironmentRight, this->EnvironmentRight + 3, er);
+  std::copy(this->EnvironmentUp, this->EnvironmentUp + 3, eu);
+  vtkMath::Normalize(er);
+  vtkMath::Normalize(eu);
+  vtkMath::Cross(er, eu, ef);
+  vtkMath::Normalize(ef);
+  // A world direction x maps to local L x (L the linear part of WorldToLocal); dot(x, e) =
+  // dot(L x, L^-T e); for the rigid transforms used here L^-T = L, so rotate e by L and
+  // re-normalise.
+  auto toLocal = [&](const double v[3])
+  {
+    double out[3];
+    for (int row = 0; row < 3; ++row)
+    {
+      out[row] = frame.WorldToLocal[row][0] * v[0] + frame.WorldToLocal[row][1] * v[1] +
+        frame.WorldToLocal[row][2] * v[2];
+    }
+    vtkMath::Normalize(out);
+    return Float4(out);
+  };
+  const cl_float4 envRight = toLocal(er), envUp = toLocal(eu), envFront = toLocal(ef);
+  const cl_int2 envSize = { { std::max(in.EnvironmentSize[0], 1),
+    std::max(in.EnvironmentSize[1], 1) } };
+
+  const cl_int w = width, h = height;
+  const cl_int status = vtkOpenCLSetKernelArgs(kernel.Get(), dims, spacing, buf(in.Extinction),
+    buf(in.Emission), buf(in.Anisotropy), buf(in.Index), buf(in.Gradient), buf(in.Radiance),
+    buf(in.RadianceDirection), buf(in.Multiple), Float4(frame.Eye), Float4(frame.U),
+    Float4(frame.V), Float4(frame.W), w, h, stepLength, maxSteps, cutoff, background,
+    env ? in.EnvironmentBuffer.Get() : in.Dummy.Get(), envSize, envRight, envUp, envFront,
+    buf(depthBuffer), hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get());
+  if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this))
+  {
+    return false;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const size_t global[2] = { static_cast<size_t>(width), static_cast<size_t>(height) };
+  hdr.resize(pixels * 4);
+  std::vector<cl_uint> steps(pixels);
+  if (!context->RunKernel(kernel.Get(), 2, global, nullptr, "refracta_view_pass", this) ||
+    !context->ReadBuffer(hdrBuffer.Get(), pixels * 16, hdr.data(), this) ||
+    !context->ReadBuffer(stepBuffer.Get(), pixels * 4, steps.data(), this))
+  {
+    return false;
+  }
+  if (transmittance &&
+    (transmittance->resize(pixels * 4),
+      !context->ReadBuffer(transmittanceBuffer.Get(), pixels * 16, transmittance->data(), this)))
+  {
+    return false;
+  }
+  this->LastSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  double total = 0;
+  for (cl_uint s : steps)
+  {
+    total += s;
+  }
+  this->LastTotalSteps = total;
+  this->LastCurved = curved;
+  ++this->NumberOfRenders;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaViewPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "StepSize: " << this->StepSize << " voxels\n";
+  os << indent << "RayMode: "
+     << (this->RayMode == AUTO ? "AUTO" : (this->RayMode == STRAIGHT ? "STRAIGHT" : "CURVED"))
+     << "\n";
+  os << indent << "TransmittanceCutoff: " << this->TransmittanceCutoff << "\n";
+  os << indent << "MaxSteps: " << this->MaxSteps << "\n";
+  os << indent << "BackgroundColor: (" << this->BackgroundColor[0] << ", "
+     << this->BackgroundColor[1] << ", " << this->BackgroundColor[2] << ")\n";
+  os << indent << "EnvironmentMap: " << this->Internal->Environment.Get() << "\n";
+  os << indent << "EnvironmentUp: (" << this->EnvironmentUp[0] << ", " << this->EnvironmentUp[1]
+     << ", " << this->EnvironmentUp[2] << ")\n";
+  os << indent << "EnvironmentRight: (" << this->EnvironmentRight[0] << ", "
+     << this->EnvironmentRight[1] << ", " << this->EnvironmentRight[2] << ")\n";
+  os << indent << "LastSeconds: " << this->LastSeconds << "\n";
+  os << indent << "LastTotalSteps: " << this->LastTotalSteps << "\n";
+  os << indent << "NumberOfUploads: " << this->NumberOfUploads << "\n";
+  os << indent << "NumberOfRenders: " << this->NumberOfRenders << "\n";
+}

@@ -1,0 +1,218 @@
+/**
+ * @class   vtkRefractaViewPass
+ * @brief   The view pass on the OpenCL device: one (curved) view ray per pixel through a medium
+ *          and its lighting volume (Kernels/view_pass.cl).
+ *
+ * This is the engine shared by vtkRefractaImageRenderer (headless), vtkRefractiveVolumeMapper
+ * (render window) and the refracta-render program. It keeps the medium and the lighting volume
+ * on the device and uploads them again only when they change (pointer or MTime), so a camera
+ * change costs one kernel launch.
+ *
+ * Per pixel it evaluates (Documentation/Physics.md)
+ *   L = sum over steps of T [ p(g, cos) S1 + S_ms / (4 pi) + eps ] ds + T_exit L_bg(d_exit)
+ * with the medium held constant at each step's midpoint and each step integrated exactly, so a
+ * homogeneous medium gives the analytic answer for any step length.
+ *
+ * Settings (units, defaults):
+ * - StepSize: view-ray step in voxels (multiples of the smallest spacing), clamped to
+ *   [0.01, 16]; default 1 (one voxel, as Sun et al. argue).
+ * - RayMode: AUTO (default: curved rays only where the medium's refractive index varies, by more
+ *   than 1e-6), STRAIGHT, or CURVED.
+ * - TransmittanceCutoff: a ray stops when every channel's transmittance is below it; [0, 1],
+ *   default 1e-4 (the radiance it can miss is at most cutoff times the rest of the path's).
+ * - MaxSteps: cap on steps per ray; 0 (default) means 4 (Nx + Ny + Nz) / StepSize, enough for
+ *   any straight ray several times over; curved rays trapped by total internal reflection stop
+ *   there and see no background.
+ * - BackgroundColor: uniform background radiance (linear RGB), default (0, 0, 0).
+ * - EnvironmentMap: an equirectangular image (vtkImageData, 3 or 4 components; unsigned char
+ *   values are divided by 255, other types used as linear radiance) that replaces the colour.
+ *   Directions are expressed in the frame (EnvironmentRight, EnvironmentUp, front = right x up)
+ *   of world space: longitude u = atan2(front, right) / 2 pi + 1/2 across the image's x,
+ *   latitude v = atan2(up, |(right, front)|) / pi + 1/2 up its y (row 0 at the bottom).
+ *   Defaults: right (1, 0, 0), up (0, 1, 0), as vtkRenderer's environment.
+ *
+ * The lighting volume must be on the medium's grid and carry `Radiance` (S1, RGB) with
+ * `RadianceDirection` (3, unit, in the grid-local frame), and/or `MultipleScattering` (S_ms, RGB).
+ */
+#ifndef vtkRefractaViewPass_h
+#define vtkRefractaViewPass_h
+
+#include "RefractaRenderingModule.h" // for export macro
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // for members
+
+#include <memory> // for std::unique_ptr
+#include <vector> // for std::vector
+
+class vtkCamera;
+class vtkImageData;
+class vtkMatrix4x4;
+class vtkOpenCLContext;
+
+class REFRACTARENDERING_EXPORT vtkRefractaViewPass : public vtkObject
+{
+public:
+  static vtkRefractaViewPass* New();
+  vtkTypeMacro(vtkRefractaViewPass, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum RayModes
+  {
+    AUTO = 0,
+    STRAIGHT = 1,
+    CURVED = 2
+  };
+
+  ///@{
+  /**
+   * OpenCL context; default vtkOpenCLContext::GetDefault().
+   */
+  void SetContext(vtkOpenCLContext* context);
+  vtkOpenCLContext* GetContext();
+  ///@}
+
+  ///@{
+  /**
+   * View-ray step in voxels (see the class description). Default 1.
+   */
+  vtkSetClampMacro(StepSize, double, 0.01, 16.0);
+  vtkGetMacro(StepSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * AUTO (default), STRAIGHT or CURVED.
+   */
+  vtkSetClampMacro(RayMode, int, AUTO, CURVED);
+  vtkGetMacro(RayMode, int);
+  ///@}
+
+  ///@{
+  /**
+   * Transmittance below which a ray stops, [0, 1]. Default 1e-4.
+   */
+  vtkSetClampMacro(TransmittanceCutoff, double, 0.0, 1.0);
+  vtkGetMacro(TransmittanceCutoff, double);
+  ///@}
+
+  ///@{
+  /**
+   * Maximum steps per ray; 0 (default) = 4 (Nx + Ny + Nz) / StepSize.
+   */
+  vtkSetClampMacro(MaxSteps, int, 0, 1 << 28);
+  vtkGetMacro(MaxSteps, int);
+  ///@}
+
+  ///@{
+  /**
+   * Uniform background radiance, linear RGB >= 0. Default (0, 0, 0).
+   */
+  vtkSetVector3Macro(BackgroundColor, double);
+  vtkGetVector3Macro(BackgroundColor, double);
+  ///@}
+
+  ///@{
+  /**
+   * Equirectangular environment image (see the class description); nullptr (default) uses the
+   * background colour.
+   */
+  void SetEnvironmentMap(vtkImageData* image);
+  vtkImageData* GetEnvironmentMap();
+  vtkSetVector3Macro(EnvironmentUp, double);
+  vtkGetVector3Macro(EnvironmentUp, double);
+  vtkSetVector3Macro(EnvironmentRight, double);
+  vtkGetVector3Macro(EnvironmentRight, double);
+  ///@}
+
+  /**
+   * Check and (when changed) upload the medium. Returns false after an error naming the problem.
+   */
+  bool SetMedium(vtkImageData* medium);
+
+  /**
+   * Check and (when changed) upload the lighting volume; nullptr means none (emission and
+   * background only). Call after SetMedium(). Returns false after an error.
+   */
+  bool SetLighting(vtkImageData* lighting);
+
+  /**
+   * Render W x H pixels for `camera` (world coordinates). `propMatrix` (may be nullptr) maps the
+   * medium's data coordinates to world (a vtkVolume's matrix). `depthLimit` (may be nullptr; W H
+   * floats) caps each pixel's path length in the medium's world units (opaque geometry).
+   * Fills `hdr` with W H RGBA floats (A = 1 - mean transmittance) and, when given,
+   * `transmittance` with W H RGBA floats (the path's RGB transmittance, A = 0). Returns false
+   * after an error.
+   */
+  bool Render(vtkCamera* camera, int width, int height, vtkMatrix4x4* propMatrix,
+    const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance = nullptr);
+
+  ///@{
+  /**
+   * Facts about the last Render(): device seconds of the kernel (including the read-back), the
+   * total number of steps marched, whether curved rays were used.
+   */
+  vtkGetMacro(LastSeconds, double);
+  vtkGetMacro(LastTotalSteps, double);
+  vtkGetMacro(LastCurved, bool);
+  ///@}
+
+  /**
+   * Number of times a medium or lighting volume was uploaded to the device (for cache tests).
+   */
+  vtkGetMacro(NumberOfUploads, int);
+
+  /**
+   * Number of kernel launches (view passes) so far.
+   */
+  vtkGetMacro(NumberOfRenders, int);
+
+  /**
+   * Whether the current medium's refractive index varies (so AUTO traces curved rays).
+   */
+  bool GetMediumIsRefractive() const;
+
+#ifndef __VTK_WRAP__
+  /**
+   * A camera's rays in the grid-local frame of a medium, computed in double precision.
+   * Perspective: origin Eye, direction normalize(W + sx U + sy V); parallel: origin
+   * Eye + sx U + sy V, direction normalize(W); sx, sy in [-1, 1] over the image.
+   */
+  struct RayFrame
+  {
+    double Eye[3];
+    double U[3];
+    double V[3];
+    double W[3];
+    bool Parallel;
+    double WorldToLocal[4][4]; // affine map from world points to grid-local points
+  };
+  static bool ComputeRayFrame(vtkCamera* camera, vtkImageData* medium, vtkMatrix4x4* propMatrix,
+    int width, int height, RayFrame& frame);
+#endif
+
+protected:
+  vtkRefractaViewPass();
+  ~vtkRefractaViewPass() override;
+
+  double StepSize = 1.0;
+  int RayMode = AUTO;
+  double TransmittanceCutoff = 1e-4;
+  int MaxSteps = 0;
+  double BackgroundColor[3] = { 0.0, 0.0, 0.0 };
+  double EnvironmentUp[3] = { 0.0, 1.0, 0.0 };
+  double EnvironmentRight[3] = { 1.0, 0.0, 0.0 };
+  double LastSeconds = 0.0;
+  double LastTotalSteps = 0.0;
+  bool LastCurved = false;
+  int NumberOfUploads = 0;
+  int NumberOfRenders = 0;
+
+private:
+  vtkRefractaViewPass(const vtkRefractaViewPass&) = delete;
+  void operator=(const vtkRefractaViewPass&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

@@ -1,0 +1,248 @@
+#include "vtkLatticeBoltzmannLighting.h"
+
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkLatticeBoltzmannSolver.h"
+#include "vtkMediumValidator.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenCLContext.h"
+#include "vtkPointData.h"
+#include "vtkRefractaMedium.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkLatticeBoltzmannLighting);
+
+namespace
+{
+// Point array `name` as interleaved floats of `comps` components, or the default value.
+std::vector<float> ReadArray(vtkImageData* image, const char* name, int comps, float fallback)
+{
+  const vtkIdType n = image->GetNumberOfPoints();
+  std::vector<float> values(static_cast<size_t>(n) * comps, fallback);
+  vtkDataArray* array = image->GetPointData()->GetArray(name);
+  if (array && array->GetNumberOfComponents() == comps && array->GetNumberOfTuples() == n)
+  {
+    for (vtkIdType t = 0; t < n; ++t)
+    {
+      for (int c = 0; c < comps; ++c)
+      {
+        values[t * comps + c] = static_cast<float>(array->GetComponent(t, c));
+      }
+    }
+  }
+  return values;
+}
+
+// Forwards the solver's progress to the filter.
+class ProgressForwarder : public vtkCommand
+{
+public:
+  static ProgressForwarder* New() { return new ProgressForwarder; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    this->Filter->UpdateProgress(*static_cast<double*>(data));
+  }
+  vtkAlgorithm* Filter = nullptr;
+};
+}
+
+//------------------------------------------------------------------------------
+vtkLatticeBoltzmannLighting::vtkLatticeBoltzmannLighting()
+{
+  this->SetNumberOfInputPorts(2);
+}
+vtkLatticeBoltzmannLighting::~vtkLatticeBoltzmannLighting() = default;
+
+//------------------------------------------------------------------------------
+void vtkLatticeBoltzmannLighting::SetContext(vtkOpenCLContext* context)
+{
+  if (this->Context != context)
+  {
+    this->Context = context;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkLatticeBoltzmannLighting::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkLatticeBoltzmannLighting::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // The output lives on the medium's grid.
+  vtkInformation* in = inputVector[0]->GetInformationObject(0);
+  vtkInformation* out = outputVector->GetInformationObject(0);
+  if (in && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    out->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(),
+      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkLatticeBoltzmannLighting::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* medium = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* lighting = vtkImageData::GetData(inputVector[1]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  output->Initialize();
+
+  vtkNew<vtkMediumValidator> validator;
+  if (!validator->Validate(medium))
+  {
+    vtkErrorMacro("Input 0 is not a valid medium: " << validator->GetErrorMessage());
+    return 0;
+  }
+  if (!lighting)
+  {
+    vtkErrorMacro("Input 1 (the lighting volume with `Radiance`, from the photon pass) is "
+                  "missing: connect it with SetLightingConnection().");
+    return 0;
+  }
+  int dims[3], ldims[3];
+  medium->GetDimensions(dims);
+  lighting->GetDimensions(ldims);
+  double spacing[3], lspacing[3];
+  medium->GetSpacing(spacing);
+  lighting->GetSpacing(lspacing);
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dims[a] != ldims[a] || std::abs(spacing[a] - lspacing[a]) > 1e-6 * std::abs(spacing[a]))
+    {
+      vtkErrorMacro("Input 1 (lighting volume) has dimensions "
+        << ldims[0] << "x" << ldims[1] << "x" << ldims[2] << " and spacing " << lspacing[0] << ", "
+        << lspacing[1] << ", " << lspacing[2] << "; it must be on the medium's grid (" << dims[0]
+        << "x" << dims[1] << "x" << dims[2] << ", spacing " << spacing[0] << ", " << spacing[1]
+        << ", " << spacing[2] << ").");
+      return 0;
+    }
+  }
+  const vtkIdType n = medium->GetNumberOfPoints();
+  vtkDataArray* radiance = lighting->GetPointData()->GetArray("Radiance");
+  if (!radiance || radiance->GetNumberOfComponents() != 3 || radiance->GetNumberOfTuples() != n)
+  {
+    vtkErrorMacro("Input 1 (lighting volume) needs a point array `Radiance` with 3 components "
+                  "and "
+      << n << " tuples (S1, power per unit volume scattered out of the direct beam); it has "
+      << (radiance ? "one with the wrong shape" : "none") << ".");
+    return 0;
+  }
+  for (vtkIdType t = 0; t < n; ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double value = radiance->GetComponent(t, c);
+      if (!std::isfinite(value) || value < 0)
+      {
+        vtkErrorMacro("Input 1: `Radiance` must be finite and >= 0; tuple "
+          << t << " component " << c << " is " << value << ".");
+        return 0;
+      }
+    }
+  }
+  vtkDataArray* direction = lighting->GetPointData()->GetArray("RadianceDirection");
+  if (direction && (direction->GetNumberOfComponents() != 3 || direction->GetNumberOfTuples() != n))
+  {
+    vtkErrorMacro("Input 1: `RadianceDirection` must have 3 components and " << n << " tuples.");
+    return 0;
+  }
+
+  vtkNew<vtkLatticeBoltzmannSolver> solver;
+  if (this->Context)
+  {
+    solver->SetContext(this->Context);
+  }
+  solver->SetLattice(this->Lattice == 18 ? 18 : 6);
+  solver->SetBlockSize(this->BlockSize);
+  solver->SetStepsPerExchange(this->StepsPerExchange);
+  solver->SetBoundary(this->Boundary);
+  solver->SetSourceDistribution(this->SourceDistribution);
+  solver->SetCollisionModel(this->CollisionModel);
+  solver->SetTolerance(this->Tolerance);
+  solver->SetCheckInterval(this->CheckInterval);
+  solver->SetProbeSpacing(this->ProbeSpacing);
+  solver->SetMaximumIterations(this->MaximumIterations);
+  vtkNew<ProgressForwarder> forwarder;
+  forwarder->Filter = this;
+  solver->AddObserver(vtkCommand::ProgressEvent, forwarder);
+
+  const std::vector<float> extinction =
+    ReadArray(medium, vtkRefractaMedium::ExtinctionName(), 3, 0.0f);
+  const std::vector<float> albedo = ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
+  const std::vector<float> anisotropy =
+    ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
+  const std::vector<float> s1 = ReadArray(lighting, "Radiance", 3, 0.0f);
+  const std::vector<float> dir = ReadArray(lighting, "RadianceDirection", 3, 0.0f);
+  if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()) ||
+    !solver->SetSource(s1.data(), direction ? dir.data() : nullptr) || !solver->Solve())
+  {
+    vtkErrorMacro("The Lattice-Boltzmann solver failed (see the previous message).");
+    output->Initialize();
+    return 0;
+  }
+  vtkNew<vtkFloatArray> ms;
+  ms->SetName("MultipleScattering");
+  ms->SetNumberOfComponents(3);
+  ms->SetNumberOfTuples(n);
+  if (!solver->ComputeMultipleScattering(ms->GetPointer(0)))
+  {
+    output->Initialize();
+    return 0;
+  }
+
+  output->CopyStructure(medium);
+  output->GetPointData()->AddArray(radiance);
+  if (direction)
+  {
+    output->GetPointData()->AddArray(direction);
+  }
+  output->GetPointData()->AddArray(ms);
+  output->GetFieldData()->PassData(lighting->GetFieldData());
+  vtkNew<vtkIntArray> iterations;
+  iterations->SetName("LatticeBoltzmannIterations");
+  iterations->InsertNextValue(solver->GetIterations());
+  vtkNew<vtkDoubleArray> residual;
+  residual->SetName("LatticeBoltzmannResidual");
+  residual->InsertNextValue(solver->GetResidual());
+  vtkNew<vtkIntArray> converged;
+  converged->SetName("LatticeBoltzmannConverged");
+  converged->InsertNextValue(solver->GetConverged() ? 1 : 0);
+  output->GetFieldData()->AddArray(iterations);
+  output->GetFieldData()->AddArray(residual);
+  output->GetFieldData()->AddArray(converged);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkLatticeBoltzmannLighting::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Lattice: D3Q" << this->Lattice << "\n";
+  os << indent << "BlockSize: " << this->BlockSize << "\n";
+  os << indent << "StepsPerExchange: " << this->StepsPerExchange << "\n";
+  os << indent << "Boundary: " << this->Boundary << "\n";
+  os << indent << "SourceDistribution: " << this->SourceDistribution << "\n";
+  os << indent << "CollisionModel: " << this->CollisionModel << "\n";
+  os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "CheckInterval: " << this->CheckInterval << "\n";
+  os << indent << "ProbeSpacing: " << this->ProbeSpacing << "\n";
+  os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";
+}

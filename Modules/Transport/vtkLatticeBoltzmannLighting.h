@@ -1,0 +1,111 @@
+/**
+ * @class   vtkLatticeBoltzmannLighting
+ * @brief   Multiple scattering by Lattice-Boltzmann lighting in blocks (Bernabei et al. III-C).
+ *
+ * Inputs: port 0 the medium (a Refracta medium, see vtkRefractaMedium; `Extinction`, `Albedo`,
+ * `Anisotropy` are used, missing ones take their defaults; `Occupancy` is not used: the
+ * coefficients are already the voxel's effective ones). Port 1 the lighting volume on the same
+ * grid, as the photon pass produces it (Documentation/Physics.md): `Radiance` (RGB, required),
+ * S1 = sigma_s phi1, the power per unit volume scattered out of the direct beam, and
+ * `RadianceDirection` (3, optional), its mean travel direction.
+ *
+ * S1 is the source of the diffuse field: it is injected into the lattice as scattered light
+ * (isotropically, or by the Henyey-Greenstein phase function around `RadianceDirection`, see
+ * SourceDistribution) and vtkLatticeBoltzmannSolver iterates the lattice to its steady state, the
+ * diffuse field of light scattered at least once.
+ *
+ * Output: the grid of the lighting volume with `Radiance` and `RadianceDirection` passed through
+ * (single scattering), the new `MultipleScattering` (RGB) S_ms = sigma_s phi_ms, the power per
+ * unit volume scattered out of the diffuse field (second and higher orders, taken as isotropic by
+ * the view pass), the lighting volume's field data, and the field data
+ * `LatticeBoltzmannIterations` (int), `LatticeBoltzmannResidual` (double, relative change per
+ * step at the last check) and `LatticeBoltzmannConverged` (int, 0 or 1).
+ *
+ * Knobs (all forwarded to vtkLatticeBoltzmannSolver): Lattice (6 or 18, default 6), BlockSize
+ * (voxels, default 4; 0 = unblocked), StepsPerExchange (default 4), Boundary (default vacuum),
+ * SourceDistribution (default phase function), CollisionModel (default diffusion matched),
+ * Tolerance (default 1e-4), CheckInterval (steps, default 8), ProbeSpacing (voxels, default 8),
+ * MaximumIterations (default 5000).
+ *
+ * Bad input (an invalid medium, a missing or mismatched lighting volume, a `Radiance` that is
+ * negative or not finite) is reported with vtkErrorMacro and leaves the output empty.
+ */
+#ifndef vtkLatticeBoltzmannLighting_h
+#define vtkLatticeBoltzmannLighting_h
+
+#include "RefractaTransportModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+#include "vtkSmartPointer.h" // for the context
+
+class vtkOpenCLContext;
+
+class REFRACTATRANSPORT_EXPORT vtkLatticeBoltzmannLighting : public vtkImageAlgorithm
+{
+public:
+  static vtkLatticeBoltzmannLighting* New();
+  vtkTypeMacro(vtkLatticeBoltzmannLighting, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Connect the lighting volume (port 1).
+   */
+  void SetLightingConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+  void SetLightingData(vtkDataObject* data) { this->SetInputData(1, data); }
+
+  ///@{
+  /**
+   * See vtkLatticeBoltzmannSolver.
+   */
+  vtkSetClampMacro(Lattice, int, 6, 18);
+  vtkGetMacro(Lattice, int);
+  vtkSetClampMacro(BlockSize, int, 0, 8);
+  vtkGetMacro(BlockSize, int);
+  vtkSetClampMacro(StepsPerExchange, int, 1, 64);
+  vtkGetMacro(StepsPerExchange, int);
+  vtkSetClampMacro(Boundary, int, 0, 1);
+  vtkGetMacro(Boundary, int);
+  vtkSetClampMacro(SourceDistribution, int, 0, 1);
+  vtkGetMacro(SourceDistribution, int);
+  vtkSetClampMacro(CollisionModel, int, 0, 1);
+  vtkGetMacro(CollisionModel, int);
+  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkGetMacro(Tolerance, double);
+  vtkSetClampMacro(CheckInterval, int, 1, 4096);
+  vtkGetMacro(CheckInterval, int);
+  vtkSetClampMacro(ProbeSpacing, int, 1, 4096);
+  vtkGetMacro(ProbeSpacing, int);
+  vtkSetClampMacro(MaximumIterations, int, 0, 1 << 30);
+  vtkGetMacro(MaximumIterations, int);
+  ///@}
+
+  /**
+   * OpenCL context (default vtkOpenCLContext::GetDefault()).
+   */
+  void SetContext(vtkOpenCLContext* context);
+
+protected:
+  vtkLatticeBoltzmannLighting();
+  ~vtkLatticeBoltzmannLighting() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Lattice = 6;
+  int BlockSize = 4;
+  int StepsPerExchange = 4;
+  int Boundary = 0;
+  int SourceDistribution = 1;
+  int CollisionModel = 1;
+  double Tolerance = 1e-4;
+  int CheckInterval = 8;
+  int ProbeSpacing = 8;
+  int MaximumIterations = 5000;
+  vtkSmartPointer<vtkOpenCLContext> Context;
+
+private:
+  vtkLatticeBoltzmannLighting(const vtkLatticeBoltzmannLighting&) = delete;
+  void operator=(const vtkLatticeBoltzmannLighting&) = delete;
+};
+
+#endif

@@ -1,0 +1,382 @@
+/**
+ * @class   vtkLatticeBoltzmannSolver
+ * @brief   OpenCL Lattice-Boltzmann lighting solver (Geist et al. 2004, Bernabei et al. III-C).
+ *
+ * The solver behind vtkLatticeBoltzmannLighting, usable on its own (tests, benchmarks, the
+ * concurrent photon/diffusion schedule). It owns the device buffers of one grid:
+ * - the lattice state f_i (power per unit volume travelling along lattice direction i, RGB),
+ *   for the 6 principal directions (D3Q6, the paper's choice) or the 18 directions of the original
+ *   LBL (D3Q18: 6 axes and 12 face diagonals, no rest direction);
+ * - per-voxel coefficients derived from the medium: the probability T = exp(-sigma_t len) of
+ *   crossing the voxel uncollided along each direction (len = the step length along it), the
+ *   albedo and the Henyey-Greenstein g;
+ * - the source S1 (power per unit volume scattered out of the direct beam, the photon pass's
+ *   `Radiance`) and, for SourceDistribution = PHASE_FUNCTION, its mean direction.
+ *
+ * One lattice step: collide (uncollided part keeps its direction; of the scattered part the
+ * fraction |g| goes forward (g > 0) or backward (g < 0) and the rest is spread evenly over the Q
+ * directions; the absorbed part leaves the lattice) and stream to the neighbour; the source is
+ * injected each step like scattered light. Iterating converges to the steady state
+ * f = sum_k M^k s, the diffuse field of light scattered at least once. See Kernels/lbl.cl for the
+ * update and the correction of the paper's Theta matrix.
+ *
+ * Units. With f in power per unit volume, the multiple-scattering output is
+ * S_ms(r) = a sum_i (1 - T_i) f_i(r) = sigma_s phi_ms, where the fluence of the diffuse field is
+ * phi_ms = sum_i f_i (1 - T_i) / sigma_t (the expected path length of a packet in the voxel,
+ * exactly len_i where sigma_t = 0).
+ *
+ * Blocks (D3Q6 only; D3Q18 always runs unblocked): BlockSize b > 0 partitions the grid into b^3
+ * blocks that iterate StepsPerExchange steps locally and exchange density through alternating
+ * interface buffers (Fig. 5). StepsPerExchange = 1 is step for step the global update; larger
+ * values reach the same steady state.
+ *
+ * Termination (Solve()): every CheckInterval steps the summed density at sparse probe voxels
+ * (every ProbeSpacing-th voxel per axis, plus the 8 voxels with the strongest source) is read
+ * back; the residual is max over probes and channels of |p_new - p_old| / max(p_new, 1e-4 *
+ * brightest probe) / (steps between the checks), the largest relative change per step.
+ * Solve() stops when it falls below Tolerance (Converged), at MaximumIterations, or when a probe
+ * stops being finite (an error).
+ */
+#ifndef vtkLatticeBoltzmannSolver_h
+#define vtkLatticeBoltzmannSolver_h
+
+#include "RefractaTransportModule.h" // for export macro
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // for the context
+
+#include <vector> // for std::vector
+
+#ifndef __VTK_WRAP__
+#include "vtkOpenCLHandle.h" // for buffers and kernels
+#endif
+
+class vtkOpenCLContext;
+
+class REFRACTATRANSPORT_EXPORT vtkLatticeBoltzmannSolver : public vtkObject
+{
+public:
+  static vtkLatticeBoltzmannSolver* New();
+  vtkTypeMacro(vtkLatticeBoltzmannSolver, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum LatticeType
+  {
+    D3Q6 = 6,
+    D3Q18 = 18
+  };
+  enum BoundaryType
+  {
+    VACUUM = 0,     ///< density leaving the grid is lost (no light reflected by the faces)
+    REFLECTIVE = 1, ///< density leaving the grid comes back in the opposite direction
+  };
+  enum SourceDistributionType
+  {
+    ISOTROPIC_SOURCE = 0,      ///< S1 is spread evenly over the lattice directions
+    PHASE_FUNCTION_SOURCE = 1, ///< S1 is spread by the HG phase around its mean direction
+  };
+
+  ///@{
+  /**
+   * Lattice: 6 (D3Q6, default) or 18 (D3Q18). Other values are refused with an error.
+   */
+  void SetLattice(int lattice);
+  vtkGetMacro(Lattice, int);
+  ///@}
+
+  ///@{
+  /**
+   * Block edge b in voxels (D3Q6 only); 0 runs the unblocked (global) update. Default 4.
+   */
+  vtkSetClampMacro(BlockSize, int, 0, 8);
+  vtkGetMacro(BlockSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * Lattice steps a block iterates between interface exchanges: a power of two in [1, 64]
+   * (others are rounded down to one). Default 4.
+   */
+  void SetStepsPerExchange(int steps);
+  vtkGetMacro(StepsPerExchange, int);
+  ///@}
+
+  ///@{
+  /**
+   * Boundary of the grid's faces. Default VACUUM.
+   */
+  vtkSetClampMacro(Boundary, int, VACUUM, REFLECTIVE);
+  vtkGetMacro(Boundary, int);
+  ///@}
+
+  ///@{
+  /**
+   * How the source S1 enters the lattice. Default PHASE_FUNCTION_SOURCE (falls back to isotropic
+   * in voxels without a source direction).
+   */
+  vtkSetClampMacro(SourceDistribution, int, ISOTROPIC_SOURCE, PHASE_FUNCTION_SOURCE);
+  vtkGetMacro(SourceDistribution, int);
+  ///@}
+
+  ///@{
+  /**
+   * Convergence: relative change of the probe density per step below Tolerance (default 1e-4),
+   * checked every CheckInterval steps (default 8, rounded up to StepsPerExchange in blocked
+   * mode), probes every ProbeSpacing voxels per axis (default 8), at most MaximumIterations
+   * steps (default 5000).
+   */
+  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkGetMacro(Tolerance, double);
+  vtkSetClampMacro(CheckInterval, int, 1, 4096);
+  vtkGetMacro(CheckInterval, int);
+  vtkSetClampMacro(ProbeSpacing, int, 1, 4096);
+  vtkGetMacro(ProbeSpacing, int);
+  vtkSetClampMacro(MaximumIterations, int, 0, 1 << 30);
+  vtkGetMacro(MaximumIterations, int);
+  ///@}
+
+  /**
+   * The OpenCL context (default: vtkOpenCLContext::GetDefault()).
+   */
+  void SetContext(vtkOpenCLContext* context);
+  vtkOpenCLContext* GetContext();
+
+  ///@{
+  /**
+   * Results of the last Solve(): lattice steps done (since the last ResetState()), the last
+   * residual (-1 before any check), whether it converged.
+   */
+  vtkGetMacro(Iterations, int);
+  vtkGetMacro(Residual, double);
+  vtkGetMacro(Converged, bool);
+  ///@}
+
+  /**
+   * Number of lattice steps run by Iterate() and Solve() since ResetState().
+   */
+  int GetStepsDone() const { return this->Iterations; }
+
+  enum CollisionModelType
+  {
+    EXPONENTIAL_COLLISION = 0, ///< p = 1 - exp(-sigma_t len): the voxel's exact transmittance
+    DIFFUSION_MATCHED = 1,     ///< p chosen so that the lattice diffuses like the continuum
+  };
+
+  ///@{
+  /**
+   * How the per-step collision probability p of a voxel is derived from sigma_t.
+   * EXPONENTIAL_COLLISION: p = 1 - exp(-sigma_t len) along each direction (len its step length):
+   * a packet crossing the voxel is attenuated exactly, but the lattice can collide at most once
+   * per step, so its diffusion length exceeds the continuum's by a factor ~1 + sigma_t h / 4.
+   * DIFFUSION_MATCHED (default): p (the same for every direction) solves
+   * L_lattice(p) = 1 / sqrt(3 sigma_a sigma_t') with the lattice's diffusion limit
+   * L^2 = h^2 s2 (1 + rho) / (2 (1 - rho) (1 - a) p), rho = 1 - p (1 - a g), s2 = 1/3 (D3Q6) or
+   * 5/9 (D3Q18), h the cube root of the voxel volume:
+   * p = (-3 s2 tau^2 k + sqrt(9 s2^2 tau^4 k^2 + 48 s2 tau^2)) / 4, tau = sigma_t h, k = 1 - a g.
+   * p tends to tau (D3Q6) for thin voxels and is clamped to 1 for optically thick ones
+   * (tau > sqrt(2 / (2 - k)) for D3Q6), where no lattice of this resolution can diffuse as little
+   * as the medium does; GetNumberOfThickVoxels() counts them.
+   */
+  vtkSetClampMacro(CollisionModel, int, EXPONENTIAL_COLLISION, DIFFUSION_MATCHED);
+  vtkGetMacro(CollisionModel, int);
+  ///@}
+
+  /**
+   * Voxel channels whose DIFFUSION_MATCHED p was clamped to 1 in the last Initialize().
+   */
+  vtkGetMacro(NumberOfThickVoxels, vtkIdType);
+
+  /**
+   * Per-step collision probability of a direction of step length `len` in a voxel of mean edge
+   * h (see CollisionModel).
+   */
+  static double CollisionProbability(
+    int lattice, int model, double sigmaT, double albedo, double g, double len, double h);
+
+  /**
+   * Exact asymptotic decay length, along a lattice axis, of the lattice's steady state in a
+   * homogeneous medium (sigma_t, albedo a < 1, g, cubic voxels of edge h): the 1/kappa of the
+   * decaying mode f_i ~ exp(-kappa x), from the dispersion relation
+   * 1 = sum_j (1/Q) (1 - |g|) a p_j / (exp(-kappa h c_jx) - rho_j), rho_j = 1 - p_j + a p_j g+,
+   * (g >= 0; for g < 0 it uses the diffusion limit). Returns 0 when there is no decaying mode.
+   */
+  static double LatticeDecayLength(
+    int lattice, int model, double sigmaT, double albedo, double g, double h);
+
+  /**
+   * Diffusion limit of the lattice: L^2 = h^2 s2 (1 + rho) / (2 (1 - rho) (1 - q)), with
+   * rho = 1 - p (1 - a g) the direction persistence, q = 1 - (1 - a) p the survival per step and
+   * s2 the mean square step per axis (1/3 for D3Q6, 5/9 for D3Q18): the lattice's diffusion
+   * coefficient is D = h^2 s2 (1 + rho) / (2 (1 - rho)) per step.
+   */
+  static double LatticeDiffusionLength(
+    int lattice, int model, double sigmaT, double albedo, double g, double h);
+
+#ifndef __VTK_WRAP__
+  /**
+   * Allocate the buffers for a grid of dims voxels with the given spacing and upload the medium
+   * (interleaved RGB arrays of dims[0]*dims[1]*dims[2] tuples; nullptr means 0; anisotropy one
+   * value per voxel or nullptr for 0). Resets the state and the source. Returns false after
+   * reporting an error.
+   */
+  bool Initialize(const int dims[3], const double spacing[3], const float* extinction,
+    const float* albedo, const float* anisotropy);
+
+  /**
+   * Upload the source S1 (interleaved RGB, power per unit volume) and optionally its mean
+   * direction (interleaved xyz, any length; zero means no direction). nullptr clears it.
+   */
+  bool SetSource(const float* s1, const float* direction);
+
+  /**
+   * The planar source buffer (3 planes of S1, then 3 of direction when PHASE_FUNCTION_SOURCE),
+   * for producers that write the source on the device (the concurrent photon schedule).
+   */
+  cl_mem GetSourceBuffer() const
+  {
+    return this->Source.Get();
+  }
+
+  /**
+   * Enqueue (without waiting) the conversion of a photon pass's fixed-point accumulators
+   * (interleaved cl_long RGB and direction sums, see vtkPhotonTracer::SetChunkCallback) into the
+   * source buffer: S1 = radiance * radianceFactor.
+   */
+  bool SetSourceFromFixedPoint(
+    cl_mem radianceFixed, cl_mem directionFixed, double radianceFactor, double directionFactor);
+
+  /**
+   * Re-read the source buffer and add its strongest voxels to the convergence probes; call it
+   * after writing the source on the device (SetSource() calls it).
+   */
+  bool UpdateSourceProbes();
+
+  /**
+   * Zero the lattice state (and interfaces) and the step count.
+   */
+  bool ResetState();
+
+  /**
+   * Run n lattice steps (rounded up to StepsPerExchange in blocked mode); enqueues and, when
+   * `wait` is true, waits. Returns false after reporting an error.
+   */
+  bool Iterate(int n, bool wait = true);
+
+  /**
+   * Iterate from the current state until converged, MaximumIterations or an error. `progress`
+   * (optional) is called with the fraction of MaximumIterations done.
+   */
+  bool Solve();
+
+  /**
+   * The residual now (probes compared with the previous call); use between Iterate() calls.
+   * Returns false on a non-finite probe. `stepsSinceLast` normalises it per step.
+   */
+  bool CheckConvergence(int stepsSinceLast, double& residual);
+
+  /**
+   * The state in planar layout (Q * 3 planes of N floats), global-equivalent in blocked mode.
+   */
+  bool ReadState(std::vector<float>& state);
+
+  /**
+   * Total density per channel, summed in double: the state plus the density in transit in the
+   * interface buffers (blocked mode). With sigma_a = 0 and reflective faces it is conserved.
+   */
+  bool ComputeTotalDensity(double total[3]);
+
+  /**
+   * Power absorbed per channel by the next step from the current state (host, double), the
+   * quantity the total density loses per step when the faces reflect and there is no source.
+   */
+  bool ComputeAbsorbedNextStep(double absorbed[3]);
+
+  /**
+   * S_ms = sigma_s phi_ms per voxel (interleaved RGB, N tuples).
+   */
+  bool ComputeMultipleScattering(float* out);
+
+  /**
+   * Step-length class of each direction and the lengths (filled by Initialize()).
+   */
+  const std::vector<double>& GetClassLengths() const
+  {
+    return this->ClassLengths;
+  }
+#endif
+
+  /**
+   * Number of voxels of the initialized grid.
+   */
+  vtkIdType GetNumberOfVoxels() const
+  {
+    return this->NumberOfVoxels;
+  }
+
+protected:
+  vtkLatticeBoltzmannSolver();
+  ~vtkLatticeBoltzmannSolver() override;
+
+  bool UseBlocks() const
+  {
+    return this->BlockSize > 0 && this->Lattice == D3Q6;
+  }
+  bool BuildKernels();
+  bool ReadProbes(std::vector<float>& values);
+  bool SetProbes(const std::vector<cl_uint>& extra);
+  static constexpr size_t MaxSourceProbes = 8;
+  static constexpr double ProbeFloor = 1e-4;
+
+  int Lattice = D3Q6;
+  int BlockSize = 4;
+  int StepsPerExchange = 4;
+  int Boundary = VACUUM;
+  int SourceDistribution = PHASE_FUNCTION_SOURCE;
+  double Tolerance = 1e-4;
+  int CheckInterval = 8;
+  int ProbeSpacing = 8;
+  int MaximumIterations = 5000;
+  int CollisionModel = DIFFUSION_MATCHED;
+  vtkIdType NumberOfThickVoxels = 0;
+
+  int Iterations = 0;
+  double Residual = -1.0;
+  bool Converged = false;
+
+  vtkSmartPointer<vtkOpenCLContext> Context;
+  int Dims[4] = { 0, 0, 0, 0 };
+  int NumberOfBlocks[4] = { 0, 0, 0, 0 };
+  vtkIdType NumberOfVoxels = 0;
+  std::vector<int> DirectionClass;
+  std::vector<double> ClassLengths;
+  std::vector<float> HostCoefficients; // planar, kept for the host-side absorption sum
+  std::vector<float> PreviousProbes;
+  size_t NumberOfProbes = 0;
+  bool SourceIsZero = true;
+#ifndef __VTK_WRAP__
+  std::vector<cl_uint> GridProbes;
+#endif
+  int BuiltKey[6] = { -1, -1, -1, -1, -1, -1 };
+  int InterfaceParity = 0;
+
+#ifndef __VTK_WRAP__
+  vtkOpenCLBuffer State[2];
+  vtkOpenCLBuffer Interface[2];
+  vtkOpenCLBuffer Coefficients;
+  vtkOpenCLBuffer Source;
+  vtkOpenCLBuffer Probes;
+  vtkOpenCLBuffer ProbeValues;
+  vtkOpenCLKernel StepKernel;
+  vtkOpenCLKernel BlockKernel;
+  vtkOpenCLKernel FinalizeKernel;
+  vtkOpenCLKernel ProbeKernel;
+  vtkOpenCLKernel ScatteredKernel;
+  vtkOpenCLKernel SourceKernel;
+  int Current = 0;
+#endif
+
+private:
+  vtkLatticeBoltzmannSolver(const vtkLatticeBoltzmannSolver&) = delete;
+  void operator=(const vtkLatticeBoltzmannSolver&) = delete;
+};
+
+#endif

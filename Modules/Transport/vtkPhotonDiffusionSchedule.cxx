@@ -1,0 +1,214 @@
+#include "vtkPhotonDiffusionSchedule.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkIntArray.h"
+#include "vtkLatticeBoltzmannSolver.h"
+#include "vtkMediumValidator.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPointData.h"
+#include "vtkRefractaMedium.h"
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+vtkStandardNewMacro(vtkPhotonDiffusionSchedule);
+
+namespace
+{
+std::vector<float> ReadArray(vtkImageData* image, const char* name, int comps, float fallback)
+{
+  const vtkIdType n = image->GetNumberOfPoints();
+  std::vector<float> values(static_cast<size_t>(n) * comps, fallback);
+  vtkDataArray* array = image->GetPointData()->GetArray(name);
+  if (array && array->GetNumberOfComponents() == comps && array->GetNumberOfTuples() == n)
+  {
+    for (vtkIdType t = 0; t < n; ++t)
+    {
+      for (int c = 0; c < comps; ++c)
+      {
+        values[t * comps + c] = static_cast<float>(array->GetComponent(t, c));
+      }
+    }
+  }
+  return values;
+}
+
+double Seconds(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void AddScalar(vtkFieldData* fd, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+}
+
+//------------------------------------------------------------------------------
+vtkPhotonDiffusionSchedule::vtkPhotonDiffusionSchedule()
+  : Tracer(vtkSmartPointer<vtkPhotonTracer>::New())
+  , Solver(vtkSmartPointer<vtkLatticeBoltzmannSolver>::New())
+{
+}
+vtkPhotonDiffusionSchedule::~vtkPhotonDiffusionSchedule() = default;
+
+vtkPhotonTracer* vtkPhotonDiffusionSchedule::GetPhotonTracer()
+{
+  return this->Tracer;
+}
+vtkLatticeBoltzmannSolver* vtkPhotonDiffusionSchedule::GetSolver()
+{
+  return this->Solver;
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkPhotonDiffusionSchedule::GetMTime()
+{
+  return std::max({ this->Superclass::GetMTime(),
+    static_cast<vtkObject*>(this->Tracer.GetPointer())->GetMTime(), this->Solver->GetMTime() });
+}
+
+//------------------------------------------------------------------------------
+int vtkPhotonDiffusionSchedule::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkPhotonDiffusionSchedule::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkImageData* medium = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  output->Initialize();
+  vtkNew<vtkMediumValidator> validator;
+  if (!validator->Validate(medium))
+  {
+    vtkErrorMacro("Input 0 is not a valid medium: " << validator->GetErrorMessage());
+    return 0;
+  }
+  int dims[3];
+  double spacing[3];
+  medium->GetDimensions(dims);
+  medium->GetSpacing(spacing);
+  const std::vector<float> extinction =
+    ReadArray(medium, vtkRefractaMedium::ExtinctionName(), 3, 0.0f);
+  const std::vector<float> albedo = ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
+  const std::vector<float> anisotropy =
+    ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
+  vtkLatticeBoltzmannSolver* solver = this->Solver;
+  if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()))
+  {
+    vtkErrorMacro("The Lattice-Boltzmann solver could not be set up (see the previous message).");
+    return 0;
+  }
+
+  // Photon pass, with the diffusion interleaved between its chunks.
+  vtkNew<vtkImageData> copy;
+  copy->ShallowCopy(medium);
+  this->Tracer->SetInputData(copy);
+  const bool interleaved = this->Mode == INTERLEAVED;
+  this->Tracer->SetStepsPerChunk(interleaved ? this->StepsPerChunk : 0);
+  int diffusionSteps = 0;
+  bool callbackFailed = false;
+  const int perChunk = this->DiffusionStepsPerChunk;
+  this->Tracer->SetChunkCallback(
+    [solver, perChunk, &diffusionSteps, &callbackFailed](
+      cl_mem rad, cl_mem dir, double rf, double df, int)
+    {
+      const int before = solver->GetStepsDone();
+      if (!solver->SetSourceFromFixedPoint(rad, dir, rf, df) ||
+        (perChunk > 0 && !solver->Iterate(perChunk, false)))
+      {
+        callbackFailed = true;
+        return false;
+      }
+      diffusionSteps += solver->GetStepsDone() - before;
+      return true;
+    });
+  this->Tracer->Update();
+  this->Tracer->SetChunkCallback(nullptr);
+  vtkImageData* lighting = this->Tracer->GetOutput();
+  if (callbackFailed || !lighting || lighting->GetNumberOfPoints() != medium->GetNumberOfPoints() ||
+    !lighting->GetPointData()->GetArray("Radiance"))
+  {
+    vtkErrorMacro("The photon pass failed (see the previous message).");
+    return 0;
+  }
+  const double marching = Seconds(start);
+
+  // Final source: the tracer's S1 (smoothed as it outputs it); the lattice continues from its
+  // state (interleaved) or from zero (sequential).
+  const auto solveStart = std::chrono::steady_clock::now();
+  const std::vector<float> s1 = ReadArray(lighting, "Radiance", 3, 0.0f);
+  const std::vector<float> d1 = ReadArray(lighting, "RadianceDirection", 3, 0.0f);
+  if (!interleaved && !solver->ResetState())
+  {
+    return 0;
+  }
+  if (!solver->SetSource(s1.data(), d1.data()) || !solver->Solve())
+  {
+    vtkErrorMacro("The Lattice-Boltzmann solver failed (see the previous message).");
+    output->Initialize();
+    return 0;
+  }
+  const vtkIdType n = medium->GetNumberOfPoints();
+  vtkNew<vtkFloatArray> ms;
+  ms->SetName("MultipleScattering");
+  ms->SetNumberOfComponents(3);
+  ms->SetNumberOfTuples(n);
+  if (!solver->ComputeMultipleScattering(ms->GetPointer(0)))
+  {
+    output->Initialize();
+    return 0;
+  }
+  const double finalSolve = Seconds(solveStart);
+
+  output->CopyStructure(medium);
+  output->GetPointData()->AddArray(lighting->GetPointData()->GetArray("Radiance"));
+  if (vtkDataArray* direction = lighting->GetPointData()->GetArray("RadianceDirection"))
+  {
+    output->GetPointData()->AddArray(direction);
+  }
+  output->GetPointData()->AddArray(ms);
+  vtkFieldData* fd = output->GetFieldData();
+  fd->PassData(lighting->GetFieldData());
+  vtkNew<vtkIntArray> iterations;
+  iterations->SetName("LatticeBoltzmannIterations");
+  iterations->InsertNextValue(solver->GetIterations());
+  vtkNew<vtkIntArray> converged;
+  converged->SetName("LatticeBoltzmannConverged");
+  converged->InsertNextValue(solver->GetConverged() ? 1 : 0);
+  fd->AddArray(iterations);
+  fd->AddArray(converged);
+  AddScalar(fd, "LatticeBoltzmannResidual", solver->GetResidual());
+  AddScalar(fd, "ScheduleMode", this->Mode);
+  AddScalar(fd, "ScheduleChunks", this->Tracer->GetNumberOfChunks());
+  AddScalar(fd, "ScheduleDiffusionStepsDuringMarching", diffusionSteps);
+  AddScalar(fd, "ScheduleMarchingSeconds", marching);
+  AddScalar(fd, "ScheduleFinalSolveSeconds", finalSolve);
+  AddScalar(fd, "ScheduleTotalSeconds", Seconds(start));
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkPhotonDiffusionSchedule::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << (this->Mode == INTERLEAVED ? "interleaved" : "sequential") << "\n";
+  os << indent << "StepsPerChunk: " << this->StepsPerChunk << "\n";
+  os << indent << "DiffusionStepsPerChunk: " << this->DiffusionStepsPerChunk << "\n";
+}

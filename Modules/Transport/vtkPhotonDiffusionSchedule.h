@@ -1,0 +1,100 @@
+/**
+ * @class   vtkPhotonDiffusionSchedule
+ * @brief   Photon marching and Lattice-Boltzmann diffusion, sequential or interleaved in chunks
+ *          of k steps (Bernabei et al., section III and Fig. 1).
+ *
+ * Input port 0: a Refracta medium. The photon pass (GetPhotonTracer(): lights, photon count and
+ * every marching knob) deposits S1; the Lattice-Boltzmann solver (GetSolver(): lattice, blocks,
+ * tolerance, ...) spreads it into the multiple-scattering field.
+ * - SEQUENTIAL: march every photon to its end, then diffuse from a zero lattice to convergence.
+ * - INTERLEAVED (default): the photons advance StepsPerChunk = k steps at a time (default 16);
+ *   after each chunk the deposits so far become the lattice's source and DiffusionStepsPerChunk
+ *   lattice steps (default 8, the paper's figure) are enqueued before the next chunk, so the
+ *   diffusion of what is already deposited proceeds while the marching goes on. When the last
+ *   photon has finished, the final S1 (smoothed as the tracer outputs it) replaces the source and
+ *   the lattice iterates on from its current state to convergence.
+ * Both modes converge to the same steady state (the lattice's fixed point depends only on the
+ * final source); the interleaved one starts the final solve from a warm state.
+ * On one in-order OpenCL queue the interleaving is of kernels (the paper's GPU ran the two
+ * passes on different multiprocessors at once; on a CPU device both share the same cores).
+ *
+ * Output: as vtkLatticeBoltzmannLighting (`Radiance`, `RadianceDirection`,
+ * `MultipleScattering`; the tracer's field data; `LatticeBoltzmannIterations`, `...Residual`,
+ * `...Converged`), plus field data `ScheduleMode` (0 sequential, 1 interleaved),
+ * `ScheduleChunks`, `ScheduleDiffusionStepsDuringMarching`, `ScheduleMarchingSeconds` (photon
+ * pass including the interleaved diffusion), `ScheduleFinalSolveSeconds` and
+ * `ScheduleTotalSeconds`.
+ */
+#ifndef vtkPhotonDiffusionSchedule_h
+#define vtkPhotonDiffusionSchedule_h
+
+#include "RefractaTransportModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+#include "vtkSmartPointer.h" // for members
+
+class vtkLatticeBoltzmannSolver;
+class vtkPhotonTracer;
+
+class REFRACTATRANSPORT_EXPORT vtkPhotonDiffusionSchedule : public vtkImageAlgorithm
+{
+public:
+  static vtkPhotonDiffusionSchedule* New();
+  vtkTypeMacro(vtkPhotonDiffusionSchedule, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum ModeType
+  {
+    SEQUENTIAL = 0,
+    INTERLEAVED = 1
+  };
+
+  ///@{
+  /**
+   * Schedule (default INTERLEAVED).
+   */
+  vtkSetClampMacro(Mode, int, SEQUENTIAL, INTERLEAVED);
+  vtkGetMacro(Mode, int);
+  ///@}
+
+  ///@{
+  /**
+   * Photon steps per chunk k (default 16) and lattice steps enqueued after each chunk (default
+   * 8), interleaved mode only.
+   */
+  vtkSetClampMacro(StepsPerChunk, int, 1, 1 << 20);
+  vtkGetMacro(StepsPerChunk, int);
+  vtkSetClampMacro(DiffusionStepsPerChunk, int, 0, 1 << 20);
+  vtkGetMacro(DiffusionStepsPerChunk, int);
+  ///@}
+
+  /**
+   * The photon pass (configure lights and photon knobs on it; its input is set by this filter).
+   */
+  vtkPhotonTracer* GetPhotonTracer();
+
+  /**
+   * The lattice solver (configure its knobs; Initialize() is called by this filter).
+   */
+  vtkLatticeBoltzmannSolver* GetSolver();
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkPhotonDiffusionSchedule();
+  ~vtkPhotonDiffusionSchedule() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Mode = INTERLEAVED;
+  int StepsPerChunk = 16;
+  int DiffusionStepsPerChunk = 8;
+  vtkSmartPointer<vtkPhotonTracer> Tracer;
+  vtkSmartPointer<vtkLatticeBoltzmannSolver> Solver;
+
+private:
+  vtkPhotonDiffusionSchedule(const vtkPhotonDiffusionSchedule&) = delete;
+  void operator=(const vtkPhotonDiffusionSchedule&) = delete;
+};
+
+#endif

@@ -1,0 +1,320 @@
+// BenchmarkLatticeBoltzmann: cost of Refracta's Lattice-Boltzmann lighting
+// (vtkLatticeBoltzmannSolver) next to the device's memory bandwidth measured in the same run.
+//
+// For each grid size (64^3 and 128^3 by default; --large adds 256^3) and albedo (0.5, 0.9, 0.99)
+// it solves a homogeneous medium (sigma_t h = 0.5, g = 0) lit by a beam entering through the -x
+// face (S1 = a sigma_t exp(-sigma_t x)) to the default tolerance, in the global (unblocked)
+// schedule and in blocks (b = 4, StepsPerExchange = 4), and prints: steps to convergence, time
+// per step, lattice updates per second (voxels x steps / s), the effective bytes per second of
+// the update (state read + write, coefficients, source) and its ratio to the bandwidth of a plain
+// OpenCL copy kernel over buffers of the state's size. Figures are medians of --repeats runs
+// (default 3). Writes CSV to --csv (default lbl_benchmark.csv).
+//
+// --table1 N runs instead the paper's Table I experiment on an N^3 medium entirely filled
+// (sigma_t h = 0.5, albedo 0.9, a sphere of index 1.2 in the middle so that rays curve; a
+// directional light, 65536 photons, fixed photon step of one voxel): total time of photon pass +
+// diffusion to convergence for the interleaved schedule with k = 2, 4, 8, 16, 32, 64 and for the
+// sequential one (march all, then diffuse), medians of --repeats runs.
+//
+// Usage: BenchmarkLatticeBoltzmann [--large] [--sizes 32,64] [--repeats N] [--csv file]
+//        [--max-steps N] [--isotropic] [--global-only] [--table1 N]
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLatticeBoltzmannSolver.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkOpenCLContext.h"
+#include "vtkPhotonDiffusionSchedule.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPointData.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+double Now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+double FieldValue(vtkImageData* image, const char* name)
+{
+  vtkDataArray* a = image->GetFieldData()->GetArray(name);
+  return a ? a->GetComponent(0, 0) : -1.0;
+}
+
+int RunTable1(int n, int repeats, const std::string& csv)
+{
+  auto medium = vtkSmartPointer<vtkImageData>::New();
+  medium->SetDimensions(n, n, n);
+  const vtkIdType count = medium->GetNumberOfPoints();
+  vtkNew<vtkFloatArray> ri, ext, alb;
+  ri->SetName("RefractiveIndex");
+  ri->SetNumberOfTuples(count);
+  ext->SetName("Extinction");
+  ext->SetNumberOfComponents(3);
+  ext->SetNumberOfTuples(count);
+  ext->Fill(0.5);
+  alb->SetName("Albedo");
+  alb->SetNumberOfComponents(3);
+  alb->SetNumberOfTuples(count);
+  alb->Fill(0.9);
+  for (vtkIdType v = 0; v < count; ++v)
+  {
+    const double x = v % n - 0.5 * n, y = (v / n) % n - 0.5 * n, z = v / (n * n) - 0.5 * n;
+    ri->SetValue(v, x * x + y * y + z * z < 0.09 * n * n ? 1.2f : 1.0f);
+  }
+  medium->GetPointData()->AddArray(ri);
+  medium->GetPointData()->AddArray(ext);
+  medium->GetPointData()->AddArray(alb);
+  std::ofstream out(csv);
+  out << "size,schedule,k,total_s,marching_s,final_solve_s,chunks,lbl_steps_during_marching,"
+         "lbl_steps_total\n";
+  std::printf(
+    "\n| schedule | k | total s | photon pass (+ interleaved diffusion) s | final solve s | "
+    "chunks | LBL steps during marching | LBL steps total |\n"
+    "|---|---|---|---|---|---|---|---|\n");
+  for (int k : { 0, 2, 4, 8, 16, 32, 64 })
+  {
+    std::vector<double> total, marching, solve;
+    double chunks = 0, during = 0, steps = 0;
+    for (int r = -1; r < repeats; ++r) // r = -1: warm-up (kernel builds), not timed
+    {
+      vtkNew<vtkPhotonDiffusionSchedule> schedule;
+      schedule->SetInputData(medium);
+      schedule->SetMode(
+        k == 0 ? vtkPhotonDiffusionSchedule::SEQUENTIAL : vtkPhotonDiffusionSchedule::INTERLEAVED);
+      schedule->SetStepsPerChunk(std::max(k, 1));
+      vtkNew<vtkLight> light;
+      light->SetPositional(false);
+      light->SetPosition(-10.0 * n, 0.3 * n, 0.4 * n);
+      light->SetFocalPoint(0, 0.3 * n, 0.4 * n);
+      schedule->GetPhotonTracer()->AddLight(light);
+      schedule->GetPhotonTracer()->SetNumberOfPhotons(65536);
+      schedule->GetPhotonTracer()->SetAdaptiveStepping(false);
+      schedule->GetPhotonTracer()->SetFixedStep(1.0);
+      schedule->Update();
+      vtkImageData* result = schedule->GetOutput();
+      if (result->GetNumberOfPoints() == 0)
+      {
+        return 1;
+      }
+      if (r < 0)
+      {
+        continue;
+      }
+      total.push_back(FieldValue(result, "ScheduleTotalSeconds"));
+      marching.push_back(FieldValue(result, "ScheduleMarchingSeconds"));
+      solve.push_back(FieldValue(result, "ScheduleFinalSolveSeconds"));
+      chunks = FieldValue(result, "ScheduleChunks");
+      during = FieldValue(result, "ScheduleDiffusionStepsDuringMarching");
+      steps = FieldValue(result, "LatticeBoltzmannIterations");
+    }
+    const char* name = k == 0 ? "sequential" : "interleaved";
+    std::printf("| %s | %s | %.2f | %.2f | %.2f | %g | %g | %g |\n", name,
+      k == 0 ? "-" : std::to_string(k).c_str(), Median(total), Median(marching), Median(solve),
+      chunks, during, steps);
+    std::fflush(stdout);
+    out << n << "," << name << "," << k << "," << Median(total) << "," << Median(marching) << ","
+        << Median(solve) << "," << chunks << "," << during << "," << steps << "\n";
+  }
+  std::printf("\nCSV written to %s\n", csv.c_str());
+  return 0;
+}
+
+// Copy bandwidth in bytes/s (read + write) over buffers of `bytes` bytes.
+double CopyBandwidth(vtkOpenCLContext* context, size_t bytes, int repeats)
+{
+  cl_program program = context->GetProgram({ "refracta_common.cl", "lbl.cl" }, "");
+  vtkOpenCLKernel kernel = context->CreateKernel(program, "lbl_copy");
+  vtkOpenCLBuffer a = context->CreateBuffer(CL_MEM_READ_WRITE, bytes, nullptr, "copy a");
+  vtkOpenCLBuffer b = context->CreateBuffer(CL_MEM_READ_WRITE, bytes, nullptr, "copy b");
+  context->ZeroBuffer(a.Get(), bytes);
+  const cl_ulong count = bytes / 16;
+  vtkOpenCLSetKernelArgs(kernel.Get(), a.Get(), b.Get(), count);
+  const size_t global = count;
+  const size_t local = 128;
+  context->RunKernel(kernel.Get(), 1, &global, &local, "copy"); // warm up
+  context->Finish();
+  std::vector<double> rates;
+  for (int r = 0; r < repeats; ++r)
+  {
+    const int copies = 10;
+    const double t0 = Now();
+    for (int c = 0; c < copies; ++c)
+    {
+      context->RunKernel(kernel.Get(), 1, &global, &local, "copy");
+    }
+    context->Finish();
+    rates.push_back(2.0 * bytes * copies / (Now() - t0));
+  }
+  return Median(rates);
+}
+}
+
+int main(int argc, char* argv[])
+{
+  std::vector<int> sizes = { 64, 128 };
+  int repeats = 3;
+  int maxSteps = 5000;
+  bool isotropic = false;
+  bool globalOnly = false;
+  int table1 = 0;
+  std::string csv = "lbl_benchmark.csv";
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], "--large"))
+    {
+      sizes.push_back(256);
+    }
+    else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc)
+    {
+      sizes.clear();
+      std::stringstream list(argv[++i]);
+      std::string item;
+      while (std::getline(list, item, ','))
+      {
+        sizes.push_back(std::atoi(item.c_str()));
+      }
+    }
+    else if (!std::strcmp(argv[i], "--isotropic"))
+    {
+      isotropic = true;
+    }
+    else if (!std::strcmp(argv[i], "--table1") && i + 1 < argc)
+    {
+      table1 = std::max(4, std::atoi(argv[++i]));
+    }
+    else if (!std::strcmp(argv[i], "--global-only"))
+    {
+      globalOnly = true;
+    }
+    else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc)
+    {
+      repeats = std::max(1, std::atoi(argv[++i]));
+    }
+    else if (!std::strcmp(argv[i], "--max-steps") && i + 1 < argc)
+    {
+      maxSteps = std::max(1, std::atoi(argv[++i]));
+    }
+    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc)
+    {
+      csv = argv[++i];
+    }
+    else
+    {
+      std::fprintf(stderr, "unknown argument %s\n", argv[i]);
+      return 1;
+    }
+  }
+  vtkOpenCLContext* context = vtkOpenCLContext::GetDefault();
+  if (!context->Initialize())
+  {
+    std::fprintf(stderr, "no OpenCL device\n");
+    return 1;
+  }
+  std::printf("device: %s (%s), %d compute units\n", context->GetDeviceName(),
+    context->GetPlatformName(), context->GetNumberOfComputeUnits());
+  if (table1 > 0)
+  {
+    return RunTable1(table1, repeats, csv);
+  }
+  std::ofstream out(csv);
+  out << "size,albedo,schedule,steps,converged,seconds,ms_per_step,mlups,effective_GBps,"
+         "copy_GBps,ratio\n";
+  std::printf("\n| size | albedo | schedule | steps | converged | ms/step | M updates/s | "
+              "effective GB/s | copy GB/s | ratio |\n|---|---|---|---|---|---|---|---|---|---|\n");
+  for (int n : sizes)
+  {
+    const int dims[3] = { n, n, n };
+    const double spacing[3] = { 1, 1, 1 };
+    const size_t voxels = size_t(n) * n * n;
+    const double sigmaT = 0.5;
+    // D3Q6, one length class: state 6 x 3 floats read and written, 3 T + 3 albedo + g, 3 + 3
+    // source values (phase-function source).
+    const double bytesPerUpdate = (2.0 * 18 + 7 + 6) * 4;
+    const double copy = CopyBandwidth(context, 18 * voxels * sizeof(float), repeats);
+    for (double albedo : { 0.5, 0.9, 0.99 })
+    {
+      std::vector<float> ext(voxels * 3, float(sigmaT)), alb(voxels * 3, float(albedo)),
+        g(voxels, 0.0f), s1(voxels * 3), dir(voxels * 3, 0.0f);
+      for (size_t v = 0; v < voxels; ++v)
+      {
+        const int x = static_cast<int>(v % n);
+        for (int c = 0; c < 3; ++c)
+        {
+          s1[v * 3 + c] = float(albedo * sigmaT * std::exp(-sigmaT * x));
+        }
+        dir[v * 3] = 1.0f;
+      }
+      for (int blocked : { 0, 1 })
+      {
+        if (blocked && globalOnly)
+        {
+          continue;
+        }
+        std::vector<double> seconds;
+        int steps = 0;
+        bool converged = false;
+        for (int r = -1; r < repeats; ++r) // r = -1: warm-up (kernel builds), not timed
+        {
+          vtkNew<vtkLatticeBoltzmannSolver> solver;
+          solver->SetBlockSize(blocked ? 4 : 0);
+          solver->SetStepsPerExchange(4);
+          // The warm-up only builds the kernels (a few steps).
+          solver->SetMaximumIterations(r < 0 ? 8 : maxSteps);
+          if (isotropic)
+          {
+            solver->SetSourceDistribution(vtkLatticeBoltzmannSolver::ISOTROPIC_SOURCE);
+          }
+          if (!solver->Initialize(dims, spacing, ext.data(), alb.data(), g.data()) ||
+            !solver->SetSource(s1.data(), dir.data()))
+          {
+            return 1;
+          }
+          const double t0 = Now();
+          if (!solver->Solve())
+          {
+            return 1;
+          }
+          if (r >= 0)
+          {
+            seconds.push_back(Now() - t0);
+          }
+          steps = solver->GetIterations();
+          converged = solver->GetConverged();
+        }
+        const double t = Median(seconds);
+        const double mlups = double(voxels) * steps / t / 1e6;
+        const double effective = mlups * 1e6 * bytesPerUpdate;
+        const char* schedule = blocked ? "blocks b=4 m=4" : "global";
+        std::printf("| %d^3 | %.2f | %s | %d | %s | %.2f | %.1f | %.2f | %.2f | %.3f |\n", n,
+          albedo, schedule, steps, converged ? "yes" : "no", 1e3 * t / steps, mlups,
+          effective / 1e9, copy / 1e9, effective / copy);
+        std::fflush(stdout);
+        out << n << "," << albedo << "," << schedule << "," << steps << "," << converged << "," << t
+            << "," << 1e3 * t / steps << "," << mlups << "," << effective / 1e9 << "," << copy / 1e9
+            << "," << effective / copy << "\n";
+      }
+    }
+  }
+  std::printf("\nCSV written to %s\n", csv.c_str());
+  return 0;
+}

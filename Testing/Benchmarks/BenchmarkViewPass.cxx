@@ -1,0 +1,277 @@
+// BenchmarkViewPass: the cost of Refracta's view pass, and a comparison with VTK's CPU ray caster.
+//
+// Part 1: the view pass alone (vtkRefractaViewPass::Render, kernel + read-back) for W x W images
+// of the GlassSphereInFog scene at N^3 (default 128^3) with its photon-traced lighting volume,
+// curved rays (n varies: the sphere) and straight rays (RayMode STRAIGHT on the same medium).
+// Part 2: an emission-absorption-only scene (a procedural scalar field mapped by
+// vtkTransferFunctionMedium with EmissionScale 1, i.e. VTK's compositing model) at N^3 and
+// W = 512, rendered by Refracta's view pass (straight rays, one-voxel steps) and by
+// vtkFixedPointVolumeRayCastMapper (sample distance one voxel, no auto-adjustment, no shading)
+// in an offscreen render window of the same size, in the same run; prints the time ratio.
+// Medians of --runs runs (default 3); CSV to --csv (default benchmark_view_pass.csv).
+//
+// usage: BenchmarkViewPass [--sizes 256,512,1024] [--medium 128] [--runs 3] [--photons 65536]
+//                          [--compare-size 512] [--csv FILE]
+// Part 2 needs an X server (xvfb-run with Debian's VTK).
+#include "RefractaBenchmark.h"
+#include "RefractaScenes.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkFixedPointVolumeRayCastMapper.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkOpenCLContext.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRefractaViewPass.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTransferFunctionMedium.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+std::vector<int> ParseList(const std::string& s)
+{
+  std::vector<int> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ','))
+  {
+    out.push_back(std::stoi(item));
+  }
+  return out;
+}
+
+double Now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// A smooth procedural scalar field in [0, 1] on n^3 (unit cube), for the emission-absorption
+// comparison.
+vtkSmartPointer<vtkImageData> ScalarField(int n)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, n);
+  image->SetSpacing(1.0 / n, 1.0 / n, 1.0 / n);
+  image->SetOrigin(0.5 / n, 0.5 / n, 0.5 / n);
+  vtkNew<vtkFloatArray> s;
+  s->SetName("density");
+  s->SetNumberOfTuples(static_cast<vtkIdType>(n) * n * n);
+  for (int k = 0; k < n; ++k)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        const double x = (i + 0.5) / n - 0.5, y = (j + 0.5) / n - 0.5, z = (k + 0.5) / n - 0.5;
+        const double r = std::sqrt(x * x + y * y + z * z);
+        const double v = std::max(0.0, 1.0 - 2.2 * r) *
+          (0.6 + 0.4 * std::sin(18 * x) * std::cos(14 * y) * std::sin(11 * z + 1));
+        s->SetValue(i + n * (j + static_cast<vtkIdType>(n) * k), static_cast<float>(v));
+      }
+    }
+  }
+  image->GetPointData()->SetScalars(s);
+  return image;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  std::vector<int> sizes = { 256, 512, 1024 };
+  int n = 128, runs = 3, photons = 65536, compareSize = 512;
+  std::string csv = "benchmark_view_pass.csv";
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (arg == "--sizes" && hasValue)
+      sizes = ParseList(argv[++i]);
+    else if (arg == "--medium" && hasValue)
+      n = std::stoi(argv[++i]);
+    else if (arg == "--runs" && hasValue)
+      runs = std::stoi(argv[++i]);
+    else if (arg == "--photons" && hasValue)
+      photons = std::stoi(argv[++i]);
+    else if (arg == "--compare-size" && hasValue)
+      compareSize = std::stoi(argv[++i]);
+    else if (arg == "--csv" && hasValue)
+      csv = argv[++i];
+    else
+    {
+      std::cerr << "usage: BenchmarkViewPass [--sizes 256,512,1024] [--medium 128] [--runs 3] "
+                   "[--photons 65536] [--compare-size 512] [--csv FILE]\n";
+      return 2;
+    }
+  }
+  vtkOpenCLContext* context = vtkOpenCLContext::GetDefault();
+  if (!context->Initialize())
+  {
+    std::cerr << context->GetLastErrorMessage() << "\n";
+    return 1;
+  }
+  std::cout << "device: " << context->GetDeviceName() << " (" << context->GetPlatformName()
+            << "), medium " << n << "^3, medians of " << runs << " runs\n";
+  refracta::bench::Table table(
+    { "part", "rays", "image", "median_ms", "steps_per_pixel", "Msteps_per_s", "ratio" });
+
+  // ---- Part 1: the view pass alone.
+  refracta::scenes::Scene scene = refracta::scenes::GlassSphereInFog(n);
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->SetInputData(scene.Medium);
+  for (auto& light : scene.Lights)
+  {
+    tracer->AddLight(light);
+  }
+  tracer->SetNumberOfPhotons(photons);
+  tracer->Update();
+  vtkNew<vtkRefractaViewPass> pass;
+  if (!pass->SetMedium(scene.Medium) || !pass->SetLighting(tracer->GetOutput()))
+  {
+    return 1;
+  }
+  std::vector<float> hdr;
+  for (int mode : { vtkRefractaViewPass::CURVED, vtkRefractaViewPass::STRAIGHT })
+  {
+    pass->SetRayMode(mode);
+    for (int w : sizes)
+    {
+      if (!pass->Render(scene.Camera, w, w, nullptr, nullptr, hdr)) // warm-up: compile
+      {
+        return 1;
+      }
+      std::vector<double> seconds;
+      for (int r = 0; r < runs; ++r)
+      {
+        pass->Render(scene.Camera, w, w, nullptr, nullptr, hdr);
+        seconds.push_back(pass->GetLastSeconds());
+      }
+      const double median = refracta::bench::Median(seconds);
+      const double steps = pass->GetLastTotalSteps();
+      const std::string rays = mode == vtkRefractaViewPass::CURVED ? "curved" : "straight";
+      table.AddRow({ "view pass", rays, std::to_string(w) + "x" + std::to_string(w),
+        refracta::bench::Table::Format(median * 1e3),
+        refracta::bench::Table::Format(steps / (double(w) * w)),
+        refracta::bench::Table::Format(steps / median / 1e6), "" });
+      std::cout << "  " << rays << " " << w << "x" << w << ": " << median * 1e3 << " ms\n";
+    }
+  }
+
+  // ---- Part 2: emission-absorption against vtkFixedPointVolumeRayCastMapper.
+  auto field = ScalarField(n);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 0.0);
+  opacity->AddPoint(1.0, 0.08);
+  vtkNew<vtkColorTransferFunction> colour;
+  colour->AddRGBPoint(0.0, 0.2, 0.3, 1.0);
+  colour->AddRGBPoint(0.5, 1.0, 0.6, 0.2);
+  colour->AddRGBPoint(1.0, 1.0, 1.0, 0.9);
+  vtkNew<vtkVolumeProperty> property;
+  property->SetScalarOpacity(opacity);
+  property->SetColor(colour);
+  property->SetScalarOpacityUnitDistance(1.0 / n);
+  property->ShadeOff();
+  property->SetInterpolationTypeToLinear();
+  vtkNew<vtkTransferFunctionMedium> mapping;
+  mapping->SetInputData(field);
+  mapping->SetVolumeProperty(property);
+  mapping->SetEmissionScale(1.0);
+  mapping->Update();
+  vtkNew<vtkCamera> camera;
+  camera->SetFocalPoint(0.5, 0.5, 0.5);
+  camera->SetPosition(1.6, 1.3, 2.4);
+  camera->SetViewAngle(30);
+  vtkNew<vtkRefractaViewPass> eaPass;
+  eaPass->SetRayMode(vtkRefractaViewPass::STRAIGHT);
+  if (!eaPass->SetMedium(mapping->GetOutput()))
+  {
+    return 1;
+  }
+  // Cutoff 0: every ray marches through the whole box; 1e-4 (the default): rays stop once the
+  // medium in front is opaque, like the fixed-point mapper's early ray termination.
+  double refractaMedian[2] = { 0, 0 }, refractaSteps[2] = { 0, 0 };
+  const double cutoffs[2] = { 0.0, 1e-4 };
+  for (int c = 0; c < 2; ++c)
+  {
+    eaPass->SetTransmittanceCutoff(cutoffs[c]);
+    if (!eaPass->Render(camera, compareSize, compareSize, nullptr, nullptr, hdr))
+    {
+      return 1;
+    }
+    std::vector<double> seconds;
+    for (int r = 0; r < runs; ++r)
+    {
+      eaPass->Render(camera, compareSize, compareSize, nullptr, nullptr, hdr);
+      seconds.push_back(eaPass->GetLastSeconds());
+    }
+    refractaMedian[c] = refracta::bench::Median(seconds);
+    refractaSteps[c] = eaPass->GetLastTotalSteps();
+  }
+
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetSize(compareSize, compareSize);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
+  fixedPoint->SetInputData(field);
+  fixedPoint->SetAutoAdjustSampleDistances(0);
+  fixedPoint->SetSampleDistance(1.0 / n);
+  fixedPoint->SetImageSampleDistance(1.0);
+  fixedPoint->SetNumberOfThreads(context->GetNumberOfComputeUnits());
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(fixedPoint);
+  volume->SetProperty(property);
+  renderer->AddVolume(volume);
+  renderer->SetActiveCamera(camera);
+  renderer->ResetCameraClippingRange();
+  window->Render(); // warm-up: builds the mapper's tables
+  std::vector<double> vtkSeconds;
+  for (int r = 0; r < runs; ++r)
+  {
+    camera->Azimuth(r % 2 ? 0.01 : -0.01); // force a re-render
+    const double t0 = Now();
+    window->Render();
+    vtkSeconds.push_back(Now() - t0);
+  }
+  const double vtkMedian = refracta::bench::Median(vtkSeconds);
+  const std::string image = std::to_string(compareSize) + "x" + std::to_string(compareSize);
+  for (int c = 0; c < 2; ++c)
+  {
+    table.AddRow({ "emission-absorption",
+      c == 0 ? "refracta straight, cutoff 0" : "refracta straight, cutoff 1e-4", image,
+      refracta::bench::Table::Format(refractaMedian[c] * 1e3),
+      refracta::bench::Table::Format(refractaSteps[c] / (double(compareSize) * compareSize)),
+      refracta::bench::Table::Format(refractaSteps[c] / refractaMedian[c] / 1e6),
+      refracta::bench::Table::Format(vtkMedian / refractaMedian[c]) });
+  }
+  table.AddRow({ "emission-absorption", "vtkFixedPointVolumeRayCastMapper", image,
+    refracta::bench::Table::Format(vtkMedian * 1e3), "", "", "1" });
+  table.Print("BenchmarkViewPass (ratio = vtkFixedPointVolumeRayCastMapper time / this time)");
+  for (int c = 0; c < 2; ++c)
+  {
+    std::cout << "vtkFixedPointVolumeRayCastMapper / Refracta view pass (cutoff " << cutoffs[c]
+              << ") time ratio: " << vtkMedian / refractaMedian[c] << " (" << vtkMedian * 1e3
+              << " ms vs " << refractaMedian[c] * 1e3 << " ms, " << image << ", " << n << "^3)\n";
+  }
+  if (!table.WriteCsv(csv))
+  {
+    return 1;
+  }
+  return 0;
+}
