@@ -17,6 +17,7 @@
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkEffectPlan.h"
 #include "vtkImageData.h"
 #include "vtkJPEGReader.h"
 #include "vtkLatticeBoltzmannLighting.h"
@@ -33,6 +34,7 @@
 #include "vtkPNGReader.h"
 #include "vtkPNGWriter.h"
 #include "vtkPhotonTracer.h"
+#include "vtkSceneAnalysis.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -545,7 +547,8 @@ int Render(const json& scene, const std::string& base, const Options& options)
   Timer total;
   json report;
   json timings = json::object();
-  CheckKeys(scene, "scene", { "image", "camera", "background", "medium", "lights", "quality" });
+  CheckKeys(
+    scene, "scene", { "image", "camera", "background", "medium", "lights", "quality", "effects" });
 
   // --- settings ---
   const json image = scene.value("image", json::object());
@@ -559,7 +562,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
   const json quality = scene.value("quality", json::object());
   CheckKeys(quality, "scene.quality",
     { "photons", "seed", "view_step", "ray_mode", "transmittance_cutoff", "photon_min_step",
-      "photon_smoothing", "multiple_scattering", "multiple_scattering_tolerance" });
+      "photon_smoothing", "multiple_scattering", "multiple_scattering_tolerance", "tolerance" });
   const int photons = Integer(quality, "photons", "scene.quality", 1 << 18, 1, 1 << 28);
   const int seed = Integer(quality, "seed", "scene.quality", 1, 0, 2147483647);
   const double viewStep = Number(quality, "view_step", "scene.quality", 1.0, 0.01, 16.0);
@@ -571,6 +574,29 @@ int Render(const json& scene, const std::string& base, const Options& options)
   const bool multipleScattering = Boolean(quality, "multiple_scattering", "scene.quality", true);
   const double lblTolerance =
     Number(quality, "multiple_scattering_tolerance", "scene.quality", 1e-4, 1e-8, 1.0);
+  // The effect plan: the relative image change an effect may cause and still be skipped, and
+  // per-effect overrides ("auto", "on", "off").
+  const double planTolerance = Number(quality, "tolerance", "scene.quality", 0.01, 0.0, 1.0);
+  vtkNew<vtkEffectPlan> plan;
+  plan->SetTolerance(planTolerance);
+  {
+    const json effects = scene.value("effects", json::object());
+    CheckKeys(effects, "scene.effects",
+      { "refraction", "absorption", "single_scattering", "multiple_scattering", "emission" });
+    const char* keys[] = { "refraction", "absorption", "single_scattering", "multiple_scattering",
+      "emission" };
+    for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
+    {
+      const std::string mode = String(effects, keys[e], "scene.effects", "auto", { "auto", "on", "off" });
+      plan->SetEffectMode(e,
+        mode == "on" ? vtkEffectPlan::FORCE_ON
+                     : (mode == "off" ? vtkEffectPlan::FORCE_OFF : vtkEffectPlan::AUTOMATIC));
+    }
+    if (!multipleScattering)
+    {
+      plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, vtkEffectPlan::FORCE_OFF);
+    }
+  }
 
   // --- medium ---
   Timer mediumTimer;
@@ -771,6 +797,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
 
   // --- lights ---
   vtkNew<vtkPhotonTracer> tracer;
+  vtkNew<vtkSceneAnalysis> analysis;
   int lightCount = 0;
   if (scene.contains("lights"))
   {
@@ -815,6 +842,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
         Fail(p + ".cone_angle", "only for spot lights");
       }
       tracer->AddLight(light);
+      analysis->AddLight(light);
       ++lightCount;
     }
   }
@@ -890,22 +918,33 @@ int Render(const json& scene, const std::string& base, const Options& options)
   // --- light pass ---
   vtkSmartPointer<vtkImageData> lighting;
   json lightReport;
-  bool scatters = false;
-  if (vtkDataArray* albedo = mediumImage->GetPointData()->GetArray("Albedo"))
+  // --- effect plan: analyse the scene, simulate only the effects that change the image ---
+  Timer planTimer;
+  analysis->SetMedium(mediumImage);
+  if (!analysis->Analyze() || !plan->Decide(analysis))
   {
-    vtkDataArray* ext = mediumImage->GetPointData()->GetArray("Extinction");
-    for (int c = 0; c < 3 && ext; ++c)
-    {
-      double ra[2], re[2];
-      albedo->GetRange(ra, c);
-      ext->GetRange(re, c);
-      scatters = scatters || (ra[1] > 0 && re[1] > 0);
-    }
+    throw std::runtime_error("the scene analysis failed (see the error above)");
   }
-  Timer lightTimer;
-  if (lightCount > 0 && scatters)
+  vtkNew<vtkImageData> planned;
+  plan->ApplyToMedium(mediumImage, planned);
+  timings["plan"] = planTimer.Seconds();
+  json planReport;
+  planReport["summary"] = plan->GetSummary();
+  planReport["analysis"] = analysis->GetSummary();
+  planReport["tolerance"] = plan->GetTolerance();
+  for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
   {
-    tracer->SetInputData(mediumImage);
+    planReport["effects"][vtkEffectPlan::GetEffectName(e)] = { { "enabled", plan->IsEnabled(e) },
+      { "estimated_change", plan->GetEstimatedContribution(e) }, { "reason", plan->GetReason(e) } };
+  }
+  report["plan"] = planReport;
+  const bool singleScattering = plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING);
+  const bool planMultiple = plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING);
+
+  Timer lightTimer;
+  if (lightCount > 0 && singleScattering)
+  {
+    tracer->SetInputData(planned);
     tracer->SetNumberOfPhotons(photons);
     tracer->SetSeed(static_cast<unsigned int>(seed));
     tracer->SetMinimumStep(photonMinStep);
@@ -924,12 +963,12 @@ int Render(const json& scene, const std::string& base, const Options& options)
     lightReport["curved_rays"] = tracer->GetUsedCurvedRays();
     lightReport["octree"] = tracer->GetUsedOctree();
     lightReport["photon_seconds"] = lightTimer.Seconds();
-    if (multipleScattering)
+    if (planMultiple)
     {
       // Multiple scattering: Lattice-Boltzmann lighting driven by the photon pass's S1.
       Timer lblTimer;
       vtkNew<vtkLatticeBoltzmannLighting> lbl;
-      lbl->SetInputData(mediumImage);
+      lbl->SetInputData(planned);
       lbl->SetLightingData(lighting);
       lbl->SetTolerance(lblTolerance);
       lbl->Update();
@@ -948,20 +987,22 @@ int Render(const json& scene, const std::string& base, const Options& options)
     }
     else
     {
-      lightReport["multiple_scattering"] = "off (quality.multiple_scattering)";
+      lightReport["multiple_scattering"] =
+        std::string("off (") + plan->GetReason(vtkEffectPlan::MULTIPLE_SCATTERING) + ")";
     }
     renderer->SetLightingData(lighting);
   }
   else
   {
-    lightReport["skipped"] =
-      lightCount == 0 ? "no lights" : "nothing in the medium scatters (albedo or extinction 0)";
+    lightReport["skipped"] = lightCount == 0
+      ? std::string("no lights")
+      : std::string("single scattering ") + plan->GetReason(vtkEffectPlan::SINGLE_SCATTERING);
   }
   timings["light_pass"] = lightTimer.Seconds();
 
   // --- view pass ---
   Timer viewTimer;
-  renderer->SetInputData(mediumImage);
+  renderer->SetInputData(planned);
   renderer->SetCamera(camera);
   renderer->SetImageSize(width, height);
   renderer->SetExposure(exposure);
@@ -981,6 +1022,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
     throw std::runtime_error("the view pass failed (see the error above)");
   }
   timings["view_pass"] = viewTimer.Seconds();
+  plan->RecordInFieldData(result->GetFieldData());
   timings["view_pass_device"] = renderer->GetViewPass()->GetLastSeconds();
 
   // --- outputs ---
@@ -1051,6 +1093,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
 
   std::cout << "refracta-render: " << width << " x " << height << " -> " << options.Output << " on "
             << report["device"].get<std::string>() << "\n";
+  std::cout << "  plan      " << plan->GetSummary() << "\n";
   std::cout << "  medium    " << mediumDims[0] << " x " << mediumDims[1] << " x " << mediumDims[2]
             << " (" << mediumReport["source"].get<std::string>() << "), "
             << timings["medium"].get<double>() << " s\n";

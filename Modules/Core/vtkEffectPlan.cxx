@@ -1,9 +1,13 @@
 #include "vtkEffectPlan.h"
 
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkFieldData.h"
+#include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkRefractaMedium.h"
 #include "vtkSceneAnalysis.h"
 #include "vtkStringArray.h"
 
@@ -125,8 +129,10 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
   }
   std::ostringstream detail;
 
-  detail << "bending " << analysis->GetMaximumBendingAngle() << " rad";
-  this->DecideEffect(REFRACTION, analysis->GetMaximumDisplacementInVoxels(), detail.str().c_str());
+  detail << "bending " << analysis->GetMaximumBendingAngle() << " rad, displacement "
+         << analysis->GetMaximumDisplacementInVoxels() << " voxels";
+  this->DecideEffect(
+    REFRACTION, std::min(analysis->GetMaximumDisplacementInVoxels(), 1.0), detail.str().c_str());
 
   const double tau = analysis->GetMaximumOpticalThickness();
   detail.str("");
@@ -169,7 +175,6 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
     this->Enabled[MULTIPLE_SCATTERING] = false;
     this->Reasons[MULTIPLE_SCATTERING] = "off: no single scattering to spread";
   }
-  this->EmptySpaceSkipping = analysis->GetOccupiedFraction() < 0.9;
   this->Decided = true;
   this->Modified();
   return true;
@@ -191,9 +196,49 @@ std::string vtkEffectPlan::GetSummary() const
       s << " (forced)";
     }
   }
-  s << "; empty-space skipping " << (this->EmptySpaceSkipping ? "on" : "off") << "; tolerance "
-    << this->Tolerance;
+  s << "; tolerance " << this->Tolerance;
   return s.str();
+}
+
+//------------------------------------------------------------------------------
+bool vtkEffectPlan::ApplyToMedium(vtkImageData* medium, vtkImageData* pruned) const
+{
+  if (!medium || !pruned || !this->Decided)
+  {
+    return false;
+  }
+  pruned->ShallowCopy(medium);
+  vtkPointData* pd = pruned->GetPointData();
+  if (!this->Enabled[REFRACTION])
+  {
+    pd->RemoveArray(vtkRefractaMedium::RefractiveIndexName());
+    pd->RemoveArray(vtkRefractaMedium::RefractiveIndexGradientName());
+  }
+  if (!this->Enabled[ABSORPTION])
+  {
+    pd->RemoveArray(vtkRefractaMedium::ExtinctionName());
+  }
+  if (!this->Enabled[EMISSION])
+  {
+    pd->RemoveArray(vtkRefractaMedium::EmissionName());
+  }
+  bool anyMediumArray = false;
+  for (int id = 0; id < vtkRefractaMedium::NUMBER_OF_ARRAYS; ++id)
+  {
+    anyMediumArray = anyMediumArray || pd->GetArray(vtkRefractaMedium::GetArrayName(id));
+  }
+  if (!anyMediumArray)
+  {
+    // Everything was pruned: say "vacuum" explicitly so that the result is still a medium.
+    vtkNew<vtkFloatArray> vacuum;
+    vacuum->SetName(vtkRefractaMedium::ExtinctionName());
+    vacuum->SetNumberOfComponents(3);
+    vacuum->SetNumberOfTuples(pruned->GetNumberOfPoints());
+    vacuum->Fill(0.0);
+    pd->AddArray(vacuum);
+  }
+  this->RecordInFieldData(pruned->GetFieldData());
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -229,7 +274,6 @@ void vtkEffectPlan::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Tolerance: " << this->Tolerance << "\n";
-  os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
   for (int e = 0; e < NUMBER_OF_EFFECTS; ++e)
   {
     static const char* const modes[] = { "automatic", "forced on", "forced off" };

@@ -6,19 +6,18 @@
  * magnitude, if the effect were skipped, and turns the effect off when that estimate is at or
  * below the Tolerance. Every estimate is an upper bound built from the analysis:
  *
- * | effect | off means | estimate of the relative change when off |
- * |---|---|---|
- * | Refraction | straight rays, no gradient lookups | largest displacement of a bent ray, in voxels
- * (a shift of d voxels changes a pixel by at most d times the largest relative contrast between
- * neighbouring voxels, taken as 1) | | Absorption | extinction ignored everywhere (then nothing
- * scatters either) | 1 - exp(-tau_max) | | SingleScattering | no photon pass | 1 - exp(-tau_s,max)
- * if a powered light exists, else 0 | | MultipleScattering | no Lattice-Boltzmann pass | SS * q /
- * (1 - q), q = albedo_max (1 - exp(-tau_max)): every further order of scattering is at most q times
- * the previous | | Emission | emission ignored | 1 if anything emits, else 0 |
+ * - Refraction (off: straight rays, no gradient lookups): min(1, d), d the largest displacement
+ *   of a bent ray in voxels; a shift of d voxels changes a pixel by at most d times the largest
+ *   relative contrast between neighbouring voxels, taken as 1.
+ * - Absorption (off: extinction ignored, so nothing scatters either): 1 - exp(-tau_max).
+ * - SingleScattering (off: no photon pass): 1 - exp(-tau_s,max) if a powered light exists, else 0.
+ * - MultipleScattering (off: no Lattice-Boltzmann pass): SS q / (1 - q) with
+ *   q = albedo_max (1 - exp(-tau_max)): every further order of scattering is at most q times the
+ *   previous one.
+ * - Emission (off: emission ignored): 1 if anything emits, else 0.
  *
  * Each effect can be forced on or off (SetEffectMode), overriding the decision; the plan
- * records why it chose what it chose. EmptySpaceSkipping, a lossless optimisation, is planned
- * when less than 90% of the volume is occupied. The plan prints itself (PrintSelf), summarises
+ * records why it chose what it chose. The plan prints itself (PrintSelf), summarises
  * itself on one line (GetSummary), and writes itself into field data (RecordInFieldData), so that
  * every output of a run says what was simulated.
  *
@@ -33,6 +32,7 @@
 #include <string> // for std::string
 
 class vtkFieldData;
+class vtkImageData;
 class vtkSceneAnalysis;
 
 class REFRACTACORE_EXPORT vtkEffectPlan : public vtkObject
@@ -109,11 +109,6 @@ public:
   const char* GetReason(int effect) const;
 
   /**
-   * Whether passes should skip empty space (fewer than 90% of voxels occupied).
-   */
-  vtkGetMacro(EmptySpaceSkipping, bool);
-
-  /**
    * Name of an effect ("Refraction", "Absorption", ...), or nullptr out of range.
    */
   static const char* GetEffectName(int effect);
@@ -122,6 +117,17 @@ public:
    * One line: "refraction on (...), absorption on, ...".
    */
   std::string GetSummary() const;
+
+  /**
+   * Make `pruned` a shallow copy of `medium` without the arrays of the effects that are off, so
+   * that every pass, which already prunes itself on what a medium carries, does only the planned
+   * work: refraction off drops RefractiveIndex and RefractiveIndexGradient (n = 1: straight rays,
+   * no gradient lookups); absorption off drops Extinction (nothing attenuates, so nothing
+   * scatters); emission off drops Emission. Single and multiple scattering are decided per pass
+   * by the caller (IsEnabled): no photon pass, no Lattice-Boltzmann pass. Returns false for null
+   * arguments or before Decide().
+   */
+  bool ApplyToMedium(vtkImageData* medium, vtkImageData* pruned) const;
 
   /**
    * Write the plan as field data: "PlanEnabled" (one 0/1 per effect, in enum order),
@@ -140,7 +146,6 @@ protected:
   bool Enabled[NUMBER_OF_EFFECTS] = { true, true, true, true, true };
   double Estimates[NUMBER_OF_EFFECTS] = { 0, 0, 0, 0, 0 };
   std::string Reasons[NUMBER_OF_EFFECTS];
-  bool EmptySpaceSkipping = false;
   bool Decided = false;
 
 private:

@@ -3,6 +3,7 @@
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkEffectPlan.h"
 #include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -22,6 +23,7 @@
 #include "vtk_glew.h"
 
 #include "vtkPhotonTracer.h"
+#include "vtkSceneAnalysis.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,8 +41,10 @@ struct vtkRefractiveVolumeMapper::Internals
   vtkSmartPointer<vtkPiecewiseFunction> IndexFunction;
   vtkSmartPointer<vtkImageData> LightingData;
 
-  // Medium stage.
+  // Medium stage. Medium is the input (or its transfer-function mapping) pruned by the plan.
   vtkSmartPointer<vtkImageData> Medium;
+  vtkSmartPointer<vtkSceneAnalysis> Analysis = vtkSmartPointer<vtkSceneAnalysis>::New();
+  vtkSmartPointer<vtkEffectPlan> Plan = vtkSmartPointer<vtkEffectPlan>::New();
   std::string MediumKey;
 
   // Light stage.
@@ -186,15 +190,23 @@ bool vtkRefractiveVolumeMapper::UpdateMedium(vtkVolume* volume)
         << this->EmissionScale << ":" << in.IndexFunction.Get() << ":"
         << (in.IndexFunction ? in.IndexFunction->GetMTime() : 0);
   }
+  // The plan's settings (not its modification time: deciding it touches that on every run).
+  key << ":plan" << in.Plan->GetTolerance();
+  for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
+  {
+    key << "," << in.Plan->GetEffectMode(e);
+  }
+  key << ":" << this->MultipleScattering;
   if (key.str() == in.MediumKey && in.Medium)
   {
     return true;
   }
   in.MediumKey.clear();
   in.Medium = nullptr;
+  vtkSmartPointer<vtkImageData> full;
   if (isMedium)
   {
-    in.Medium = input;
+    full = input;
   }
   else
   {
@@ -210,9 +222,20 @@ bool vtkRefractiveVolumeMapper::UpdateMedium(vtkVolume* volume)
                     "vtkTransferFunctionMedium error above).");
       return false;
     }
-    in.Medium = vtkSmartPointer<vtkImageData>::New();
-    in.Medium->ShallowCopy(in.Mapping->GetOutput());
+    full = vtkSmartPointer<vtkImageData>::New();
+    full->ShallowCopy(in.Mapping->GetOutput());
   }
+  // The plan's light-independent decisions (refraction, absorption, emission) prune the medium
+  // every pass sees; the light stage decides single and multiple scattering with the lights.
+  in.Analysis->SetMedium(full);
+  in.Analysis->RemoveAllLights();
+  if (!in.Analysis->Analyze() || !this->DecidePlan())
+  {
+    vtkErrorMacro("The scene analysis of the medium failed (see the error above).");
+    return false;
+  }
+  in.Medium = vtkSmartPointer<vtkImageData>::New();
+  in.Plan->ApplyToMedium(full, in.Medium);
   if (!in.ViewPass->SetMedium(in.Medium))
   {
     in.Medium = nullptr;
@@ -222,6 +245,33 @@ bool vtkRefractiveVolumeMapper::UpdateMedium(vtkVolume* volume)
   in.MediumKey = key.str();
   in.LightKey.clear(); // a new medium invalidates the lighting
   return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractiveVolumeMapper::DecidePlan()
+{
+  Internals& in = *this->Internal;
+  // MultipleScattering off is a user override of the plan; the plan's own modes stay as set.
+  const int userMode = in.Plan->GetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING);
+  if (!this->MultipleScattering)
+  {
+    in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, vtkEffectPlan::FORCE_OFF);
+  }
+  const bool decided = in.Plan->Decide(in.Analysis);
+  in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, userMode);
+  return decided;
+}
+
+//------------------------------------------------------------------------------
+vtkEffectPlan* vtkRefractiveVolumeMapper::GetEffectPlan()
+{
+  return this->Internal->Plan;
+}
+
+//------------------------------------------------------------------------------
+vtkSceneAnalysis* vtkRefractiveVolumeMapper::GetSceneAnalysis()
+{
+  return this->Internal->Analysis;
 }
 
 //------------------------------------------------------------------------------
@@ -277,26 +327,12 @@ bool vtkRefractiveVolumeMapper::UpdateLighting(vtkRenderer* renderer, vtkVolume*
     return true;
   }
   in.Lighting = nullptr;
-  // Only the effects the scene needs: nothing scatters -> no light pass at all.
-  bool scatters = false;
-  if (vtkDataArray* albedo = in.Medium->GetPointData()->GetArray(vtkRefractaMedium::AlbedoName()))
-  {
-    vtkDataArray* extinction =
-      in.Medium->GetPointData()->GetArray(vtkRefractaMedium::ExtinctionName());
-    double range[2];
-    for (int c = 0; c < 3 && extinction && !scatters; ++c)
-    {
-      albedo->GetRange(range, c);
-      const double a = range[1];
-      extinction->GetRange(range, c);
-      scatters = a > 0 && range[1] > 0;
-    }
-  }
   // The renderer's lights in the medium's data coordinates (through the inverse prop matrix).
   vtkNew<vtkMatrix4x4> toData;
   vtkMatrix4x4::Invert(volume->GetMatrix(), toData);
   vtkPhotonTracer* tracer = in.Tracer;
   tracer->RemoveAllLights();
+  in.Analysis->RemoveAllLights();
   int lightCount = 0;
   lights->InitTraversal(it);
   while (vtkLight* light = lights->GetNextLight(it))
@@ -317,9 +353,17 @@ bool vtkRefractiveVolumeMapper::UpdateLighting(vtkRenderer* renderer, vtkVolume*
     copy->SetPosition(p[0] / p[3], p[1] / p[3], p[2] / p[3]);
     copy->SetFocalPoint(f[0] / f[3], f[1] / f[3], f[2] / f[3]);
     tracer->AddLight(copy);
+    in.Analysis->AddLight(copy);
     ++lightCount;
   }
-  if (scatters && lightCount > 0)
+  // Only the effects the scene needs: the plan, now with the lights, decides whether the photon
+  // pass and the Lattice-Boltzmann pass would change the image.
+  if (!in.Analysis->Analyze() || !this->DecidePlan())
+  {
+    vtkErrorMacro("The scene analysis with the renderer's lights failed (see the error above).");
+    return false;
+  }
+  if (in.Plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING) && lightCount > 0)
   {
     tracer->SetContext(in.ViewPass->GetContext());
     tracer->SetInputData(in.Medium);
@@ -333,7 +377,7 @@ bool vtkRefractiveVolumeMapper::UpdateLighting(vtkRenderer* renderer, vtkVolume*
     }
     in.Lighting = vtkSmartPointer<vtkImageData>::New();
     in.Lighting->ShallowCopy(tracer->GetOutput());
-    if (this->MultipleScattering)
+    if (in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
     {
       // Multiple scattering: Lattice-Boltzmann lighting driven by the photon pass's S1.
       vtkNew<vtkLatticeBoltzmannLighting> lbl;

@@ -49,10 +49,12 @@
 
 #include <memory> // for std::unique_ptr
 
+class vtkEffectPlan;
 class vtkImageData;
 class vtkOpenCLContext;
 class vtkPiecewiseFunction;
 class vtkRefractaViewPass;
+class vtkSceneAnalysis;
 
 class REFRACTARENDERING_EXPORT vtkRefractiveVolumeMapper : public vtkVolumeMapper
 {
@@ -109,6 +111,17 @@ public:
   vtkSetMacro(MultipleScattering, bool);
   vtkGetMacro(MultipleScattering, bool);
   vtkBooleanMacro(MultipleScattering, bool);
+
+  ///@{
+  /**
+   * The effect plan every render goes through (see vtkEffectPlan): set its tolerance or force an
+   * effect on or off here. Refraction, absorption and emission prune the medium all passes see;
+   * single and multiple scattering decide whether the photon and Lattice-Boltzmann passes run.
+   * MultipleScattering off forces multiple scattering off on top of the plan.
+   */
+  vtkEffectPlan* GetEffectPlan();
+  vtkSceneAnalysis* GetSceneAnalysis();
+  ///@}
   ///@}
 
   ///@{
@@ -174,6 +187,7 @@ protected:
   ~vtkRefractiveVolumeMapper() override;
 
   bool UpdateMedium(vtkVolume* volume);
+  bool DecidePlan();
   bool UpdateLighting(vtkRenderer* renderer, vtkVolume* volume);
 
   double Anisotropy = 0.0;
