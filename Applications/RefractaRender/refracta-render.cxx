@@ -15,9 +15,9 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
+#include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
-#include "vtkEffectPlan.h"
 #include "vtkImageData.h"
 #include "vtkJPEGReader.h"
 #include "vtkLatticeBoltzmannLighting.h"
@@ -34,13 +34,13 @@
 #include "vtkPNGReader.h"
 #include "vtkPNGWriter.h"
 #include "vtkPhotonTracer.h"
-#include "vtkSceneAnalysis.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkSTLReader.h"
+#include "vtkSceneAnalysis.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkTransferFunctionMedium.h"
@@ -587,7 +587,8 @@ int Render(const json& scene, const std::string& base, const Options& options)
       "emission" };
     for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
     {
-      const std::string mode = String(effects, keys[e], "scene.effects", "auto", { "auto", "on", "off" });
+      const std::string mode =
+        String(effects, keys[e], "scene.effects", "auto", { "auto", "on", "off" });
       plan->SetEffectMode(e,
         mode == "on" ? vtkEffectPlan::FORCE_ON
                      : (mode == "off" ? vtkEffectPlan::FORCE_OFF : vtkEffectPlan::AUTOMATIC));

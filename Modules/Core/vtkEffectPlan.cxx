@@ -1,8 +1,8 @@
 #include "vtkEffectPlan.h"
 
 #include "vtkDoubleArray.h"
-#include "vtkFloatArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
@@ -141,14 +141,18 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
 
   const bool lit = analysis->GetNumberOfPoweredLights() > 0;
   const double tauS = analysis->GetMaximumScatteringThickness();
-  const double single = (lit && analysis->GetHasScattering()) ? -std::expm1(-tauS) : 0.0;
+  // Scattered light can be all the camera sees (a lit fog on black): without the camera and the
+  // background there is nothing to compare it with, so any scattering of a powered light counts.
+  const double single = (lit && analysis->GetHasScattering() && tauS > 0.0) ? 1.0 : 0.0;
   detail.str("");
   detail << "tau_s " << tauS << ", " << analysis->GetNumberOfPoweredLights() << " powered light(s)";
   this->DecideEffect(SINGLE_SCATTERING, single, detail.str().c_str());
 
-  // Each further order of scattering carries at most q of the previous one.
+  // Each further order of scattering carries at most q of the previous one, so light scattered
+  // twice or more is at most q / (1 - q) of the singly scattered light and at most q of all the
+  // scattered light the camera sees.
   const double q = std::min(analysis->GetAlbedoRange()[1] * -std::expm1(-tau), 1.0);
-  const double multiple = q >= 1.0 ? (single > 0.0 ? 1.0 : 0.0) : single * q / (1.0 - q);
+  const double multiple = single > 0.0 ? q : 0.0;
   detail.str("");
   detail << "q = " << q;
   this->DecideEffect(MULTIPLE_SCATTERING, std::min(multiple, 1.0), detail.str().c_str());

@@ -10,10 +10,11 @@
  *   of a bent ray in voxels; a shift of d voxels changes a pixel by at most d times the largest
  *   relative contrast between neighbouring voxels, taken as 1.
  * - Absorption (off: extinction ignored, so nothing scatters either): 1 - exp(-tau_max).
- * - SingleScattering (off: no photon pass): 1 - exp(-tau_s,max) if a powered light exists, else 0.
- * - MultipleScattering (off: no Lattice-Boltzmann pass): SS q / (1 - q) with
- *   q = albedo_max (1 - exp(-tau_max)): every further order of scattering is at most q times the
- *   previous one.
+ * - SingleScattering (off: no photon pass): 1 if a powered light exists and anything scatters,
+ *   else 0 (scattered light may be all the camera sees, e.g. a lit fog on black).
+ * - MultipleScattering (off: no Lattice-Boltzmann pass): q = albedo_max (1 - exp(-tau_max)) when
+ *   single scattering is on, else 0. Every further order of scattering carries at most q of the
+ *   previous one, so multiply scattered light is at most q of all scattered light.
  * - Emission (off: emission ignored): 1 if anything emits, else 0.
  *
  * Each effect can be forced on or off (SetEffectMode), overriding the decision; the plan

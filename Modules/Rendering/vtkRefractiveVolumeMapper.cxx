@@ -2,8 +2,8 @@
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
-#include "vtkImageData.h"
 #include "vtkEffectPlan.h"
+#include "vtkImageData.h"
 #include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"

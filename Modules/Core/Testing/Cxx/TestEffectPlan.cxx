@@ -163,9 +163,8 @@ TEST(EffectPlan, MultipleScatteringSwitchesAtItsThreshold)
       v.Albedo = 0.9;
       return v;
     });
-  const double single = 1.0 - std::exp(-0.18);
   const double q = 0.9 * (1.0 - std::exp(-0.2));
-  const double multiple = single * q / (1.0 - q); // about 0.0316
+  const double multiple = q; // about 0.163
   vtkNew<vtkSceneAnalysis> analysis;
   vtkNew<vtkEffectPlan> plan;
   auto light = MakeDirectionalLight(2.0);
@@ -174,17 +173,21 @@ TEST(EffectPlan, MultipleScatteringSwitchesAtItsThreshold)
   EXPECT_NEAR(plan->GetEstimatedContribution(vtkEffectPlan::MULTIPLE_SCATTERING), multiple, 1e-5);
   EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
   EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
-  plan->SetTolerance(multiple * 1.01); // just above: off, single scattering stays
+  // Just above it: multiple scattering off, single scattering (estimate 1 when lit) stays.
+  EXPECT_EQ(plan->GetEstimatedContribution(vtkEffectPlan::SINGLE_SCATTERING), 1.0);
+  plan->SetTolerance(multiple * 1.01);
   ASSERT_TRUE(plan->Decide(analysis));
   EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
   EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
   EXPECT_NE(std::string(plan->GetReason(vtkEffectPlan::MULTIPLE_SCATTERING)).find("off"),
     std::string::npos);
 
-  // Quality presets move the tolerance: draft (0.05) drops it, production (0.005) keeps it.
+
+  // Quality presets set the tolerance (draft 0.05, production 0.005): both keep q = 0.16.
   plan->SetQuality(vtkEffectPlan::DRAFT);
   ASSERT_TRUE(plan->Decide(analysis));
-  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
+  EXPECT_EQ(plan->GetTolerance(), 0.05);
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
   plan->SetQuality(vtkEffectPlan::PRODUCTION);
   ASSERT_TRUE(plan->Decide(analysis));
   EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
