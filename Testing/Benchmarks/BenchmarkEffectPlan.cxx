@@ -1,0 +1,189 @@
+// BenchmarkEffectPlan: what the effect plan saves. For each scene (the four procedural benchmark
+// scenes plus an emission-only and a pure-absorption scene), the full pipeline (photon tracer ->
+// Lattice-Boltzmann -> view pass) runs once as planned and once with every effect forced on; the
+// table gives the median times, their ratio and the relative L2 difference of the two HDR images.
+//
+//   BenchmarkEffectPlan [--size N] [--image W] [--photons P] [--runs R] [--csv FILE]
+#include "RefractaBenchmark.h"
+#include "RefractaScenes.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkEffectPlan.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLatticeBoltzmannLighting.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPointData.h"
+#include "vtkRefractaImageRenderer.h"
+#include "vtkSceneAnalysis.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+using refracta::scenes::Scene;
+
+struct Settings
+{
+  int Size = 48;
+  int Image = 128;
+  int Photons = 1 << 17;
+  int Runs = 3;
+  std::string Csv = "effect_plan.csv";
+};
+
+std::vector<double> Render(const Scene& scene, vtkEffectPlan* plan, const Settings& settings)
+{
+  vtkNew<vtkImageData> medium;
+  plan->ApplyToMedium(scene.Medium, medium);
+  vtkNew<vtkRefractaImageRenderer> renderer;
+  vtkNew<vtkPhotonTracer> tracer;
+  vtkNew<vtkLatticeBoltzmannLighting> lbl;
+  if (!scene.Lights.empty() && plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING))
+  {
+    tracer->SetInputData(medium);
+    for (const auto& light : scene.Lights)
+    {
+      tracer->AddLight(light);
+    }
+    tracer->SetNumberOfPhotons(settings.Photons);
+    tracer->Update();
+    vtkImageData* lighting = tracer->GetOutput();
+    if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
+    {
+      lbl->SetInputData(medium);
+      lbl->SetLightingData(lighting);
+      lbl->Update();
+      lighting = lbl->GetOutput();
+    }
+    renderer->SetLightingData(lighting);
+  }
+  renderer->SetInputData(medium);
+  renderer->SetCamera(scene.Camera);
+  renderer->SetImageSize(settings.Image, settings.Image);
+  renderer->SetBackgroundColor(scene.Background[0], scene.Background[1], scene.Background[2]);
+  renderer->Update();
+  std::vector<double> rgb;
+  if (vtkDataArray* hdr = renderer->GetOutput()->GetPointData()->GetArray("HDR"))
+  {
+    for (vtkIdType p = 0; p < hdr->GetNumberOfTuples(); ++p)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        rgb.push_back(hdr->GetComponent(p, c));
+      }
+    }
+  }
+  return rgb;
+}
+
+double RelativeDifference(const std::vector<double>& a, const std::vector<double>& b)
+{
+  double diff = 0.0, norm = 0.0;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i)
+  {
+    diff += (a[i] - b[i]) * (a[i] - b[i]);
+    norm += b[i] * b[i];
+  }
+  return norm > 0 ? std::sqrt(diff / norm) : std::sqrt(diff);
+}
+
+// Emission only (a glowing ball in an almost clear medium) and pure absorption (no light).
+Scene SimpleScene(const std::string& name, int n, bool emission)
+{
+  Scene scene = refracta::scenes::DenseObject(n);
+  scene.Name = name;
+  vtkPointData* pd = scene.Medium->GetPointData();
+  vtkDataArray* ext = pd->GetArray("Extinction");
+  vtkDataArray* emi = pd->GetArray("Emission");
+  for (vtkIdType p = 0; p < ext->GetNumberOfTuples(); ++p)
+  {
+    const double inside = ext->GetComponent(p, 0) / 60.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      ext->SetComponent(p, c, emission ? 1e-3 : 4.0 * inside);
+      emi->SetComponent(p, c, emission ? inside : 0.0);
+    }
+  }
+  pd->GetArray("Albedo")->Fill(0.0);
+  scene.Lights.clear();
+  scene.Background[0] = scene.Background[1] = scene.Background[2] = emission ? 0.0 : 0.6;
+  return scene;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  Settings settings;
+  for (int i = 1; i + 1 < argc; i += 2)
+  {
+    const std::string key = argv[i];
+    if (key == "--size")
+      settings.Size = std::atoi(argv[i + 1]);
+    else if (key == "--image")
+      settings.Image = std::atoi(argv[i + 1]);
+    else if (key == "--photons")
+      settings.Photons = std::atoi(argv[i + 1]);
+    else if (key == "--runs")
+      settings.Runs = std::atoi(argv[i + 1]);
+    else if (key == "--csv")
+      settings.Csv = argv[i + 1];
+    else
+    {
+      std::cerr << "unknown option " << key << "\n";
+      return 2;
+    }
+  }
+  std::vector<Scene> scenes = refracta::scenes::AllScenes(settings.Size);
+  scenes.push_back(SimpleScene("emission-only", settings.Size, true));
+  scenes.push_back(SimpleScene("pure-absorption", settings.Size, false));
+
+  using refracta::bench::Table;
+  Table table({ "scene", "plan", "planned s", "all on s", "speed-up", "image difference" });
+  for (const Scene& scene : scenes)
+  {
+    vtkNew<vtkSceneAnalysis> analysis;
+    analysis->SetMedium(scene.Medium);
+    for (const auto& light : scene.Lights)
+    {
+      analysis->AddLight(light);
+    }
+    if (!analysis->Analyze())
+    {
+      return 1;
+    }
+    vtkNew<vtkEffectPlan> planned, everything;
+    planned->Decide(analysis);
+    for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
+    {
+      everything->SetEffectMode(e, vtkEffectPlan::FORCE_ON);
+    }
+    everything->Decide(analysis);
+    std::string on;
+    for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
+    {
+      on += planned->IsEnabled(e) ? std::string(1, "RASME"[e]) : std::string("-");
+    }
+    std::vector<double> a, b;
+    Render(scene, planned, settings); // warm the kernel caches
+    Render(scene, everything, settings);
+    const double tPlanned =
+      refracta::bench::MedianSeconds(settings.Runs, [&] { a = Render(scene, planned, settings); });
+    const double tAll =
+      refracta::bench::MedianSeconds(settings.Runs, [&] { b = Render(scene, everything, settings); });
+    table.AddRow({ scene.Name, on, Table::Format(tPlanned), Table::Format(tAll),
+      Table::Format(tAll / tPlanned), Table::Format(RelativeDifference(a, b)) });
+  }
+  table.Print("Effect plan: planned vs every effect forced on (R refraction, A absorption, S single "
+              "scattering, M multiple scattering, E emission)");
+  table.WriteCsv(settings.Csv);
+  return 0;
+}
