@@ -177,13 +177,14 @@ int main(int argc, char* argv[])
     Render(scene, everything, settings);
     const double tPlanned =
       refracta::bench::MedianSeconds(settings.Runs, [&] { a = Render(scene, planned, settings); });
-    const double tAll =
-      refracta::bench::MedianSeconds(settings.Runs, [&] { b = Render(scene, everything, settings); });
+    const double tAll = refracta::bench::MedianSeconds(
+      settings.Runs, [&] { b = Render(scene, everything, settings); });
     table.AddRow({ scene.Name, on, Table::Format(tPlanned), Table::Format(tAll),
       Table::Format(tAll / tPlanned), Table::Format(RelativeDifference(a, b)) });
   }
-  table.Print("Effect plan: planned vs every effect forced on (R refraction, A absorption, S single "
-              "scattering, M multiple scattering, E emission)");
+  table.Print(
+    "Effect plan: planned vs every effect forced on (R refraction, A absorption, S single "
+    "scattering, M multiple scattering, E emission)");
   table.WriteCsv(settings.Csv);
   return 0;
 }

@@ -10,12 +10,14 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLight.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
 #include "vtkReferenceRenderer.h"
+#include "vtkRefractaImageRenderer.h"
 #include "vtkSceneAnalysis.h"
 #include "vtkSmartPointer.h"
 
@@ -402,6 +404,48 @@ TEST_P(HardCases, ReferenceRendererStaysFinite)
       EXPECT_EQ(hdr->GetComponent(p, 0), 0.25);
       EXPECT_EQ(hdr->GetComponent(p, 1), 0.5);
       EXPECT_EQ(hdr->GetComponent(p, 2), 0.75);
+    }
+  }
+}
+
+TEST_P(HardCases, FullPipelineStaysFinite)
+{
+  // Photon tracer -> Lattice-Boltzmann lighting -> view pass, as refracta-render runs them.
+  const HardCase& c = Cases()[GetParam()];
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->SetInputData(c.Medium);
+  for (const auto& light : c.Lights)
+  {
+    tracer->AddLight(light);
+  }
+  tracer->SetNumberOfPhotons(1 << 13);
+  vtkNew<vtkLatticeBoltzmannLighting> lbl;
+  lbl->SetInputData(c.Medium);
+  lbl->SetInputConnection(1, tracer->GetOutputPort());
+  lbl->SetMaximumIterations(2000);
+  lbl->Update();
+  vtkImageData* lighting = lbl->GetOutput();
+  ASSERT_EQ(lighting->GetNumberOfPoints(), c.Medium->GetNumberOfPoints()) << c.Name;
+  ExpectFiniteArrays(lighting, { "Radiance", "MultipleScattering" }, c.Name);
+
+  vtkNew<vtkRefractaImageRenderer> renderer;
+  renderer->SetInputData(c.Medium);
+  renderer->SetLightingData(lighting);
+  renderer->SetCamera(c.Camera);
+  renderer->SetImageSize(16, 16);
+  renderer->SetBackgroundColor(0.25, 0.5, 0.75);
+  renderer->Update();
+  vtkImageData* image = renderer->GetOutput();
+  ASSERT_EQ(image->GetNumberOfPoints(), 256) << c.Name;
+  ExpectFiniteArrays(image, { "HDR" }, c.Name);
+  if (c.Name == "all vacuum")
+  {
+    vtkDataArray* hdr = image->GetPointData()->GetArray("HDR");
+    for (vtkIdType p = 0; p < 256; ++p)
+    {
+      EXPECT_FLOAT_EQ(hdr->GetComponent(p, 0), 0.25f);
+      EXPECT_FLOAT_EQ(hdr->GetComponent(p, 1), 0.5f);
+      EXPECT_FLOAT_EQ(hdr->GetComponent(p, 2), 0.75f);
     }
   }
 }
