@@ -1,5 +1,7 @@
 // BenchmarkEffectPlan: what the effect plan saves. For each scene (the four procedural benchmark
-// scenes plus an emission-only and a pure-absorption scene), the full pipeline (photon tracer ->
+// scenes, an emission-only and a pure-absorption scene, and two scenes whose effects exist but
+// sit below the tolerance: a thin dark fog (multiple scattering) and a faint index bump in fog
+// (refraction)), the full pipeline (photon tracer ->
 // Lattice-Boltzmann -> view pass) runs once as planned and once with every effect forced on; the
 // table gives the median times, their ratio and the relative L2 difference of the two HDR images.
 //
@@ -145,6 +147,24 @@ int main(int argc, char* argv[])
   std::vector<Scene> scenes = refracta::scenes::AllScenes(settings.Size);
   scenes.push_back(SimpleScene("emission-only", settings.Size, true));
   scenes.push_back(SimpleScene("pure-absorption", settings.Size, false));
+  {
+    // Multiple scattering exists but carries q = 0.15 (1 - exp(-0.05)) < 1% of the scattered light.
+    Scene thin = refracta::scenes::HeterogeneousCloud(settings.Size);
+    thin.Name = "thin-dark-fog";
+    thin.Medium->GetPointData()->GetArray("Extinction")->Fill(0.05);
+    thin.Medium->GetPointData()->GetArray("Albedo")->Fill(0.15);
+    scenes.push_back(thin);
+    // Refraction exists but bends rays by far less than a voxel: n - 1 scaled down to 1e-6.
+    Scene faint = refracta::scenes::GlassSphereInFog(settings.Size);
+    faint.Name = "faint-index-in-fog";
+    vtkDataArray* n = faint.Medium->GetPointData()->GetArray("RefractiveIndex");
+    for (vtkIdType p = 0; p < n->GetNumberOfTuples(); ++p)
+    {
+      n->SetComponent(p, 0, 1.0 + 2e-6 * (n->GetComponent(p, 0) - 1.0));
+    }
+    refracta::scenes::ComputeIndexGradient(faint.Medium);
+    scenes.push_back(faint);
+  }
 
   using refracta::bench::Table;
   Table table({ "scene", "plan", "planned s", "all on s", "speed-up", "image difference" });
