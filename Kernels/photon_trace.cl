@@ -309,6 +309,29 @@ inline float3 photon_bounded(float3 dv, float n)
   const float limit = MAX_TURN * n;
   return m > limit ? dv * (limit / m) : dv;
 }
+
+// One adaptive step of the ray equation from (x, v): its length from the octree (photon_step),
+// then a midpoint (RK2) update of x' = v / n, v' = grad n with the velocity change bounded and
+// |v| renormalised to n. Shared by photon_march and photon_march_chunk.
+inline void photon_advance(float3 x, float3 v, __global const uchar* octree,
+  __global const float* extinction, __global const float* refractiveIndex,
+  __global const float* gradient, int4 dims, float4 spacing, float3* x1, float3* v1)
+{
+  const float n0 = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
+  const float3 dir = v / length(v);
+  const float h = photon_step(x, dir, octree, extinction, dims, spacing);
+  const float3 g0 = refracta_sample3(gradient, dims, refracta_to_voxel(x, spacing));
+  const float3 xm = x + (0.5f * h / n0) * v;
+  const float3 vm = v + photon_bounded(0.5f * h * g0, n0);
+  const float3 um = refracta_to_voxel(xm, spacing);
+  const float nm = refracta_sample1(refractiveIndex, dims, um);
+  const float3 gm = refracta_sample3(gradient, dims, um);
+  *x1 = x + (h / nm) * vm;
+  float3 v2 = v + photon_bounded(h * gm, nm);
+  const float n1 = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(*x1, spacing));
+  const float speed = length(v2);
+  *v1 = speed > 1e-6f * n1 ? v2 * (n1 / speed) : dir * n1;
+}
 #endif
 
 __kernel void photon_march(__global const float4* photonPos, __global const float4* photonDir,
@@ -370,21 +393,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
       outcome = 4;
       break;
     }
-    const float n0 = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
-    const float3 dir = v / length(v);
-    const float h = photon_step(x, dir, octree, extinction, dims, spacing);
-    // Midpoint (RK2) update of x' = v / n, v' = grad n.
-    const float3 g0 = refracta_sample3(gradient, dims, refracta_to_voxel(x, spacing));
-    const float3 xm = x + (0.5f * h / n0) * v;
-    const float3 vm = v + photon_bounded(0.5f * h * g0, n0);
-    const float3 um = refracta_to_voxel(xm, spacing);
-    const float nm = refracta_sample1(refractiveIndex, dims, um);
-    const float3 gm = refracta_sample3(gradient, dims, um);
-    const float3 x1 = x + (h / nm) * vm;
-    float3 v1 = v + photon_bounded(h * gm, nm);
-    const float n1 = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x1, spacing));
-    const float speed = length(v1);
-    v1 = speed > 1e-6f * n1 ? v1 * (n1 / speed) : dir * n1;
+    float3 x1, v1;
+    photon_advance(x, v, octree, extinction, refractiveIndex, gradient, dims, spacing, &x1, &v1);
     ++steps;
     if (!all(isfinite(x1)) || !all(isfinite(v1)))
     {
@@ -583,20 +593,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
       outcome = 4;
       break;
     }
-    const float n0 = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
-    const float3 dir = v / length(v);
-    const float h = photon_step(x, dir, octree, extinction, dims, spacing);
-    const float3 g0 = refracta_sample3(gradient, dims, refracta_to_voxel(x, spacing));
-    const float3 xm = x + (0.5f * h / n0) * v;
-    const float3 vm = v + photon_bounded(0.5f * h * g0, n0);
-    const float3 um = refracta_to_voxel(xm, spacing);
-    const float nm = refracta_sample1(refractiveIndex, dims, um);
-    const float3 gm = refracta_sample3(gradient, dims, um);
-    const float3 x1 = x + (h / nm) * vm;
-    float3 v1 = v + photon_bounded(h * gm, nm);
-    const float n1 = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x1, spacing));
-    const float speed = length(v1);
-    v1 = speed > 1e-6f * n1 ? v1 * (n1 / speed) : dir * n1;
+    float3 x1, v1;
+    photon_advance(x, v, octree, extinction, refractiveIndex, gradient, dims, spacing, &x1, &v1);
     ++steps;
     if (!all(isfinite(x1)) || !all(isfinite(v1)))
     {
