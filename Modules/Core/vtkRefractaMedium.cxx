@@ -1,6 +1,10 @@
 #include "vtkRefractaMedium.h"
 
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkSMPTools.h"
 
 #include <cmath>
 #include <cstring>
@@ -101,6 +105,37 @@ bool vtkRefractaMedium::IsValueValid(int id, double value)
 const char* vtkRefractaMedium::GetValidRangeDescription(int id)
 {
   return IsValidId(id) ? Conventions[id].RangeDescription : "not a medium array";
+}
+
+//------------------------------------------------------------------------------
+std::vector<float> vtkRefractaMedium::ReadArray(
+  vtkImageData* image, const char* name, int components, float fallback)
+{
+  const vtkIdType n = image ? image->GetNumberOfPoints() : 0;
+  std::vector<float> values(static_cast<size_t>(n) * components, fallback);
+  vtkDataArray* array = image ? image->GetPointData()->GetArray(name) : nullptr;
+  if (array && array->GetNumberOfComponents() == components && array->GetNumberOfTuples() == n)
+  {
+    vtkSMPTools::For(0, n,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType t = begin; t < end; ++t)
+        {
+          for (int c = 0; c < components; ++c)
+          {
+            values[t * components + c] = static_cast<float>(array->GetComponent(t, c));
+          }
+        }
+      });
+  }
+  return values;
+}
+
+//------------------------------------------------------------------------------
+std::vector<float> vtkRefractaMedium::ReadArray(vtkImageData* image, int id)
+{
+  return ReadArray(
+    image, GetArrayName(id), GetNumberOfComponents(id), static_cast<float>(GetDefaultValue(id)));
 }
 
 //------------------------------------------------------------------------------

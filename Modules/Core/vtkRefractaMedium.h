@@ -27,6 +27,10 @@
 #include "RefractaCoreModule.h" // for export macro
 #include "vtkObject.h"
 
+#include <vector> // for std::vector
+
+class vtkImageData;
+
 class REFRACTACORE_EXPORT vtkRefractaMedium : public vtkObject
 {
 public:
@@ -99,6 +103,21 @@ public:
    * Human-readable statement of the valid range, e.g. "finite and >= 1".
    */
   static const char* GetValidRangeDescription(int id);
+
+#ifndef __VTK_WRAP__
+  /**
+   * The point array `name` of `image` as interleaved floats (`components` per point), or every
+   * value `fallback` when the array is missing or has another shape. For passes that upload a
+   * medium to a device.
+   */
+  static std::vector<float> ReadArray(
+    vtkImageData* image, const char* name, int components, float fallback);
+
+  /**
+   * The same for medium array `id`, with its documented default as the fallback.
+   */
+  static std::vector<float> ReadArray(vtkImageData* image, int id);
+#endif
 
 protected:
   vtkRefractaMedium() = default;

@@ -39,41 +39,18 @@ struct MediumFields
       static_cast<size_t>(Dims[0]) * (j + static_cast<size_t>(Dims[1]) * k);
   }
 
-  static std::vector<float> Copy(vtkImageData* image, int id)
-  {
-    const vtkIdType n = image->GetNumberOfPoints();
-    const int nc = vtkRefractaMedium::GetNumberOfComponents(id);
-    std::vector<float> values(
-      static_cast<size_t>(n) * nc, static_cast<float>(vtkRefractaMedium::GetDefaultValue(id)));
-    vtkDataArray* array = image->GetPointData()->GetArray(vtkRefractaMedium::GetArrayName(id));
-    if (array)
-    {
-      vtkSMPTools::For(0, n,
-        [&](vtkIdType begin, vtkIdType end)
-        {
-          for (vtkIdType p = begin; p < end; ++p)
-          {
-            for (int c = 0; c < nc; ++c)
-            {
-              values[p * nc + c] = static_cast<float>(array->GetComponent(p, c));
-            }
-          }
-        });
-    }
-    return values;
-  }
-
   void Load(vtkImageData* image)
   {
     image->GetDimensions(this->Dims);
     image->GetSpacing(this->Spacing);
-    this->N = Copy(image, vtkRefractaMedium::REFRACTIVE_INDEX);
-    this->SigmaT = Copy(image, vtkRefractaMedium::EXTINCTION);
-    this->Albedo = Copy(image, vtkRefractaMedium::ALBEDO);
-    this->Emission = Copy(image, vtkRefractaMedium::EMISSION);
+    this->N = vtkRefractaMedium::ReadArray(image, vtkRefractaMedium::REFRACTIVE_INDEX);
+    this->SigmaT = vtkRefractaMedium::ReadArray(image, vtkRefractaMedium::EXTINCTION);
+    this->Albedo = vtkRefractaMedium::ReadArray(image, vtkRefractaMedium::ALBEDO);
+    this->Emission = vtkRefractaMedium::ReadArray(image, vtkRefractaMedium::EMISSION);
     if (image->GetPointData()->GetArray(vtkRefractaMedium::RefractiveIndexGradientName()))
     {
-      this->GradN = Copy(image, vtkRefractaMedium::REFRACTIVE_INDEX_GRADIENT);
+      this->GradN =
+        vtkRefractaMedium::ReadArray(image, vtkRefractaMedium::REFRACTIVE_INDEX_GRADIENT);
     }
     else
     {

@@ -25,24 +25,6 @@ vtkStandardNewMacro(vtkLatticeBoltzmannLighting);
 
 namespace
 {
-// Point array `name` as interleaved floats of `comps` components, or the default value.
-std::vector<float> ReadArray(vtkImageData* image, const char* name, int comps, float fallback)
-{
-  const vtkIdType n = image->GetNumberOfPoints();
-  std::vector<float> values(static_cast<size_t>(n) * comps, fallback);
-  vtkDataArray* array = image->GetPointData()->GetArray(name);
-  if (array && array->GetNumberOfComponents() == comps && array->GetNumberOfTuples() == n)
-  {
-    for (vtkIdType t = 0; t < n; ++t)
-    {
-      for (int c = 0; c < comps; ++c)
-      {
-        values[t * comps + c] = static_cast<float>(array->GetComponent(t, c));
-      }
-    }
-  }
-  return values;
-}
 
 // Forwards the solver's progress to the filter.
 class ProgressForwarder : public vtkCommand
@@ -185,12 +167,14 @@ int vtkLatticeBoltzmannLighting::RequestData(
   solver->AddObserver(vtkCommand::ProgressEvent, forwarder);
 
   const std::vector<float> extinction =
-    ReadArray(medium, vtkRefractaMedium::ExtinctionName(), 3, 0.0f);
-  const std::vector<float> albedo = ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
+    vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::ExtinctionName(), 3, 0.0f);
+  const std::vector<float> albedo =
+    vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
   const std::vector<float> anisotropy =
-    ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
-  const std::vector<float> s1 = ReadArray(lighting, "Radiance", 3, 0.0f);
-  const std::vector<float> dir = ReadArray(lighting, "RadianceDirection", 3, 0.0f);
+    vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
+  const std::vector<float> s1 = vtkRefractaMedium::ReadArray(lighting, "Radiance", 3, 0.0f);
+  const std::vector<float> dir =
+    vtkRefractaMedium::ReadArray(lighting, "RadianceDirection", 3, 0.0f);
   if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()) ||
     !solver->SetSource(s1.data(), direction ? dir.data() : nullptr) || !solver->Solve())
   {

@@ -23,23 +23,6 @@ vtkStandardNewMacro(vtkPhotonDiffusionSchedule);
 
 namespace
 {
-std::vector<float> ReadArray(vtkImageData* image, const char* name, int comps, float fallback)
-{
-  const vtkIdType n = image->GetNumberOfPoints();
-  std::vector<float> values(static_cast<size_t>(n) * comps, fallback);
-  vtkDataArray* array = image->GetPointData()->GetArray(name);
-  if (array && array->GetNumberOfComponents() == comps && array->GetNumberOfTuples() == n)
-  {
-    for (vtkIdType t = 0; t < n; ++t)
-    {
-      for (int c = 0; c < comps; ++c)
-      {
-        values[t * comps + c] = static_cast<float>(array->GetComponent(t, c));
-      }
-    }
-  }
-  return values;
-}
 
 double Seconds(std::chrono::steady_clock::time_point start)
 {
@@ -105,10 +88,11 @@ int vtkPhotonDiffusionSchedule::RequestData(
   medium->GetDimensions(dims);
   medium->GetSpacing(spacing);
   const std::vector<float> extinction =
-    ReadArray(medium, vtkRefractaMedium::ExtinctionName(), 3, 0.0f);
-  const std::vector<float> albedo = ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
+    vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::ExtinctionName(), 3, 0.0f);
+  const std::vector<float> albedo =
+    vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
   const std::vector<float> anisotropy =
-    ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
+    vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
   vtkLatticeBoltzmannSolver* solver = this->Solver;
   if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()))
   {
@@ -153,8 +137,9 @@ int vtkPhotonDiffusionSchedule::RequestData(
   // Final source: the tracer's S1 (smoothed as it outputs it); the lattice continues from its
   // state (interleaved) or from zero (sequential).
   const auto solveStart = std::chrono::steady_clock::now();
-  const std::vector<float> s1 = ReadArray(lighting, "Radiance", 3, 0.0f);
-  const std::vector<float> d1 = ReadArray(lighting, "RadianceDirection", 3, 0.0f);
+  const std::vector<float> s1 = vtkRefractaMedium::ReadArray(lighting, "Radiance", 3, 0.0f);
+  const std::vector<float> d1 =
+    vtkRefractaMedium::ReadArray(lighting, "RadianceDirection", 3, 0.0f);
   if (!interleaved && !solver->ResetState())
   {
     return 0;
