@@ -765,21 +765,26 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
       std::string("Cannot create buffer ") + what + ": no OpenCL device.", reporter);
     return vtkOpenCLBuffer();
   }
-  if (hostData)
-  {
-    flags |= CL_MEM_COPY_HOST_PTR;
-  }
+  // Sizes are rounded up to 16 bytes and host data is written with an exact-size transfer
+  // rather than CL_MEM_COPY_HOST_PTR: PoCL copies whole 16-byte units from the host pointer,
+  // which reads past a small host array (found by AddressSanitizer on a 1x1x1 grid). OpenCL
+  // also forbids zero-sized buffers; empty ones get 16 bytes so kernels can still bind them.
+  flags &= ~static_cast<cl_mem_flags>(CL_MEM_COPY_HOST_PTR | CL_MEM_USE_HOST_PTR);
+  const size_t allocated = (std::max<size_t>(bytes, 1) + 15) / 16 * 16;
   cl_int error = CL_SUCCESS;
-  // OpenCL forbids zero-sized buffers; give empty ones one element so kernels can still bind.
-  cl_mem buffer = clCreateBuffer(
-    this->Context, flags, std::max<size_t>(bytes, 4), const_cast<void*>(hostData), &error);
+  cl_mem buffer = clCreateBuffer(this->Context, flags, allocated, nullptr, &error);
   std::ostringstream call;
   call << "clCreateBuffer(" << what << ", " << bytes << " bytes)";
   if (!this->Check(error, call.str().c_str(), reporter))
   {
     return vtkOpenCLBuffer();
   }
-  return vtkOpenCLBuffer(buffer);
+  vtkOpenCLBuffer owned(buffer);
+  if (hostData && !this->WriteBuffer(buffer, bytes, hostData, reporter))
+  {
+    return vtkOpenCLBuffer();
+  }
+  return owned;
 }
 
 //------------------------------------------------------------------------------
