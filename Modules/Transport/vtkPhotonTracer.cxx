@@ -232,8 +232,8 @@ struct Allocator
   double Bytes = 0;
   vtkOpenCLBuffer Make(cl_mem_flags flags, size_t bytes, const void* data, const char* what)
   {
-    bytes = std::max<size_t>(bytes, 16);
-    this->Bytes += static_cast<double>(bytes);
+    // CreateBuffer rounds the device allocation up to 16 bytes; `data` holds exactly `bytes`.
+    this->Bytes += static_cast<double>((std::max<size_t>(bytes, 1) + 15) / 16 * 16);
     return this->Context->CreateBuffer(flags, bytes, data, what, this->Reporter);
   }
 };
