@@ -765,10 +765,9 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
       std::string("Cannot create buffer ") + what + ": no OpenCL device.", reporter);
     return vtkOpenCLBuffer();
   }
-  // Sizes are rounded up to 16 bytes and host data goes through WriteBuffer rather than
-  // CL_MEM_COPY_HOST_PTR: PoCL copies whole 16-byte units from the host pointer, which reads
-  // past a small host array (found by AddressSanitizer on a 1x1x1 grid). OpenCL also forbids
-  // zero-sized buffers; empty ones get 16 bytes so kernels can still bind them.
+  // The device allocation is rounded up to 16 bytes (OpenCL forbids empty buffers, and kernels
+  // may bind one of a 1x1x1 grid as a vector); exactly `bytes` of host data are written, so a
+  // caller's padding never reads past its host array.
   flags &= ~static_cast<cl_mem_flags>(CL_MEM_COPY_HOST_PTR | CL_MEM_USE_HOST_PTR);
   const size_t allocated = (std::max<size_t>(bytes, 1) + 15) / 16 * 16;
   cl_int error = CL_SUCCESS;
@@ -791,59 +790,19 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
 bool vtkOpenCLContext::WriteBuffer(
   cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter)
 {
-  // PoCL's host-to-device copy moves whole 16-byte units and so reads up to 15 bytes past the
-  // end of the host array (AddressSanitizer, 1x1x1 grid). Write the 16-byte-aligned head in
-  // place and the tail through a zero-padded 16-byte copy (CreateBuffer rounds every buffer up to
-  // 16 bytes, so the padded tail fits; a smaller foreign buffer gets only what it holds).
-  const size_t head = bytes / 16 * 16;
-  if (head > 0 &&
-    !this->Check(
-      clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, 0, head, data, 0, nullptr, nullptr),
-      "clEnqueueWriteBuffer", reporter))
-  {
-    return false;
-  }
-  if (bytes > head)
-  {
-    size_t size = 0;
-    clGetMemObjectInfo(buffer, CL_MEM_SIZE, sizeof(size), &size, nullptr);
-    unsigned char tail[16] = { 0 };
-    std::memcpy(tail, static_cast<const unsigned char*>(data) + head, bytes - head);
-    const size_t chunk = std::min<size_t>(sizeof(tail), size > head ? size - head : bytes - head);
-    return this->Check(
-      clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, head, chunk, tail, 0, nullptr, nullptr),
+  return bytes == 0 ||
+    this->Check(
+      clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
       "clEnqueueWriteBuffer", reporter);
-  }
-  return true;
 }
 
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::ReadBuffer(cl_mem buffer, size_t bytes, void* data, vtkObject* reporter)
 {
-  // The mirror of WriteBuffer: never let a 16-byte unit land past the end of the host array.
-  const size_t head = bytes / 16 * 16;
-  if (head > 0 &&
-    !this->Check(
-      clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, head, data, 0, nullptr, nullptr),
-      "clEnqueueReadBuffer", reporter))
-  {
-    return false;
-  }
-  if (bytes > head)
-  {
-    size_t size = 0;
-    clGetMemObjectInfo(buffer, CL_MEM_SIZE, sizeof(size), &size, nullptr);
-    unsigned char tail[16] = { 0 };
-    const size_t chunk = std::min<size_t>(sizeof(tail), size > head ? size - head : bytes - head);
-    if (!this->Check(
-          clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, head, chunk, tail, 0, nullptr, nullptr),
-          "clEnqueueReadBuffer", reporter))
-    {
-      return false;
-    }
-    std::memcpy(static_cast<unsigned char*>(data) + head, tail, bytes - head);
-  }
-  return true;
+  return bytes == 0 ||
+    this->Check(
+      clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
+      "clEnqueueReadBuffer", reporter);
 }
 
 //------------------------------------------------------------------------------
