@@ -643,7 +643,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   {
     const float zero[4] = { 0, 0, 0, 0 };
     in.Dummy = context->CreateBuffer(
-      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(zero), zero, "placeholder", this);
+      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(zero), zero, "unbound kernel argument (optional array absent)", this);
     if (!in.Dummy)
     {
       return false;
