@@ -642,8 +642,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   if (!in.Dummy)
   {
     const float zero[4] = { 0, 0, 0, 0 };
-    in.Dummy = context->CreateBuffer(
-      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(zero), zero, "unbound kernel argument (optional array absent)", this);
+    in.Dummy = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(zero), zero,
+      "unbound kernel argument (optional array absent)", this);
     if (!in.Dummy)
     {
       return false;
