@@ -154,6 +154,21 @@ typedef struct
   int dead;
 } photon_state;
 
+// Adds one photon's books to the fixed-point tallies (order: emitted, absorbed, escaped,
+// scattered, remaining, roulette-killed, roulette-gained; RGB each).
+inline void photon_add_tallies(volatile __global long* tallies, float3 emitted,
+  const photon_state* ps, float3 escaped, float3 remaining)
+{
+  const float3 books[7] = { emitted, ps->absorbed, escaped, ps->scattered, remaining, ps->killed,
+    ps->gained };
+  for (int t = 0; t < 7; ++t)
+  {
+    refracta_atomic_add_fixed(tallies + 3 * t + 0, books[t].x);
+    refracta_atomic_add_fixed(tallies + 3 * t + 1, books[t].y);
+    refracta_atomic_add_fixed(tallies + 3 * t + 2, books[t].z);
+  }
+}
+
 #if EXTINCTION
 // One voxel piece: attenuate, split the loss, deposit the scattered part, then roulette.
 inline void photon_piece(photon_state* ps, float3 mid, float length, float3 direction,
@@ -437,27 +452,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
     remaining = ps.power;
   }
 
-  refracta_atomic_add_fixed(tallies + 0, emitted.x);
-  refracta_atomic_add_fixed(tallies + 1, emitted.y);
-  refracta_atomic_add_fixed(tallies + 2, emitted.z);
-  refracta_atomic_add_fixed(tallies + 3, ps.absorbed.x);
-  refracta_atomic_add_fixed(tallies + 4, ps.absorbed.y);
-  refracta_atomic_add_fixed(tallies + 5, ps.absorbed.z);
-  refracta_atomic_add_fixed(tallies + 6, escaped.x);
-  refracta_atomic_add_fixed(tallies + 7, escaped.y);
-  refracta_atomic_add_fixed(tallies + 8, escaped.z);
-  refracta_atomic_add_fixed(tallies + 9, ps.scattered.x);
-  refracta_atomic_add_fixed(tallies + 10, ps.scattered.y);
-  refracta_atomic_add_fixed(tallies + 11, ps.scattered.z);
-  refracta_atomic_add_fixed(tallies + 12, remaining.x);
-  refracta_atomic_add_fixed(tallies + 13, remaining.y);
-  refracta_atomic_add_fixed(tallies + 14, remaining.z);
-  refracta_atomic_add_fixed(tallies + 15, ps.killed.x);
-  refracta_atomic_add_fixed(tallies + 16, ps.killed.y);
-  refracta_atomic_add_fixed(tallies + 17, ps.killed.z);
-  refracta_atomic_add_fixed(tallies + 18, ps.gained.x);
-  refracta_atomic_add_fixed(tallies + 19, ps.gained.y);
-  refracta_atomic_add_fixed(tallies + 20, ps.gained.z);
+  photon_add_tallies(tallies, emitted, &ps, escaped, remaining);
   atom_add(counters + 0, 1L);
   atom_add(counters + outcome, 1L);
   atom_add(counters + 6, (long)steps);
@@ -651,14 +646,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     remaining = ps.power;
   }
   status[id] = (uint4)(2u, (uint)steps, ps.rng, ps.pieces);
-  const float3 books[7] = { emitted, ps.absorbed, escaped, ps.scattered, remaining, ps.killed,
-    ps.gained };
-  for (int t = 0; t < 7; ++t)
-  {
-    refracta_atomic_add_fixed(tallies + 3 * t + 0, books[t].x);
-    refracta_atomic_add_fixed(tallies + 3 * t + 1, books[t].y);
-    refracta_atomic_add_fixed(tallies + 3 * t + 2, books[t].z);
-  }
+  photon_add_tallies(tallies, emitted, &ps, escaped, remaining);
   atom_add(counters + 0, 1L);
   atom_add(counters + outcome, 1L);
   atom_add(counters + 6, (long)steps);
