@@ -11,6 +11,9 @@
 //     or the spot cone when that is narrower, or the whole sphere when the light is inside);
 //     photon power = I(direction) * (cap solid angle) / N, with I = I0 cos^e(theta) inside a
 //     spot's cone and 0 outside.
+// Extended lights (extent > 0): a directional light's direction is tilted uniformly over the
+// projected disc of angular radius asin(extent); a point/spot light's start is moved uniformly over
+// the disc of radius extent through the light, perpendicular to the photon's direction.
 // The photon then starts where its ray enters the proxy box (or at the light when the light is
 // inside it). A photon that misses the box gets power 0 and is counted as missed by the marcher.
 //
@@ -79,11 +82,20 @@
 #define PHOTON_R2_A1 3242174889u
 #define PHOTON_R2_A2 2447445413u
 
+// A uniform point of the unit disc for photon i (its own random stream).
+inline float2 photon_unit_disc(uint seed, uint i)
+{
+  uint state = refracta_rng_seed(seed, i);
+  const float r = sqrt(refracta_rng_uniform(&state));
+  const float phi = 2.0f * REFRACTA_PI * refracta_rng_uniform(&state);
+  return (float2)(r * cos(phi), r * sin(phi));
+}
+
 __kernel void photon_generate(__global float4* photonPos, __global float4* photonDir,
   __global float4* photonPower, const uint offset, const uint count, const int positional,
   const float4 origin, const float4 axis, const float4 basis1, const float4 basis2,
   const float4 spot, const float4 params, const float4 intensity, const float4 boxLo,
-  const float4 boxHi, const uint rotation1, const uint rotation2)
+  const float4 boxHi, const uint rotation1, const uint rotation2, const float extent)
 {
   const uint i = (uint)get_global_id(0);
   if (i >= count)
@@ -100,6 +112,14 @@ __kernel void photon_generate(__global float4* photonPos, __global float4* photo
     // basis1/basis2 carry the rectangle's full edge vectors.
     start = origin.xyz + xi1 * basis1.xyz + xi2 * basis2.xyz;
     dir = axis.xyz;
+    if (extent > 0.0f)
+    {
+      // A disc at infinity of angular radius asin(extent): uniform on its projected disc, i.e.
+      // pdf proportional to cos, which keeps the irradiance on a facing plane equal to E.
+      const float2 q = extent * photon_unit_disc(rotation1 ^ rotation2, i);
+      dir = normalize(sqrt(fmax(0.0f, 1.0f - dot(q, q))) * axis.xyz +
+        q.x * normalize(basis1.xyz) + q.y * normalize(basis2.xyz));
+    }
     power = intensity.xyz * params.z;
   }
   else
@@ -112,6 +132,15 @@ __kernel void photon_generate(__global float4* photonPos, __global float4* photo
     const float phi = 2.0f * REFRACTA_PI * xi2;
     dir = normalize(cosT * axis.xyz + sinT * (cos(phi) * basis1.xyz + sin(phi) * basis2.xyz));
     start = origin.xyz;
+    if (extent > 0.0f)
+    {
+      // A sphere of radius `extent`: rays in direction dir leave it uniformly over its projected
+      // disc (radiance I(dir) / (pi r^2)), so start on that disc through the centre.
+      const float2 q = extent * photon_unit_disc(rotation1 ^ rotation2, i);
+      const float3 helper = fabs(dir.x) < 0.9f ? (float3)(1.0f, 0.0f, 0.0f) : (float3)(0.0f, 1.0f, 0.0f);
+      const float3 e1 = normalize(cross(dir, helper));
+      start += q.x * e1 + q.y * cross(dir, e1);
+    }
     float falloff = 1.0f;
     if (spot.w > -1.5f)
     {

@@ -2,7 +2,7 @@
 // Prepend refracta_common.cl.
 //
 // What it computes, per pixel (Documentation/Physics.md, "The view pass"):
-//   L = sum over steps of T [ p(g, cos) S1 + S_ms / (4 pi) + eps ] ds + T_exit L_bg(d_exit)
+//   L = sum over steps of T [ p(g, cos) S1 + S_ms / (4 pi) + eps ] / n^2 ds + T_exit L_bg(d_exit)
 // One view ray per pixel starts at the camera (perspective) or on the image plane (parallel),
 // enters the medium's box [-s/2, (N - 1/2) s] (grid-local frame) and marches in fixed steps of
 // STEP world units until it leaves the box, reaches the per-pixel depth limit (opaque geometry in
@@ -27,7 +27,8 @@
 // Options (-D): REFRACTA_CURVED, REFRACTA_PARALLEL (parallel projection), REFRACTA_HAS_SINGLE
 // (Radiance + RadianceDirection + Anisotropy given), REFRACTA_HAS_MULTIPLE (MultipleScattering
 // given), REFRACTA_HAS_EMISSION, REFRACTA_HAS_ENVIRONMENT (equirectangular background image),
-// REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length).
+// REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length), REFRACTA_INDEX_WEIGHT (sources
+// weighted by 1 / n^2 with n sampled per step), REFRACTA_SOURCE_SCALE=<1 / n^2> (a uniform n != 1).
 
 #ifndef REFRACTA_INV_4PI
 #define REFRACTA_INV_4PI 0.0795774715459476679f
@@ -253,8 +254,16 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
       const refracta_view_stencil st =
         refracta_view_make_stencil(dims, refracta_to_voxel(x + (0.5f * len) * chord, spacing));
       const float3 sigma = refracta_view_sample3(extinction, &st);
-      const float3 q = refracta_view_source(
+      float3 q = refracta_view_source(
         &st, chord, emission, anisotropy, radiance, radianceDirection, multiple);
+      // Sources are physical radiance per length; what reaches the camera (in n = 1) is the
+      // basic radiance L / n^2, conserved along the ray: a source at index n counts 1 / n^2.
+#ifdef REFRACTA_INDEX_WEIGHT
+      const float nMid = refracta_view_sample1(refractiveIndex, &st);
+      q *= 1.0f / (nMid * nMid);
+#elif defined(REFRACTA_SOURCE_SCALE)
+      q *= REFRACTA_SOURCE_SCALE;
+#endif
       const float3 tau = sigma * len;
       radianceSum += transmittance * q * (len * refracta_segment_weight(tau));
       transmittance *= exp(-tau);

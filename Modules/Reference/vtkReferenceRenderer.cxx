@@ -1183,7 +1183,10 @@ struct Scene
       const V3 sigma = M.Sample3(M.Sigma, st);
       if (depth == 0 && M.HasEmission)
       {
-        result += (beta / majorant) * (mask * M.Sample3(M.Emission, st));
+        // Emission is physical radiance per length; the camera (in n = 1) sees the basic
+        // radiance L / n^2, which is what the paths carry.
+        const double n = M.Sample1(M.Index, st);
+        result += (beta / (majorant * n * n)) * (mask * M.Sample3(M.Emission, st));
       }
       if (rng.Uniform() * majorant >= sigma[ch])
       {

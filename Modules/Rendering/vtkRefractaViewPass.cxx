@@ -79,6 +79,7 @@ struct vtkRefractaViewPass::Internals
   double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   bool HasEmission = false;
   bool Refractive = false;
+  double UniformIndex = 1.0; // the index where it does not vary (sources then count 1 / n^2)
   vtkOpenCLBuffer Extinction, Emission, Anisotropy, Index, Gradient;
 
   // Lighting on the device.
@@ -220,6 +221,7 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
 
   // Refractive index: curved rays need n and grad n (grad n in the grid-local frame).
   in.Refractive = false;
+  in.UniformIndex = 1.0;
   in.Index.Reset();
   in.Gradient.Reset();
   if (vtkDataArray* index = pd->GetArray(vtkRefractaMedium::RefractiveIndexName()))
@@ -227,6 +229,7 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
     double range[2];
     index->GetRange(range, 0);
     in.Refractive = range[1] - range[0] > 1e-6;
+    in.UniformIndex = in.Refractive ? 1.0 : range[0];
   }
   if (in.Refractive)
   {
@@ -608,6 +611,19 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   if (frame.Parallel)
   {
     options += " -DREFRACTA_PARALLEL";
+  }
+  // Sources count 1 / n^2 (basic radiance): per step where n varies, as a constant where it is
+  // uniform and not 1.
+  if (in.Index)
+  {
+    options += " -DREFRACTA_INDEX_WEIGHT";
+  }
+  else if (in.UniformIndex != 1.0)
+  {
+    std::ostringstream scale;
+    scale.precision(9);
+    scale << " -DREFRACTA_SOURCE_SCALE=" << 1.0 / (in.UniformIndex * in.UniformIndex) << "f";
+    options += scale.str();
   }
   if (in.HasSingle)
   {

@@ -221,6 +221,7 @@ struct LightSetup
   double Measure = 0.0; // solid angle of the sampled cap, or area of the directional rectangle
   double Colour[3];
   double Bound = 0.0; // largest channel of the power sent towards the box
+  double Extent = 0.0; // sphere radius (positional, local units) or sin(angular radius)
   unsigned int Photons = 0;
 };
 
@@ -568,6 +569,15 @@ int vtkPhotonTracer::RequestData(
         dmin = std::min(dmin, Dot(q, axis));
       }
       const double back = dmin - 0.01 * boxRadius - 1e-6;
+      // A disc of angular radius delta tilts rays by up to delta: widen the rectangle by what
+      // they drift sideways across the box.
+      const double delta = vtkMath::RadiansFromDegrees(this->DirectionalLightAngularRadius);
+      ls.Extent = std::sin(delta);
+      const double margin = std::tan(delta) * (2.0 * boxRadius + 0.01 * boxRadius);
+      umin -= margin;
+      wmin -= margin;
+      umax += margin;
+      wmax += margin;
       for (int c = 0; c < 3; ++c)
       {
         ls.Origin[c] = b1[c] * umin + b2[c] * wmin + axis[c] * back;
@@ -589,9 +599,12 @@ int vtkPhotonTracer::RequestData(
       }
       double capAxis[3] = { 0, 0, 1 };
       ls.OneMinusCos = 2.0; // whole sphere
-      if (!inside && distance > boxRadius * (1 + 1e-9))
+      // A sphere light reaches the box from anywhere on its disc: widen the cap by its radius.
+      ls.Extent = this->LightRadius;
+      const double reach = boxRadius + this->LightRadius;
+      if (!inside && distance > reach * (1 + 1e-9))
       {
-        const double s = boxRadius / distance;
+        const double s = reach / distance;
         ls.OneMinusCos = s * s / (1.0 + std::sqrt(1.0 - s * s));
         for (int c = 0; c < 3; ++c)
         {
@@ -782,7 +795,8 @@ int vtkPhotonTracer::RequestData(
                       offset, count, positional, Float4(ls.Origin), Float4(ls.Axis),
                       Float4(ls.Basis1), Float4(ls.Basis2), Float4(ls.SpotAxis, ls.SpotCos), params,
                       Float4(ls.Colour[0] / unit, ls.Colour[1] / unit, ls.Colour[2] / unit),
-                      Float4(m.ProxyLo), Float4(m.ProxyHi), r1, r2),
+                      Float4(m.ProxyLo), Float4(m.ProxyHi), r1, r2,
+                      static_cast<cl_float>(ls.Extent)),
           "clSetKernelArg(photon_generate)", this) ||
       !Run1D(ctx, generate.Get(), count, "photon_generate", this))
     {
@@ -1046,6 +1060,8 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfLights: " << this->Lights->GetNumberOfItems() << "\n";
+  os << indent << "LightRadius: " << this->LightRadius << "\n";
+  os << indent << "DirectionalLightAngularRadius: " << this->DirectionalLightAngularRadius << "\n";
   os << indent << "NumberOfPhotons: " << this->NumberOfPhotons << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "PrimaryTolerance: " << this->PrimaryTolerance << "\n";

@@ -185,6 +185,21 @@ public:
 
   ///@{
   /**
+   * Extent of the lights (default 0: delta lights). LightRadius (world units) makes point and
+   * spot lights spheres of that radius whose radiance towards w is I(w) / (pi r^2): the same
+   * radiant intensity, emitted from the sphere's projected disc. DirectionalLightAngularRadius
+   * (degrees, < 45) makes directional lights discs at infinity of that angular radius, with the
+   * same irradiance on a plane facing them. These are vtkReferenceRenderer's extended lights, so
+   * both renderers see the same lights (soft shadows, caustics blurred by the source's size).
+   */
+  vtkSetClampMacro(LightRadius, double, 0.0, 1e30);
+  vtkGetMacro(LightRadius, double);
+  vtkSetClampMacro(DirectionalLightAngularRadius, double, 0.0, 45.0);
+  vtkGetMacro(DirectionalLightAngularRadius, double);
+  ///@}
+
+  ///@{
+  /**
    * Start photons on the bounds of the voxels that differ from empty space (n != 1 or
    * sigma_t > 0), grown by two voxels, instead of the whole medium box (default on).
    */
@@ -283,6 +298,8 @@ protected:
   double MaximumTurn = 0.5;
   bool Smoothing = true;
   bool UseProxyBounds = true;
+  double LightRadius = 0.0;
+  double DirectionalLightAngularRadius = 0.0;
   int StepsPerChunk = 0;
   int NumberOfChunks = 0;
 #ifndef __VTK_WRAP__

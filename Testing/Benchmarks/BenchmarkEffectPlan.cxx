@@ -7,20 +7,14 @@
 //
 //   BenchmarkEffectPlan [--size N] [--image W] [--photons P] [--runs R] [--csv FILE]
 #include "RefractaBenchmark.h"
+#include "RefractaPipeline.h"
 #include "RefractaScenes.h"
 
-#include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkEffectPlan.h"
-#include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkLatticeBoltzmannLighting.h"
-#include "vtkLight.h"
 #include "vtkNew.h"
-#include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
-#include "vtkRefractaImageRenderer.h"
-#include "vtkSceneAnalysis.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -44,47 +38,10 @@ struct Settings
 
 std::vector<double> Render(const Scene& scene, vtkEffectPlan* plan, const Settings& settings)
 {
-  vtkNew<vtkImageData> medium;
-  plan->ApplyToMedium(scene.Medium, medium);
-  vtkNew<vtkRefractaImageRenderer> renderer;
-  vtkNew<vtkPhotonTracer> tracer;
-  vtkNew<vtkLatticeBoltzmannLighting> lbl;
-  if (!scene.Lights.empty() && plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING))
-  {
-    tracer->SetInputData(medium);
-    for (const auto& light : scene.Lights)
-    {
-      tracer->AddLight(light);
-    }
-    tracer->SetNumberOfPhotons(settings.Photons);
-    tracer->Update();
-    vtkImageData* lighting = tracer->GetOutput();
-    if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
-    {
-      lbl->SetInputData(medium);
-      lbl->SetLightingData(lighting);
-      lbl->Update();
-      lighting = lbl->GetOutput();
-    }
-    renderer->SetLightingData(lighting);
-  }
-  renderer->SetInputData(medium);
-  renderer->SetCamera(scene.Camera);
-  renderer->SetImageSize(settings.Image, settings.Image);
-  renderer->SetBackgroundColor(scene.Background[0], scene.Background[1], scene.Background[2]);
-  renderer->Update();
-  std::vector<double> rgb;
-  if (vtkDataArray* hdr = renderer->GetOutput()->GetPointData()->GetArray("HDR"))
-  {
-    for (vtkIdType p = 0; p < hdr->GetNumberOfTuples(); ++p)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        rgb.push_back(hdr->GetComponent(p, c));
-      }
-    }
-  }
-  return rgb;
+  refracta::bench::PipelineKnobs knobs;
+  knobs.Photons = settings.Photons;
+  knobs.ImageWidth = knobs.ImageHeight = settings.Image;
+  return refracta::bench::RenderPipeline(scene, plan, knobs);
 }
 
 double RelativeDifference(const std::vector<double>& a, const std::vector<double>& b)
@@ -170,23 +127,16 @@ int main(int argc, char* argv[])
   Table table({ "scene", "plan", "planned s", "all on s", "speed-up", "image difference" });
   for (const Scene& scene : scenes)
   {
-    vtkNew<vtkSceneAnalysis> analysis;
-    analysis->SetMedium(scene.Medium);
-    for (const auto& light : scene.Lights)
-    {
-      analysis->AddLight(light);
-    }
-    if (!analysis->Analyze())
-    {
-      return 1;
-    }
     vtkNew<vtkEffectPlan> planned, everything;
-    planned->Decide(analysis);
     for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
     {
       everything->SetEffectMode(e, vtkEffectPlan::FORCE_ON);
     }
-    everything->Decide(analysis);
+    if (!refracta::bench::PlanScene(scene, planned) ||
+      !refracta::bench::PlanScene(scene, everything))
+    {
+      return 1;
+    }
     std::string on;
     for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
     {

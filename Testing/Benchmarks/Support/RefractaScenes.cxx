@@ -98,6 +98,12 @@ void SetRGB(double rgb[3], double r, double g, double b)
   rgb[2] = b;
 }
 
+void SetBox(double box[6], double x0, double x1, double y0, double y1, double z0, double z1)
+{
+  const double values[6] = { x0, x1, y0, y1, z0, z1 };
+  std::copy(values, values + 6, box);
+}
+
 vtkSmartPointer<vtkCamera> MakeCamera(double x, double y, double z)
 {
   auto camera = vtkSmartPointer<vtkCamera>::New();
@@ -185,6 +191,9 @@ Scene GlassSphereInFog(int n)
   scene.Lights.push_back(spot);
   scene.Camera = MakeCamera(0.5, 0.55, 3.2);
   SetRGB(scene.Background, 0.05, 0.05, 0.08);
+  SetBox(scene.RegionOfInterest, 0.4, 0.6, 0.1, 0.36, 0.4, 0.6);
+  scene.LightRadius = 0.1;
+  scene.RegionName = "caustic below the sphere";
   return scene;
 }
 
@@ -220,6 +229,8 @@ Scene HeterogeneousCloud(int n)
   scene.Lights.push_back(sun);
   scene.Camera = MakeCamera(0.5, 0.5, 3.2);
   SetRGB(scene.Background, 0.3, 0.45, 0.7);
+  SetBox(scene.RegionOfInterest, 0.25, 0.75, 0.25, 0.75, 0.25, 0.75);
+  scene.RegionName = "cloud core";
   return scene;
 }
 
@@ -251,6 +262,9 @@ Scene GrinLens(int n)
   beam->SetIntensity(2.0);
   scene.Lights.push_back(beam);
   scene.Camera = MakeCamera(3.0, 0.9, 0.5);
+  SetBox(scene.RegionOfInterest, 0.3, 0.7, 0.3, 0.7, 0.0, 0.25);
+  scene.LightAngularRadius = 3.0;
+  scene.RegionName = "beam converging out of the lens";
   return scene;
 }
 
@@ -281,6 +295,9 @@ Scene DenseObject(int n)
   bulb->SetIntensity(0.5);
   scene.Lights.push_back(bulb);
   scene.Camera = MakeCamera(2.5, 1.5, 2.5);
+  SetBox(scene.RegionOfInterest, 0.3, 0.7, 0.3, 0.7, 0.3, 0.7);
+  scene.LightRadius = 0.02;
+  scene.RegionName = "dense cube";
   return scene;
 }
 

@@ -13,6 +13,10 @@
  *   albedo 0.95, g = 0.6), lit by a directional light.
  * - GrinLens: a gradient-index cylinder along z with n(r) = 1.6 (1 - 0.5 A r^2), in a faint fog,
  *   lit by a directional light along z: parallel rays converge without any sharp interface.
+ *
+ * Each scene names a region of interest (a world box) where its characteristic effect shows: the
+ * caustic below the sphere, the lit core of the cloud, the converging beam leaving the lens, the
+ * glowing dense cube.
  * - DenseObject: a cube of sigma_t = 60 with albedo 0.99 in vacuum, lit by a point light: optical
  *   depth 24 across, where multiple scattering dominates.
  */
@@ -39,6 +43,18 @@ struct Scene
   std::vector<vtkSmartPointer<vtkLight>> Lights;
   vtkSmartPointer<vtkCamera> Camera;
   double Background[3] = { 0.0, 0.0, 0.0 };
+  /** World box (xmin, xmax, ymin, ymax, zmin, zmax) holding the scene's feature of interest. */
+  double RegionOfInterest[6] = { 0.0, 1.0, 0.0, 1.0, 0.0, 1.0 };
+  /**
+   * Extent of the lights, for both the pipeline and the reference renderer: radius of point and
+   * spot lights (world units) and angular radius of directional lights (degrees). Refracted
+   * light from a delta light reaches a point along isolated paths that unbiased Monte Carlo
+   * almost never finds; a light of some size makes the reference converge.
+   */
+  double LightRadius = 0.0;
+  double LightAngularRadius = 0.5;
+  /** What that region holds (e.g. "caustic"). */
+  std::string RegionName = "whole medium";
 };
 
 Scene GlassSphereInFog(int n);

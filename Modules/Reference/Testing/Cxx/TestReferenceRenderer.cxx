@@ -346,7 +346,8 @@ TEST(ReferenceRenderer, HeterogeneousEmissionAbsorptionAlongX)
 
 // ---------------------------------------------------------------------------------------------
 // Emission-absorption cube with a uniform index (straight rays), rotated and translated, seen in
-// perspective: per pixel L = eps / sigma (1 - exp(-sigma l)) + L_bg exp(-sigma l), l the chord.
+// perspective: per pixel L = eps / (n^2 sigma) (1 - exp(-sigma l)) + L_bg exp(-sigma l), l the
+// chord (emission is physical radiance per length; the camera in n = 1 sees L / n^2).
 TEST(ReferenceRenderer, EmissionAbsorptionCubeMatchesStraightLine)
 {
   const int dims[3] = { 6, 5, 4 };
@@ -460,7 +461,7 @@ TEST(ReferenceRenderer, EmissionAbsorptionCubeMatchesStraightLine)
       for (int c = 0; c < 3; ++c)
       {
         const double T = std::exp(-sigma * l);
-        const double expected = eps[c] / sigma * (1 - T) + bg[c] * T;
+        const double expected = eps[c] / (v.N * v.N * sigma) * (1 - T) + bg[c] * T;
         const double got = hdr->GetComponent(id, c), err = se->GetComponent(id, c);
         if (l == 0)
         {
@@ -760,9 +761,10 @@ TEST(ReferenceRenderer, SemiInfinitePlaneAlbedo)
 // ---------------------------------------------------------------------------------------------
 // Rendering along curved rays: an emission-absorption medium with n = n0 + a y seen along +x by a
 // parallel camera. A view ray entering horizontally at height y0 bends upwards; its arc length
-// to the far face is s = sinh(k dx) / k with k = a / n(y0), so per pixel
-// L = eps / sigma (1 - exp(-sigma s)) + L_bg exp(-sigma s). (A straight-line answer, s = dx, is
-// off by up to 30%.)
+// to the far face is s = sinh(k dx) / k with k = a / n(y0), and n = n(y0) cosh(k x) along it, so
+// per pixel (emission counting 1 / n^2, ds = cosh(k x) dx)
+// L = eps / n(y0)^2 int_0^dx exp(-sigma sinh(k x) / k) / cosh(k x) dx + L_bg exp(-sigma s).
+// (A straight-line answer is off by up to 30%.)
 TEST(ReferenceRenderer, CurvedViewRaysEmissionAbsorption)
 {
   const double n0 = 1.0, a = 0.3, sigma = 0.1, eps = 0.5, bg = 0.2;
@@ -802,8 +804,17 @@ TEST(ReferenceRenderer, CurvedViewRaysEmissionAbsorption)
     ASSERT_LT(yEnd, (dims[1] - 1) * spacing[1]); // stays where n is exactly linear
     const double s = std::sinh(k * dx) / k;
     const double T = std::exp(-sigma * s);
-    const double expected = eps / sigma * (1 - T) + bg * T;
-    const double straight = eps / sigma * (1 - std::exp(-sigma * dx)) + bg * std::exp(-sigma * dx);
+    double emitted = 0; // Simpson's rule
+    const int q = 2000;
+    for (int i = 0; i <= q; ++i)
+    {
+      const double x = dx * i / q, w = (i == 0 || i == q) ? 1 : (i % 2 ? 4 : 2);
+      emitted += w * std::exp(-sigma * std::sinh(k * x) / k) / std::cosh(k * x);
+    }
+    emitted *= eps / (ns * ns) * dx / (3 * q);
+    const double expected = emitted + bg * T;
+    const double straight =
+      eps / (ns * ns * sigma) * (1 - std::exp(-sigma * dx)) + bg * std::exp(-sigma * dx);
     maxRelStraight = std::max(maxRelStraight, std::abs(straight - expected) / expected);
     for (int i = 0; i < W; ++i)
     {

@@ -79,7 +79,9 @@ Scene MakeScene(bool rotated)
 }
 
 // Expected RGBA for every pixel, in double, from the same camera frame definition.
-std::vector<double> Expected(const Scene& scene, vtkCamera* camera, int w, int h)
+// `index`: the medium's uniform refractive index; sources count 1 / n^2 (basic radiance).
+std::vector<double> Expected(
+  const Scene& scene, vtkCamera* camera, int w, int h, double index = 1.0)
 {
   vtkRefractaViewPass::RayFrame f;
   EXPECT_TRUE(vtkRefractaViewPass::ComputeRayFrame(camera, scene.Medium, nullptr, w, h, f));
@@ -112,7 +114,8 @@ std::vector<double> Expected(const Scene& scene, vtkCamera* camera, int w, int h
       double meanT = 0;
       for (int c = 0; c < 3; ++c)
       {
-        const double q = Eps[c] + HG(cosTheta, G) * S1[c] + Sms[c] / (4 * vtkMath::Pi());
+        const double q = (Eps[c] + HG(cosTheta, G) * S1[c] + Sms[c] / (4 * vtkMath::Pi())) /
+          (index * index);
         const double tr = std::exp(-Sigma[c] * chord);
         result[(i + size_t(w) * j) * 4 + c] = q * (1 - tr) / Sigma[c] + tr * Background[c];
         meanT += tr / 3;
@@ -185,6 +188,40 @@ TEST(ViewPassAnalytic, HomogeneousCubeMatchesClosedForm)
     renderer->Update();
     CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36),
       rotated ? "rotated parallel" : "parallel");
+  }
+}
+
+// Sources are physical radiance per length and the camera sits in n = 1, so a source inside an
+// index n counts 1 / n^2 (the basic radiance L / n^2 is what a ray conserves). Checked with a
+// uniform n = 1.5 (a constant factor) and with an index that varies by 2e-6 (so that it is
+// sampled per step, with curved rays) but has a zero gradient (so rays stay straight).
+TEST(ViewPassAnalytic, SourcesCountOneOverIndexSquared)
+{
+  for (bool varying : { false, true })
+  {
+    Scene scene = MakeScene(false);
+    refracta_test::AddConstant(scene.Medium, "RefractiveIndex", 1, 1.5);
+    if (varying)
+    {
+      scene.Medium->GetPointData()->GetArray("RefractiveIndex")->SetTuple1(0, 1.5 + 2e-6);
+      refracta_test::AddConstant(scene.Medium, "RefractiveIndexGradient", 3, 0, 0, 0);
+    }
+    vtkNew<vtkCamera> camera;
+    camera->SetFocalPoint(0.6875, 0.5625, 0.4375);
+    camera->SetPosition(0.6875 + 1.7, 0.5625 + 1.1, 0.4375 + 2.3);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetViewAngle(40);
+    vtkNew<vtkRefractaImageRenderer> renderer;
+    renderer->SetInputData(scene.Medium);
+    renderer->SetLightingData(scene.Lighting);
+    renderer->SetCamera(camera);
+    renderer->SetImageSize(48, 36);
+    renderer->SetBackgroundColor(Background[0], Background[1], Background[2]);
+    renderer->SetTransmittanceCutoff(0.0);
+    renderer->Update();
+    EXPECT_EQ(renderer->GetViewPass()->GetLastCurved(), varying);
+    CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36, 1.5),
+      varying ? "varying index" : "uniform index");
   }
 }
 
