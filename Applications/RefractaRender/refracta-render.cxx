@@ -561,23 +561,42 @@ int Render(const json& scene, const std::string& base, const Options& options)
 
   const json quality = scene.value("quality", json::object());
   CheckKeys(quality, "scene.quality",
-    { "photons", "seed", "view_step", "ray_mode", "transmittance_cutoff", "photon_min_step",
-      "photon_smoothing", "multiple_scattering", "multiple_scattering_tolerance", "tolerance" });
-  const int photons = Integer(quality, "photons", "scene.quality", 1 << 18, 1, 1 << 28);
+    { "preset", "photons", "seed", "view_step", "ray_mode", "transmittance_cutoff",
+      "photon_min_step", "octree_tolerance", "photon_smoothing", "multiple_scattering",
+      "multiple_scattering_tolerance", "tolerance" });
+  // A quality preset supplies the defaults of the pass settings and of the plan's tolerance;
+  // keys given explicitly win.
+  vtkNew<vtkEffectPlan> plan;
+  const std::string preset = String(
+    quality, "preset", "scene.quality", "none", { "none", "draft", "interactive", "production" });
+  const bool hasPreset = preset != "none";
+  if (hasPreset)
+  {
+    plan->SetQuality(preset == "draft"
+        ? vtkEffectPlan::DRAFT
+        : (preset == "interactive" ? vtkEffectPlan::INTERACTIVE : vtkEffectPlan::PRODUCTION));
+  }
+  const int photons = Integer(quality, "photons", "scene.quality",
+    hasPreset ? plan->GetRecommendedNumberOfPhotons() : 1 << 18, 1, 1 << 28);
   const int seed = Integer(quality, "seed", "scene.quality", 1, 0, 2147483647);
-  const double viewStep = Number(quality, "view_step", "scene.quality", 1.0, 0.01, 16.0);
+  const double viewStep = Number(quality, "view_step", "scene.quality",
+    hasPreset ? plan->GetRecommendedViewStep() : 1.0, 0.01, 16.0);
   const std::string rayMode =
     String(quality, "ray_mode", "scene.quality", "auto", { "auto", "straight", "curved" });
   const double cutoff = Number(quality, "transmittance_cutoff", "scene.quality", 1e-4, 0.0, 1.0);
-  const double photonMinStep = Number(quality, "photon_min_step", "scene.quality", 1.0, 1e-3, 1e6);
+  const double photonMinStep = Number(quality, "photon_min_step", "scene.quality",
+    hasPreset ? plan->GetRecommendedPhotonMinimumStep() : 1.0, 1e-3, 1e6);
+  const double octreeTolerance = Number(quality, "octree_tolerance", "scene.quality",
+    hasPreset ? plan->GetRecommendedOctreeTolerance() : 0.005, 0.0, 1.0);
   const bool photonSmoothing = Boolean(quality, "photon_smoothing", "scene.quality", true);
   const bool multipleScattering = Boolean(quality, "multiple_scattering", "scene.quality", true);
   const double lblTolerance =
-    Number(quality, "multiple_scattering_tolerance", "scene.quality", 1e-4, 1e-8, 1.0);
+    Number(quality, "multiple_scattering_tolerance", "scene.quality",
+      hasPreset ? plan->GetRecommendedLatticeTolerance() : 1e-4, 1e-8, 1.0);
   // The effect plan: the relative image change an effect may cause and still be skipped, and
   // per-effect overrides ("auto", "on", "off").
-  const double planTolerance = Number(quality, "tolerance", "scene.quality", 0.01, 0.0, 1.0);
-  vtkNew<vtkEffectPlan> plan;
+  const double planTolerance =
+    Number(quality, "tolerance", "scene.quality", hasPreset ? plan->GetTolerance() : 0.01, 0.0, 1.0);
   plan->SetTolerance(planTolerance);
   {
     const json effects = scene.value("effects", json::object());
@@ -949,6 +968,8 @@ int Render(const json& scene, const std::string& base, const Options& options)
     tracer->SetNumberOfPhotons(photons);
     tracer->SetSeed(static_cast<unsigned int>(seed));
     tracer->SetMinimumStep(photonMinStep);
+    tracer->SetPrimaryTolerance(octreeTolerance);
+    tracer->SetSecondaryTolerance(4.0 * octreeTolerance);
     tracer->SetSmoothing(photonSmoothing);
     tracer->Update();
     if (tracer->GetOutput()->GetNumberOfPoints() == 0)
@@ -1082,7 +1103,8 @@ int Render(const json& scene, const std::string& base, const Options& options)
     { "ray_mode", rayMode }, { "transmittance_cutoff", cutoff },
     { "photon_min_step", photonMinStep }, { "photon_smoothing", photonSmoothing },
     { "multiple_scattering", multipleScattering },
-    { "multiple_scattering_tolerance", lblTolerance } };
+    { "multiple_scattering_tolerance", lblTolerance }, { "preset", preset },
+    { "octree_tolerance", octreeTolerance } };
   report["medium"] = mediumReport;
   report["light_pass"] = lightReport;
   report["view_pass"] = { { "curved_rays", renderer->GetViewPass()->GetLastCurved() },
@@ -1095,6 +1117,9 @@ int Render(const json& scene, const std::string& base, const Options& options)
   std::cout << "refracta-render: " << width << " x " << height << " -> " << options.Output << " on "
             << report["device"].get<std::string>() << "\n";
   std::cout << "  plan      " << plan->GetSummary() << "\n";
+  std::cout << "  quality   preset " << preset << ": " << photons << " photons, photon min step "
+            << photonMinStep << ", octree eps " << octreeTolerance << ", lattice tolerance "
+            << lblTolerance << ", view step " << viewStep << "\n";
   std::cout << "  medium    " << mediumDims[0] << " x " << mediumDims[1] << " x " << mediumDims[2]
             << " (" << mediumReport["source"].get<std::string>() << "), "
             << timings["medium"].get<double>() << " s\n";

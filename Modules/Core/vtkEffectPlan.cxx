@@ -26,6 +26,24 @@ bool IsEffect(int effect)
 {
   return effect >= 0 && effect < vtkEffectPlan::NUMBER_OF_EFFECTS;
 }
+
+// The pass settings of each quality preset, chosen by BenchmarkAccuracyTime (README, "Accuracy
+// and time"): per knob the cheapest value whose own error stays within target / sqrt(7) on all
+// four benchmark scenes, for targets 10% (draft), 5% (interactive) and 2% (production).
+struct PresetSettings
+{
+  int Photons;
+  double PhotonMinimumStep;
+  double OctreeTolerance;
+  double LatticeTolerance;
+  double ViewStep;
+  int Resolution;
+};
+const PresetSettings Presets[3] = {
+  { PRESET_DRAFT },
+  { PRESET_INTERACTIVE },
+  { PRESET_PRODUCTION },
+};
 }
 
 //------------------------------------------------------------------------------
@@ -51,7 +69,44 @@ void vtkEffectPlan::SetQuality(int quality)
     default:
       vtkErrorMacro("Unknown quality preset "
         << quality << "; use DRAFT (0), INTERACTIVE (1) or PRODUCTION (2).");
+      return;
   }
+  if (this->Quality != quality)
+  {
+    this->Quality = quality;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkEffectPlan::GetRecommendedNumberOfPhotons() const
+{
+  return Presets[this->Quality].Photons;
+}
+
+double vtkEffectPlan::GetRecommendedPhotonMinimumStep() const
+{
+  return Presets[this->Quality].PhotonMinimumStep;
+}
+
+double vtkEffectPlan::GetRecommendedOctreeTolerance() const
+{
+  return Presets[this->Quality].OctreeTolerance;
+}
+
+double vtkEffectPlan::GetRecommendedLatticeTolerance() const
+{
+  return Presets[this->Quality].LatticeTolerance;
+}
+
+double vtkEffectPlan::GetRecommendedViewStep() const
+{
+  return Presets[this->Quality].ViewStep;
+}
+
+int vtkEffectPlan::GetRecommendedResolution() const
+{
+  return Presets[this->Quality].Resolution;
 }
 
 //------------------------------------------------------------------------------
@@ -278,6 +333,14 @@ void vtkEffectPlan::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Tolerance: " << this->Tolerance << "\n";
+  static const char* const qualities[] = { "draft", "interactive", "production" };
+  os << indent << "Quality: " << qualities[this->Quality] << " (photons "
+     << this->GetRecommendedNumberOfPhotons() << ", photon min step "
+     << this->GetRecommendedPhotonMinimumStep() << ", octree eps "
+     << this->GetRecommendedOctreeTolerance() << ", lattice tolerance "
+     << this->GetRecommendedLatticeTolerance() << ", view step "
+     << this->GetRecommendedViewStep() << ", resolution " << this->GetRecommendedResolution()
+     << ")\n";
   for (int e = 0; e < NUMBER_OF_EFFECTS; ++e)
   {
     static const char* const modes[] = { "automatic", "forced on", "forced off" };

@@ -76,9 +76,28 @@ public:
   ///@}
 
   /**
-   * Set the tolerance from a quality preset (DRAFT 0.05, INTERACTIVE 0.02, PRODUCTION 0.005).
+   * Choose a quality preset: it sets the tolerance (DRAFT 0.05, INTERACTIVE 0.02, PRODUCTION
+   * 0.005) and the pass settings below, which BenchmarkAccuracyTime chose from its measured
+   * Pareto front of error against time (README, "Accuracy and time"). Default INTERACTIVE.
    */
   void SetQuality(int quality);
+  vtkGetMacro(Quality, int);
+
+  ///@{
+  /**
+   * The pass settings of the current quality preset, for the application to apply:
+   * photon count (vtkPhotonTracer::NumberOfPhotons), the photon tracer's MinimumStep (voxels)
+   * and octree PrimaryTolerance (SecondaryTolerance = 4x that), the Lattice-Boltzmann
+   * Tolerance, the view pass StepSize (voxels) and the grid resolution (voxels along the longest
+   * axis) at which the benchmark scenes reached the preset's error.
+   */
+  int GetRecommendedNumberOfPhotons() const;
+  double GetRecommendedPhotonMinimumStep() const;
+  double GetRecommendedOctreeTolerance() const;
+  double GetRecommendedLatticeTolerance() const;
+  double GetRecommendedViewStep() const;
+  int GetRecommendedResolution() const;
+  ///@}
 
   ///@{
   /**
@@ -143,6 +162,7 @@ protected:
   void DecideEffect(int effect, double estimate, const char* detail);
 
   double Tolerance = 0.01;
+  int Quality = INTERACTIVE;
   int Modes[NUMBER_OF_EFFECTS] = { AUTOMATIC, AUTOMATIC, AUTOMATIC, AUTOMATIC, AUTOMATIC };
   bool Enabled[NUMBER_OF_EFFECTS] = { true, true, true, true, true };
   double Estimates[NUMBER_OF_EFFECTS] = { 0, 0, 0, 0, 0 };

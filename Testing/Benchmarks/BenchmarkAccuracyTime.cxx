@@ -5,25 +5,31 @@
 // tracer, Lattice-Boltzmann lighting, view pass) renders the scene while one quality knob at a
 // time moves away from a base setting: photon count, the photon tracer's minimum step, its octree
 // tolerances, the lattice's convergence tolerance and block size, the view step and the volume
-// resolution. Each image is compared with a converged vtkReferenceRenderer image of the same scene
-// (at the finest resolution of the sweep): relative RMSE over the whole image and over the
-// scene's region of interest (e.g. the caustic), with the reference's own Monte Carlo noise
-// removed (the expected squared difference is the true squared error plus the reference's
-// variance, which its StandardError image gives). The reference renderer's own curve (error
-// against time as its samples per pixel grow, another seed) shows how much faster the pipeline
-// reaches a given error than unbiased Monte Carlo.
+// resolution. Each image gets two errors (relative RMSE over the image and over the scene's
+// region of interest, e.g. the caustic):
+// - against a converged vtkReferenceRenderer image of the same scene with the same extended
+//   lights (at the finest resolution of the sweep), with the reference's own Monte Carlo noise
+//   taken out (the expected squared difference is the true squared error plus the reference's
+//   variance, which its StandardError image gives). This is the ground truth where the reference
+//   converged within its time budget (relative noise <= 1% over the image and 2% in the region);
+// - against the pipeline's own most accurate setting (every knob at its most accurate value):
+//   how far a knob's value is from what the pipeline converges to. Where refracted light makes
+//   the unbiased reference too noisy to converge (caustics), this is the error that is shown.
+// The reference renderer's own curve (error against time as its samples per pixel grow, another
+// seed) gives how much faster the pipeline reaches 5% and 2% error than unbiased Monte Carlo.
 //
 // Outputs in --out: accuracy_time.csv (every pipeline run), reference_curve.csv, presets.csv,
-// accuracy_<scene>.png (log-log error against time: one curve per knob, the reference's curve,
-// the Pareto front and the presets; under an X server) and printed tables: the sweep, the Pareto
-// front, the speed-up over the reference at 5% and 2% error, and quality presets chosen from the
-// sweep (for a target error, each knob takes its cheapest value whose error stays within the
-// target, or within 10% of the best that knob reaches where the target is out of reach, on every
-// scene) measured as combinations.
+// pareto.csv, speed_up.csv, accuracy_<scene>.png (log-log error against time: one curve per knob,
+// the reference's curve, the Pareto front and the presets; needs an X server), the reference and
+// finest pipeline images (PNG) and printed tables. Quality presets are chosen from the sweep:
+// for a target error (draft 10%, interactive 5%, production 2%), each knob takes its cheapest
+// value whose error against the finest setting stays within the target, or within 10% of the
+// best that knob reaches where the target is out of reach, on every scene; the combinations are
+// then measured.
 //
-//   BenchmarkAccuracyTime [--out DIR] [--image W] [--base-size N] [--reference-spp S]
-//     [--reference-curve-max S] [--runs R] [--scenes a,b,...] [--knobs a,b,...] [--cache DIR]
-//     [--smoke]
+//   BenchmarkAccuracyTime [--out DIR] [--image W] [--base-size N] [--reference-seconds S]
+//     [--reference-spp MAX] [--reference-curve-max S] [--runs R] [--scenes a,b,...]
+//     [--knobs a,b,...] [--cache DIR] [--smoke]
 #include "RefractaBenchmark.h"
 #include "RefractaPipeline.h"
 #include "RefractaScenes.h"
@@ -68,7 +74,8 @@ struct Settings
   std::string Cache;
   int Image = 64;
   int BaseSize = 48;
-  int ReferenceSpp = 4096;
+  int ReferenceSpp = 65536;   // at most; the time budget decides
+  double ReferenceSeconds = 150; // budget of the converged reference per scene
   int ReferenceCurveMax = 256;
   int Runs = 3;
   std::vector<std::string> Scenes;
@@ -206,13 +213,16 @@ double RelativeError(const Image& image, const Image& reference, const std::vect
 }
 
 // sqrt(sum SE^2 / sum value^2): the relative RMSE the reference's own noise amounts to.
-double NoiseLevel(const Image& image)
+double NoiseLevel(const Image& image, const std::vector<bool>& mask)
 {
   double variance = 0.0, norm = 0.0;
   for (size_t v = 0; v < image.Value.size(); ++v)
   {
-    variance += image.Error[v] * image.Error[v];
-    norm += image.Value[v] * image.Value[v];
+    if (mask[v / 3])
+    {
+      variance += image.Error[v] * image.Error[v];
+      norm += image.Value[v] * image.Value[v];
+    }
   }
   return norm > 0 ? std::sqrt(variance / norm) : 0.0;
 }
@@ -316,7 +326,7 @@ Image ConvergedReference(const Scene& scene, int resolution, const Settings& set
 {
   std::ostringstream name;
   name << settings.Cache << "/" << scene.Name << "_" << resolution << "_" << settings.Image << "_"
-       << settings.ReferenceSpp << "_r" << scene.LightRadius << "_a" << scene.LightAngularRadius
+       << settings.ReferenceSeconds << "s_r" << scene.LightRadius << "_a" << scene.LightAngularRadius
        << ".vti";
   struct stat info;
   if (!settings.Cache.empty() && stat(name.str().c_str(), &info) == 0)
@@ -331,6 +341,13 @@ Image ConvergedReference(const Scene& scene, int resolution, const Settings& set
       return image;
     }
   }
+  // Samples per pixel: the largest power of two that fits the time budget, timed on 16.
+  const double t16 = RenderReference(scene, settings.Image, 16, 3).Seconds;
+  int spp = 16;
+  while (2 * spp <= settings.ReferenceSpp && t16 * (2 * spp) / 16 <= settings.ReferenceSeconds)
+  {
+    spp *= 2;
+  }
   vtkNew<vtkReferenceRenderer> reference;
   reference->SetInputData(scene.Medium);
   reference->SetCamera(scene.Camera);
@@ -342,7 +359,7 @@ Image ConvergedReference(const Scene& scene, int resolution, const Settings& set
   reference->SetBackgroundColor(scene.Background[0], scene.Background[1], scene.Background[2]);
   reference->SetLightRadius(scene.LightRadius);
   reference->SetDirectionalLightAngularRadius(scene.LightAngularRadius);
-  reference->SetSamplesPerPixel(settings.ReferenceSpp);
+  reference->SetSamplesPerPixel(spp);
   reference->SetSeed(1);
   reference->Update();
   if (!settings.Cache.empty())
@@ -353,30 +370,60 @@ Image ConvergedReference(const Scene& scene, int resolution, const Settings& set
     writer->Write();
   }
   Image image = ReadImage(reference->GetOutput());
-  std::cout << "  converged reference: " << settings.ReferenceSpp << " samples per pixel in "
-            << image.Seconds << " s\n";
+  std::cout << "  converged reference: " << spp << " samples per pixel in " << image.Seconds
+            << " s\n";
   return image;
 }
 
+// One pipeline run: its time and its errors against the converged reference (ground truth, where
+// the reference converged) and against the pipeline's own most accurate setting (how far the
+// knob's value is from what the pipeline converges to).
 struct Point
 {
-  std::string Scene;
   std::string Knob;
   double Value = 0;
   double Seconds = 0;
-  double ImageError = 0;
-  double RegionError = 0;
+  double ReferenceError = 0;
+  double ReferenceRegionError = 0;
+  double SelfError = 0;
+  double SelfRegionError = 0;
+  // Against the run with this knob at its most accurate value and every other knob at the base:
+  // the error this knob alone contributes.
+  double KnobError = 0;
+  double KnobRegionError = 0;
+  Image Picture;
+};
+
+// The reference converged when its own noise is below these (relative RMSE).
+const double ConvergedImageNoise = 0.01;
+const double ConvergedRegionNoise = 0.02;
+
+// Everything measured on one scene.
+struct SceneResult
+{
+  Image Reference;
+  Image Finest;
+  std::vector<bool> Region;
+  double ImageNoise = 0;
+  double RegionNoise = 0;
+  bool Converged = false;
+  std::vector<Point> Points;          // pipeline runs (sweeps)
+  std::vector<Point> ReferencePoints; // the reference renderer's own curve
+  std::vector<Point> Presets;
+  // The error the fronts and plots use: against the reference where it converged, otherwise
+  // against the pipeline's most accurate setting.
+  double Error(const Point& p) const { return this->Converged ? p.ReferenceError : p.SelfError; }
 };
 
 // Points no other point beats in both time and error, by increasing time.
-std::vector<Point> ParetoFront(std::vector<Point> points)
+std::vector<Point> ParetoFront(std::vector<Point> points, const SceneResult& result)
 {
   std::sort(points.begin(), points.end(),
     [](const Point& a, const Point& b) { return a.Seconds < b.Seconds; });
   std::vector<Point> front;
   for (const Point& p : points)
   {
-    if (front.empty() || p.ImageError < front.back().ImageError)
+    if (front.empty() || result.Error(p) < result.Error(front.back()))
     {
       front.push_back(p);
     }
@@ -400,7 +447,8 @@ double TimeToError(const std::vector<std::pair<double, double>>& curve, double t
         return curve[0].first;
       }
       const double t0 = std::log(curve[i - 1].first), t1 = std::log(curve[i].first);
-      const double e0 = std::log(curve[i - 1].second), e1 = std::log(curve[i].second);
+      const double e0 = std::log(std::max(curve[i - 1].second, 1e-12));
+      const double e1 = std::log(std::max(curve[i].second, 1e-12));
       const double f = (std::log(target) - e0) / (e1 - e0);
       return std::exp(t0 + f * (t1 - t0));
     }
@@ -412,15 +460,6 @@ double TimeToError(const std::vector<std::pair<double, double>>& curve, double t
     return curve.back().first * ratio * ratio;
   }
   return -1.0;
-}
-
-std::string FormatSpeedUp(double pipeline, double reference, bool extrapolated)
-{
-  if (pipeline < 0)
-  {
-    return "not reached";
-  }
-  return Table::Format(reference / pipeline) + (extrapolated ? " (ref. extrapolated)" : "");
 }
 
 std::vector<std::string> Split(const std::string& text)
@@ -445,6 +484,7 @@ bool ParseArguments(int argc, char* argv[], Settings& settings)
       settings.Image = 12;
       settings.BaseSize = 16;
       settings.ReferenceSpp = 16;
+      settings.ReferenceSeconds = 1;
       settings.ReferenceCurveMax = 4;
       settings.Runs = 1;
       continue;
@@ -465,6 +505,8 @@ bool ParseArguments(int argc, char* argv[], Settings& settings)
       settings.BaseSize = std::atoi(value.c_str());
     else if (key == "--reference-spp")
       settings.ReferenceSpp = std::atoi(value.c_str());
+    else if (key == "--reference-seconds")
+      settings.ReferenceSeconds = std::atof(value.c_str());
     else if (key == "--reference-curve-max")
       settings.ReferenceCurveMax = std::atoi(value.c_str());
     else if (key == "--runs")
@@ -477,7 +519,7 @@ bool ParseArguments(int argc, char* argv[], Settings& settings)
     {
       std::cerr << "unknown option " << key
                 << "; valid: --out --cache --image --base-size --reference-spp "
-                   "--reference-curve-max --runs --scenes --knobs --smoke\n";
+                   "--reference-seconds --reference-curve-max --runs --scenes --knobs --smoke\n";
       return false;
     }
   }
@@ -491,14 +533,6 @@ bool ParseArguments(int argc, char* argv[], Settings& settings)
   return true;
 }
 
-// Everything measured on one scene.
-struct SceneResult
-{
-  std::vector<Point> Points;                        // pipeline runs (sweeps)
-  std::vector<std::pair<double, double>> Reference; // (seconds, image error)
-  std::vector<Point> ReferencePoints;
-};
-
 class Benchmark
 {
 public:
@@ -506,40 +540,53 @@ public:
     : Config(settings)
     , Knobs(MakeKnobs(settings))
   {
-    for (double size : this->Knobs.back().Values)
-    {
-      this->FinestSize = std::max(this->FinestSize, static_cast<int>(size));
-    }
     this->Base.ImageWidth = this->Base.ImageHeight = settings.Image;
+    // The most accurate setting: every knob at its most accurate swept value.
+    this->Most = this->Base;
+    for (const Knob& knob : this->Knobs)
+    {
+      if (knob.Name == "resolution")
+      {
+        this->FinestSize = static_cast<int>(
+          *std::max_element(knob.Values.begin(), knob.Values.end()));
+      }
+      else if (knob.Name != "lattice block") // a speed knob: every block size converges alike
+      {
+        knob.Apply(this->Most, MostAccurate(knob));
+      }
+    }
   }
 
   int Run();
 
 private:
+  static double MostAccurate(const Knob& knob)
+  {
+    // More photons are more accurate; for every other knob, smaller is.
+    return knob.Name == "photons" ? *std::max_element(knob.Values.begin(), knob.Values.end())
+                                  : *std::min_element(knob.Values.begin(), knob.Values.end());
+  }
   const Scene& SceneAt(const std::string& name, int size);
-  Point Measure(const std::string& sceneName, const PipelineKnobs& knobs, int size,
-    const Image& reference, const std::vector<bool>& mask);
-  void SweepScene(const std::string& name, SceneResult& result);
-  void ReferenceCurve(const std::string& name, SceneResult& result);
-  void ChoosePresets(std::vector<std::string>& names);
+  Image RenderTimed(const std::string& name, const PipelineKnobs& knobs, int size);
+  Point Measure(const std::string& name, const PipelineKnobs& knobs, int size);
+  void SweepScene(const std::string& name);
+  void ReferenceCurve(const std::string& name);
+  void ChoosePresets(const std::vector<std::string>& names);
   void Report(const std::vector<std::string>& names);
+  void Plot(const std::string& name);
 
   Settings Config;
   std::vector<Knob> Knobs;
-  PipelineKnobs Base;
+  PipelineKnobs Base, Most;
   int FinestSize = 0;
-  std::map<std::string, Scene> Scenes; // by name and size
-  std::map<std::string, Image> References;
-  std::map<std::string, std::vector<bool>> Masks;
+  std::map<std::string, Scene> Scenes; // by name@size
   std::map<std::string, SceneResult> Results;
-  std::vector<std::string> AllScenes;
-  Table Runs{ { "scene", "knob", "value", "seconds", "image error", "region error" } };
-  Table ReferenceRuns{ { "scene", "samples per pixel", "seconds", "image error",
-    "region error" } };
+  Table Runs{ { "scene", "knob", "value", "seconds", "error vs reference", "region vs reference",
+    "error vs finest", "knob error", "knob region error" } };
+  Table ReferenceRuns{ { "scene", "samples per pixel", "seconds", "error", "region error" } };
   Table Presets{ { "preset", "target", "photons", "photon min step", "octree eps",
-    "lattice tolerance", "lattice block", "view step", "resolution", "scene", "seconds",
-    "image error", "region error" } };
-  std::map<std::string, std::vector<Point>> PresetPoints;
+    "lattice tolerance", "view step", "resolution", "scene", "seconds", "error vs reference",
+    "region vs reference", "error vs finest", "region vs finest" } };
 };
 
 const Scene& Benchmark::SceneAt(const std::string& name, int size)
@@ -557,54 +604,59 @@ const Scene& Benchmark::SceneAt(const std::string& name, int size)
   return found->second;
 }
 
-Point Benchmark::Measure(const std::string& sceneName, const PipelineKnobs& knobs, int size,
-  const Image& reference, const std::vector<bool>& mask)
+// The whole pipeline, the plan included (analysed and decided on every run, as in an
+// application), median time of Runs runs.
+Image Benchmark::RenderTimed(const std::string& name, const PipelineKnobs& knobs, int size)
 {
-  const Scene& scene = this->SceneAt(sceneName, size);
-  vtkNew<vtkEffectPlan> plan;
-  refracta::bench::PlanScene(scene, plan);
+  const Scene& scene = this->SceneAt(name, size);
+  // Kernels are compiled per option set (step lengths, variants are -D options): a cheap untimed
+  // run with the same options first, so that no timed run pays for a compilation.
+  PipelineKnobs warm = knobs;
+  warm.Photons = 1024;
+  warm.LatticeTolerance = 1.0;
+  warm.ImageWidth = warm.ImageHeight = 8;
+  {
+    vtkNew<vtkEffectPlan> plan;
+    refracta::bench::PlanScene(scene, plan);
+    refracta::bench::RenderPipeline(scene, plan, warm);
+  }
   Image image;
   image.Seconds = refracta::bench::MedianSeconds(this->Config.Runs,
     [&]
     {
-      // The plan is part of the pipeline's cost: analyse and decide on every run.
-      vtkNew<vtkEffectPlan> timedPlan;
-      refracta::bench::PlanScene(scene, timedPlan);
-      image.Value = refracta::bench::RenderPipeline(scene, timedPlan, knobs);
+      vtkNew<vtkEffectPlan> plan;
+      refracta::bench::PlanScene(scene, plan);
+      image.Value = refracta::bench::RenderPipeline(scene, plan, knobs);
     });
   image.Error.assign(image.Value.size(), 0.0);
+  return image;
+}
+
+Point Benchmark::Measure(const std::string& name, const PipelineKnobs& knobs, int size)
+{
+  const SceneResult& result = this->Results[name];
+  const Image image = this->RenderTimed(name, knobs, size);
   Point point;
-  point.Scene = sceneName;
   point.Seconds = image.Seconds;
-  if (image.Value.size() != reference.Value.size())
+  if (image.Value.size() != result.Reference.Value.size())
   {
-    std::cerr << "pipeline image of " << sceneName << " has the wrong size\n";
-    point.ImageError = point.RegionError = std::nan("");
+    std::cerr << "pipeline image of " << name << " has the wrong size\n";
+    point.ReferenceError = point.ReferenceRegionError = std::nan("");
+    point.SelfError = point.SelfRegionError = std::nan("");
     return point;
   }
-  std::vector<bool> all(mask.size(), true);
-  point.ImageError = RelativeError(image, reference, all);
-  point.RegionError = RelativeError(image, reference, mask);
+  const std::vector<bool> all(result.Region.size(), true);
+  point.ReferenceError = RelativeError(image, result.Reference, all);
+  point.ReferenceRegionError = RelativeError(image, result.Reference, result.Region);
+  point.SelfError = RelativeError(image, result.Finest, all);
+  point.SelfRegionError = RelativeError(image, result.Finest, result.Region);
+  point.Picture = image;
   return point;
 }
 
-void Benchmark::SweepScene(const std::string& name, SceneResult& result)
+void Benchmark::SweepScene(const std::string& name)
 {
-  const Image& reference = this->References[name];
-  const std::vector<bool>& mask = this->Masks[name];
-  // Warm the kernel caches so that no run pays for compilation; keep that image to look at.
-  {
-    const Scene& scene = this->SceneAt(name, this->Config.BaseSize);
-    vtkNew<vtkEffectPlan> plan;
-    refracta::bench::PlanScene(scene, plan);
-    Image image;
-    image.Value = refracta::bench::RenderPipeline(scene, plan, this->Base);
-    const double scale = WhiteScale(reference);
-    WritePng(this->Config.Out + "/pipeline_" + name + ".png", image, this->Config.Image, scale);
-    WritePng(this->Config.Out + "/reference_" + name + ".png", reference, this->Config.Image, scale);
-    WriteHdr(this->Config.Out + "/pipeline_" + name + ".vti", image, this->Config.Image);
-    std::cout << "  plan: " << plan->GetSummary() << "\n";
-  }
+  SceneResult& result = this->Results[name];
   std::map<std::string, Point> measured; // identical settings are measured once
   for (const Knob& knob : this->Knobs)
   {
@@ -625,45 +677,63 @@ void Benchmark::SweepScene(const std::string& name, SceneResult& result)
           << knobs.PrimaryTolerance << " " << knobs.LatticeTolerance << " " << knobs.BlockSize
           << " " << knobs.ViewStep;
       auto found = measured.find(key.str());
-      Point point = found != measured.end()
-        ? found->second
-        : (measured[key.str()] = this->Measure(name, knobs, size, reference, mask));
+      Point point = found != measured.end() ? found->second
+                                            : (measured[key.str()] = this->Measure(name, knobs, size));
       point.Knob = knob.Name;
       point.Value = value;
       result.Points.push_back(point);
-      this->Runs.AddRow({ name, knob.Name, Table::Format(value), Table::Format(point.Seconds),
-        Table::Format(point.ImageError), Table::Format(point.RegionError) });
-      std::cout << "  " << knob.Name << " = " << value << ": " << point.Seconds << " s, error "
-                << point.ImageError << " (region " << point.RegionError << ")\n"
+      std::cout << "  " << knob.Name << " = " << value << ": " << point.Seconds
+                << " s, error vs reference " << point.ReferenceError << " (region "
+                << point.ReferenceRegionError << "), vs finest " << point.SelfError << "\n"
                 << std::flush;
+    }
+    // The knob's own error: against its most accurate value.
+    const std::vector<bool> all(result.Region.size(), true);
+    const Point* best = nullptr;
+    for (const Point& p : result.Points)
+    {
+      best = p.Knob == knob.Name && p.Value == MostAccurate(knob) ? &p : best;
+    }
+    for (Point& p : result.Points)
+    {
+      if (p.Knob == knob.Name && best)
+      {
+        p.KnobError = RelativeError(p.Picture, best->Picture, all);
+        p.KnobRegionError = RelativeError(p.Picture, best->Picture, result.Region);
+        this->Runs.AddRow({ name, knob.Name, Table::Format(p.Value), Table::Format(p.Seconds),
+          Table::Format(p.ReferenceError), Table::Format(p.ReferenceRegionError),
+          Table::Format(p.SelfError), Table::Format(p.KnobError),
+          Table::Format(p.KnobRegionError) });
+      }
     }
   }
 }
 
-void Benchmark::ReferenceCurve(const std::string& name, SceneResult& result)
+void Benchmark::ReferenceCurve(const std::string& name)
 {
+  SceneResult& result = this->Results[name];
   const Scene& scene = this->SceneAt(name, this->FinestSize);
-  std::vector<bool> all(this->Masks[name].size(), true);
+  const std::vector<bool> all(result.Region.size(), true);
   for (int spp = 1; spp <= this->Config.ReferenceCurveMax; spp *= 2)
   {
     const Image image = RenderReference(scene, this->Config.Image, spp, 2);
     Point point;
-    point.Scene = name;
     point.Knob = "reference";
     point.Value = spp;
     point.Seconds = image.Seconds;
-    point.ImageError = RelativeError(image, this->References[name], all);
-    point.RegionError = RelativeError(image, this->References[name], this->Masks[name]);
-    result.Reference.emplace_back(point.Seconds, point.ImageError);
+    point.ReferenceError = RelativeError(image, result.Reference, all);
+    point.ReferenceRegionError = RelativeError(image, result.Reference, result.Region);
     result.ReferencePoints.push_back(point);
     this->ReferenceRuns.AddRow({ name, std::to_string(spp), Table::Format(point.Seconds),
-      Table::Format(point.ImageError), Table::Format(point.RegionError) });
+      Table::Format(point.ReferenceError), Table::Format(point.ReferenceRegionError) });
   }
 }
 
-// For each target error: every knob takes its cheapest swept value whose image error stays within
-// max(target, 1.1 x the knob's best) on every scene; the combination is then measured.
-void Benchmark::ChoosePresets(std::vector<std::string>& names)
+// For a target error e, every knob takes its cheapest swept value whose own error (against its
+// most accurate value) stays within e / sqrt(K) on every scene, K the number of knobs: the
+// knobs' errors add roughly in quadrature, so the combination should stay near e. The
+// combinations are then measured on every scene against the reference and the finest setting.
+void Benchmark::ChoosePresets(const std::vector<std::string>& names)
 {
   const std::vector<std::pair<std::string, double>> targets = { { "draft", 0.10 },
     { "interactive", 0.05 }, { "production", 0.02 } };
@@ -671,9 +741,10 @@ void Benchmark::ChoosePresets(std::vector<std::string>& names)
   {
     PipelineKnobs knobs = this->Base;
     int size = this->Config.BaseSize;
+    const double budget = target.second / std::sqrt(static_cast<double>(this->Knobs.size()));
     for (const Knob& knob : this->Knobs)
     {
-      double bestValue = 0.0, bestSeconds = 1e300;
+      double chosen = 0.0, cheapest = 1e300;
       bool found = false;
       for (double value : knob.Values)
       {
@@ -681,134 +752,167 @@ void Benchmark::ChoosePresets(std::vector<std::string>& names)
         bool within = true;
         for (const std::string& name : names)
         {
-          double best = 1e300, error = 0.0, time = 0.0;
+          double error = 1e300, time = 0.0;
           for (const Point& p : this->Results[name].Points)
           {
-            if (p.Knob == knob.Name)
+            if (p.Knob == knob.Name && p.Value == value)
             {
-              best = std::min(best, p.ImageError);
-              if (p.Value == value)
-              {
-                error = p.ImageError;
-                time = p.Seconds;
-              }
+              error = p.KnobError;
+              time = p.Seconds;
             }
           }
-          within = within && error <= std::max(target.second, 1.1 * best);
+          within = within && error <= budget;
           seconds += time;
         }
-        if (within && seconds < bestSeconds)
+        if (within && seconds < cheapest)
         {
-          bestSeconds = seconds;
-          bestValue = value;
+          cheapest = seconds;
+          chosen = value;
           found = true;
         }
       }
-      if (!found)
+      if (found && knob.Name == "resolution")
       {
-        continue;
+        size = static_cast<int>(chosen);
       }
-      if (knob.Name == "resolution")
+      else if (found)
       {
-        size = static_cast<int>(bestValue);
-      }
-      else
-      {
-        knob.Apply(knobs, bestValue);
+        knob.Apply(knobs, chosen);
       }
     }
     for (const std::string& name : names)
     {
-      Point point = this->Measure(name, knobs, size, this->References[name], this->Masks[name]);
+      Point point = this->Measure(name, knobs, size);
       point.Knob = target.first;
-      this->PresetPoints[name].push_back(point);
+      this->Results[name].Presets.push_back(point);
       this->Presets.AddRow({ target.first, Table::Format(target.second),
         std::to_string(knobs.Photons), Table::Format(knobs.PhotonMinimumStep),
         Table::Format(knobs.PrimaryTolerance), Table::Format(knobs.LatticeTolerance),
-        std::to_string(knobs.BlockSize), Table::Format(knobs.ViewStep), std::to_string(size),
-        name, Table::Format(point.Seconds), Table::Format(point.ImageError),
-        Table::Format(point.RegionError) });
+        Table::Format(knobs.ViewStep), std::to_string(size), name, Table::Format(point.Seconds),
+        Table::Format(point.ReferenceError), Table::Format(point.ReferenceRegionError),
+        Table::Format(point.SelfError), Table::Format(point.SelfRegionError) });
     }
   }
 }
 
+// Two log-log plots per scene: every run's error (against the converged reference, else against
+// the finest setting) with one curve per knob, the reference renderer's own curve, the Pareto front
+// and the presets; and each knob's own error.
+void Benchmark::Plot(const std::string& name)
+{
+  const SceneResult& result = this->Results[name];
+  auto positive = [](double e) { return std::max(e, 1e-5); };
+  std::vector<refracta::bench::Series> series, knobs;
+  for (const Knob& knob : this->Knobs)
+  {
+    refracta::bench::Series curve{ knob.Name, {}, {} };
+    refracta::bench::Series own{ knob.Name, {}, {} };
+    for (const Point& p : result.Points)
+    {
+      if (p.Knob == knob.Name)
+      {
+        curve.X.push_back(p.Seconds);
+        curve.Y.push_back(positive(result.Error(p)));
+        if (p.Value != MostAccurate(knob))
+        {
+          own.X.push_back(p.Seconds);
+          own.Y.push_back(positive(p.KnobError));
+        }
+      }
+    }
+    series.push_back(curve);
+    knobs.push_back(own);
+  }
+  refracta::bench::WritePlot(this->Config.Out + "/knobs_" + name + ".png",
+    name + ": each knob's own error (vs its most accurate value)", "seconds", "relative RMSE",
+    knobs);
+  refracta::bench::Series reference{ "reference Monte Carlo", {}, {} };
+  for (const Point& p : result.ReferencePoints)
+  {
+    reference.X.push_back(p.Seconds);
+    reference.Y.push_back(positive(p.ReferenceError));
+  }
+  if (result.Converged)
+  {
+    series.push_back(reference);
+  }
+  refracta::bench::Series front{ "Pareto front", {}, {} };
+  std::vector<Point> all = result.Points;
+  all.insert(all.end(), result.Presets.begin(), result.Presets.end());
+  for (const Point& p : ParetoFront(all, result))
+  {
+    front.X.push_back(p.Seconds);
+    front.Y.push_back(positive(result.Error(p)));
+  }
+  series.push_back(front);
+  refracta::bench::Series presets{ "presets", {}, {} };
+  for (const Point& p : result.Presets)
+  {
+    presets.X.push_back(p.Seconds);
+    presets.Y.push_back(positive(result.Error(p)));
+  }
+  series.push_back(presets);
+  refracta::bench::WritePlot(this->Config.Out + "/accuracy_" + name + ".png",
+    name + (result.Converged ? ": error vs converged reference" : ": error vs finest pipeline"),
+    "seconds", "relative RMSE", series);
+}
+
 void Benchmark::Report(const std::vector<std::string>& names)
 {
-  Table front({ "scene", "knob", "value", "seconds", "image error", "region error" });
-  Table speedUp({ "scene", "pipeline best error", "pipeline s to 5%", "reference s to 5%",
-    "speed-up at 5%", "pipeline s to 2%", "reference s to 2%", "speed-up at 2%" });
+  Table front({ "scene", "knob", "value", "seconds", "error", "region error" });
+  Table speedUp({ "scene", "reference noise (image / region)", "pipeline best error",
+    "pipeline s to 5%", "reference s to 5%", "speed-up at 5%", "pipeline s to 2%",
+    "reference s to 2%", "speed-up at 2%" });
   for (const std::string& name : names)
   {
-    SceneResult& result = this->Results[name];
+    const SceneResult& result = this->Results[name];
     std::vector<Point> all = result.Points;
-    for (const Point& p : this->PresetPoints[name])
-    {
-      all.push_back(p);
-    }
-    const std::vector<Point> pareto = ParetoFront(all);
-    std::vector<std::pair<double, double>> frontCurve;
+    all.insert(all.end(), result.Presets.begin(), result.Presets.end());
+    const std::vector<Point> pareto = ParetoFront(all, result);
+    std::vector<std::pair<double, double>> frontCurve, referenceCurve;
     for (const Point& p : pareto)
     {
       front.AddRow({ name, p.Knob, Table::Format(p.Value), Table::Format(p.Seconds),
-        Table::Format(p.ImageError), Table::Format(p.RegionError) });
-      frontCurve.emplace_back(p.Seconds, p.ImageError);
+        Table::Format(result.Error(p)),
+        Table::Format(result.Converged ? p.ReferenceRegionError : p.SelfRegionError) });
+      frontCurve.emplace_back(p.Seconds, result.Error(p));
     }
-    std::vector<std::string> row = { name, Table::Format(pareto.back().ImageError) };
+    for (const Point& p : result.ReferencePoints)
+    {
+      referenceCurve.emplace_back(p.Seconds, p.ReferenceError);
+    }
+    std::vector<std::string> row = { name,
+      Table::Format(result.ImageNoise) + " / " + Table::Format(result.RegionNoise),
+      result.Converged ? Table::Format(pareto.back().ReferenceError) : "not measurable" };
     for (double target : { 0.05, 0.02 })
     {
       bool unused = false, extrapolated = false;
       const double tPipeline = TimeToError(frontCurve, target, false, &unused);
-      const double tReference = TimeToError(result.Reference, target, true, &extrapolated);
-      row.push_back(tPipeline < 0 ? "-" : Table::Format(tPipeline));
+      if (!result.Converged)
+      {
+        // The reference's own noise after its budget, extrapolated with noise ~ time^(-1/2),
+        // says how long unbiased Monte Carlo would need; the pipeline's error against it cannot
+        // be measured.
+        const double tReference = result.Reference.Seconds *
+          std::pow(result.ImageNoise / target, 2.0);
+        row.push_back("-");
+        row.push_back(Table::Format(tReference) + "*");
+        row.push_back("not measurable");
+        continue;
+      }
+      const double tReference = TimeToError(referenceCurve, target, true, &extrapolated);
+      row.push_back(tPipeline < 0 ? "not reached" : Table::Format(tPipeline));
       row.push_back(Table::Format(tReference) + (extrapolated ? "*" : ""));
-      row.push_back(FormatSpeedUp(tPipeline, tReference, extrapolated));
+      row.push_back(tPipeline < 0 ? "-" : Table::Format(tReference / tPipeline));
     }
     speedUp.AddRow(row);
-
-    // The plot: one curve per knob, the reference's curve, the front and the presets.
-    std::vector<refracta::bench::Series> series;
-    for (const Knob& knob : this->Knobs)
-    {
-      refracta::bench::Series curve{ knob.Name, {}, {} };
-      for (const Point& p : result.Points)
-      {
-        if (p.Knob == knob.Name && p.ImageError > 0)
-        {
-          curve.X.push_back(p.Seconds);
-          curve.Y.push_back(p.ImageError);
-        }
-      }
-      series.push_back(curve);
-    }
-    refracta::bench::Series reference{ "reference Monte Carlo", {}, {} };
-    for (const auto& p : result.Reference)
-    {
-      reference.X.push_back(p.first);
-      reference.Y.push_back(std::max(p.second, 1e-6));
-    }
-    refracta::bench::Series paretoSeries{ "Pareto front", {}, {} };
-    for (const auto& p : frontCurve)
-    {
-      paretoSeries.X.push_back(p.first);
-      paretoSeries.Y.push_back(std::max(p.second, 1e-6));
-    }
-    refracta::bench::Series presets{ "presets", {}, {} };
-    for (const Point& p : this->PresetPoints[name])
-    {
-      presets.X.push_back(p.Seconds);
-      presets.Y.push_back(std::max(p.ImageError, 1e-6));
-    }
-    series.push_back(reference);
-    series.push_back(paretoSeries);
-    series.push_back(presets);
-    refracta::bench::WritePlot(this->Config.Out + "/accuracy_" + name + ".png",
-      name + ": relative RMSE against time", "seconds", "relative RMSE (image)", series);
+    this->Plot(name);
   }
   this->Runs.Print("Accuracy and time: one knob at a time from the base setting");
-  this->ReferenceRuns.Print("Reference renderer: error against time (seed 2 against the "
-                            "converged seed-1 image)");
+  this->ReferenceRuns.Print(
+    "Reference renderer: error against time (seed 2 against the converged seed-1 image)");
   this->Presets.Print("Quality presets chosen from the sweep, measured");
-  front.Print("Pareto front per scene (all runs and presets)");
+  front.Print("Pareto front per scene (error vs reference where it converged, else vs finest)");
   speedUp.Print("Speed-up of the pipeline over the reference renderer at equal error (* "
                 "extrapolated with error ~ time^-1/2)");
   this->Runs.WriteCsv(this->Config.Out + "/accuracy_time.csv");
@@ -828,9 +932,8 @@ int Benchmark::Run()
   std::vector<std::string> names;
   for (const Scene& scene : refracta::scenes::AllScenes(4))
   {
-    if (this->Config.Scenes.empty() ||
-      std::find(this->Config.Scenes.begin(), this->Config.Scenes.end(), scene.Name) !=
-        this->Config.Scenes.end())
+    const auto& wanted = this->Config.Scenes;
+    if (wanted.empty() || std::find(wanted.begin(), wanted.end(), scene.Name) != wanted.end())
     {
       names.push_back(scene.Name);
     }
@@ -844,14 +947,29 @@ int Benchmark::Run()
   for (const std::string& name : names)
   {
     std::cout << name << "\n";
+    SceneResult& result = this->Results[name];
     const Scene& finest = this->SceneAt(name, this->FinestSize);
-    this->References[name] = ConvergedReference(finest, this->FinestSize, this->Config);
-    this->Masks[name] = RegionMask(finest, this->Config.Image, this->Config.Image);
-    const Image& reference = this->References[name];
-    std::cout << "  reference noise (relative standard error of the image): "
-              << NoiseLevel(this->References[name]) << "\n";
-    this->ReferenceCurve(name, this->Results[name]);
-    this->SweepScene(name, this->Results[name]);
+    result.Reference = ConvergedReference(finest, this->FinestSize, this->Config);
+    result.Region = RegionMask(finest, this->Config.Image, this->Config.Image);
+    result.ImageNoise =
+      NoiseLevel(result.Reference, std::vector<bool>(result.Region.size(), true));
+    result.RegionNoise = NoiseLevel(result.Reference, result.Region);
+    result.Converged =
+      result.ImageNoise <= ConvergedImageNoise && result.RegionNoise <= ConvergedRegionNoise;
+    std::cout << "  reference noise (relative): image " << result.ImageNoise << ", region "
+              << result.RegionNoise << (result.Converged ? " (converged)" : " (not converged)")
+              << "\n";
+    // The most accurate setting, which the other runs are also compared with.
+    result.Finest = this->RenderTimed(name, this->Most, this->FinestSize);
+    std::cout << "  finest pipeline setting: " << result.Finest.Seconds << " s\n";
+    const double scale = WhiteScale(result.Reference);
+    WritePng(this->Config.Out + "/pipeline_" + name + ".png", result.Finest, this->Config.Image,
+      scale);
+    WritePng(
+      this->Config.Out + "/reference_" + name + ".png", result.Reference, this->Config.Image, scale);
+    WriteHdr(this->Config.Out + "/pipeline_" + name + ".vti", result.Finest, this->Config.Image);
+    this->ReferenceCurve(name);
+    this->SweepScene(name);
   }
   this->ChoosePresets(names);
   this->Report(names);
