@@ -27,7 +27,22 @@
 // Options (-D): REFRACTA_CURVED, REFRACTA_PARALLEL (parallel projection), REFRACTA_HAS_SINGLE
 // (Radiance + RadianceDirection + Anisotropy given), REFRACTA_HAS_MULTIPLE (MultipleScattering
 // given), REFRACTA_HAS_EMISSION, REFRACTA_HAS_ENVIRONMENT (equirectangular background image),
-// REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length).
+// REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length), REFRACTA_SKIP (empty-space skipping,
+// below).
+//
+// Empty-space skipping (-DREFRACTA_SKIP): `occupancy` holds one byte per macro cell of
+// cellDims.w^3 voxels (cellDims.xyz cells; cell c covers continuous voxel coordinates
+// [c B - 1/2, (c + 1) B - 1/2) per axis, clipped to the box). Bit 0 is set where a trilinear sample
+// of extinction, emission, Radiance or MultipleScattering can be nonzero, bit 1 where a sample of
+// grad n can be nonzero; the host dilates each cell by 2 voxels (one for the trilinear footprint,
+// one of slack for rounding), so every sample point within one voxel of an empty cell reads zeros.
+// `skipMask` selects the bits that matter (1 for straight rays, 3 for curved ones). At a step's
+// start the ray measures the straight run of empty cells ahead (a 3D DDA, cell by cell) and jumps
+// over the whole steps that lie inside it: such a step would add exactly 0 to L and multiply T by
+// exactly 1, and (curved rays) bend nothing, since grad n = 0 there. The step grid is kept (a
+// straight ray's steps stay at t0 + s STEP), so the image equals the one without skipping up to
+// float rounding of positions; the depth limit, the box exit and the MaxSteps cap are handled by
+// the ordinary steps, as without skipping. Skipped steps are not counted in `steps`.
 
 #ifndef REFRACTA_INV_4PI
 #define REFRACTA_INV_4PI 0.0795774715459476679f
@@ -153,6 +168,48 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 d,
   return q;
 }
 
+#ifdef REFRACTA_SKIP
+// Length, along unit direction d from grid-local point x (inside the box), of the run of
+// consecutive empty macro cells (occupancy & mask == 0) that starts at x's cell: 0 when that cell
+// is occupied, ending at most a hair (eps) past the run's last cell boundary or the box exit.
+// *occupiedExit receives the distance from x to where the ray leaves the first occupied cell
+// it met, or 0 when the run reached the box exit: the caller need not look again before then.
+inline float refracta_empty_run(float3 x, float3 d, float3 lo, float3 hi, float3 cellExtent,
+  int4 cellDims, __global const uchar* occupancy, uint mask, float eps, float* occupiedExit)
+{
+  const float3 cellCount = (float3)((float)cellDims.x, (float)cellDims.y, (float)cellDims.z);
+  const int maxCells = cellDims.x + cellDims.y + cellDims.z + 4;
+  float t = 0.0f;
+  *occupiedExit = 0.0f;
+  for (int it = 0; it < maxCells; ++it)
+  {
+    const float3 p = x + t * d;
+    float3 c = floor((p - lo) / cellExtent);
+    if (it == 0)
+    {
+      c = clamp(c, (float3)(0.0f), cellCount - 1.0f); // x is on or in the box up to rounding
+    }
+    else if (any(c < (float3)(0.0f)) || any(c >= cellCount))
+    {
+      return t; // left the box
+    }
+    const float3 clo = lo + c * cellExtent;
+    const float3 chi = fmin(clo + cellExtent, hi);
+    float e0, e1;
+    refracta_intersect_box(p, d, clo, chi, &e0, &e1);
+    const float exitT = t + fmax(e1, 0.0f) + eps; // step just past the boundary
+    const size_t cell = refracta_voxel_index(cellDims, (int)c.x, (int)c.y, (int)c.z);
+    if (occupancy[cell] & mask)
+    {
+      *occupiedExit = exitT;
+      return t;
+    }
+    t = exitT;
+  }
+  return t;
+}
+#endif
+
 __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   __global const float* extinction, __global const float* emission,
   __global const float* anisotropy, __global const float* refractiveIndex,
@@ -162,7 +219,7 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   const float stepLength, const int maxSteps, const float cutoff, const float4 background,
   __global const float* environment, const int2 envSize, const float4 envRight,
   const float4 envUp, const float4 envFront, __global const float* depthLimit,
-  __global float* hdr, __global uint* steps, __global float* transmittanceOut)
+  __global const uchar* occupancy, const int4 cellDims, const uint skipMask, __global float* hdr, __global uint* steps, __global float* transmittanceOut)
 {
   const int pi = (int)get_global_id(0);
   const int pj = (int)get_global_id(1);
@@ -201,8 +258,49 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
     float n = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
     float3 v = n * d;
 #endif
+#ifdef REFRACTA_SKIP
+    const float3 cellExtent = (float)cellDims.w * spacing.xyz;
+    const float eps = 1e-3f * fmin(spacing.x, fmin(spacing.y, spacing.z));
+    float nextCheck = travelled; // no skip test before this path length (inside an occupied cell)
+#endif
     for (int s = 0; s < maxSteps; ++s)
     {
+#ifdef REFRACTA_SKIP
+      if (travelled >= nextCheck)
+      {
+#ifdef REFRACTA_CURVED
+        const float3 xs = x;
+        const float3 ds = normalize(v);
+        float b0, b1;
+        refracta_intersect_box(xs, ds, lo, hi, &b0, &b1);
+        const float toExit = fmax(b1, 0.0f);
+#else
+        const float3 ds = d;
+        const float tS = t0 + (float)s * stepLength;
+        const float3 xs = origin + tS * d;
+        const float toExit = fmax(t1 - tS, 0.0f);
+#endif
+        float occupiedExit;
+        float run = refracta_empty_run(
+          xs, ds, lo, hi, cellExtent, cellDims, occupancy, skipMask, eps, &occupiedExit);
+        nextCheck = occupiedExit > 0.0f ? travelled + occupiedExit : INFINITY;
+        // Only whole steps that end before the box exit and the depth limit are skipped: the
+        // step that meets either is marched as without skipping.
+        run = fmin(run, fmin(toExit, limit - travelled));
+        const int k = min((int)floor(run / stepLength), maxSteps - 1 - s);
+        if (k > 0)
+        {
+          s += k;
+          travelled += (float)k * stepLength;
+#ifdef REFRACTA_CURVED
+          // Straight through the empty run (grad n = 0 there); n is re-read where the ray lands.
+          x = xs + ((float)k * stepLength) * ds;
+          n = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
+          v = n * ds;
+#endif
+        }
+      }
+#endif
       bool leaves = false;
       float len;
       float3 chord; // unit direction of this step's chord
