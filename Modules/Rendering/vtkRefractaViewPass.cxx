@@ -130,6 +130,7 @@ struct vtkRefractaViewPass::Internals
   int CellDims[3] = { 0, 0, 0 };
   double ActiveFraction[2] = { 1.0, 1.0 }; // fraction of cells with SourceFlag; with either flag
   vtkOpenCLBuffer Occupancy;
+  double BuildSeconds = 0.0;
 
   vtkOpenCLBuffer Dummy;
 
@@ -144,6 +145,7 @@ struct vtkRefractaViewPass::Internals
     {
       return true;
     }
+    const auto start = std::chrono::steady_clock::now();
     int cells[3];
     for (int a = 0; a < 3; ++a)
     {
@@ -209,6 +211,8 @@ struct vtkRefractaViewPass::Internals
     }
     this->OccupancyCellSize = b;
     this->OccupancyDirty = false;
+    this->BuildSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return true;
   }
 
@@ -778,6 +782,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       return false;
     }
     this->LastActiveCellFraction = in.ActiveFraction[curved ? 1 : 0];
+    this->OccupancySeconds = in.BuildSeconds;
     skipping = this->LastActiveCellFraction < 1.0;
   }
   if (skipping)

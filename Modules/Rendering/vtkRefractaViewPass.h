@@ -192,6 +192,12 @@ public:
   ///@}
 
   /**
+   * Host seconds of the last build of the occupancy grid (done in Render() when the medium, the
+   * lighting or MacroCellSize changed; not part of LastSeconds).
+   */
+  vtkGetMacro(OccupancySeconds, double);
+
+  /**
    * Number of times a medium or lighting volume was uploaded to the device (for cache tests).
    */
   vtkGetMacro(NumberOfUploads, int);
@@ -240,6 +246,7 @@ protected:
   int MacroCellSize = 8;
   bool LastSkipping = false;
   double LastActiveCellFraction = 1.0;
+  double OccupancySeconds = 0.0;
   double LastSeconds = 0.0;
   double LastTotalSteps = 0.0;
   bool LastCurved = false;
