@@ -169,43 +169,69 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 d,
 }
 
 #ifdef REFRACTA_SKIP
-// Length, along unit direction d from grid-local point x (inside the box), of the run of
-// consecutive empty macro cells (occupancy & mask == 0) that starts at x's cell: 0 when that cell
-// is occupied, ending at most a hair (eps) past the run's last cell boundary or the box exit.
-// *occupiedExit receives the distance from x to where the ray leaves the first occupied cell
-// it met, or 0 when the run reached the box exit: the caller need not look again before then.
+// Length, along unit direction d from grid-local point x (in the box), of the empty space ahead:
+// the run of consecutive empty macro cells (occupancy & mask == 0) that starts at x's cell, 0
+// when that cell is occupied, INFINITY when nothing active lies ahead (the caller clamps it to the
+// box exit). First a slab test against the bounding box of the active cells (cells activeLo ..
+// activeHi, inclusive): a ray that misses it sees only empty space; otherwise an incremental 3D
+// DDA (Amanatides and Woo 1987) walks the cells from where the ray enters it. *nextCheck receives
+// the distance from x before which the caller need not ask again (where the ray leaves the
+// occupied cell it met).
 inline float refracta_empty_run(float3 x, float3 d, float3 lo, float3 hi, float3 cellExtent,
-  int4 cellDims, __global const uchar* occupancy, uint mask, float eps, float* occupiedExit)
+  int4 cellDims, int4 activeLo, int4 activeHi, __global const uchar* occupancy, uint mask,
+  float* nextCheck)
 {
-  const float3 cellCount = (float3)((float)cellDims.x, (float)cellDims.y, (float)cellDims.z);
-  const int maxCells = cellDims.x + cellDims.y + cellDims.z + 4;
-  float t = 0.0f;
-  *occupiedExit = 0.0f;
+  const float3 boxLo = lo + convert_float3(activeLo.xyz) * cellExtent;
+  const float3 boxHi = fmin(lo + convert_float3(activeHi.xyz + 1) * cellExtent, hi);
+  float a0, a1;
+  if (activeLo.w == 0 || !refracta_intersect_box(x, d, boxLo, boxHi, &a0, &a1))
+  {
+    *nextCheck = INFINITY; // no active cell (activeLo.w == 0) or none ahead: empty to the exit
+    return INFINITY;
+  }
+  // Outside the active box, everything up to its entry a0 is empty: start the walk there.
+  const float3 xa = x + a0 * d;
+  const float3 u = (xa - lo) / cellExtent;
+  int3 c = clamp(convert_int3(floor(u)), activeLo.xyz, activeHi.xyz);
+  const int3 step = select((int3)(-1), (int3)(1), d > (float3)(0.0f));
+  const float3 inv = (float3)(1.0f) / d;
+  const float3 boundary =
+    lo + convert_float3(c + select((int3)(0), (int3)(1), d > (float3)(0.0f))) * cellExtent;
+  float3 tMax = select(a0 + (boundary - xa) * inv, (float3)(INFINITY), d == (float3)(0.0f));
+  const float3 tDelta = select(cellExtent * fabs(inv), (float3)(INFINITY), d == (float3)(0.0f));
+  float t = a0;
+  const int maxCells = cellDims.x + cellDims.y + cellDims.z + 3;
   for (int it = 0; it < maxCells; ++it)
   {
-    const float3 p = x + t * d;
-    float3 c = floor((p - lo) / cellExtent);
-    if (it == 0)
+    const float tOut = fmin(tMax.x, fmin(tMax.y, tMax.z));
+    if (occupancy[refracta_voxel_index(cellDims, c.x, c.y, c.z)] & mask)
     {
-      c = clamp(c, (float3)(0.0f), cellCount - 1.0f); // x is on or in the box up to rounding
-    }
-    else if (any(c < (float3)(0.0f)) || any(c >= cellCount))
-    {
-      return t; // left the box
-    }
-    const float3 clo = lo + c * cellExtent;
-    const float3 chi = fmin(clo + cellExtent, hi);
-    float e0, e1;
-    refracta_intersect_box(p, d, clo, chi, &e0, &e1);
-    const float exitT = t + fmax(e1, 0.0f) + eps; // step just past the boundary
-    const size_t cell = refracta_voxel_index(cellDims, (int)c.x, (int)c.y, (int)c.z);
-    if (occupancy[cell] & mask)
-    {
-      *occupiedExit = exitT;
+      *nextCheck = tOut;
       return t;
     }
-    t = exitT;
+    t = fmax(tOut, t);
+    if (tMax.x <= tOut)
+    {
+      c.x += step.x;
+      tMax.x += tDelta.x;
+    }
+    else if (tMax.y <= tOut)
+    {
+      c.y += step.y;
+      tMax.y += tDelta.y;
+    }
+    else
+    {
+      c.z += step.z;
+      tMax.z += tDelta.z;
+    }
+    if (any(c < activeLo.xyz) || any(c > activeHi.xyz))
+    {
+      *nextCheck = INFINITY; // left the active box: nothing active ahead (boxes are convex)
+      return INFINITY;
+    }
   }
+  *nextCheck = t;
   return t;
 }
 #endif
@@ -219,7 +245,8 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   const float stepLength, const int maxSteps, const float cutoff, const float4 background,
   __global const float* environment, const int2 envSize, const float4 envRight,
   const float4 envUp, const float4 envFront, __global const float* depthLimit,
-  __global const uchar* occupancy, const int4 cellDims, const uint skipMask, __global float* hdr, __global uint* steps, __global float* transmittanceOut)
+  __global const uchar* occupancy, const int4 cellDims, const int4 activeLo, const int4 activeHi,
+  const uint skipMask, __global float* hdr, __global uint* steps, __global float* transmittanceOut)
 {
   const int pi = (int)get_global_id(0);
   const int pj = (int)get_global_id(1);
@@ -260,7 +287,6 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
 #endif
 #ifdef REFRACTA_SKIP
     const float3 cellExtent = (float)cellDims.w * spacing.xyz;
-    const float eps = 1e-3f * fmin(spacing.x, fmin(spacing.y, spacing.z));
     float nextCheck = travelled; // no skip test before this path length (inside an occupied cell)
 #endif
     for (int s = 0; s < maxSteps; ++s)
@@ -280,10 +306,10 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
         const float3 xs = origin + tS * d;
         const float toExit = fmax(t1 - tS, 0.0f);
 #endif
-        float occupiedExit;
-        float run = refracta_empty_run(
-          xs, ds, lo, hi, cellExtent, cellDims, occupancy, skipMask, eps, &occupiedExit);
-        nextCheck = occupiedExit > 0.0f ? travelled + occupiedExit : INFINITY;
+        float recheck;
+        float run = refracta_empty_run(xs, ds, lo, hi, cellExtent, cellDims, activeLo, activeHi,
+          occupancy, skipMask, &recheck);
+        nextCheck = travelled + recheck;
         // Only whole steps that end before the box exit and the depth limit are skipped: the
         // step that meets either is marched as without skipping.
         run = fmin(run, fmin(toExit, limit - travelled));

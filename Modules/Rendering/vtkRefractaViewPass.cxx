@@ -131,6 +131,8 @@ struct vtkRefractaViewPass::Internals
   double ActiveFraction[2] = { 1.0, 1.0 }; // fraction of cells with SourceFlag; with either flag
   vtkOpenCLBuffer Occupancy;
   double BuildSeconds = 0.0;
+  int ActiveLo[2][3] = { { 0, 0, 0 }, { 0, 0, 0 } }; // active cells' bounding box, per mask
+  int ActiveHi[2][3] = { { -1, -1, -1 }, { -1, -1, -1 } };
 
   vtkOpenCLBuffer Dummy;
 
@@ -195,11 +197,40 @@ struct vtkRefractaViewPass::Internals
         }
       }
     }
+    // Counts and bounding boxes (in cells) of the active cells, for straight rays (SourceFlag)
+    // and curved ones (either flag).
     size_t source = 0, either = 0;
-    for (uint8_t c : occupancy)
+    for (int m = 0; m < 2; ++m)
     {
-      source += (c & SourceFlag) ? 1 : 0;
-      either += c ? 1 : 0;
+      for (int a = 0; a < 3; ++a)
+      {
+        this->ActiveLo[m][a] = cells[a];
+        this->ActiveHi[m][a] = -1;
+      }
+    }
+    for (int ck = 0; ck < cells[2]; ++ck)
+    {
+      for (int cj = 0; cj < cells[1]; ++cj)
+      {
+        for (int ci = 0; ci < cells[0]; ++ci)
+        {
+          const uint8_t c = occupancy[ci +
+            static_cast<size_t>(cells[0]) * (cj + static_cast<size_t>(cells[1]) * ck)];
+          const int ijk[3] = { ci, cj, ck };
+          for (int m = 0; m < 2; ++m)
+          {
+            if (c & (m == 0 ? SourceFlag : (SourceFlag | GradientFlag)))
+            {
+              (m == 0 ? source : either) += 1;
+              for (int a = 0; a < 3; ++a)
+              {
+                this->ActiveLo[m][a] = std::min(this->ActiveLo[m][a], ijk[a]);
+                this->ActiveHi[m][a] = std::max(this->ActiveHi[m][a], ijk[a]);
+              }
+            }
+          }
+        }
+      }
     }
     this->ActiveFraction[0] = static_cast<double>(source) / numberOfCells;
     this->ActiveFraction[1] = static_cast<double>(either) / numberOfCells;
@@ -867,14 +898,19 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   const cl_int4 cellDims = { { in.CellDims[0], in.CellDims[1], in.CellDims[2],
     in.OccupancyCellSize > 0 ? in.OccupancyCellSize : 1 } };
   const cl_uint skipMask = curved ? (SourceFlag | GradientFlag) : SourceFlag;
+  const int m = curved ? 1 : 0;
+  const bool anyActive = in.ActiveHi[m][0] >= 0;
+  const cl_int4 activeLo = { { in.ActiveLo[m][0], in.ActiveLo[m][1], in.ActiveLo[m][2],
+    anyActive ? 1 : 0 } };
+  const cl_int4 activeHi = { { in.ActiveHi[m][0], in.ActiveHi[m][1], in.ActiveHi[m][2], 0 } };
   const cl_int w = width, h = height;
   const cl_int status = vtkOpenCLSetKernelArgs(kernel.Get(), dims, spacing, buf(in.Extinction),
     buf(in.Emission), buf(in.Anisotropy), buf(in.Index), buf(in.Gradient), buf(in.Radiance),
     buf(in.RadianceDirection), buf(in.Multiple), Float4(frame.Eye), Float4(frame.U),
     Float4(frame.V), Float4(frame.W), w, h, stepLength, maxSteps, cutoff, background,
     env ? in.EnvironmentBuffer.Get() : in.Dummy.Get(), envSize, envRight, envUp, envFront,
-    buf(depthBuffer), skipping ? in.Occupancy.Get() : in.Dummy.Get(), cellDims, skipMask,
-    hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get());
+    buf(depthBuffer), skipping ? in.Occupancy.Get() : in.Dummy.Get(), cellDims, activeLo, activeHi,
+    skipMask, hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get());
   if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this))
   {
     return false;
