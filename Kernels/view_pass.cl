@@ -174,9 +174,10 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 d,
 // when that cell is occupied, INFINITY when nothing active lies ahead (the caller clamps it to the
 // box exit). First a slab test against the bounding box of the active cells (cells activeLo ..
 // activeHi, inclusive): a ray that misses it sees only empty space; otherwise an incremental 3D
-// DDA (Amanatides and Woo 1987) walks the cells from where the ray enters it. *nextCheck receives
-// the distance from x before which the caller need not ask again (where the ray leaves the
-// occupied cell it met).
+// DDA (Amanatides and Woo 1987) walks the cells from where the ray enters it. It goes on through
+// the run of occupied cells that ends the empty run, so that *nextCheck receives the distance
+// from x before which the caller need not ask again (where the next empty cell starts along the
+// straight line; for a curved ray only a hint, which costs skipping, never correctness).
 inline float refracta_empty_run(float3 x, float3 d, float3 lo, float3 hi, float3 cellExtent,
   int4 cellDims, int4 activeLo, int4 activeHi, __global const uchar* occupancy, uint mask,
   float* nextCheck)
@@ -200,15 +201,21 @@ inline float refracta_empty_run(float3 x, float3 d, float3 lo, float3 hi, float3
   float3 tMax = select(a0 + (boundary - xa) * inv, (float3)(INFINITY), d == (float3)(0.0f));
   const float3 tDelta = select(cellExtent * fabs(inv), (float3)(INFINITY), d == (float3)(0.0f));
   float t = a0;
+  float run = -1.0f; // set when the first occupied cell is met
   const int maxCells = cellDims.x + cellDims.y + cellDims.z + 3;
   for (int it = 0; it < maxCells; ++it)
   {
-    const float tOut = fmin(tMax.x, fmin(tMax.y, tMax.z));
-    if (occupancy[refracta_voxel_index(cellDims, c.x, c.y, c.z)] & mask)
+    const bool occupied = (occupancy[refracta_voxel_index(cellDims, c.x, c.y, c.z)] & mask) != 0;
+    if (run < 0.0f && occupied)
     {
-      *nextCheck = tOut;
-      return t;
+      run = t; // the empty run ends here; walk on through the occupied cells
     }
+    else if (run >= 0.0f && !occupied)
+    {
+      *nextCheck = t; // the next empty cell starts here
+      return run;
+    }
+    const float tOut = fmin(tMax.x, fmin(tMax.y, tMax.z));
     t = fmax(tOut, t);
     if (tMax.x <= tOut)
     {
@@ -227,12 +234,13 @@ inline float refracta_empty_run(float3 x, float3 d, float3 lo, float3 hi, float3
     }
     if (any(c < activeLo.xyz) || any(c > activeHi.xyz))
     {
-      *nextCheck = INFINITY; // left the active box: nothing active ahead (boxes are convex)
-      return INFINITY;
+      // Left the active box (convex): nothing active lies beyond.
+      *nextCheck = run < 0.0f ? INFINITY : t;
+      return run < 0.0f ? INFINITY : run;
     }
   }
   *nextCheck = t;
-  return t;
+  return run < 0.0f ? t : run;
 }
 #endif
 

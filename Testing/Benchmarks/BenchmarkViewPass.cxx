@@ -17,7 +17,8 @@
 // Medians of --runs runs (default 3); CSV to --csv (default benchmark_view_pass.csv).
 //
 // usage: BenchmarkViewPass [--sizes 256,512,1024] [--medium 128] [--runs 3] [--photons 65536]
-//                          [--compare-size 512] [--csv FILE]
+//                          [--compare-size 512] [--cell-size 8] [--csv FILE]
+// --cell-size: vtkRefractaViewPass::MacroCellSize (voxels) for every Refracta row.
 // Part 2 needs an X server (xvfb-run with Debian's VTK).
 #include "RefractaBenchmark.h"
 #include "RefractaScenes.h"
@@ -104,7 +105,7 @@ vtkSmartPointer<vtkImageData> ScalarField(
 int main(int argc, char* argv[])
 {
   std::vector<int> sizes = { 256, 512, 1024 };
-  int n = 128, runs = 3, photons = 65536, compareSize = 512;
+  int n = 128, runs = 3, photons = 65536, compareSize = 512, cellSize = 8;
   std::string csv = "benchmark_view_pass.csv";
   for (int i = 1; i < argc; ++i)
   {
@@ -120,12 +121,14 @@ int main(int argc, char* argv[])
       photons = std::stoi(argv[++i]);
     else if (arg == "--compare-size" && hasValue)
       compareSize = std::stoi(argv[++i]);
+    else if (arg == "--cell-size" && hasValue)
+      cellSize = std::stoi(argv[++i]);
     else if (arg == "--csv" && hasValue)
       csv = argv[++i];
     else
     {
       std::cerr << "usage: BenchmarkViewPass [--sizes 256,512,1024] [--medium 128] [--runs 3] "
-                   "[--photons 65536] [--compare-size 512] [--csv FILE]\n";
+                   "[--photons 65536] [--compare-size 512] [--cell-size 8] [--csv FILE]\n";
       return 2;
     }
   }
@@ -151,6 +154,7 @@ int main(int argc, char* argv[])
   tracer->SetNumberOfPhotons(photons);
   tracer->Update();
   vtkNew<vtkRefractaViewPass> pass;
+  pass->SetMacroCellSize(cellSize);
   if (!pass->SetMedium(scene.Medium) || !pass->SetLighting(tracer->GetOutput()))
   {
     return 1;
@@ -228,6 +232,7 @@ int main(int argc, char* argv[])
     mapping->Update();
     vtkNew<vtkRefractaViewPass> eaPass;
     eaPass->SetRayMode(vtkRefractaViewPass::STRAIGHT);
+    eaPass->SetMacroCellSize(cellSize);
     if (!eaPass->SetMedium(mapping->GetOutput()))
     {
       return 1;
