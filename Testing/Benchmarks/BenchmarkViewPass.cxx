@@ -14,6 +14,8 @@
 // off centre) in the same N^3 grid, rendered by both Refracta settings and the fixed-point mapper.
 // GlassSphereInFog is a full grid (fog everywhere: nothing to skip, so "on" measures the
 // overhead of building the occupancy and choosing the plain kernel).
+// Part 4: curved rays through a small glass ball (n 1.33, faint absorption) in the same grid,
+// skipping off and on (a camera move: the view pass alone).
 // Medians of --runs runs (default 3); CSV to --csv (default benchmark_view_pass.csv).
 //
 // usage: BenchmarkViewPass [--sizes 256,512,1024] [--medium 128] [--runs 3] [--photons 65536]
@@ -331,6 +333,94 @@ int main(int argc, char* argv[])
          << " ms)";
     summary.push_back(line.str());
   }
+
+  // ---- Part 4: curved rays through a small glass ball (n = 1.33 inside, ambient 1, boundary
+  // smoothed over ~3 voxels with compact support, faint absorption inside) in the same N^3 grid,
+  // seen against a grey background: skipping off and on.
+  {
+    auto glass = vtkSmartPointer<vtkImageData>::New();
+    glass->SetDimensions(n, n, n);
+    glass->SetSpacing(1.0 / n, 1.0 / n, 1.0 / n);
+    glass->SetOrigin(0.5 / n, 0.5 / n, 0.5 / n);
+    const vtkIdType count = static_cast<vtkIdType>(n) * n * n;
+    vtkNew<vtkFloatArray> index, extinction;
+    index->SetName("RefractiveIndex");
+    index->SetNumberOfTuples(count);
+    extinction->SetName("Extinction");
+    extinction->SetNumberOfComponents(3);
+    extinction->SetNumberOfTuples(count);
+    const double radius = 0.12, width = 3.0 / n;
+    for (int k = 0; k < n; ++k)
+    {
+      for (int j = 0; j < n; ++j)
+      {
+        for (int i = 0; i < n; ++i)
+        {
+          const vtkIdType id = i + n * (j + static_cast<vtkIdType>(n) * k);
+          const double x = (i + 0.5) / n - smallCentre[0], y = (j + 0.5) / n - smallCentre[1],
+                       z = (k + 0.5) / n - smallCentre[2];
+          const double r = std::sqrt(x * x + y * y + z * z);
+          // Smoothstep from 1 (r <= radius - width) to 0 (r >= radius): compact support.
+          const double a = std::min(1.0, std::max(0.0, (radius - r) / width));
+          const double inside = a * a * (3 - 2 * a);
+          index->SetValue(id, static_cast<float>(1.0 + 0.33 * inside));
+          extinction->SetTuple3(id, 2.0 * inside, 1.0 * inside, 0.5 * inside);
+        }
+      }
+    }
+    glass->GetPointData()->AddArray(index);
+    glass->GetPointData()->AddArray(extinction);
+    vtkNew<vtkRefractaViewPass> glassPass;
+    glassPass->SetMacroCellSize(cellSize);
+    glassPass->SetBackgroundColor(0.5, 0.5, 0.5);
+    if (!glassPass->SetMedium(glass))
+    {
+      return 1;
+    }
+    double medians[2], steps[2], active[2];
+    std::vector<float> reference;
+    double maxDiff = 0;
+    for (int c = 0; c < 2; ++c)
+    {
+      glassPass->SetEmptySpaceSkipping(c == 1);
+      if (!glassPass->Render(camera, compareSize, compareSize, nullptr, nullptr, hdr))
+      {
+        return 1;
+      }
+      std::vector<double> seconds;
+      for (int r = 0; r < runs; ++r)
+      {
+        glassPass->Render(camera, compareSize, compareSize, nullptr, nullptr, hdr);
+        seconds.push_back(glassPass->GetLastSeconds());
+      }
+      medians[c] = refracta::bench::Median(seconds);
+      steps[c] = glassPass->GetLastTotalSteps();
+      active[c] = glassPass->GetLastActiveCellFraction();
+      if (c == 0)
+      {
+        reference = hdr;
+      }
+      else
+      {
+        for (size_t i = 0; i < hdr.size(); ++i)
+        {
+          maxDiff = std::max(maxDiff, static_cast<double>(std::abs(hdr[i] - reference[i])));
+        }
+      }
+      table.AddRow({ "glass ball (r 0.12) in the grid",
+        glassPass->GetLastCurved() ? "refracta curved" : "refracta straight (?)", image,
+        glassPass->GetLastSkipping() ? "on" : "off", refracta::bench::Table::Format(active[c]),
+        refracta::bench::Table::Format(medians[c] * 1e3),
+        refracta::bench::Table::Format(steps[c] / (double(compareSize) * compareSize)),
+        refracta::bench::Table::Format(steps[c] / medians[c] / 1e6), "" });
+    }
+    std::ostringstream line;
+    line << "glass ball, curved rays (" << image << ", " << n << "^3): skipping "
+         << medians[0] * 1e3 << " -> " << medians[1] * 1e3 << " ms (" << medians[0] / medians[1]
+         << "x, active cells " << active[1] << ", max |HDR difference| " << maxDiff << ")";
+    summary.push_back(line.str());
+  }
+
   table.Print("BenchmarkViewPass (ratio = vtkFixedPointVolumeRayCastMapper time / this time; "
               "skip = whether the skipping kernel ran; active = macro cells marched)");
   for (const std::string& line : summary)
