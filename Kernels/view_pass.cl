@@ -306,8 +306,8 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
         const float3 xs = x;
         const float3 ds = normalize(v);
         float b0, b1;
-        refracta_intersect_box(xs, ds, lo, hi, &b0, &b1);
-        const float toExit = fmax(b1, 0.0f);
+        const float toExit =
+          refracta_intersect_box(xs, ds, lo, hi, &b0, &b1) ? fmax(b1, 0.0f) : 0.0f;
 #else
         const float3 ds = d;
         const float tS = t0 + (float)s * stepLength;
