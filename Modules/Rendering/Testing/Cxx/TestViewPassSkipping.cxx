@@ -28,7 +28,9 @@
 
 #include "vtkCamera.h"
 #include "vtkFieldData.h"
+#include "vtkLight.h"
 #include "vtkMath.h"
+#include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaViewPass.h"
 
@@ -297,6 +299,73 @@ TEST(ViewPassSkipping, GradientCellsOnlyMatterForCurvedRays)
   const double curved = pass->GetLastActiveCellFraction();
   EXPECT_GT(curved, straight);
   EXPECT_LT(curved, 0.5);
+}
+
+// The real pipeline: a photon-traced lighting volume (whose smoothed Radiance reaches into the
+// vacuum around the object, where it still adds to the view-pass sum) through the image renderer,
+// skipping off and on: the same HDR image (straight rays: bitwise).
+TEST(ViewPassSkipping, PhotonTracedLightingThroughImageRenderer)
+{
+  const int n = 32;
+  auto medium = refracta_test::MakeGrid(n, n, n, 1.0 / n);
+  vtkFloatArray* extinction = refracta_test::AddConstant(medium, "Extinction", 3, 0, 0, 0);
+  refracta_test::AddConstant(medium, "Albedo", 3, 0.9, 0.8, 0.7);
+  int objectVoxels = 0;
+  for (int k = 0; k < n; ++k)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        const double p[3] = { double(i) / n, double(j) / n, double(k) / n };
+        if (Distance(p, 0.4, 0.5, 0.5) < 0.12)
+        {
+          extinction->SetTuple3(i + n * (j + static_cast<vtkIdType>(n) * k), 20, 20, 20);
+          ++objectVoxels;
+        }
+      }
+    }
+  }
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->SetInputData(medium);
+  vtkNew<vtkLight> light;
+  light->SetPositional(false);
+  light->SetPosition(3, 3, 3);
+  light->SetFocalPoint(0.5, 0.5, 0.5);
+  tracer->AddLight(light);
+  tracer->SetNumberOfPhotons(20000);
+  tracer->Update();
+  vtkDataArray* radiance = tracer->GetOutput()->GetPointData()->GetArray("Radiance");
+  ASSERT_NE(radiance, nullptr);
+  int lit = 0;
+  for (vtkIdType i = 0; i < radiance->GetNumberOfTuples(); ++i)
+  {
+    lit += radiance->GetComponent(i, 0) + radiance->GetComponent(i, 1) > 0 ? 1 : 0;
+  }
+  std::cout << "photon-traced Radiance is nonzero in " << lit << " voxels, the object has "
+            << objectVoxels << "\n";
+
+  vtkNew<vtkRefractaImageRenderer> renderer;
+  renderer->SetInputData(medium);
+  renderer->SetInputConnection(1, tracer->GetOutputPort());
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(1.5, 1.1, 2.2);
+  camera->SetFocalPoint(0.5, 0.5, 0.5);
+  renderer->SetCamera(camera);
+  renderer->SetImageSize(48, 48);
+  std::vector<float> images[2];
+  for (int on = 0; on < 2; ++on)
+  {
+    renderer->SetEmptySpaceSkipping(on == 1);
+    renderer->Update();
+    vtkImageData* out = renderer->GetOutput();
+    EXPECT_EQ(out->GetFieldData()->GetArray("EmptySpaceSkipping")->GetTuple1(0), on);
+    vtkFloatArray* hdr = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray("HDR"));
+    ASSERT_NE(hdr, nullptr);
+    images[on].assign(hdr->GetPointer(0), hdr->GetPointer(0) + hdr->GetNumberOfValues());
+  }
+  EXPECT_GT(MaxAbs(images[0]), 1e-3); // the lit object is visible
+  EXPECT_EQ(MaxDiff(images[0], images[1]), 0.0);
 }
 
 // Edge cases: an all-vacuum medium (every cell empty: the image is exactly the background), a
