@@ -28,7 +28,22 @@
 // (Radiance + RadianceDirection + Anisotropy given), REFRACTA_HAS_MULTIPLE (MultipleScattering
 // given), REFRACTA_HAS_EMISSION, REFRACTA_HAS_ENVIRONMENT (equirectangular background image),
 // REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length), REFRACTA_INDEX_WEIGHT (sources
-// weighted by 1 / n^2 with n sampled per step), REFRACTA_SOURCE_SCALE=<1 / n^2> (a uniform n != 1).
+// weighted by 1 / n^2 with n sampled per step), REFRACTA_SOURCE_SCALE=<1 / n^2> (a uniform n != 1),
+// REFRACTA_SKIP (empty-space skipping, below).
+//
+// Empty-space skipping (-DREFRACTA_SKIP): `occupancy` holds one byte per macro cell of
+// cellDims.w^3 voxels (cellDims.xyz cells; cell c covers continuous voxel coordinates
+// [c B - 1/2, (c + 1) B - 1/2) per axis, clipped to the box). Bit 0 is set where a trilinear sample
+// of extinction, emission, Radiance or MultipleScattering can be nonzero, bit 1 where a sample of
+// grad n can be nonzero; the host dilates each cell by 2 voxels (one for the trilinear footprint,
+// one of slack for rounding), so every sample point within one voxel of an empty cell reads zeros.
+// `skipMask` selects the bits that matter (1 for straight rays, 3 for curved ones). At a step's
+// start the ray measures the straight run of empty cells ahead (a 3D DDA, cell by cell) and jumps
+// over the whole steps that lie inside it: such a step would add exactly 0 to L and multiply T by
+// exactly 1, and (curved rays) bend nothing, since grad n = 0 there. The step grid is kept (a
+// straight ray's steps stay at t0 + s STEP), so the image equals the one without skipping up to
+// float rounding of positions; the depth limit, the box exit and the MaxSteps cap are handled by
+// the ordinary steps, as without skipping. Skipped steps are not counted in `steps`.
 
 #ifndef REFRACTA_INV_4PI
 #define REFRACTA_INV_4PI 0.0795774715459476679f
@@ -154,6 +169,82 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 d,
   return q;
 }
 
+#ifdef REFRACTA_SKIP
+// Length, along unit direction d from grid-local point x (in the box), of the empty space ahead:
+// the run of consecutive empty macro cells (occupancy & mask == 0) that starts at x's cell, 0
+// when that cell is occupied, INFINITY when nothing active lies ahead (the caller clamps it to the
+// box exit). First a slab test against the bounding box of the active cells (cells activeLo ..
+// activeHi, inclusive): a ray that misses it sees only empty space; otherwise an incremental 3D
+// DDA (Amanatides and Woo 1987) walks the cells from where the ray enters it. It goes on through
+// the run of occupied cells that ends the empty run, so that *nextCheck receives the distance
+// from x before which the caller need not ask again (where the next empty cell starts along the
+// straight line; for a curved ray only a hint, which costs skipping, never correctness).
+inline float refracta_empty_run(float3 x, float3 d, float3 lo, float3 hi, float3 cellExtent,
+  int4 cellDims, int4 activeLo, int4 activeHi, __global const uchar* occupancy, uint mask,
+  float* nextCheck)
+{
+  const float3 boxLo = lo + convert_float3(activeLo.xyz) * cellExtent;
+  const float3 boxHi = fmin(lo + convert_float3(activeHi.xyz + 1) * cellExtent, hi);
+  float a0, a1;
+  if (activeLo.w == 0 || !refracta_intersect_box(x, d, boxLo, boxHi, &a0, &a1))
+  {
+    *nextCheck = INFINITY; // no active cell (activeLo.w == 0) or none ahead: empty to the exit
+    return INFINITY;
+  }
+  // Outside the active box, everything up to its entry a0 is empty: start the walk there.
+  const float3 xa = x + a0 * d;
+  const float3 u = (xa - lo) / cellExtent;
+  int3 c = clamp(convert_int3(floor(u)), activeLo.xyz, activeHi.xyz);
+  const int3 step = select((int3)(-1), (int3)(1), d > (float3)(0.0f));
+  const float3 inv = (float3)(1.0f) / d;
+  const float3 boundary =
+    lo + convert_float3(c + select((int3)(0), (int3)(1), d > (float3)(0.0f))) * cellExtent;
+  float3 tMax = select(a0 + (boundary - xa) * inv, (float3)(INFINITY), d == (float3)(0.0f));
+  const float3 tDelta = select(cellExtent * fabs(inv), (float3)(INFINITY), d == (float3)(0.0f));
+  float t = a0;
+  float run = -1.0f; // set when the first occupied cell is met
+  const int maxCells = cellDims.x + cellDims.y + cellDims.z + 3;
+  for (int it = 0; it < maxCells; ++it)
+  {
+    const bool occupied = (occupancy[refracta_voxel_index(cellDims, c.x, c.y, c.z)] & mask) != 0;
+    if (run < 0.0f && occupied)
+    {
+      run = t; // the empty run ends here; walk on through the occupied cells
+    }
+    else if (run >= 0.0f && !occupied)
+    {
+      *nextCheck = t; // the next empty cell starts here
+      return run;
+    }
+    const float tOut = fmin(tMax.x, fmin(tMax.y, tMax.z));
+    t = fmax(tOut, t);
+    if (tMax.x <= tOut)
+    {
+      c.x += step.x;
+      tMax.x += tDelta.x;
+    }
+    else if (tMax.y <= tOut)
+    {
+      c.y += step.y;
+      tMax.y += tDelta.y;
+    }
+    else
+    {
+      c.z += step.z;
+      tMax.z += tDelta.z;
+    }
+    if (any(c < activeLo.xyz) || any(c > activeHi.xyz))
+    {
+      // Left the active box (convex): nothing active lies beyond.
+      *nextCheck = run < 0.0f ? INFINITY : t;
+      return run < 0.0f ? INFINITY : run;
+    }
+  }
+  *nextCheck = t;
+  return run < 0.0f ? t : run;
+}
+#endif
+
 __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   __global const float* extinction, __global const float* emission,
   __global const float* anisotropy, __global const float* refractiveIndex,
@@ -163,7 +254,8 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   const float stepLength, const int maxSteps, const float cutoff, const float4 background,
   __global const float* environment, const int2 envSize, const float4 envRight,
   const float4 envUp, const float4 envFront, __global const float* depthLimit,
-  __global float* hdr, __global uint* steps, __global float* transmittanceOut)
+  __global const uchar* occupancy, const int4 cellDims, const int4 activeLo, const int4 activeHi,
+  const uint skipMask, __global float* hdr, __global uint* steps, __global float* transmittanceOut)
 {
   const int pi = (int)get_global_id(0);
   const int pj = (int)get_global_id(1);
@@ -202,8 +294,48 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
     float n = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
     float3 v = n * d;
 #endif
+#ifdef REFRACTA_SKIP
+    const float3 cellExtent = (float)cellDims.w * spacing.xyz;
+    float nextCheck = travelled; // no skip test before this path length (inside an occupied cell)
+#endif
     for (int s = 0; s < maxSteps; ++s)
     {
+#ifdef REFRACTA_SKIP
+      if (travelled >= nextCheck)
+      {
+#ifdef REFRACTA_CURVED
+        const float3 xs = x;
+        const float3 ds = normalize(v);
+        float b0, b1;
+        const float toExit =
+          refracta_intersect_box(xs, ds, lo, hi, &b0, &b1) ? fmax(b1, 0.0f) : 0.0f;
+#else
+        const float3 ds = d;
+        const float tS = t0 + (float)s * stepLength;
+        const float3 xs = origin + tS * d;
+        const float toExit = fmax(t1 - tS, 0.0f);
+#endif
+        float recheck;
+        float run = refracta_empty_run(xs, ds, lo, hi, cellExtent, cellDims, activeLo, activeHi,
+          occupancy, skipMask, &recheck);
+        nextCheck = travelled + recheck;
+        // Only whole steps that end before the box exit and the depth limit are skipped: the
+        // step that meets either is marched as without skipping.
+        run = fmin(run, fmin(toExit, limit - travelled));
+        const int k = min((int)floor(run / stepLength), maxSteps - 1 - s);
+        if (k > 0)
+        {
+          s += k;
+          travelled += (float)k * stepLength;
+#ifdef REFRACTA_CURVED
+          // Straight through the empty run (grad n = 0 there); n is re-read where the ray lands.
+          x = xs + ((float)k * stepLength) * ds;
+          n = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
+          v = n * ds;
+#endif
+        }
+      }
+#endif
       bool leaves = false;
       float len;
       float3 chord; // unit direction of this step's chord

@@ -1109,8 +1109,9 @@ int Render(const json& scene, const std::string& base, const Options& options)
   report["light_pass"] = lightReport;
   report["view_pass"] = { { "curved_rays", renderer->GetViewPass()->GetLastCurved() },
     { "total_steps", renderer->GetViewPass()->GetLastTotalSteps() },
-    { "steps_per_pixel",
-      renderer->GetViewPass()->GetLastTotalSteps() / (double(width) * height) } };
+    { "steps_per_pixel", renderer->GetViewPass()->GetLastTotalSteps() / (double(width) * height) },
+    { "empty_space_skipping", renderer->GetViewPass()->GetLastSkipping() },
+    { "active_cell_fraction", renderer->GetViewPass()->GetLastActiveCellFraction() } };
   report["seconds"] = timings;
   report["scene"] = scene;
 
@@ -1158,6 +1159,11 @@ int Render(const json& scene, const std::string& base, const Options& options)
   }
   std::cout << "  view      " << (renderer->GetViewPass()->GetLastCurved() ? "curved" : "straight")
             << " rays, " << renderer->GetViewPass()->GetLastTotalSteps() << " steps, "
+            << (renderer->GetViewPass()->GetLastSkipping()
+                   ? "empty-space skipping (" +
+                     std::to_string(100.0 * renderer->GetViewPass()->GetLastActiveCellFraction()) +
+                     "% of macro cells active), "
+                   : std::string("no empty space skipped, "))
             << timings["view_pass"].get<double>() << " s\n";
   std::cout << "  total     " << timings["total"].get<double>() << " s\n";
   if (!options.Report.empty())

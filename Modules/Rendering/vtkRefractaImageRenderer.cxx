@@ -170,6 +170,16 @@ int vtkRefractaImageRenderer::GetMaxSteps()
   return this->ViewPass->GetMaxSteps();
 }
 
+void vtkRefractaImageRenderer::SetEmptySpaceSkipping(bool on)
+{
+  this->ViewPass->SetEmptySpaceSkipping(on);
+}
+
+bool vtkRefractaImageRenderer::GetEmptySpaceSkipping()
+{
+  return this->ViewPass->GetEmptySpaceSkipping();
+}
+
 void vtkRefractaImageRenderer::SetContext(vtkOpenCLContext* context)
 {
   this->ViewPass->SetContext(context);
@@ -336,6 +346,8 @@ int vtkRefractaImageRenderer::RequestData(
   record("ViewPassSeconds", pass->GetLastSeconds());
   record("TotalSteps", pass->GetLastTotalSteps());
   record("CurvedRays", pass->GetLastCurved() ? 1.0 : 0.0);
+  record("EmptySpaceSkipping", pass->GetLastSkipping() ? 1.0 : 0.0);
+  record("ActiveCellFraction", pass->GetLastActiveCellFraction());
   this->UpdateProgress(1.0);
   return 1;
 }

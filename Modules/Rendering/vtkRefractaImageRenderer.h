@@ -18,7 +18,9 @@
  *   CLAMP (default): min(v, 1); REINHARD: v / (1 + v); EXPONENTIAL: 1 - exp(-v);
  *   then the sRGB transfer curve (1.055 c^(1/2.4) - 0.055, 12.92 c below 0.0031308) and
  *   rounding to 0..255.
- * Field data records `ViewPassSeconds`, `TotalSteps` and `CurvedRays` (0/1) of the run.
+ * Field data records `ViewPassSeconds`, `TotalSteps`, `CurvedRays` (0/1), `EmptySpaceSkipping`
+ * (0/1: whether the skipping kernel ran) and `ActiveCellFraction` (macro cells rays had to march
+ * through; 1 without skipping) of the run.
  *
  * Knobs (units, defaults): Camera (required), ImageSize (pixels, default 256 x 256),
  * BackgroundColor (linear RGB radiance, default black), EnvironmentMap / EnvironmentTexture
@@ -109,7 +111,8 @@ public:
   ///@{
   /**
    * View-pass settings; see vtkRefractaViewPass. StepSize in voxels (default 1), RayMode
-   * (default AUTO), TransmittanceCutoff (default 1e-4), MaxSteps (default 0 = automatic).
+   * (default AUTO), TransmittanceCutoff (default 1e-4), MaxSteps (default 0 = automatic),
+   * EmptySpaceSkipping (default on; same image up to float rounding, see vtkRefractaViewPass).
    */
   void SetStepSize(double voxels);
   double GetStepSize();
@@ -122,6 +125,10 @@ public:
   double GetTransmittanceCutoff();
   void SetMaxSteps(int steps);
   int GetMaxSteps();
+  void SetEmptySpaceSkipping(bool on);
+  bool GetEmptySpaceSkipping();
+  void EmptySpaceSkippingOn() { this->SetEmptySpaceSkipping(true); }
+  void EmptySpaceSkippingOff() { this->SetEmptySpaceSkipping(false); }
   ///@}
 
   ///@{

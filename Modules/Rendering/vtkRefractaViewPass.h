@@ -31,6 +31,14 @@
  *   latitude v = atan2(up, |(right, front)|) / pi + 1/2 up its y (row 0 at the bottom).
  *   Defaults: right (1, 0, 0), up (0, 1, 0), as vtkRenderer's environment.
  *
+ * - EmptySpaceSkipping: on (default) or off. Rays jump over macro cells (MacroCellSize^3 voxels)
+ *   in which nothing can change them: extinction, emission, Radiance and MultipleScattering all
+ *   zero and, for curved rays, grad n zero (so rays are straight there), within the cell dilated
+ *   by 2 voxels (the trilinear footprint plus slack). Whole steps are skipped on the unchanged step
+ *   grid, so the image equals the one without skipping up to float rounding. The occupancy grid is
+ *   rebuilt only when the medium, the lighting volume or MacroCellSize changes.
+ * - MacroCellSize: edge of a macro cell in voxels, clamped to [2, 64]; default 8.
+ *
  * The lighting volume must be on the medium's grid and carry `Radiance` (S1, RGB) with
  * `RadianceDirection` (3, unit, in the grid-local frame), and/or `MultipleScattering` (S_ms, RGB).
  */
@@ -105,6 +113,23 @@ public:
 
   ///@{
   /**
+   * Empty-space skipping (see the class description). Default on.
+   */
+  vtkSetMacro(EmptySpaceSkipping, bool);
+  vtkGetMacro(EmptySpaceSkipping, bool);
+  vtkBooleanMacro(EmptySpaceSkipping, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Macro-cell edge in voxels for empty-space skipping, [2, 64]. Default 8.
+   */
+  vtkSetClampMacro(MacroCellSize, int, 2, 64);
+  vtkGetMacro(MacroCellSize, int);
+  ///@}
+
+  ///@{
+  /**
    * Uniform background radiance, linear RGB >= 0. Default (0, 0, 0).
    */
   vtkSetVector3Macro(BackgroundColor, double);
@@ -156,6 +181,22 @@ public:
   vtkGetMacro(LastCurved, bool);
   ///@}
 
+  ///@{
+  /**
+   * Facts about empty space in the last Render(): whether the skipping kernel ran (it does when
+   * EmptySpaceSkipping is on and at least one macro cell is empty), and the fraction of macro
+   * cells rays must march through (1 when skipping is off).
+   */
+  vtkGetMacro(LastSkipping, bool);
+  vtkGetMacro(LastActiveCellFraction, double);
+  ///@}
+
+  /**
+   * Host seconds of the last build of the occupancy grid (done in Render() when the medium, the
+   * lighting or MacroCellSize changed; not part of LastSeconds).
+   */
+  vtkGetMacro(OccupancySeconds, double);
+
   /**
    * Number of times a medium or lighting volume was uploaded to the device (for cache tests).
    */
@@ -201,6 +242,11 @@ protected:
   double BackgroundColor[3] = { 0.0, 0.0, 0.0 };
   double EnvironmentUp[3] = { 0.0, 1.0, 0.0 };
   double EnvironmentRight[3] = { 1.0, 0.0, 0.0 };
+  bool EmptySpaceSkipping = true;
+  int MacroCellSize = 8;
+  bool LastSkipping = false;
+  double LastActiveCellFraction = 1.0;
+  double OccupancySeconds = 0.0;
   double LastSeconds = 0.0;
   double LastTotalSteps = 0.0;
   bool LastCurved = false;

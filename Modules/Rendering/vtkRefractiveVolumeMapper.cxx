@@ -126,6 +126,16 @@ double vtkRefractiveVolumeMapper::GetTransmittanceCutoff()
   return this->Internal->ViewPass->GetTransmittanceCutoff();
 }
 
+void vtkRefractiveVolumeMapper::SetEmptySpaceSkipping(bool on)
+{
+  this->Internal->ViewPass->SetEmptySpaceSkipping(on);
+}
+
+bool vtkRefractiveVolumeMapper::GetEmptySpaceSkipping()
+{
+  return this->Internal->ViewPass->GetEmptySpaceSkipping();
+}
+
 void vtkRefractiveVolumeMapper::SetContext(vtkOpenCLContext* context)
 {
   this->Internal->ViewPass->SetContext(context);

@@ -127,7 +127,9 @@ public:
   ///@{
   /**
    * View-pass settings (see vtkRefractaViewPass): StepSize in voxels (default 1), RayMode
-   * (default AUTO), TransmittanceCutoff (default 1e-4).
+   * (default AUTO), TransmittanceCutoff (default 1e-4), EmptySpaceSkipping (default on; the
+   * occupancy grid is rebuilt only with the medium or the light passes, and the image is the
+   * same up to float rounding either way).
    */
   void SetStepSize(double voxels);
   double GetStepSize();
@@ -135,6 +137,10 @@ public:
   int GetRayMode();
   void SetTransmittanceCutoff(double cutoff);
   double GetTransmittanceCutoff();
+  void SetEmptySpaceSkipping(bool on);
+  bool GetEmptySpaceSkipping();
+  void EmptySpaceSkippingOn() { this->SetEmptySpaceSkipping(true); }
+  void EmptySpaceSkippingOff() { this->SetEmptySpaceSkipping(false); }
   ///@}
 
   ///@{

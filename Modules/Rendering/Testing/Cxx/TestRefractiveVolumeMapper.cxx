@@ -238,11 +238,23 @@ TEST(RefractiveVolumeMapper, CacheRunsOnlyWhatChanged)
   EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), 3);
   EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 1);
 
+  // Empty-space skipping is a view knob: switching it re-runs the view pass only (no medium
+  // build, no upload).
+  EXPECT_TRUE(scene.Mapper->GetEmptySpaceSkipping());
+  scene.Mapper->EmptySpaceSkippingOff();
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), 4);
+  EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 1);
+  EXPECT_EQ(scene.Mapper->GetViewPass()->GetNumberOfUploads(), uploads);
+  scene.Mapper->EmptySpaceSkippingOn();
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), 5);
+
   // The medium changes: everything.
   medium->Modified();
   scene.Window->Render();
   EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 2);
-  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), 4);
+  EXPECT_EQ(scene.Mapper->GetNumberOfViewPassRuns(), 6);
   EXPECT_EQ(scene.Mapper->GetViewPass()->GetNumberOfUploads(), uploads + 2);
 }
 
