@@ -563,7 +563,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
   CheckKeys(quality, "scene.quality",
     { "preset", "photons", "seed", "view_step", "ray_mode", "transmittance_cutoff",
       "photon_min_step", "octree_tolerance", "photon_smoothing", "multiple_scattering",
-      "multiple_scattering_tolerance", "tolerance" });
+      "multiple_scattering_tolerance", "multiple_scattering_block_size", "tolerance" });
   // A quality preset supplies the defaults of the pass settings and of the plan's tolerance;
   // keys given explicitly win.
   vtkNew<vtkEffectPlan> plan;
@@ -590,13 +590,14 @@ int Render(const json& scene, const std::string& base, const Options& options)
     hasPreset ? plan->GetRecommendedOctreeTolerance() : 0.005, 0.0, 1.0);
   const bool photonSmoothing = Boolean(quality, "photon_smoothing", "scene.quality", true);
   const bool multipleScattering = Boolean(quality, "multiple_scattering", "scene.quality", true);
-  const double lblTolerance =
-    Number(quality, "multiple_scattering_tolerance", "scene.quality",
-      hasPreset ? plan->GetRecommendedLatticeTolerance() : 1e-4, 1e-8, 1.0);
+  const double lblTolerance = Number(quality, "multiple_scattering_tolerance", "scene.quality",
+    hasPreset ? plan->GetRecommendedLatticeTolerance() : 1e-4, 1e-8, 1.0);
+  const int lblBlockSize = Integer(quality, "multiple_scattering_block_size", "scene.quality",
+    hasPreset ? plan->GetRecommendedLatticeBlockSize() : 4, 0, 8);
   // The effect plan: the relative image change an effect may cause and still be skipped, and
   // per-effect overrides ("auto", "on", "off").
-  const double planTolerance =
-    Number(quality, "tolerance", "scene.quality", hasPreset ? plan->GetTolerance() : 0.01, 0.0, 1.0);
+  const double planTolerance = Number(
+    quality, "tolerance", "scene.quality", hasPreset ? plan->GetTolerance() : 0.01, 0.0, 1.0);
   plan->SetTolerance(planTolerance);
   {
     const json effects = scene.value("effects", json::object());
@@ -993,6 +994,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
       lbl->SetInputData(planned);
       lbl->SetLightingData(lighting);
       lbl->SetTolerance(lblTolerance);
+      lbl->SetBlockSize(lblBlockSize);
       lbl->Update();
       if (lbl->GetOutput()->GetNumberOfPoints() == 0)
       {
@@ -1103,7 +1105,8 @@ int Render(const json& scene, const std::string& base, const Options& options)
     { "ray_mode", rayMode }, { "transmittance_cutoff", cutoff },
     { "photon_min_step", photonMinStep }, { "photon_smoothing", photonSmoothing },
     { "multiple_scattering", multipleScattering },
-    { "multiple_scattering_tolerance", lblTolerance }, { "preset", preset },
+    { "multiple_scattering_tolerance", lblTolerance },
+    { "multiple_scattering_block_size", lblBlockSize }, { "preset", preset },
     { "octree_tolerance", octreeTolerance } };
   report["medium"] = mediumReport;
   report["light_pass"] = lightReport;
@@ -1120,7 +1123,8 @@ int Render(const json& scene, const std::string& base, const Options& options)
   std::cout << "  plan      " << plan->GetSummary() << "\n";
   std::cout << "  quality   preset " << preset << ": " << photons << " photons, photon min step "
             << photonMinStep << ", octree eps " << octreeTolerance << ", lattice tolerance "
-            << lblTolerance << ", view step " << viewStep << "\n";
+            << lblTolerance << ", lattice block " << lblBlockSize << ", view step " << viewStep
+            << "\n";
   std::cout << "  medium    " << mediumDims[0] << " x " << mediumDims[1] << " x " << mediumDims[2]
             << " (" << mediumReport["source"].get<std::string>() << "), "
             << timings["medium"].get<double>() << " s\n";

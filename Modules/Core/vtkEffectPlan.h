@@ -88,13 +88,14 @@ public:
    * The pass settings of the current quality preset, for the application to apply:
    * photon count (vtkPhotonTracer::NumberOfPhotons), the photon tracer's MinimumStep (voxels)
    * and octree PrimaryTolerance (SecondaryTolerance = 4x that), the Lattice-Boltzmann
-   * Tolerance, the view pass StepSize (voxels) and the grid resolution (voxels along the longest
-   * axis) at which the benchmark scenes reached the preset's error.
+   * Tolerance and BlockSize, the view pass StepSize (voxels) and the grid resolution (voxels
+   * along the longest axis) at which the benchmark scenes reached the preset's error.
    */
   int GetRecommendedNumberOfPhotons() const;
   double GetRecommendedPhotonMinimumStep() const;
   double GetRecommendedOctreeTolerance() const;
   double GetRecommendedLatticeTolerance() const;
+  int GetRecommendedLatticeBlockSize() const;
   double GetRecommendedViewStep() const;
   int GetRecommendedResolution() const;
   ///@}

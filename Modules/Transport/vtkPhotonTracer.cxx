@@ -220,7 +220,7 @@ struct LightSetup
   double OneMinusCos = 2.0;
   double Measure = 0.0; // solid angle of the sampled cap, or area of the directional rectangle
   double Colour[3];
-  double Bound = 0.0; // largest channel of the power sent towards the box
+  double Bound = 0.0;  // largest channel of the power sent towards the box
   double Extent = 0.0; // sphere radius (positional, local units) or sin(angular radius)
   unsigned int Photons = 0;
 };
@@ -791,12 +791,12 @@ int vtkPhotonTracer::RequestData(
     const cl_int positional = ls.Positional ? 1 : 0;
     const cl_float4 params =
       Float4(1.0 - ls.OneMinusCos, ls.Exponent, ls.Measure / count, ls.OneMinusCos);
-    if (!ctx->Check(vtkOpenCLSetKernelArgs(generate.Get(), pos.Get(), dirs.Get(), power.Get(),
-                      offset, count, positional, Float4(ls.Origin), Float4(ls.Axis),
-                      Float4(ls.Basis1), Float4(ls.Basis2), Float4(ls.SpotAxis, ls.SpotCos), params,
-                      Float4(ls.Colour[0] / unit, ls.Colour[1] / unit, ls.Colour[2] / unit),
-                      Float4(m.ProxyLo), Float4(m.ProxyHi), r1, r2,
-                      static_cast<cl_float>(ls.Extent)),
+    if (!ctx->Check(
+          vtkOpenCLSetKernelArgs(generate.Get(), pos.Get(), dirs.Get(), power.Get(), offset, count,
+            positional, Float4(ls.Origin), Float4(ls.Axis), Float4(ls.Basis1), Float4(ls.Basis2),
+            Float4(ls.SpotAxis, ls.SpotCos), params,
+            Float4(ls.Colour[0] / unit, ls.Colour[1] / unit, ls.Colour[2] / unit),
+            Float4(m.ProxyLo), Float4(m.ProxyHi), r1, r2, static_cast<cl_float>(ls.Extent)),
           "clSetKernelArg(photon_generate)", this) ||
       !Run1D(ctx, generate.Get(), count, "photon_generate", this))
     {

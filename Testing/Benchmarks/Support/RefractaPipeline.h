@@ -21,13 +21,13 @@ namespace bench
 /** The quality knobs of the passes; defaults are the classes' defaults. */
 struct PipelineKnobs
 {
-  int Photons = 1 << 16;           ///< vtkPhotonTracer::NumberOfPhotons
-  double PhotonMinimumStep = 1.0;  ///< vtkPhotonTracer::MinimumStep (voxels)
-  double PrimaryTolerance = 0.005; ///< vtkPhotonTracer octree eps
+  int Photons = 1 << 16;            ///< vtkPhotonTracer::NumberOfPhotons
+  double PhotonMinimumStep = 1.0;   ///< vtkPhotonTracer::MinimumStep (voxels)
+  double PrimaryTolerance = 0.005;  ///< vtkPhotonTracer octree eps
   double SecondaryTolerance = 0.02; ///< vtkPhotonTracer octree eps'
-  double LatticeTolerance = 1e-4;  ///< vtkLatticeBoltzmannLighting::Tolerance
-  int BlockSize = 4;               ///< vtkLatticeBoltzmannLighting::BlockSize (0 = unblocked)
-  double ViewStep = 1.0;           ///< vtkRefractaImageRenderer::StepSize (voxels)
+  double LatticeTolerance = 1e-4;   ///< vtkLatticeBoltzmannLighting::Tolerance
+  int BlockSize = 4;                ///< vtkLatticeBoltzmannLighting::BlockSize (0 = unblocked)
+  double ViewStep = 1.0;            ///< vtkRefractaImageRenderer::StepSize (voxels)
   int ImageWidth = 64;
   int ImageHeight = 64;
 };

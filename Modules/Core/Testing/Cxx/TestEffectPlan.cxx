@@ -182,7 +182,6 @@ TEST(EffectPlan, MultipleScatteringSwitchesAtItsThreshold)
   EXPECT_NE(std::string(plan->GetReason(vtkEffectPlan::MULTIPLE_SCATTERING)).find("off"),
     std::string::npos);
 
-
   // Quality presets set the tolerance (draft 0.05, production 0.005): both keep q = 0.16.
   plan->SetQuality(vtkEffectPlan::DRAFT);
   ASSERT_TRUE(plan->Decide(analysis));
@@ -191,6 +190,43 @@ TEST(EffectPlan, MultipleScatteringSwitchesAtItsThreshold)
   plan->SetQuality(vtkEffectPlan::PRODUCTION);
   ASSERT_TRUE(plan->Decide(analysis));
   EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
+}
+
+// Each preset selects its measured pass settings (README, "Accuracy and time"): costlier and more
+// accurate from draft to production, never less accurate on any knob; an unknown preset is an
+// error that leaves the plan as it was.
+TEST(EffectPlan, QualityPresetsSelectTheirPassSettings)
+{
+  vtkNew<vtkEffectPlan> plan;
+  EXPECT_EQ(plan->GetQuality(), vtkEffectPlan::INTERACTIVE);
+  int photons = 0;
+  double minStep = 1e30, octree = 1e30, lattice = 1e30, view = 1e30;
+  int resolution = 0;
+  for (int q : { vtkEffectPlan::DRAFT, vtkEffectPlan::INTERACTIVE, vtkEffectPlan::PRODUCTION })
+  {
+    plan->SetQuality(q);
+    EXPECT_EQ(plan->GetQuality(), q);
+    EXPECT_GE(plan->GetRecommendedNumberOfPhotons(), photons);
+    EXPECT_LE(plan->GetRecommendedPhotonMinimumStep(), minStep);
+    EXPECT_LE(plan->GetRecommendedOctreeTolerance(), octree);
+    EXPECT_LE(plan->GetRecommendedLatticeTolerance(), lattice);
+    EXPECT_LE(plan->GetRecommendedViewStep(), view);
+    EXPECT_GE(plan->GetRecommendedResolution(), resolution);
+    EXPECT_GE(plan->GetRecommendedLatticeBlockSize(), 0);
+    photons = plan->GetRecommendedNumberOfPhotons();
+    minStep = plan->GetRecommendedPhotonMinimumStep();
+    octree = plan->GetRecommendedOctreeTolerance();
+    lattice = plan->GetRecommendedLatticeTolerance();
+    view = plan->GetRecommendedViewStep();
+    resolution = plan->GetRecommendedResolution();
+  }
+  EXPECT_GT(photons, 65536); // production traces more photons than draft
+  vtkNew<vtkTest::ErrorObserver> errors;
+  plan->AddObserver(vtkCommand::ErrorEvent, errors);
+  plan->SetQuality(7);
+  EXPECT_TRUE(errors->GetError());
+  EXPECT_EQ(plan->GetQuality(), vtkEffectPlan::PRODUCTION);
+  EXPECT_EQ(plan->GetTolerance(), 0.005);
 }
 
 TEST(EffectPlan, ScatteringNeedsAPoweredLight)

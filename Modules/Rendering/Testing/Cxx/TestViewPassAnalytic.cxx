@@ -114,8 +114,8 @@ std::vector<double> Expected(
       double meanT = 0;
       for (int c = 0; c < 3; ++c)
       {
-        const double q = (Eps[c] + HG(cosTheta, G) * S1[c] + Sms[c] / (4 * vtkMath::Pi())) /
-          (index * index);
+        const double q =
+          (Eps[c] + HG(cosTheta, G) * S1[c] + Sms[c] / (4 * vtkMath::Pi())) / (index * index);
         const double tr = std::exp(-Sigma[c] * chord);
         result[(i + size_t(w) * j) * 4 + c] = q * (1 - tr) / Sigma[c] + tr * Background[c];
         meanT += tr / 3;

@@ -756,9 +756,8 @@ TEST(PhotonTracer, ExtendedLightsHaveTheirAnalyticFields)
             const double dx = i * s - at[0], dy = j * s - at[1], dz = k * s - at[2];
             const double d2 = dx * dx + dy * dy + dz * dz;
             const double sinA2 = r * r / d2;
-            expected[extended] += extended
-              ? 2 * I * (sinA2 / (1 + std::sqrt(1 - sinA2))) / (r * r)
-              : I / d2;
+            expected[extended] +=
+              extended ? 2 * I * (sinA2 / (1 + std::sqrt(1 - sinA2))) / (r * r) : I / d2;
           }
         }
       }
