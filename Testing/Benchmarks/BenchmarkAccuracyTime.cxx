@@ -302,7 +302,9 @@ double WhiteScale(const Image& reference)
   return p99 > 0 ? 1.0 / p99 : 1.0;
 }
 
-Image RenderReference(const Scene& scene, int size, int spp, unsigned int seed)
+// Render `scene` with the reference renderer; `output`, when given, receives its whole output.
+Image RenderReference(
+  const Scene& scene, int size, int spp, unsigned int seed, vtkImageData* output = nullptr)
 {
   vtkNew<vtkReferenceRenderer> reference;
   reference->SetInputData(scene.Medium);
@@ -321,6 +323,10 @@ Image RenderReference(const Scene& scene, int size, int spp, unsigned int seed)
   reference->Update();
   Image image = ReadImage(reference->GetOutput());
   image.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (output)
+  {
+    output->ShallowCopy(reference->GetOutput());
+  }
   return image;
 }
 
@@ -351,28 +357,15 @@ Image ConvergedReference(const Scene& scene, int resolution, const Settings& set
   {
     spp *= 2;
   }
-  vtkNew<vtkReferenceRenderer> reference;
-  reference->SetInputData(scene.Medium);
-  reference->SetCamera(scene.Camera);
-  for (const auto& light : scene.Lights)
-  {
-    reference->AddLight(light);
-  }
-  reference->SetImageSize(settings.Image, settings.Image);
-  reference->SetBackgroundColor(scene.Background[0], scene.Background[1], scene.Background[2]);
-  reference->SetLightRadius(scene.LightRadius);
-  reference->SetDirectionalLightAngularRadius(scene.LightAngularRadius);
-  reference->SetSamplesPerPixel(spp);
-  reference->SetSeed(1);
-  reference->Update();
+  vtkNew<vtkImageData> output;
+  const Image image = RenderReference(scene, settings.Image, spp, 1, output);
   if (!settings.Cache.empty())
   {
     vtkNew<vtkXMLImageDataWriter> writer;
-    writer->SetInputData(reference->GetOutput());
+    writer->SetInputData(output);
     writer->SetFileName(name.str().c_str());
     writer->Write();
   }
-  Image image = ReadImage(reference->GetOutput());
   std::cout << "  converged reference: " << spp << " samples per pixel in " << image.Seconds
             << " s\n";
   return image;
