@@ -279,6 +279,21 @@ vtkEffectPlan* vtkRefractiveVolumeMapper::GetEffectPlan()
 }
 
 //------------------------------------------------------------------------------
+void vtkRefractiveVolumeMapper::SetQuality(int quality)
+{
+  vtkEffectPlan* plan = this->Internal->Plan;
+  plan->SetQuality(quality);
+  if (plan->GetQuality() != quality)
+  {
+    return; // the plan reported the unknown preset
+  }
+  this->QualityPresetApplied = true;
+  this->SetNumberOfPhotons(plan->GetRecommendedNumberOfPhotons());
+  this->SetStepSize(plan->GetRecommendedViewStep());
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
 vtkSceneAnalysis* vtkRefractiveVolumeMapper::GetSceneAnalysis()
 {
   return this->Internal->Analysis;
@@ -309,7 +324,8 @@ bool vtkRefractiveVolumeMapper::UpdateLighting(vtkRenderer* renderer, vtkVolume*
   std::ostringstream key;
   key.precision(17);
   key << "lights:" << in.MediumKey << ":" << this->NumberOfPhotons << ":" << this->Seed << ":"
-      << this->MultipleScattering;
+      << this->MultipleScattering << ":"
+      << (this->QualityPresetApplied ? in.Plan->GetQuality() : -1);
   const double* m = volume->GetMatrix()->GetData();
   for (int i = 0; i < 16; ++i)
   {
@@ -379,6 +395,12 @@ bool vtkRefractiveVolumeMapper::UpdateLighting(vtkRenderer* renderer, vtkVolume*
     tracer->SetInputData(in.Medium);
     tracer->SetNumberOfPhotons(this->NumberOfPhotons);
     tracer->SetSeed(static_cast<unsigned int>(this->Seed));
+    if (this->QualityPresetApplied)
+    {
+      tracer->SetMinimumStep(in.Plan->GetRecommendedPhotonMinimumStep());
+      tracer->SetPrimaryTolerance(in.Plan->GetRecommendedOctreeTolerance());
+      tracer->SetSecondaryTolerance(4.0 * in.Plan->GetRecommendedOctreeTolerance());
+    }
     tracer->Update();
     if (tracer->GetOutput()->GetNumberOfPoints() == 0)
     {
@@ -394,6 +416,11 @@ bool vtkRefractiveVolumeMapper::UpdateLighting(vtkRenderer* renderer, vtkVolume*
       lbl->SetContext(in.ViewPass->GetContext());
       lbl->SetInputData(in.Medium);
       lbl->SetLightingData(in.Lighting);
+      if (this->QualityPresetApplied)
+      {
+        lbl->SetTolerance(in.Plan->GetRecommendedLatticeTolerance());
+        lbl->SetBlockSize(in.Plan->GetRecommendedLatticeBlockSize());
+      }
       lbl->Update();
       if (lbl->GetOutput()->GetNumberOfPoints() == 0)
       {
@@ -558,6 +585,7 @@ void vtkRefractiveVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EmissionScale: " << this->EmissionScale << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "NumberOfPhotons: " << this->NumberOfPhotons << "\n";
+  os << indent << "QualityPresetApplied: " << this->QualityPresetApplied << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
   os << indent << "LightingData: " << this->Internal->LightingData.Get() << "\n";

@@ -122,6 +122,16 @@ public:
   vtkEffectPlan* GetEffectPlan();
   vtkSceneAnalysis* GetSceneAnalysis();
   ///@}
+
+  /**
+   * Apply a quality preset (vtkEffectPlan::DRAFT, INTERACTIVE or PRODUCTION): the plan's
+   * tolerance, NumberOfPhotons and StepSize, and for the light passes the photon tracer's
+   * minimum step and octree tolerance and the Lattice-Boltzmann tolerance and block size, all
+   * as measured by BenchmarkAccuracyTime (README, "Accuracy and time"). Until it is called the
+   * light passes use their classes' defaults. Setting NumberOfPhotons or StepSize afterwards
+   * overrides those two.
+   */
+  void SetQuality(int quality);
   ///@}
 
   ///@{
@@ -202,6 +212,7 @@ protected:
   int NumberOfPhotons = 1 << 18;
   int Seed = 1;
   bool MultipleScattering = true;
+  bool QualityPresetApplied = false; // light passes take the plan's recommended settings
   int NumberOfMediumBuilds = 0;
   int NumberOfLightPassRuns = 0;
   int NumberOfViewPassRuns = 0;

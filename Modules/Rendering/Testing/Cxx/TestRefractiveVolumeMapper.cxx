@@ -15,6 +15,8 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
+#include "vtkEffectPlan.h"
 #include "vtkExecutive.h"
 #include "vtkLight.h"
 #include "vtkPiecewiseFunction.h"
@@ -385,4 +387,19 @@ TEST(RefractiveVolumeMapper, LightPassesRunOnlyWhenLightsChange)
   light->SetIntensity(2.0);
   scene.Window->Render();
   EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 3);
+
+  // A quality preset sets the plan, the photon count and the view step, and re-lights.
+  scene.Mapper->SetQuality(vtkEffectPlan::DRAFT);
+  EXPECT_EQ(scene.Mapper->GetEffectPlan()->GetQuality(), vtkEffectPlan::DRAFT);
+  EXPECT_EQ(scene.Mapper->GetNumberOfPhotons(),
+    scene.Mapper->GetEffectPlan()->GetRecommendedNumberOfPhotons());
+  EXPECT_EQ(scene.Mapper->GetStepSize(), scene.Mapper->GetEffectPlan()->GetRecommendedViewStep());
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 4);
+  EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), 2); // the plan's tolerance changed
+  vtkNew<vtkTest::ErrorObserver> errors;
+  scene.Mapper->GetEffectPlan()->AddObserver(vtkCommand::ErrorEvent, errors);
+  scene.Mapper->SetQuality(7); // unknown: an error, nothing changes
+  EXPECT_TRUE(errors->GetError());
+  EXPECT_EQ(scene.Mapper->GetEffectPlan()->GetQuality(), vtkEffectPlan::DRAFT);
 }
