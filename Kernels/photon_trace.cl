@@ -183,11 +183,15 @@ typedef struct
   int dead;
 } photon_state;
 
-// Adds one photon's books to the fixed-point tallies (order: emitted, absorbed, escaped,
-// scattered, remaining, roulette-killed, roulette-gained; RGB each).
-inline void photon_add_tallies(volatile __global long* tallies, float3 emitted,
-  const photon_state* ps, float3 escaped, float3 remaining)
+// Adds a finished photon's books to the fixed-point tallies (order: emitted, absorbed, escaped,
+// scattered, remaining, roulette-killed, roulette-gained; RGB each) and its counters. What power
+// it still carries is escaped (outcome 2), gone with roulette (3) or remaining (4, 5).
+inline void photon_finish(volatile __global long* tallies, volatile __global long* counters,
+  float3 emitted, const photon_state* ps, int outcome, int steps)
 {
+  const float3 none = (float3)(0.0f);
+  const float3 escaped = outcome == 2 ? ps->power : none;
+  const float3 remaining = outcome >= 4 ? ps->power : none;
   const float3 books[7] = { emitted, ps->absorbed, escaped, ps->scattered, remaining, ps->killed,
     ps->gained };
   for (int t = 0; t < 7; ++t)
@@ -196,6 +200,10 @@ inline void photon_add_tallies(volatile __global long* tallies, float3 emitted,
     refracta_atomic_add_fixed(tallies + 3 * t + 1, books[t].y);
     refracta_atomic_add_fixed(tallies + 3 * t + 2, books[t].z);
   }
+  atom_add(counters + 0, 1L);
+  atom_add(counters + outcome, 1L);
+  atom_add(counters + 6, (long)steps);
+  atom_add(counters + 7, (long)ps->pieces);
 }
 
 #if EXTINCTION
@@ -376,6 +384,49 @@ inline void photon_advance(float3 x, float3 v, __global const uchar* octree,
   const float speed = length(v2);
   *v1 = speed > 1e-6f * n1 ? v2 * (n1 / speed) : dir * n1;
 }
+
+// One curved step of a photon at (x, v): advance, walk the chord's voxels (clipped to the box),
+// and say how the photon ends: -1 it goes on, 2 escaped, 3 roulette, 4 step cap, 5 invalid state.
+inline int photon_curved_step(photon_state* ps, float3* x, float3* v, int* steps, float3 lo,
+  float3 hi, __global const uchar* octree, __global const float* extinction,
+  __global const float* albedo, __global const float* refractiveIndex,
+  __global const float* gradient, int4 dims, float4 spacing, volatile __global long* radiance,
+  volatile __global long* directionSum)
+{
+  if (*steps >= MAX_STEPS)
+  {
+    return 4;
+  }
+  float3 x1, v1;
+  photon_advance(*x, *v, octree, extinction, refractiveIndex, gradient, dims, spacing, &x1, &v1);
+  ++*steps;
+  if (!all(isfinite(x1)) || !all(isfinite(v1)))
+  {
+    return 5;
+  }
+  const bool inBox = all(x1 >= lo) && all(x1 <= hi);
+  float tExit = 1.0f;
+  if (!inBox)
+  {
+    float e0;
+    float e1;
+    tExit = refracta_intersect_box(*x, x1 - *x, lo, hi, &e0, &e1) ? clamp(e1, 0.0f, 1.0f) : 0.0f;
+  }
+#if EXTINCTION
+  photon_walk(ps, *x, x1, tExit, dims, spacing, extinction, albedo, radiance, directionSum);
+  if (ps->dead)
+  {
+    return 3;
+  }
+#endif
+  if (!inBox)
+  {
+    return 2;
+  }
+  *x = x1;
+  *v = v1;
+  return -1;
+}
 #endif
 
 __kernel void photon_march(__global const float4* photonPos, __global const float4* photonDir,
@@ -406,8 +457,6 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   ps.pieces = 0;
   ps.dead = 0;
   const float3 emitted = ps.power;
-  float3 remaining = (float3)(0.0f);
-  float3 escaped = (float3)(0.0f);
   int steps = 0;
   int outcome = 2; // counter index: 2 escaped, 3 roulette, 4 step cap, 5 invalid
   float3 lo;
@@ -430,62 +479,17 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   }
 #else
   float3 v = d0 * refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
-  for (;;)
+  do
   {
-    if (steps >= MAX_STEPS)
-    {
-      outcome = 4;
-      break;
-    }
-    float3 x1, v1;
-    photon_advance(x, v, octree, extinction, refractiveIndex, gradient, dims, spacing, &x1, &v1);
-    ++steps;
-    if (!all(isfinite(x1)) || !all(isfinite(v1)))
-    {
-      outcome = 5;
-      break;
-    }
-    float e0;
-    float e1;
-    const bool inBox = all(x1 >= lo) && all(x1 <= hi);
-    float tExit = 1.0f;
-    if (!inBox)
-    {
-      tExit = refracta_intersect_box(x, x1 - x, lo, hi, &e0, &e1) ? clamp(e1, 0.0f, 1.0f) : 0.0f;
-    }
-#if EXTINCTION
-    photon_walk(&ps, x, x1, tExit, dims, spacing, extinction, albedo, radiance, directionSum);
-    if (ps.dead)
-    {
-      break;
-    }
-#endif
-    if (!inBox)
-    {
-      break;
-    }
-    x = x1;
-    v = v1;
-  }
+    outcome = photon_curved_step(&ps, &x, &v, &steps, lo, hi, octree, extinction, albedo,
+      refractiveIndex, gradient, dims, spacing, radiance, directionSum);
+  } while (outcome < 0);
 #endif
   if (ps.dead)
   {
-    outcome = 3;
+    outcome = 3; // the straight walk's roulette
   }
-  else if (outcome == 2)
-  {
-    escaped = ps.power;
-  }
-  else
-  {
-    remaining = ps.power;
-  }
-
-  photon_add_tallies(tallies, emitted, &ps, escaped, remaining);
-  atom_add(counters + 0, 1L);
-  atom_add(counters + outcome, 1L);
-  atom_add(counters + 6, (long)steps);
-  atom_add(counters + 7, (long)ps.pieces);
+  photon_finish(tallies, counters, emitted, &ps, outcome, steps);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -610,44 +614,10 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     }
   }
 #else
-  for (uint c = 0; c < chunkSteps; ++c)
+  for (uint c = 0; c < chunkSteps && outcome < 0; ++c)
   {
-    if (steps >= MAX_STEPS)
-    {
-      outcome = 4;
-      break;
-    }
-    float3 x1, v1;
-    photon_advance(x, v, octree, extinction, refractiveIndex, gradient, dims, spacing, &x1, &v1);
-    ++steps;
-    if (!all(isfinite(x1)) || !all(isfinite(v1)))
-    {
-      outcome = 5;
-      break;
-    }
-    float e0;
-    float e1;
-    const bool inBox = all(x1 >= lo) && all(x1 <= hi);
-    float tExit = 1.0f;
-    if (!inBox)
-    {
-      tExit = refracta_intersect_box(x, x1 - x, lo, hi, &e0, &e1) ? clamp(e1, 0.0f, 1.0f) : 0.0f;
-    }
-#if EXTINCTION
-    photon_walk(&ps, x, x1, tExit, dims, spacing, extinction, albedo, radiance, directionSum);
-    if (ps.dead)
-    {
-      outcome = 3;
-      break;
-    }
-#endif
-    if (!inBox)
-    {
-      outcome = 2;
-      break;
-    }
-    x = x1;
-    v = v1;
+    outcome = photon_curved_step(&ps, &x, &v, &steps, lo, hi, octree, extinction, albedo,
+      refractiveIndex, gradient, dims, spacing, radiance, directionSum);
   }
 #endif
   if (outcome < 0)
@@ -664,20 +634,6 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     atomic_inc(active);
     return;
   }
-  float3 remaining = (float3)(0.0f);
-  float3 escaped = (float3)(0.0f);
-  if (outcome == 2)
-  {
-    escaped = ps.power;
-  }
-  else if (outcome != 3)
-  {
-    remaining = ps.power;
-  }
   status[id] = (uint4)(2u, (uint)steps, ps.rng, ps.pieces);
-  photon_add_tallies(tallies, emitted, &ps, escaped, remaining);
-  atom_add(counters + 0, 1L);
-  atom_add(counters + outcome, 1L);
-  atom_add(counters + 6, (long)steps);
-  atom_add(counters + 7, (long)ps.pieces);
+  photon_finish(tallies, counters, emitted, &ps, outcome, steps);
 }
