@@ -84,72 +84,59 @@ struct Settings
   bool Smoke = false;
 };
 
-// One knob of one pass: its name, the values swept and how a value is applied.
+// What one pipeline run is given: the passes' knobs and the grid resolution of the scene.
+struct Setting
+{
+  PipelineKnobs Knobs;
+  int Size = 48;
+};
+
+// One knob: its name, the values swept and how a value is applied.
 struct Knob
 {
   std::string Name;
   std::vector<double> Values;
-  std::function<void(PipelineKnobs&, double)> Apply;
-  std::function<double(const PipelineKnobs&)> Read;
+  std::function<void(Setting&, double)> Apply;
 };
 
 std::vector<Knob> MakeKnobs(const Settings& settings)
 {
   std::vector<Knob> knobs;
   knobs.push_back({ "photons", { 1 << 12, 1 << 14, 1 << 16, 1 << 18, 1 << 20 },
-    [](PipelineKnobs& k, double v) { k.Photons = static_cast<int>(v); },
-    [](const PipelineKnobs& k) { return double(k.Photons); } });
+    [](Setting& s, double v) { s.Knobs.Photons = static_cast<int>(v); } });
   knobs.push_back({ "photon min step", { 4, 2, 1, 0.5, 0.25 },
-    [](PipelineKnobs& k, double v) { k.PhotonMinimumStep = v; },
-    [](const PipelineKnobs& k) { return k.PhotonMinimumStep; } });
+    [](Setting& s, double v) { s.Knobs.PhotonMinimumStep = v; } });
   // Octree tolerances move together (eps' = 4 eps, as the defaults 0.005 / 0.02).
   knobs.push_back({ "octree eps", { 0.0025, 0.005, 0.02, 0.08, 0.32 },
-    [](PipelineKnobs& k, double v)
+    [](Setting& s, double v)
     {
-      k.PrimaryTolerance = v;
-      k.SecondaryTolerance = 4 * v;
-    },
-    [](const PipelineKnobs& k) { return k.PrimaryTolerance; } });
+      s.Knobs.PrimaryTolerance = v;
+      s.Knobs.SecondaryTolerance = 4 * v;
+    } });
   knobs.push_back({ "lattice tolerance", { 1e-2, 1e-3, 1e-4, 1e-5 },
-    [](PipelineKnobs& k, double v) { k.LatticeTolerance = v; },
-    [](const PipelineKnobs& k) { return k.LatticeTolerance; } });
+    [](Setting& s, double v) { s.Knobs.LatticeTolerance = v; } });
   knobs.push_back({ "lattice block", { 0, 2, 4, 8 },
-    [](PipelineKnobs& k, double v) { k.BlockSize = static_cast<int>(v); },
-    [](const PipelineKnobs& k) { return double(k.BlockSize); } });
+    [](Setting& s, double v) { s.Knobs.BlockSize = static_cast<int>(v); } });
   knobs.push_back(
-    { "view step", { 2, 1, 0.5, 0.25 }, [](PipelineKnobs& k, double v) { k.ViewStep = v; },
-      [](const PipelineKnobs& k) { return k.ViewStep; } });
-  std::vector<double> sizes = { 16, 24, 32, 48, 64 };
-  if (settings.Smoke)
-  {
-    sizes = { 12, 16 };
-  }
-  knobs.push_back({ "resolution", sizes, [](PipelineKnobs&, double) {},
-    [](const PipelineKnobs&) { return 0.0; } });
+    { "view step", { 2, 1, 0.5, 0.25 }, [](Setting& s, double v) { s.Knobs.ViewStep = v; } });
+  knobs.push_back({ "resolution",
+    settings.Smoke ? std::vector<double>{ 12, 16 } : std::vector<double>{ 16, 24, 32, 48, 64 },
+    [](Setting& s, double v) { s.Size = static_cast<int>(v); } });
   if (settings.Smoke)
   {
     for (Knob& knob : knobs)
     {
-      if (knob.Name != "resolution")
-      {
-        knob.Values.resize(2);
-      }
+      knob.Values.resize(2);
     }
     knobs[0].Values = { 1 << 10, 1 << 12 };
   }
   if (!settings.KnobNames.empty())
   {
     const auto& keep = settings.KnobNames;
-    knobs.erase(std::remove_if(knobs.begin(), knobs.end(),
-                  [&](const Knob& k) {
-                    return k.Name != "resolution" &&
-                      std::find(keep.begin(), keep.end(), k.Name) == keep.end();
-                  }),
+    knobs.erase(
+      std::remove_if(knobs.begin(), knobs.end(),
+        [&](const Knob& k) { return std::find(keep.begin(), keep.end(), k.Name) == keep.end(); }),
       knobs.end());
-    if (std::find(keep.begin(), keep.end(), "resolution") == keep.end())
-    {
-      knobs.back().Values = { static_cast<double>(settings.BaseSize) };
-    }
   }
   return knobs;
 }
@@ -540,17 +527,13 @@ public:
     : Config(settings)
     , Knobs(MakeKnobs(settings))
   {
-    this->Base.ImageWidth = this->Base.ImageHeight = settings.Image;
+    this->Base.Knobs.ImageWidth = this->Base.Knobs.ImageHeight = settings.Image;
+    this->Base.Size = settings.BaseSize;
     // The most accurate setting: every knob at its most accurate swept value.
     this->Most = this->Base;
     for (const Knob& knob : this->Knobs)
     {
-      if (knob.Name == "resolution")
-      {
-        this->FinestSize =
-          static_cast<int>(*std::max_element(knob.Values.begin(), knob.Values.end()));
-      }
-      else if (knob.Name != "lattice block") // a speed knob: every block size converges alike
+      if (knob.Name != "lattice block") // a speed knob: every block size converges alike
       {
         knob.Apply(this->Most, MostAccurate(knob));
       }
@@ -568,8 +551,8 @@ private:
                 : *std::min_element(knob.Values.begin(), knob.Values.end());
   }
   const Scene& SceneAt(const std::string& name, int size);
-  Image RenderTimed(const std::string& name, const PipelineKnobs& knobs, int size);
-  Point Measure(const std::string& name, const PipelineKnobs& knobs, int size);
+  Image RenderTimed(const std::string& name, const Setting& setting);
+  Point Measure(const std::string& name, const Setting& setting);
   void SweepScene(const std::string& name);
   void ReferenceCurve(const std::string& name);
   void ChoosePresets(const std::vector<std::string>& names);
@@ -578,8 +561,7 @@ private:
 
   Settings Config;
   std::vector<Knob> Knobs;
-  PipelineKnobs Base, Most;
-  int FinestSize = 0;
+  Setting Base, Most;
   std::map<std::string, Scene> Scenes; // by name@size
   std::map<std::string, SceneResult> Results;
   Table Runs{ { "scene", "knob", "value", "seconds", "error vs reference", "region vs reference",
@@ -607,9 +589,10 @@ const Scene& Benchmark::SceneAt(const std::string& name, int size)
 
 // The whole pipeline, the plan included (analysed and decided on every run, as in an
 // application), median time of Runs runs.
-Image Benchmark::RenderTimed(const std::string& name, const PipelineKnobs& knobs, int size)
+Image Benchmark::RenderTimed(const std::string& name, const Setting& setting)
 {
-  const Scene& scene = this->SceneAt(name, size);
+  const Scene& scene = this->SceneAt(name, setting.Size);
+  const PipelineKnobs& knobs = setting.Knobs;
   // Kernels are compiled per option set (step lengths, variants are -D options): a cheap untimed
   // run with the same options first, so that no timed run pays for a compilation.
   PipelineKnobs warm = knobs;
@@ -633,10 +616,10 @@ Image Benchmark::RenderTimed(const std::string& name, const PipelineKnobs& knobs
   return image;
 }
 
-Point Benchmark::Measure(const std::string& name, const PipelineKnobs& knobs, int size)
+Point Benchmark::Measure(const std::string& name, const Setting& setting)
 {
   const SceneResult& result = this->Results[name];
-  const Image image = this->RenderTimed(name, knobs, size);
+  const Image image = this->RenderTimed(name, setting);
   Point point;
   point.Seconds = image.Seconds;
   if (image.Value.size() != result.Reference.Value.size())
@@ -663,24 +646,16 @@ void Benchmark::SweepScene(const std::string& name)
   {
     for (double value : knob.Values)
     {
-      PipelineKnobs knobs = this->Base;
-      int size = this->Config.BaseSize;
-      if (knob.Name == "resolution")
-      {
-        size = static_cast<int>(value);
-      }
-      else
-      {
-        knob.Apply(knobs, value);
-      }
+      Setting setting = this->Base;
+      knob.Apply(setting, value);
+      const PipelineKnobs& k = setting.Knobs;
       std::ostringstream key;
-      key << size << " " << knobs.Photons << " " << knobs.PhotonMinimumStep << " "
-          << knobs.PrimaryTolerance << " " << knobs.LatticeTolerance << " " << knobs.BlockSize
-          << " " << knobs.ViewStep;
+      key << setting.Size << " " << k.Photons << " " << k.PhotonMinimumStep << " "
+          << k.PrimaryTolerance << " " << k.LatticeTolerance << " " << k.BlockSize << " "
+          << k.ViewStep;
       auto found = measured.find(key.str());
-      Point point = found != measured.end()
-        ? found->second
-        : (measured[key.str()] = this->Measure(name, knobs, size));
+      Point point = found != measured.end() ? found->second
+                                            : (measured[key.str()] = this->Measure(name, setting));
       point.Knob = knob.Name;
       point.Value = value;
       result.Points.push_back(point);
@@ -714,7 +689,7 @@ void Benchmark::SweepScene(const std::string& name)
 void Benchmark::ReferenceCurve(const std::string& name)
 {
   SceneResult& result = this->Results[name];
-  const Scene& scene = this->SceneAt(name, this->FinestSize);
+  const Scene& scene = this->SceneAt(name, this->Most.Size);
   const std::vector<bool>& all = result.Seen;
   for (int spp = 1; spp <= this->Config.ReferenceCurveMax; spp *= 2)
   {
@@ -741,8 +716,7 @@ void Benchmark::ChoosePresets(const std::vector<std::string>& names)
     { "interactive", 0.05 }, { "production", 0.02 } };
   for (const auto& target : targets)
   {
-    PipelineKnobs knobs = this->Base;
-    int size = this->Config.BaseSize;
+    Setting setting = this->Base;
     const double budget = target.second / std::sqrt(static_cast<double>(this->Knobs.size()));
     for (const Knob& knob : this->Knobs)
     {
@@ -773,27 +747,24 @@ void Benchmark::ChoosePresets(const std::vector<std::string>& names)
           found = true;
         }
       }
-      if (found && knob.Name == "resolution")
+      if (found)
       {
-        size = static_cast<int>(chosen);
-      }
-      else if (found)
-      {
-        knob.Apply(knobs, chosen);
+        knob.Apply(setting, chosen);
       }
     }
     for (const std::string& name : names)
     {
-      Point point = this->Measure(name, knobs, size);
+      Point point = this->Measure(name, setting);
+      const PipelineKnobs& knobs = setting.Knobs;
       point.Knob = target.first;
       this->Results[name].Presets.push_back(point);
-      this->Presets.AddRow(
-        { target.first, Table::Format(target.second), std::to_string(knobs.Photons),
-          Table::Format(knobs.PhotonMinimumStep), Table::Format(knobs.PrimaryTolerance),
-          Table::Format(knobs.LatticeTolerance), std::to_string(knobs.BlockSize),
-          Table::Format(knobs.ViewStep), std::to_string(size), name, Table::Format(point.Seconds),
-          Table::Format(point.ReferenceError), Table::Format(point.ReferenceRegionError),
-          Table::Format(point.SelfError), Table::Format(point.SelfRegionError) });
+      this->Presets.AddRow({ target.first, Table::Format(target.second),
+        std::to_string(knobs.Photons), Table::Format(knobs.PhotonMinimumStep),
+        Table::Format(knobs.PrimaryTolerance), Table::Format(knobs.LatticeTolerance),
+        std::to_string(knobs.BlockSize), Table::Format(knobs.ViewStep),
+        std::to_string(setting.Size), name, Table::Format(point.Seconds),
+        Table::Format(point.ReferenceError), Table::Format(point.ReferenceRegionError),
+        Table::Format(point.SelfError), Table::Format(point.SelfRegionError) });
     }
   }
 }
@@ -951,8 +922,8 @@ int Benchmark::Run()
   {
     std::cout << name << "\n";
     SceneResult& result = this->Results[name];
-    const Scene& finest = this->SceneAt(name, this->FinestSize);
-    result.Reference = ConvergedReference(finest, this->FinestSize, this->Config);
+    const Scene& finest = this->SceneAt(name, this->Most.Size);
+    result.Reference = ConvergedReference(finest, this->Most.Size, this->Config);
     result.Region = RegionMask(finest, this->Config.Image, this->Config.Image);
     result.Seen.assign(result.Region.size(), false);
     for (size_t v = 0; v < result.Reference.Error.size(); ++v)
@@ -969,7 +940,7 @@ int Benchmark::Run()
               << result.RegionNoise << (result.Converged ? " (converged)" : " (not converged)")
               << "\n";
     // The most accurate setting, which the other runs are also compared with.
-    result.Finest = this->RenderTimed(name, this->Most, this->FinestSize);
+    result.Finest = this->RenderTimed(name, this->Most);
     std::cout << "  finest pipeline setting: " << result.Finest.Seconds << " s\n";
     const double scale = WhiteScale(result.Reference);
     WritePng(

@@ -768,4 +768,10 @@ TEST(PhotonTracer, ExtendedLightsHaveTheirAnalyticFields)
     EXPECT_NEAR(fluence[1] / fluence[0], expected[1] / expected[0], 0.01);
     EXPECT_GT(expected[1] / expected[0], 1.05); // the extent does matter at these distances
   }
+  // Extents are clamped to their valid ranges (radius >= 0, angular radius in [0, 45] degrees).
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->SetLightRadius(-1.0);
+  tracer->SetDirectionalLightAngularRadius(90.0);
+  EXPECT_EQ(tracer->GetLightRadius(), 0.0);
+  EXPECT_EQ(tracer->GetDirectionalLightAngularRadius(), 45.0);
 }
