@@ -18,7 +18,12 @@ jobs="${JOBS:-$(nproc)}"
 # Debian bookworm packages the project needs to build and test.
 packages=(
   build-essential cmake pkg-config
-  libvtk9-dev python3-vtk9 python3-numpy
+  # ParaView 5.11's VTK 9.2 (python3-paraview conflicts with Debian's libvtk9-dev/python3-vtk9);
+  # its CMake configuration needs the Qt 5 development files and the proxy-documentation tools.
+  paraview-dev python3-paraview python3-numpy
+  qtbase5-dev qttools5-dev libqt5svg5-dev libqt5opengl5-dev qtxmlpatterns5-dev-tools
+  # Third-party libraries ParaView's VTK CMake package links its modules against.
+  libopenmpi-dev libutfcpp-dev libglew-dev liblz4-dev libdouble-conversion-dev libtiff-dev
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo
   libcgal-dev libgmp-dev libmpfr-dev libglm-dev
   libosmesa6-dev xvfb xauth
