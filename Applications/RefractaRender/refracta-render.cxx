@@ -8,11 +8,14 @@
 //   --device-check (the OpenCL end-to-end check of earlier versions), --help.
 //
 // Pipeline: scene JSON -> medium (vtkMeshVoxelizer for meshes, vtkTransferFunctionMedium or the
-// file itself for volumes) -> light pass (vtkPhotonTracer, skipped when nothing scatters or there
-// is no light) -> view pass (vtkRefractaImageRenderer) -> PNG; a short report on stdout and,
-// optionally, a JSON report with per-stage timings, settings, counts and the energy balance.
+// file itself for volumes) -> vtkRefractaRenderPipeline (effect plan, light passes, view pass;
+// through vtkRefractaImageRenderer) -> PNG; each stage printed as it runs, a short report on
+// stdout and, optionally, a JSON report with per-stage timings, settings, counts and the energy
+// balance.
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
 #include "vtkEffectPlan.h"
@@ -20,7 +23,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkJPEGReader.h"
-#include "vtkLatticeBoltzmannLighting.h"
+#include "vtkLatticeBoltzmannSolver.h"
 #include "vtkLight.h"
 #include "vtkMediumMaterial.h"
 #include "vtkMediumValidator.h"
@@ -38,6 +41,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkSTLReader.h"
 #include "vtkSceneAnalysis.h"
@@ -64,6 +68,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 using json = nlohmann::ordered_json;
@@ -498,6 +503,86 @@ struct Options
   std::string Radiance;
   std::string Report;
   bool Preview = false;
+  bool Quiet = false;
+};
+
+// Prints each stage of the render pipeline as it starts and ends (with its seconds) and, on a
+// terminal, a progress bar; silent with --quiet.
+class StageReporter
+{
+public:
+  StageReporter(vtkRefractaRenderPipeline* pipeline, bool quiet)
+    : Pipeline(pipeline)
+    , Terminal(isatty(STDOUT_FILENO) != 0)
+  {
+    if (quiet)
+    {
+      return;
+    }
+    this->Command->SetClientData(this);
+    this->Command->SetCallback(&StageReporter::OnEvent);
+    for (unsigned long event :
+      { vtkCommand::StartEvent, vtkCommand::EndEvent, vtkCommand::ProgressEvent })
+    {
+      this->Tags.push_back(pipeline->AddObserver(event, this->Command));
+    }
+  }
+  ~StageReporter()
+  {
+    for (unsigned long tag : this->Tags)
+    {
+      this->Pipeline->RemoveObserver(tag);
+    }
+  }
+  StageReporter(const StageReporter&) = delete;
+  StageReporter& operator=(const StageReporter&) = delete;
+
+private:
+  static void OnEvent(vtkObject*, unsigned long event, void* client, void* call)
+  {
+    auto* self = static_cast<StageReporter*>(client);
+    if (event == vtkCommand::ProgressEvent)
+    {
+      self->Bar(*static_cast<double*>(call));
+      return;
+    }
+    const char* stage = static_cast<const char*>(call);
+    if (event == vtkCommand::StartEvent)
+    {
+      self->Stage.Start = std::chrono::steady_clock::now();
+      self->Line(std::string("  ") + stage + " ...");
+      return;
+    }
+    std::ostringstream line;
+    line << "  " << stage << " done, " << self->Stage.Seconds() << " s";
+    self->Line(line.str());
+  }
+
+  void Line(const std::string& text)
+  {
+    std::cout << (this->Terminal ? "\r\033[K" : "") << text << std::endl;
+    this->Drawn = -1;
+  }
+
+  void Bar(double fraction)
+  {
+    const int width = 40;
+    const int filled = static_cast<int>(fraction * width);
+    if (!this->Terminal || filled == this->Drawn)
+    {
+      return;
+    }
+    this->Drawn = filled;
+    std::cout << "\r  [" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
+              << static_cast<int>(100 * fraction) << "%" << std::flush;
+  }
+
+  vtkRefractaRenderPipeline* Pipeline;
+  bool Terminal;
+  int Drawn = -1;
+  Timer Stage;
+  vtkNew<vtkCallbackCommand> Command;
+  std::vector<unsigned long> Tags;
 };
 
 // --preview: the same scene at a quarter of the cost or less: half the image size, a quarter of
@@ -564,15 +649,18 @@ int Render(const json& scene, const std::string& base, const Options& options)
     { "preset", "photons", "seed", "view_step", "ray_mode", "transmittance_cutoff",
       "photon_min_step", "octree_tolerance", "photon_smoothing", "multiple_scattering",
       "multiple_scattering_tolerance", "multiple_scattering_block_size", "tolerance" });
-  // A quality preset supplies the defaults of the pass settings and of the plan's tolerance;
-  // keys given explicitly win.
-  vtkNew<vtkEffectPlan> plan;
+  // One render pipeline does the work (vtkRefractaRenderPipeline, through the image renderer
+  // that tone-maps its image). A quality preset supplies the defaults of the pass settings and of
+  // the plan's tolerance; keys given explicitly win.
+  vtkNew<vtkRefractaImageRenderer> renderer;
+  vtkRefractaRenderPipeline* pipeline = renderer->GetPipeline();
+  vtkEffectPlan* plan = pipeline->GetEffectPlan();
   const std::string preset = String(
     quality, "preset", "scene.quality", "none", { "none", "draft", "interactive", "production" });
   const bool hasPreset = preset != "none";
   if (hasPreset)
   {
-    plan->SetQuality(preset == "draft"
+    pipeline->SetQuality(preset == "draft"
         ? vtkEffectPlan::DRAFT
         : (preset == "interactive" ? vtkEffectPlan::INTERACTIVE : vtkEffectPlan::PRODUCTION));
   }
@@ -817,8 +905,6 @@ int Render(const json& scene, const std::string& base, const Options& options)
   timings["medium"] = mediumTimer.Seconds();
 
   // --- lights ---
-  vtkNew<vtkPhotonTracer> tracer;
-  vtkNew<vtkSceneAnalysis> analysis;
   int lightCount = 0;
   if (scene.contains("lights"))
   {
@@ -862,8 +948,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
       {
         Fail(p + ".cone_angle", "only for spot lights");
       }
-      tracer->AddLight(light);
-      analysis->AddLight(light);
+      renderer->AddLight(light);
       ++lightCount;
     }
   }
@@ -901,7 +986,6 @@ int Render(const json& scene, const std::string& base, const Options& options)
   }
 
   // --- background ---
-  vtkNew<vtkRefractaImageRenderer> renderer;
   {
     const json bg = scene.value("background", json::object());
     CheckKeys(bg, "scene.background", { "color", "environment", "checker", "up", "right" });
@@ -936,97 +1020,16 @@ int Render(const json& scene, const std::string& base, const Options& options)
     renderer->SetEnvironmentRight(right[0], right[1], right[2]);
   }
 
-  // --- light pass ---
-  vtkSmartPointer<vtkImageData> lighting;
-  json lightReport;
-  // --- effect plan: analyse the scene, simulate only the effects that change the image ---
-  Timer planTimer;
-  analysis->SetMedium(mediumImage);
-  if (!analysis->Analyze() || !plan->Decide(analysis))
-  {
-    throw std::runtime_error("the scene analysis failed (see the error above)");
-  }
-  vtkNew<vtkImageData> planned;
-  plan->ApplyToMedium(mediumImage, planned);
-  timings["plan"] = planTimer.Seconds();
-  json planReport;
-  planReport["summary"] = plan->GetSummary();
-  planReport["analysis"] = analysis->GetSummary();
-  planReport["tolerance"] = plan->GetTolerance();
-  for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
-  {
-    planReport["effects"][vtkEffectPlan::GetEffectName(e)] = { { "enabled", plan->IsEnabled(e) },
-      { "estimated_change", plan->GetEstimatedContribution(e) }, { "reason", plan->GetReason(e) } };
-  }
-  report["plan"] = planReport;
-  const bool singleScattering = plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING);
-  const bool planMultiple = plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING);
-
-  Timer lightTimer;
-  if (lightCount > 0 && singleScattering)
-  {
-    tracer->SetInputData(planned);
-    tracer->SetNumberOfPhotons(photons);
-    tracer->SetSeed(static_cast<unsigned int>(seed));
-    tracer->SetMinimumStep(photonMinStep);
-    tracer->SetPrimaryTolerance(octreeTolerance);
-    tracer->SetSecondaryTolerance(4.0 * octreeTolerance);
-    tracer->SetSmoothing(photonSmoothing);
-    tracer->Update();
-    if (tracer->GetOutput()->GetNumberOfPoints() == 0)
-    {
-      throw std::runtime_error("the light pass (vtkPhotonTracer) failed (see the error above)");
-    }
-    lighting = tracer->GetOutput();
-    lightReport = FieldDataToJson(lighting->GetFieldData());
-    lightReport["octree_seconds"] = tracer->GetOctreeSeconds();
-    lightReport["generation_seconds"] = tracer->GetGenerationSeconds();
-    lightReport["marching_seconds"] = tracer->GetMarchingSeconds();
-    lightReport["smoothing_seconds"] = tracer->GetSmoothingSeconds();
-    lightReport["curved_rays"] = tracer->GetUsedCurvedRays();
-    lightReport["octree"] = tracer->GetUsedOctree();
-    lightReport["photon_seconds"] = lightTimer.Seconds();
-    if (planMultiple)
-    {
-      // Multiple scattering: Lattice-Boltzmann lighting driven by the photon pass's S1.
-      Timer lblTimer;
-      vtkNew<vtkLatticeBoltzmannLighting> lbl;
-      lbl->SetInputData(planned);
-      lbl->SetLightingData(lighting);
-      lbl->SetTolerance(lblTolerance);
-      lbl->SetBlockSize(lblBlockSize);
-      lbl->Update();
-      if (lbl->GetOutput()->GetNumberOfPoints() == 0)
-      {
-        throw std::runtime_error("the multiple-scattering pass (vtkLatticeBoltzmannLighting) "
-                                 "failed (see the error above)");
-      }
-      lighting = lbl->GetOutput();
-      json lblReport = FieldDataToJson(lighting->GetFieldData());
-      lightReport["multiple_scattering"] = { { "iterations",
-                                               lblReport.value("LatticeBoltzmannIterations", 0.0) },
-        { "residual", lblReport.value("LatticeBoltzmannResidual", 0.0) },
-        { "converged", lblReport.value("LatticeBoltzmannConverged", 0.0) != 0.0 },
-        { "seconds", lblTimer.Seconds() } };
-    }
-    else
-    {
-      lightReport["multiple_scattering"] =
-        std::string("off (") + plan->GetReason(vtkEffectPlan::MULTIPLE_SCATTERING) + ")";
-    }
-    renderer->SetLightingData(lighting);
-  }
-  else
-  {
-    lightReport["skipped"] = lightCount == 0
-      ? std::string("no lights")
-      : std::string("single scattering ") + plan->GetReason(vtkEffectPlan::SINGLE_SCATTERING);
-  }
-  timings["light_pass"] = lightTimer.Seconds();
-
-  // --- view pass ---
-  Timer viewTimer;
-  renderer->SetInputData(planned);
+  // --- the render pipeline: plan, light passes, view pass ---
+  vtkPhotonTracer* tracer = pipeline->GetPhotonTracer();
+  tracer->SetNumberOfPhotons(photons);
+  tracer->SetSeed(static_cast<unsigned int>(seed));
+  tracer->SetMinimumStep(photonMinStep);
+  pipeline->SetOctreeTolerance(octreeTolerance);
+  tracer->SetSmoothing(photonSmoothing);
+  pipeline->GetLatticeSolver()->SetTolerance(lblTolerance);
+  pipeline->GetLatticeSolver()->SetBlockSize(lblBlockSize);
+  renderer->SetInputData(mediumImage);
   renderer->SetCamera(camera);
   renderer->SetImageSize(width, height);
   renderer->SetExposure(exposure);
@@ -1039,15 +1042,64 @@ int Render(const json& scene, const std::string& base, const Options& options)
       ? vtkRefractaViewPass::AUTO
       : (rayMode == "straight" ? vtkRefractaViewPass::STRAIGHT : vtkRefractaViewPass::CURVED));
   renderer->SetTransmittanceCutoff(cutoff);
-  renderer->Update();
+  {
+    StageReporter reporter(pipeline, options.Quiet);
+    renderer->Update();
+  }
   vtkImageData* result = renderer->GetOutput();
   if (!result || result->GetNumberOfPoints() == 0)
   {
-    throw std::runtime_error("the view pass failed (see the error above)");
+    throw std::runtime_error("the render failed (see the error above)");
   }
-  timings["view_pass"] = viewTimer.Seconds();
-  plan->RecordInFieldData(result->GetFieldData());
+  vtkImageData* lighting = pipeline->GetLighting();
+  vtkSceneAnalysis* analysis = pipeline->GetSceneAnalysis();
+  timings["plan"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::PLAN);
+  timings["light_pass"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING);
+  timings["view_pass"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::VIEW);
   timings["view_pass_device"] = renderer->GetViewPass()->GetLastSeconds();
+  json planReport;
+  planReport["summary"] = plan->GetSummary();
+  planReport["analysis"] = analysis->GetSummary();
+  planReport["tolerance"] = plan->GetTolerance();
+  for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
+  {
+    planReport["effects"][vtkEffectPlan::GetEffectName(e)] = { { "enabled", plan->IsEnabled(e) },
+      { "estimated_change", plan->GetEstimatedContribution(e) }, { "reason", plan->GetReason(e) } };
+  }
+  report["plan"] = planReport;
+  json lightReport;
+  if (lighting)
+  {
+    lightReport = FieldDataToJson(lighting->GetFieldData());
+    lightReport["octree_seconds"] = tracer->GetOctreeSeconds();
+    lightReport["generation_seconds"] = tracer->GetGenerationSeconds();
+    lightReport["marching_seconds"] = tracer->GetMarchingSeconds();
+    lightReport["smoothing_seconds"] = tracer->GetSmoothingSeconds();
+    lightReport["curved_rays"] = tracer->GetUsedCurvedRays();
+    lightReport["octree"] = tracer->GetUsedOctree();
+    lightReport["photon_seconds"] = timings["light_pass"];
+    if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
+    {
+      lightReport["multiple_scattering"] = {
+        { "iterations", lightReport.value("LatticeBoltzmannIterations", 0.0) },
+        { "residual", lightReport.value("LatticeBoltzmannResidual", 0.0) },
+        { "converged", lightReport.value("LatticeBoltzmannConverged", 0.0) != 0.0 },
+        { "schedule", pipeline->GetLastScheduleInterleaved() ? "interleaved" : "sequential" },
+        { "seconds", lightReport.value("ScheduleFinalSolveSeconds", 0.0) }
+      };
+    }
+    else
+    {
+      lightReport["multiple_scattering"] =
+        std::string("off (") + plan->GetReason(vtkEffectPlan::MULTIPLE_SCATTERING) + ")";
+    }
+  }
+  else
+  {
+    lightReport["skipped"] = lightCount == 0
+      ? std::string("no lights")
+      : std::string("single scattering ") + plan->GetReason(vtkEffectPlan::SINGLE_SCATTERING);
+  }
 
   // --- outputs ---
   Timer writeTimer;
@@ -1231,12 +1283,15 @@ bool DeviceCheck()
 void PrintUsage(std::ostream& os)
 {
   os << "usage: refracta-render [--scene FILE.json] [--output FILE.png] [--hdr FILE.vti]\n"
-        "                       [--radiance FILE.vti] [--report FILE.json] [--preview]\n"
+        "                       [--radiance FILE.vti] [--report FILE.json] [--preview] [--quiet]\n"
         "       refracta-render --print-default-scene | --list-devices | --device-check | --help\n"
         "  Without --scene, renders the embedded default scene (a glass sphere in fog over a\n"
         "  scattering floor, lit by a spot light) to refracta.png. The scene format is documented\n"
         "  in the README. --preview: half the image size and grid resolution, a quarter of the\n"
-        "  photons. The OpenCL device is chosen by REFRACTA_OPENCL_DEVICE.\n";
+        "  photons. Each stage is printed as it starts and ends, with a progress bar on a "
+        "terminal;\n"
+        "  --quiet prints the final report only. The OpenCL device is chosen by\n"
+        "  REFRACTA_OPENCL_DEVICE.\n";
 }
 }
 
@@ -1277,6 +1332,10 @@ int main(int argc, char* argv[])
     else if (arg == "--preview")
     {
       options.Preview = true;
+    }
+    else if (arg == "--quiet" || arg == "-q")
+    {
+      options.Quiet = true;
     }
     else if (arg == "--scene")
     {

@@ -242,8 +242,9 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
     this->Enabled[MULTIPLE_SCATTERING] = false;
     this->Reasons[MULTIPLE_SCATTERING] = "off: no single scattering to spread";
   }
+  // A decision is a result, not a setting: the MTime keeps tracking the settings (tolerance,
+  // modes, quality) so that a pipeline can tell a changed plan from a re-decided one.
   this->Decided = true;
-  this->Modified();
   return true;
 }
 

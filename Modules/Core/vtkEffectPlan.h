@@ -110,7 +110,7 @@ public:
 
   /**
    * Decide every effect from the analysis (which must have been run). Returns false for a null
-   * analysis.
+   * analysis. Deciding does not change this object's MTime (which tracks the settings only).
    */
   bool Decide(vtkSceneAnalysis* analysis);
 

@@ -8,12 +8,12 @@
 #include "vtkEffectPlan.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaRenderPipeline.h"
 #include "vtkSceneAnalysis.h"
 #include "vtkSmartPointer.h"
 
@@ -108,40 +108,38 @@ void Decide(const Scene& scene, vtkEffectPlan* plan, int forced)
   ASSERT_TRUE(plan->Decide(analysis));
 }
 
-// Render the scene through the passes the plan keeps; returns the HDR RGB values.
+// Render the scene through the render pipeline with the plan's settings (tolerance and the
+// per-effect modes), so that the passes the plan keeps are exactly the shipping ones; returns the
+// HDR RGB values.
 std::vector<double> Render(const Scene& scene, vtkEffectPlan* plan)
 {
-  vtkNew<vtkImageData> medium;
-  EXPECT_TRUE(plan->ApplyToMedium(scene.Medium, medium));
   vtkNew<vtkRefractaImageRenderer> renderer;
-  vtkNew<vtkPhotonTracer> tracer;
-  vtkNew<vtkLatticeBoltzmannLighting> lbl;
-  if (scene.Light && plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING))
+  vtkRefractaRenderPipeline* pipeline = renderer->GetPipeline();
+  pipeline->GetEffectPlan()->SetTolerance(plan->GetTolerance());
+  for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
   {
-    tracer->SetInputData(medium);
-    tracer->AddLight(scene.Light);
-    tracer->SetNumberOfPhotons(1 << 15);
-    tracer->SetSeed(3);
-    tracer->Update();
-    vtkImageData* lighting = tracer->GetOutput();
-    if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
-    {
-      lbl->SetInputData(medium);
-      lbl->SetLightingData(lighting);
-      lbl->Update();
-      lighting = lbl->GetOutput();
-    }
-    renderer->SetLightingData(lighting);
+    pipeline->GetEffectPlan()->SetEffectMode(e, plan->GetEffectMode(e));
   }
+  if (scene.Light)
+  {
+    renderer->AddLight(scene.Light);
+  }
+  pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 15);
+  pipeline->GetPhotonTracer()->SetSeed(3);
   vtkNew<vtkCamera> camera;
   camera->SetPosition(0.5, 0.5, 3.0);
   camera->SetFocalPoint(0.5, 0.5, 0.5);
   camera->SetViewAngle(25);
-  renderer->SetInputData(medium);
+  renderer->SetInputData(scene.Medium);
   renderer->SetCamera(camera);
   renderer->SetImageSize(32, 32);
   renderer->SetBackgroundColor(scene.Background, scene.Background, scene.Background);
   renderer->Update();
+  for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
+  {
+    EXPECT_EQ(pipeline->GetEffectPlan()->IsEnabled(e), plan->IsEnabled(e))
+      << "the pipeline decides " << vtkEffectPlan::GetEffectName(e) << " as the test's plan";
+  }
   vtkDataArray* hdr = renderer->GetOutput()->GetPointData()->GetArray("HDR");
   std::vector<double> rgb;
   if (!hdr)

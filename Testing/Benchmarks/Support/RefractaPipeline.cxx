@@ -4,12 +4,13 @@
 #include "vtkDataArray.h"
 #include "vtkEffectPlan.h"
 #include "vtkImageData.h"
-#include "vtkLatticeBoltzmannLighting.h"
+#include "vtkLatticeBoltzmannSolver.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaRenderPipeline.h"
 #include "vtkSceneAnalysis.h"
 
 namespace refracta
@@ -35,38 +36,29 @@ bool PlanScene(const scenes::Scene& scene, vtkEffectPlan* plan)
 std::vector<double> RenderPipeline(
   const scenes::Scene& scene, vtkEffectPlan* plan, const PipelineKnobs& knobs)
 {
-  vtkNew<vtkImageData> medium;
-  plan->ApplyToMedium(scene.Medium, medium);
+  // The shipping pipeline, with the caller's plan settings (tolerance and per-effect modes).
   vtkNew<vtkRefractaImageRenderer> renderer;
-  vtkNew<vtkPhotonTracer> tracer;
-  vtkNew<vtkLatticeBoltzmannLighting> lattice;
-  if (!scene.Lights.empty() && plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING))
+  vtkRefractaRenderPipeline* pipeline = renderer->GetPipeline();
+  vtkEffectPlan* own = pipeline->GetEffectPlan();
+  own->SetTolerance(plan->GetTolerance());
+  for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
   {
-    tracer->SetInputData(medium);
-    for (const auto& light : scene.Lights)
-    {
-      tracer->AddLight(light);
-    }
-    tracer->SetLightRadius(scene.LightRadius);
-    tracer->SetDirectionalLightAngularRadius(scene.LightAngularRadius);
-    tracer->SetNumberOfPhotons(knobs.Photons);
-    tracer->SetMinimumStep(knobs.PhotonMinimumStep);
-    tracer->SetPrimaryTolerance(knobs.PrimaryTolerance);
-    tracer->SetSecondaryTolerance(knobs.SecondaryTolerance);
-    tracer->Update();
-    vtkImageData* lighting = tracer->GetOutput();
-    if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
-    {
-      lattice->SetInputData(medium);
-      lattice->SetLightingData(lighting);
-      lattice->SetTolerance(knobs.LatticeTolerance);
-      lattice->SetBlockSize(knobs.BlockSize);
-      lattice->Update();
-      lighting = lattice->GetOutput();
-    }
-    renderer->SetLightingData(lighting);
+    own->SetEffectMode(e, plan->GetEffectMode(e));
   }
-  renderer->SetInputData(medium);
+  for (const auto& light : scene.Lights)
+  {
+    renderer->AddLight(light);
+  }
+  vtkPhotonTracer* tracer = pipeline->GetPhotonTracer();
+  tracer->SetLightRadius(scene.LightRadius);
+  tracer->SetDirectionalLightAngularRadius(scene.LightAngularRadius);
+  tracer->SetNumberOfPhotons(knobs.Photons);
+  tracer->SetMinimumStep(knobs.PhotonMinimumStep);
+  tracer->SetPrimaryTolerance(knobs.PrimaryTolerance);
+  tracer->SetSecondaryTolerance(knobs.SecondaryTolerance);
+  pipeline->GetLatticeSolver()->SetTolerance(knobs.LatticeTolerance);
+  pipeline->GetLatticeSolver()->SetBlockSize(knobs.BlockSize);
+  renderer->SetInputData(scene.Medium);
   renderer->SetCamera(scene.Camera);
   renderer->SetImageSize(knobs.ImageWidth, knobs.ImageHeight);
   renderer->SetBackgroundColor(scene.Background[0], scene.Background[1], scene.Background[2]);

@@ -1,8 +1,7 @@
 /**
  * @file    RefractaPipeline.h
- * @brief   The whole Refracta pipeline on a procedural scene, as a benchmark runs it: scene
- *          analysis and effect plan, photon tracer, Lattice-Boltzmann lighting, view pass, with
- *          every quality knob of every pass in one struct.
+ * @brief   vtkRefractaRenderPipeline on a procedural scene, with every quality knob of every
+ *          pass in one struct (the knobs the accuracy/time benchmark sweeps).
  */
 #ifndef RefractaPipeline_h
 #define RefractaPipeline_h
@@ -33,10 +32,8 @@ struct PipelineKnobs
 };
 
 /**
- * Render `scene` with the pipeline as `plan` decides (a plan that has already Decide()d on the
- * scene's analysis) and return the HDR image as RGB triples, row by row from the bottom. The
- * photon pass runs only when single scattering is on and there are lights, the lattice only when
- * multiple scattering is on too.
+ * Render `scene` through vtkRefractaRenderPipeline (the shipping wiring), with `plan`'s tolerance
+ * and per-effect modes, and return the HDR image as RGB triples, row by row from the bottom.
  */
 std::vector<double> RenderPipeline(
   const scenes::Scene& scene, vtkEffectPlan* plan, const PipelineKnobs& knobs);

@@ -1,8 +1,10 @@
 #include "vtkRefractaImageRenderer.h"
 
 #include "vtkAlgorithmOutput.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
+#include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -11,6 +13,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
+#include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTexture.h"
@@ -23,10 +26,27 @@ vtkStandardNewMacro(vtkRefractaImageRenderer);
 
 //------------------------------------------------------------------------------
 vtkRefractaImageRenderer::vtkRefractaImageRenderer()
-  : ViewPass(vtkSmartPointer<vtkRefractaViewPass>::New())
+  : Pipeline(vtkSmartPointer<vtkRefractaRenderPipeline>::New())
 {
+  this->ViewPass = this->Pipeline->GetViewPass();
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(1);
+  // The pipeline's progress becomes this filter's; an abort of this filter aborts the pipeline.
+  vtkNew<vtkCallbackCommand> forward;
+  forward->SetClientData(this);
+  forward->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void* callData)
+    {
+      auto* self = static_cast<vtkRefractaImageRenderer*>(clientData);
+      if (self->GetAbortExecute())
+      {
+        self->Pipeline->AbortRender();
+      }
+      self->UpdateProgress(*static_cast<double*>(callData));
+    });
+  this->Pipeline->AddObserver(vtkCommand::ProgressEvent, forward);
+  // This filter renders the medium as given: only effects that are exactly absent are skipped.
+  this->Pipeline->GetEffectPlan()->SetTolerance(0.0);
 }
 
 vtkRefractaImageRenderer::~vtkRefractaImageRenderer() = default;
@@ -60,6 +80,23 @@ void vtkRefractaImageRenderer::SetLightingConnection(vtkAlgorithmOutput* output)
 }
 
 //------------------------------------------------------------------------------
+void vtkRefractaImageRenderer::AddLight(vtkLight* light)
+{
+  this->Pipeline->AddLight(light);
+  this->Modified();
+}
+
+void vtkRefractaImageRenderer::RemoveAllLights()
+{
+  this->Pipeline->RemoveAllLights();
+  this->Modified();
+}
+
+vtkRefractaRenderPipeline* vtkRefractaImageRenderer::GetPipeline()
+{
+  return this->Pipeline;
+}
+
 void vtkRefractaImageRenderer::SetCamera(vtkCamera* camera)
 {
   if (this->Camera != camera)
@@ -182,7 +219,7 @@ bool vtkRefractaImageRenderer::GetEmptySpaceSkipping()
 
 void vtkRefractaImageRenderer::SetContext(vtkOpenCLContext* context)
 {
-  this->ViewPass->SetContext(context);
+  this->Pipeline->SetContext(context);
 }
 
 vtkOpenCLContext* vtkRefractaImageRenderer::GetContext()
@@ -197,7 +234,7 @@ vtkRefractaViewPass* vtkRefractaImageRenderer::GetViewPass()
 
 vtkMTimeType vtkRefractaImageRenderer::GetMTime()
 {
-  vtkMTimeType t = std::max(this->Superclass::GetMTime(), this->ViewPass->GetMTime());
+  vtkMTimeType t = std::max(this->Superclass::GetMTime(), this->Pipeline->GetInputsMTime());
   if (this->Camera)
   {
     t = std::max(t, this->Camera->GetMTime());
@@ -205,10 +242,6 @@ vtkMTimeType vtkRefractaImageRenderer::GetMTime()
   if (this->EnvironmentTexture)
   {
     t = std::max(t, this->EnvironmentTexture->GetMTime());
-  }
-  if (vtkImageData* env = this->ViewPass->GetEnvironmentMap())
-  {
-    t = std::max(t, env->GetMTime());
   }
   return t;
 }
@@ -309,17 +342,15 @@ int vtkRefractaImageRenderer::RequestData(
     }
     pass->SetEnvironmentMap(image);
   }
-  if (!pass->SetMedium(medium) || !pass->SetLighting(lighting))
+  vtkRefractaRenderPipeline* pipeline = this->Pipeline;
+  pipeline->SetMedium(medium);
+  pipeline->SetLightingData(lighting);
+  pipeline->SetCamera(this->Camera);
+  if (!pipeline->Render(this->ImageSize[0], this->ImageSize[1]))
   {
     return 0;
   }
-  std::vector<float> hdr;
-  this->UpdateProgress(0.1);
-  if (!pass->Render(this->Camera, this->ImageSize[0], this->ImageSize[1], nullptr, nullptr, hdr))
-  {
-    return 0;
-  }
-  this->UpdateProgress(0.9);
+  const std::vector<float>& hdr = pipeline->GetImage();
 
   const size_t pixels = static_cast<size_t>(this->ImageSize[0]) * this->ImageSize[1];
   output->SetExtent(0, this->ImageSize[0] - 1, 0, this->ImageSize[1] - 1, 0, 0);
@@ -348,7 +379,10 @@ int vtkRefractaImageRenderer::RequestData(
   record("CurvedRays", pass->GetLastCurved() ? 1.0 : 0.0);
   record("EmptySpaceSkipping", pass->GetLastSkipping() ? 1.0 : 0.0);
   record("ActiveCellFraction", pass->GetLastActiveCellFraction());
-  this->UpdateProgress(1.0);
+  record("PlanSeconds", pipeline->GetStageSeconds(vtkRefractaRenderPipeline::PLAN));
+  record("LightingSeconds", pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING));
+  record("ViewSeconds", pipeline->GetStageSeconds(vtkRefractaRenderPipeline::VIEW));
+  pipeline->GetEffectPlan()->RecordInFieldData(output->GetFieldData());
   return 1;
 }
 
@@ -364,6 +398,6 @@ void vtkRefractaImageRenderer::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "Camera: " << this->Camera.Get() << "\n";
   os << indent << "EnvironmentTexture: " << this->EnvironmentTexture.Get() << "\n";
-  os << indent << "ViewPass:\n";
-  this->ViewPass->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "Pipeline:\n";
+  this->Pipeline->PrintSelf(os, indent.GetNextIndent());
 }

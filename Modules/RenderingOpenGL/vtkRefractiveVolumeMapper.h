@@ -43,20 +43,24 @@
 #ifndef vtkRefractiveVolumeMapper_h
 #define vtkRefractiveVolumeMapper_h
 
-#include "RefractaRenderingModule.h" // for export macro
-#include "vtkSmartPointer.h"         // for members
+#include "RefractaRenderingOpenGLModule.h" // for export macro
+#include "vtkRefractaViewPass.h"           // for RayFrame
+#include "vtkSmartPointer.h"               // for members
 #include "vtkVolumeMapper.h"
 
 #include <memory> // for std::unique_ptr
+#include <string> // for std::string
+#include <vector> // for std::vector
 
 class vtkEffectPlan;
 class vtkImageData;
 class vtkOpenCLContext;
+class vtkCamera;
 class vtkPiecewiseFunction;
-class vtkRefractaViewPass;
+class vtkRefractaRenderPipeline;
 class vtkSceneAnalysis;
 
-class REFRACTARENDERING_EXPORT vtkRefractiveVolumeMapper : public vtkVolumeMapper
+class REFRACTARENDERINGOPENGL_EXPORT vtkRefractiveVolumeMapper : public vtkVolumeMapper
 {
 public:
   static vtkRefractiveVolumeMapper* New();
@@ -94,13 +98,13 @@ public:
 
   ///@{
   /**
-   * Light-pass quality: photons traced per light (default 2^18) and the seed (default 1), used
-   * when the build has the photon tracer.
+   * Light-pass quality: photons traced (default 2^18) and the seed (default 1); the photon
+   * tracer's other knobs through GetPipeline()->GetPhotonTracer().
    */
-  vtkSetClampMacro(NumberOfPhotons, int, 1, 1 << 28);
-  vtkGetMacro(NumberOfPhotons, int);
-  vtkSetMacro(Seed, int);
-  vtkGetMacro(Seed, int);
+  void SetNumberOfPhotons(int photons);
+  int GetNumberOfPhotons();
+  void SetSeed(int seed);
+  int GetSeed();
   ///@}
 
   ///@{
@@ -108,9 +112,10 @@ public:
    * Run vtkLatticeBoltzmannLighting after the photon pass to add multiple scattering
    * (`MultipleScattering`, S_ms). Default on.
    */
-  vtkSetMacro(MultipleScattering, bool);
-  vtkGetMacro(MultipleScattering, bool);
-  vtkBooleanMacro(MultipleScattering, bool);
+  void SetMultipleScattering(bool on);
+  bool GetMultipleScattering();
+  void MultipleScatteringOn() { this->SetMultipleScattering(true); }
+  void MultipleScatteringOff() { this->SetMultipleScattering(false); }
 
   ///@{
   /**
@@ -173,9 +178,9 @@ public:
   /**
    * Execution counters (see the class description).
    */
-  vtkGetMacro(NumberOfMediumBuilds, int);
-  vtkGetMacro(NumberOfLightPassRuns, int);
-  vtkGetMacro(NumberOfViewPassRuns, int);
+  int GetNumberOfMediumBuilds();
+  int GetNumberOfLightPassRuns();
+  int GetNumberOfViewPassRuns();
   ///@}
 
   /**
@@ -194,6 +199,11 @@ public:
   vtkRefractaViewPass* GetViewPass();
 
   /**
+   * The render pipeline this mapper runs (effect plan, passes, stage statistics, progress events).
+   */
+  vtkRefractaRenderPipeline* GetPipeline();
+
+  /**
    * Whether this build has a light-pass implementation (the photon tracer).
    */
   static bool HasLightPasses();
@@ -203,19 +213,15 @@ protected:
   ~vtkRefractiveVolumeMapper() override;
 
   bool UpdateMedium(vtkVolume* volume);
-  bool DecidePlan();
-  bool UpdateLighting(vtkRenderer* renderer, vtkVolume* volume);
+  void WarnAboutUnsupportedModes();
+  void ReportOnce(const std::string& message);
+  static std::vector<float> DepthToPathLengths(vtkRenderer* renderer, vtkCamera* camera,
+    const vtkRefractaViewPass::RayFrame& frame, int width, int height,
+    const std::vector<float>& depth);
 
   double Anisotropy = 0.0;
   double EmissionScale = 0.0;
   double Exposure = 1.0;
-  int NumberOfPhotons = 1 << 18;
-  int Seed = 1;
-  bool MultipleScattering = true;
-  bool QualityPresetApplied = false; // light passes take the plan's recommended settings
-  int NumberOfMediumBuilds = 0;
-  int NumberOfLightPassRuns = 0;
-  int NumberOfViewPassRuns = 0;
 
 private:
   vtkRefractiveVolumeMapper(const vtkRefractiveVolumeMapper&) = delete;

@@ -30,6 +30,17 @@
  * 1e-4), MaxSteps (0 = automatic), Exposure (default 1), ToneMapping (default CLAMP), Context
  * (default vtkOpenCLContext::GetDefault()).
  *
+ * Lights (AddLight, world coordinates): when lights are given and no lighting volume is
+ * connected, the light passes run too (photon pass, and multiple scattering where the effect plan
+ * calls for it), so this filter renders a whole scene from a medium. It runs through
+ * vtkRefractaRenderPipeline (GetPipeline()), which keeps its device state between updates: a
+ * camera change re-runs only the view pass. Its effect plan's tolerance is 0 here, so the medium
+ * is rendered as given (only effects that are exactly absent are skipped); raise it through
+ * GetPipeline()->GetEffectPlan() to skip effects below a relative image change. Field data also
+ * records the effect plan (vtkEffectPlan::RecordInFieldData) and `PlanSeconds`, `LightingSeconds`,
+ * `ViewSeconds` (0 for a stage that was reused). Progress is reported through UpdateProgress;
+ * AbortExecuteOn() stops the running pass and leaves the output empty.
+ *
  * Bad input (invalid medium, lighting volume on another grid, no camera, a degenerate camera, a
  * bad environment image): vtkErrorMacro naming it, RequestData returns 0, the output is empty.
  */
@@ -45,6 +56,8 @@
 class vtkCamera;
 class vtkImageData;
 class vtkOpenCLContext;
+class vtkLight;
+class vtkRefractaRenderPipeline;
 class vtkRefractaViewPass;
 class vtkTexture;
 class vtkUnsignedCharArray;
@@ -69,6 +82,15 @@ public:
    */
   void SetLightingData(vtkImageData* lighting);
   void SetLightingConnection(vtkAlgorithmOutput* output);
+  ///@}
+
+  ///@{
+  /**
+   * Lights (world coordinates) for the light passes, used when no lighting volume is connected.
+   * Default none: emission, absorption and the background only.
+   */
+  void AddLight(vtkLight* light);
+  void RemoveAllLights();
   ///@}
 
   ///@{
@@ -161,6 +183,11 @@ public:
   vtkRefractaViewPass* GetViewPass();
 
   /**
+   * The render pipeline this filter runs (the effect plan, the light passes, their statistics).
+   */
+  vtkRefractaRenderPipeline* GetPipeline();
+
+  /**
    * Tone-map `pixels` RGBA floats into 8-bit RGB with the operator and exposure given.
    */
   static void ToneMap(
@@ -182,7 +209,8 @@ protected:
   int ToneMapping = CLAMP;
   vtkSmartPointer<vtkCamera> Camera;
   vtkSmartPointer<vtkTexture> EnvironmentTexture;
-  vtkSmartPointer<vtkRefractaViewPass> ViewPass;
+  vtkSmartPointer<vtkRefractaRenderPipeline> Pipeline;
+  vtkRefractaViewPass* ViewPass; // the pipeline's
 
 private:
   vtkRefractaImageRenderer(const vtkRefractaImageRenderer&) = delete;

@@ -1,0 +1,287 @@
+// vtkRefractaRenderPipeline: each stage re-runs only when something it reads changed (VTK
+// modification times), progress is monotone and complete, an abort stops the render and the next
+// render recovers, a bad medium is reported once, and the pipeline's image is the image of the
+// passes wired by hand (photon tracer -> Lattice-Boltzmann lighting -> view pass).
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkEffectPlan.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLatticeBoltzmannLighting.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPointData.h"
+#include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaViewPass.h"
+#include "vtkSmartPointer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace
+{
+// A 24^3 fog (sigma_t 3, albedo 0.8) with a denser, slightly refractive ball in the middle.
+vtkSmartPointer<vtkImageData> Fog()
+{
+  const int n = 24;
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, n);
+  image->SetSpacing(1.0 / (n - 1), 1.0 / (n - 1), 1.0 / (n - 1));
+  auto add = [&](const char* name, int comps)
+  {
+    vtkNew<vtkFloatArray> a;
+    a->SetName(name);
+    a->SetNumberOfComponents(comps);
+    a->SetNumberOfTuples(image->GetNumberOfPoints());
+    image->GetPointData()->AddArray(a);
+    return a.GetPointer();
+  };
+  vtkFloatArray* ext = add("Extinction", 3);
+  vtkFloatArray* alb = add("Albedo", 3);
+  vtkFloatArray* idx = add("RefractiveIndex", 1);
+  for (vtkIdType id = 0; id < image->GetNumberOfPoints(); ++id)
+  {
+    double p[3];
+    image->GetPoint(id, p);
+    const double r = std::sqrt(
+      (p[0] - 0.5) * (p[0] - 0.5) + (p[1] - 0.5) * (p[1] - 0.5) + (p[2] - 0.5) * (p[2] - 0.5));
+    const double ball = 0.5 * (1.0 - std::tanh((r - 0.25) / 0.05));
+    for (int c = 0; c < 3; ++c)
+    {
+      ext->SetComponent(id, c, 3.0 + 6.0 * ball);
+      alb->SetComponent(id, c, 0.8);
+    }
+    idx->SetValue(id, static_cast<float>(1.0 + 0.2 * ball));
+  }
+  return image;
+}
+
+vtkSmartPointer<vtkLight> Sun()
+{
+  auto light = vtkSmartPointer<vtkLight>::New();
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetPosition(0.5, 3.0, 0.8);
+  light->SetFocalPoint(0.5, 0.5, 0.5);
+  light->SetIntensity(2.0);
+  return light;
+}
+
+vtkSmartPointer<vtkCamera> Front()
+{
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->SetPosition(0.5, 0.6, 3.0);
+  camera->SetFocalPoint(0.5, 0.5, 0.5);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetViewAngle(30);
+  return camera;
+}
+
+struct Counts
+{
+  int Plan, Light, View, Medium;
+};
+
+Counts CountsOf(vtkRefractaRenderPipeline* p)
+{
+  return { p->GetNumberOfPlanRuns(), p->GetNumberOfLightPassRuns(), p->GetNumberOfViewPassRuns(),
+    p->GetNumberOfMediumUpdates() };
+}
+
+void ExpectCounts(vtkRefractaRenderPipeline* p, Counts expected, const char* what)
+{
+  const Counts got = CountsOf(p);
+  EXPECT_EQ(got.Plan, expected.Plan) << what;
+  EXPECT_EQ(got.Light, expected.Light) << what;
+  EXPECT_EQ(got.View, expected.View) << what;
+  EXPECT_EQ(got.Medium, expected.Medium) << what;
+}
+
+vtkSmartPointer<vtkRefractaRenderPipeline> MakePipeline(
+  vtkImageData* medium, vtkLight* light, vtkCamera* camera)
+{
+  auto pipeline = vtkSmartPointer<vtkRefractaRenderPipeline>::New();
+  pipeline->SetMedium(medium);
+  pipeline->AddLight(light);
+  pipeline->SetCamera(camera);
+  pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 14);
+  return pipeline;
+}
+}
+
+TEST(RenderPipeline, StagesRerunOnlyWhatChanged)
+{
+  auto medium = Fog();
+  auto light = Sun();
+  auto camera = Front();
+  auto pipeline = MakePipeline(medium, light, camera);
+  ASSERT_TRUE(pipeline->Render(32, 32));
+  ASSERT_TRUE(pipeline->GetEffectPlan()->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
+  ExpectCounts(pipeline, { 1, 1, 1, 1 }, "first render");
+  const int uploads = pipeline->GetViewPass()->GetNumberOfUploads();
+
+  ASSERT_TRUE(pipeline->Render(32, 32));
+  ExpectCounts(pipeline, { 1, 1, 1, 1 }, "nothing changed");
+  EXPECT_FALSE(pipeline->GetStageRan(vtkRefractaRenderPipeline::VIEW));
+
+  camera->Azimuth(10);
+  ASSERT_TRUE(pipeline->Render(32, 32));
+  ExpectCounts(pipeline, { 1, 1, 2, 1 }, "camera move: view only");
+  EXPECT_EQ(pipeline->GetViewPass()->GetNumberOfUploads(), uploads);
+
+  pipeline->GetViewPass()->SetStepSize(0.5);
+  ASSERT_TRUE(pipeline->Render(32, 32));
+  ExpectCounts(pipeline, { 1, 1, 3, 1 }, "view setting: view only");
+
+  ASSERT_TRUE(pipeline->Render(40, 30));
+  ExpectCounts(pipeline, { 1, 1, 4, 1 }, "image size: view only");
+
+  light->SetPosition(1.5, 3.0, 0.5);
+  ASSERT_TRUE(pipeline->Render(40, 30));
+  ExpectCounts(pipeline, { 2, 2, 5, 1 }, "light move: light passes and view, same medium");
+  EXPECT_EQ(pipeline->GetViewPass()->GetNumberOfUploads(), uploads + 1) << "lighting only";
+
+  pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 13);
+  ASSERT_TRUE(pipeline->Render(40, 30));
+  ExpectCounts(pipeline, { 2, 3, 6, 1 }, "photon count: light passes and view");
+
+  medium->Modified();
+  ASSERT_TRUE(pipeline->Render(40, 30));
+  ExpectCounts(pipeline, { 3, 4, 7, 2 }, "medium change: everything");
+
+  pipeline->GetEffectPlan()->SetTolerance(0.02);
+  ASSERT_TRUE(pipeline->Render(40, 30));
+  ExpectCounts(pipeline, { 4, 5, 8, 3 }, "plan setting: everything");
+}
+
+TEST(RenderPipeline, ProgressIsMonotoneAndStagesAreAnnounced)
+{
+  auto pipeline = MakePipeline(Fog(), Sun(), Front());
+  std::vector<double> progress;
+  std::vector<std::string> stages;
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&progress);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
+    { static_cast<std::vector<double>*>(client)->push_back(*static_cast<double*>(call)); });
+  vtkNew<vtkCallbackCommand> onStart;
+  onStart->SetClientData(&stages);
+  onStart->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
+    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
+  pipeline->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  pipeline->AddObserver(vtkCommand::StartEvent, onStart);
+  ASSERT_TRUE(pipeline->Render(48, 48));
+  ASSERT_GE(progress.size(), 4u);
+  EXPECT_EQ(progress.front(), 0.0);
+  EXPECT_DOUBLE_EQ(progress.back(), 1.0);
+  for (size_t i = 1; i < progress.size(); ++i)
+  {
+    EXPECT_GE(progress[i], progress[i - 1]) << "at event " << i;
+  }
+  EXPECT_EQ(stages, (std::vector<std::string>{ "plan", "lighting", "view" }));
+}
+
+TEST(RenderPipeline, AbortStopsTheRenderAndTheNextRenderRecovers)
+{
+  auto medium = Fog();
+  auto light = Sun();
+  auto camera = Front();
+  auto reference = MakePipeline(medium, light, camera);
+  ASSERT_TRUE(reference->Render(32, 32));
+
+  auto pipeline = MakePipeline(medium, light, camera);
+  vtkNew<vtkCallbackCommand> abortAtStart;
+  abortAtStart->SetClientData(pipeline.Get());
+  abortAtStart->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void* call)
+    {
+      if (call && std::string(static_cast<const char*>(call)) == "lighting")
+      {
+        static_cast<vtkRefractaRenderPipeline*>(client)->AbortRender();
+      }
+    });
+  const unsigned long tag = pipeline->AddObserver(vtkCommand::StartEvent, abortAtStart);
+  EXPECT_FALSE(pipeline->Render(32, 32));
+  EXPECT_TRUE(pipeline->GetLastRenderAborted());
+  EXPECT_EQ(pipeline->GetNumberOfViewPassRuns(), 0);
+  pipeline->RemoveObserver(tag);
+
+  ASSERT_TRUE(pipeline->Render(32, 32));
+  EXPECT_FALSE(pipeline->GetLastRenderAborted());
+  EXPECT_EQ(pipeline->GetImage(), reference->GetImage()) << "same seed, same device: same image";
+}
+
+TEST(RenderPipeline, BadMediumIsReportedOnce)
+{
+  auto medium = Fog();
+  vtkFloatArray::SafeDownCast(medium->GetPointData()->GetArray("Extinction"))
+    ->SetComponent(7, 1, -1.0);
+  auto pipeline = MakePipeline(medium, Sun(), Front());
+  int errors = 0;
+  std::string message;
+  vtkNew<vtkCallbackCommand> onError;
+  struct Sink
+  {
+    int* Count;
+    std::string* Text;
+  } sink{ &errors, &message };
+  onError->SetClientData(&sink);
+  onError->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void* call)
+    {
+      auto* s = static_cast<Sink*>(client);
+      ++*s->Count;
+      *s->Text = static_cast<const char*>(call);
+    });
+  pipeline->AddObserver(vtkCommand::ErrorEvent, onError);
+  EXPECT_FALSE(pipeline->Render(16, 16));
+  EXPECT_FALSE(pipeline->Render(16, 16));
+  EXPECT_EQ(errors, 1) << "the same message is not repeated on every render";
+  EXPECT_NE(message.find("Extinction"), std::string::npos) << message;
+  EXPECT_NE(message.find("7"), std::string::npos) << "names the voxel: " << message;
+}
+
+TEST(RenderPipeline, SameImageAsThePassesWiredByHand)
+{
+  auto medium = Fog();
+  auto light = Sun();
+  auto camera = Front();
+  auto pipeline = MakePipeline(medium, light, camera);
+  pipeline->GetEffectPlan()->SetTolerance(0.0);
+  ASSERT_TRUE(pipeline->Render(32, 32));
+  ASSERT_FALSE(pipeline->GetLastScheduleInterleaved()) << "sequential on the CPU device";
+
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->SetInputData(medium);
+  tracer->AddLight(light);
+  tracer->SetNumberOfPhotons(1 << 14);
+  vtkNew<vtkLatticeBoltzmannLighting> lattice;
+  lattice->SetInputData(medium);
+  lattice->SetLightingConnection(tracer->GetOutputPort());
+  vtkNew<vtkRefractaImageRenderer> renderer;
+  renderer->SetInputData(medium);
+  renderer->SetLightingConnection(lattice->GetOutputPort());
+  renderer->SetCamera(camera);
+  renderer->SetImageSize(32, 32);
+  renderer->Update();
+  vtkDataArray* hdr = renderer->GetOutput()->GetPointData()->GetArray("HDR");
+  ASSERT_NE(hdr, nullptr);
+  const std::vector<float>& image = pipeline->GetImage();
+  ASSERT_EQ(image.size(), static_cast<size_t>(4 * hdr->GetNumberOfTuples()));
+  double maximum = 0, difference = 0;
+  for (vtkIdType p = 0; p < hdr->GetNumberOfTuples(); ++p)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      maximum = std::max(maximum, std::abs(hdr->GetComponent(p, c)));
+      difference = std::max(difference, std::abs(hdr->GetComponent(p, c) - image[4 * p + c]));
+    }
+  }
+  EXPECT_GT(maximum, 0.0);
+  EXPECT_LE(difference, 1e-5 * maximum);
+}

@@ -1,0 +1,738 @@
+#include "vtkRefractaRenderPipeline.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkEffectPlan.h"
+#include "vtkImageData.h"
+#include "vtkLatticeBoltzmannSolver.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMediumValidator.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenCLContext.h"
+#include "vtkPhotonDiffusionSchedule.h"
+#include "vtkPhotonTracer.h"
+#include "vtkRefractaViewPass.h"
+#include "vtkSceneAnalysis.h"
+#include "vtkSmartPointer.h"
+#include "vtkTimeStamp.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <string>
+
+vtkStandardNewMacro(vtkRefractaRenderPipeline);
+
+namespace
+{
+// Share of a full render each stage takes when it has not run yet, from the default scene on the
+// 2-core PoCL CPU (plan 0.1 s, light passes 20-30 s, view pass 2-6 s); after a stage has run its
+// own last duration is used instead.
+constexpr std::array<double, vtkRefractaRenderPipeline::NUMBER_OF_STAGES> DefaultStageSeconds = {
+  0.1, 20.0, 4.0
+};
+
+// The light-independent decisions: while they stay the same, the pruned medium stays valid.
+constexpr int LightIndependentEffects[] = { vtkEffectPlan::REFRACTION, vtkEffectPlan::ABSORPTION,
+  vtkEffectPlan::EMISSION };
+
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+}
+
+struct vtkRefractaRenderPipeline::Internals
+{
+  vtkSmartPointer<vtkImageData> Medium;
+  vtkSmartPointer<vtkImageData> LightingData;
+  vtkSmartPointer<vtkLightCollection> Lights = vtkSmartPointer<vtkLightCollection>::New();
+  vtkSmartPointer<vtkCamera> Camera;
+  vtkSmartPointer<vtkMatrix4x4> PropMatrix;
+  vtkSmartPointer<vtkOpenCLContext> Context;
+
+  vtkNew<vtkSceneAnalysis> Analysis;
+  vtkNew<vtkEffectPlan> Plan;
+  vtkNew<vtkPhotonDiffusionSchedule> Schedule;
+  vtkNew<vtkRefractaViewPass> ViewPass;
+
+  // Products of the stages.
+  vtkSmartPointer<vtkImageData> Planned;
+  vtkSmartPointer<vtkLightCollection> DataLights; // the lights in the medium's data frame
+  vtkSmartPointer<vtkImageData> Lighting;
+  std::vector<float> Image;
+  std::vector<float> Transmittance;
+
+  // What each stage saw when it last completed.
+  vtkTimeStamp PlanTime;
+  vtkTimeStamp LightTime;
+  vtkTimeStamp ViewTime;
+  vtkImageData* PlannedFrom = nullptr;
+  std::vector<vtkLight*> LightList;
+  std::array<bool, vtkEffectPlan::NUMBER_OF_EFFECTS> Decisions{};
+  vtkCamera* ViewCamera = nullptr;
+  int ViewSize[2] = { 0, 0 };
+  std::vector<float> ViewDepth;
+  bool PlanDone = false;
+  bool LightDone = false;
+  bool ViewDone = false;
+
+  // The render in progress.
+  bool Ran[NUMBER_OF_STAGES] = { false, false, false };
+  double Seconds[NUMBER_OF_STAGES] = { 0, 0, 0 };
+  double LastSeconds[NUMBER_OF_STAGES] = { -1, -1, -1 };
+  double StageStart[NUMBER_OF_STAGES] = { 0, 0, 0 }; // progress at which each stage starts
+  double StageWeight[NUMBER_OF_STAGES] = { 0, 0, 0 };
+  double Progress = 0;
+  bool Abort = false;
+  vtkAlgorithm* Running = nullptr;
+  std::string LastError;
+
+  vtkOpenCLContext* GetContext()
+  {
+    return this->Context ? this->Context.Get() : vtkOpenCLContext::GetDefault();
+  }
+
+  std::vector<vtkLight*> CurrentLightList()
+  {
+    std::vector<vtkLight*> list;
+    vtkCollectionSimpleIterator it;
+    this->Lights->InitTraversal(it);
+    while (vtkLight* light = this->Lights->GetNextLight(it))
+    {
+      list.push_back(light);
+    }
+    return list;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkRefractaRenderPipeline::vtkRefractaRenderPipeline()
+  : Internal(new Internals)
+{
+  // Forward the passes' progress into this pipeline's, and pass an abort on to them.
+  vtkNew<vtkCallbackCommand> forward;
+  forward->SetClientData(this);
+  forward->SetCallback(
+    [](vtkObject* caller, unsigned long, void* clientData, void* callData)
+    {
+      auto* self = static_cast<vtkRefractaRenderPipeline*>(clientData);
+      Internals& in = *self->Internal;
+      if (in.Abort)
+      {
+        if (auto* algorithm = vtkAlgorithm::SafeDownCast(caller))
+        {
+          algorithm->SetAbortExecute(1);
+        }
+      }
+      if (callData)
+      {
+        const int stage = vtkRefractaViewPass::SafeDownCast(caller) ? VIEW : LIGHTING;
+        self->ReportProgress(stage, *static_cast<double*>(callData));
+      }
+    });
+  this->Internal->Schedule->AddObserver(vtkCommand::ProgressEvent, forward);
+  static_cast<vtkObject*>(this->Internal->Schedule->GetPhotonTracer())
+    ->AddObserver(vtkCommand::ProgressEvent, forward);
+  this->Internal->ViewPass->AddObserver(vtkCommand::ProgressEvent, forward);
+}
+
+vtkRefractaRenderPipeline::~vtkRefractaRenderPipeline() = default;
+
+const char* vtkRefractaRenderPipeline::GetStageName(int stage)
+{
+  static const char* const names[] = { "plan", "lighting", "view" };
+  return stage >= 0 && stage < NUMBER_OF_STAGES ? names[stage] : "";
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaRenderPipeline::SetMedium(vtkImageData* medium)
+{
+  if (this->Internal->Medium != medium)
+  {
+    this->Internal->Medium = medium;
+    this->Modified();
+  }
+}
+
+vtkImageData* vtkRefractaRenderPipeline::GetMedium()
+{
+  return this->Internal->Medium;
+}
+
+void vtkRefractaRenderPipeline::SetLightingData(vtkImageData* lighting)
+{
+  if (this->Internal->LightingData != lighting)
+  {
+    this->Internal->LightingData = lighting;
+    this->Modified();
+  }
+}
+
+vtkImageData* vtkRefractaRenderPipeline::GetLightingData()
+{
+  return this->Internal->LightingData;
+}
+
+void vtkRefractaRenderPipeline::AddLight(vtkLight* light)
+{
+  if (light)
+  {
+    this->Internal->Lights->AddItem(light);
+  }
+}
+
+void vtkRefractaRenderPipeline::RemoveAllLights()
+{
+  this->Internal->Lights->RemoveAllItems();
+}
+
+void vtkRefractaRenderPipeline::SetLights(vtkLightCollection* lights)
+{
+  // Front ends hand over their renderer's lights on every frame: keep the collection (and its
+  // MTime) when they are the same lights, so that only a real light change re-lights.
+  std::vector<vtkLight*> list;
+  if (lights)
+  {
+    vtkCollectionSimpleIterator it;
+    lights->InitTraversal(it);
+    while (vtkLight* light = lights->GetNextLight(it))
+    {
+      list.push_back(light);
+    }
+  }
+  if (list == this->Internal->CurrentLightList())
+  {
+    return;
+  }
+  this->RemoveAllLights();
+  for (vtkLight* light : list)
+  {
+    this->AddLight(light);
+  }
+}
+
+vtkLightCollection* vtkRefractaRenderPipeline::GetLights()
+{
+  return this->Internal->Lights;
+}
+
+// The camera drives the view stage through its own MTime; setting it does not touch this
+// object's MTime, which would re-plan.
+void vtkRefractaRenderPipeline::SetCamera(vtkCamera* camera)
+{
+  this->Internal->Camera = camera;
+}
+
+vtkCamera* vtkRefractaRenderPipeline::GetCamera()
+{
+  return this->Internal->Camera;
+}
+
+void vtkRefractaRenderPipeline::SetPropMatrix(vtkMatrix4x4* matrix)
+{
+  if (this->Internal->PropMatrix != matrix)
+  {
+    this->Internal->PropMatrix = matrix;
+    this->Modified();
+  }
+}
+
+vtkMatrix4x4* vtkRefractaRenderPipeline::GetPropMatrix()
+{
+  return this->Internal->PropMatrix;
+}
+
+vtkSceneAnalysis* vtkRefractaRenderPipeline::GetSceneAnalysis()
+{
+  return this->Internal->Analysis;
+}
+
+vtkEffectPlan* vtkRefractaRenderPipeline::GetEffectPlan()
+{
+  return this->Internal->Plan;
+}
+
+vtkPhotonTracer* vtkRefractaRenderPipeline::GetPhotonTracer()
+{
+  return this->Internal->Schedule->GetPhotonTracer();
+}
+
+vtkLatticeBoltzmannSolver* vtkRefractaRenderPipeline::GetLatticeSolver()
+{
+  return this->Internal->Schedule->GetSolver();
+}
+
+vtkRefractaViewPass* vtkRefractaRenderPipeline::GetViewPass()
+{
+  return this->Internal->ViewPass;
+}
+
+void vtkRefractaRenderPipeline::SetContext(vtkOpenCLContext* context)
+{
+  Internals& in = *this->Internal;
+  if (in.Context != context)
+  {
+    in.Context = context;
+    in.ViewPass->SetContext(context);
+    in.Schedule->GetPhotonTracer()->SetContext(context);
+    in.Schedule->GetSolver()->SetContext(context);
+    in.PlanDone = false; // device buffers live in the old context
+    this->Modified();
+  }
+}
+
+vtkOpenCLContext* vtkRefractaRenderPipeline::GetContext()
+{
+  return this->Internal->GetContext();
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaRenderPipeline::SetOctreeTolerance(double epsilon)
+{
+  vtkPhotonTracer* tracer = this->GetPhotonTracer();
+  tracer->SetPrimaryTolerance(epsilon);
+  tracer->SetSecondaryTolerance(4.0 * epsilon);
+}
+
+void vtkRefractaRenderPipeline::SetQuality(int quality)
+{
+  vtkEffectPlan* plan = this->Internal->Plan;
+  plan->SetQuality(quality);
+  if (plan->GetQuality() != quality)
+  {
+    return; // the plan reported the unknown preset
+  }
+  vtkPhotonTracer* tracer = this->GetPhotonTracer();
+  tracer->SetNumberOfPhotons(plan->GetRecommendedNumberOfPhotons());
+  tracer->SetMinimumStep(plan->GetRecommendedPhotonMinimumStep());
+  this->SetOctreeTolerance(plan->GetRecommendedOctreeTolerance());
+  vtkLatticeBoltzmannSolver* solver = this->GetLatticeSolver();
+  solver->SetTolerance(plan->GetRecommendedLatticeTolerance());
+  solver->SetBlockSize(plan->GetRecommendedLatticeBlockSize());
+  this->Internal->ViewPass->SetStepSize(plan->GetRecommendedViewStep());
+}
+
+//------------------------------------------------------------------------------
+const std::vector<float>& vtkRefractaRenderPipeline::GetImage() const
+{
+  return this->Internal->Image;
+}
+
+const std::vector<float>& vtkRefractaRenderPipeline::GetTransmittance() const
+{
+  return this->Internal->Transmittance;
+}
+
+vtkImageData* vtkRefractaRenderPipeline::GetPlannedMedium()
+{
+  return this->Internal->Planned;
+}
+
+vtkImageData* vtkRefractaRenderPipeline::GetLighting()
+{
+  return this->Internal->Lighting;
+}
+
+void vtkRefractaRenderPipeline::AbortRender()
+{
+  Internals& in = *this->Internal;
+  in.Abort = true;
+  if (in.Running)
+  {
+    in.Running->SetAbortExecute(1);
+  }
+}
+
+bool vtkRefractaRenderPipeline::GetStageRan(int stage) const
+{
+  return stage >= 0 && stage < NUMBER_OF_STAGES && this->Internal->Ran[stage];
+}
+
+double vtkRefractaRenderPipeline::GetStageSeconds(int stage) const
+{
+  return stage >= 0 && stage < NUMBER_OF_STAGES ? this->Internal->Seconds[stage] : 0.0;
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkRefractaRenderPipeline::GetLightsMTime()
+{
+  vtkMTimeType t = this->Internal->Lights->GetMTime();
+  for (vtkLight* light : this->Internal->CurrentLightList())
+  {
+    t = std::max(t, light->GetMTime());
+    if (vtkMatrix4x4* m = light->GetTransformMatrix())
+    {
+      t = std::max(t, m->GetMTime()); // camera lights follow the camera through this matrix
+    }
+  }
+  return t;
+}
+
+vtkMTimeType vtkRefractaRenderPipeline::GetInputsMTime()
+{
+  Internals& in = *this->Internal;
+  vtkMTimeType t = std::max({ this->GetMTime(), in.Plan->GetMTime(), in.Schedule->GetMTime(),
+    in.ViewPass->GetMTime(), this->GetLightsMTime() });
+  if (in.Camera)
+  {
+    t = std::max(t, in.Camera->GetMTime());
+  }
+  if (in.PropMatrix)
+  {
+    t = std::max(t, in.PropMatrix->GetMTime());
+  }
+  if (vtkImageData* env = in.ViewPass->GetEnvironmentMap())
+  {
+    t = std::max(t, env->GetMTime());
+  }
+  return t;
+}
+
+bool vtkRefractaRenderPipeline::PlanIsStale()
+{
+  Internals& in = *this->Internal;
+  const vtkMTimeType planTime = in.PlanTime.GetMTime();
+  return !in.PlanDone || in.Medium != in.PlannedFrom || in.Medium->GetMTime() > planTime ||
+    this->GetMTime() > planTime || in.Plan->GetMTime() > planTime ||
+    in.CurrentLightList() != in.LightList || this->GetLightsMTime() > planTime ||
+    (in.PropMatrix && in.PropMatrix->GetMTime() > planTime);
+}
+
+bool vtkRefractaRenderPipeline::LightingIsStale()
+{
+  Internals& in = *this->Internal;
+  const vtkMTimeType lightTime = in.LightTime.GetMTime();
+  return !in.LightDone || in.PlanTime.GetMTime() > lightTime ||
+    in.Schedule->GetMTime() > lightTime ||
+    (in.LightingData && in.LightingData->GetMTime() > lightTime);
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaRenderPipeline::ReportProgress(int stage, double fraction)
+{
+  Internals& in = *this->Internal;
+  fraction = std::min(std::max(fraction, 0.0), 1.0);
+  double progress = in.StageStart[stage] + in.StageWeight[stage] * fraction;
+  if (progress > in.Progress)
+  {
+    in.Progress = progress;
+    this->InvokeEvent(vtkCommand::ProgressEvent, &progress);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::Render(int width, int height, const float* depthLimit)
+{
+  Internals& in = *this->Internal;
+  in.Abort = false;
+  this->LastRenderAborted = false;
+  std::fill(std::begin(in.Ran), std::end(in.Ran), false);
+  std::fill(std::begin(in.Seconds), std::end(in.Seconds), 0.0);
+  if (!in.Medium)
+  {
+    vtkErrorMacro("No medium: call SetMedium() with a Refracta medium (vtkImageData) first.");
+    return false;
+  }
+  if (!in.Camera)
+  {
+    vtkErrorMacro("No camera: call SetCamera() with a vtkCamera first.");
+    return false;
+  }
+  if (width < 1 || height < 1)
+  {
+    vtkErrorMacro("The image size " << width << " x " << height << " has no pixels.");
+    return false;
+  }
+
+  // Which stages will run decides how the progress range is shared among them.
+  const bool plan = this->PlanIsStale();
+  const bool light = plan || this->LightingIsStale();
+  const bool stages[NUMBER_OF_STAGES] = { plan, light, true };
+  double total = 0;
+  for (int s = 0; s < NUMBER_OF_STAGES; ++s)
+  {
+    in.StageWeight[s] = stages[s]
+      ? (in.LastSeconds[s] >= 0 ? in.LastSeconds[s] + 1e-3 : DefaultStageSeconds[s])
+      : 0.0;
+    total += in.StageWeight[s];
+  }
+  double start = 0;
+  for (int s = 0; s < NUMBER_OF_STAGES; ++s)
+  {
+    in.StageWeight[s] /= total;
+    in.StageStart[s] = start;
+    start += in.StageWeight[s];
+  }
+  in.Progress = 0;
+  double zero = 0;
+  this->InvokeEvent(vtkCommand::ProgressEvent, &zero);
+
+  auto run = [&](int stage, bool (vtkRefractaRenderPipeline::*body)()) -> bool
+  {
+    const char* name = GetStageName(stage);
+    this->InvokeEvent(vtkCommand::StartEvent, const_cast<char*>(name));
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool ok = (this->*body)();
+    in.Seconds[stage] = SecondsSince(t0);
+    in.Ran[stage] = true;
+    if (ok)
+    {
+      in.LastSeconds[stage] = in.Seconds[stage];
+      this->ReportProgress(stage, 1.0);
+    }
+    this->InvokeEvent(vtkCommand::EndEvent, const_cast<char*>(name));
+    return ok;
+  };
+  if (plan && !run(PLAN, &vtkRefractaRenderPipeline::RunPlan))
+  {
+    return false;
+  }
+  if (light && !run(LIGHTING, &vtkRefractaRenderPipeline::RunLighting))
+  {
+    return false;
+  }
+
+  // The view stage.
+  const vtkMTimeType viewTime = in.ViewTime.GetMTime();
+  vtkImageData* env = in.ViewPass->GetEnvironmentMap();
+  const size_t pixels = static_cast<size_t>(width) * height;
+  const bool depthChanged = depthLimit ? in.ViewDepth.size() != pixels ||
+      !std::equal(in.ViewDepth.begin(), in.ViewDepth.end(), depthLimit)
+                                       : !in.ViewDepth.empty();
+  const bool view = light || !in.ViewDone || in.Camera != in.ViewCamera ||
+    in.Camera->GetMTime() > viewTime || in.ViewPass->GetMTime() > viewTime ||
+    (env && env->GetMTime() > viewTime) ||
+    (in.PropMatrix && in.PropMatrix->GetMTime() > viewTime) || width != in.ViewSize[0] ||
+    height != in.ViewSize[1] || depthChanged;
+  if (!view)
+  {
+    this->ReportProgress(VIEW, 1.0);
+    return true;
+  }
+  this->InvokeEvent(vtkCommand::StartEvent, const_cast<char*>(GetStageName(VIEW)));
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool ok = this->RunView(width, height, depthLimit);
+  in.Seconds[VIEW] = SecondsSince(t0);
+  in.Ran[VIEW] = true;
+  if (ok)
+  {
+    in.LastSeconds[VIEW] = in.Seconds[VIEW];
+    this->ReportProgress(VIEW, 1.0);
+  }
+  this->InvokeEvent(vtkCommand::EndEvent, const_cast<char*>(GetStageName(VIEW)));
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::RunPlan()
+{
+  Internals& in = *this->Internal;
+  in.PlanDone = in.LightDone = in.ViewDone = false;
+  vtkNew<vtkMediumValidator> validator;
+  if (!validator->Validate(in.Medium))
+  {
+    // Said once: a front end re-rendering the same bad medium does not repeat it.
+    const std::string message =
+      std::string("The medium is not a valid Refracta medium: ") + validator->GetErrorMessage();
+    if (message != in.LastError)
+    {
+      vtkErrorMacro(<< message);
+      in.LastError = message;
+    }
+    in.Planned = nullptr;
+    return false;
+  }
+
+  // The lights in the medium's data frame (the inverse of the placement).
+  vtkNew<vtkMatrix4x4> toData;
+  if (in.PropMatrix)
+  {
+    vtkMatrix4x4::Invert(in.PropMatrix, toData);
+  }
+  in.DataLights = vtkSmartPointer<vtkLightCollection>::New();
+  in.Analysis->SetMedium(in.Medium);
+  in.Analysis->RemoveAllLights();
+  for (vtkLight* light : in.CurrentLightList())
+  {
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    vtkNew<vtkLight> copy;
+    copy->DeepCopy(light);
+    copy->SetLightTypeToSceneLight();
+    copy->SetTransformMatrix(nullptr);
+    double p[4] = { 0, 0, 0, 1 }, f[4] = { 0, 0, 0, 1 };
+    light->GetTransformedPosition(p);
+    light->GetTransformedFocalPoint(f);
+    toData->MultiplyPoint(p, p);
+    toData->MultiplyPoint(f, f);
+    copy->SetPosition(p[0] / p[3], p[1] / p[3], p[2] / p[3]);
+    copy->SetFocalPoint(f[0] / f[3], f[1] / f[3], f[2] / f[3]);
+    in.DataLights->AddItem(copy);
+    in.Analysis->AddLight(copy);
+  }
+
+  // MultipleScattering off overrides the plan's decision without changing its mode.
+  const int userMode = in.Plan->GetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING);
+  if (!this->MultipleScattering)
+  {
+    in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, vtkEffectPlan::FORCE_OFF);
+  }
+  const bool decided = in.Analysis->Analyze() && in.Plan->Decide(in.Analysis);
+  in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, userMode);
+  if (!decided)
+  {
+    vtkErrorMacro("The scene analysis failed (see the error above).");
+    return false;
+  }
+
+  // Prune the medium only when it or a light-independent decision changed, so that a light
+  // move keeps the medium the view pass and the photon pass already hold.
+  bool prune = !in.Planned || in.Medium != in.PlannedFrom ||
+    in.Medium->GetMTime() > in.PlanTime.GetMTime() || in.Plan->GetMTime() > in.PlanTime.GetMTime();
+  for (int effect : LightIndependentEffects)
+  {
+    prune = prune || in.Plan->IsEnabled(effect) != in.Decisions[effect];
+  }
+  if (prune)
+  {
+    auto planned = vtkSmartPointer<vtkImageData>::New();
+    in.Plan->ApplyToMedium(in.Medium, planned);
+    in.Planned = planned;
+    in.ViewPass->SetContext(in.GetContext());
+    if (!in.ViewPass->SetMedium(in.Planned))
+    {
+      in.Planned = nullptr;
+      return false;
+    }
+    ++this->NumberOfMediumUpdates;
+  }
+  for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
+  {
+    in.Decisions[e] = in.Plan->IsEnabled(e);
+  }
+  in.PlannedFrom = in.Medium;
+  in.LightList = in.CurrentLightList();
+  in.LastError.clear();
+  in.PlanDone = true;
+  in.PlanTime.Modified();
+  ++this->NumberOfPlanRuns;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::RunLighting()
+{
+  Internals& in = *this->Internal;
+  in.LightDone = in.ViewDone = false;
+  in.Lighting = nullptr;
+  const bool lit = in.Plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING) &&
+    in.Analysis->GetNumberOfPoweredLights() > 0;
+  if (in.LightingData)
+  {
+    in.Lighting = in.LightingData;
+  }
+  else if (lit)
+  {
+    vtkPhotonTracer* tracer = in.Schedule->GetPhotonTracer();
+    tracer->SetContext(in.GetContext());
+    tracer->SetLights(in.DataLights);
+    vtkAlgorithm* pass = tracer;
+    vtkImageData* output = nullptr;
+    if (in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
+    {
+      // Interleaving the lattice with the marching (Bernabei et al.) helps where the two
+      // share a device with spare parallelism: measured up to 4% on an H200; on a CPU device
+      // both compete for the same cores, so sequential there.
+      in.Schedule->GetSolver()->SetContext(in.GetContext());
+      const bool interleaved = this->MultipleScatteringSchedule == INTERLEAVED_SCHEDULE ||
+        (this->MultipleScatteringSchedule == AUTOMATIC_SCHEDULE && in.GetContext()->GetIsGPU());
+      in.Schedule->SetMode(interleaved ? vtkPhotonDiffusionSchedule::INTERLEAVED
+                                       : vtkPhotonDiffusionSchedule::SEQUENTIAL);
+      this->LastScheduleInterleaved = interleaved;
+      in.Schedule->SetInputData(in.Planned);
+      pass = in.Schedule;
+    }
+    else
+    {
+      tracer->SetInputData(in.Planned);
+    }
+    in.Running = pass;
+    if (in.Abort)
+    {
+      pass->SetAbortExecute(1);
+    }
+    pass->Update();
+    in.Running = nullptr;
+    output = vtkImageData::SafeDownCast(pass->GetOutputDataObject(0));
+    if (in.Abort || pass->GetAbortExecute())
+    {
+      pass->SetAbortExecute(0);
+      this->LastRenderAborted = true;
+      return false;
+    }
+    if (!output || output->GetNumberOfPoints() == 0)
+    {
+      vtkErrorMacro(
+        "The light passes (" << pass->GetClassName() << ") failed; see the error above.");
+      return false;
+    }
+    in.Lighting = vtkSmartPointer<vtkImageData>::New();
+    in.Lighting->ShallowCopy(output);
+    ++this->NumberOfLightPassRuns;
+  }
+  if (!in.ViewPass->SetLighting(in.Lighting))
+  {
+    in.Lighting = nullptr;
+    return false;
+  }
+  in.LightDone = true;
+  in.LightTime.Modified();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::RunView(int width, int height, const float* depthLimit)
+{
+  Internals& in = *this->Internal;
+  in.ViewDone = false;
+  if (!in.ViewPass->Render(
+        in.Camera, width, height, in.PropMatrix, depthLimit, in.Image, &in.Transmittance))
+  {
+    return false;
+  }
+  const size_t pixels = static_cast<size_t>(width) * height;
+  in.ViewDepth.assign(
+    depthLimit ? depthLimit : nullptr, depthLimit ? depthLimit + pixels : nullptr);
+  in.ViewCamera = in.Camera;
+  in.ViewSize[0] = width;
+  in.ViewSize[1] = height;
+  in.ViewDone = true;
+  in.ViewTime.Modified();
+  ++this->NumberOfViewPassRuns;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaRenderPipeline::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  Internals& in = *this->Internal;
+  os << indent << "Medium: " << in.Medium.Get() << "\n";
+  os << indent << "LightingData: " << in.LightingData.Get() << "\n";
+  os << indent << "Lights: " << in.Lights->GetNumberOfItems() << "\n";
+  os << indent << "Camera: " << in.Camera.Get() << "\n";
+  os << indent << "PropMatrix: " << in.PropMatrix.Get() << "\n";
+  os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
+  os << indent << "MultipleScatteringSchedule: " << this->MultipleScatteringSchedule << "\n";
+  os << indent << "NumberOfPlanRuns: " << this->NumberOfPlanRuns << "\n";
+  os << indent << "NumberOfLightPassRuns: " << this->NumberOfLightPassRuns << "\n";
+  os << indent << "NumberOfViewPassRuns: " << this->NumberOfViewPassRuns << "\n";
+  os << indent << "EffectPlan: " << in.Plan->GetSummary() << "\n";
+}

@@ -1,0 +1,280 @@
+/**
+ * @class   vtkRefractaRenderPipeline
+ * @brief   The one render pipeline every Refracta front end uses: scene analysis, effect plan,
+ *          quality presets, photon pass, multiple scattering and view pass, with their device
+ *          state kept between renders.
+ *
+ * `refracta-render`, vtkRefractiveVolumeMapper, vtkRefractaImageRenderer, the benchmarks and
+ * the cross-module tests all render through this class, so the passes are wired in one place.
+ *
+ * Inputs: the medium (SetMedium: a Refracta medium, see vtkRefractaMedium; validated on
+ * Render), the lights (AddLight: vtkLights in world coordinates, switched on; point, spot and
+ * directional), the camera (SetCamera, world coordinates) and the medium's placement in the world
+ * (SetPropMatrix: data -> world, a vtkProp3D's matrix; default identity). A precomputed lighting
+ * volume (SetLightingData) replaces the light passes.
+ *
+ * Stages, each re-run only when something it reads changed since its last run (VTK modification
+ * times, not keys):
+ * 1. **PLAN**: vtkSceneAnalysis of the medium with the lights, vtkEffectPlan::Decide, and the
+ *    medium pruned by the plan (refraction, absorption, emission). Runs when the medium, the
+ *    plan's settings, the lights or the placement change; a light change alone keeps the pruned
+ *    medium (and so the device upload) unless a light-independent decision changed.
+ * 2. **LIGHTING**: when the plan enables single scattering and a powered light is on: the photon
+ *    pass (GetPhotonTracer()), then, when multiple scattering is on, the Lattice-Boltzmann solver
+ *    (GetLatticeSolver()) through vtkPhotonDiffusionSchedule, interleaved or sequential
+ *    (MultipleScatteringSchedule). Runs when the pruned medium, a light, the placement or a light
+ *    pass setting changed. Skipped entirely (and the lighting volume dropped) when the plan turns
+ *    single scattering off.
+ * 3. **VIEW**: vtkRefractaViewPass (GetViewPass()) for the camera. Runs when an earlier stage ran,
+ *    or the camera, the image size, the depth limits, the placement or a view setting changed;
+ *    otherwise the previous image is returned as it is.
+ * So a camera move runs the view pass only; a light move runs the light passes and the view
+ * pass on the medium already on the device; a medium change runs everything.
+ *
+ * Progress and abort: Render() invokes vtkCommand::StartEvent and EndEvent around each stage that
+ * runs (call data: the stage's name, a const char*), and vtkCommand::ProgressEvent (call data: a
+ * double* in [0, 1], monotone over the whole render) with the stages weighted by their
+ * measured cost (see StageWeights in the .cxx). AbortRender() (from any observer, or another
+ * thread) stops the running pass at its next check and Render() returns false with
+ * GetLastRenderAborted() true; the stages that did not finish re-run on the next Render().
+ *
+ * Statistics of the last Render(): GetStageRan(stage), GetStageSeconds(stage), and the counters
+ * GetNumberOfPlanRuns(), GetNumberOfLightPassRuns(), GetNumberOfViewPassRuns().
+ */
+#ifndef vtkRefractaRenderPipeline_h
+#define vtkRefractaRenderPipeline_h
+
+#include "RefractaPipelineModule.h" // for export macro
+#include "vtkObject.h"
+
+#include <memory> // for std::unique_ptr
+#include <vector> // for std::vector
+
+class vtkCamera;
+class vtkEffectPlan;
+class vtkImageData;
+class vtkLatticeBoltzmannSolver;
+class vtkLight;
+class vtkLightCollection;
+class vtkMatrix4x4;
+class vtkOpenCLContext;
+class vtkPhotonDiffusionSchedule;
+class vtkPhotonTracer;
+class vtkRefractaViewPass;
+class vtkSceneAnalysis;
+
+class REFRACTAPIPELINE_EXPORT vtkRefractaRenderPipeline : public vtkObject
+{
+public:
+  static vtkRefractaRenderPipeline* New();
+  vtkTypeMacro(vtkRefractaRenderPipeline, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Stage
+  {
+    PLAN = 0,
+    LIGHTING = 1,
+    VIEW = 2,
+    NUMBER_OF_STAGES = 3
+  };
+
+  enum ScheduleMode
+  {
+    AUTOMATIC_SCHEDULE = 0, ///< interleaved on GPUs, sequential on CPU devices (see the .cxx)
+    SEQUENTIAL_SCHEDULE = 1,
+    INTERLEAVED_SCHEDULE = 2
+  };
+
+  /**
+   * Name of a stage ("plan", "lighting", "view"), or "" for an invalid index.
+   */
+  static const char* GetStageName(int stage);
+
+  ///@{
+  /**
+   * The medium (data coordinates). Required.
+   */
+  void SetMedium(vtkImageData* medium);
+  vtkImageData* GetMedium();
+  ///@}
+
+  ///@{
+  /**
+   * A precomputed lighting volume on the medium's grid (`Radiance`, `RadianceDirection`,
+   * `MultipleScattering`, see vtkRefractaImageRenderer); replaces the light passes. Default none.
+   */
+  void SetLightingData(vtkImageData* lighting);
+  vtkImageData* GetLightingData();
+  ///@}
+
+  ///@{
+  /**
+   * The lights, in world coordinates. Only lights that are switched on count.
+   */
+  void AddLight(vtkLight* light);
+  void RemoveAllLights();
+  void SetLights(vtkLightCollection* lights);
+  vtkLightCollection* GetLights();
+  ///@}
+
+  ///@{
+  /**
+   * The camera (world coordinates). Required for Render().
+   */
+  void SetCamera(vtkCamera* camera);
+  vtkCamera* GetCamera();
+  ///@}
+
+  ///@{
+  /**
+   * The medium's data -> world matrix (a vtkVolume's matrix). nullptr (default): identity.
+   */
+  void SetPropMatrix(vtkMatrix4x4* matrix);
+  vtkMatrix4x4* GetPropMatrix();
+  ///@}
+
+  ///@{
+  /**
+   * The passes and decisions, to configure directly (their knobs, units and defaults are
+   * documented in their classes). The photon tracer's lights are set by this pipeline.
+   */
+  vtkSceneAnalysis* GetSceneAnalysis();
+  vtkEffectPlan* GetEffectPlan();
+  vtkPhotonTracer* GetPhotonTracer();
+  vtkLatticeBoltzmannSolver* GetLatticeSolver();
+  vtkRefractaViewPass* GetViewPass();
+  ///@}
+
+  /**
+   * Apply a quality preset (vtkEffectPlan::DRAFT, INTERACTIVE or PRODUCTION) to the plan (its
+   * tolerance) and to every pass: photon count, photon minimum step, octree tolerances, lattice
+   * tolerance and block size, and the view step, as measured by BenchmarkAccuracyTime
+   * (Documentation/Benchmarks.md). Setting a knob on a pass afterwards overrides the preset's
+   * value. An unknown preset is reported by the plan and changes nothing.
+   */
+  void SetQuality(int quality);
+
+  /**
+   * Set the photon tracer's octree tolerances: primary `epsilon` and secondary 4 epsilon, the
+   * ratio the paper's and our measurements use (the one place this rule lives).
+   */
+  void SetOctreeTolerance(double epsilon);
+
+  ///@{
+  /**
+   * Run multiple scattering at all (default on). Off forces the plan's MULTIPLE_SCATTERING
+   * decision off without changing its mode.
+   */
+  vtkSetMacro(MultipleScattering, bool);
+  vtkGetMacro(MultipleScattering, bool);
+  vtkBooleanMacro(MultipleScattering, bool);
+  ///@}
+
+  ///@{
+  /**
+   * How the photon pass and the lattice share the device (vtkPhotonDiffusionSchedule): default
+   * AUTOMATIC_SCHEDULE.
+   */
+  vtkSetClampMacro(MultipleScatteringSchedule, int, AUTOMATIC_SCHEDULE, INTERLEAVED_SCHEDULE);
+  vtkGetMacro(MultipleScatteringSchedule, int);
+  ///@}
+
+  ///@{
+  /**
+   * OpenCL context of every pass. Default vtkOpenCLContext::GetDefault().
+   */
+  void SetContext(vtkOpenCLContext* context);
+  vtkOpenCLContext* GetContext();
+  ///@}
+
+  /**
+   * Run the stages that changed and render `width` x `height` pixels. `depthLimit` (nullptr or
+   * width x height floats) caps each pixel's path length in world units (opaque geometry drawn
+   * before the medium). Returns false after an error (a vtkErrorMacro names it, once per
+   * distinct message) or an abort.
+   */
+  bool Render(int width, int height, const float* depthLimit = nullptr);
+
+  ///@{
+  /**
+   * The last image: width x height RGBA floats, linear radiance with A = 1 - mean transmittance
+   * (GetImage), and the path's RGB transmittance with A = 0 (GetTransmittance). Row 0 at the
+   * bottom.
+   */
+  const std::vector<float>& GetImage() const;
+  const std::vector<float>& GetTransmittance() const;
+  ///@}
+
+  /**
+   * The medium the passes saw (pruned by the plan), or nullptr before the first plan.
+   */
+  vtkImageData* GetPlannedMedium();
+
+  /**
+   * The lighting volume the view pass saw (light passes' output or the lighting data), or nullptr.
+   */
+  vtkImageData* GetLighting();
+
+  ///@{
+  /**
+   * Stop the running pass at its next check (photon chunk, lattice check interval, view tile).
+   * Safe to call from an observer of this object's events. Cleared at the start of Render().
+   */
+  void AbortRender();
+  vtkGetMacro(LastRenderAborted, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Statistics of the last Render() and counters over all renders.
+   */
+  bool GetStageRan(int stage) const;
+  double GetStageSeconds(int stage) const;
+  vtkGetMacro(NumberOfPlanRuns, int);
+  vtkGetMacro(NumberOfMediumUpdates, int); ///< plans that prepared (pruned, uploaded) a medium
+  vtkGetMacro(NumberOfLightPassRuns, int);
+  vtkGetMacro(NumberOfViewPassRuns, int);
+  ///@}
+
+  /**
+   * Latest modification time of everything a render reads besides the medium and the lighting
+   * data: this object's settings, the plan, the passes, the lights, the camera, the placement and
+   * the environment map. For front ends that are vtkAlgorithms.
+   */
+  vtkMTimeType GetInputsMTime();
+
+  /**
+   * Whether the last light stage used the interleaved schedule.
+   */
+  vtkGetMacro(LastScheduleInterleaved, bool);
+
+protected:
+  vtkRefractaRenderPipeline();
+  ~vtkRefractaRenderPipeline() override;
+
+  bool RunPlan();
+  bool RunLighting();
+  bool RunView(int width, int height, const float* depthLimit);
+  bool PlanIsStale();
+  bool LightingIsStale();
+  vtkMTimeType GetLightsMTime();
+  void ReportProgress(int stage, double fraction);
+
+  bool MultipleScattering = true;
+  int MultipleScatteringSchedule = AUTOMATIC_SCHEDULE;
+  bool LastRenderAborted = false;
+  bool LastScheduleInterleaved = false;
+  int NumberOfPlanRuns = 0;
+  int NumberOfMediumUpdates = 0;
+  int NumberOfLightPassRuns = 0;
+  int NumberOfViewPassRuns = 0;
+
+private:
+  vtkRefractaRenderPipeline(const vtkRefractaRenderPipeline&) = delete;
+  void operator=(const vtkRefractaRenderPipeline&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

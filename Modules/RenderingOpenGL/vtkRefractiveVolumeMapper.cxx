@@ -1,0 +1,488 @@
+#include "vtkRefractiveVolumeMapper.h"
+
+#include "vtkAbstractMapper.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkEffectPlan.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMediumValidator.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRefractaMedium.h"
+#include "vtkRefractaViewPass.h"
+#include "vtkRenderer.h"
+#include "vtkTransferFunctionMedium.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include "vtkPhotonTracer.h"
+#include "vtkRefractaRenderPipeline.h"
+#include "vtkSceneAnalysis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+vtkStandardNewMacro(vtkRefractiveVolumeMapper);
+
+struct vtkRefractiveVolumeMapper::Internals
+{
+  vtkSmartPointer<vtkRefractaRenderPipeline> Pipeline =
+    vtkSmartPointer<vtkRefractaRenderPipeline>::New();
+  vtkSmartPointer<vtkTransferFunctionMedium> Mapping =
+    vtkSmartPointer<vtkTransferFunctionMedium>::New();
+  vtkSmartPointer<vtkPiecewiseFunction> IndexFunction;
+  vtkSmartPointer<vtkImageData> LightingData;
+  vtkSmartPointer<vtkImageData> Medium; // the input or its transfer-function mapping
+
+  // The view stage's depth input: the raw depth buffer and the path-length limits it gave.
+  std::vector<float> Depth;
+  std::vector<float> Limits;
+  std::string LastMessage; // said once, not on every Render
+  bool BlendModeWarned = false;
+};
+
+//------------------------------------------------------------------------------
+vtkRefractiveVolumeMapper::vtkRefractiveVolumeMapper()
+  : Internal(new Internals)
+{
+  this->Internal->Pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 18);
+}
+
+vtkRefractiveVolumeMapper::~vtkRefractiveVolumeMapper() = default;
+
+void vtkRefractiveVolumeMapper::SetRefractiveIndexFunction(vtkPiecewiseFunction* function)
+{
+  if (this->Internal->IndexFunction != function)
+  {
+    this->Internal->IndexFunction = function;
+    this->Modified();
+  }
+}
+
+vtkPiecewiseFunction* vtkRefractiveVolumeMapper::GetRefractiveIndexFunction()
+{
+  return this->Internal->IndexFunction;
+}
+
+void vtkRefractiveVolumeMapper::SetLightingData(vtkImageData* lighting)
+{
+  this->Internal->Pipeline->SetLightingData(lighting);
+}
+
+vtkImageData* vtkRefractiveVolumeMapper::GetLightingData()
+{
+  return this->Internal->Pipeline->GetLightingData();
+}
+
+void vtkRefractiveVolumeMapper::SetNumberOfPhotons(int photons)
+{
+  this->Internal->Pipeline->GetPhotonTracer()->SetNumberOfPhotons(photons);
+}
+
+int vtkRefractiveVolumeMapper::GetNumberOfPhotons()
+{
+  return this->Internal->Pipeline->GetPhotonTracer()->GetNumberOfPhotons();
+}
+
+void vtkRefractiveVolumeMapper::SetSeed(int seed)
+{
+  this->Internal->Pipeline->GetPhotonTracer()->SetSeed(static_cast<unsigned int>(seed));
+}
+
+int vtkRefractiveVolumeMapper::GetSeed()
+{
+  return static_cast<int>(this->Internal->Pipeline->GetPhotonTracer()->GetSeed());
+}
+
+void vtkRefractiveVolumeMapper::SetMultipleScattering(bool on)
+{
+  this->Internal->Pipeline->SetMultipleScattering(on);
+}
+
+bool vtkRefractiveVolumeMapper::GetMultipleScattering()
+{
+  return this->Internal->Pipeline->GetMultipleScattering();
+}
+
+void vtkRefractiveVolumeMapper::SetStepSize(double voxels)
+{
+  this->GetViewPass()->SetStepSize(voxels);
+}
+
+double vtkRefractiveVolumeMapper::GetStepSize()
+{
+  return this->GetViewPass()->GetStepSize();
+}
+
+void vtkRefractiveVolumeMapper::SetRayMode(int mode)
+{
+  this->GetViewPass()->SetRayMode(mode);
+}
+
+int vtkRefractiveVolumeMapper::GetRayMode()
+{
+  return this->GetViewPass()->GetRayMode();
+}
+
+void vtkRefractiveVolumeMapper::SetTransmittanceCutoff(double cutoff)
+{
+  this->GetViewPass()->SetTransmittanceCutoff(cutoff);
+}
+
+double vtkRefractiveVolumeMapper::GetTransmittanceCutoff()
+{
+  return this->GetViewPass()->GetTransmittanceCutoff();
+}
+
+void vtkRefractiveVolumeMapper::SetEmptySpaceSkipping(bool on)
+{
+  this->GetViewPass()->SetEmptySpaceSkipping(on);
+}
+
+bool vtkRefractiveVolumeMapper::GetEmptySpaceSkipping()
+{
+  return this->GetViewPass()->GetEmptySpaceSkipping();
+}
+
+void vtkRefractiveVolumeMapper::SetContext(vtkOpenCLContext* context)
+{
+  this->Internal->Pipeline->SetContext(context);
+}
+
+vtkOpenCLContext* vtkRefractiveVolumeMapper::GetContext()
+{
+  return this->Internal->Pipeline->GetContext();
+}
+
+vtkImageData* vtkRefractiveVolumeMapper::GetMedium()
+{
+  return this->Internal->Pipeline->GetPlannedMedium();
+}
+
+vtkImageData* vtkRefractiveVolumeMapper::GetLighting()
+{
+  return this->Internal->Pipeline->GetLighting();
+}
+
+vtkRefractaViewPass* vtkRefractiveVolumeMapper::GetViewPass()
+{
+  return this->Internal->Pipeline->GetViewPass();
+}
+
+vtkRefractaRenderPipeline* vtkRefractiveVolumeMapper::GetPipeline()
+{
+  return this->Internal->Pipeline;
+}
+
+vtkEffectPlan* vtkRefractiveVolumeMapper::GetEffectPlan()
+{
+  return this->Internal->Pipeline->GetEffectPlan();
+}
+
+vtkSceneAnalysis* vtkRefractiveVolumeMapper::GetSceneAnalysis()
+{
+  return this->Internal->Pipeline->GetSceneAnalysis();
+}
+
+int vtkRefractiveVolumeMapper::GetNumberOfMediumBuilds()
+{
+  return this->Internal->Pipeline->GetNumberOfMediumUpdates();
+}
+
+int vtkRefractiveVolumeMapper::GetNumberOfLightPassRuns()
+{
+  return this->Internal->Pipeline->GetNumberOfLightPassRuns();
+}
+
+int vtkRefractiveVolumeMapper::GetNumberOfViewPassRuns()
+{
+  return this->Internal->Pipeline->GetNumberOfViewPassRuns();
+}
+
+bool vtkRefractiveVolumeMapper::HasLightPasses()
+{
+  return true;
+}
+
+void vtkRefractiveVolumeMapper::SetQuality(int quality)
+{
+  this->Internal->Pipeline->SetQuality(quality);
+}
+
+void vtkRefractiveVolumeMapper::ReleaseGraphicsResources(vtkWindow*)
+{
+  // The image is drawn through the window's own pixel path; nothing of ours lives in GL.
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractiveVolumeMapper::ReportOnce(const std::string& message)
+{
+  if (message != this->Internal->LastMessage)
+  {
+    vtkErrorMacro(<< message);
+    this->Internal->LastMessage = message;
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractiveVolumeMapper::UpdateMedium(vtkVolume* volume)
+{
+  Internals& in = *this->Internal;
+  if (vtkAlgorithm* producer = this->GetInputAlgorithm())
+  {
+    producer->Update();
+  }
+  vtkImageData* input = vtkImageData::SafeDownCast(this->GetInput());
+  if (!input)
+  {
+    this->ReportOnce("The input must be a vtkImageData (a Refracta medium or a scalar image).");
+    return false;
+  }
+  bool isMedium = false;
+  for (int id = 0; id < vtkRefractaMedium::NUMBER_OF_ARRAYS; ++id)
+  {
+    isMedium = isMedium || input->GetPointData()->GetArray(vtkRefractaMedium::GetArrayName(id));
+  }
+  if (isMedium)
+  {
+    in.Medium = input;
+    return true;
+  }
+
+  // A scalar image: through the volume property, with the array this mapper selects (as
+  // vtkGPUVolumeRayCastMapper does: SelectScalarArray / ScalarMode).
+  vtkDataArray* scalars = nullptr;
+  int cellFlag = 0;
+  scalars = vtkAbstractMapper::GetScalars(
+    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  if (!scalars)
+  {
+    std::ostringstream message;
+    message << "The input has no ";
+    if (this->ScalarMode == VTK_SCALAR_MODE_USE_POINT_FIELD_DATA ||
+      this->ScalarMode == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA)
+    {
+      message << "array "
+              << (this->ArrayAccessMode == VTK_GET_ARRAY_BY_NAME
+                     ? std::string("'") + this->ArrayName + "'"
+                     : std::to_string(this->ArrayId))
+              << " in its "
+              << (this->ScalarMode == VTK_SCALAR_MODE_USE_POINT_FIELD_DATA ? "point" : "cell")
+              << " data";
+    }
+    else
+    {
+      message << "scalars";
+    }
+    message << " to map and none of the Refracta medium arrays (RefractiveIndex, Extinction, "
+               "Albedo, ...); select an existing point array with SelectScalarArray().";
+    this->ReportOnce(message.str());
+    return false;
+  }
+  if (cellFlag)
+  {
+    this->ReportOnce(std::string("The selected array '") +
+      (scalars->GetName() ? scalars->GetName() : "") +
+      "' is cell data; the medium needs point data (values at voxel centres), e.g. through "
+      "vtkCellDataToPointData.");
+    return false;
+  }
+  in.Mapping->SetInputData(input);
+  in.Mapping->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, scalars->GetName());
+  in.Mapping->SetVolumeProperty(volume->GetProperty());
+  in.Mapping->SetRefractiveIndexFunction(in.IndexFunction);
+  in.Mapping->SetAnisotropy(this->Anisotropy);
+  in.Mapping->SetEmissionScale(this->EmissionScale);
+  in.Mapping->Update();
+  if (in.Mapping->GetOutput()->GetNumberOfPoints() == 0)
+  {
+    this->ReportOnce("Mapping the scalar input through the volume property failed (see the "
+                     "vtkTransferFunctionMedium error above).");
+    return false;
+  }
+  in.Medium = in.Mapping->GetOutput();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractiveVolumeMapper::WarnAboutUnsupportedModes()
+{
+  Internals& in = *this->Internal;
+  if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND && !in.BlendModeWarned)
+  {
+    vtkWarningMacro("BlendMode " << this->BlendMode
+                                 << " is not physically based light transport: "
+                                    "vtkRefractiveVolumeMapper renders COMPOSITE_BLEND only and "
+                                    "ignores this setting (use vtkGPUVolumeRayCastMapper for "
+                                    "maximum/minimum/average intensity projections).");
+    in.BlendModeWarned = true;
+  }
+  if (this->BlendMode == vtkVolumeMapper::COMPOSITE_BLEND)
+  {
+    in.BlendModeWarned = false;
+  }
+}
+
+//------------------------------------------------------------------------------
+std::vector<float> vtkRefractiveVolumeMapper::DepthToPathLengths(vtkRenderer* renderer,
+  vtkCamera* camera, const vtkRefractaViewPass::RayFrame& frame, int width, int height,
+  const std::vector<float>& depth)
+{
+  const size_t pixels = static_cast<size_t>(width) * height;
+  vtkMatrix4x4* projection =
+    camera->GetCompositeProjectionTransformMatrix(renderer->GetTiledAspectRatio(), -1, 1);
+  vtkNew<vtkMatrix4x4> inverse;
+  vtkMatrix4x4::Invert(projection, inverse);
+  std::vector<float> limits(pixels, std::numeric_limits<float>::infinity());
+  const double* w = frame.W;
+  const double wLength = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const size_t p = i + static_cast<size_t>(width) * j;
+      if (depth[p] >= 1.0f)
+      {
+        continue; // nothing drawn there: the ray runs to the background
+      }
+      const double sx = 2.0 * (i + 0.5) / width - 1.0, sy = 2.0 * (j + 0.5) / height - 1.0;
+      double ndc[4] = { sx, sy, 2.0 * depth[p] - 1.0, 1.0 }, world[4];
+      inverse->MultiplyPoint(ndc, world);
+      double local[3];
+      for (int r = 0; r < 3; ++r)
+      {
+        local[r] = (frame.WorldToLocal[r][0] * world[0] + frame.WorldToLocal[r][1] * world[1] +
+                     frame.WorldToLocal[r][2] * world[2]) /
+            world[3] +
+          frame.WorldToLocal[r][3];
+      }
+      double distance = 0;
+      if (frame.Parallel)
+      {
+        for (int r = 0; r < 3; ++r)
+        {
+          const double origin = frame.Eye[r] + sx * frame.U[r] + sy * frame.V[r];
+          distance += (local[r] - origin) * w[r] / wLength;
+        }
+      }
+      else
+      {
+        distance = std::sqrt(vtkMath::Distance2BetweenPoints(local, frame.Eye));
+      }
+      limits[p] = static_cast<float>(std::max(distance, 0.0));
+    }
+  }
+  return limits;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
+{
+  Internals& in = *this->Internal;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    this->ReportOnce(std::string("vtkRefractiveVolumeMapper draws into an OpenGL render window; "
+                                 "got ") +
+      (renderer->GetRenderWindow() ? renderer->GetRenderWindow()->GetClassName() : "none"));
+    return;
+  }
+  this->WarnAboutUnsupportedModes();
+  if (!this->UpdateMedium(volume))
+  {
+    return;
+  }
+
+  int width, height, x0, y0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  if (width < 1 || height < 1)
+  {
+    return;
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const size_t pixels = static_cast<size_t>(width) * height;
+
+  // Depth of the opaque geometry drawn so far -> path-length limit along each pixel's ray; the
+  // conversion runs only when the depth buffer or the view changed.
+  std::vector<float> depth(pixels, 1.0f);
+  window->GetZbufferData(x0, y0, x0 + width - 1, y0 + height - 1, depth.data());
+  vtkRefractaViewPass::RayFrame frame;
+  if (!vtkRefractaViewPass::ComputeRayFrame(
+        camera, in.Medium, volume->GetMatrix(), width, height, frame))
+  {
+    this->ReportOnce("The renderer's camera is degenerate (position equals focal point, or the "
+                     "view up is parallel to the view direction).");
+    return;
+  }
+  if (depth != in.Depth || in.Limits.size() != pixels)
+  {
+    in.Limits = this->DepthToPathLengths(renderer, camera, frame, width, height, depth);
+    in.Depth = std::move(depth);
+  }
+
+  vtkRefractaRenderPipeline* pipeline = in.Pipeline;
+  pipeline->SetMedium(in.Medium);
+  pipeline->SetLights(renderer->GetLights());
+  pipeline->SetCamera(camera);
+  pipeline->SetPropMatrix(volume->GetMatrix());
+  vtkRefractaViewPass* view = pipeline->GetViewPass();
+  view->SetBackgroundColor(0, 0, 0);
+  view->SetEnvironmentMap(nullptr);
+  if (!pipeline->Render(width, height, in.Limits.data()))
+  {
+    return;
+  }
+  in.LastMessage.clear();
+  const std::vector<float>& image = pipeline->GetImage();
+  const std::vector<float>& transmittanceImage = pipeline->GetTransmittance();
+
+  // Per-channel compositing in two blended draws: first dst *= T (blend ZERO, SRC_COLOR), then
+  // dst += E L (blend ONE, ONE). Together: dst = E L + T dst, channel by channel.
+  std::vector<float> radiance(pixels * 4), transmittance(pixels * 4);
+  const float exposure = static_cast<float>(this->Exposure);
+  for (size_t p = 0; p < pixels; ++p)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      radiance[4 * p + c] = std::min(std::max(exposure * image[4 * p + c], 0.0f), 1.0f);
+      transmittance[4 * p + c] = std::min(std::max(transmittanceImage[4 * p + c], 0.0f), 1.0f);
+    }
+    radiance[4 * p + 3] = 0.0f;
+    transmittance[4 * p + 3] = 1.0f;
+  }
+  vtkOpenGLState* state = window->GetState();
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendSaver(state);
+  vtkOpenGLState::ScopedglEnableDisable blendEnable(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthEnable(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ZERO, GL_ONE);
+  window->DrawPixels(x0, y0, x0 + width - 1, y0 + height - 1, 4, VTK_FLOAT, transmittance.data());
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+  window->DrawPixels(x0, y0, x0 + width - 1, y0 + height - 1, 4, VTK_FLOAT, radiance.data());
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractiveVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RefractiveIndexFunction: " << this->Internal->IndexFunction.Get() << "\n";
+  os << indent << "Anisotropy: " << this->Anisotropy << "\n";
+  os << indent << "EmissionScale: " << this->EmissionScale << "\n";
+  os << indent << "Exposure: " << this->Exposure << "\n";
+  os << indent << "Pipeline:\n";
+  this->Internal->Pipeline->PrintSelf(os, indent.GetNextIndent());
+}
