@@ -279,8 +279,27 @@ bool vtkEffectPlan::ApplyToMedium(vtkImageData* medium, vtkImageData* pruned) co
   vtkPointData* pd = pruned->GetPointData();
   if (!this->Enabled[REFRACTION])
   {
-    pd->RemoveArray(vtkRefractaMedium::RefractiveIndexName());
+    // Rays go straight, but the index still weighs every source by 1 / n^2 (the radiance law):
+    // a nearly uniform n becomes its mean, exactly uniform, rather than vacuum.
     pd->RemoveArray(vtkRefractaMedium::RefractiveIndexGradientName());
+    if (vtkDataArray* index = pd->GetArray(vtkRefractaMedium::RefractiveIndexName()))
+    {
+      double sum = 0.0;
+      for (vtkIdType i = 0; i < index->GetNumberOfTuples(); ++i)
+      {
+        sum += index->GetComponent(i, 0);
+      }
+      const double mean = index->GetNumberOfTuples() ? sum / index->GetNumberOfTuples() : 1.0;
+      pd->RemoveArray(vtkRefractaMedium::RefractiveIndexName());
+      if (std::abs(mean - 1.0) > 1e-7)
+      {
+        vtkNew<vtkFloatArray> uniform;
+        uniform->SetName(vtkRefractaMedium::RefractiveIndexName());
+        uniform->SetNumberOfTuples(pruned->GetNumberOfPoints());
+        uniform->Fill(mean);
+        pd->AddArray(uniform);
+      }
+    }
   }
   if (!this->Enabled[ABSORPTION])
   {

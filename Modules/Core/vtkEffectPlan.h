@@ -142,8 +142,9 @@ public:
   /**
    * Make `pruned` a shallow copy of `medium` without the arrays of the effects that are off, so
    * that every pass, which already prunes itself on what a medium carries, does only the planned
-   * work: refraction off drops RefractiveIndex and RefractiveIndexGradient (n = 1: straight rays,
-   * no gradient lookups); absorption off drops Extinction (nothing attenuates, so nothing
+   * work: refraction off drops RefractiveIndexGradient and makes RefractiveIndex uniform at its
+   * mean (straight rays, no gradient lookups; sources still count 1 / n^2), or drops it when that
+   * mean is 1; absorption off drops Extinction (nothing attenuates, so nothing
    * scatters); emission off drops Emission. Single and multiple scattering are decided per pass
    * by the caller (IsEnabled): no photon pass, no Lattice-Boltzmann pass. Returns false for null
    * arguments or before Decide().

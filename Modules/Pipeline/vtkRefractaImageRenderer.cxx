@@ -45,11 +45,19 @@ vtkRefractaImageRenderer::vtkRefractaImageRenderer()
       self->UpdateProgress(*static_cast<double*>(callData));
     });
   this->Pipeline->AddObserver(vtkCommand::ProgressEvent, forward);
-  // This filter renders the medium as given: only effects that are exactly absent are skipped.
-  this->Pipeline->GetEffectPlan()->SetTolerance(0.0);
+  this->Pipeline->SetEventOwner(this);
+  // This filter renders the medium as given: the plan decides only which light passes to run.
+  for (int effect :
+    { vtkEffectPlan::REFRACTION, vtkEffectPlan::ABSORPTION, vtkEffectPlan::EMISSION })
+  {
+    this->Pipeline->GetEffectPlan()->SetEffectMode(effect, vtkEffectPlan::FORCE_ON);
+  }
 }
 
-vtkRefractaImageRenderer::~vtkRefractaImageRenderer() = default;
+vtkRefractaImageRenderer::~vtkRefractaImageRenderer()
+{
+  this->Pipeline->SetEventOwner(nullptr);
+}
 
 //------------------------------------------------------------------------------
 int vtkRefractaImageRenderer::FillInputPortInformation(int port, vtkInformation* info)

@@ -34,9 +34,10 @@
  * connected, the light passes run too (photon pass, and multiple scattering where the effect plan
  * calls for it), so this filter renders a whole scene from a medium. It runs through
  * vtkRefractaRenderPipeline (GetPipeline()), which keeps its device state between updates: a
- * camera change re-runs only the view pass. Its effect plan's tolerance is 0 here, so the medium
- * is rendered as given (only effects that are exactly absent are skipped); raise it through
- * GetPipeline()->GetEffectPlan() to skip effects below a relative image change. Field data also
+ * camera change re-runs only the view pass. Its effect plan forces refraction, absorption and
+ * emission on, so the medium is rendered as given and the plan only decides which light passes
+ * run; set those modes to AUTOMATIC through GetPipeline()->GetEffectPlan() to let it skip
+ * effects below its tolerance. Field data also
  * records the effect plan (vtkEffectPlan::RecordInFieldData) and `PlanSeconds`, `LightingSeconds`,
  * `ViewSeconds` (0 for a stage that was reused). Progress is reported through UpdateProgress;
  * AbortExecuteOn() stops the running pass and leaves the output empty.

@@ -8,11 +8,13 @@
 #include "vtkLatticeBoltzmannSolver.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMediumValidator.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
+#include "vtkOutputWindow.h"
 #include "vtkPhotonDiffusionSchedule.h"
 #include "vtkPhotonTracer.h"
 #include "vtkRefractaViewPass.h"
@@ -91,6 +93,7 @@ struct vtkRefractaRenderPipeline::Internals
   bool Abort = false;
   vtkAlgorithm* Running = nullptr;
   std::string LastError;
+  vtkSmartPointer<vtkCallbackCommand> EventForwarder;
 
   vtkOpenCLContext* GetContext()
   {
@@ -142,6 +145,49 @@ vtkRefractaRenderPipeline::vtkRefractaRenderPipeline()
 }
 
 vtkRefractaRenderPipeline::~vtkRefractaRenderPipeline() = default;
+
+//------------------------------------------------------------------------------
+void vtkRefractaRenderPipeline::SetEventOwner(vtkObject* owner)
+{
+  Internals& in = *this->Internal;
+  vtkObject* sources[] = { this, in.Schedule, in.Schedule->GetPhotonTracer(),
+    in.Schedule->GetSolver(), in.ViewPass };
+  for (vtkObject* source : sources)
+  {
+    source->RemoveObservers(vtkCommand::ErrorEvent, in.EventForwarder);
+    source->RemoveObservers(vtkCommand::WarningEvent, in.EventForwarder);
+  }
+  in.EventForwarder = nullptr;
+  if (!owner)
+  {
+    return;
+  }
+  in.EventForwarder = vtkSmartPointer<vtkCallbackCommand>::New();
+  in.EventForwarder->SetClientData(owner);
+  in.EventForwarder->SetCallback(
+    [](vtkObject*, unsigned long event, void* clientData, void* callData)
+    {
+      auto* front = static_cast<vtkObject*>(clientData);
+      const char* text = static_cast<const char*>(callData);
+      if (front->HasObserver(event))
+      {
+        front->InvokeEvent(event, callData);
+      }
+      else if (event == vtkCommand::ErrorEvent)
+      {
+        vtkOutputWindowDisplayErrorText(text);
+      }
+      else
+      {
+        vtkOutputWindowDisplayWarningText(text);
+      }
+    });
+  for (vtkObject* source : sources)
+  {
+    source->AddObserver(vtkCommand::ErrorEvent, in.EventForwarder);
+    source->AddObserver(vtkCommand::WarningEvent, in.EventForwarder);
+  }
+}
 
 const char* vtkRefractaRenderPipeline::GetStageName(int stage)
 {
@@ -574,6 +620,22 @@ bool vtkRefractaRenderPipeline::RunPlan()
     toData->MultiplyPoint(f, f);
     copy->SetPosition(p[0] / p[3], p[1] / p[3], p[2] / p[3]);
     copy->SetFocalPoint(f[0] / f[3], f[1] / f[3], f[2] / f[3]);
+    if (this->LightUnits == VTK_LIGHT_UNITS)
+    {
+      double scale = vtkMath::Pi();
+      if (light->GetPositional())
+      {
+        double bounds[6], centre[3], position[3];
+        in.Medium->GetBounds(bounds);
+        copy->GetPosition(position);
+        for (int a = 0; a < 3; ++a)
+        {
+          centre[a] = 0.5 * (bounds[2 * a] + bounds[2 * a + 1]);
+        }
+        scale *= std::max(vtkMath::Distance2BetweenPoints(position, centre), 1e-300);
+      }
+      copy->SetIntensity(light->GetIntensity() * scale);
+    }
     in.DataLights->AddItem(copy);
     in.Analysis->AddLight(copy);
   }
@@ -605,7 +667,6 @@ bool vtkRefractaRenderPipeline::RunPlan()
     auto planned = vtkSmartPointer<vtkImageData>::New();
     in.Plan->ApplyToMedium(in.Medium, planned);
     in.Planned = planned;
-    in.ViewPass->SetContext(in.GetContext());
     if (!in.ViewPass->SetMedium(in.Planned))
     {
       in.Planned = nullptr;
@@ -641,7 +702,6 @@ bool vtkRefractaRenderPipeline::RunLighting()
   else if (lit)
   {
     vtkPhotonTracer* tracer = in.Schedule->GetPhotonTracer();
-    tracer->SetContext(in.GetContext());
     tracer->SetLights(in.DataLights);
     vtkAlgorithm* pass = tracer;
     vtkImageData* output = nullptr;
@@ -650,7 +710,6 @@ bool vtkRefractaRenderPipeline::RunLighting()
       // Interleaving the lattice with the marching (Bernabei et al.) helps where the two
       // share a device with spare parallelism: measured up to 4% on an H200; on a CPU device
       // both compete for the same cores, so sequential there.
-      in.Schedule->GetSolver()->SetContext(in.GetContext());
       const bool interleaved = this->MultipleScatteringSchedule == INTERLEAVED_SCHEDULE ||
         (this->MultipleScatteringSchedule == AUTOMATIC_SCHEDULE && in.GetContext()->GetIsGPU());
       in.Schedule->SetMode(interleaved ? vtkPhotonDiffusionSchedule::INTERLEAVED
@@ -730,6 +789,9 @@ void vtkRefractaRenderPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Camera: " << in.Camera.Get() << "\n";
   os << indent << "PropMatrix: " << in.PropMatrix.Get() << "\n";
   os << indent << "MultipleScattering: " << this->MultipleScattering << "\n";
+  os << indent << "LightUnits: "
+     << (this->LightUnits == VTK_LIGHT_UNITS ? "VTK_LIGHT_UNITS" : "RADIOMETRIC_LIGHT_UNITS")
+     << "\n";
   os << indent << "MultipleScatteringSchedule: " << this->MultipleScatteringSchedule << "\n";
   os << indent << "NumberOfPlanRuns: " << this->NumberOfPlanRuns << "\n";
   os << indent << "NumberOfLightPassRuns: " << this->NumberOfLightPassRuns << "\n";

@@ -78,6 +78,13 @@ public:
     NUMBER_OF_STAGES = 3
   };
 
+  enum LightUnitsType
+  {
+    RADIOMETRIC_LIGHT_UNITS = 0, ///< intensity x colour is irradiance (directional, W m^-2) or
+                                 ///< radiant intensity (point and spot, W sr^-1), as the passes use
+    VTK_LIGHT_UNITS = 1          ///< as VTK's shading reads a light (see SetLightUnits)
+  };
+
   enum ScheduleMode
   {
     AUTOMATIC_SCHEDULE = 0, ///< interleaved on GPUs, sequential on CPU devices (see the .cxx)
@@ -162,6 +169,21 @@ public:
 
   ///@{
   /**
+   * How a light's intensity is read. RADIOMETRIC_LIGHT_UNITS (default): as the passes define it
+   * (Documentation/Physics.md). VTK_LIGHT_UNITS: as VTK's own shading reads it, so that a scene
+   * lit for VTK's mappers is exposed alike: VTK shades a surface of diffuse colour rho facing a
+   * light of intensity I with rho I, which is a Lambertian surface's radiance rho E / pi under
+   * irradiance E = pi I. So a directional light becomes irradiance pi I, and a positional light
+   * (which VTK does not attenuate with distance by default) becomes the radiant intensity
+   * pi I d^2 that gives the same irradiance at the distance d from the light to the medium's
+   * centre. vtkRefractiveVolumeMapper uses VTK_LIGHT_UNITS.
+   */
+  vtkSetClampMacro(LightUnits, int, RADIOMETRIC_LIGHT_UNITS, VTK_LIGHT_UNITS);
+  vtkGetMacro(LightUnits, int);
+  ///@}
+
+  ///@{
+  /**
    * Run multiple scattering at all (default on). Off forces the plan's MULTIPLE_SCATTERING
    * decision off without changing its mode.
    */
@@ -237,6 +259,15 @@ public:
   ///@}
 
   /**
+   * Report this pipeline's errors and warnings, and those of its passes, as events of `owner`
+   * (a front end such as a filter or a mapper): observers of the owner's ErrorEvent and
+   * WarningEvent receive them, and with no such observer they go to vtkOutputWindow as usual.
+   * Call once; nullptr restores the default. `owner` must outlive this pipeline or call
+   * SetEventOwner(nullptr) first.
+   */
+  void SetEventOwner(vtkObject* owner);
+
+  /**
    * Latest modification time of everything a render reads besides the medium and the lighting
    * data: this object's settings, the plan, the passes, the lights, the camera, the placement and
    * the environment map. For front ends that are vtkAlgorithms.
@@ -261,6 +292,7 @@ protected:
   void ReportProgress(int stage, double fraction);
 
   bool MultipleScattering = true;
+  int LightUnits = RADIOMETRIC_LIGHT_UNITS;
   int MultipleScatteringSchedule = AUTOMATIC_SCHEDULE;
   bool LastRenderAborted = false;
   bool LastScheduleInterleaved = false;

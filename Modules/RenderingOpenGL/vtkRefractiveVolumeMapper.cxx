@@ -4,6 +4,7 @@
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkEffectPlan.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -13,10 +14,13 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkRefractaMedium.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkRenderer.h"
+#include "vtkTimeStamp.h"
 #include "vtkTransferFunctionMedium.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -34,6 +38,79 @@
 
 vtkStandardNewMacro(vtkRefractiveVolumeMapper);
 
+namespace
+{
+// Whether the voxel at data point `p` is kept by the cropping regions (VTK's 27 regions: index
+// i + 3 j + 9 k, each of i, j, k 0 below the lower plane, 1 between, 2 above; bit set = kept).
+bool KeptByCropping(const double p[3], const double planes[6], int flags)
+{
+  int region = 0;
+  for (int a = 2; a >= 0; --a)
+  {
+    const int side = p[a] < planes[2 * a] ? 0 : (p[a] > planes[2 * a + 1] ? 2 : 1);
+    region = region * 3 + side;
+  }
+  return (flags >> region) & 1;
+}
+
+// The medium with every voxel that the clipping planes (world coordinates, through the prop's
+// data -> world matrix) or the cropping regions (data coordinates) remove set to empty space:
+// each array at its vtkRefractaMedium default (vacuum: n = 1, no extinction, no emission) and
+// occupancy 0. The removed part is gone for the light passes too, as if cut away.
+vtkSmartPointer<vtkImageData> CutAway(vtkImageData* medium, vtkPlaneCollection* planes,
+  vtkMatrix4x4* dataToWorld, bool cropping, const double cropPlanes[6], int cropFlags)
+{
+  auto cut = vtkSmartPointer<vtkImageData>::New();
+  cut->DeepCopy(medium);
+  vtkPointData* pd = cut->GetPointData();
+  if (!pd->GetArray(vtkRefractaMedium::GetArrayName(vtkRefractaMedium::OCCUPANCY)))
+  {
+    vtkNew<vtkFloatArray> occupancy;
+    occupancy->SetName(vtkRefractaMedium::GetArrayName(vtkRefractaMedium::OCCUPANCY));
+    occupancy->SetNumberOfTuples(cut->GetNumberOfPoints());
+    occupancy->Fill(1.0);
+    pd->AddArray(occupancy);
+  }
+  for (vtkIdType id = 0; id < cut->GetNumberOfPoints(); ++id)
+  {
+    double p[4] = { 0, 0, 0, 1 }, world[4];
+    cut->GetPoint(id, p);
+    bool kept = !cropping || KeptByCropping(p, cropPlanes, cropFlags);
+    if (kept && planes)
+    {
+      dataToWorld->MultiplyPoint(p, world);
+      for (int w = 0; w < 3; ++w)
+      {
+        world[w] /= world[3];
+      }
+      vtkCollectionSimpleIterator it;
+      planes->InitTraversal(it);
+      while (vtkPlane* plane = planes->GetNextPlane(it))
+      {
+        kept = kept && plane->EvaluateFunction(world) >= 0.0; // the normal points to what stays
+      }
+    }
+    if (kept)
+    {
+      continue;
+    }
+    for (int a = 0; a < vtkRefractaMedium::NUMBER_OF_ARRAYS; ++a)
+    {
+      if (vtkDataArray* array = pd->GetArray(vtkRefractaMedium::GetArrayName(a)))
+      {
+        const double value =
+          a == vtkRefractaMedium::OCCUPANCY ? 0.0 : vtkRefractaMedium::GetDefaultValue(a);
+        for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+        {
+          array->SetComponent(id, c, value);
+        }
+      }
+    }
+  }
+  return cut;
+}
+}
+
 struct vtkRefractiveVolumeMapper::Internals
 {
   vtkSmartPointer<vtkRefractaRenderPipeline> Pipeline =
@@ -42,7 +119,10 @@ struct vtkRefractiveVolumeMapper::Internals
     vtkSmartPointer<vtkTransferFunctionMedium>::New();
   vtkSmartPointer<vtkPiecewiseFunction> IndexFunction;
   vtkSmartPointer<vtkImageData> LightingData;
-  vtkSmartPointer<vtkImageData> Medium; // the input or its transfer-function mapping
+  vtkSmartPointer<vtkImageData> Medium; // the input or its transfer-function mapping, cut
+  vtkImageData* Uncut = nullptr;        // what Medium was cut from
+  vtkTimeStamp CutTime;
+  std::vector<double> CutCropping; // the cropping settings it was cut with
 
   // The view stage's depth input: the raw depth buffer and the path-length limits it gave.
   std::vector<float> Depth;
@@ -56,9 +136,16 @@ vtkRefractiveVolumeMapper::vtkRefractiveVolumeMapper()
   : Internal(new Internals)
 {
   this->Internal->Pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 18);
+  // A drop-in for VTK's volume mappers: the renderer's lights are read as VTK's shading reads
+  // them (see vtkRefractaRenderPipeline::SetLightUnits).
+  this->Internal->Pipeline->SetLightUnits(vtkRefractaRenderPipeline::VTK_LIGHT_UNITS);
+  this->Internal->Pipeline->SetEventOwner(this);
 }
 
-vtkRefractiveVolumeMapper::~vtkRefractiveVolumeMapper() = default;
+vtkRefractiveVolumeMapper::~vtkRefractiveVolumeMapper()
+{
+  this->Internal->Pipeline->SetEventOwner(nullptr);
+}
 
 void vtkRefractiveVolumeMapper::SetRefractiveIndexFunction(vtkPiecewiseFunction* function)
 {
@@ -255,7 +342,7 @@ bool vtkRefractiveVolumeMapper::UpdateMedium(vtkVolume* volume)
   }
   if (isMedium)
   {
-    in.Medium = input;
+    this->CutAwayClippedRegions(input, volume);
     return true;
   }
 
@@ -311,8 +398,47 @@ bool vtkRefractiveVolumeMapper::UpdateMedium(vtkVolume* volume)
                      "vtkTransferFunctionMedium error above).");
     return false;
   }
-  in.Medium = in.Mapping->GetOutput();
+  this->CutAwayClippedRegions(in.Mapping->GetOutput(), volume);
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractiveVolumeMapper::CutAwayClippedRegions(vtkImageData* medium, vtkVolume* volume)
+{
+  Internals& in = *this->Internal;
+  vtkPlaneCollection* planes = this->ClippingPlanes;
+  const bool clipping = planes && planes->GetNumberOfItems() > 0;
+  if (!clipping && !this->Cropping)
+  {
+    in.Medium = medium;
+    in.Uncut = nullptr;
+    return;
+  }
+  // Re-cut only when the medium, the planes, the cropping settings or the placement changed.
+  const vtkMTimeType cutTime = in.CutTime.GetMTime();
+  std::vector<double> cropping(this->CroppingRegionPlanes, this->CroppingRegionPlanes + 6);
+  cropping.push_back(this->Cropping);
+  cropping.push_back(this->CroppingRegionFlags);
+  bool changed = medium != in.Uncut || !in.Medium || medium->GetMTime() > cutTime ||
+    cropping != in.CutCropping || volume->GetMatrix()->GetMTime() > cutTime;
+  if (clipping)
+  {
+    changed = changed || planes->GetMTime() > cutTime;
+    vtkCollectionSimpleIterator it;
+    planes->InitTraversal(it);
+    while (vtkPlane* plane = planes->GetNextPlane(it))
+    {
+      changed = changed || plane->GetMTime() > cutTime;
+    }
+  }
+  if (changed)
+  {
+    in.Medium = CutAway(medium, clipping ? planes : nullptr, volume->GetMatrix(),
+      this->Cropping != 0, this->CroppingRegionPlanes, this->CroppingRegionFlags);
+    in.Uncut = medium;
+    in.CutCropping = cropping;
+    in.CutTime.Modified();
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -213,6 +213,7 @@ protected:
   ~vtkRefractiveVolumeMapper() override;
 
   bool UpdateMedium(vtkVolume* volume);
+  void CutAwayClippedRegions(vtkImageData* medium, vtkVolume* volume);
   void WarnAboutUnsupportedModes();
   void ReportOnce(const std::string& message);
   static std::vector<float> DepthToPathLengths(vtkRenderer* renderer, vtkCamera* camera,
