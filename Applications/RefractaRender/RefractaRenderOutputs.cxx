@@ -1,0 +1,64 @@
+#include "RefractaRenderOutputs.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkPointData.h"
+#include "vtkXMLImageDataWriter.h"
+
+#include <fstream>
+#include <stdexcept>
+
+namespace RefractaRender
+{
+void WritePng(vtkImageData* image, const std::string& file)
+{
+  vtkNew<vtkImageData> rgb;
+  rgb->CopyStructure(image);
+  rgb->GetPointData()->SetScalars(image->GetPointData()->GetScalars());
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(rgb);
+  writer->SetFileName(file.c_str());
+  writer->Write();
+  if (writer->GetErrorCode() != 0)
+  {
+    throw std::runtime_error("cannot write '" + file + "'");
+  }
+}
+
+void WriteVti(vtkImageData* data, const std::string& file)
+{
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(data);
+  writer->SetFileName(file.c_str());
+  if (writer->Write() != 1)
+  {
+    throw std::runtime_error("cannot write '" + file + "'");
+  }
+}
+
+void WriteRadianceVolume(vtkImageData* medium, vtkImageData* lighting, const std::string& file)
+{
+  vtkNew<vtkImageData> volume;
+  volume->DeepCopy(medium);
+  if (lighting)
+  {
+    for (int i = 0; i < lighting->GetPointData()->GetNumberOfArrays(); ++i)
+    {
+      volume->GetPointData()->AddArray(lighting->GetPointData()->GetArray(i));
+    }
+  }
+  WriteVti(volume, file);
+}
+
+void WriteReport(const json& report, const std::string& file)
+{
+  std::ofstream out(file);
+  out << report.dump(2) << "\n";
+  if (!out)
+  {
+    throw std::runtime_error("cannot write '" + file + "'");
+  }
+}
+}

@@ -1,0 +1,267 @@
+#include "RefractaRenderReport.h"
+
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkEffectPlan.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkPhotonTracer.h"
+#include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaViewPass.h"
+#include "vtkSceneAnalysis.h"
+
+#include <iostream>
+#include <sstream>
+#include <unistd.h>
+
+namespace RefractaRender
+{
+// ---------------------------------------------------------------------------------------------
+StageReporter::StageReporter(vtkRefractaRenderPipeline* pipeline, bool quiet)
+  : Pipeline(pipeline)
+  , Terminal(isatty(STDOUT_FILENO) != 0)
+{
+  if (quiet)
+  {
+    return;
+  }
+  this->Command->SetClientData(this);
+  this->Command->SetCallback(&StageReporter::OnEvent);
+  for (unsigned long event :
+    { vtkCommand::StartEvent, vtkCommand::EndEvent, vtkCommand::ProgressEvent })
+  {
+    this->Tags.push_back(pipeline->AddObserver(event, this->Command));
+  }
+}
+
+StageReporter::~StageReporter()
+{
+  for (unsigned long tag : this->Tags)
+  {
+    this->Pipeline->RemoveObserver(tag);
+  }
+}
+
+void StageReporter::OnEvent(vtkObject*, unsigned long event, void* client, void* call)
+{
+  auto* self = static_cast<StageReporter*>(client);
+  if (event == vtkCommand::ProgressEvent)
+  {
+    self->Bar(*static_cast<double*>(call));
+    return;
+  }
+  const char* stage = static_cast<const char*>(call);
+  if (event == vtkCommand::StartEvent)
+  {
+    self->Stage.Start = std::chrono::steady_clock::now();
+    self->Line(std::string("  ") + stage + " ...");
+    return;
+  }
+  std::ostringstream line;
+  line << "  " << stage << " done, " << self->Stage.Seconds() << " s";
+  self->Line(line.str());
+}
+
+void StageReporter::Line(const std::string& text)
+{
+  std::cout << (this->Terminal ? "\r\033[K" : "") << text << std::endl;
+  this->Drawn = -1;
+}
+
+void StageReporter::Bar(double fraction)
+{
+  const int width = 40;
+  const int filled = static_cast<int>(fraction * width);
+  if (!this->Terminal || filled == this->Drawn)
+  {
+    return;
+  }
+  this->Drawn = filled;
+  std::cout << "\r  [" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
+            << static_cast<int>(100 * fraction) << "%" << std::flush;
+}
+
+// ---------------------------------------------------------------------------------------------
+json FieldDataToJson(vtkFieldData* fd)
+{
+  json out = json::object();
+  for (int i = 0; fd && i < fd->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* a = fd->GetArray(i);
+    if (!a || !a->GetName() || a->GetNumberOfTuples() < 1)
+    {
+      continue;
+    }
+    if (a->GetNumberOfComponents() == 1)
+    {
+      out[a->GetName()] = a->GetComponent(0, 0);
+    }
+    else
+    {
+      json v = json::array();
+      for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+      {
+        v.push_back(a->GetComponent(0, c));
+      }
+      out[a->GetName()] = v;
+    }
+  }
+  return out;
+}
+
+void AddStageSeconds(vtkRefractaImageRenderer* renderer, json& seconds)
+{
+  vtkRefractaRenderPipeline* pipeline = renderer->GetPipeline();
+  seconds["plan"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::PLAN);
+  seconds["light_pass"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING);
+  seconds["view_pass"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::VIEW);
+  seconds["view_pass_device"] = renderer->GetViewPass()->GetLastSeconds();
+}
+
+json PlanReport(vtkRefractaRenderPipeline* pipeline)
+{
+  vtkEffectPlan* plan = pipeline->GetEffectPlan();
+  json report;
+  report["summary"] = plan->GetSummary();
+  report["analysis"] = pipeline->GetSceneAnalysis()->GetSummary();
+  report["tolerance"] = plan->GetTolerance();
+  for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
+  {
+    report["effects"][vtkEffectPlan::GetEffectName(e)] = { { "enabled", plan->IsEnabled(e) },
+      { "estimated_change", plan->GetEstimatedContribution(e) }, { "reason", plan->GetReason(e) } };
+  }
+  return report;
+}
+
+json LightPassReport(vtkRefractaRenderPipeline* pipeline, int lightCount)
+{
+  vtkEffectPlan* plan = pipeline->GetEffectPlan();
+  vtkImageData* lighting = pipeline->GetLighting();
+  json report;
+  if (!lighting)
+  {
+    report["skipped"] = lightCount == 0
+      ? std::string("no lights")
+      : std::string("single scattering ") + plan->GetReason(vtkEffectPlan::SINGLE_SCATTERING);
+    return report;
+  }
+  vtkPhotonTracer* tracer = pipeline->GetPhotonTracer();
+  report = FieldDataToJson(lighting->GetFieldData());
+  report["octree_seconds"] = tracer->GetOctreeSeconds();
+  report["generation_seconds"] = tracer->GetGenerationSeconds();
+  report["marching_seconds"] = tracer->GetMarchingSeconds();
+  report["smoothing_seconds"] = tracer->GetSmoothingSeconds();
+  report["curved_rays"] = tracer->GetUsedCurvedRays();
+  report["octree"] = tracer->GetUsedOctree();
+  report["photon_seconds"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING);
+  if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
+  {
+    const json solve = { { "iterations", report.value("LatticeBoltzmannIterations", 0.0) },
+      { "residual", report.value("LatticeBoltzmannResidual", 0.0) },
+      { "converged", report.value("LatticeBoltzmannConverged", 0.0) != 0.0 },
+      { "schedule", pipeline->GetLastScheduleInterleaved() ? "interleaved" : "sequential" },
+      { "seconds", report.value("ScheduleFinalSolveSeconds", 0.0) } };
+    report["multiple_scattering"] = solve;
+  }
+  else
+  {
+    report["multiple_scattering"] =
+      std::string("off (") + plan->GetReason(vtkEffectPlan::MULTIPLE_SCATTERING) + ")";
+  }
+  return report;
+}
+
+json ViewPassReport(vtkRefractaImageRenderer* renderer)
+{
+  vtkRefractaViewPass* view = renderer->GetViewPass();
+  int size[2];
+  renderer->GetImageSize(size);
+  return { { "curved_rays", view->GetLastCurved() }, { "total_steps", view->GetLastTotalSteps() },
+    { "steps_per_pixel", view->GetLastTotalSteps() / (double(size[0]) * size[1]) },
+    { "empty_space_skipping", view->GetLastSkipping() },
+    { "active_cell_fraction", view->GetLastActiveCellFraction() } };
+}
+
+// ---------------------------------------------------------------------------------------------
+namespace
+{
+// Adds the components of report[key], one by one, to `sum` where it is an array of 3 numbers.
+bool Sum3(const json& report, const char* key, double& sum)
+{
+  const json a = report.value(key, json::array());
+  if (a.size() != 3)
+  {
+    return false;
+  }
+  for (const json& component : a)
+  {
+    sum += component.get<double>();
+  }
+  return true;
+}
+
+// "light", "multiple" and "energy" lines: photons, the Lattice-Boltzmann solve, the balance.
+void PrintLightPass(const json& light)
+{
+  if (light.contains("skipped"))
+  {
+    std::cout << "  light     skipped: " << light["skipped"].get<std::string>() << "\n";
+    return;
+  }
+  std::cout << "  light     " << light.value("NumberOfPhotons", 0.0) << " photons, "
+            << light.value("TotalSteps", 0.0) << " steps, " << light.value("photon_seconds", 0.0)
+            << " s\n";
+  if (light["multiple_scattering"].is_object())
+  {
+    const json& ms = light["multiple_scattering"];
+    std::cout << "  multiple  Lattice-Boltzmann " << ms["iterations"].get<double>()
+              << " iterations, residual " << ms["residual"].get<double>()
+              << (ms["converged"].get<bool>() ? " (converged), " : " (NOT converged), ")
+              << ms["seconds"].get<double>() << " s\n";
+  }
+  double emitted = 0, out = 0;
+  if (Sum3(light, "EnergyEmitted", emitted) && Sum3(light, "EnergyScattered", out) &&
+    Sum3(light, "EnergyAbsorbed", out) && Sum3(light, "EnergyEscaped", out) &&
+    Sum3(light, "EnergyRemaining", out))
+  {
+    std::cout << "  energy    emitted " << emitted << " = scattered+absorbed+escaped+remaining "
+              << out << " (relative difference " << (emitted > 0 ? (out - emitted) / emitted : 0.0)
+              << ")\n";
+  }
+}
+}
+
+void PrintSummary(const json& report)
+{
+  const json& image = report["image"];
+  const json& quality = report["quality"];
+  const json& medium = report["medium"];
+  const json& view = report["view_pass"];
+  const json& seconds = report["seconds"];
+  std::cout << "refracta-render: " << image["width"].get<int>() << " x "
+            << image["height"].get<int>() << " -> " << report["output"].get<std::string>() << " on "
+            << report["device"].get<std::string>() << "\n";
+  std::cout << "  plan      " << report["plan"]["summary"].get<std::string>() << "\n";
+  std::cout << "  quality   preset " << quality["preset"].get<std::string>() << ": "
+            << quality["photons"].get<int>() << " photons, photon min step "
+            << quality["photon_min_step"].get<double>() << ", octree eps "
+            << quality["octree_tolerance"].get<double>() << ", lattice tolerance "
+            << quality["multiple_scattering_tolerance"].get<double>() << ", lattice block "
+            << quality["multiple_scattering_block_size"].get<int>() << ", view step "
+            << quality["view_step"].get<double>() << "\n";
+  std::cout << "  medium    " << medium["dimensions"][0].get<int>() << " x "
+            << medium["dimensions"][1].get<int>() << " x " << medium["dimensions"][2].get<int>()
+            << " (" << medium["source"].get<std::string>() << "), "
+            << seconds["medium"].get<double>() << " s\n";
+  PrintLightPass(report["light_pass"]);
+  std::cout << "  view      " << (view["curved_rays"].get<bool>() ? "curved" : "straight")
+            << " rays, " << view["total_steps"].get<double>() << " steps, "
+            << (view["empty_space_skipping"].get<bool>() ? "empty-space skipping (" +
+                     std::to_string(100.0 * view["active_cell_fraction"].get<double>()) +
+                     "% of macro cells active), "
+                                                         : std::string("no empty space skipped, "))
+            << seconds["view_pass"].get<double>() << " s\n";
+  std::cout << "  total     " << seconds["total"].get<double>() << " s\n";
+}
+}

@@ -1,0 +1,37 @@
+// The medium of a refracta-render scene ("scene.medium"): meshes voxelized with their materials
+// (vtkMeshVoxelizer), or a volume file, taken as it is when it holds Refracta's arrays or mapped
+// through transfer functions (vtkTransferFunctionMedium). Also the image and file helpers the
+// rest of the scene uses.
+#ifndef RefractaSceneMedium_h
+#define RefractaSceneMedium_h
+
+#include "RefractaSceneJson.h"
+
+#include "vtkImageData.h"
+#include "vtkSmartPointer.h"
+
+#include <string>
+
+namespace RefractaRender
+{
+/// A medium ready to render and its part of the report ("source", "dimensions", voxelizer
+/// stage seconds).
+struct SceneMedium
+{
+  vtkSmartPointer<vtkImageData> Image;
+  json Report;
+};
+
+/// Builds the medium "scene.medium" describes; file names are relative to `base`. Throws
+/// SceneError for a bad description, std::runtime_error where a filter fails.
+SceneMedium ReadMedium(const json& scene, const std::string& base);
+
+/// Reads an image or volume file (.vti, .mha, .mhd, .nrrd, .nhdr, .png, .jpg); failures name
+/// the scene key `path`.
+vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& file, const std::string& path);
+
+/// `file` relative to the folder `base` (unchanged where absolute or where base is empty).
+std::string Resolve(const std::string& base, const std::string& file);
+}
+
+#endif

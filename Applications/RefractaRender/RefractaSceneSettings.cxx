@@ -1,0 +1,146 @@
+#include "RefractaSceneSettings.h"
+
+#include "vtkEffectPlan.h"
+#include "vtkLatticeBoltzmannSolver.h"
+#include "vtkPhotonTracer.h"
+#include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaViewPass.h"
+
+#include <iterator>
+#include <tuple>
+
+namespace RefractaRender
+{
+namespace
+{
+const int NoPreset = -1;
+
+const ChoiceTable<int> Presets = { { "none", NoPreset }, { "draft", vtkEffectPlan::DRAFT },
+  { "interactive", vtkEffectPlan::INTERACTIVE }, { "production", vtkEffectPlan::PRODUCTION } };
+
+const ChoiceTable<int> ToneMappings = { { "clamp", vtkRefractaImageRenderer::CLAMP },
+  { "reinhard", vtkRefractaImageRenderer::REINHARD },
+  { "exponential", vtkRefractaImageRenderer::EXPONENTIAL } };
+
+const ChoiceTable<int> RayModes = { { "auto", vtkRefractaViewPass::AUTO },
+  { "straight", vtkRefractaViewPass::STRAIGHT }, { "curved", vtkRefractaViewPass::CURVED } };
+
+const ChoiceTable<int> EffectModes = { { "auto", vtkEffectPlan::AUTOMATIC },
+  { "on", vtkEffectPlan::FORCE_ON }, { "off", vtkEffectPlan::FORCE_OFF } };
+
+// The keys of "scene.effects", in vtkEffectPlan's effect order.
+const char* const EffectKeys[vtkEffectPlan::NUMBER_OF_EFFECTS] = { "refraction", "absorption",
+  "single_scattering", "multiple_scattering", "emission" };
+
+void ReadImage(const json& scene, RenderSettings& s)
+{
+  const json image = scene.value("image", json::object());
+  CheckKeys(image, "scene.image", { "width", "height", "exposure", "tone_mapping" });
+  s.Width = Integer(image, "width", "scene.image", 256, 1, 16384);
+  s.Height = Integer(image, "height", "scene.image", 256, 1, 16384);
+  s.Exposure = Number(image, "exposure", "scene.image", 1.0, 0.0, 1e30);
+  std::tie(s.ToneMappingName, s.ToneMapping) =
+    Choice(image, "tone_mapping", "scene.image", "clamp", ToneMappings);
+}
+
+void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderSettings& s)
+{
+  const json quality = scene.value("quality", json::object());
+  const std::string q = "scene.quality";
+  CheckKeys(quality, q,
+    { "preset", "photons", "seed", "view_step", "ray_mode", "transmittance_cutoff",
+      "photon_min_step", "octree_tolerance", "photon_smoothing", "multiple_scattering",
+      "multiple_scattering_tolerance", "multiple_scattering_block_size", "tolerance" });
+  int preset;
+  std::tie(s.Preset, preset) = Choice(quality, "preset", q, "none", Presets);
+  const bool hasPreset = preset != NoPreset;
+  if (hasPreset)
+  {
+    pipeline->SetQuality(preset);
+  }
+  vtkEffectPlan* plan = pipeline->GetEffectPlan();
+  s.Photons = Integer(
+    quality, "photons", q, hasPreset ? plan->GetRecommendedNumberOfPhotons() : 1 << 18, 1, 1 << 28);
+  s.Seed = Integer(quality, "seed", q, 1, 0, 2147483647);
+  s.ViewStep =
+    Number(quality, "view_step", q, hasPreset ? plan->GetRecommendedViewStep() : 1.0, 0.01, 16.0);
+  std::tie(s.RayModeName, s.RayMode) = Choice(quality, "ray_mode", q, "auto", RayModes);
+  s.TransmittanceCutoff = Number(quality, "transmittance_cutoff", q, 1e-4, 0.0, 1.0);
+  s.PhotonMinStep = Number(quality, "photon_min_step", q,
+    hasPreset ? plan->GetRecommendedPhotonMinimumStep() : 1.0, 1e-3, 1e6);
+  s.OctreeTolerance = Number(quality, "octree_tolerance", q,
+    hasPreset ? plan->GetRecommendedOctreeTolerance() : 0.005, 0.0, 1.0);
+  s.PhotonSmoothing = Boolean(quality, "photon_smoothing", q, true);
+  s.MultipleScattering = Boolean(quality, "multiple_scattering", q, true);
+  s.LatticeTolerance = Number(quality, "multiple_scattering_tolerance", q,
+    hasPreset ? plan->GetRecommendedLatticeTolerance() : 1e-4, 1e-8, 1.0);
+  s.LatticeBlockSize = Integer(quality, "multiple_scattering_block_size", q,
+    hasPreset ? plan->GetRecommendedLatticeBlockSize() : 4, 0, 8);
+  // The relative image change an effect may cause and still be skipped.
+  plan->SetTolerance(
+    Number(quality, "tolerance", q, hasPreset ? plan->GetTolerance() : 0.01, 0.0, 1.0));
+}
+
+// Per-effect overrides of the plan ("auto", "on", "off").
+void ReadEffects(const json& scene, const RenderSettings& s, vtkEffectPlan* plan)
+{
+  const json effects = scene.value("effects", json::object());
+  CheckKeys(effects, "scene.effects", { std::begin(EffectKeys), std::end(EffectKeys) });
+  for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
+  {
+    plan->SetEffectMode(
+      e, Choice(effects, EffectKeys[e], "scene.effects", "auto", EffectModes).second);
+  }
+  if (!s.MultipleScattering)
+  {
+    plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, vtkEffectPlan::FORCE_OFF);
+  }
+}
+}
+
+RenderSettings ReadSettings(const json& scene, vtkRefractaRenderPipeline* pipeline)
+{
+  RenderSettings settings;
+  ReadImage(scene, settings);
+  ReadQuality(scene, pipeline, settings);
+  ReadEffects(scene, settings, pipeline->GetEffectPlan());
+  return settings;
+}
+
+void ApplySettings(const RenderSettings& s, vtkRefractaImageRenderer* renderer)
+{
+  vtkRefractaRenderPipeline* pipeline = renderer->GetPipeline();
+  vtkPhotonTracer* tracer = pipeline->GetPhotonTracer();
+  tracer->SetNumberOfPhotons(s.Photons);
+  tracer->SetSeed(static_cast<unsigned int>(s.Seed));
+  tracer->SetMinimumStep(s.PhotonMinStep);
+  pipeline->SetOctreeTolerance(s.OctreeTolerance);
+  tracer->SetSmoothing(s.PhotonSmoothing);
+  pipeline->GetLatticeSolver()->SetTolerance(s.LatticeTolerance);
+  pipeline->GetLatticeSolver()->SetBlockSize(s.LatticeBlockSize);
+  renderer->SetImageSize(s.Width, s.Height);
+  renderer->SetExposure(s.Exposure);
+  renderer->SetToneMapping(s.ToneMapping);
+  renderer->SetStepSize(s.ViewStep);
+  renderer->SetRayMode(s.RayMode);
+  renderer->SetTransmittanceCutoff(s.TransmittanceCutoff);
+}
+
+json ImageReport(const RenderSettings& s)
+{
+  return { { "width", s.Width }, { "height", s.Height }, { "exposure", s.Exposure },
+    { "tone_mapping", s.ToneMappingName } };
+}
+
+json QualityReport(const RenderSettings& s)
+{
+  return { { "photons", s.Photons }, { "seed", s.Seed }, { "view_step", s.ViewStep },
+    { "ray_mode", s.RayModeName }, { "transmittance_cutoff", s.TransmittanceCutoff },
+    { "photon_min_step", s.PhotonMinStep }, { "photon_smoothing", s.PhotonSmoothing },
+    { "multiple_scattering", s.MultipleScattering },
+    { "multiple_scattering_tolerance", s.LatticeTolerance },
+    { "multiple_scattering_block_size", s.LatticeBlockSize }, { "preset", s.Preset },
+    { "octree_tolerance", s.OctreeTolerance } };
+}
+}

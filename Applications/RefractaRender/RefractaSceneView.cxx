@@ -1,0 +1,165 @@
+#include "RefractaSceneView.h"
+
+#include "RefractaSceneMedium.h"
+
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkRefractaImageRenderer.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace RefractaRender
+{
+namespace
+{
+// Equirectangular checkerboard (linear RGB floats).
+vtkSmartPointer<vtkImageData> Checker(
+  int nu, int nv, const std::vector<double>& c1, const std::vector<double>& c2)
+{
+  const int w = std::max(nu * 16, 64), h = std::max(nv * 16, 32);
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(w, h, 1);
+  vtkNew<vtkFloatArray> rgb;
+  rgb->SetName("checker");
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      const bool odd = ((i * nu / w) + (j * nv / h)) % 2;
+      const std::vector<double>& c = odd ? c1 : c2;
+      rgb->SetTuple3(i + w * j, c[0], c[1], c[2]);
+    }
+  }
+  image->GetPointData()->SetScalars(rgb);
+  return image;
+}
+
+vtkSmartPointer<vtkLight> ReadLight(const json& l, const std::string& p)
+{
+  CheckKeys(
+    l, p, { "type", "position", "focal_point", "color", "intensity", "cone_angle", "exponent" });
+  const std::string type = String(l, "type", p, "", { "directional", "point", "spot" });
+  if (type.empty())
+  {
+    Fail(p + ".type", "missing (directional, point or spot)");
+  }
+  if (!l.contains("position"))
+  {
+    Fail(p + ".position", "missing");
+  }
+  auto light = vtkSmartPointer<vtkLight>::New();
+  light->SetLightTypeToSceneLight();
+  auto pos = Vector(l, "position", p, {}, 3, -1e30, 1e30);
+  auto fp = Vector(l, "focal_point", p, { 0, 0, 0 }, 3, -1e30, 1e30);
+  if (pos == fp)
+  {
+    Fail(p + ".focal_point", "must differ from the position");
+  }
+  light->SetPosition(pos.data());
+  light->SetFocalPoint(fp.data());
+  auto colour = Vector(l, "color", p, { 1, 1, 1 }, 3, 0, 1e30);
+  light->SetDiffuseColor(colour.data());
+  light->SetIntensity(Number(l, "intensity", p, 1.0, 0.0, 1e30));
+  light->SetPositional(type != "directional");
+  light->SetConeAngle(type == "spot" ? Number(l, "cone_angle", p, 30.0, 0.01, 89.99) : 180.0);
+  light->SetExponent(Number(l, "exponent", p, 1.0, 0.0, 128.0));
+  if (type != "spot" && l.contains("cone_angle"))
+  {
+    Fail(p + ".cone_angle", "only for spot lights");
+  }
+  return light;
+}
+}
+
+int AddLights(const json& scene, vtkRefractaImageRenderer* renderer)
+{
+  if (!scene.contains("lights"))
+  {
+    return 0;
+  }
+  const json& lights = scene["lights"];
+  if (!lights.is_array())
+  {
+    Fail("scene.lights", "must be an array of lights");
+  }
+  for (size_t i = 0; i < lights.size(); ++i)
+  {
+    renderer->AddLight(ReadLight(lights[i], "scene.lights[" + std::to_string(i) + "]"));
+  }
+  return static_cast<int>(lights.size());
+}
+
+vtkSmartPointer<vtkCamera> ReadCamera(const json& scene, vtkImageData* medium)
+{
+  const json cam = scene.value("camera", json::object());
+  CheckKeys(cam, "scene.camera",
+    { "position", "focal_point", "view_up", "view_angle", "projection", "parallel_scale" });
+  double bounds[6];
+  medium->GetBounds(bounds);
+  const double centre[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+    0.5 * (bounds[4] + bounds[5]) };
+  const double size =
+    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  auto fp =
+    Vector(cam, "focal_point", "scene.camera", { centre[0], centre[1], centre[2] }, 3, -1e30, 1e30);
+  auto pos = Vector(cam, "position", "scene.camera",
+    { centre[0], centre[1] + 0.3 * size, centre[2] + 2.2 * size }, 3, -1e30, 1e30);
+  if (pos == fp)
+  {
+    Fail("scene.camera.position", "must differ from the focal point");
+  }
+  auto up = Vector(cam, "view_up", "scene.camera", { 0, 1, 0 }, 3, -1e30, 1e30);
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->SetFocalPoint(fp.data());
+  camera->SetPosition(pos.data());
+  camera->SetViewUp(up.data());
+  camera->SetViewAngle(Number(cam, "view_angle", "scene.camera", 30.0, 0.1, 179.0));
+  const std::string projection =
+    String(cam, "projection", "scene.camera", "perspective", { "perspective", "parallel" });
+  camera->SetParallelProjection(projection == "parallel");
+  camera->SetParallelScale(Number(cam, "parallel_scale", "scene.camera", 0.6 * size, 1e-30, 1e30));
+  return camera;
+}
+
+void ReadBackground(const json& scene, const std::string& base, vtkRefractaImageRenderer* renderer)
+{
+  const json bg = scene.value("background", json::object());
+  CheckKeys(bg, "scene.background", { "color", "environment", "checker", "up", "right" });
+  if (bg.contains("environment") + bg.contains("checker") + bg.contains("color") > 1)
+  {
+    Fail("scene.background", "give one of 'color', 'environment' or 'checker'");
+  }
+  auto colour = Vector(bg, "color", "scene.background", { 0, 0, 0 }, 3, 0, 1e30);
+  renderer->SetBackgroundColor(colour[0], colour[1], colour[2]);
+  if (bg.contains("environment"))
+  {
+    if (!bg["environment"].is_string())
+    {
+      Fail("scene.background.environment", "must be an image file name");
+    }
+    renderer->SetEnvironmentMap(ReadImageFile(
+      Resolve(base, bg["environment"].get<std::string>()), "scene.background.environment"));
+  }
+  if (bg.contains("checker"))
+  {
+    const json& c = bg["checker"];
+    const std::string p = "scene.background.checker";
+    CheckKeys(c, p, { "squares", "color1", "color2" });
+    auto squares = Vector(c, "squares", p, { 16, 8 }, 2, 1, 512);
+    renderer->SetEnvironmentMap(Checker(static_cast<int>(squares[0]), static_cast<int>(squares[1]),
+      Vector(c, "color1", p, { 0.9, 0.9, 0.9 }, 3, 0, 1e30),
+      Vector(c, "color2", p, { 0.1, 0.1, 0.1 }, 3, 0, 1e30)));
+  }
+  auto up = Vector(bg, "up", "scene.background", { 0, 1, 0 }, 3, -1e30, 1e30);
+  auto right = Vector(bg, "right", "scene.background", { 1, 0, 0 }, 3, -1e30, 1e30);
+  renderer->SetEnvironmentUp(up[0], up[1], up[2]);
+  renderer->SetEnvironmentRight(right[0], right[1], right[2]);
+}
+}
