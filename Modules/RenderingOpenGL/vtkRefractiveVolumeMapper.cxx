@@ -42,6 +42,30 @@ namespace
 {
 // Whether the voxel at data point `p` is kept by the cropping regions (VTK's 27 regions: index
 // i + 3 j + 9 k, each of i, j, k 0 below the lower plane, 1 between, 2 above; bit set = kept).
+// The multiplier that draws the 99th percentile of the luminance of the pixels where the medium
+// shows at 0.8 (see AutomaticExposure); 1 when nothing shows.
+double MeterExposure(const std::vector<float>& image, const std::vector<float>& transmittance)
+{
+  std::vector<double> luminance;
+  for (size_t p = 0; 4 * p + 3 < image.size() && 4 * p + 3 < transmittance.size(); ++p)
+  {
+    const double t =
+      (transmittance[4 * p] + transmittance[4 * p + 1] + transmittance[4 * p + 2]) / 3.0;
+    const double y = 0.2126 * image[4 * p] + 0.7152 * image[4 * p + 1] + 0.0722 * image[4 * p + 2];
+    if (t < 0.98 && std::isfinite(y))
+    {
+      luminance.push_back(y);
+    }
+  }
+  if (luminance.empty())
+  {
+    return 1.0;
+  }
+  auto at = luminance.begin() + static_cast<std::ptrdiff_t>(0.99 * (luminance.size() - 1));
+  std::nth_element(luminance.begin(), at, luminance.end());
+  return *at > 0.0 ? 0.8 / *at : 1.0;
+}
+
 bool KeptByCropping(const double p[3], const double planes[6], int flags)
 {
   int region = 0;
@@ -128,6 +152,8 @@ struct vtkRefractiveVolumeMapper::Internals
   std::vector<float> Depth;
   std::vector<float> Limits;
   std::string LastMessage; // said once, not on every Render
+  double MeteredExposure = 1.0;
+  int MeteredAt = -1; // plan + light-pass runs when the exposure was metered
   bool BlendModeWarned = false;
 };
 
@@ -576,7 +602,19 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   // Per-channel compositing in two blended draws: first dst *= T (blend ZERO, SRC_COLOR), then
   // dst += E L (blend ONE, ONE). Together: dst = E L + T dst, channel by channel.
   std::vector<float> radiance(pixels * 4), transmittance(pixels * 4);
-  const float exposure = static_cast<float>(this->Exposure);
+  double exposureValue = this->Exposure;
+  if (this->AutomaticExposure)
+  {
+    const int recomputed = pipeline->GetNumberOfPlanRuns() + pipeline->GetNumberOfLightPassRuns();
+    if (recomputed != in.MeteredAt)
+    {
+      in.MeteredExposure = MeterExposure(image, transmittanceImage);
+      in.MeteredAt = recomputed;
+    }
+    exposureValue *= in.MeteredExposure;
+  }
+  this->LastExposure = exposureValue;
+  const float exposure = static_cast<float>(exposureValue);
   for (size_t p = 0; p < pixels; ++p)
   {
     for (int c = 0; c < 3; ++c)
@@ -609,6 +647,8 @@ void vtkRefractiveVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Anisotropy: " << this->Anisotropy << "\n";
   os << indent << "EmissionScale: " << this->EmissionScale << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";
+  os << indent << "AutomaticExposure: " << this->AutomaticExposure << "\n";
+  os << indent << "LastExposure: " << this->LastExposure << "\n";
   os << indent << "Pipeline:\n";
   this->Internal->Pipeline->PrintSelf(os, indent.GetNextIndent());
 }

@@ -160,10 +160,30 @@ public:
 
   ///@{
   /**
-   * Multiplier on the medium's radiance before it is drawn, >= 0. Default 1.
+   * Multiplier on the medium's radiance before it is drawn, >= 0. Default 1. With
+   * AutomaticExposure on it multiplies the automatic exposure.
    */
   vtkSetClampMacro(Exposure, double, 0.0, 1e30);
   vtkGetMacro(Exposure, double);
+  ///@}
+
+  ///@{
+  /**
+   * Automatic exposure (default on): the radiance is scaled so that the 99th percentile of the
+   * luminance over the pixels where the medium shows (mean transmittance below 0.98) is drawn at
+   * 0.8, like a camera's metering. Why: VTK's volume mappers draw the transfer function's colour
+   * as if it glowed (unshaded compositing is physically a medium under unit ambient light), while
+   * this mapper computes the light the scene's lights actually scatter, which for the same lights
+   * is several times dimmer (measured 0.32x on VTK's wavelet with the default headlight, in
+   * VTK light units); metering makes the mapper a drop-in that shows a comparably exposed image.
+   * The exposure is metered again only when the medium or the lighting was recomputed, never on
+   * a camera move, so brightness stays comparable while the view changes. Turn it off for
+   * radiometrically calibrated output (then pixel = Exposure x radiance).
+   */
+  vtkSetMacro(AutomaticExposure, bool);
+  vtkGetMacro(AutomaticExposure, bool);
+  vtkBooleanMacro(AutomaticExposure, bool);
+  vtkGetMacro(LastExposure, double); ///< the multiplier used by the last draw
   ///@}
 
   ///@{
@@ -223,6 +243,8 @@ protected:
   double Anisotropy = 0.0;
   double EmissionScale = 0.0;
   double Exposure = 1.0;
+  bool AutomaticExposure = true;
+  double LastExposure = 1.0;
 
 private:
   vtkRefractiveVolumeMapper(const vtkRefractiveVolumeMapper&) = delete;

@@ -1,0 +1,268 @@
+// vtkRefractiveVolumeMapper as a drop-in for vtkGPUVolumeRayCastMapper: the same scene (VTK's
+// wavelet, extent -10..10, a transfer function, the renderer's default headlight) is exposed
+// alike by both mappers; SelectScalarArray, clipping planes and cropping are honoured; a missing
+// array and a blend mode it does not render are reported once, not on every Render.
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
+#include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
+#include "vtkPointData.h"
+#include "vtkRTAnalyticSource.h"
+#include "vtkRefractiveVolumeMapper.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <string>
+
+namespace
+{
+const int Size = 80;
+
+vtkRenderWindow* SharedWindow()
+{
+  static vtkSmartPointer<vtkRenderWindow> window;
+  if (!window)
+  {
+    window = vtkSmartPointer<vtkRenderWindow>::New();
+    window->SetOffScreenRendering(1);
+    window->SetSize(Size, Size);
+    window->SetMultiSamples(0);
+  }
+  return window;
+}
+
+// Counts the events of one kind and keeps the last message.
+class EventCounter : public vtkCommand
+{
+public:
+  static EventCounter* New() { return new EventCounter; }
+  void Execute(vtkObject*, unsigned long, void* callData) override
+  {
+    ++this->Count;
+    this->Message = callData ? static_cast<const char*>(callData) : "";
+  }
+  int Count = 0;
+  std::string Message;
+};
+
+// A VTK scene as a VTK user sets it up: wavelet, colour and opacity transfer functions, a white
+// background, the renderer's automatic headlight, ResetCamera.
+struct WaveletScene
+{
+  vtkSmartPointer<vtkRenderWindow> Window = SharedWindow();
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkRTAnalyticSource> Wavelet;
+
+  WaveletScene()
+  {
+    this->Wavelet->SetWholeExtent(-10, 10, -10, 10, -10, 10);
+    this->Wavelet->Update();
+    vtkNew<vtkPiecewiseFunction> opacity;
+    opacity->AddPoint(37, 0.0);
+    opacity->AddPoint(150, 0.05);
+    opacity->AddPoint(277, 0.3);
+    vtkNew<vtkColorTransferFunction> colour;
+    colour->AddRGBPoint(37, 0.2, 0.3, 0.9);
+    colour->AddRGBPoint(160, 0.9, 0.9, 0.9);
+    colour->AddRGBPoint(277, 0.9, 0.4, 0.1);
+    vtkVolumeProperty* property = this->Volume->GetProperty();
+    property->SetScalarOpacity(opacity);
+    property->SetColor(colour);
+    property->SetScalarOpacityUnitDistance(1.0);
+    property->SetInterpolationTypeToLinear();
+    this->Window->GetRenderers()->RemoveAllItems();
+    this->Window->AddRenderer(this->Renderer);
+    this->Renderer->SetBackground(0, 0, 0);
+    this->Renderer->AddVolume(this->Volume);
+  }
+
+  void Use(vtkVolumeMapper* mapper)
+  {
+    mapper->SetInputConnection(this->Wavelet->GetOutputPort());
+    this->Volume->SetMapper(mapper);
+    this->Renderer->ResetCamera();
+  }
+
+  vtkSmartPointer<vtkImageData> Capture()
+  {
+    this->Window->Render();
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(this->Window);
+    grab->SetInputBufferTypeToRGB();
+    grab->ReadFrontBufferOff();
+    grab->Update();
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(grab->GetOutput());
+    return image;
+  }
+};
+
+// Mean brightness (0..255, mean of RGB) over the pixels where the volume shows (any channel
+// above 2 on the black background), and the number of those pixels.
+double MeanBrightness(vtkImageData* image, int* covered = nullptr)
+{
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  double sum = 0;
+  int n = 0;
+  for (vtkIdType p = 0; p < rgb->GetNumberOfTuples(); ++p)
+  {
+    const double r = rgb->GetComponent(p, 0), g = rgb->GetComponent(p, 1),
+                 b = rgb->GetComponent(p, 2);
+    if (r > 2 || g > 2 || b > 2)
+    {
+      sum += (r + g + b) / 3.0;
+      ++n;
+    }
+  }
+  if (covered)
+  {
+    *covered = n;
+  }
+  return n ? sum / n : 0.0;
+}
+
+// Brightness of the pixel column x = i, summed over rows.
+double ColumnSum(vtkImageData* image, int i)
+{
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  double sum = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      sum += rgb->GetComponent(i + Size * j, c);
+    }
+  }
+  return sum;
+}
+}
+
+TEST(MapperDropIn, ExposedLikeVTKsGPUMapper)
+{
+  WaveletScene scene;
+  vtkNew<vtkGPUVolumeRayCastMapper> gpu;
+  scene.Use(gpu);
+  int gpuCovered = 0;
+  const double gpuMean = MeanBrightness(scene.Capture(), &gpuCovered);
+
+  vtkNew<vtkRefractiveVolumeMapper> refracta;
+  refracta->SetNumberOfPhotons(1 << 16);
+  scene.Use(refracta);
+  int ourCovered = 0;
+  const double ourMean = MeanBrightness(scene.Capture(), &ourCovered);
+  std::cout << "mean brightness over the volume's pixels: vtkGPUVolumeRayCastMapper " << gpuMean
+            << " (" << gpuCovered << " px), vtkRefractiveVolumeMapper " << ourMean << " ("
+            << ourCovered << " px), ratio " << ourMean / gpuMean << "\n";
+  ASSERT_GT(gpuCovered, Size * Size / 10) << "the GPU mapper drew the wavelet";
+  // The same footprint (placement of a medium with extent -10..10) within 25% ...
+  EXPECT_NEAR(static_cast<double>(ourCovered) / gpuCovered, 1.0, 0.25);
+  // ... and a comparable exposure (within a factor 1.5) through automatic exposure.
+  EXPECT_GT(ourMean / gpuMean, 1.0 / 1.5);
+  EXPECT_LT(ourMean / gpuMean, 1.5);
+
+  // Radiometric output (VTK light units, no metering) for the record: the light the headlight
+  // actually scatters is dimmer than VTK's glowing transfer-function colour.
+  refracta->AutomaticExposureOff();
+  const double radiometric = MeanBrightness(scene.Capture());
+  std::cout << "without automatic exposure: " << radiometric << " (ratio " << radiometric / gpuMean
+            << ")\n";
+  EXPECT_LT(radiometric, ourMean);
+}
+
+TEST(MapperDropIn, SelectScalarArrayIsHonouredAndAMissingArrayIsReportedOnce)
+{
+  WaveletScene scene;
+  vtkNew<vtkRefractiveVolumeMapper> mapper;
+  mapper->SetNumberOfPhotons(1 << 12);
+  scene.Use(mapper);
+  vtkNew<EventCounter> errors;
+  mapper->AddObserver(vtkCommand::ErrorEvent, errors);
+  mapper->SetScalarModeToUsePointFieldData();
+  mapper->SelectScalarArray("NoSuchArray");
+  scene.Window->Render();
+  scene.Window->Render();
+  scene.Window->Render();
+  EXPECT_EQ(errors->Count, 1) << "said once, not on every Render";
+  EXPECT_NE(errors->Message.find("'NoSuchArray'"), std::string::npos) << errors->Message;
+  EXPECT_NE(errors->Message.find("SelectScalarArray"), std::string::npos) << errors->Message;
+
+  // The wavelet's array by name: it renders, and the message is not repeated.
+  mapper->SelectScalarArray("RTData");
+  const double mean = MeanBrightness(scene.Capture());
+  EXPECT_GT(mean, 1.0);
+  EXPECT_EQ(errors->Count, 1);
+}
+
+TEST(MapperDropIn, ClippingPlanesAndCroppingCutTheMediumAway)
+{
+  WaveletScene scene;
+  vtkNew<vtkRefractiveVolumeMapper> mapper;
+  mapper->SetNumberOfPhotons(1 << 12);
+  scene.Use(mapper);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->SetPosition(0, 0, 80);
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetViewUp(0, 1, 0);
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(12);
+  scene.Renderer->ResetCameraClippingRange();
+  auto full = scene.Capture();
+  const int left = Size / 4, right = 3 * Size / 4; // x = -6 and x = +6 in world units
+  ASSERT_GT(ColumnSum(full, left), 0.0);
+  ASSERT_GT(ColumnSum(full, right), 0.0);
+
+  // Keep x >= 0 (the normal points to what stays, as in VTK's mappers).
+  vtkNew<vtkPlane> plane;
+  plane->SetOrigin(0, 0, 0);
+  plane->SetNormal(1, 0, 0);
+  mapper->AddClippingPlane(plane);
+  auto clipped = scene.Capture();
+  EXPECT_EQ(ColumnSum(clipped, left), 0.0) << "the cut-away half shows the background";
+  EXPECT_GT(ColumnSum(clipped, right), 0.0);
+  const int builds = mapper->GetNumberOfMediumBuilds();
+  scene.Capture();
+  EXPECT_EQ(mapper->GetNumberOfMediumBuilds(), builds) << "unchanged planes: no new cut";
+  plane->SetNormal(-1, 0, 0);
+  auto flipped = scene.Capture();
+  EXPECT_GT(ColumnSum(flipped, left), 0.0);
+  EXPECT_EQ(ColumnSum(flipped, right), 0.0);
+  mapper->RemoveAllClippingPlanes();
+
+  // Cropping: keep the centre region |x|, |y|, |z| <= 3 only.
+  mapper->SetCroppingRegionPlanes(-3, 3, -3, 3, -3, 3);
+  mapper->SetCroppingRegionFlagsToSubVolume();
+  mapper->CroppingOn();
+  auto cropped = scene.Capture();
+  EXPECT_EQ(ColumnSum(cropped, left), 0.0);
+  EXPECT_EQ(ColumnSum(cropped, right), 0.0);
+  EXPECT_GT(ColumnSum(cropped, Size / 2), 0.0);
+}
+
+TEST(MapperDropIn, UnsupportedBlendModeIsRefusedOnce)
+{
+  WaveletScene scene;
+  vtkNew<vtkRefractiveVolumeMapper> mapper;
+  mapper->SetNumberOfPhotons(1 << 12);
+  scene.Use(mapper);
+  vtkNew<EventCounter> warnings;
+  mapper->AddObserver(vtkCommand::WarningEvent, warnings);
+  mapper->SetBlendModeToMaximumIntensity();
+  scene.Window->Render();
+  scene.Window->Render();
+  EXPECT_EQ(warnings->Count, 1);
+  EXPECT_NE(warnings->Message.find("COMPOSITE"), std::string::npos) << warnings->Message;
+}
