@@ -1,0 +1,250 @@
+// BenchmarkInteractive: what one persistent vtkRefractaRenderPipeline saves against a fresh
+// pipeline per frame, for the four interactions of a viewer:
+//   camera move      the view pass only;
+//   light move       the light passes and the view pass, on the medium already on the device;
+//   material change  a transfer-function edit: the medium is mapped again, then everything;
+//   full re-render   the medium marked modified: everything.
+// The scene: a scalar blob field on N^3 voxels through vtkTransferFunctionMedium (opacity ->
+// extinction, colour -> albedo, a refractive core n up to 1.1 so rays curve), a spot light, a
+// W x H image; photon count and multiple scattering as the plan decides. Medians of --runs frames
+// per interaction after one untimed frame (kernels compiled and cached); the fresh pipeline reuses
+// the compiled kernels (process-wide cache), so its figure is the cost of the missing device and
+// stage state, not of compilation. Per-stage medians of the persistent pipeline say where the time
+// goes.
+//
+//   BenchmarkInteractive [--size N] [--photons P] [--width W] [--height H] [--runs R]
+//                        [--csv FILE]
+// Defaults are the target configuration: 128^3, 2^20 photons, 640 x 480, 5 runs.
+#include "RefractaBenchmark.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkEffectPlan.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkOpenCLContext.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRefractaRenderPipeline.h"
+#include "vtkSmartPointer.h"
+#include "vtkTransferFunctionMedium.h"
+#include "vtkVolumeProperty.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+struct Options
+{
+  int Size = 128;
+  int Photons = 1 << 20;
+  int Width = 640;
+  int Height = 480;
+  int Runs = 5;
+  std::string Csv;
+};
+
+double Seconds(const std::function<bool()>& work)
+{
+  const auto start = std::chrono::steady_clock::now();
+  if (!work())
+  {
+    std::cerr << "BenchmarkInteractive: a render failed\n";
+    std::exit(1);
+  }
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A smooth blob: density 1 in the core falling to 0 at the box's edge, with some structure.
+vtkSmartPointer<vtkImageData> BlobField(int n)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, n);
+  image->SetSpacing(1.0 / (n - 1), 1.0 / (n - 1), 1.0 / (n - 1));
+  vtkNew<vtkFloatArray> density;
+  density->SetName("density");
+  density->SetNumberOfTuples(image->GetNumberOfPoints());
+  for (vtkIdType id = 0; id < image->GetNumberOfPoints(); ++id)
+  {
+    double p[3];
+    image->GetPoint(id, p);
+    const double x = p[0] - 0.5, y = p[1] - 0.5, z = p[2] - 0.5;
+    const double r = std::sqrt(x * x + y * y + z * z);
+    const double ripple = 0.08 * std::sin(14 * x) * std::sin(11 * y) * std::sin(9 * z);
+    density->SetValue(id, static_cast<float>(std::max(0.0, 1.0 - 2.4 * r + ripple)));
+  }
+  image->GetPointData()->SetScalars(density);
+  return image;
+}
+
+struct Scene
+{
+  vtkSmartPointer<vtkImageData> Field;
+  vtkNew<vtkTransferFunctionMedium> Mapping;
+  vtkNew<vtkVolumeProperty> Property;
+  vtkNew<vtkColorTransferFunction> Colour;
+  vtkNew<vtkPiecewiseFunction> Index;
+  vtkNew<vtkLight> Light;
+  vtkNew<vtkCamera> Camera;
+
+  explicit Scene(int n)
+    : Field(BlobField(n))
+  {
+    vtkNew<vtkPiecewiseFunction> opacity;
+    opacity->AddPoint(0.0, 0.0);
+    opacity->AddPoint(0.2, 0.02);
+    opacity->AddPoint(1.0, 0.3);
+    this->Colour->AddRGBPoint(0.0, 0.9, 0.9, 0.9);
+    this->Colour->AddRGBPoint(1.0, 0.9, 0.7, 0.5);
+    this->Property->SetScalarOpacity(opacity);
+    this->Property->SetColor(this->Colour);
+    this->Property->SetScalarOpacityUnitDistance(0.05);
+    this->Index->AddPoint(0.0, 1.0);
+    this->Index->AddPoint(1.0, 1.1);
+    this->Mapping->SetInputData(this->Field);
+    this->Mapping->SetVolumeProperty(this->Property);
+    this->Mapping->SetRefractiveIndexFunction(this->Index);
+    this->Mapping->Update();
+    this->Light->SetLightTypeToSceneLight();
+    this->Light->SetPositional(true);
+    this->Light->SetConeAngle(30);
+    this->Light->SetPosition(0.5, 2.5, 0.8);
+    this->Light->SetFocalPoint(0.5, 0.5, 0.5);
+    this->Light->SetIntensity(4.0);
+    this->Camera->SetPosition(0.5, 0.8, 3.2);
+    this->Camera->SetFocalPoint(0.5, 0.5, 0.5);
+    this->Camera->SetViewUp(0, 1, 0);
+    this->Camera->SetViewAngle(30);
+  }
+
+  vtkImageData* Medium() { return this->Mapping->GetOutput(); }
+};
+
+vtkSmartPointer<vtkRefractaRenderPipeline> MakePipeline(Scene& scene, const Options& o)
+{
+  auto pipeline = vtkSmartPointer<vtkRefractaRenderPipeline>::New();
+  pipeline->SetMedium(scene.Medium());
+  pipeline->AddLight(scene.Light);
+  pipeline->SetCamera(scene.Camera);
+  pipeline->GetPhotonTracer()->SetNumberOfPhotons(o.Photons);
+  return pipeline;
+}
+
+// The interactions: each changes the scene a little (and back and forth, so frames stay alike).
+struct Interaction
+{
+  std::string Name;
+  std::function<void(Scene&, int)> Change;
+};
+
+std::vector<Interaction> Interactions()
+{
+  return {
+    { "camera move", [](Scene& s, int frame) { s.Camera->Azimuth(frame % 2 ? 2.0 : -2.0); } },
+    { "light move",
+      [](Scene& s, int frame) { s.Light->SetPosition(0.5 + (frame % 2 ? 0.1 : -0.1), 2.5, 0.8); } },
+    { "material change",
+      [](Scene& s, int frame)
+      {
+        s.Colour->RemoveAllPoints();
+        s.Colour->AddRGBPoint(0.0, 0.9, 0.9, 0.9);
+        s.Colour->AddRGBPoint(1.0, 0.9, frame % 2 ? 0.6 : 0.7, 0.5);
+        s.Mapping->Update();
+      } },
+    { "full re-render", [](Scene& s, int) { s.Medium()->Modified(); } },
+  };
+}
+}
+
+int main(int argc, char* argv[])
+{
+  Options o;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    auto next = [&]() -> std::string
+    {
+      if (i + 1 >= argc)
+      {
+        std::cerr << "BenchmarkInteractive: " << arg << " needs a value\n";
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (arg == "--size")
+      o.Size = std::stoi(next());
+    else if (arg == "--photons")
+      o.Photons = std::stoi(next());
+    else if (arg == "--width")
+      o.Width = std::stoi(next());
+    else if (arg == "--height")
+      o.Height = std::stoi(next());
+    else if (arg == "--runs")
+      o.Runs = std::stoi(next());
+    else if (arg == "--csv")
+      o.Csv = next();
+    else
+    {
+      std::cerr << "usage: BenchmarkInteractive [--size N] [--photons P] [--width W] "
+                   "[--height H] [--runs R] [--csv FILE]\n";
+      return 2;
+    }
+  }
+  vtkOpenCLContext* context = vtkOpenCLContext::GetDefault();
+  if (!context->Initialize())
+  {
+    std::cerr << "BenchmarkInteractive: " << context->GetLastErrorMessage() << "\n";
+    return 1;
+  }
+  std::cout << "BenchmarkInteractive: " << o.Size << "^3, " << o.Photons << " photons, " << o.Width
+            << " x " << o.Height << ", " << o.Runs << " runs on " << context->GetDeviceName()
+            << "\n";
+
+  Scene scene(o.Size);
+  auto persistent = MakePipeline(scene, o);
+  Seconds([&] { return persistent->Render(o.Width, o.Height); }); // compile, upload, light
+  std::cout << "  plan: " << persistent->GetEffectPlan()->GetSummary() << "\n";
+
+  using refracta::bench::Median;
+  using refracta::bench::Table;
+  Table table({ "interaction", "fresh_s", "persistent_s", "speedup", "plan_s", "lighting_s",
+    "view_s", "frames_per_s" });
+  int frame = 0;
+  for (const Interaction& interaction : Interactions())
+  {
+    std::vector<double> fresh, kept, stage[vtkRefractaRenderPipeline::NUMBER_OF_STAGES];
+    for (int r = 0; r < o.Runs; ++r)
+    {
+      interaction.Change(scene, frame++);
+      persistent->SetMedium(scene.Medium());
+      kept.push_back(Seconds([&] { return persistent->Render(o.Width, o.Height); }));
+      for (int s = 0; s < vtkRefractaRenderPipeline::NUMBER_OF_STAGES; ++s)
+      {
+        stage[s].push_back(persistent->GetStageSeconds(s));
+      }
+      auto before = MakePipeline(scene, o); // the state a front end without the pipeline had
+      fresh.push_back(Seconds([&] { return before->Render(o.Width, o.Height); }));
+    }
+    const double f = Median(fresh), k = Median(kept);
+    table.AddRow({ interaction.Name, Table::Format(f), Table::Format(k), Table::Format(f / k),
+      Table::Format(Median(stage[0])), Table::Format(Median(stage[1])),
+      Table::Format(Median(stage[2])), Table::Format(1.0 / k) });
+  }
+  table.Print("Interactive re-rendering: fresh pipeline per frame vs one persistent pipeline "
+              "(medians, seconds)");
+  if (!o.Csv.empty() && !table.WriteCsv(o.Csv))
+  {
+    std::cerr << "BenchmarkInteractive: cannot write " << o.Csv << "\n";
+    return 1;
+  }
+  return 0;
+}
