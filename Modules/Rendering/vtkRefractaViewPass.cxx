@@ -11,6 +11,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 
 #include <algorithm>
@@ -500,9 +501,9 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     return false;
   }
   vtkPointData* pd = lighting->GetPointData();
-  vtkDataArray* radiance = pd->GetArray("Radiance");
-  vtkDataArray* direction = pd->GetArray("RadianceDirection");
-  vtkDataArray* multiple = pd->GetArray("MultipleScattering");
+  vtkDataArray* radiance = pd->GetArray(vtkRefractaLightingVolume::RadianceName());
+  vtkDataArray* direction = pd->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
+  vtkDataArray* multiple = pd->GetArray(vtkRefractaLightingVolume::MultipleScatteringName());
   const vtkIdType n = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
   auto check = [&](vtkDataArray* a, const char* name, bool nonNegative) -> bool
   {
@@ -543,8 +544,8 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     return false;
   }
   if ((radiance &&
-        (!check(radiance, "Radiance", true) || !check(direction, "RadianceDirection", false))) ||
-    (multiple && !check(multiple, "MultipleScattering", true)))
+        (!check(radiance, vtkRefractaLightingVolume::RadianceName(), true) || !check(direction, vtkRefractaLightingVolume::RadianceDirectionName(), false))) ||
+    (multiple && !check(multiple, vtkRefractaLightingVolume::MultipleScatteringName(), true)))
   {
     return false;
   }
@@ -562,11 +563,11 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     FetchFloats(radiance, 3, values);
     MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
     in.Radiance = context->CreateBuffer(
-      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4, values.data(), "Radiance", this);
+      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4, values.data(), vtkRefractaLightingVolume::RadianceName(), this);
     // RadianceDirection is stored in the grid-local frame (vtkPhotonTracer, Physics.md).
     FetchFloats(direction, 3, values);
     in.RadianceDirection = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-      values.size() * 4, values.data(), "RadianceDirection", this);
+      values.size() * 4, values.data(), vtkRefractaLightingVolume::RadianceDirectionName(), this);
     if (!in.Radiance || !in.RadianceDirection)
     {
       return false;
@@ -577,7 +578,7 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     FetchFloats(multiple, 3, values);
     MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
     in.Multiple = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
-      values.data(), "MultipleScattering", this);
+      values.data(), vtkRefractaLightingVolume::MultipleScatteringName(), this);
     if (!in.Multiple)
     {
       return false;

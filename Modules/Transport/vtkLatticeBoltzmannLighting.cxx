@@ -15,6 +15,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
@@ -118,7 +119,7 @@ int vtkLatticeBoltzmannLighting::RequestData(
     }
   }
   const vtkIdType n = medium->GetNumberOfPoints();
-  vtkDataArray* radiance = lighting->GetPointData()->GetArray("Radiance");
+  vtkDataArray* radiance = lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
   if (!radiance || radiance->GetNumberOfComponents() != 3 || radiance->GetNumberOfTuples() != n)
   {
     vtkErrorMacro("Input 1 (lighting volume) needs a point array `Radiance` with 3 components "
@@ -140,7 +141,7 @@ int vtkLatticeBoltzmannLighting::RequestData(
       }
     }
   }
-  vtkDataArray* direction = lighting->GetPointData()->GetArray("RadianceDirection");
+  vtkDataArray* direction = lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
   if (direction && (direction->GetNumberOfComponents() != 3 || direction->GetNumberOfTuples() != n))
   {
     vtkErrorMacro("Input 1: `RadianceDirection` must have 3 components and " << n << " tuples.");
@@ -172,9 +173,9 @@ int vtkLatticeBoltzmannLighting::RequestData(
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
   const std::vector<float> anisotropy =
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
-  const std::vector<float> s1 = vtkRefractaMedium::ReadArray(lighting, "Radiance", 3, 0.0f);
+  const std::vector<float> s1 = vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0.0f);
   const std::vector<float> dir =
-    vtkRefractaMedium::ReadArray(lighting, "RadianceDirection", 3, 0.0f);
+    vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0.0f);
   if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()) ||
     !solver->SetSource(s1.data(), direction ? dir.data() : nullptr) || !solver->Solve())
   {
@@ -183,7 +184,7 @@ int vtkLatticeBoltzmannLighting::RequestData(
     return 0;
   }
   vtkNew<vtkFloatArray> ms;
-  ms->SetName("MultipleScattering");
+  ms->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
   ms->SetNumberOfComponents(3);
   ms->SetNumberOfTuples(n);
   if (!solver->ComputeMultipleScattering(ms->GetPointer(0)))

@@ -15,6 +15,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
@@ -926,11 +927,11 @@ int vtkPhotonTracer::RequestData(
   // Stage 4: resolve, smooth, normalise.
   start = Clock::now();
   vtkNew<vtkFloatArray> radiance;
-  radiance->SetName("Radiance");
+  radiance->SetName(vtkRefractaLightingVolume::RadianceName());
   radiance->SetNumberOfComponents(3);
   radiance->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
   vtkNew<vtkFloatArray> direction;
-  direction->SetName("RadianceDirection");
+  direction->SetName(vtkRefractaLightingVolume::RadianceDirectionName());
   direction->SetNumberOfComponents(3);
   direction->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
   if (!m.Scatters)

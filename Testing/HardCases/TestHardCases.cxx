@@ -18,6 +18,7 @@
 #include "vtkPointData.h"
 #include "vtkReferenceRenderer.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkSceneAnalysis.h"
 #include "vtkSmartPointer.h"
 
@@ -321,7 +322,7 @@ TEST_P(HardCases, PhotonTracerStaysFiniteAndConservesEnergy)
   tracer->Update();
   vtkImageData* out = tracer->GetOutput();
   ASSERT_EQ(out->GetNumberOfPoints(), c.Medium->GetNumberOfPoints()) << c.Name;
-  ExpectFiniteArrays(out, { "Radiance" }, c.Name);
+  ExpectFiniteArrays(out, { vtkRefractaLightingVolume::RadianceName() }, c.Name);
 
   EXPECT_EQ(FieldValue(out, "TerminatedInvalid"), 0) << c.Name;
   // Every photon ends in exactly one way: missed the medium, escaped, roulette, or the step cap.
@@ -331,7 +332,7 @@ TEST_P(HardCases, PhotonTracerStaysFiniteAndConservesEnergy)
     << c.Name;
   const double voxelVolume =
     c.Medium->GetSpacing()[0] * c.Medium->GetSpacing()[1] * c.Medium->GetSpacing()[2];
-  vtkDataArray* radiance = out->GetPointData()->GetArray("Radiance");
+  vtkDataArray* radiance = out->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
   for (int ch = 0; ch < 3; ++ch)
   {
     const double emitted = FieldValue(out, "EnergyEmitted", ch);
@@ -426,7 +427,7 @@ TEST_P(HardCases, FullPipelineStaysFinite)
   lbl->Update();
   vtkImageData* lighting = lbl->GetOutput();
   ASSERT_EQ(lighting->GetNumberOfPoints(), c.Medium->GetNumberOfPoints()) << c.Name;
-  ExpectFiniteArrays(lighting, { "Radiance", "MultipleScattering" }, c.Name);
+  ExpectFiniteArrays(lighting, { vtkRefractaLightingVolume::RadianceName(), vtkRefractaLightingVolume::MultipleScatteringName() }, c.Name);
 
   vtkNew<vtkRefractaImageRenderer> renderer;
   renderer->SetInputData(c.Medium);
