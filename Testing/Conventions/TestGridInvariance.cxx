@@ -120,13 +120,13 @@ vtkSmartPointer<vtkImageData> MakeMedium(int placement)
 }
 
 // Camera and light of placement a, rotated by R for placement c.
-struct Setup
+struct Scene
 {
   vtkSmartPointer<vtkCamera> Camera = vtkSmartPointer<vtkCamera>::New();
   vtkSmartPointer<vtkLight> Light = vtkSmartPointer<vtkLight>::New();
 };
 
-Setup MakeSetup(int placement)
+Scene MakeScene(int placement)
 {
   double pos[3] = { OriginA[0] + 0.5, OriginA[1] + 0.3, OriginA[2] + 2.5 };
   double focal[3] = { OriginA[0] + 0.55, OriginA[1] + 0.5, OriginA[2] + 0.3 };
@@ -143,7 +143,7 @@ Setup MakeSetup(int placement)
       std::copy(t, t + 3, v);
     }
   }
-  Setup s;
+  Scene s;
   s.Camera->SetPosition(pos);
   s.Camera->SetFocalPoint(focal);
   s.Camera->SetViewUp(up);
@@ -194,7 +194,7 @@ TEST(GridInvariance, PhotonTracerAndViewPass)
   for (int p = 0; p < 3; ++p)
   {
     auto medium = MakeMedium(p);
-    Setup s = MakeSetup(p);
+    Scene s = MakeScene(p);
     vtkNew<vtkPhotonTracer> tracer;
     tracer->SetInputData(medium);
     tracer->AddLight(s.Light);
@@ -239,7 +239,7 @@ TEST(GridInvariance, ReferenceRenderer)
   for (int p = 0; p < 3; ++p)
   {
     auto medium = MakeMedium(p);
-    Setup s = MakeSetup(p);
+    Scene s = MakeScene(p);
     vtkNew<vtkReferenceRenderer> r;
     r->SetInputData(medium);
     r->SetCamera(s.Camera);
@@ -269,7 +269,7 @@ TEST(GridInvariance, SceneAnalysis)
   for (int p = 0; p < 3; ++p)
   {
     auto medium = MakeMedium(p);
-    Setup s = MakeSetup(p);
+    Scene s = MakeScene(p);
     vtkNew<vtkSceneAnalysis> analysis;
     analysis->SetMedium(medium);
     analysis->AddLight(s.Light);
