@@ -15,6 +15,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
+#include "vtkRefractaGridFrame.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -100,24 +101,17 @@ int vtkLatticeBoltzmannLighting::RequestData(
                   "missing: connect it with SetLightingConnection().");
     return 0;
   }
-  int dims[3], ldims[3];
-  medium->GetDimensions(dims);
-  lighting->GetDimensions(ldims);
-  double spacing[3], lspacing[3];
-  medium->GetSpacing(spacing);
-  lighting->GetSpacing(lspacing);
-  for (int a = 0; a < 3; ++a)
+  if (!vtkRefractaGridFrame::SameGrid(lighting, medium))
   {
-    if (dims[a] != ldims[a] || std::abs(spacing[a] - lspacing[a]) > 1e-6 * std::abs(spacing[a]))
-    {
-      vtkErrorMacro("Input 1 (lighting volume) has dimensions "
-        << ldims[0] << "x" << ldims[1] << "x" << ldims[2] << " and spacing " << lspacing[0] << ", "
-        << lspacing[1] << ", " << lspacing[2] << "; it must be on the medium's grid (" << dims[0]
-        << "x" << dims[1] << "x" << dims[2] << ", spacing " << spacing[0] << ", " << spacing[1]
-        << ", " << spacing[2] << ").");
-      return 0;
-    }
+    vtkErrorMacro("Input 1 (lighting volume) has "
+      << vtkRefractaGridFrame::DescribeGrid(lighting) << "; it must be on the medium's grid ("
+      << vtkRefractaGridFrame::DescribeGrid(medium) << ").");
+    return 0;
   }
+  int dims[3];
+  double spacing[3];
+  medium->GetDimensions(dims);
+  medium->GetSpacing(spacing);
   const vtkIdType n = medium->GetNumberOfPoints();
   vtkDataArray* radiance = lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
   if (!radiance || radiance->GetNumberOfComponents() != 3 || radiance->GetNumberOfTuples() != n)

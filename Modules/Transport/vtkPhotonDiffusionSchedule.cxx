@@ -13,6 +13,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
+#include "vtkRefractaGridFrame.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 
@@ -127,7 +128,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
   this->Tracer->Update();
   this->Tracer->SetChunkCallback(nullptr);
   vtkImageData* lighting = this->Tracer->GetOutput();
-  if (callbackFailed || !lighting || lighting->GetNumberOfPoints() != medium->GetNumberOfPoints() ||
+  if (callbackFailed || !lighting || !vtkRefractaGridFrame::SameGrid(lighting, medium) ||
     !lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()))
   {
     vtkErrorMacro("The photon pass failed (see the previous message).");

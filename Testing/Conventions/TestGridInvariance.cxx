@@ -6,8 +6,12 @@
 //       world position as in (a);
 //   (c) the (b) grid rotated by R (direction matrix R, origin R o_b), with the camera and the light
 //       rotated by R as well.
-// (a) vs (b) must agree to float rounding; (c) to the rounding of a rotated frame (float
-// kernels), stated below.
+// (a) vs (b) must agree to float rounding (1e-5 relative); (c) to the rounding of a rotated frame:
+// view pass and reference 1e-4 and 1e-5 relative, the photon lighting volume 5e-2 per voxel (a
+// photon whose float decisions flip moves its whole deposit). Measured on PoCL (CPU) at the
+// time of writing: 0 everywhere except the reference's (c), 7e-8. Before the frames were
+// unified the view pass differed by 0.998 relative (b and c), the reference by 0.4, the scene
+// analysis' optical thickness toward the light 2.30 vs 2.75.
 #include "vtkCamera.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -19,6 +23,7 @@
 #include "vtkPointData.h"
 #include "vtkReferenceRenderer.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaViewPass.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 #include "vtkSceneAnalysis.h"
@@ -214,7 +219,25 @@ TEST(GridInvariance, PhotonTracerAndViewPass)
     renderer->Update();
     image[p] = renderer->GetOutput();
     ASSERT_GT(image[p]->GetNumberOfPoints(), 0) << Names[p];
+    EXPECT_TRUE(renderer->GetViewPass()->GetLastCurved()) << "the blob must bend the view rays";
   }
+  // The scene is not trivial: the light deposits, and the image is not uniform.
+  double deposited = 0, lo = 1e30, hi = -1e30;
+  vtkDataArray* s1 = lighting[0]->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
+  vtkDataArray* hdr0 = image[0]->GetPointData()->GetArray("HDR");
+  ASSERT_NE(s1, nullptr);
+  ASSERT_NE(hdr0, nullptr);
+  for (vtkIdType i = 0; i < s1->GetNumberOfValues(); ++i)
+  {
+    deposited += s1->GetVariantValue(i).ToDouble();
+  }
+  for (vtkIdType i = 0; i < hdr0->GetNumberOfTuples(); ++i)
+  {
+    lo = std::min(lo, hdr0->GetComponent(i, 0));
+    hi = std::max(hi, hdr0->GetComponent(i, 0));
+  }
+  EXPECT_GT(deposited, 0.0);
+  EXPECT_GT(hi - lo, 0.05);
   const char* radiance = vtkRefractaLightingVolume::RadianceName();
   for (int p = 1; p < 3; ++p)
   {
@@ -228,7 +251,7 @@ TEST(GridInvariance, PhotonTracerAndViewPass)
     // (a) vs (b): identical grid-local scene, differences are float rounding of the frame.
     // (c): the rotated frame rounds differently in the float kernels; a photon path whose
     // decisions flip moves its deposit, hence the looser photon tolerance (per-voxel maximum).
-    EXPECT_LE(v.MaxRel, p == 1 ? 1e-5 : 1e-3) << Names[p];
+    EXPECT_LE(v.MaxRel, p == 1 ? 1e-5 : 1e-4) << Names[p];
     EXPECT_LE(l.MaxRel, p == 1 ? 1e-5 : 5e-2) << Names[p];
   }
 }
@@ -259,7 +282,7 @@ TEST(GridInvariance, ReferenceRenderer)
       image[p]->GetPointData()->GetArray("HDR"), image[0]->GetPointData()->GetArray("HDR"));
     std::cout << Names[p] << " vs a: reference HDR max abs diff " << v.MaxAbs << " (max rel "
               << v.MaxRel << ")\n";
-    EXPECT_LE(v.MaxRel, p == 1 ? 1e-5 : 1e-3) << Names[p];
+    EXPECT_LE(v.MaxRel, 1e-5) << Names[p];
   }
 }
 
