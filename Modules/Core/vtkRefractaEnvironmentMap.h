@@ -45,8 +45,8 @@ public:
    * The orthonormal basis (right, up, front) from Up and Right as documented above. Returns
    * false (and the default basis) when Up is zero or parallel to Right.
    */
-  static bool ComputeBasis(
-    const double up[3], const double rightHint[3], double right[3], double upOut[3], double front[3]);
+  static bool ComputeBasis(const double up[3], const double rightHint[3], double right[3],
+    double upOut[3], double front[3]);
 
   /**
    * (u, v) of world direction `d` for the basis from `up` and `right`; u in [0, 1), v in [0, 1].
@@ -69,8 +69,7 @@ public:
    * Bilinear lookup of interleaved RGB values (`width` x `height`, row 0 first) at (u, v),
    * wrapping in u and clamping in v, texel centres at ((i + 0.5) / W, (j + 0.5) / H).
    */
-  static void Sample(
-    const double* rgb, int width, int height, double u, double v, double out[3]);
+  static void Sample(const double* rgb, int width, int height, double u, double v, double out[3]);
 
   /**
    * Index i + W j of the texel whose centre is nearest to (u, v) (wrapping in u, clamping in v).

@@ -12,8 +12,8 @@
  * - **index** coordinates: continuous, 0 at the first STORED point, i.e. index = ijk - extent min
  *   (dimensionless; index (i, j, k) is the point i + nx (j + ny k) of the point arrays);
  * - **grid-local** coordinates: grid axes, world units, origin at the first stored point centre:
- *   local = Spacing * index = D^-1 (world - Origin) - Spacing * extent min (D^-1 = D^T for the rotations a
- *   medium must have; the inverse is used so that any direction matrix agrees with
+ *   local = Spacing * index = D^-1 (world - Origin) - Spacing * extent min (D^-1 = D^T for the
+ * rotations a medium must have; the inverse is used so that any direction matrix agrees with
  *   vtkImageData::TransformPhysicalPointToContinuousIndex). The passes march rays
  *   and photons in this frame; the medium box is [-Spacing / 2, (dims - 1/2) Spacing].
  *
@@ -51,8 +51,8 @@ public:
    * The same from explicit values: origin (world units), spacing (world units, > 0), extent
    * (structured indices, min/max per axis) and direction matrix (row major, orthonormal).
    */
-  void SetGrid(
-    const double origin[3], const double spacing[3], const int extent[6], const double direction[9]);
+  void SetGrid(const double origin[3], const double spacing[3], const int extent[6],
+    const double direction[9]);
 
   ///@{
   /**

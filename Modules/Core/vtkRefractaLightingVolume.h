@@ -7,9 +7,11 @@
  *
  * | array               | comps | meaning / unit                                               |
  * |---------------------|-------|--------------------------------------------------------------|
- * | Radiance            | 3     | S1 = sigma_s phi1, power per unit volume scattered out of the unscattered beam (RGB, >= 0; vtkPhotonTracer) |
- * | RadianceDirection   | 3     | mean travel direction of that light, unit vector in the grid-local frame (zero where none) |
- * | MultipleScattering  | 3     | S_ms = sigma_s phi_ms, power per unit volume scattered out of the diffuse field, isotropic (RGB, >= 0; vtkLatticeBoltzmannLighting) |
+ * | Radiance            | 3     | S1 = sigma_s phi1, power per unit volume scattered out of the
+ * unscattered beam (RGB, >= 0; vtkPhotonTracer) | | RadianceDirection   | 3     | mean travel
+ * direction of that light, unit vector in the grid-local frame (zero where none) | |
+ * MultipleScattering  | 3     | S_ms = sigma_s phi_ms, power per unit volume scattered out of the
+ * diffuse field, isotropic (RGB, >= 0; vtkLatticeBoltzmannLighting) |
  *
  * Only static methods are used; New() exists so that it can be wrapped and printed.
  */

@@ -23,9 +23,9 @@
 #include "vtkPointData.h"
 #include "vtkReferenceRenderer.h"
 #include "vtkRefractaImageRenderer.h"
-#include "vtkRefractaViewPass.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaViewPass.h"
 #include "vtkSceneAnalysis.h"
 #include "vtkSmartPointer.h"
 
@@ -51,8 +51,8 @@ void Rotation(double r[9])
   const double a = vtkMath::RadiansFromDegrees(40.0), c = std::cos(a), s = std::sin(a);
   const double x = axis[0], y = axis[1], z = axis[2];
   const double m[9] = { c + x * x * (1 - c), x * y * (1 - c) - z * s, x * z * (1 - c) + y * s,
-    y * x * (1 - c) + z * s, c + y * y * (1 - c), y * z * (1 - c) - x * s,
-    z * x * (1 - c) - y * s, z * y * (1 - c) + x * s, c + z * z * (1 - c) };
+    y * x * (1 - c) + z * s, c + y * y * (1 - c), y * z * (1 - c) - x * s, z * x * (1 - c) - y * s,
+    z * y * (1 - c) + x * s, c + z * z * (1 - c) };
   std::copy(m, m + 9, r);
 }
 
@@ -223,7 +223,8 @@ TEST(GridInvariance, PhotonTracerAndViewPass)
   }
   // The scene is not trivial: the light deposits, and the image is not uniform.
   double deposited = 0, lo = 1e30, hi = -1e30;
-  vtkDataArray* s1 = lighting[0]->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
+  vtkDataArray* s1 =
+    lighting[0]->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
   vtkDataArray* hdr0 = image[0]->GetPointData()->GetArray("HDR");
   ASSERT_NE(s1, nullptr);
   ASSERT_NE(hdr0, nullptr);
@@ -243,11 +244,10 @@ TEST(GridInvariance, PhotonTracerAndViewPass)
   {
     const Difference l = Compare(lighting[p]->GetPointData()->GetArray(radiance),
       lighting[0]->GetPointData()->GetArray(radiance));
-    const Difference v = Compare(
-      image[p]->GetPointData()->GetArray("HDR"), image[0]->GetPointData()->GetArray("HDR"));
+    const Difference v =
+      Compare(image[p]->GetPointData()->GetArray("HDR"), image[0]->GetPointData()->GetArray("HDR"));
     std::cout << Names[p] << " vs a: photon Radiance max rel diff " << l.MaxRel
-              << ", view pass HDR max abs diff " << v.MaxAbs << " (max rel " << v.MaxRel
-              << ")\n";
+              << ", view pass HDR max abs diff " << v.MaxAbs << " (max rel " << v.MaxRel << ")\n";
     // (a) vs (b): identical grid-local scene, differences are float rounding of the frame.
     // (c): the rotated frame rounds differently in the float kernels; a photon path whose
     // decisions flip moves its deposit, hence the looser photon tolerance (per-voxel maximum).
@@ -278,8 +278,8 @@ TEST(GridInvariance, ReferenceRenderer)
   }
   for (int p = 1; p < 3; ++p)
   {
-    const Difference v = Compare(
-      image[p]->GetPointData()->GetArray("HDR"), image[0]->GetPointData()->GetArray("HDR"));
+    const Difference v =
+      Compare(image[p]->GetPointData()->GetArray("HDR"), image[0]->GetPointData()->GetArray("HDR"));
     std::cout << Names[p] << " vs a: reference HDR max abs diff " << v.MaxAbs << " (max rel "
               << v.MaxRel << ")\n";
     EXPECT_LE(v.MaxRel, 1e-5) << Names[p];

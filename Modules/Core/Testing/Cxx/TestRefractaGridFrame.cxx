@@ -23,8 +23,8 @@ void Rotation(double axisIn[3], double degrees, double r[9])
   const double a = vtkMath::RadiansFromDegrees(degrees), c = std::cos(a), s = std::sin(a);
   const double x = axis[0], y = axis[1], z = axis[2];
   const double m[9] = { c + x * x * (1 - c), x * y * (1 - c) - z * s, x * z * (1 - c) + y * s,
-    y * x * (1 - c) + z * s, c + y * y * (1 - c), y * z * (1 - c) - x * s,
-    z * x * (1 - c) - y * s, z * y * (1 - c) + x * s, c + z * z * (1 - c) };
+    y * x * (1 - c) + z * s, c + y * y * (1 - c), y * z * (1 - c) - x * s, z * x * (1 - c) - y * s,
+    z * y * (1 - c) + x * s, c + z * z * (1 - c) };
   for (int i = 0; i < 9; ++i)
   {
     r[i] = m[i];
@@ -85,8 +85,8 @@ TEST(RefractaGridFrame, NonZeroExtentAndRotationAgreeWithImageData)
       frame->WorldToIndexPoint(world, idx);
       frame->WorldToLocalPoint(world, local);
       const int nx = extent[1] - extent[0] + 1, ny = extent[3] - extent[2] + 1;
-      const double want[3] = { static_cast<double>(id % nx),
-        static_cast<double>((id / nx) % ny), static_cast<double>(id / (nx * ny)) };
+      const double want[3] = { static_cast<double>(id % nx), static_cast<double>((id / nx) % ny),
+        static_cast<double>(id / (nx * ny)) };
       for (int a = 0; a < 3; ++a)
       {
         EXPECT_NEAR(idx[a], want[a], 1e-9) << "point " << id << " axis " << a;

@@ -19,6 +19,7 @@
 
 #include "vtkCamera.h"
 #include "vtkMath.h"
+#include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaViewPass.h"
@@ -84,13 +85,11 @@ vtkSmartPointer<vtkImageData> DirectionEnvironment()
   return env;
 }
 
+// The world direction whose lookup (vtkRefractaEnvironmentMap, default up and right) is (u, v).
 void DecodeDirection(const float* rgba, double d[3])
 {
-  const double lon = (rgba[0] - 0.5) * 2 * vtkMath::Pi();
-  const double lat = (rgba[1] - 0.5) * vtkMath::Pi();
-  d[0] = std::cos(lat) * std::cos(lon);
-  d[1] = std::sin(lat);
-  d[2] = std::cos(lat) * std::sin(lon);
+  const double uv[2] = { rgba[0], rgba[1] }, up[3] = { 0, 1, 0 }, right[3] = { 1, 0, 0 };
+  vtkRefractaEnvironmentMap::TextureToDirection(uv, up, right, d);
 }
 
 // Host reference: RK4 on dx/ds = v / n, dv/ds = grad n from (x, y, 2) going -z, until far away.
