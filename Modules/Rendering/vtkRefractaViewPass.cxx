@@ -546,7 +546,8 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     return false;
   }
   if ((radiance &&
-        (!check(radiance, vtkRefractaLightingVolume::RadianceName(), true) || !check(direction, vtkRefractaLightingVolume::RadianceDirectionName(), false))) ||
+        (!check(radiance, vtkRefractaLightingVolume::RadianceName(), true) ||
+          !check(direction, vtkRefractaLightingVolume::RadianceDirectionName(), false))) ||
     (multiple && !check(multiple, vtkRefractaLightingVolume::MultipleScatteringName(), true)))
   {
     return false;
@@ -564,8 +565,8 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
   {
     FetchFloats(radiance, 3, values);
     MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
-    in.Radiance = context->CreateBuffer(
-      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4, values.data(), vtkRefractaLightingVolume::RadianceName(), this);
+    in.Radiance = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
+      values.data(), vtkRefractaLightingVolume::RadianceName(), this);
     // RadianceDirection is stored in the grid-local frame (vtkPhotonTracer, Physics.md).
     FetchFloats(direction, 3, values);
     in.RadianceDirection = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,

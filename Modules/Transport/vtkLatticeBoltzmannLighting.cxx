@@ -113,7 +113,8 @@ int vtkLatticeBoltzmannLighting::RequestData(
   medium->GetDimensions(dims);
   medium->GetSpacing(spacing);
   const vtkIdType n = medium->GetNumberOfPoints();
-  vtkDataArray* radiance = lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
+  vtkDataArray* radiance =
+    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
   if (!radiance || radiance->GetNumberOfComponents() != 3 || radiance->GetNumberOfTuples() != n)
   {
     vtkErrorMacro("Input 1 (lighting volume) needs a point array `Radiance` with 3 components "
@@ -135,7 +136,8 @@ int vtkLatticeBoltzmannLighting::RequestData(
       }
     }
   }
-  vtkDataArray* direction = lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
+  vtkDataArray* direction =
+    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
   if (direction && (direction->GetNumberOfComponents() != 3 || direction->GetNumberOfTuples() != n))
   {
     vtkErrorMacro("Input 1: `RadianceDirection` must have 3 components and " << n << " tuples.");
@@ -167,9 +169,10 @@ int vtkLatticeBoltzmannLighting::RequestData(
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
   const std::vector<float> anisotropy =
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
-  const std::vector<float> s1 = vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0.0f);
-  const std::vector<float> dir =
-    vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0.0f);
+  const std::vector<float> s1 =
+    vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0.0f);
+  const std::vector<float> dir = vtkRefractaMedium::ReadArray(
+    lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0.0f);
   if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()) ||
     !solver->SetSource(s1.data(), direction ? dir.data() : nullptr) || !solver->Solve())
   {

@@ -139,9 +139,10 @@ int vtkPhotonDiffusionSchedule::RequestData(
   // Final source: the tracer's S1 (smoothed as it outputs it); the lattice continues from its
   // state (interleaved) or from zero (sequential).
   const auto solveStart = std::chrono::steady_clock::now();
-  const std::vector<float> s1 = vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0.0f);
-  const std::vector<float> d1 =
-    vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0.0f);
+  const std::vector<float> s1 =
+    vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0.0f);
+  const std::vector<float> d1 = vtkRefractaMedium::ReadArray(
+    lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0.0f);
   if (!interleaved && !solver->ResetState())
   {
     return 0;
@@ -165,8 +166,10 @@ int vtkPhotonDiffusionSchedule::RequestData(
   const double finalSolve = Seconds(solveStart);
 
   output->CopyStructure(medium);
-  output->GetPointData()->AddArray(lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()));
-  if (vtkDataArray* direction = lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName()))
+  output->GetPointData()->AddArray(
+    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()));
+  if (vtkDataArray* direction =
+        lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName()))
   {
     output->GetPointData()->AddArray(direction);
   }

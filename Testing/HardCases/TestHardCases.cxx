@@ -427,7 +427,10 @@ TEST_P(HardCases, FullPipelineStaysFinite)
   lbl->Update();
   vtkImageData* lighting = lbl->GetOutput();
   ASSERT_EQ(lighting->GetNumberOfPoints(), c.Medium->GetNumberOfPoints()) << c.Name;
-  ExpectFiniteArrays(lighting, { vtkRefractaLightingVolume::RadianceName(), vtkRefractaLightingVolume::MultipleScatteringName() }, c.Name);
+  ExpectFiniteArrays(lighting,
+    { vtkRefractaLightingVolume::RadianceName(),
+      vtkRefractaLightingVolume::MultipleScatteringName() },
+    c.Name);
 
   vtkNew<vtkRefractaImageRenderer> renderer;
   renderer->SetInputData(c.Medium);

@@ -69,11 +69,14 @@ Scene MakeScene(bool rotated)
   refracta_test::AddConstant(scene.Medium, "Anisotropy", 1, G);
   scene.Lighting = vtkSmartPointer<vtkImageData>::New();
   scene.Lighting->CopyStructure(scene.Medium);
-  refracta_test::AddConstant(scene.Lighting, vtkRefractaLightingVolume::RadianceName(), 3, S1[0], S1[1], S1[2]);
+  refracta_test::AddConstant(
+    scene.Lighting, vtkRefractaLightingVolume::RadianceName(), 3, S1[0], S1[1], S1[2]);
   double dir[3] = { 0.3, -0.8, 0.52 };
   vtkMath::Normalize(dir);
-  refracta_test::AddConstant(scene.Lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, dir[0], dir[1], dir[2]);
-  refracta_test::AddConstant(scene.Lighting, vtkRefractaLightingVolume::MultipleScatteringName(), 3, Sms[0], Sms[1], Sms[2]);
+  refracta_test::AddConstant(
+    scene.Lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, dir[0], dir[1], dir[2]);
+  refracta_test::AddConstant(
+    scene.Lighting, vtkRefractaLightingVolume::MultipleScatteringName(), 3, Sms[0], Sms[1], Sms[2]);
   // The stored direction is in the grid-local frame (Physics.md).
   std::copy(dir, dir + 3, scene.LightDirLocal);
   return scene;
@@ -317,9 +320,11 @@ TEST(ViewPassAnalytic, BadInputsAreReported)
   refracta_test::AddConstant(noDir, vtkRefractaLightingVolume::RadianceName(), 3, 1, 1, 1);
   renderer->SetLightingData(noDir);
   renderer->Update();
-  EXPECT_NE(errors->GetErrorMessage().find(vtkRefractaLightingVolume::RadianceDirectionName()), std::string::npos);
+  EXPECT_NE(errors->GetErrorMessage().find(vtkRefractaLightingVolume::RadianceDirectionName()),
+    std::string::npos);
   errors->Clear();
-  refracta_test::AddConstant(noDir, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0, 0, 1)->SetValue(7, std::nanf(""));
+  refracta_test::AddConstant(noDir, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0, 0, 1)
+    ->SetValue(7, std::nanf(""));
   renderer->Update();
   EXPECT_NE(errors->GetErrorMessage().find("invalid value"), std::string::npos);
   errors->Clear();

@@ -286,8 +286,10 @@ TEST(ViewPassRefraction, RegressionImages)
   refracta_test::AddConstant(fog, "Anisotropy", 1, 0.5);
   vtkNew<vtkImageData> light;
   light->CopyStructure(fog);
-  vtkFloatArray* s1 = refracta_test::AddConstant(light, vtkRefractaLightingVolume::RadianceName(), 3, 0);
-  refracta_test::AddConstant(light, vtkRefractaLightingVolume::RadianceDirectionName(), 3, -1, 0, 0);
+  vtkFloatArray* s1 =
+    refracta_test::AddConstant(light, vtkRefractaLightingVolume::RadianceName(), 3, 0);
+  refracta_test::AddConstant(
+    light, vtkRefractaLightingVolume::RadianceDirectionName(), 3, -1, 0, 0);
   for (vtkIdType p = 0; p < fog->GetNumberOfPoints(); ++p)
   {
     double x[3];

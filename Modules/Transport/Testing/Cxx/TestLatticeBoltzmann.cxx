@@ -501,10 +501,13 @@ TEST(LatticeBoltzmannLighting, OutputsAndEnergyBalance)
   EXPECT_DOUBLE_EQ(out->GetOrigin()[0], 1e3);
   EXPECT_DOUBLE_EQ(out->GetSpacing()[1], h);
   ASSERT_NE(out->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()), nullptr);
-  ASSERT_NE(out->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName()), nullptr);
+  ASSERT_NE(
+    out->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName()), nullptr);
   EXPECT_EQ(
-    out->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName())->GetComponent(0, 2), radiance->GetComponent(0, 2));
-  vtkDataArray* ms = out->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName());
+    out->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName())->GetComponent(0, 2),
+    radiance->GetComponent(0, 2));
+  vtkDataArray* ms =
+    out->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName());
   ASSERT_NE(ms, nullptr);
   ASSERT_EQ(ms->GetNumberOfComponents(), 3);
   ASSERT_NE(out->GetFieldData()->GetArray("EnergyEmitted"), nullptr);
@@ -549,7 +552,8 @@ TEST(LatticeBoltzmannLighting, RejectsBadInput)
   auto makeLighting = [&](int size)
   {
     vtkSmartPointer<vtkImageData> lighting = MakeImage(size, 1.0);
-    lighting->GetPointData()->AddArray(MakeArray(vtkRefractaLightingVolume::RadianceName(), 3, lighting->GetNumberOfPoints(), 1));
+    lighting->GetPointData()->AddArray(
+      MakeArray(vtkRefractaLightingVolume::RadianceName(), 3, lighting->GetNumberOfPoints(), 1));
     return lighting;
   };
   struct Case
@@ -563,13 +567,15 @@ TEST(LatticeBoltzmannLighting, RejectsBadInput)
   cases.push_back({ "grid mismatch", makeMedium(), makeLighting(n + 1), "medium's grid" });
   {
     vtkSmartPointer<vtkImageData> lighting = makeLighting(n);
-    vtkDataArray::SafeDownCast(lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()))
+    vtkDataArray::SafeDownCast(
+      lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()))
       ->SetComponent(3, 1, -1.0);
     cases.push_back({ "negative radiance", makeMedium(), lighting, ">= 0" });
   }
   {
     vtkSmartPointer<vtkImageData> lighting = MakeImage(n, 1.0);
-    lighting->GetPointData()->AddArray(MakeArray(vtkRefractaLightingVolume::RadianceName(), 1, lighting->GetNumberOfPoints(), 1));
+    lighting->GetPointData()->AddArray(
+      MakeArray(vtkRefractaLightingVolume::RadianceName(), 1, lighting->GetNumberOfPoints(), 1));
     cases.push_back({ "one-component radiance", makeMedium(), lighting, "3 components" });
   }
   {
