@@ -51,8 +51,9 @@
  * - directional: a disc at infinity of angular radius DirectionalLightAngularRadius (degrees,
  *   default 0.5) around the direction the light comes from, uniform radiance E / (pi sin^2 delta)
  *   so that its irradiance on a plane perpendicular to it is E;
- * - point / spot: a sphere of radius LightRadius (world units; default 0 = 1% of the medium's
- *   diagonal) whose radiance towards a direction w is I(w) / (pi r^2) (I(w) = the intensity of
+ * - point / spot: a sphere of radius LightRadius (world units; must be set > 0 for positional
+ *   lights: 0, the default, is a delta light as in every pass, which this renderer refuses with
+ *   an error naming 1% of the medium diagonal as a value to use) whose radiance towards a direction w is I(w) / (pi r^2) (I(w) = the intensity of
  *   Physics.md, cos^e inside the cone for spots), so its radiant intensity is I(w).
  * As the extents go to 0 the image converges to the delta-light answer (error O(extent^2)). Lights
  * are not seen directly by view rays (like the pipeline's view pass). A ray is tested against
