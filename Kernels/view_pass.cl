@@ -104,8 +104,11 @@ inline float3 refracta_segment_weight(float3 tau)
 }
 
 // Background radiance seen in grid-local direction d. The environment image (RGB floats, row 0 at
-// the bottom) is equirectangular in the frame (right, up, front) given in grid-local coordinates:
-// u = atan2(front, right) / (2 pi) + 1/2, v = atan2(up, |(right, front)|) / pi + 1/2.
+// the bottom) is equirectangular in the basis (right, up, front = up x right) of
+// vtkRefractaEnvironmentMap (VTK's skybox convention), given here in grid-local coordinates:
+// x = d.right, y = d.up, z = d.front, u = atan2(x, z) / (2 pi) + 1/2 (wrapped into [0, 1)),
+// v = atan2(y, |(x, z)|) / pi + 1/2. The host's vtkRefractaEnvironmentMap::DirectionToTexture
+// computes the same mapping.
 inline float3 refracta_background(float3 d, float4 background, __global const float* environment,
   int2 envSize, float4 envRight, float4 envUp, float4 envFront)
 {
@@ -113,7 +116,8 @@ inline float3 refracta_background(float3 d, float4 background, __global const fl
   const float x = dot(d, envRight.xyz);
   const float y = dot(d, envUp.xyz);
   const float z = dot(d, envFront.xyz);
-  const float u = atan2(z, x) * (0.5f / REFRACTA_PI) + 0.5f;
+  float u = atan2(x, z) * (0.5f / REFRACTA_PI) + 0.5f;
+  u = u >= 1.0f ? u - 1.0f : u;
   const float v = atan2(y, sqrt(x * x + z * z)) * (1.0f / REFRACTA_PI) + 0.5f;
   // Bilinear between texel centres; wraps in u (longitude), clamps in v (latitude).
   const float px = u * (float)envSize.x - 0.5f;

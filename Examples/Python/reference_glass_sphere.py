@@ -85,6 +85,10 @@ renderer.SetInputData(medium)
 renderer.SetCamera(camera)
 renderer.AddLight(spot)
 renderer.SetEnvironmentMap(env)
+renderer.SetEnvironmentUp(0, 0, 1)  # the scene is z-up (vtkRefractaEnvironmentMap convention)
+# A spot light needs an explicit radius in the reference renderer (LightRadius 0 is a delta light,
+# which its estimator cannot reach): about 1% of the medium's diagonal.
+renderer.SetLightRadius(0.035)
 renderer.SetImageSize(*args.size)
 renderer.SetSamplesPerPixel(args.spp)
 renderer.SetSeed(1)

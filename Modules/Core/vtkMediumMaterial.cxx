@@ -71,12 +71,6 @@ bool vtkMediumMaterial::CheckDensity(std::string& why) const
     why = "the DensityImage is empty or its density array has the wrong number of tuples";
     return false;
   }
-  if (!image->GetDirectionMatrix()->IsIdentity())
-  {
-    why = "the DensityImage has a non-identity direction matrix; only axis-aligned images are "
-          "supported";
-    return false;
-  }
   return true;
 }
 
@@ -100,14 +94,16 @@ double vtkMediumMaterial::EvaluateDensity(const double x[3]) const
     vtkDataArray* array = image->GetPointData()->GetArray(this->DensityArrayName);
     int ext[6];
     image->GetExtent(ext);
-    const double* origin = image->GetOrigin();
-    const double* spacing = image->GetSpacing();
+    // Continuous structured (extent-including) index: VTK's own physical-to-index map (origin,
+    // spacing and direction matrix), the map vtkRefractaGridFrame agrees with.
+    double ijk[3];
+    image->TransformPhysicalPointToContinuousIndex(x, ijk);
     int i0[3];
     double t[3];
     for (int a = 0; a < 3; ++a)
     {
       const int lo = ext[2 * a], hi = ext[2 * a + 1];
-      const double u = (x[a] - origin[a]) / spacing[a]; // continuous structured coordinate
+      const double u = ijk[a];
       if (!(u >= lo - 1e-9 && u <= hi + 1e-9))
       {
         return 0.0; // outside the image (or NaN)

@@ -109,8 +109,9 @@ public:
   ///@{
   /**
    * Density field given by the point-data array DensityArrayName (first component) of an image,
-   * interpolated trilinearly at a point (the image's origin and spacing honoured; its direction
-   * matrix must be the identity); 0 outside the image's bounds. Default nullptr (d = 1).
+   * interpolated trilinearly at a point (the image's origin, spacing, extent and direction matrix
+   * honoured, as vtkImageData::TransformPhysicalPointToContinuousIndex); 0 outside the image.
+   * Default nullptr (d = 1).
    */
   void SetDensityImage(vtkImageData* image);
   vtkGetObjectMacro(DensityImage, vtkImageData);
@@ -134,8 +135,8 @@ public:
 
   /**
    * Check that the density field can be evaluated: an image density needs a non-empty
-   * DensityArrayName naming a numeric point-data array of the image and an identity direction
-   * matrix. Returns false and fills `why` otherwise. A homogeneous material is always usable.
+   * DensityArrayName naming a numeric point-data array of the image. Returns false and fills `why`
+   * otherwise. A homogeneous material is always usable.
    */
   bool CheckDensity(std::string& why) const;
 

@@ -10,6 +10,7 @@
 #include "vtkPointData.h"
 #include "vtkRefractaMedium.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -140,6 +141,30 @@ void vtkMediumValidator::CheckGeometry(vtkImageData* medium)
   {
     this->AddError("The medium direction matrix is singular or not finite; it must be a "
                    "rotation (orthonormal).");
+  }
+  else
+  {
+    // The grid-local frame (vtkRefractaGridFrame) keeps world units only for an orthonormal D.
+    double worst = 0.0;
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        double dot = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+          dot += direction->GetElement(k, r) * direction->GetElement(k, c);
+        }
+        worst = std::max(worst, std::abs(dot - (r == c ? 1.0 : 0.0)));
+      }
+    }
+    if (worst > 1e-6)
+    {
+      std::ostringstream msg;
+      msg << "The medium direction matrix is not orthonormal (D^T D differs from the identity by "
+          << worst << "); it must be a rotation (or reflection): put scale in the spacing.";
+      this->AddError(msg.str());
+    }
   }
 }
 

@@ -10,8 +10,10 @@
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMediumValidator.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkRefractaGridFrame.h"
 #include "vtkRefractaMedium.h"
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
@@ -192,23 +194,18 @@ LineIntegrals IntegrateLines(const MediumFields& f, int axis)
 // (to the box face, or to the light itself when it is inside), marched in half-voxel steps.
 double ProbeTowardLight(const MediumFields& fields, vtkImageData* medium, vtkLight* light)
 {
-  // Grid-local frame: p_local = D^T (p - origin).
-  const double* origin = medium->GetOrigin();
-  vtkMatrix3x3* direction = medium->GetDirectionMatrix();
+  // Grid-local frame (vtkRefractaGridFrame: origin, extent and direction matrix).
+  vtkNew<vtkRefractaGridFrame> grid;
+  grid->SetImage(medium);
   auto toLocal = [&](const double world[3], bool isPoint, double local[3])
   {
-    double d[3] = { world[0], world[1], world[2] };
     if (isPoint)
     {
-      for (int a = 0; a < 3; ++a)
-      {
-        d[a] -= origin[a];
-      }
+      grid->WorldToLocalPoint(world, local);
     }
-    for (int r = 0; r < 3; ++r)
+    else
     {
-      local[r] = direction->GetElement(0, r) * d[0] + direction->GetElement(1, r) * d[1] +
-        direction->GetElement(2, r) * d[2];
+      grid->WorldToLocalVector(world, local);
     }
   };
   double lo[3], hi[3];

@@ -17,6 +17,8 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkRefractaEnvironmentMap.h"
+#include "vtkRefractaGridFrame.h"
 #include "vtkRefractaMedium.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -203,8 +205,7 @@ struct Medium
   int N[3] = { 1, 1, 1 };
   double S[3] = { 1, 1, 1 };
   V3 Lo, Hi;
-  double Origin[3] = { 0, 0, 0 };
-  double D[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 }; // direction matrix, row major
+  vtkSmartPointer<vtkRefractaGridFrame> Grid = vtkSmartPointer<vtkRefractaGridFrame>::New();
   std::vector<double> Index, Gradient, Sigma, Albedo, G, Emission;
   bool StraightRays = true;
   bool Grey = true;
@@ -387,34 +388,32 @@ struct Medium
     }
   }
 
+  // World <-> grid-local, through vtkRefractaGridFrame (origin, extent and direction matrix).
   V3 ToLocalPoint(const double p[3]) const
   {
-    const double d[3] = { p[0] - Origin[0], p[1] - Origin[1], p[2] - Origin[2] };
-    V3 r;
-    for (int i = 0; i < 3; ++i)
-    {
-      r[i] = D[0 * 3 + i] * d[0] + D[1 * 3 + i] * d[1] + D[2 * 3 + i] * d[2];
-    }
-    return r;
+    double r[3];
+    Grid->WorldToLocalPoint(p, r);
+    return V3(r);
   }
   V3 ToLocalVector(const double v[3]) const
   {
-    V3 r;
-    for (int i = 0; i < 3; ++i)
-    {
-      r[i] = D[0 * 3 + i] * v[0] + D[1 * 3 + i] * v[1] + D[2 * 3 + i] * v[2];
-    }
-    return r;
+    double r[3];
+    Grid->WorldToLocalVector(v, r);
+    return V3(r);
   }
   V3 ToWorldVector(const V3& v) const
   {
-    return { D[0] * v.x + D[1] * v.y + D[2] * v.z, D[3] * v.x + D[4] * v.y + D[5] * v.z,
-      D[6] * v.x + D[7] * v.y + D[8] * v.z };
+    const double in[3] = { v.x, v.y, v.z };
+    double r[3];
+    Grid->LocalToWorldVector(in, r);
+    return V3(r);
   }
   V3 ToWorldPoint(const V3& v) const
   {
-    const V3 w = ToWorldVector(v);
-    return { w.x + Origin[0], w.y + Origin[1], w.z + Origin[2] };
+    const double in[3] = { v.x, v.y, v.z };
+    double r[3];
+    Grid->LocalToWorldPoint(in, r);
+    return V3(r);
   }
 
   bool Inside(const V3& p, double eps) const
@@ -530,15 +529,7 @@ struct Medium
     int dims[3];
     medium->GetDimensions(dims);
     medium->GetSpacing(S);
-    medium->GetOrigin(Origin);
-    vtkMatrix3x3* dm = medium->GetDirectionMatrix();
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        D[3 * r + c] = dm->GetElement(r, c);
-      }
-    }
+    Grid->SetImage(medium);
     for (int a = 0; a < 3; ++a)
     {
       N[a] = dims[a];
@@ -1019,6 +1010,7 @@ struct Scene
   // Environment map (linear RGB, row major, bottom row first).
   std::vector<double> Env;
   int EnvW = 0, EnvH = 0;
+  double EnvUp[3] = { 0, 1, 0 }, EnvRight[3] = { 1, 0, 0 }; // world
   int MaxDepth = -1;
   int RouletteDepth = 8;
   int MaxVertices = 100000;
@@ -1031,23 +1023,12 @@ struct Scene
     {
       return Background;
     }
-    const V3 d = Normalized(M.ToWorldVector(dLocal));
-    const double u = (std::atan2(d.y, d.x) + Pi) / (2 * Pi);
-    const double v = (std::asin(std::min(1.0, std::max(-1.0, d.z))) + Pi / 2) / Pi;
-    const double fx = u * EnvW - 0.5, fy = std::min(std::max(v * EnvH - 0.5, 0.0), EnvH - 1.0);
-    const double x0f = std::floor(fx), y0f = std::floor(fy);
-    const double tx = fx - x0f, ty = fy - y0f;
-    auto wrap = [this](int i) { return ((i % EnvW) + EnvW) % EnvW; };
-    const int x0 = wrap(static_cast<int>(x0f)), x1 = wrap(static_cast<int>(x0f) + 1);
-    const int y0 = static_cast<int>(y0f), y1 = std::min(y0 + 1, EnvH - 1);
-    V3 r;
-    for (int c = 0; c < 3; ++c)
-    {
-      const double a = Env[3 * (y0 * EnvW + x0) + c], b = Env[3 * (y0 * EnvW + x1) + c];
-      const double e = Env[3 * (y1 * EnvW + x0) + c], f = Env[3 * (y1 * EnvW + x1) + c];
-      r[c] = (1 - ty) * ((1 - tx) * a + tx * b) + ty * ((1 - tx) * e + tx * f);
-    }
-    return r;
+    const V3 d = M.ToWorldVector(dLocal);
+    const double dw[3] = { d.x, d.y, d.z };
+    double uv[2], rgb[3];
+    vtkRefractaEnvironmentMap::DirectionToTexture(dw, EnvUp, EnvRight, uv);
+    vtkRefractaEnvironmentMap::Sample(Env.data(), EnvW, EnvH, uv[0], uv[1], rgb);
+    return V3(rgb);
   }
 
   // Radiance arriving from lights along a ray that left the box at x with direction d
@@ -1253,6 +1234,25 @@ struct Scene
     }
   }
 };
+
+// True when a switched-on light of the collection is positional (point or spot).
+bool HasPositionalLight(vtkLightCollection* lights)
+{
+  if (!lights)
+  {
+    return false;
+  }
+  vtkCollectionSimpleIterator it;
+  lights->InitTraversal(it);
+  while (vtkLight* l = lights->GetNextLight(it))
+  {
+    if (l->GetSwitch() && l->GetPositional())
+    {
+      return true;
+    }
+  }
+  return false;
+}
 
 // Converts the renderer's lights to the grid-local frame. Returns an error message for a light
 // whose direction is undefined or whose intensity is invalid (empty when all are usable).
@@ -1606,6 +1606,8 @@ int vtkReferenceRenderer::RequestData(
     const double scale = s->GetDataType() == VTK_UNSIGNED_CHAR ? 1.0 / 255.0 : 1.0;
     scene.EnvW = dims[0];
     scene.EnvH = dims[1];
+    std::copy(this->EnvironmentUp, this->EnvironmentUp + 3, scene.EnvUp);
+    std::copy(this->EnvironmentRight, this->EnvironmentRight + 3, scene.EnvRight);
     scene.Env.resize(3 * static_cast<size_t>(dims[0]) * dims[1]);
     for (vtkIdType i = 0; i < s->GetNumberOfTuples(); ++i)
     {
@@ -1623,7 +1625,18 @@ int vtkReferenceRenderer::RequestData(
     }
   }
   scene.Background = V3(this->BackgroundColor);
-  const double radius = this->LightRadius > 0 ? this->LightRadius : 0.01 * m.Diagonal;
+  // LightRadius = 0 is a delta light, as in every pass. This estimator reaches a point or spot
+  // light only by tracing a (possibly curved) ray that hits its sphere, which a point cannot be:
+  // it needs an explicit radius, and says so rather than choosing one.
+  const double radius = this->LightRadius;
+  if (!(radius > 0) && HasPositionalLight(this->Lights))
+  {
+    vtkErrorMacro("LightRadius is 0 (a delta point or spot light), but the reference renderer "
+                  "connects paths to point and spot lights by hitting their sphere and cannot "
+                  "estimate a delta light; set LightRadius > 0 (world units; e.g. "
+      << 0.01 * m.Diagonal << ", 1% of this medium's diagonal).");
+    return 0;
+  }
   const std::string lightError = BuildLights(
     m, this->Lights, this->Camera, this->DirectionalLightAngularRadius, radius, scene.Lights);
   if (!lightError.empty())
@@ -1819,6 +1832,10 @@ void vtkReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BackgroundColor: " << this->BackgroundColor[0] << " " << this->BackgroundColor[1]
      << " " << this->BackgroundColor[2] << "\n";
   os << indent << "EnvironmentMap: " << this->EnvironmentMap.Get() << "\n";
+  os << indent << "EnvironmentUp: (" << this->EnvironmentUp[0] << ", " << this->EnvironmentUp[1]
+     << ", " << this->EnvironmentUp[2] << ")\n";
+  os << indent << "EnvironmentRight: (" << this->EnvironmentRight[0] << ", "
+     << this->EnvironmentRight[1] << ", " << this->EnvironmentRight[2] << ")\n";
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MaximumScatteringDepth: " << this->MaximumScatteringDepth << "\n";

@@ -51,8 +51,9 @@
  * - directional: a disc at infinity of angular radius DirectionalLightAngularRadius (degrees,
  *   default 0.5) around the direction the light comes from, uniform radiance E / (pi sin^2 delta)
  *   so that its irradiance on a plane perpendicular to it is E;
- * - point / spot: a sphere of radius LightRadius (world units; default 0 = 1% of the medium's
- *   diagonal) whose radiance towards a direction w is I(w) / (pi r^2) (I(w) = the intensity of
+ * - point / spot: a sphere of radius LightRadius (world units; must be set > 0 for positional
+ *   lights: 0, the default, is a delta light as in every pass, which this renderer refuses with
+ *   an error naming 1% of the medium diagonal as a value to use) whose radiance towards a direction w is I(w) / (pi r^2) (I(w) = the intensity of
  *   Physics.md, cos^e inside the cone for spots), so its radiant intensity is I(w).
  * As the extents go to 0 the image converges to the delta-light answer (error O(extent^2)). Lights
  * are not seen directly by view rays (like the pipeline's view pass). A ray is tested against
@@ -66,10 +67,11 @@
  *
  * **Environment map**: an equirectangular vtkImageData (Wx x Hy x 1, point scalars with 3 or 4
  * components; unsigned char values are divided by 255, others used as linear radiance). A WORLD
- * direction d (the medium's direction matrix is applied) maps to
- * u = (atan2(d_y, d_x) + pi) / (2 pi), v = (asin(d_z) + pi / 2) / pi, looked up bilinearly with
- * pixel centres at ((i + 0.5) / Wx, (j + 0.5) / Hy), wrapping in u and clamping in v (row 0 is
- * the -z pole). When set it replaces BackgroundColor.
+ * direction (the medium's direction matrix is applied) maps to (u, v) by vtkRefractaEnvironmentMap
+ * with EnvironmentUp / EnvironmentRight (defaults (0, 1, 0), (1, 0, 0)): VTK's skybox convention,
+ * the same as the view pass (u = 0.5 is front = up x right, row 0 the -up pole), looked up
+ * bilinearly with pixel centres at ((i + 0.5) / Wx, (j + 0.5) / Hy), wrapping in u and clamping
+ * in v. When set it replaces BackgroundColor.
  *
  * **Determinism**: every pixel has its own random stream derived from (Seed, pixel index), and a
  * pixel is rendered by a single thread, so an image is bit-identical for a seed whatever the number
@@ -135,6 +137,17 @@ public:
    */
   void SetEnvironmentMap(vtkImageData* image);
   vtkImageData* GetEnvironmentMap();
+  ///@}
+
+  ///@{
+  /**
+   * World vectors orienting the environment map (vtkRefractaEnvironmentMap): Up is the v = 1
+   * pole, Right is u = 0.75. Defaults (0, 1, 0) and (1, 0, 0), as vtkRenderer and the view pass.
+   */
+  vtkSetVector3Macro(EnvironmentUp, double);
+  vtkGetVector3Macro(EnvironmentUp, double);
+  vtkSetVector3Macro(EnvironmentRight, double);
+  vtkGetVector3Macro(EnvironmentRight, double);
   ///@}
 
   ///@{
@@ -207,8 +220,11 @@ public:
 
   ///@{
   /**
-   * Radius of point and spot light spheres, world units; 0 (default) means 1% of the medium's
-   * diagonal.
+   * Radius of point and spot light spheres, world units. 0 (default) is a delta light, as in every
+   * Refracta pass; this estimator cannot reach a delta point or spot light (paths connect to a
+   * light by hitting its sphere), so RequestData refuses positional lights with LightRadius 0
+   * and names a radius to use. Set it explicitly (e.g. 1% of the medium diagonal, the value the
+   * renderer used to substitute silently) and give vtkPhotonTracer the same value to compare.
    */
   vtkSetClampMacro(LightRadius, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(LightRadius, double);
@@ -272,6 +288,8 @@ protected:
   vtkSmartPointer<vtkImageData> EnvironmentMap;
   int ImageSize[2] = { 256, 256 };
   double BackgroundColor[3] = { 0.0, 0.0, 0.0 };
+  double EnvironmentUp[3] = { 0.0, 1.0, 0.0 };
+  double EnvironmentRight[3] = { 1.0, 0.0, 0.0 };
   int SamplesPerPixel = 16;
   unsigned int Seed = 0;
   int MaximumScatteringDepth = -1;

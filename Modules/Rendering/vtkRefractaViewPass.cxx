@@ -11,6 +11,9 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
+#include "vtkRefractaEnvironmentMap.h"
+#include "vtkRefractaGridFrame.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 
 #include <algorithm>
@@ -43,15 +46,18 @@ void FetchFloats(vtkDataArray* array, int comps, std::vector<float>& out)
   }
 }
 
-// Rotates world-frame vectors (3 per tuple) into the grid-local frame: v_local = D^T v.
-void RotateToLocal(const double d[9], std::vector<float>& vectors)
+// Rotates world-frame vectors (3 per tuple) into the grid-local frame.
+void RotateToLocal(const vtkRefractaGridFrame* grid, std::vector<float>& vectors)
 {
   for (size_t i = 0; i + 2 < vectors.size(); i += 3)
   {
-    const double x = vectors[i], y = vectors[i + 1], z = vectors[i + 2];
-    vectors[i] = static_cast<float>(d[0] * x + d[3] * y + d[6] * z);
-    vectors[i + 1] = static_cast<float>(d[1] * x + d[4] * y + d[7] * z);
-    vectors[i + 2] = static_cast<float>(d[2] * x + d[5] * y + d[8] * z);
+    const double world[3] = { vectors[i], vectors[i + 1], vectors[i + 2] };
+    double local[3];
+    grid->WorldToLocalVector(world, local);
+    for (int c = 0; c < 3; ++c)
+    {
+      vectors[i + c] = static_cast<float>(local[c]);
+    }
   }
 }
 
@@ -103,8 +109,7 @@ struct vtkRefractaViewPass::Internals
   vtkMTimeType MediumTime = 0;
   int Dims[3] = { 0, 0, 0 };
   double Spacing[3] = { 1, 1, 1 };
-  double Origin[3] = { 0, 0, 0 };
-  double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  vtkNew<vtkRefractaGridFrame> Grid;
   bool HasEmission = false;
   bool Refractive = false;
   double UniformIndex = 1.0; // the index where it does not vary (sources then count 1 / n^2)
@@ -327,9 +332,7 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
   in.Medium = nullptr;
   medium->GetDimensions(in.Dims);
   medium->GetSpacing(in.Spacing);
-  medium->GetOrigin(in.Origin);
-  const double* d = medium->GetDirectionMatrix()->GetData();
-  std::copy(d, d + 9, in.Direction);
+  in.Grid->SetImage(medium);
   const size_t n = static_cast<size_t>(in.Dims[0]) * in.Dims[1] * in.Dims[2];
   vtkPointData* pd = medium->GetPointData();
 
@@ -400,7 +403,7 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
     if (vtkDataArray* g = pd->GetArray(vtkRefractaMedium::RefractiveIndexGradientName()))
     {
       FetchFloats(g, 3, gradient);
-      RotateToLocal(in.Direction, gradient);
+      RotateToLocal(in.Grid, gradient);
     }
     else
     {
@@ -491,18 +494,18 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
   }
   int dims[3];
   lighting->GetDimensions(dims);
-  if (dims[0] != in.Dims[0] || dims[1] != in.Dims[1] || dims[2] != in.Dims[2])
+  if (!vtkRefractaGridFrame::SameGrid(lighting, in.Medium))
   {
-    vtkErrorMacro("The lighting volume (input port 1) has dimensions "
-      << dims[0] << " x " << dims[1] << " x " << dims[2] << " but the medium has " << in.Dims[0]
-      << " x " << in.Dims[1] << " x " << in.Dims[2]
+    vtkErrorMacro("The lighting volume (input port 1) has "
+      << vtkRefractaGridFrame::DescribeGrid(lighting) << " but the medium has "
+      << vtkRefractaGridFrame::DescribeGrid(in.Medium)
       << "; it must be computed on the medium's grid.");
     return false;
   }
   vtkPointData* pd = lighting->GetPointData();
-  vtkDataArray* radiance = pd->GetArray("Radiance");
-  vtkDataArray* direction = pd->GetArray("RadianceDirection");
-  vtkDataArray* multiple = pd->GetArray("MultipleScattering");
+  vtkDataArray* radiance = pd->GetArray(vtkRefractaLightingVolume::RadianceName());
+  vtkDataArray* direction = pd->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
+  vtkDataArray* multiple = pd->GetArray(vtkRefractaLightingVolume::MultipleScatteringName());
   const vtkIdType n = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
   auto check = [&](vtkDataArray* a, const char* name, bool nonNegative) -> bool
   {
@@ -543,8 +546,9 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     return false;
   }
   if ((radiance &&
-        (!check(radiance, "Radiance", true) || !check(direction, "RadianceDirection", false))) ||
-    (multiple && !check(multiple, "MultipleScattering", true)))
+        (!check(radiance, vtkRefractaLightingVolume::RadianceName(), true) ||
+          !check(direction, vtkRefractaLightingVolume::RadianceDirectionName(), false))) ||
+    (multiple && !check(multiple, vtkRefractaLightingVolume::MultipleScatteringName(), true)))
   {
     return false;
   }
@@ -561,12 +565,12 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
   {
     FetchFloats(radiance, 3, values);
     MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
-    in.Radiance = context->CreateBuffer(
-      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4, values.data(), "Radiance", this);
+    in.Radiance = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
+      values.data(), vtkRefractaLightingVolume::RadianceName(), this);
     // RadianceDirection is stored in the grid-local frame (vtkPhotonTracer, Physics.md).
     FetchFloats(direction, 3, values);
     in.RadianceDirection = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-      values.size() * 4, values.data(), "RadianceDirection", this);
+      values.size() * 4, values.data(), vtkRefractaLightingVolume::RadianceDirectionName(), this);
     if (!in.Radiance || !in.RadianceDirection)
     {
       return false;
@@ -577,7 +581,7 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     FetchFloats(multiple, 3, values);
     MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
     in.Multiple = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
-      values.data(), "MultipleScattering", this);
+      values.data(), vtkRefractaLightingVolume::MultipleScatteringName(), this);
     if (!in.Multiple)
     {
       return false;
@@ -635,19 +639,12 @@ bool vtkRefractaViewPass::ComputeRayFrame(vtkCamera* camera, vtkImageData* mediu
     }
   }
 
-  // World -> data (inverse prop matrix) -> grid-local (D^T (p - o)), all in double.
+  // World -> data (inverse prop matrix) -> grid-local (vtkRefractaGridFrame), all in double.
   vtkNew<vtkMatrix4x4> dataToLocal;
-  const double* d = medium->GetDirectionMatrix()->GetData();
-  const double* o = medium->GetOrigin();
-  for (int row = 0; row < 3; ++row)
   {
-    double shift = 0;
-    for (int col = 0; col < 3; ++col)
-    {
-      dataToLocal->SetElement(row, col, d[col * 3 + row]);
-      shift -= d[col * 3 + row] * o[col];
-    }
-    dataToLocal->SetElement(row, 3, shift);
+    vtkNew<vtkRefractaGridFrame> grid;
+    grid->SetImage(medium);
+    grid->GetWorldToLocalMatrix(dataToLocal);
   }
   vtkNew<vtkMatrix4x4> worldToLocal;
   if (propMatrix)
@@ -885,14 +882,10 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   const cl_float cutoff = static_cast<float>(this->TransmittanceCutoff);
   const cl_float4 background = Float4(this->BackgroundColor);
 
-  // Environment frame: world (right, up, front) -> grid-local, rotation only (prop and D).
+  // Environment basis (vtkRefractaEnvironmentMap: right, up, front = up x right, in world),
+  // then rotated to grid-local (prop and D), so the kernel's dot products are the world ones.
   double er[3], eu[3], ef[3];
-  std::copy(this->EnvironmentRight, this->EnvironmentRight + 3, er);
-  std::copy(this->EnvironmentUp, this->EnvironmentUp + 3, eu);
-  vtkMath::Normalize(er);
-  vtkMath::Normalize(eu);
-  vtkMath::Cross(er, eu, ef);
-  vtkMath::Normalize(ef);
+  vtkRefractaEnvironmentMap::ComputeBasis(this->EnvironmentUp, this->EnvironmentRight, er, eu, ef);
   // A world direction x maps to local L x (L the linear part of WorldToLocal); dot(x, e) =
   // dot(L x, L^-T e); for the rigid transforms used here L^-T = L, so rotate e by L and
   // re-normalise.

@@ -26,9 +26,9 @@
  * - BackgroundColor: uniform background radiance (linear RGB), default (0, 0, 0).
  * - EnvironmentMap: an equirectangular image (vtkImageData, 3 or 4 components; unsigned char
  *   values are divided by 255, other types used as linear radiance) that replaces the colour.
- *   Directions are expressed in the frame (EnvironmentRight, EnvironmentUp, front = right x up)
- *   of world space: longitude u = atan2(front, right) / 2 pi + 1/2 across the image's x,
- *   latitude v = atan2(up, |(right, front)|) / pi + 1/2 up its y (row 0 at the bottom).
+ *   World directions map to (u, v) by vtkRefractaEnvironmentMap (VTK's skybox convention:
+ *   front = up x right, u = atan2(x, z) / 2 pi + 1/2 across the image's x, v = atan2(y, |(x, z)|)
+ *   / pi + 1/2 up its y, row 0 at the bottom; u = 0.5 is front = -z with the defaults).
  *   Defaults: right (1, 0, 0), up (0, 1, 0), as vtkRenderer's environment.
  *
  * - EmptySpaceSkipping: on (default) or off. Rays jump over macro cells (MacroCellSize^3 voxels)

@@ -15,6 +15,8 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
+#include "vtkRefractaGridFrame.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
@@ -99,26 +101,20 @@ int vtkLatticeBoltzmannLighting::RequestData(
                   "missing: connect it with SetLightingConnection().");
     return 0;
   }
-  int dims[3], ldims[3];
-  medium->GetDimensions(dims);
-  lighting->GetDimensions(ldims);
-  double spacing[3], lspacing[3];
-  medium->GetSpacing(spacing);
-  lighting->GetSpacing(lspacing);
-  for (int a = 0; a < 3; ++a)
+  if (!vtkRefractaGridFrame::SameGrid(lighting, medium))
   {
-    if (dims[a] != ldims[a] || std::abs(spacing[a] - lspacing[a]) > 1e-6 * std::abs(spacing[a]))
-    {
-      vtkErrorMacro("Input 1 (lighting volume) has dimensions "
-        << ldims[0] << "x" << ldims[1] << "x" << ldims[2] << " and spacing " << lspacing[0] << ", "
-        << lspacing[1] << ", " << lspacing[2] << "; it must be on the medium's grid (" << dims[0]
-        << "x" << dims[1] << "x" << dims[2] << ", spacing " << spacing[0] << ", " << spacing[1]
-        << ", " << spacing[2] << ").");
-      return 0;
-    }
+    vtkErrorMacro("Input 1 (lighting volume) has "
+      << vtkRefractaGridFrame::DescribeGrid(lighting) << "; it must be on the medium's grid ("
+      << vtkRefractaGridFrame::DescribeGrid(medium) << ").");
+    return 0;
   }
+  int dims[3];
+  double spacing[3];
+  medium->GetDimensions(dims);
+  medium->GetSpacing(spacing);
   const vtkIdType n = medium->GetNumberOfPoints();
-  vtkDataArray* radiance = lighting->GetPointData()->GetArray("Radiance");
+  vtkDataArray* radiance =
+    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
   if (!radiance || radiance->GetNumberOfComponents() != 3 || radiance->GetNumberOfTuples() != n)
   {
     vtkErrorMacro("Input 1 (lighting volume) needs a point array `Radiance` with 3 components "
@@ -140,7 +136,8 @@ int vtkLatticeBoltzmannLighting::RequestData(
       }
     }
   }
-  vtkDataArray* direction = lighting->GetPointData()->GetArray("RadianceDirection");
+  vtkDataArray* direction =
+    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
   if (direction && (direction->GetNumberOfComponents() != 3 || direction->GetNumberOfTuples() != n))
   {
     vtkErrorMacro("Input 1: `RadianceDirection` must have 3 components and " << n << " tuples.");
@@ -172,9 +169,10 @@ int vtkLatticeBoltzmannLighting::RequestData(
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
   const std::vector<float> anisotropy =
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
-  const std::vector<float> s1 = vtkRefractaMedium::ReadArray(lighting, "Radiance", 3, 0.0f);
-  const std::vector<float> dir =
-    vtkRefractaMedium::ReadArray(lighting, "RadianceDirection", 3, 0.0f);
+  const std::vector<float> s1 =
+    vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0.0f);
+  const std::vector<float> dir = vtkRefractaMedium::ReadArray(
+    lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0.0f);
   if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()) ||
     !solver->SetSource(s1.data(), direction ? dir.data() : nullptr) || !solver->Solve())
   {
@@ -183,7 +181,7 @@ int vtkLatticeBoltzmannLighting::RequestData(
     return 0;
   }
   vtkNew<vtkFloatArray> ms;
-  ms->SetName("MultipleScattering");
+  ms->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
   ms->SetNumberOfComponents(3);
   ms->SetNumberOfTuples(n);
   if (!solver->ComputeMultipleScattering(ms->GetPointer(0)))

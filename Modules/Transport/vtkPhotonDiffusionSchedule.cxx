@@ -13,6 +13,8 @@
 #include "vtkObjectFactory.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
+#include "vtkRefractaGridFrame.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 
 #include <algorithm>
@@ -126,8 +128,8 @@ int vtkPhotonDiffusionSchedule::RequestData(
   this->Tracer->Update();
   this->Tracer->SetChunkCallback(nullptr);
   vtkImageData* lighting = this->Tracer->GetOutput();
-  if (callbackFailed || !lighting || lighting->GetNumberOfPoints() != medium->GetNumberOfPoints() ||
-    !lighting->GetPointData()->GetArray("Radiance"))
+  if (callbackFailed || !lighting || !vtkRefractaGridFrame::SameGrid(lighting, medium) ||
+    !lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()))
   {
     vtkErrorMacro("The photon pass failed (see the previous message).");
     return 0;
@@ -137,9 +139,10 @@ int vtkPhotonDiffusionSchedule::RequestData(
   // Final source: the tracer's S1 (smoothed as it outputs it); the lattice continues from its
   // state (interleaved) or from zero (sequential).
   const auto solveStart = std::chrono::steady_clock::now();
-  const std::vector<float> s1 = vtkRefractaMedium::ReadArray(lighting, "Radiance", 3, 0.0f);
-  const std::vector<float> d1 =
-    vtkRefractaMedium::ReadArray(lighting, "RadianceDirection", 3, 0.0f);
+  const std::vector<float> s1 =
+    vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0.0f);
+  const std::vector<float> d1 = vtkRefractaMedium::ReadArray(
+    lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0.0f);
   if (!interleaved && !solver->ResetState())
   {
     return 0;
@@ -152,7 +155,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
   }
   const vtkIdType n = medium->GetNumberOfPoints();
   vtkNew<vtkFloatArray> ms;
-  ms->SetName("MultipleScattering");
+  ms->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
   ms->SetNumberOfComponents(3);
   ms->SetNumberOfTuples(n);
   if (!solver->ComputeMultipleScattering(ms->GetPointer(0)))
@@ -163,8 +166,10 @@ int vtkPhotonDiffusionSchedule::RequestData(
   const double finalSolve = Seconds(solveStart);
 
   output->CopyStructure(medium);
-  output->GetPointData()->AddArray(lighting->GetPointData()->GetArray("Radiance"));
-  if (vtkDataArray* direction = lighting->GetPointData()->GetArray("RadianceDirection"))
+  output->GetPointData()->AddArray(
+    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()));
+  if (vtkDataArray* direction =
+        lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName()))
   {
     output->GetPointData()->AddArray(direction);
   }

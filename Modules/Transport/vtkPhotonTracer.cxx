@@ -12,9 +12,12 @@
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMediumValidator.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
+#include "vtkRefractaGridFrame.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
@@ -470,29 +473,12 @@ int vtkPhotonTracer::RequestData(
   }
 
   // ---- Lights, converted to the grid-local frame in double precision ----
-  const double* origin = input->GetOrigin();
-  vtkMatrix3x3* dir = input->GetDirectionMatrix();
-  int extent[6];
-  input->GetExtent(extent);
   Medium m;
   LoadMedium(input, this->UseProxyBounds, m);
-  auto toLocalPoint = [&](const double p[3], double out[3])
-  {
-    const double rel[3] = { p[0] - origin[0], p[1] - origin[1], p[2] - origin[2] };
-    for (int r = 0; r < 3; ++r)
-    {
-      out[r] = dir->GetElement(0, r) * rel[0] + dir->GetElement(1, r) * rel[1] +
-        dir->GetElement(2, r) * rel[2] - extent[2 * r] * m.Spacing[r];
-    }
-  };
-  auto toLocalVector = [&](const double d[3], double out[3])
-  {
-    for (int r = 0; r < 3; ++r)
-    {
-      out[r] =
-        dir->GetElement(0, r) * d[0] + dir->GetElement(1, r) * d[1] + dir->GetElement(2, r) * d[2];
-    }
-  };
+  vtkNew<vtkRefractaGridFrame> grid;
+  grid->SetImage(input);
+  auto toLocalPoint = [&](const double p[3], double out[3]) { grid->WorldToLocalPoint(p, out); };
+  auto toLocalVector = [&](const double d[3], double out[3]) { grid->WorldToLocalVector(d, out); };
   const double boxCentre[3] = { 0.5 * (m.ProxyLo[0] + m.ProxyHi[0]),
     0.5 * (m.ProxyLo[1] + m.ProxyHi[1]), 0.5 * (m.ProxyLo[2] + m.ProxyHi[2]) };
   const double halfDiag[3] = { 0.5 * (m.ProxyHi[0] - m.ProxyLo[0]),
@@ -926,11 +912,11 @@ int vtkPhotonTracer::RequestData(
   // Stage 4: resolve, smooth, normalise.
   start = Clock::now();
   vtkNew<vtkFloatArray> radiance;
-  radiance->SetName("Radiance");
+  radiance->SetName(vtkRefractaLightingVolume::RadianceName());
   radiance->SetNumberOfComponents(3);
   radiance->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
   vtkNew<vtkFloatArray> direction;
-  direction->SetName("RadianceDirection");
+  direction->SetName(vtkRefractaLightingVolume::RadianceDirectionName());
   direction->SetNumberOfComponents(3);
   direction->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
   if (!m.Scatters)

@@ -17,6 +17,7 @@
 #include "vtkOpenCLContext.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkSmartPointer.h"
 
 #include <sys/resource.h>
@@ -154,7 +155,8 @@ Result Measure(vtkImageData* medium, int photons, const std::string& mode, int r
   r.Total = Median(total);
   r.DeviceMiB = tracer->GetPeakDeviceMemoryBytes() / 1048576.0;
   r.RssMiB = PeakRssMiB();
-  auto* rad = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray("Radiance"));
+  auto* rad = vtkFloatArray::SafeDownCast(
+    out->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()));
   r.Radiance.assign(rad->GetPointer(0), rad->GetPointer(0) + rad->GetNumberOfValues());
   return r;
 }

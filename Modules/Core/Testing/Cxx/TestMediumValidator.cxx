@@ -238,6 +238,9 @@ TEST(MediumValidator, RejectsDegenerateGrids)
   Validate(image, true);
   image->SetDirectionMatrix(1, 0, 0, 1, 0, 0, 0, 0, 1);
   EXPECT_TRUE(Contains(Validate(image), "direction matrix"));
+  // Non-singular but not orthonormal (a scale belongs in the spacing).
+  image->SetDirectionMatrix(2, 0, 0, 0, 1, 0, 0, 0, 1);
+  EXPECT_TRUE(Contains(Validate(image), "not orthonormal"));
 }
 
 TEST(MediumValidator, RejectsImageWithoutMediumArrays)

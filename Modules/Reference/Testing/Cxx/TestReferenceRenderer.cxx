@@ -1087,6 +1087,11 @@ TEST(ReferenceRenderer, HardInputsStayFinite)
   r->SetInputData(medium);
   r->SetCamera(cam);
   r->AddLight(pl);
+  // LightRadius 0 is a delta light, which the reference refuses for point lights: give the
+  // radius the renderer used to substitute silently (1% of the voxel box's diagonal).
+  r->SetLightRadius(0.01 *
+    std::sqrt(std::pow(dims[0] * spacing[0], 2) + std::pow(dims[1] * spacing[1], 2) +
+      std::pow(dims[2] * spacing[2], 2)));
   r->SetImageSize(8, 8);
   r->SetSamplesPerPixel(Spp(4));
   r->Update();
@@ -1103,8 +1108,9 @@ TEST(ReferenceRenderer, HardInputsStayFinite)
 }
 
 // ---------------------------------------------------------------------------------------------
-// Environment map: an empty medium seen along +x shows the map at u = 0.5, v = 0.5 (bilinear
-// between the four pixels around that point); 8-bit maps are divided by 255.
+// Environment map (vtkRefractaEnvironmentMap, VTK's skybox convention with the default up +y and
+// right +x): an empty medium seen along +x shows the map at u = 0.75, v = 0.5 (bilinear between
+// the four pixels around that point); 8-bit maps are divided by 255.
 TEST(ReferenceRenderer, EnvironmentMapLookup)
 {
   const int dims[3] = { 2, 2, 2 };
@@ -1128,18 +1134,19 @@ TEST(ReferenceRenderer, EnvironmentMapLookup)
   r->SetImageSize(2, 2);
   r->SetSamplesPerPixel(Spp(2));
   r->Update();
-  // u = 0.5 -> fx = 0.5 * 4 - 0.5 = 1.5 (between columns 1 and 2); v = 0.5 -> fy = 0.5 (rows 0, 1).
-  const double expected = 0.25 * (1 + 2 + 5 + 6);
+  // u = 0.75 -> fx = 0.75 * 4 - 0.5 = 2.5 (between columns 2 and 3); v = 0.5 -> fy = 0.5 (rows
+  // 0, 1).
+  const double expected = 0.25 * (2 + 3 + 6 + 7);
   vtkDataArray* hdr = r->GetOutput()->GetPointData()->GetArray("HDR");
   ASSERT_NE(hdr, nullptr);
   EXPECT_NEAR(hdr->GetComponent(0, 0), expected, 1e-5);
   EXPECT_NEAR(hdr->GetComponent(0, 1), 10 * expected, 1e-4);
-  // Looking along -z (direction +z towards... the ray travels -z): v = 0 -> bottom row, constant.
-  const double dop2[3] = { 0, 0, -1 }, up2[3] = { 0, 1, 0 };
+  // Rays travelling -y (the -up pole): v = 0 -> bottom row, constant.
+  const double dop2[3] = { 0, -1, 0 }, up2[3] = { 0, 0, 1 };
   r->SetCamera(ParallelCamera(focal, dop2, up2, 1.0));
   r->Update();
   hdr = r->GetOutput()->GetPointData()->GetArray("HDR");
-  // Bottom row (0..3) at v = 0 clamps to row 0; u = atan2(0, 0) + pi -> 0.5: columns 1, 2.
+  // Bottom row (0..3) at v = 0 clamps to row 0; u = atan2(0, 0) / 2pi + 1/2 = 0.5: columns 1, 2.
   EXPECT_NEAR(hdr->GetComponent(0, 0), 1.5, 1e-5);
 }
 

@@ -9,6 +9,7 @@
 
 #include "vtkCamera.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkXMLImageDataReader.h"
 
@@ -45,7 +46,8 @@ TEST(DefaultScene, ImageAndCaustic)
   }
 
   auto volume = Read("refracta_radiance.vti");
-  vtkDataArray* radiance = volume->GetPointData()->GetArray("Radiance");
+  vtkDataArray* radiance =
+    volume->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
   ASSERT_NE(radiance, nullptr);
   double focus[3] = { 0.0, -0.78, 0.0 }, aside[3] = { 0.6, -0.78, 0.0 };
   const double r0 = radiance->GetComponent(volume->FindPoint(focus), 0);

@@ -17,6 +17,7 @@
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkUnsignedCharArray.h"
@@ -68,11 +69,14 @@ Scene MakeScene(bool rotated)
   refracta_test::AddConstant(scene.Medium, "Anisotropy", 1, G);
   scene.Lighting = vtkSmartPointer<vtkImageData>::New();
   scene.Lighting->CopyStructure(scene.Medium);
-  refracta_test::AddConstant(scene.Lighting, "Radiance", 3, S1[0], S1[1], S1[2]);
+  refracta_test::AddConstant(
+    scene.Lighting, vtkRefractaLightingVolume::RadianceName(), 3, S1[0], S1[1], S1[2]);
   double dir[3] = { 0.3, -0.8, 0.52 };
   vtkMath::Normalize(dir);
-  refracta_test::AddConstant(scene.Lighting, "RadianceDirection", 3, dir[0], dir[1], dir[2]);
-  refracta_test::AddConstant(scene.Lighting, "MultipleScattering", 3, Sms[0], Sms[1], Sms[2]);
+  refracta_test::AddConstant(
+    scene.Lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, dir[0], dir[1], dir[2]);
+  refracta_test::AddConstant(
+    scene.Lighting, vtkRefractaLightingVolume::MultipleScatteringName(), 3, Sms[0], Sms[1], Sms[2]);
   // The stored direction is in the grid-local frame (Physics.md).
   std::copy(dir, dir + 3, scene.LightDirLocal);
   return scene;
@@ -302,8 +306,8 @@ TEST(ViewPassAnalytic, BadInputsAreReported)
   renderer->SetInputData(scene.Medium);
   vtkNew<vtkImageData> other;
   other->SetDimensions(3, 3, 3);
-  refracta_test::AddConstant(other, "Radiance", 3, 1, 1, 1);
-  refracta_test::AddConstant(other, "RadianceDirection", 3, 0, 0, 1);
+  refracta_test::AddConstant(other, vtkRefractaLightingVolume::RadianceName(), 3, 1, 1, 1);
+  refracta_test::AddConstant(other, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0, 0, 1);
   renderer->SetLightingData(other);
   renderer->Update();
   EXPECT_NE(errors->GetErrorMessage().find("medium's grid"), std::string::npos);
@@ -313,12 +317,14 @@ TEST(ViewPassAnalytic, BadInputsAreReported)
   // Radiance without its direction; NaN in the lighting volume.
   vtkNew<vtkImageData> noDir;
   noDir->CopyStructure(scene.Medium);
-  refracta_test::AddConstant(noDir, "Radiance", 3, 1, 1, 1);
+  refracta_test::AddConstant(noDir, vtkRefractaLightingVolume::RadianceName(), 3, 1, 1, 1);
   renderer->SetLightingData(noDir);
   renderer->Update();
-  EXPECT_NE(errors->GetErrorMessage().find("RadianceDirection"), std::string::npos);
+  EXPECT_NE(errors->GetErrorMessage().find(vtkRefractaLightingVolume::RadianceDirectionName()),
+    std::string::npos);
   errors->Clear();
-  refracta_test::AddConstant(noDir, "RadianceDirection", 3, 0, 0, 1)->SetValue(7, std::nanf(""));
+  refracta_test::AddConstant(noDir, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0, 0, 1)
+    ->SetValue(7, std::nanf(""));
   renderer->Update();
   EXPECT_NE(errors->GetErrorMessage().find("invalid value"), std::string::npos);
   errors->Clear();

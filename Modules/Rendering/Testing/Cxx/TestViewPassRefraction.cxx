@@ -19,7 +19,9 @@
 
 #include "vtkCamera.h"
 #include "vtkMath.h"
+#include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkTexture.h"
 #include "vtkUnsignedCharArray.h"
@@ -83,13 +85,11 @@ vtkSmartPointer<vtkImageData> DirectionEnvironment()
   return env;
 }
 
+// The world direction whose lookup (vtkRefractaEnvironmentMap, default up and right) is (u, v).
 void DecodeDirection(const float* rgba, double d[3])
 {
-  const double lon = (rgba[0] - 0.5) * 2 * vtkMath::Pi();
-  const double lat = (rgba[1] - 0.5) * vtkMath::Pi();
-  d[0] = std::cos(lat) * std::cos(lon);
-  d[1] = std::sin(lat);
-  d[2] = std::cos(lat) * std::sin(lon);
+  const double uv[2] = { rgba[0], rgba[1] }, up[3] = { 0, 1, 0 }, right[3] = { 1, 0, 0 };
+  vtkRefractaEnvironmentMap::TextureToDirection(uv, up, right, d);
 }
 
 // Host reference: RK4 on dx/ds = v / n, dv/ds = grad n from (x, y, 2) going -z, until far away.
@@ -286,8 +286,10 @@ TEST(ViewPassRefraction, RegressionImages)
   refracta_test::AddConstant(fog, "Anisotropy", 1, 0.5);
   vtkNew<vtkImageData> light;
   light->CopyStructure(fog);
-  vtkFloatArray* s1 = refracta_test::AddConstant(light, "Radiance", 3, 0);
-  refracta_test::AddConstant(light, "RadianceDirection", 3, -1, 0, 0);
+  vtkFloatArray* s1 =
+    refracta_test::AddConstant(light, vtkRefractaLightingVolume::RadianceName(), 3, 0);
+  refracta_test::AddConstant(
+    light, vtkRefractaLightingVolume::RadianceDirectionName(), 3, -1, 0, 0);
   for (vtkIdType p = 0; p < fog->GetNumberOfPoints(); ++p)
   {
     double x[3];

@@ -32,6 +32,7 @@
 #include "vtkMath.h"
 #include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaViewPass.h"
 
 #include <gtest/gtest.h>
@@ -70,11 +71,12 @@ Scene MakeScene(bool refractive)
     refractive ? refracta_test::AddConstant(scene.Medium, "RefractiveIndex", 1, 1.1) : nullptr;
   scene.Lighting = vtkSmartPointer<vtkImageData>::New();
   scene.Lighting->CopyStructure(scene.Medium);
-  vtkFloatArray* radiance = refracta_test::AddConstant(scene.Lighting, "Radiance", 3, 0, 0, 0);
-  vtkFloatArray* direction =
-    refracta_test::AddConstant(scene.Lighting, "RadianceDirection", 3, 0, 0, 1);
-  vtkFloatArray* multiple =
-    refracta_test::AddConstant(scene.Lighting, "MultipleScattering", 3, 0, 0, 0);
+  vtkFloatArray* radiance = refracta_test::AddConstant(
+    scene.Lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0, 0, 0);
+  vtkFloatArray* direction = refracta_test::AddConstant(
+    scene.Lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0, 0, 1);
+  vtkFloatArray* multiple = refracta_test::AddConstant(
+    scene.Lighting, vtkRefractaLightingVolume::MultipleScatteringName(), 3, 0, 0, 0);
   const double a[3] = { 0.3, 0.35, 0.6 }, b[3] = { 0.72, 0.62, 0.3 }, c[3] = { 0.58, 0.4, 0.42 };
   for (int k = 0; k < N; ++k)
   {
@@ -335,7 +337,8 @@ TEST(ViewPassSkipping, PhotonTracedLightingThroughImageRenderer)
   tracer->AddLight(light);
   tracer->SetNumberOfPhotons(20000);
   tracer->Update();
-  vtkDataArray* radiance = tracer->GetOutput()->GetPointData()->GetArray("Radiance");
+  vtkDataArray* radiance =
+    tracer->GetOutput()->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
   ASSERT_NE(radiance, nullptr);
   int lit = 0;
   for (vtkIdType i = 0; i < radiance->GetNumberOfTuples(); ++i)

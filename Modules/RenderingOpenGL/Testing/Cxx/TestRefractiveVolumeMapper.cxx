@@ -22,6 +22,7 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkRefractiveVolumeMapper.h"
 #include "vtkRenderWindow.h"
@@ -214,7 +215,8 @@ TEST(RefractiveVolumeMapper, CacheRunsOnlyWhatChanged)
   // A synthetic lighting volume, supplied instead of the light passes.
   vtkNew<vtkImageData> lighting;
   lighting->CopyStructure(medium);
-  refracta_test::AddConstant(lighting, "MultipleScattering", 3, 0.5, 0.5, 0.5);
+  refracta_test::AddConstant(
+    lighting, vtkRefractaLightingVolume::MultipleScatteringName(), 3, 0.5, 0.5, 0.5);
   scene.Mapper->SetInputData(medium);
   scene.Mapper->SetLightingData(lighting);
   scene.Window->Render();
@@ -360,8 +362,12 @@ TEST(RefractiveVolumeMapper, LightPassesRunOnlyWhenLightsChange)
   scene.Window->Render();
   EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), 1);
   ASSERT_NE(scene.Mapper->GetLighting(), nullptr);
-  EXPECT_NE(scene.Mapper->GetLighting()->GetPointData()->GetArray("Radiance"), nullptr);
-  EXPECT_NE(scene.Mapper->GetLighting()->GetPointData()->GetArray("MultipleScattering"), nullptr);
+  EXPECT_NE(scene.Mapper->GetLighting()->GetPointData()->GetArray(
+              vtkRefractaLightingVolume::RadianceName()),
+    nullptr);
+  EXPECT_NE(scene.Mapper->GetLighting()->GetPointData()->GetArray(
+              vtkRefractaLightingVolume::MultipleScatteringName()),
+    nullptr);
   // The fog is lit: the medium's radiance shows (the background is black).
   vtkSmartPointer<vtkImageData> lit = scene.Capture();
   double sum = 0;

@@ -9,6 +9,7 @@
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkSmartPointer.h"
 
 #include <array>
@@ -103,12 +104,15 @@ inline std::array<double, 3> Energy(vtkImageData* image, const char* name)
 
 inline const float* Radiance(vtkImageData* image)
 {
-  return vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Radiance"))->GetPointer(0);
+  return vtkFloatArray::SafeDownCast(
+    image->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()))
+    ->GetPointer(0);
 }
 
 inline const float* Direction(vtkImageData* image)
 {
-  return vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("RadianceDirection"))
+  return vtkFloatArray::SafeDownCast(
+    image->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName()))
     ->GetPointer(0);
 }
 }

@@ -19,6 +19,7 @@
 #include "vtkLatticeBoltzmannSolver.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkSmartPointer.h"
 #include "vtkTestErrorObserver.h"
 
@@ -466,8 +467,8 @@ TEST(LatticeBoltzmannLighting, OutputsAndEnergyBalance)
   medium->GetPointData()->AddArray(MakeArray("Albedo", 3, count, albedo));
   medium->GetPointData()->AddArray(MakeArray("Anisotropy", 1, count, 0.3f));
   vtkSmartPointer<vtkImageData> lighting = MakeImage(n, h);
-  auto radiance = MakeArray("Radiance", 3, count, 0.0f);
-  auto direction = MakeArray("RadianceDirection", 3, count, 0.0f);
+  auto radiance = MakeArray(vtkRefractaLightingVolume::RadianceName(), 3, count, 0.0f);
+  auto direction = MakeArray(vtkRefractaLightingVolume::RadianceDirectionName(), 3, count, 0.0f);
   double injected[3] = { 0, 0, 0 };
   for (vtkIdType v = 0; v < count; ++v)
   {
@@ -499,11 +500,14 @@ TEST(LatticeBoltzmannLighting, OutputsAndEnergyBalance)
   ASSERT_EQ(out->GetNumberOfPoints(), count);
   EXPECT_DOUBLE_EQ(out->GetOrigin()[0], 1e3);
   EXPECT_DOUBLE_EQ(out->GetSpacing()[1], h);
-  ASSERT_NE(out->GetPointData()->GetArray("Radiance"), nullptr);
-  ASSERT_NE(out->GetPointData()->GetArray("RadianceDirection"), nullptr);
+  ASSERT_NE(out->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()), nullptr);
+  ASSERT_NE(
+    out->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName()), nullptr);
   EXPECT_EQ(
-    out->GetPointData()->GetArray("Radiance")->GetComponent(0, 2), radiance->GetComponent(0, 2));
-  vtkDataArray* ms = out->GetPointData()->GetArray("MultipleScattering");
+    out->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName())->GetComponent(0, 2),
+    radiance->GetComponent(0, 2));
+  vtkDataArray* ms =
+    out->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName());
   ASSERT_NE(ms, nullptr);
   ASSERT_EQ(ms->GetNumberOfComponents(), 3);
   ASSERT_NE(out->GetFieldData()->GetArray("EnergyEmitted"), nullptr);
@@ -548,7 +552,8 @@ TEST(LatticeBoltzmannLighting, RejectsBadInput)
   auto makeLighting = [&](int size)
   {
     vtkSmartPointer<vtkImageData> lighting = MakeImage(size, 1.0);
-    lighting->GetPointData()->AddArray(MakeArray("Radiance", 3, lighting->GetNumberOfPoints(), 1));
+    lighting->GetPointData()->AddArray(
+      MakeArray(vtkRefractaLightingVolume::RadianceName(), 3, lighting->GetNumberOfPoints(), 1));
     return lighting;
   };
   struct Case
@@ -562,13 +567,15 @@ TEST(LatticeBoltzmannLighting, RejectsBadInput)
   cases.push_back({ "grid mismatch", makeMedium(), makeLighting(n + 1), "medium's grid" });
   {
     vtkSmartPointer<vtkImageData> lighting = makeLighting(n);
-    vtkDataArray::SafeDownCast(lighting->GetPointData()->GetArray("Radiance"))
+    vtkDataArray::SafeDownCast(
+      lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()))
       ->SetComponent(3, 1, -1.0);
     cases.push_back({ "negative radiance", makeMedium(), lighting, ">= 0" });
   }
   {
     vtkSmartPointer<vtkImageData> lighting = MakeImage(n, 1.0);
-    lighting->GetPointData()->AddArray(MakeArray("Radiance", 1, lighting->GetNumberOfPoints(), 1));
+    lighting->GetPointData()->AddArray(
+      MakeArray(vtkRefractaLightingVolume::RadianceName(), 1, lighting->GetNumberOfPoints(), 1));
     cases.push_back({ "one-component radiance", makeMedium(), lighting, "3 components" });
   }
   {

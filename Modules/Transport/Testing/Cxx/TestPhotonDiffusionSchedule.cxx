@@ -13,6 +13,7 @@
 #include "vtkLatticeBoltzmannSolver.h"
 #include "vtkPhotonDiffusionSchedule.h"
 #include "vtkPhotonTracer.h"
+#include "vtkRefractaLightingVolume.h"
 
 #include <gtest/gtest.h>
 
@@ -63,8 +64,10 @@ TEST(PhotonDiffusionSchedule, InterleavedMatchesSequential)
       RunSchedule(medium, vtkPhotonDiffusionSchedule::SEQUENTIAL, 16);
     ASSERT_GT(sequential->GetNumberOfPoints(), 0);
     const vtkIdType n = sequential->GetNumberOfPoints();
-    vtkDataArray* msSeq = sequential->GetPointData()->GetArray("MultipleScattering");
-    vtkDataArray* radSeq = sequential->GetPointData()->GetArray("Radiance");
+    vtkDataArray* msSeq =
+      sequential->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName());
+    vtkDataArray* radSeq =
+      sequential->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
     ASSERT_TRUE(msSeq && radSeq);
     double peak = 0;
     for (vtkIdType t = 0; t < n; ++t)
@@ -80,8 +83,10 @@ TEST(PhotonDiffusionSchedule, InterleavedMatchesSequential)
       vtkSmartPointer<vtkImageData> interleaved =
         RunSchedule(medium, vtkPhotonDiffusionSchedule::INTERLEAVED, k);
       ASSERT_EQ(interleaved->GetNumberOfPoints(), n);
-      vtkDataArray* msInt = interleaved->GetPointData()->GetArray("MultipleScattering");
-      vtkDataArray* radInt = interleaved->GetPointData()->GetArray("Radiance");
+      vtkDataArray* msInt =
+        interleaved->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName());
+      vtkDataArray* radInt =
+        interleaved->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
       ASSERT_TRUE(msInt && radInt);
       double radDiff = 0, msDiff = 0;
       for (vtkIdType t = 0; t < n; ++t)

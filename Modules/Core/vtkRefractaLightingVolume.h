@@ -1,0 +1,75 @@
+/**
+ * @class   vtkRefractaLightingVolume
+ * @brief   The conventions of a Refracta lighting volume: array names, component counts, units.
+ *
+ * A lighting volume is a vtkImageData on the medium's grid (vtkRefractaGridFrame::SameGrid)
+ * whose point data carries what the light passes computed; the view pass reads it.
+ *
+ * | array               | comps | meaning / unit                                               |
+ * |---------------------|-------|--------------------------------------------------------------|
+ * | Radiance            | 3     | S1 = sigma_s phi1, power per unit volume scattered out of the
+ * unscattered beam (RGB, >= 0; vtkPhotonTracer) | | RadianceDirection   | 3     | mean travel
+ * direction of that light, unit vector in the grid-local frame (zero where none) | |
+ * MultipleScattering  | 3     | S_ms = sigma_s phi_ms, power per unit volume scattered out of the
+ * diffuse field, isotropic (RGB, >= 0; vtkLatticeBoltzmannLighting) |
+ *
+ * Only static methods are used; New() exists so that it can be wrapped and printed.
+ */
+#ifndef vtkRefractaLightingVolume_h
+#define vtkRefractaLightingVolume_h
+
+#include "RefractaCoreModule.h" // for export macro
+#include "vtkObject.h"
+
+class REFRACTACORE_EXPORT vtkRefractaLightingVolume : public vtkObject
+{
+public:
+  static vtkRefractaLightingVolume* New();
+  vtkTypeMacro(vtkRefractaLightingVolume, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Identifiers of the lighting-volume arrays, in the order of the table above.
+   */
+  enum ArrayId
+  {
+    RADIANCE = 0,
+    RADIANCE_DIRECTION,
+    MULTIPLE_SCATTERING,
+    NUMBER_OF_ARRAYS
+  };
+
+  ///@{
+  /**
+   * Array names as they appear in the point data.
+   */
+  static const char* RadianceName() { return "Radiance"; }
+  static const char* RadianceDirectionName() { return "RadianceDirection"; }
+  static const char* MultipleScatteringName() { return "MultipleScattering"; }
+  ///@}
+
+  /**
+   * Name of the array with the given id, or nullptr for an id out of range.
+   */
+  static const char* GetArrayName(int id);
+
+  /**
+   * Id of the array with the given name, or -1 if the name is not a lighting-volume array.
+   */
+  static int GetArrayId(const char* name);
+
+  /**
+   * Number of components of the array (3), or 0 for an id out of range.
+   */
+  static int GetNumberOfComponents(int id);
+
+protected:
+  vtkRefractaLightingVolume() = default;
+  ~vtkRefractaLightingVolume() override = default;
+
+private:
+  vtkRefractaLightingVolume(const vtkRefractaLightingVolume&) = delete;
+  void operator=(const vtkRefractaLightingVolume&) = delete;
+};
+
+#endif

@@ -1,0 +1,182 @@
+// One environment-map convention: the reference renderer (C++) and the view pass (OpenCL kernel)
+// look a world direction up at the same (u, v), namely vtkRefractaEnvironmentMap's. A camera looks
+// into a tiny empty medium in front of an environment whose texels encode their own texture
+// coordinates (bilinear lookup of the ramp returns (u, v) itself); for every pixel, away from the
+// seam and the poles, the decoded (u, v) of both renderers must match the C++ function applied to
+// the pixel's world direction, and pick the same texel.
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkReferenceRenderer.h"
+#include "vtkRefractaEnvironmentMap.h"
+#include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaMedium.h"
+#include "vtkSmartPointer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+namespace
+{
+constexpr int EnvW = 64, EnvH = 32;
+constexpr int Width = 48, Height = 36;
+constexpr double ViewAngle = 100.0;
+
+vtkSmartPointer<vtkImageData> CoordinateEnvironment()
+{
+  auto env = vtkSmartPointer<vtkImageData>::New();
+  env->SetDimensions(EnvW, EnvH, 1);
+  vtkNew<vtkFloatArray> c;
+  c->SetName("uv");
+  c->SetNumberOfComponents(3);
+  c->SetNumberOfTuples(EnvW * EnvH);
+  for (int j = 0; j < EnvH; ++j)
+  {
+    for (int i = 0; i < EnvW; ++i)
+    {
+      c->SetTuple3(i + EnvW * j, (i + 0.5) / EnvW, (j + 0.5) / EnvH, 0);
+    }
+  }
+  env->GetPointData()->SetScalars(c);
+  return env;
+}
+
+vtkSmartPointer<vtkImageData> EmptyMedium()
+{
+  auto medium = vtkSmartPointer<vtkImageData>::New();
+  medium->SetDimensions(2, 2, 2);
+  medium->SetSpacing(0.1, 0.1, 0.1);
+  medium->SetOrigin(-0.05, -0.05, -0.05);
+  vtkNew<vtkFloatArray> sigma;
+  sigma->SetName(vtkRefractaMedium::ExtinctionName());
+  sigma->SetNumberOfComponents(3);
+  sigma->SetNumberOfTuples(8);
+  for (int k = 0; k < 3; ++k)
+  {
+    sigma->FillComponent(k, 0.0);
+  }
+  medium->GetPointData()->AddArray(sigma);
+  return medium;
+}
+
+// World direction through the centre of pixel (i, j) (vertical view angle, aspect W / H).
+void PixelDirection(vtkCamera* camera, int i, int j, double d[3])
+{
+  double pos[3], fp[3], up[3], w[3], r[3], u[3];
+  camera->GetPosition(pos);
+  camera->GetFocalPoint(fp);
+  camera->GetViewUp(up);
+  vtkMath::Subtract(fp, pos, w);
+  vtkMath::Normalize(w);
+  vtkMath::Cross(w, up, r);
+  vtkMath::Normalize(r);
+  vtkMath::Cross(r, w, u);
+  const double t = std::tan(vtkMath::RadiansFromDegrees(ViewAngle) / 2);
+  const double sx = (2.0 * (i + 0.5) / Width - 1.0) * t * Width / Height;
+  const double sy = (2.0 * (j + 0.5) / Height - 1.0) * t;
+  for (int a = 0; a < 3; ++a)
+  {
+    d[a] = w[a] + sx * r[a] + sy * u[a];
+  }
+  vtkMath::Normalize(d);
+}
+} // namespace
+
+TEST(EnvironmentConvention, ReferenceAndViewPassPickTheSameTexel)
+{
+  struct View
+  {
+    double Direction[3];
+    double Up[3];
+    double EnvUp[3];
+    double EnvRight[3];
+  };
+  const View views[] = { { { 0, 0, -1 }, { 0, 1, 0 }, { 0, 1, 0 }, { 1, 0, 0 } },
+    { { 1, 1, 0 }, { 0, 0, 1 }, { 0, 1, 0 }, { 1, 0, 0 } },
+    { { -1, 0.2, 0.5 }, { 0, 1, 0 }, { 0, 1, 0 }, { 1, 0, 0 } },
+    { { 0, 0.3, 1 }, { 0, 1, 0 }, { 0, 1, 0 }, { 1, 0, 0 } },
+    { { 0.3, -1, 0.2 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 0, 0 } },
+    { { 1, 0.5, -0.5 }, { 0, 0, 1 }, { 0, 0, 1 }, { 0, 1, 0 } } };
+  auto env = CoordinateEnvironment();
+  auto medium = EmptyMedium();
+  int compared = 0;
+  double worstView = 0, worstReference = 0;
+  for (const View& view : views)
+  {
+    vtkNew<vtkCamera> camera;
+    camera->SetFocalPoint(0, 0, 0);
+    double dir[3] = { view.Direction[0], view.Direction[1], view.Direction[2] };
+    vtkMath::Normalize(dir);
+    camera->SetPosition(-0.5 * dir[0], -0.5 * dir[1], -0.5 * dir[2]);
+    camera->SetViewUp(view.Up[0], view.Up[1], view.Up[2]);
+    camera->SetViewAngle(ViewAngle);
+
+    vtkNew<vtkRefractaImageRenderer> pass;
+    pass->SetInputData(medium);
+    pass->SetCamera(camera);
+    pass->SetImageSize(Width, Height);
+    pass->SetEnvironmentMap(env);
+    pass->SetEnvironmentUp(view.EnvUp[0], view.EnvUp[1], view.EnvUp[2]);
+    pass->SetEnvironmentRight(view.EnvRight[0], view.EnvRight[1], view.EnvRight[2]);
+    pass->Update();
+    vtkDataArray* hdrPass = pass->GetOutput()->GetPointData()->GetArray("HDR");
+
+    vtkNew<vtkReferenceRenderer> reference;
+    reference->SetInputData(medium);
+    reference->SetCamera(camera);
+    reference->SetImageSize(Width, Height);
+    reference->SetSamplesPerPixel(1);
+    reference->SetEnvironmentMap(env);
+    reference->SetEnvironmentUp(view.EnvUp[0], view.EnvUp[1], view.EnvUp[2]);
+    reference->SetEnvironmentRight(view.EnvRight[0], view.EnvRight[1], view.EnvRight[2]);
+    reference->Update();
+    vtkDataArray* hdrReference = reference->GetOutput()->GetPointData()->GetArray("HDR");
+    ASSERT_NE(hdrPass, nullptr);
+    ASSERT_NE(hdrReference, nullptr);
+
+    for (int j = 0; j < Height; ++j)
+    {
+      for (int i = 0; i < Width; ++i)
+      {
+        double d[3], uv[2];
+        PixelDirection(camera, i, j, d);
+        vtkRefractaEnvironmentMap::DirectionToTexture(d, view.EnvUp, view.EnvRight, uv);
+        // Away from the seam (the ramp jumps there) and the clamped polar half texels.
+        if (uv[0] < 1.5 / EnvW || uv[0] > 1 - 1.5 / EnvW || uv[1] < 1.0 / EnvH ||
+          uv[1] > 1 - 1.0 / EnvH)
+        {
+          continue;
+        }
+        const vtkIdType p = i + static_cast<vtkIdType>(Width) * j;
+        const int want = vtkRefractaEnvironmentMap::NearestTexel(EnvW, EnvH, uv[0], uv[1]);
+        for (int which = 0; which < 2; ++which)
+        {
+          vtkDataArray* hdr = which == 0 ? hdrPass : hdrReference;
+          const double got[2] = { hdr->GetComponent(p, 0), hdr->GetComponent(p, 1) };
+          const double err = std::max(std::abs(got[0] - uv[0]), std::abs(got[1] - uv[1]));
+          (which == 0 ? worstView : worstReference) =
+            std::max(which == 0 ? worstView : worstReference, err);
+          EXPECT_LT(err, which == 0 ? 2e-3 : 1e-6)
+            << (which == 0 ? "view pass" : "reference") << " pixel " << i << "," << j;
+          // Same texel, unless the direction lies within float rounding of a texel border.
+          const double bu = uv[0] * EnvW - std::floor(uv[0] * EnvW);
+          const double bv = uv[1] * EnvH - std::floor(uv[1] * EnvH);
+          if (std::min(bu, 1 - bu) > 0.05 && std::min(bv, 1 - bv) > 0.05)
+          {
+            EXPECT_EQ(vtkRefractaEnvironmentMap::NearestTexel(EnvW, EnvH, got[0], got[1]), want)
+              << (which == 0 ? "view pass" : "reference") << " pixel " << i << "," << j;
+          }
+        }
+        ++compared;
+      }
+    }
+  }
+  std::cout << compared << " pixels compared; worst |uv - C++| view pass " << worstView
+            << ", reference " << worstReference << "\n";
+  EXPECT_GT(compared, 6 * Width * Height / 2);
+}
