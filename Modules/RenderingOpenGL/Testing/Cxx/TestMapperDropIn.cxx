@@ -24,6 +24,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <iostream>
 #include <string>
 
@@ -230,8 +231,20 @@ TEST(MapperDropIn, ClippingPlanesAndCroppingCutTheMediumAway)
   plane->SetOrigin(0, 0, 0);
   plane->SetNormal(1, 0, 0);
   mapper->AddClippingPlane(plane);
+  // What is cut away shows the background, up to the photon pass's 3x3x3 smoothing and the
+  // trilinear lookup, which carry in-scattered light up to two voxels past a cut (made visible by
+  // the automatic exposure): below 1% of the brightest column, at least 2.85 voxels away.
+  auto dark = [](vtkImageData* image, int column)
+  {
+    double brightest = 0;
+    for (int i = 0; i < Size; ++i)
+    {
+      brightest = std::max(brightest, ColumnSum(image, i));
+    }
+    return ColumnSum(image, column) <= 0.01 * brightest;
+  };
   auto clipped = scene.Capture();
-  EXPECT_EQ(ColumnSum(clipped, left), 0.0) << "the cut-away half shows the background";
+  EXPECT_TRUE(dark(clipped, left)) << "the cut-away half shows the background";
   EXPECT_GT(ColumnSum(clipped, right), 0.0);
   const int builds = mapper->GetNumberOfMediumBuilds();
   scene.Capture();
@@ -239,7 +252,7 @@ TEST(MapperDropIn, ClippingPlanesAndCroppingCutTheMediumAway)
   plane->SetNormal(-1, 0, 0);
   auto flipped = scene.Capture();
   EXPECT_GT(ColumnSum(flipped, left), 0.0);
-  EXPECT_EQ(ColumnSum(flipped, right), 0.0);
+  EXPECT_TRUE(dark(flipped, right));
   mapper->RemoveAllClippingPlanes();
 
   // Cropping: keep the centre region |x|, |y|, |z| <= 3 only.
@@ -247,8 +260,8 @@ TEST(MapperDropIn, ClippingPlanesAndCroppingCutTheMediumAway)
   mapper->SetCroppingRegionFlagsToSubVolume();
   mapper->CroppingOn();
   auto cropped = scene.Capture();
-  EXPECT_EQ(ColumnSum(cropped, left), 0.0);
-  EXPECT_EQ(ColumnSum(cropped, right), 0.0);
+  EXPECT_TRUE(dark(cropped, left));
+  EXPECT_TRUE(dark(cropped, right));
   EXPECT_GT(ColumnSum(cropped, Size / 2), 0.0);
 }
 
