@@ -119,7 +119,7 @@ int vtkTransferFunctionMedium::RequestData(
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 0)
   if (g == 0.0)
   {
-    g = std::max(-0.9999, std::min(0.9999, property->GetScatteringAnisotropy()));
+    g = std::max(-0.9999, std::min(0.9999, static_cast<double>(property->GetScatteringAnisotropy())));
   }
 #endif
 
