@@ -446,35 +446,37 @@ bool vtkPhotonTracer::BuildOctree(vtkImageData* medium, vtkImageData* octreeOut)
 }
 
 //------------------------------------------------------------------------------
-int vtkPhotonTracer::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+// The state one run of RequestData passes from stage to stage.
+struct vtkPhotonTracer::Internals
 {
-  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
-  vtkImageData* output = vtkImageData::GetData(outputVector);
-  if (!output)
-  {
-    vtkErrorMacro("The output is not a vtkImageData.");
-    return 0;
-  }
-  output->Initialize();
-  this->OctreeSeconds = this->GenerationSeconds = this->MarchingSeconds = 0;
-  this->SmoothingSeconds = this->PeakDeviceMemoryBytes = 0;
-  this->UsedCurvedRays = this->UsedExtinction = this->UsedDeposit = false;
-  this->UsedOctree = this->ComputedGradient = false;
+  vtkImageData* Input = nullptr;
+  Medium M;
+  std::vector<LightSetup> Lights;
+  double TotalBound = 0; // sum of the lights' power bounds towards the box
+  size_t Photons = 0;
+  vtkOpenCLContext* Context = nullptr;
+  Allocator Alloc{ nullptr, nullptr };
+  double Unit = 1.0;  // the device's unit of power (TotalBound)
+  double Scale = 1.0; // fixed-point scale of the tallies, in host units
+  cl_program Trace = nullptr;
+  vtkOpenCLBuffer NBuffer, GradBuffer, Octree;
+  vtkOpenCLBuffer Pos, Dirs, Power;
+  vtkOpenCLBuffer ExtBuffer, AlbBuffer, RadFixed, DirFixed, Tallies, Counters;
+  std::vector<cl_long> Tally, Count;
+  vtkNew<vtkFloatArray> Radiance;
+  vtkNew<vtkFloatArray> Direction;
+};
 
-  vtkNew<vtkMediumValidator> validator;
-  if (!validator->Validate(input))
-  {
-    vtkErrorMacro("Input 0 is not a valid Refracta medium: " << validator->GetErrorMessage());
-    return 0;
-  }
-
-  // ---- Lights, converted to the grid-local frame in double precision ----
+//------------------------------------------------------------------------------
+// Lights, converted to the grid-local frame in double precision.
+bool vtkPhotonTracer::SetUpLights(Internals& run)
+{
+  vtkImageData* input = run.Input;
   const double* origin = input->GetOrigin();
   vtkMatrix3x3* dir = input->GetDirectionMatrix();
   int extent[6];
   input->GetExtent(extent);
-  Medium m;
+  Medium& m = run.M;
   LoadMedium(input, this->UseProxyBounds, m);
   auto toLocalPoint = [&](const double p[3], double out[3])
   {
@@ -499,7 +501,7 @@ int vtkPhotonTracer::RequestData(
     0.5 * (m.ProxyHi[1] - m.ProxyLo[1]), 0.5 * (m.ProxyHi[2] - m.ProxyLo[2]) };
   const double boxRadius = std::sqrt(Dot(halfDiag, halfDiag));
 
-  std::vector<LightSetup> lights;
+  std::vector<LightSetup>& lights = run.Lights;
   vtkLight* light;
   vtkCollectionSimpleIterator it;
   int lightIndex = 0;
@@ -524,7 +526,7 @@ int vtkPhotonTracer::RequestData(
       vtkErrorMacro("Light " << lightIndex
                              << " has a non-finite position, focal point, colour or intensity, or "
                                 "a negative intensity or colour; all must be finite and >= 0.");
-      return 0;
+      return false;
     }
     LightSetup ls;
     ls.Positional = light->GetPositional();
@@ -543,13 +545,13 @@ int vtkPhotonTracer::RequestData(
       vtkErrorMacro("Light " << lightIndex
                              << " is directional or a spot but its position equals its focal "
                                 "point; they must differ to give a direction.");
-      return 0;
+      return false;
     }
     if (isSpot && !(light->GetConeAngle() > 0.0))
     {
       vtkErrorMacro("Light " << lightIndex << " has cone angle " << light->GetConeAngle()
                              << "; a spot needs (0, 90) degrees, a point light >= 90.");
-      return 0;
+      return false;
     }
     const double maxColour = std::max({ ls.Colour[0], ls.Colour[1], ls.Colour[2] });
     if (!ls.Positional)
@@ -634,9 +636,16 @@ int vtkPhotonTracer::RequestData(
       lights.push_back(ls);
     }
   }
+  return true;
+}
 
-  // ---- Photon budget: proportional to each light's power towards the box ----
-  double totalBound = 0;
+//------------------------------------------------------------------------------
+// Photon budget: proportional to each light's power towards the box.
+void vtkPhotonTracer::SharePhotons(Internals& run)
+{
+  std::vector<LightSetup>& lights = run.Lights;
+  double& totalBound = run.TotalBound;
+  totalBound = 0;
   for (const auto& ls : lights)
   {
     totalBound += ls.Bound;
@@ -657,14 +666,19 @@ int vtkPhotonTracer::RequestData(
   {
     lights[remainders[r].second].Photons++;
   }
-  const size_t photons = this->NumberOfPhotons;
+  run.Photons = this->NumberOfPhotons;
+}
 
-  // ---- Device ----
-  vtkOpenCLContext* ctx = this->GetContext();
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::InitializeDevice(Internals& run)
+{
+  const Medium& m = run.M;
+  run.Context = this->GetContext();
+  vtkOpenCLContext* ctx = run.Context;
   if (!ctx->Initialize())
   {
     vtkErrorMacro("No OpenCL device for the photon pass: " << ctx->GetLastErrorMessage());
-    return 0;
+    return false;
   }
   this->UsedCurvedRays = m.Curved;
   this->UsedExtinction = m.Attenuates;
@@ -672,22 +686,30 @@ int vtkPhotonTracer::RequestData(
   this->UsedOctree = m.Curved && this->AdaptiveStepping;
   this->ComputedGradient = m.Curved && !m.HasGradient;
 
-  Allocator alloc{ ctx, this };
+  run.Alloc = Allocator{ ctx, this };
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// Stage 1: upload of the refractive index, gradient (if needed) and octree.
+bool vtkPhotonTracer::BuildOctreeStage(Internals& run)
+{
+  Medium& m = run.M;
+  vtkOpenCLContext* ctx = run.Context;
+  Allocator& alloc = run.Alloc;
   const size_t voxels = m.Voxels;
   const cl_int4 dims = Int4(m.Dims);
   const cl_float4 spacing = Float4(m.Spacing);
   const cl_uint voxelCount = static_cast<cl_uint>(voxels);
-  const double voxelUnit = std::min({ m.Spacing[0], m.Spacing[1], m.Spacing[2] });
-
-  // Stage 1: gradient (if needed) and octree.
+  vtkOpenCLBuffer& nBuffer = run.NBuffer;
+  vtkOpenCLBuffer& gradBuffer = run.GradBuffer;
+  vtkOpenCLBuffer& octree = run.Octree;
   auto start = Clock::now();
-  vtkOpenCLBuffer nBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+  nBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
     (m.Curved ? voxels : 1) * sizeof(float), m.N.data(), "RefractiveIndex");
-  vtkOpenCLBuffer gradBuffer;
-  vtkOpenCLBuffer octree;
   if (!nBuffer)
   {
-    return 0;
+    return false;
   }
   if (m.Curved && m.HasGradient)
   {
@@ -707,7 +729,7 @@ int vtkPhotonTracer::RequestData(
         "clSetKernelArg(photon_gradient)", this) ||
       !Run1D(ctx, kernel.Get(), voxels, "photon_gradient", this))
     {
-      return 0;
+      return false;
     }
   }
   else
@@ -719,7 +741,7 @@ int vtkPhotonTracer::RequestData(
     if (!RunOctree(ctx, this, alloc, nBuffer.Get(), m.Dims, this->PrimaryTolerance,
           this->SecondaryTolerance, octree))
     {
-      return 0;
+      return false;
     }
   }
   else
@@ -728,19 +750,34 @@ int vtkPhotonTracer::RequestData(
   }
   if (!gradBuffer || !octree || !ctx->Finish(this))
   {
-    return 0;
+    return false;
   }
   this->OctreeSeconds = Seconds(start);
   this->UpdateProgress(0.05);
+  return true;
+}
 
-  // Stage 2: generation.
-  start = Clock::now();
+//------------------------------------------------------------------------------
+// Stage 2: generation.
+bool vtkPhotonTracer::GeneratePhotons(Internals& run)
+{
+  Medium& m = run.M;
+  vtkOpenCLContext* ctx = run.Context;
+  Allocator& alloc = run.Alloc;
+  const double voxelUnit = std::min({ m.Spacing[0], m.Spacing[1], m.Spacing[2] });
+  const size_t photons = run.Photons;
+  vtkOpenCLBuffer& pos = run.Pos;
+  vtkOpenCLBuffer& dirs = run.Dirs;
+  vtkOpenCLBuffer& power = run.Power;
+  const std::vector<LightSetup>& lights = run.Lights;
+  const auto start = Clock::now();
   // The device works in units of the total power sent towards the box (`unit`), so that one
   // compiled program serves every light set up. Every sum (a voxel's deposits, a tally, a
   // direction sum weighted by three channels) is then bounded by 1, plus roulette boosts; 16
   // leaves room for both. The host multiplies the results back by `unit`.
-  const double unit = totalBound > 0 ? totalBound : 1.0;
-  const double scale = vtkOpenCLContext::ChooseFixedPointScale(16.0) / unit;
+  run.Unit = run.TotalBound > 0 ? run.TotalBound : 1.0;
+  run.Scale = vtkOpenCLContext::ChooseFixedPointScale(16.0) / run.Unit;
+  const double unit = run.Unit;
   const double deviceScale = vtkOpenCLContext::ChooseFixedPointScale(16.0);
   std::ostringstream scaleLiteral;
   scaleLiteral << "0x1p" << std::ilogb(deviceScale) << "f";
@@ -756,26 +793,24 @@ int vtkPhotonTracer::RequestData(
           << " -DEXT_STEP_LIMIT=" << FloatLiteral(this->ExtinctionStepLimit)
           << " -DROULETTE=" << FloatLiteral(this->RouletteThreshold)
           << " -DMAX_TURN=" << FloatLiteral(this->MaximumTurn);
-  cl_program trace = ctx->GetProgram(
+  run.Trace = ctx->GetProgram(
     { "refracta_atomics.cl", "refracta_common.cl", "photon_trace.cl" }, options.str(), this);
+  cl_program trace = run.Trace;
   if (!trace)
   {
-    return 0;
+    return false;
   }
-  vtkOpenCLBuffer pos =
-    alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_float4), nullptr, "photon positions");
-  vtkOpenCLBuffer dirs =
-    alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_float4), nullptr, "photon directions");
-  vtkOpenCLBuffer power =
-    alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_float4), nullptr, "photon powers");
+  pos = alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_float4), nullptr, "photon positions");
+  dirs = alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_float4), nullptr, "photon directions");
+  power = alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_float4), nullptr, "photon powers");
   if (!pos || !dirs || !power || !ctx->ZeroBuffer(power.Get(), photons * sizeof(cl_float4), this))
   {
-    return 0;
+    return false;
   }
   vtkOpenCLKernel generate = ctx->CreateKernel(trace, "photon_generate", this);
   if (!generate)
   {
-    return 0;
+    return false;
   }
   uint64_t seedState = 0x5eedULL ^ (static_cast<uint64_t>(this->Seed) << 17);
   cl_uint offset = 0;
@@ -800,31 +835,56 @@ int vtkPhotonTracer::RequestData(
           "clSetKernelArg(photon_generate)", this) ||
       !Run1D(ctx, generate.Get(), count, "photon_generate", this))
     {
-      return 0;
+      return false;
     }
     offset += count;
   }
   if (!ctx->Finish(this))
   {
-    return 0;
+    return false;
   }
   this->GenerationSeconds = Seconds(start);
   this->UpdateProgress(0.1);
+  return true;
+}
 
-  // Stage 3: marching.
-  start = Clock::now();
+//------------------------------------------------------------------------------
+// Stage 3: marching.
+bool vtkPhotonTracer::MarchPhotons(Internals& run)
+{
+  Medium& m = run.M;
+  vtkOpenCLContext* ctx = run.Context;
+  Allocator& alloc = run.Alloc;
+  const size_t voxels = m.Voxels;
+  const cl_int4 dims = Int4(m.Dims);
+  const cl_float4 spacing = Float4(m.Spacing);
+  const size_t photons = run.Photons;
+  const double scale = run.Scale;
+  cl_program trace = run.Trace;
+  vtkOpenCLBuffer& nBuffer = run.NBuffer;
+  vtkOpenCLBuffer& gradBuffer = run.GradBuffer;
+  vtkOpenCLBuffer& octree = run.Octree;
+  vtkOpenCLBuffer& pos = run.Pos;
+  vtkOpenCLBuffer& dirs = run.Dirs;
+  vtkOpenCLBuffer& power = run.Power;
+  vtkOpenCLBuffer& extBuffer = run.ExtBuffer;
+  vtkOpenCLBuffer& albBuffer = run.AlbBuffer;
+  vtkOpenCLBuffer& radFixed = run.RadFixed;
+  vtkOpenCLBuffer& dirFixed = run.DirFixed;
+  vtkOpenCLBuffer& tallies = run.Tallies;
+  vtkOpenCLBuffer& counters = run.Counters;
+  const auto start = Clock::now();
   const size_t accumulators = m.Scatters ? voxels * 3 : 1;
-  vtkOpenCLBuffer extBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+  extBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
     (m.Attenuates ? voxels * 3 : 1) * sizeof(float), m.Extinction.data(), "Extinction");
-  vtkOpenCLBuffer albBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+  albBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
     (m.Scatters ? voxels * 3 : 1) * sizeof(float), m.Albedo.data(), "Albedo");
-  vtkOpenCLBuffer radFixed =
+  radFixed =
     alloc.Make(CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "radiance accumulator");
-  vtkOpenCLBuffer dirFixed =
+  dirFixed =
     alloc.Make(CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "direction accumulator");
-  vtkOpenCLBuffer tallies = alloc.Make(CL_MEM_READ_WRITE, 21 * sizeof(cl_long), nullptr, "tallies");
-  vtkOpenCLBuffer counters =
-    alloc.Make(CL_MEM_READ_WRITE, 8 * sizeof(cl_long), nullptr, "counters");
+  tallies = alloc.Make(CL_MEM_READ_WRITE, 21 * sizeof(cl_long), nullptr, "tallies");
+  counters = alloc.Make(CL_MEM_READ_WRITE, 8 * sizeof(cl_long), nullptr, "counters");
   vtkOpenCLKernel march = ctx->CreateKernel(trace, "photon_march", this);
   if (!extBuffer || !albBuffer || !radFixed || !dirFixed || !tallies || !counters || !march ||
     !ctx->ZeroBuffer(radFixed.Get(), accumulators * sizeof(cl_long), this) ||
@@ -832,7 +892,7 @@ int vtkPhotonTracer::RequestData(
     !ctx->ZeroBuffer(tallies.Get(), 21 * sizeof(cl_long), this) ||
     !ctx->ZeroBuffer(counters.Get(), 8 * sizeof(cl_long), this))
   {
-    return 0;
+    return false;
   }
   const cl_uint photonCount = static_cast<cl_uint>(photons);
   const cl_uint seed = this->Seed;
@@ -852,7 +912,7 @@ int vtkPhotonTracer::RequestData(
     if (!marchChunk || !state || !status || !active ||
       !ctx->ZeroBuffer(status.Get(), photons * sizeof(cl_uint4), this))
     {
-      return 0;
+      return false;
     }
     const double radianceFactor = 1.0 / (scale * m.Spacing[0] * m.Spacing[1] * m.Spacing[2]);
     const cl_uint k = static_cast<cl_uint>(this->StepsPerChunk);
@@ -867,7 +927,7 @@ int vtkPhotonTracer::RequestData(
     {
       if (!ctx->ZeroBuffer(active.Get(), sizeof(cl_int), this))
       {
-        return 0;
+        return false;
       }
       for (size_t first = 0; first < photons; first += chunk)
       {
@@ -881,13 +941,13 @@ int vtkPhotonTracer::RequestData(
           !Run1D(
             ctx, marchChunk.Get(), std::min(chunk, photons - first), "photon_march_chunk", this))
         {
-          return 0;
+          return false;
         }
       }
       cl_int count = 0;
       if (!ctx->ReadBuffer(active.Get(), sizeof(cl_int), &count, this))
       {
-        return 0;
+        return false;
       }
       stillActive = count;
       ++this->NumberOfChunks;
@@ -895,7 +955,7 @@ int vtkPhotonTracer::RequestData(
         !this->Callback(radFixed.Get(), dirFixed.Get(), radianceFactor, 1.0 / scale, count))
       {
         vtkErrorMacro("The chunk callback failed after chunk " << this->NumberOfChunks << ".");
-        return 0;
+        return false;
       }
       this->UpdateProgress(0.1 + 0.8 * std::min(1.0, double(launch * k) / bound));
     }
@@ -911,25 +971,42 @@ int vtkPhotonTracer::RequestData(
       !Run1D(ctx, march.Get(), std::min(chunk, photons - first), "photon_march", this) ||
       !ctx->Finish(this))
     {
-      return 0;
+      return false;
     }
     this->UpdateProgress(0.1 + 0.8 * std::min(1.0, static_cast<double>(first + chunk) / photons));
   }
-  std::vector<cl_long> tally(21), count(8);
+  std::vector<cl_long>& tally = run.Tally;
+  std::vector<cl_long>& count = run.Count;
+  tally.assign(21, 0);
+  count.assign(8, 0);
   if (!ctx->ReadBuffer(tallies.Get(), 21 * sizeof(cl_long), tally.data(), this) ||
     !ctx->ReadBuffer(counters.Get(), 8 * sizeof(cl_long), count.data(), this))
   {
-    return 0;
+    return false;
   }
   this->MarchingSeconds = Seconds(start);
+  return true;
+}
 
-  // Stage 4: resolve, smooth, normalise.
-  start = Clock::now();
-  vtkNew<vtkFloatArray> radiance;
+//------------------------------------------------------------------------------
+// Stage 4: resolve, smooth, normalise.
+bool vtkPhotonTracer::ResolveRadiance(Internals& run)
+{
+  Medium& m = run.M;
+  vtkOpenCLContext* ctx = run.Context;
+  Allocator& alloc = run.Alloc;
+  const size_t voxels = m.Voxels;
+  const cl_int4 dims = Int4(m.Dims);
+  const cl_uint voxelCount = static_cast<cl_uint>(voxels);
+  const double scale = run.Scale;
+  vtkOpenCLBuffer& radFixed = run.RadFixed;
+  vtkOpenCLBuffer& dirFixed = run.DirFixed;
+  const auto start = Clock::now();
+  vtkFloatArray* radiance = run.Radiance;
   radiance->SetName("Radiance");
   radiance->SetNumberOfComponents(3);
   radiance->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
-  vtkNew<vtkFloatArray> direction;
+  vtkFloatArray* direction = run.Direction;
   direction->SetName("RadianceDirection");
   direction->SetNumberOfComponents(3);
   direction->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
@@ -953,14 +1030,14 @@ int vtkPhotonTracer::RequestData(
     }
     if (!smooth || !radA || !dirA || (this->Smoothing && (!radB || !dirB)))
     {
-      return 0;
+      return false;
     }
     vtkOpenCLKernel resolve = ctx->CreateKernel(smooth, "radiance_resolve", this);
     vtkOpenCLKernel filter = ctx->CreateKernel(smooth, "radiance_smooth", this);
     vtkOpenCLKernel normalize = ctx->CreateKernel(smooth, "radiance_normalize", this);
     if (!resolve || !filter || !normalize)
     {
-      return 0;
+      return false;
     }
     const float radianceFactor =
       static_cast<float>(1.0 / (scale * m.Spacing[0] * m.Spacing[1] * m.Spacing[2]));
@@ -970,7 +1047,7 @@ int vtkPhotonTracer::RequestData(
           "clSetKernelArg(radiance_resolve)", this) ||
       !Run1D(ctx, resolve.Get(), voxels, "radiance_resolve", this))
     {
-      return 0;
+      return false;
     }
     cl_mem radOut = radA.Get();
     cl_mem dirOut = dirA.Get();
@@ -984,7 +1061,7 @@ int vtkPhotonTracer::RequestData(
           "clSetKernelArg(radiance_smooth)", this) ||
         !Run1D(ctx, filter.Get(), voxels, "radiance_smooth", this))
       {
-        return 0;
+        return false;
       }
       radOut = radB.Get();
       dirOut = dirB.Get();
@@ -995,17 +1072,24 @@ int vtkPhotonTracer::RequestData(
       !ctx->ReadBuffer(radOut, voxels * 3 * sizeof(float), radiance->GetPointer(0), this) ||
       !ctx->ReadBuffer(dirOut, voxels * 3 * sizeof(float), direction->GetPointer(0), this))
     {
-      return 0;
+      return false;
     }
   }
   this->SmoothingSeconds = Seconds(start);
   this->PeakDeviceMemoryBytes = alloc.Bytes;
+  return true;
+}
 
-  // ---- Output ----
-  output->CopyStructure(input);
-  output->GetPointData()->AddArray(radiance);
-  output->GetPointData()->SetScalars(radiance);
-  output->GetPointData()->AddArray(direction);
+//------------------------------------------------------------------------------
+void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
+{
+  const double scale = run.Scale;
+  const std::vector<cl_long>& tally = run.Tally;
+  const std::vector<cl_long>& count = run.Count;
+  output->CopyStructure(run.Input);
+  output->GetPointData()->AddArray(run.Radiance);
+  output->GetPointData()->SetScalars(run.Radiance);
+  output->GetPointData()->AddArray(run.Direction);
   vtkFieldData* fd = output->GetFieldData();
   auto addCount = [&](const char* name, long long value)
   {
@@ -1014,7 +1098,7 @@ int vtkPhotonTracer::RequestData(
     a->InsertNextValue(value);
     fd->AddArray(a);
   };
-  addCount("NumberOfPhotons", static_cast<long long>(photons));
+  addCount("NumberOfPhotons", static_cast<long long>(run.Photons));
   addCount("PhotonsMarched", count[0]);
   addCount("PhotonsMissed", count[1]);
   addCount("TerminatedEscaped", count[2]);
@@ -1051,6 +1135,45 @@ int vtkPhotonTracer::RequestData(
   addEnergy("EnergyRemaining", remaining);
   addEnergy("EnergyRouletteKilled", e[5]);
   addEnergy("EnergyRouletteGained", e[6]);
+}
+
+//------------------------------------------------------------------------------
+int vtkPhotonTracer::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!output)
+  {
+    vtkErrorMacro("The output is not a vtkImageData.");
+    return 0;
+  }
+  output->Initialize();
+  this->OctreeSeconds = this->GenerationSeconds = this->MarchingSeconds = 0;
+  this->SmoothingSeconds = this->PeakDeviceMemoryBytes = 0;
+  this->UsedCurvedRays = this->UsedExtinction = this->UsedDeposit = false;
+  this->UsedOctree = this->ComputedGradient = false;
+
+  vtkNew<vtkMediumValidator> validator;
+  if (!validator->Validate(input))
+  {
+    vtkErrorMacro("Input 0 is not a valid Refracta medium: " << validator->GetErrorMessage());
+    return 0;
+  }
+  Internals run;
+  run.Input = input;
+  if (!this->SetUpLights(run))
+  {
+    return 0;
+  }
+  this->SharePhotons(run);
+  if (!this->InitializeDevice(run) || !this->BuildOctreeStage(run) || !this->GeneratePhotons(run) ||
+    !this->MarchPhotons(run) || !this->ResolveRadiance(run))
+  {
+    return 0;
+  }
+  this->PeakDeviceMemoryBytes = run.Alloc.Bytes;
+  this->WriteOutput(run, output);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -321,6 +321,15 @@ private:
   vtkPhotonTracer(const vtkPhotonTracer&) = delete;
   void operator=(const vtkPhotonTracer&) = delete;
   struct Internals;
+  // The stages of RequestData, in order; each returns false after reporting an error.
+  bool SetUpLights(Internals& run);
+  void SharePhotons(Internals& run);
+  bool InitializeDevice(Internals& run);
+  bool BuildOctreeStage(Internals& run);
+  bool GeneratePhotons(Internals& run);
+  bool MarchPhotons(Internals& run);
+  bool ResolveRadiance(Internals& run);
+  void WriteOutput(Internals& run, vtkImageData* output);
 };
 
 #endif
