@@ -10,7 +10,9 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLatticeBoltzmannLighting.h"
+#include "vtkLatticeBoltzmannSolver.h"
 #include "vtkNew.h"
+#include "vtkPhotonDiffusionSchedule.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
 
@@ -263,4 +265,31 @@ TEST(LatticeBoltzmannProgress, ProgressAndAbort)
   EXPECT_EQ(converged->GetTuple1(0), 1);
   std::printf(
     "%g iterations\n", out->GetFieldData()->GetArray("LatticeBoltzmannIterations")->GetTuple1(0));
+}
+
+// The schedule drives both passes: its abort reaches whichever stage is running.
+TEST(PhotonDiffusionScheduleProgress, ProgressAndAbort)
+{
+  vtkSmartPointer<vtkImageData> medium = FoggyBall(32);
+  vtkNew<vtkPhotonDiffusionSchedule> schedule;
+  schedule->SetInputData(medium);
+  schedule->GetPhotonTracer()->AddLight(photontest::Directional({ -100, 30, 20 }, { 0, 0, 0 }, 1));
+  schedule->GetPhotonTracer()->SetNumberOfPhotons(1 << 14);
+  schedule->GetSolver()->SetTolerance(1e-6);
+  vtkNew<ProgressLog> log;
+  schedule->AddObserver(vtkCommand::ProgressEvent, log);
+  const double latency = AbortedRun(schedule, log);
+  EXPECT_LT(latency, 0.5);
+  EXPECT_TRUE(schedule->GetLastRunAborted());
+  EXPECT_EQ(schedule->GetOutput()->GetNumberOfPoints(), 0);
+
+  schedule->AbortExecuteOff();
+  log->Reset(2.0);
+  schedule->Update();
+  EXPECT_FALSE(schedule->GetLastRunAborted());
+  ExpectGoodProgress(log->Values, "photon/diffusion schedule");
+  vtkImageData* out = schedule->GetOutput();
+  ASSERT_EQ(out->GetNumberOfPoints(), medium->GetNumberOfPoints());
+  EXPECT_NE(out->GetPointData()->GetArray("MultipleScattering"), nullptr);
+  EXPECT_EQ(photontest::Field(out, "NumberOfPhotons"), 1 << 14);
 }
