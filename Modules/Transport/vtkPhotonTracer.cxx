@@ -19,6 +19,8 @@
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "photon_tallies.cl" // the layout of the tallies and counters, shared with the kernels
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -815,7 +817,8 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DROULETTE=" << FloatLiteral(this->RouletteThreshold)
           << " -DMAX_TURN=" << FloatLiteral(this->MaximumTurn);
   run.Trace = ctx->GetProgram(
-    { "refracta_atomics.cl", "refracta_common.cl", "photon_trace.cl" }, options.str(), this);
+    { "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl", "photon_trace.cl" },
+    options.str(), this);
   cl_program trace = run.Trace;
   if (!trace)
   {
@@ -903,14 +906,15 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
     alloc.Make(CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "radiance accumulator");
   dirFixed =
     alloc.Make(CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "direction accumulator");
-  tallies = alloc.Make(CL_MEM_READ_WRITE, 21 * sizeof(cl_long), nullptr, "tallies");
-  counters = alloc.Make(CL_MEM_READ_WRITE, 8 * sizeof(cl_long), nullptr, "counters");
+  tallies = alloc.Make(CL_MEM_READ_WRITE, PHOTON_TALLY_COUNT * sizeof(cl_long), nullptr, "tallies");
+  counters =
+    alloc.Make(CL_MEM_READ_WRITE, PHOTON_COUNTER_COUNT * sizeof(cl_long), nullptr, "counters");
   vtkOpenCLKernel march = ctx->CreateKernel(trace, "photon_march", this);
   if (!extBuffer || !albBuffer || !radFixed || !dirFixed || !tallies || !counters || !march ||
     !ctx->ZeroBuffer(radFixed.Get(), accumulators * sizeof(cl_long), this) ||
     !ctx->ZeroBuffer(dirFixed.Get(), accumulators * sizeof(cl_long), this) ||
-    !ctx->ZeroBuffer(tallies.Get(), 21 * sizeof(cl_long), this) ||
-    !ctx->ZeroBuffer(counters.Get(), 8 * sizeof(cl_long), this))
+    !ctx->ZeroBuffer(tallies.Get(), PHOTON_TALLY_COUNT * sizeof(cl_long), this) ||
+    !ctx->ZeroBuffer(counters.Get(), PHOTON_COUNTER_COUNT * sizeof(cl_long), this))
   {
     return false;
   }
@@ -1033,10 +1037,10 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
   }
   std::vector<cl_long>& tally = run.Tally;
   std::vector<cl_long>& count = run.Count;
-  tally.assign(21, 0);
-  count.assign(8, 0);
-  if (!ctx->ReadBuffer(tallies.Get(), 21 * sizeof(cl_long), tally.data(), this) ||
-    !ctx->ReadBuffer(counters.Get(), 8 * sizeof(cl_long), count.data(), this))
+  tally.assign(PHOTON_TALLY_COUNT, 0);
+  count.assign(PHOTON_COUNTER_COUNT, 0);
+  if (!ctx->ReadBuffer(tallies.Get(), PHOTON_TALLY_COUNT * sizeof(cl_long), tally.data(), this) ||
+    !ctx->ReadBuffer(counters.Get(), PHOTON_COUNTER_COUNT * sizeof(cl_long), count.data(), this))
   {
     return false;
   }
@@ -1155,14 +1159,14 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
     fd->AddArray(a);
   };
   addCount("NumberOfPhotons", static_cast<long long>(run.Photons));
-  addCount("PhotonsMarched", count[0]);
-  addCount("PhotonsMissed", count[1]);
-  addCount("TerminatedEscaped", count[2]);
-  addCount("TerminatedRoulette", count[3]);
-  addCount("TerminatedStepCap", count[4]);
-  addCount("TerminatedInvalid", count[5]);
-  addCount("TotalSteps", count[6]);
-  addCount("TotalVoxelPieces", count[7]);
+  addCount("PhotonsMarched", count[PHOTON_COUNTER_MARCHED]);
+  addCount("PhotonsMissed", count[PHOTON_COUNTER_MISSED]);
+  addCount("TerminatedEscaped", count[PHOTON_COUNTER_ESCAPED]);
+  addCount("TerminatedRoulette", count[PHOTON_COUNTER_ROULETTE]);
+  addCount("TerminatedStepCap", count[PHOTON_COUNTER_STEP_CAP]);
+  addCount("TerminatedInvalid", count[PHOTON_COUNTER_INVALID]);
+  addCount("TotalSteps", count[PHOTON_COUNTER_STEPS]);
+  addCount("TotalVoxelPieces", count[PHOTON_COUNTER_PIECES]);
   auto energy = [&](int t, int c) { return static_cast<double>(tally[3 * t + c]) / scale; };
   auto addEnergy = [&](const char* name, const std::array<double, 3>& v)
   {
@@ -1172,8 +1176,8 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
     a->InsertNextTuple(v.data());
     fd->AddArray(a);
   };
-  std::array<double, 3> e[7], remaining;
-  for (int t = 0; t < 7; ++t)
+  std::array<double, 3> e[PHOTON_TALLY_BOOKS], remaining;
+  for (int t = 0; t < PHOTON_TALLY_BOOKS; ++t)
   {
     for (int c = 0; c < 3; ++c)
     {
@@ -1182,15 +1186,16 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
   }
   for (int c = 0; c < 3; ++c)
   {
-    remaining[c] = e[4][c] + e[5][c] - e[6][c];
+    remaining[c] =
+      e[PHOTON_TALLY_REMAINING][c] + e[PHOTON_TALLY_KILLED][c] - e[PHOTON_TALLY_GAINED][c];
   }
-  addEnergy("EnergyEmitted", e[0]);
-  addEnergy("EnergyAbsorbed", e[1]);
-  addEnergy("EnergyEscaped", e[2]);
-  addEnergy("EnergyScattered", e[3]);
+  addEnergy("EnergyEmitted", e[PHOTON_TALLY_EMITTED]);
+  addEnergy("EnergyAbsorbed", e[PHOTON_TALLY_ABSORBED]);
+  addEnergy("EnergyEscaped", e[PHOTON_TALLY_ESCAPED]);
+  addEnergy("EnergyScattered", e[PHOTON_TALLY_SCATTERED]);
   addEnergy("EnergyRemaining", remaining);
-  addEnergy("EnergyRouletteKilled", e[5]);
-  addEnergy("EnergyRouletteGained", e[6]);
+  addEnergy("EnergyRouletteKilled", e[PHOTON_TALLY_KILLED]);
+  addEnergy("EnergyRouletteGained", e[PHOTON_TALLY_GAINED]);
 }
 
 //------------------------------------------------------------------------------
