@@ -1,6 +1,7 @@
 #include "vtkRefractaImageRenderer.h"
 
 #include "vtkAlgorithmOutput.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -283,6 +284,7 @@ int vtkRefractaImageRenderer::RequestData(
 {
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
+  this->LastRunAborted = false;
   vtkImageData* medium = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* lighting = inputVector[1]->GetNumberOfInformationObjects()
     ? vtkImageData::GetData(inputVector[1], 0)
@@ -314,12 +316,38 @@ int vtkRefractaImageRenderer::RequestData(
     return 0;
   }
   std::vector<float> hdr;
-  this->UpdateProgress(0.1);
-  if (!pass->Render(this->Camera, this->ImageSize[0], this->ImageSize[1], nullptr, nullptr, hdr))
+  // The uploads above are a few percent of the work, the tiles of the view pass nearly all of
+  // it, tone mapping the rest. The pass's per-tile progress is forwarded, and AbortExecute is
+  // handed to the pass, which stops after the current tile.
+  this->UpdateProgress(0.02);
+  auto forward = [this, pass](vtkObject*, unsigned long, void* data)
+  {
+    this->UpdateProgress(0.02 + 0.96 * *static_cast<double*>(data));
+    if (this->GetAbortExecute())
+    {
+      pass->SetAbortRender(true);
+    }
+  };
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(&forward);
+  observer->SetCallback([](vtkObject* caller, unsigned long id, void* client, void* data)
+    { (*static_cast<decltype(forward)*>(client))(caller, id, data); });
+  const unsigned long tag = pass->AddObserver(vtkCommand::ProgressEvent, observer);
+  pass->SetAbortRender(this->GetAbortExecute() != 0);
+  const bool rendered =
+    pass->Render(this->Camera, this->ImageSize[0], this->ImageSize[1], nullptr, nullptr, hdr);
+  pass->RemoveObserver(tag);
+  pass->SetAbortRender(false);
+  if (!rendered && pass->GetLastRenderAborted())
+  {
+    // An abort is not an error: empty output, no message.
+    this->LastRunAborted = true;
+    return 1;
+  }
+  if (!rendered)
   {
     return 0;
   }
-  this->UpdateProgress(0.9);
 
   const size_t pixels = static_cast<size_t>(this->ImageSize[0]) * this->ImageSize[1];
   output->SetExtent(0, this->ImageSize[0] - 1, 0, this->ImageSize[1] - 1, 0, 0);
@@ -363,6 +391,7 @@ void vtkRefractaImageRenderer::PrintSelf(ostream& os, vtkIndent indent)
                                     : (this->ToneMapping == REINHARD ? "REINHARD" : "EXPONENTIAL"))
      << "\n";
   os << indent << "Camera: " << this->Camera.Get() << "\n";
+  os << indent << "LastRunAborted: " << this->LastRunAborted << "\n";
   os << indent << "EnvironmentTexture: " << this->EnvironmentTexture.Get() << "\n";
   os << indent << "ViewPass:\n";
   this->ViewPass->PrintSelf(os, indent.GetNextIndent());
