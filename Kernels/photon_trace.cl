@@ -1,6 +1,6 @@
 // photon_trace.cl: photon generation from lights and adaptive curved-path photon marching
 // (Sun et al. 2008, sections 4.3, 4.4 and 5.3; conventions of Documentation/Physics.md).
-// Prepend refracta_atomics.cl and refracta_common.cl.
+// Prepend refracta_atomics.cl, refracta_common.cl and photon_tallies.cl (the books' layout).
 //
 // photon_generate: one work-item per photon of one light. Photon i takes point i of a 2D
 // rank-1 lattice (Roberts' R2 sequence in 32-bit fixed point, rotated by a seed-derived offset:
@@ -36,10 +36,10 @@
 // optical depth (0: off); ROULETTE a fraction of the initial power; REFRACTA_FIXED_SCALE the
 // fixed-point scale of refracta_atomics.cl.
 //
-// Tallies (fixed point, REFRACTA_FIXED_SCALE): tallies[3 * T + c] for T = 0 emitted, 1 absorbed,
-// 2 escaped, 3 scattered, 4 remaining at the step cap or on an invalid state, 5 killed by
-// roulette, 6 added to roulette survivors. Counters (plain integers): 0 photons marched, 1 missed,
-// 2 escaped, 3 roulette, 4 step cap, 5 invalid, 6 steps, 7 voxel pieces.
+// Tallies (fixed point, REFRACTA_FIXED_SCALE): tallies[3 * T + c] for the books T =
+// PHOTON_TALLY_EMITTED ... PHOTON_TALLY_GAINED; counters: PHOTON_COUNTER_MARCHED ...
+// PHOTON_COUNTER_PIECES; the outcome of a photon is the index of its counter (escaped, roulette,
+// step cap, invalid). The layout is defined once, in photon_tallies.cl.
 
 #ifndef REFRACT
 #define REFRACT 1
@@ -190,20 +190,20 @@ inline void photon_finish(volatile __global long* tallies, volatile __global lon
   float3 emitted, const photon_state* ps, int outcome, int steps)
 {
   const float3 none = (float3)(0.0f);
-  const float3 escaped = outcome == 2 ? ps->power : none;
-  const float3 remaining = outcome >= 4 ? ps->power : none;
-  const float3 books[7] = { emitted, ps->absorbed, escaped, ps->scattered, remaining, ps->killed,
+  const float3 escaped = outcome == PHOTON_COUNTER_ESCAPED ? ps->power : none;
+  const float3 remaining = outcome >= PHOTON_COUNTER_STEP_CAP ? ps->power : none;
+  const float3 books[PHOTON_TALLY_BOOKS] = { emitted, ps->absorbed, escaped, ps->scattered, remaining, ps->killed,
     ps->gained };
-  for (int t = 0; t < 7; ++t)
+  for (int t = 0; t < PHOTON_TALLY_BOOKS; ++t)
   {
     refracta_atomic_add_fixed(tallies + 3 * t + 0, books[t].x);
     refracta_atomic_add_fixed(tallies + 3 * t + 1, books[t].y);
     refracta_atomic_add_fixed(tallies + 3 * t + 2, books[t].z);
   }
-  atom_add(counters + 0, 1L);
+  atom_add(counters + PHOTON_COUNTER_MARCHED, 1L);
   atom_add(counters + outcome, 1L);
-  atom_add(counters + 6, (long)steps);
-  atom_add(counters + 7, (long)ps->pieces);
+  atom_add(counters + PHOTON_COUNTER_STEPS, (long)steps);
+  atom_add(counters + PHOTON_COUNTER_PIECES, (long)ps->pieces);
 }
 
 #if EXTINCTION
@@ -395,14 +395,14 @@ inline int photon_curved_step(photon_state* ps, float3* x, float3* v, int* steps
 {
   if (*steps >= MAX_STEPS)
   {
-    return 4;
+    return PHOTON_COUNTER_STEP_CAP;
   }
   float3 x1, v1;
   photon_advance(*x, *v, octree, extinction, refractiveIndex, gradient, dims, spacing, &x1, &v1);
   ++*steps;
   if (!all(isfinite(x1)) || !all(isfinite(v1)))
   {
-    return 5;
+    return PHOTON_COUNTER_INVALID;
   }
   const bool inBox = all(x1 >= lo) && all(x1 <= hi);
   float tExit = 1.0f;
@@ -416,12 +416,12 @@ inline int photon_curved_step(photon_state* ps, float3* x, float3* v, int* steps
   photon_walk(ps, *x, x1, tExit, dims, spacing, extinction, albedo, radiance, directionSum);
   if (ps->dead)
   {
-    return 3;
+    return PHOTON_COUNTER_ROULETTE;
   }
 #endif
   if (!inBox)
   {
-    return 2;
+    return PHOTON_COUNTER_ESCAPED;
   }
   *x = x1;
   *v = v1;
@@ -448,7 +448,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   const float p0 = fmax(ps.power.x, fmax(ps.power.y, ps.power.z));
   if (!(p0 > 0.0f))
   {
-    atom_add(counters + 1, 1L);
+    atom_add(counters + PHOTON_COUNTER_MISSED, 1L);
     return;
   }
   ps.threshold = ROULETTE * p0;
@@ -458,7 +458,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   ps.dead = 0;
   const float3 emitted = ps.power;
   int steps = 0;
-  int outcome = 2; // counter index: 2 escaped, 3 roulette, 4 step cap, 5 invalid
+  int outcome = PHOTON_COUNTER_ESCAPED; // counter index: 2 escaped, 3 roulette, 4 step cap, 5 invalid
   float3 lo;
   float3 hi;
   refracta_domain(dims, spacing, &lo, &hi);
@@ -487,7 +487,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
 #endif
   if (ps.dead)
   {
-    outcome = 3; // the straight walk's roulette
+    outcome = PHOTON_COUNTER_ROULETTE; // the straight walk's roulette
   }
   photon_finish(tallies, counters, emitted, &ps, outcome, steps);
 }
@@ -535,7 +535,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     const float p0 = fmax(ps.power.x, fmax(ps.power.y, ps.power.z));
     if (!(p0 > 0.0f))
     {
-      atom_add(counters + 1, 1L);
+      atom_add(counters + PHOTON_COUNTER_MISSED, 1L);
       status[id] = (uint4)(2u, 0u, 0u, 0u);
       return;
     }
@@ -588,7 +588,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     const float segment = fmin(spacing.x, fmin(spacing.y, spacing.z));
     if (!(length(v) > 0.0f) || !refracta_intersect_box(x, v, lo, hi, &t0, &t1) || !(t1 > 0.0f))
     {
-      outcome = 2;
+      outcome = PHOTON_COUNTER_ESCAPED;
     }
     for (uint c = 0; c < chunkSteps && outcome < 0; ++c)
     {
@@ -605,11 +605,11 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
       t1 -= len;
       if (ps.dead)
       {
-        outcome = 3;
+        outcome = PHOTON_COUNTER_ROULETTE;
       }
       else if (!(t1 > 1e-6f * segment))
       {
-        outcome = 2;
+        outcome = PHOTON_COUNTER_ESCAPED;
       }
     }
   }

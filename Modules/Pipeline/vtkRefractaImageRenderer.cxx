@@ -324,6 +324,7 @@ int vtkRefractaImageRenderer::RequestData(
 {
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
+  this->LastRunAborted = false;
   vtkImageData* medium = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* lighting = inputVector[1]->GetNumberOfInformationObjects()
     ? vtkImageData::GetData(inputVector[1], 0)
@@ -356,7 +357,9 @@ int vtkRefractaImageRenderer::RequestData(
   pipeline->SetCamera(this->Camera);
   if (!pipeline->Render(this->ImageSize[0], this->ImageSize[1]))
   {
-    return 0;
+    // An abort is not an error: empty output, no message.
+    this->LastRunAborted = pipeline->GetLastRenderAborted();
+    return this->LastRunAborted ? 1 : 0;
   }
   const std::vector<float>& hdr = pipeline->GetImage();
 
@@ -405,6 +408,7 @@ void vtkRefractaImageRenderer::PrintSelf(ostream& os, vtkIndent indent)
                                     : (this->ToneMapping == REINHARD ? "REINHARD" : "EXPONENTIAL"))
      << "\n";
   os << indent << "Camera: " << this->Camera.Get() << "\n";
+  os << indent << "LastRunAborted: " << this->LastRunAborted << "\n";
   os << indent << "EnvironmentTexture: " << this->EnvironmentTexture.Get() << "\n";
   os << indent << "Pipeline:\n";
   this->Pipeline->PrintSelf(os, indent.GetNextIndent());

@@ -44,6 +44,13 @@
  *
  * Bad input (invalid medium, lighting volume on another grid, no camera, a degenerate camera, a
  * bad environment image): vtkErrorMacro naming it, RequestData returns 0, the output is empty.
+ *
+ * Progress and abort: the view pass renders in tiles of rows (vtkRefractaViewPass::TilePixels,
+ * default 65536 pixels; the image is identical to an untiled render) and its per-tile progress is
+ * forwarded: ProgressEvent rises monotonically from 0.02 (uploads done) to 0.98 (all tiles) and
+ * 1. AbortExecute is handed to the pass, which stops after the current tile: the output is then
+ * empty, no error is reported (RequestData returns 1), GetLastRunAborted() is set, and after
+ * AbortExecuteOff() the next Update() renders from the start.
  */
 #ifndef vtkRefractaImageRenderer_h
 #define vtkRefractaImageRenderer_h
@@ -189,6 +196,11 @@ public:
   vtkRefractaRenderPipeline* GetPipeline();
 
   /**
+   * Whether the last RequestData stopped because AbortExecute was set (its output is empty).
+   */
+  vtkGetMacro(LastRunAborted, bool);
+
+  /**
    * Tone-map `pixels` RGBA floats into 8-bit RGB with the operator and exposure given.
    */
   static void ToneMap(
@@ -212,6 +224,7 @@ protected:
   vtkSmartPointer<vtkTexture> EnvironmentTexture;
   vtkSmartPointer<vtkRefractaRenderPipeline> Pipeline;
   vtkRefractaViewPass* ViewPass; // the pipeline's
+  bool LastRunAborted = false;
 
 private:
   vtkRefractaImageRenderer(const vtkRefractaImageRenderer&) = delete;

@@ -131,6 +131,10 @@ vtkRefractaRenderPipeline::vtkRefractaRenderPipeline()
         {
           algorithm->SetAbortExecute(1);
         }
+        else if (auto* view = vtkRefractaViewPass::SafeDownCast(caller))
+        {
+          view->SetAbortRender(true);
+        }
       }
       if (callData)
       {
@@ -392,6 +396,7 @@ void vtkRefractaRenderPipeline::AbortRender()
   {
     in.Running->SetAbortExecute(1);
   }
+  in.ViewPass->SetAbortRender(true); // cleared at the start of the next Render()
 }
 
 bool vtkRefractaRenderPipeline::GetStageRan(int stage) const
@@ -476,6 +481,7 @@ bool vtkRefractaRenderPipeline::Render(int width, int height, const float* depth
 {
   Internals& in = *this->Internal;
   in.Abort = false;
+  in.ViewPass->SetAbortRender(false);
   this->LastRenderAborted = false;
   std::fill(std::begin(in.Ran), std::end(in.Ran), false);
   std::fill(std::begin(in.Seconds), std::end(in.Seconds), 0.0);
@@ -764,6 +770,7 @@ bool vtkRefractaRenderPipeline::RunView(int width, int height, const float* dept
   if (!in.ViewPass->Render(
         in.Camera, width, height, in.PropMatrix, depthLimit, in.Image, &in.Transmittance))
   {
+    this->LastRenderAborted = in.ViewPass->GetLastRenderAborted();
     return false;
   }
   const size_t pixels = static_cast<size_t>(width) * height;

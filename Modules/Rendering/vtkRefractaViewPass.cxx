@@ -1,5 +1,7 @@
 #include "vtkRefractaViewPass.h"
 
+#include "vtkCommand.h"
+
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
@@ -692,6 +694,8 @@ bool vtkRefractaViewPass::ComputeRayFrame(vtkCamera* camera, vtkImageData* mediu
 bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMatrix4x4* propMatrix,
   const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance)
 {
+  this->LastRenderAborted = false;
+  this->LastNumberOfTiles = 0;
   Internals& in = *this->Internal;
   if (!in.Medium)
   {
@@ -925,11 +929,44 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     return false;
   }
   const auto start = std::chrono::steady_clock::now();
-  const size_t global[2] = { static_cast<size_t>(width), static_cast<size_t>(height) };
+  // Tiles of whole rows (a global offset on the same kernel: every pixel computes exactly what it
+  // would in one launch), each waited for, so that progress is reported and an abort is seen
+  // between them.
+  // The first tile has TilePixels pixels; later ones are sized from the measured rate to take
+  // about TileSeconds (at most twice the previous tile, at least one row).
+  int rowsPerTile = std::max(1, std::min(height, this->TilePixels / width));
+  for (int row = 0, rows = 0; row < height; row += rows)
+  {
+    rows = std::min(rowsPerTile, height - row);
+    const auto tileStart = std::chrono::steady_clock::now();
+    const size_t offset[2] = { 0, static_cast<size_t>(row) };
+    const size_t global[2] = { static_cast<size_t>(width), static_cast<size_t>(rows) };
+    if (!context->Check(clEnqueueNDRangeKernel(context->GetQueue(), kernel.Get(), 2, offset, global,
+                          nullptr, 0, nullptr, nullptr),
+          "clEnqueueNDRangeKernel(refracta_view_pass)", this) ||
+      !context->Finish(this))
+    {
+      return false;
+    }
+    ++this->LastNumberOfTiles;
+    if (this->TileSeconds > 0)
+    {
+      const double seconds = std::max(
+        1e-6, std::chrono::duration<double>(std::chrono::steady_clock::now() - tileStart).count());
+      const double wanted = rows * this->TileSeconds / seconds;
+      rowsPerTile = static_cast<int>(std::max(1.0, std::min(wanted, 2.0 * rows)));
+    }
+    double progress = static_cast<double>(row + rows) / height;
+    this->InvokeEvent(vtkCommand::ProgressEvent, &progress);
+    if (this->AbortRender && row + rows < height)
+    {
+      this->LastRenderAborted = true;
+      return false;
+    }
+  }
   hdr.resize(pixels * 4);
   std::vector<cl_uint> steps(pixels);
-  if (!context->RunKernel(kernel.Get(), 2, global, nullptr, "refracta_view_pass", this) ||
-    !context->ReadBuffer(hdrBuffer.Get(), pixels * 16, hdr.data(), this) ||
+  if (!context->ReadBuffer(hdrBuffer.Get(), pixels * 16, hdr.data(), this) ||
     !context->ReadBuffer(stepBuffer.Get(), pixels * 4, steps.data(), this))
   {
     return false;
@@ -964,6 +1001,9 @@ void vtkRefractaViewPass::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "TransmittanceCutoff: " << this->TransmittanceCutoff << "\n";
   os << indent << "MaxSteps: " << this->MaxSteps << "\n";
+  os << indent << "TilePixels: " << this->TilePixels << "\n";
+  os << indent << "TileSeconds: " << this->TileSeconds << "\n";
+  os << indent << "AbortRender: " << this->AbortRender << "\n";
   os << indent << "BackgroundColor: (" << this->BackgroundColor[0] << ", "
      << this->BackgroundColor[1] << ", " << this->BackgroundColor[2] << ")\n";
   os << indent << "EnvironmentMap: " << this->Internal->Environment.Get() << "\n";

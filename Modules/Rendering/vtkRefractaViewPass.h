@@ -166,7 +166,13 @@ public:
    * floats) caps each pixel's path length in the medium's world units (opaque geometry).
    * Fills `hdr` with W H RGBA floats (A = 1 - mean transmittance) and, when given,
    * `transmittance` with W H RGBA floats (the path's RGB transmittance, A = 0). Returns false
-   * after an error.
+   * after an error, or without a message when aborted (see SetAbortRender()).
+   *
+   * Progress and abort: the image is rendered in tiles of whole rows (see TilePixels)
+   * (the same kernel with a global offset, so the image is identical to one launch); after each
+   * tile Render() invokes vtkCommand::ProgressEvent on this object with the fraction of rows
+   * done (a double, increasing to 1) and then, if AbortRender is set, stops and returns false
+   * with GetLastRenderAborted() true and `hdr` untouched.
    */
   bool Render(vtkCamera* camera, int width, int height, vtkMatrix4x4* propMatrix,
     const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance = nullptr);
@@ -206,6 +212,36 @@ public:
    * Number of kernel launches (view passes) so far.
    */
   vtkGetMacro(NumberOfRenders, int);
+
+  ///@{
+  /**
+   * Tiles of Render(): the first has TilePixels pixels (rounded down to whole rows, at least one;
+   * default 65536); each later one is sized from the rate measured on the previous one to take
+   * about TileSeconds (default 0.1 s; at most twice the previous tile's rows; 0: every tile has
+   * TilePixels pixels). The image does not depend on them.
+   */
+  vtkSetClampMacro(TilePixels, int, 1, 1 << 30);
+  vtkGetMacro(TilePixels, int);
+  vtkSetClampMacro(TileSeconds, double, 0.0, 1e6);
+  vtkGetMacro(TileSeconds, double);
+  ///@}
+
+  ///@{
+  /**
+   * Abort request: when set, Render() stops after the current tile (see Render()). Set it from a
+   * ProgressEvent observer; it stays set until cleared and does not modify the pass.
+   */
+  void SetAbortRender(bool abort) { this->AbortRender = abort; }
+  bool GetAbortRender() const { return this->AbortRender; }
+  ///@}
+
+  ///@{
+  /**
+   * Whether the last Render() stopped on AbortRender, and the tiles it rendered.
+   */
+  vtkGetMacro(LastRenderAborted, bool);
+  vtkGetMacro(LastNumberOfTiles, int);
+  ///@}
 
   /**
    * Whether the current medium's refractive index varies (so AUTO traces curved rays).
@@ -252,6 +288,11 @@ protected:
   bool LastCurved = false;
   int NumberOfUploads = 0;
   int NumberOfRenders = 0;
+  int TilePixels = 65536;
+  double TileSeconds = 0.1;
+  bool AbortRender = false;
+  bool LastRenderAborted = false;
+  int LastNumberOfTiles = 0;
 
 private:
   vtkRefractaViewPass(const vtkRefractaViewPass&) = delete;

@@ -28,16 +28,24 @@ vtkStandardNewMacro(vtkLatticeBoltzmannLighting);
 namespace
 {
 
-// Forwards the solver's progress to the filter.
+// Forwards the solver's progress to the filter (scaled into [First, Last]) and the filter's
+// AbortExecute to the solver.
 class ProgressForwarder : public vtkCommand
 {
 public:
   static ProgressForwarder* New() { return new ProgressForwarder; }
-  void Execute(vtkObject*, unsigned long, void* data) override
+  void Execute(vtkObject* caller, unsigned long, void* data) override
   {
-    this->Filter->UpdateProgress(*static_cast<double*>(data));
+    const double p = *static_cast<double*>(data);
+    this->Filter->UpdateProgress(this->First + (this->Last - this->First) * p);
+    if (this->Filter->GetAbortExecute())
+    {
+      static_cast<vtkLatticeBoltzmannSolver*>(caller)->SetAbortSolve(true);
+    }
   }
   vtkAlgorithm* Filter = nullptr;
+  double First = 0.0;
+  double Last = 1.0;
 };
 }
 
@@ -88,6 +96,7 @@ int vtkLatticeBoltzmannLighting::RequestData(
   vtkImageData* lighting = vtkImageData::GetData(inputVector[1]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   output->Initialize();
+  this->LastRunAborted = false;
 
   vtkNew<vtkMediumValidator> validator;
   if (!validator->Validate(medium))
@@ -161,6 +170,9 @@ int vtkLatticeBoltzmannLighting::RequestData(
   solver->SetMaximumIterations(this->MaximumIterations);
   vtkNew<ProgressForwarder> forwarder;
   forwarder->Filter = this;
+  // The solve is nearly all the work; reading the arrays and the final pass share the rest.
+  forwarder->First = 0.02;
+  forwarder->Last = 0.98;
   solver->AddObserver(vtkCommand::ProgressEvent, forwarder);
 
   const std::vector<float> extinction =
@@ -179,6 +191,13 @@ int vtkLatticeBoltzmannLighting::RequestData(
     vtkErrorMacro("The Lattice-Boltzmann solver failed (see the previous message).");
     output->Initialize();
     return 0;
+  }
+  if (solver->GetAborted() || this->GetAbortExecute())
+  {
+    // An abort is not an error: empty output, the solver and its buffers go with `solver`.
+    output->Initialize();
+    this->LastRunAborted = true;
+    return 1;
   }
   vtkNew<vtkFloatArray> ms;
   ms->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
@@ -227,4 +246,5 @@ void vtkLatticeBoltzmannLighting::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CheckInterval: " << this->CheckInterval << "\n";
   os << indent << "ProbeSpacing: " << this->ProbeSpacing << "\n";
   os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";
+  os << indent << "LastRunAborted: " << this->LastRunAborted << "\n";
 }

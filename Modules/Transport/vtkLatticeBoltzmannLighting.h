@@ -29,6 +29,14 @@
  *
  * Bad input (an invalid medium, a missing or mismatched lighting volume, a `Radiance` that is
  * negative or not finite) is reported with vtkErrorMacro and leaves the output empty.
+ *
+ * Progress and abort: ProgressEvent rises monotonically to 1; the solve covers 0.02 to 0.98 with
+ * vtkLatticeBoltzmannSolver::Solve()'s estimate (iterations done or the log-scale way from the
+ * first residual to Tolerance, whichever is further), reported every CheckInterval steps.
+ * AbortExecute is looked at after every progress report, i.e. between check intervals: the run
+ * then stops, leaves the output empty, releases the device buffers, reports no error (RequestData
+ * returns 1) and sets GetLastRunAborted(); after AbortExecuteOff() the next Update() solves from
+ * the start.
  */
 #ifndef vtkLatticeBoltzmannLighting_h
 #define vtkLatticeBoltzmannLighting_h
@@ -83,6 +91,11 @@ public:
    */
   void SetContext(vtkOpenCLContext* context);
 
+  /**
+   * Whether the last RequestData stopped because AbortExecute was set (its output is empty).
+   */
+  vtkGetMacro(LastRunAborted, bool);
+
 protected:
   vtkLatticeBoltzmannLighting();
   ~vtkLatticeBoltzmannLighting() override;
@@ -101,6 +114,7 @@ protected:
   int CheckInterval = 8;
   int ProbeSpacing = 8;
   int MaximumIterations = 5000;
+  bool LastRunAborted = false;
   vtkSmartPointer<vtkOpenCLContext> Context;
 
 private:

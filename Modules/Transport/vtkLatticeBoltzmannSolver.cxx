@@ -559,6 +559,8 @@ bool vtkLatticeBoltzmannSolver::CheckConvergence(int stepsSinceLast, double& res
 bool vtkLatticeBoltzmannSolver::Solve()
 {
   this->Converged = false;
+  this->Aborted = false;
+  this->AbortSolve = false;
   if (!this->BuildKernels())
   {
     return false;
@@ -576,8 +578,15 @@ bool vtkLatticeBoltzmannSolver::Solve()
     interval = (interval + m - 1) / m * m;
   }
   int done = 0;
+  double firstResidual = -1.0; // first finite residual, the start of the log-scale estimate
+  double progress = 0.0;
   while (done < this->MaximumIterations)
   {
+    if (this->AbortSolve)
+    {
+      this->Aborted = true;
+      return true;
+    }
     const int before = this->Iterations;
     if (!this->Iterate(std::min(interval, this->MaximumIterations - done)))
     {
@@ -594,10 +603,29 @@ bool vtkLatticeBoltzmannSolver::Solve()
     if (residual < this->Tolerance)
     {
       this->Converged = true;
+      progress = 1.0;
+      this->InvokeEvent(vtkCommand::ProgressEvent, &progress);
       break;
     }
-    double progress = static_cast<double>(done) / this->MaximumIterations;
+    // Progress: iterations done, or the way from the first residual down to Tolerance on a log
+    // scale, whichever is further; never back.
+    double estimate = static_cast<double>(done) / this->MaximumIterations;
+    if (firstResidual < 0 && std::isfinite(residual) && residual > 0)
+    {
+      firstResidual = residual;
+    }
+    if (firstResidual > this->Tolerance && this->Tolerance > 0 && std::isfinite(residual) &&
+      residual > 0)
+    {
+      estimate = std::max(
+        estimate, std::log(firstResidual / residual) / std::log(firstResidual / this->Tolerance));
+    }
+    progress = std::max(progress, std::min(estimate, 1.0));
     this->InvokeEvent(vtkCommand::ProgressEvent, &progress);
+  }
+  if (this->AbortSolve)
+  {
+    this->Aborted = true;
   }
   return true;
 }

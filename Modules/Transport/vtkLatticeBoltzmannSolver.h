@@ -262,10 +262,25 @@ public:
   bool Iterate(int n, bool wait = true);
 
   /**
-   * Iterate from the current state until converged, MaximumIterations or an error. `progress`
-   * (optional) is called with the fraction of MaximumIterations done.
+   * Iterate from the current state until converged, MaximumIterations, an abort or an error.
+   * After every check interval it invokes vtkCommand::ProgressEvent (call data: a double in
+   * [0, 1], never decreasing within a Solve()): the larger of the fraction of MaximumIterations
+   * done and the fraction of the way, on a log scale, from the first residual to Tolerance,
+   * log(r0 / r) / log(r0 / Tolerance). Progress 1 is reported when it converges.
+   * Abort: SetAbortSolve(true) (e.g. from a ProgressEvent observer) stops it at the next check
+   * interval (every CheckInterval steps); it then returns true with GetAborted() set and the
+   * state as it was at that check. Solve() clears AbortSolve when it starts.
    */
   bool Solve();
+
+  ///@{
+  /**
+   * Abort request for Solve() (see there), and whether the last Solve() was aborted.
+   */
+  vtkSetMacro(AbortSolve, bool);
+  vtkGetMacro(AbortSolve, bool);
+  vtkGetMacro(Aborted, bool);
+  ///@}
 
   /**
    * The residual now (probes compared with the previous call); use between Iterate() calls.
@@ -341,6 +356,8 @@ protected:
   int Iterations = 0;
   double Residual = -1.0;
   bool Converged = false;
+  bool AbortSolve = false;
+  bool Aborted = false;
 
   vtkSmartPointer<vtkOpenCLContext> Context;
   int Dims[4] = { 0, 0, 0, 0 };

@@ -1,5 +1,6 @@
 #include "vtkPhotonDiffusionSchedule.h"
 
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -30,6 +31,34 @@ double Seconds(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+// Forwards a stage's progress to the schedule, scaled into [First, Last], and the schedule's
+// AbortExecute to the stage (the tracer's AbortExecute, or the solver's AbortSolve).
+class StageProgress : public vtkCommand
+{
+public:
+  static StageProgress* New() { return new StageProgress; }
+  void Execute(vtkObject* caller, unsigned long, void* data) override
+  {
+    const double p = *static_cast<double*>(data);
+    this->Schedule->UpdateProgress(
+      std::max(this->Schedule->GetProgress(), this->First + (this->Last - this->First) * p));
+    if (this->Schedule->GetAbortExecute())
+    {
+      if (auto* tracer = vtkPhotonTracer::SafeDownCast(caller))
+      {
+        tracer->SetAbortExecute(1);
+      }
+      else if (auto* solver = vtkLatticeBoltzmannSolver::SafeDownCast(caller))
+      {
+        solver->SetAbortSolve(true);
+      }
+    }
+  }
+  vtkAlgorithm* Schedule = nullptr;
+  double First = 0.0;
+  double Last = 1.0;
+};
 
 void AddScalar(vtkFieldData* fd, const char* name, double value)
 {
@@ -79,6 +108,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
   vtkImageData* medium = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   output->Initialize();
+  this->LastRunAborted = false;
   vtkNew<vtkMediumValidator> validator;
   if (!validator->Validate(medium))
   {
@@ -125,8 +155,24 @@ int vtkPhotonDiffusionSchedule::RequestData(
       diffusionSteps += solver->GetStepsDone() - before;
       return true;
     });
+  // Progress: the photon pass up to PhotonShare, the final solve the rest (shares measured on the
+  // previous run, half and half on the first).
+  vtkNew<StageProgress> tracerProgress;
+  tracerProgress->Schedule = this;
+  tracerProgress->Last = this->PhotonShare;
+  const unsigned long tracerObserver =
+    this->Tracer->AddObserver(vtkCommand::ProgressEvent, tracerProgress);
+  this->Tracer->SetAbortExecute(0);
   this->Tracer->Update();
+  this->Tracer->RemoveObserver(tracerObserver);
   this->Tracer->SetChunkCallback(nullptr);
+  if (this->Tracer->GetLastRunAborted() || this->GetAbortExecute())
+  {
+    // An abort is not an error: empty output, no message.
+    this->Tracer->SetAbortExecute(0);
+    this->LastRunAborted = true;
+    return 1;
+  }
   vtkImageData* lighting = this->Tracer->GetOutput();
   if (callbackFailed || !lighting || !vtkRefractaGridFrame::SameGrid(lighting, medium) ||
     !lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()))
@@ -147,11 +193,25 @@ int vtkPhotonDiffusionSchedule::RequestData(
   {
     return 0;
   }
-  if (!solver->SetSource(s1.data(), d1.data()) || !solver->Solve())
+  vtkNew<StageProgress> solverProgress;
+  solverProgress->Schedule = this;
+  solverProgress->First = this->PhotonShare;
+  solverProgress->Last = 0.99;
+  const unsigned long solverObserver =
+    solver->AddObserver(vtkCommand::ProgressEvent, solverProgress);
+  const bool solved = solver->SetSource(s1.data(), d1.data()) && solver->Solve();
+  solver->RemoveObserver(solverObserver);
+  if (!solved)
   {
     vtkErrorMacro("The Lattice-Boltzmann solver failed (see the previous message).");
     output->Initialize();
     return 0;
+  }
+  if (solver->GetAborted() || this->GetAbortExecute())
+  {
+    output->Initialize();
+    this->LastRunAborted = true;
+    return 1;
   }
   const vtkIdType n = medium->GetNumberOfPoints();
   vtkNew<vtkFloatArray> ms;
@@ -164,6 +224,10 @@ int vtkPhotonDiffusionSchedule::RequestData(
     return 0;
   }
   const double finalSolve = Seconds(solveStart);
+  if (marching + finalSolve > 0)
+  {
+    this->PhotonShare = std::min(0.95, std::max(0.05, marching / (marching + finalSolve)));
+  }
 
   output->CopyStructure(medium);
   output->GetPointData()->AddArray(
@@ -201,4 +265,5 @@ void vtkPhotonDiffusionSchedule::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Mode: " << (this->Mode == INTERLEAVED ? "interleaved" : "sequential") << "\n";
   os << indent << "StepsPerChunk: " << this->StepsPerChunk << "\n";
   os << indent << "DiffusionStepsPerChunk: " << this->DiffusionStepsPerChunk << "\n";
+  os << indent << "LastRunAborted: " << this->LastRunAborted << "\n";
 }

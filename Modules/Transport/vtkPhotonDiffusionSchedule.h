@@ -24,6 +24,13 @@
  * `ScheduleChunks`, `ScheduleDiffusionStepsDuringMarching`, `ScheduleMarchingSeconds` (photon
  * pass including the interleaved diffusion), `ScheduleFinalSolveSeconds` and
  * `ScheduleTotalSeconds`.
+ *
+ * Progress and abort: ProgressEvent rises monotonically to 1: the photon pass's progress scaled
+ * into [0, s], the final solve's into [s, 0.99], where s is the photon pass's share of the
+ * previous run's time (0.5 on the first run). AbortExecute is handed to the running stage (the
+ * tracer between photon batches or chunks, the solver between check intervals): the run stops,
+ * the output is empty, no error is reported (RequestData returns 1), GetLastRunAborted() is set,
+ * and after AbortExecuteOff() the next Update() runs from the start.
  */
 #ifndef vtkPhotonDiffusionSchedule_h
 #define vtkPhotonDiffusionSchedule_h
@@ -79,6 +86,11 @@ public:
 
   vtkMTimeType GetMTime() override;
 
+  /**
+   * Whether the last RequestData stopped because AbortExecute was set (its output is empty).
+   */
+  vtkGetMacro(LastRunAborted, bool);
+
 protected:
   vtkPhotonDiffusionSchedule();
   ~vtkPhotonDiffusionSchedule() override;
@@ -89,6 +101,8 @@ protected:
   int Mode = INTERLEAVED;
   int StepsPerChunk = 16;
   int DiffusionStepsPerChunk = 8;
+  bool LastRunAborted = false;
+  double PhotonShare = 0.5; // the photon pass's share of the progress
   vtkSmartPointer<vtkPhotonTracer> Tracer;
   vtkSmartPointer<vtkLatticeBoltzmannSolver> Solver;
 

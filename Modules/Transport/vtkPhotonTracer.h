@@ -42,6 +42,16 @@
  *
  * Lengths of the step knobs are in voxels (multiples of the smallest spacing). Results are
  * deterministic for a Seed on a given device (64-bit fixed-point accumulation).
+ *
+ * Progress and abort: ProgressEvent goes up monotonically from 0 to 1 with weights from the
+ * measured cost of the stages (octree up to 0.01, generation 0.02, marching 0.02 to 0.99 in
+ * proportion to the photons finished, resolve and smoothing to 1). The march runs in batches of
+ * photons (PhotonBatchSize; automatic: sized to about 0.05 s each from the measured rate; with
+ * StepsPerChunk, one progress report per chunk) and AbortExecute is checked after every stage and
+ * every batch or chunk. An abort is not an error: RequestData returns 1 with an empty output,
+ * releases the device buffers, reports no warning and sets GetLastRunAborted(); after
+ * AbortExecuteOff() the next Update() runs from the start. The batch size does not change the
+ * result (fixed-point deposits, per-photon random streams).
  */
 #ifndef vtkPhotonTracer_h
 #define vtkPhotonTracer_h
@@ -250,6 +260,24 @@ public:
    */
   vtkGetMacro(NumberOfChunks, int);
 
+  ///@{
+  /**
+   * Photons per batch of the unchunked march (rounded up to whole work-groups of 64): the march
+   * stops between batches to report progress and look at AbortExecute. 0 (default): automatic,
+   * each batch sized from the rate measured so far to take about 0.05 s (1024 photons at least,
+   * at most twice the previous batch). The result does not depend on it. GetNumberOfBatches():
+   * batches of the last run.
+   */
+  vtkSetClampMacro(PhotonBatchSize, int, 0, 1 << 28);
+  vtkGetMacro(PhotonBatchSize, int);
+  vtkGetMacro(NumberOfBatches, int);
+  ///@}
+
+  /**
+   * Whether the last RequestData stopped because AbortExecute was set (its output is empty).
+   */
+  vtkGetMacro(LastRunAborted, bool);
+
 #ifndef __VTK_WRAP__
   /**
    * Called after each chunk (on the context's queue, nothing waited for): the fixed-point
@@ -302,6 +330,9 @@ protected:
   double DirectionalLightAngularRadius = 0.0;
   int StepsPerChunk = 0;
   int NumberOfChunks = 0;
+  int PhotonBatchSize = 0;
+  int NumberOfBatches = 0;
+  bool LastRunAborted = false;
 #ifndef __VTK_WRAP__
   ChunkCallback Callback;
 #endif
@@ -321,6 +352,17 @@ private:
   vtkPhotonTracer(const vtkPhotonTracer&) = delete;
   void operator=(const vtkPhotonTracer&) = delete;
   struct Internals;
+  // Reports max(progress, the last value reported) and returns false when AbortExecute is set.
+  bool ReportProgress(Internals& run, double progress);
+  // The stages of RequestData, in order; each returns false after reporting an error.
+  bool SetUpLights(Internals& run);
+  void SharePhotons(Internals& run);
+  bool InitializeDevice(Internals& run);
+  bool BuildOctreeStage(Internals& run);
+  bool GeneratePhotons(Internals& run);
+  bool MarchPhotons(Internals& run);
+  bool ResolveRadiance(Internals& run);
+  void WriteOutput(Internals& run, vtkImageData* output);
 };
 
 #endif

@@ -1,0 +1,30 @@
+// photon_tallies.cl: layout of the photon pass's books, the one definition shared by the host
+// (vtkPhotonTracer.cxx includes this file as a C++ header) and photon_trace.cl (prepended to it
+// by the host). Macros only, so it reads the same in C++ and OpenCL C.
+//
+// Tallies (fixed point, REFRACTA_FIXED_SCALE): tallies[3 * T + c], RGB channel c of book T.
+// Counters (plain 64-bit integers): counters[K].
+#ifndef PHOTON_TALLIES_CL
+#define PHOTON_TALLIES_CL
+
+#define PHOTON_TALLY_EMITTED 0
+#define PHOTON_TALLY_ABSORBED 1
+#define PHOTON_TALLY_ESCAPED 2
+#define PHOTON_TALLY_SCATTERED 3
+#define PHOTON_TALLY_REMAINING 4 /* at the step cap or on an invalid state */
+#define PHOTON_TALLY_KILLED 5    /* by Russian roulette */
+#define PHOTON_TALLY_GAINED 6    /* added to roulette survivors */
+#define PHOTON_TALLY_BOOKS 7
+#define PHOTON_TALLY_COUNT (3 * PHOTON_TALLY_BOOKS) /* longs in the tallies buffer */
+
+#define PHOTON_COUNTER_MARCHED 0
+#define PHOTON_COUNTER_MISSED 1
+#define PHOTON_COUNTER_ESCAPED 2   /* outcomes 2..5 index their counters */
+#define PHOTON_COUNTER_ROULETTE 3
+#define PHOTON_COUNTER_STEP_CAP 4
+#define PHOTON_COUNTER_INVALID 5
+#define PHOTON_COUNTER_STEPS 6
+#define PHOTON_COUNTER_PIECES 7
+#define PHOTON_COUNTER_COUNT 8 /* longs in the counters buffer */
+
+#endif

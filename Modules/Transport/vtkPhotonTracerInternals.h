@@ -1,0 +1,183 @@
+// Private to vtkPhotonTracer (not installed): the helpers and the per-run state that
+// vtkPhotonTracer.cxx (the device stages) and vtkPhotonTracerSetup.cxx (medium, lights, octree)
+// share.
+#ifndef vtkPhotonTracerInternals_h
+#define vtkPhotonTracerInternals_h
+
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkOpenCLContext.h"
+#include "vtkPhotonTracer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <string>
+#include <vector>
+
+class vtkImageData;
+
+namespace vtkPhotonTracerDetail
+{
+using Clock = std::chrono::steady_clock;
+inline double Seconds(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// A float literal for -D options that the OpenCL compiler reads back as the same float.
+inline std::string FloatLiteral(double value)
+{
+  std::ostringstream s;
+  s.precision(9);
+  s << std::scientific << static_cast<float>(value) << "f";
+  return s.str();
+}
+
+inline cl_int4 Int4(const int d[3])
+{
+  cl_int4 v;
+  v.s[0] = d[0];
+  v.s[1] = d[1];
+  v.s[2] = d[2];
+  v.s[3] = 0;
+  return v;
+}
+
+inline cl_float4 Float4(double x, double y, double z, double w = 0.0)
+{
+  cl_float4 v;
+  v.s[0] = static_cast<float>(x);
+  v.s[1] = static_cast<float>(y);
+  v.s[2] = static_cast<float>(z);
+  v.s[3] = static_cast<float>(w);
+  return v;
+}
+
+inline cl_float4 Float4(const double a[3], double w = 0.0)
+{
+  return Float4(a[0], a[1], a[2], w);
+}
+
+inline uint32_t SplitMix(uint64_t& state)
+{
+  uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return static_cast<uint32_t>((z ^ (z >> 31)) >> 32);
+}
+
+inline double Dot(const double a[3], const double b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+inline bool Normalize(double a[3])
+{
+  const double m = std::sqrt(Dot(a, a));
+  if (!(m > 0.0) || !std::isfinite(m))
+  {
+    return false;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    a[c] /= m;
+  }
+  return true;
+}
+
+// Two unit vectors completing `a` (unit) to an orthonormal basis.
+inline void Basis(const double a[3], double b1[3], double b2[3])
+{
+  const double h[3] = { std::fabs(a[0]) < 0.9 ? 1.0 : 0.0, std::fabs(a[0]) < 0.9 ? 0.0 : 1.0, 0.0 };
+  // b1 = normalize(h x a), b2 = a x b1
+  b1[0] = h[1] * a[2] - h[2] * a[1];
+  b1[1] = h[2] * a[0] - h[0] * a[2];
+  b1[2] = h[0] * a[1] - h[1] * a[0];
+  Normalize(b1);
+  b2[0] = a[1] * b1[2] - a[2] * b1[1];
+  b2[1] = a[2] * b1[0] - a[0] * b1[2];
+  b2[2] = a[0] * b1[1] - a[1] * b1[0];
+}
+
+// The medium's arrays as float, with defaults and the facts that choose the kernel variant.
+struct Medium
+{
+  int Dims[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  size_t Voxels = 0;
+  std::vector<float> N, Gradient, Extinction, Albedo;
+  bool HasGradient = false;
+  bool Curved = false;
+  bool Attenuates = false;
+  bool Scatters = false;
+  double Lo[3], Hi[3];           // domain box, grid-local
+  double ProxyLo[3], ProxyHi[3]; // photon start box, grid-local
+};
+// One light converted to the grid-local frame, as the generation kernel takes it.
+struct LightSetup
+{
+  bool Positional = false;
+  double Origin[3], Axis[3], Basis1[3], Basis2[3];
+  double SpotAxis[3] = { 0, 0, 1 };
+  double SpotCos = -2.0; // < -1.5: no spot cone
+  double Exponent = 0.0;
+  double OneMinusCos = 2.0;
+  double Measure = 0.0; // solid angle of the sampled cap, or area of the directional rectangle
+  double Colour[3];
+  double Bound = 0.0;  // largest channel of the power sent towards the box
+  double Extent = 0.0; // sphere radius (positional, local units) or sin(angular radius)
+  unsigned int Photons = 0;
+};
+
+// Device buffers with bookkeeping of the bytes allocated.
+struct Allocator
+{
+  vtkOpenCLContext* Context;
+  vtkObject* Reporter;
+  double Bytes = 0;
+  vtkOpenCLBuffer Make(cl_mem_flags flags, size_t bytes, const void* data, const char* what)
+  {
+    // CreateBuffer rounds the device allocation up to 16 bytes; `data` holds exactly `bytes`.
+    this->Bytes += static_cast<double>((std::max<size_t>(bytes, 1) + 15) / 16 * 16);
+    return this->Context->CreateBuffer(flags, bytes, data, what, this->Reporter);
+  }
+};
+
+// Reads the medium's arrays (defaults for missing ones), the plan facts and the proxy box.
+void LoadMedium(vtkImageData* image, bool useProxy, Medium& m);
+
+bool Run1D(vtkOpenCLContext* ctx, cl_kernel kernel, size_t count, const char* label, vtkObject* r);
+
+// Builds the octree level array of `nBuffer` into `octree` (one byte per voxel).
+bool RunOctree(vtkOpenCLContext* ctx, vtkObject* reporter, Allocator& alloc, cl_mem nBuffer,
+  const int dims[3], double eps, double eps2, vtkOpenCLBuffer& octree);
+}
+
+//------------------------------------------------------------------------------
+// The state one run of RequestData passes from stage to stage.
+struct vtkPhotonTracer::Internals
+{
+  vtkImageData* Input = nullptr;
+  vtkPhotonTracerDetail::Medium M;
+  std::vector<vtkPhotonTracerDetail::LightSetup> Lights;
+  double TotalBound = 0; // sum of the lights' power bounds towards the box
+  size_t Photons = 0;
+  vtkOpenCLContext* Context = nullptr;
+  vtkPhotonTracerDetail::Allocator Alloc{ nullptr, nullptr };
+  double Unit = 1.0;  // the device's unit of power (TotalBound)
+  double Scale = 1.0; // fixed-point scale of the tallies, in host units
+  cl_program Trace = nullptr;
+  vtkOpenCLBuffer NBuffer, GradBuffer, Octree;
+  vtkOpenCLBuffer Pos, Dirs, Power;
+  vtkOpenCLBuffer ExtBuffer, AlbBuffer, RadFixed, DirFixed, Tallies, Counters;
+  std::vector<cl_long> Tally, Count;
+  vtkNew<vtkFloatArray> Radiance;
+  vtkNew<vtkFloatArray> Direction;
+  double Progress = 0.0; // last value reported, so that progress never goes back
+  bool Aborted = false;  // the run stopped because AbortExecute was set
+};
+
+#endif

@@ -1,0 +1,373 @@
+// The host-side set-up stages of vtkPhotonTracer: reading the medium, converting the lights to
+// the grid-local frame, sharing out the photons, and the octree.
+#include "vtkPhotonTracerInternals.h"
+
+#include "vtkCollection.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkRefractaGridFrame.h"
+#include "vtkRefractaMedium.h"
+
+#include <array>
+
+namespace vtkPhotonTracerDetail
+{
+namespace
+{
+void CopyArray(
+  vtkDataArray* array, int comps, float fallback, size_t voxels, std::vector<float>& out)
+{
+  out.assign(voxels * comps, fallback);
+  if (!array)
+  {
+    return;
+  }
+  for (size_t v = 0; v < voxels; ++v)
+  {
+    for (int c = 0; c < comps; ++c)
+    {
+      out[v * comps + c] = static_cast<float>(array->GetComponent(static_cast<vtkIdType>(v), c));
+    }
+  }
+}
+}
+
+void LoadMedium(vtkImageData* image, bool useProxy, Medium& m)
+{
+  image->GetDimensions(m.Dims);
+  image->GetSpacing(m.Spacing);
+  m.Voxels = static_cast<size_t>(m.Dims[0]) * m.Dims[1] * m.Dims[2];
+  vtkPointData* pd = image->GetPointData();
+  vtkDataArray* n = pd->GetArray(vtkRefractaMedium::RefractiveIndexName());
+  vtkDataArray* g = pd->GetArray(vtkRefractaMedium::RefractiveIndexGradientName());
+  vtkDataArray* e = pd->GetArray(vtkRefractaMedium::ExtinctionName());
+  vtkDataArray* a = pd->GetArray(vtkRefractaMedium::AlbedoName());
+  CopyArray(n, 1, 1.0f, m.Voxels, m.N);
+  CopyArray(e, 3, 0.0f, m.Voxels, m.Extinction);
+  CopyArray(a, 3, 0.0f, m.Voxels, m.Albedo);
+  m.HasGradient = g != nullptr;
+  if (g)
+  {
+    CopyArray(g, 3, 0.0f, m.Voxels, m.Gradient);
+  }
+  const auto range = std::minmax_element(m.N.begin(), m.N.end());
+  m.Curved = *range.second > *range.first;
+  int lo[3] = { m.Dims[0], m.Dims[1], m.Dims[2] };
+  int hi[3] = { -1, -1, -1 };
+  for (size_t v = 0; v < m.Voxels; ++v)
+  {
+    bool interesting = m.N[v] != 1.0f;
+    for (int c = 0; c < 3; ++c)
+    {
+      const float st = m.Extinction[3 * v + c];
+      m.Attenuates = m.Attenuates || st > 0.0f;
+      m.Scatters = m.Scatters || (st > 0.0f && m.Albedo[3 * v + c] > 0.0f);
+      interesting = interesting || st > 0.0f;
+    }
+    if (interesting)
+    {
+      const int ijk[3] = { static_cast<int>(v % m.Dims[0]),
+        static_cast<int>((v / m.Dims[0]) % m.Dims[1]),
+        static_cast<int>(v / (static_cast<size_t>(m.Dims[0]) * m.Dims[1])) };
+      for (int c = 0; c < 3; ++c)
+      {
+        lo[c] = std::min(lo[c], ijk[c]);
+        hi[c] = std::max(hi[c], ijk[c]);
+      }
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    m.Lo[c] = -0.5 * m.Spacing[c];
+    m.Hi[c] = (m.Dims[c] - 0.5) * m.Spacing[c];
+    m.ProxyLo[c] = m.Lo[c];
+    m.ProxyHi[c] = m.Hi[c];
+  }
+  // The proxy grows the interesting voxels by two: trilinear sampling and the gradient reach one
+  // voxel further each.
+  if (useProxy && hi[0] >= 0)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      m.ProxyLo[c] = std::max(m.Lo[c], (lo[c] - 2.5) * m.Spacing[c]);
+      m.ProxyHi[c] = std::min(m.Hi[c], (hi[c] + 2.5) * m.Spacing[c]);
+    }
+  }
+}
+
+bool Run1D(vtkOpenCLContext* ctx, cl_kernel kernel, size_t count, const char* label, vtkObject* r)
+{
+  const size_t local = 64;
+  const size_t global = std::max<size_t>(count, 1);
+  return ctx->RunKernel(kernel, 1, &global, &local, label, r);
+}
+
+bool RunOctree(vtkOpenCLContext* ctx, vtkObject* reporter, Allocator& alloc, cl_mem nBuffer,
+  const int dims[3], double eps, double eps2, vtkOpenCLBuffer& octree)
+{
+  const std::string options = "-DEPS=" + FloatLiteral(eps) + " -DEPS2=" + FloatLiteral(eps2);
+  cl_program program = ctx->GetProgram(
+    { "refracta_atomics.cl", "refracta_common.cl", "photon_octree.cl" }, options, reporter);
+  if (!program)
+  {
+    return false;
+  }
+  // Level k has ceil(N / 2^k) nodes per axis; the top level is a single node.
+  std::vector<std::array<int, 3>> levelDims;
+  std::vector<cl_uint> offsets;
+  size_t total = 0;
+  for (int k = 0;; ++k)
+  {
+    std::array<int, 3> d;
+    for (int c = 0; c < 3; ++c)
+    {
+      d[c] = (dims[c] + (1 << k) - 1) >> k;
+    }
+    levelDims.push_back(d);
+    offsets.push_back(static_cast<cl_uint>(total));
+    total += static_cast<size_t>(d[0]) * d[1] * d[2];
+    if (d[0] == 1 && d[1] == 1 && d[2] == 1)
+    {
+      break;
+    }
+  }
+  const size_t voxels = static_cast<size_t>(dims[0]) * dims[1] * dims[2];
+  vtkOpenCLBuffer pyramid =
+    alloc.Make(CL_MEM_READ_WRITE, total * 2 * sizeof(float), nullptr, "octree pyramid");
+  vtkOpenCLBuffer offsetBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+    offsets.size() * sizeof(cl_uint), offsets.data(), "octree level offsets");
+  octree = alloc.Make(CL_MEM_READ_WRITE, voxels, nullptr, "octree");
+  if (!pyramid || !offsetBuffer || !octree)
+  {
+    return false;
+  }
+  vtkOpenCLKernel base = ctx->CreateKernel(program, "photon_pyramid_base", reporter);
+  vtkOpenCLKernel reduce = ctx->CreateKernel(program, "photon_pyramid_reduce", reporter);
+  vtkOpenCLKernel label = ctx->CreateKernel(program, "photon_octree_label", reporter);
+  if (!base || !reduce || !label)
+  {
+    return false;
+  }
+  const cl_int4 d0 = Int4(dims);
+  const cl_uint count0 = static_cast<cl_uint>(voxels);
+  cl_mem pyr = pyramid.Get();
+  if (!ctx->Check(vtkOpenCLSetKernelArgs(base.Get(), nBuffer, d0, pyr, count0),
+        "clSetKernelArg(photon_pyramid_base)", reporter) ||
+    !Run1D(ctx, base.Get(), voxels, "photon_pyramid_base", reporter))
+  {
+    return false;
+  }
+  for (size_t k = 1; k < levelDims.size(); ++k)
+  {
+    const cl_int4 fineDims = Int4(levelDims[k - 1].data());
+    const cl_int4 coarseDims = Int4(levelDims[k].data());
+    const size_t count = static_cast<size_t>(coarseDims.s[0]) * coarseDims.s[1] * coarseDims.s[2];
+    const cl_uint n = static_cast<cl_uint>(count);
+    if (!ctx->Check(vtkOpenCLSetKernelArgs(
+                      reduce.Get(), pyr, offsets[k - 1], fineDims, offsets[k], coarseDims, n),
+          "clSetKernelArg(photon_pyramid_reduce)", reporter) ||
+      !Run1D(ctx, reduce.Get(), count, "photon_pyramid_reduce", reporter))
+    {
+      return false;
+    }
+  }
+  const cl_int levels = static_cast<cl_int>(levelDims.size());
+  return ctx->Check(vtkOpenCLSetKernelArgs(
+                      label.Get(), pyr, offsetBuffer.Get(), levels, d0, octree.Get(), count0),
+           "clSetKernelArg(photon_octree_label)", reporter) &&
+    Run1D(ctx, label.Get(), voxels, "photon_octree_label", reporter) && ctx->Finish(reporter);
+}
+}
+
+using namespace vtkPhotonTracerDetail;
+
+//------------------------------------------------------------------------------
+// Lights, converted to the grid-local frame in double precision.
+bool vtkPhotonTracer::SetUpLights(Internals& run)
+{
+  vtkImageData* input = run.Input;
+  Medium& m = run.M;
+  LoadMedium(input, this->UseProxyBounds, m);
+  vtkNew<vtkRefractaGridFrame> grid;
+  grid->SetImage(input);
+  auto toLocalPoint = [&](const double p[3], double out[3]) { grid->WorldToLocalPoint(p, out); };
+  auto toLocalVector = [&](const double d[3], double out[3]) { grid->WorldToLocalVector(d, out); };
+  const double boxCentre[3] = { 0.5 * (m.ProxyLo[0] + m.ProxyHi[0]),
+    0.5 * (m.ProxyLo[1] + m.ProxyHi[1]), 0.5 * (m.ProxyLo[2] + m.ProxyHi[2]) };
+  const double halfDiag[3] = { 0.5 * (m.ProxyHi[0] - m.ProxyLo[0]),
+    0.5 * (m.ProxyHi[1] - m.ProxyLo[1]), 0.5 * (m.ProxyHi[2] - m.ProxyLo[2]) };
+  const double boxRadius = std::sqrt(Dot(halfDiag, halfDiag));
+
+  std::vector<LightSetup>& lights = run.Lights;
+  vtkLight* light;
+  vtkCollectionSimpleIterator it;
+  int lightIndex = 0;
+  for (this->Lights->InitTraversal(it); (light = this->Lights->GetNextLight(it)); ++lightIndex)
+  {
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    double pw[3], fw[3], colour[3];
+    light->GetTransformedPosition(pw);
+    light->GetTransformedFocalPoint(fw);
+    light->GetDiffuseColor(colour);
+    const double intensity = light->GetIntensity();
+    bool finite = std::isfinite(intensity);
+    for (int c = 0; c < 3; ++c)
+    {
+      finite = finite && std::isfinite(pw[c]) && std::isfinite(fw[c]) && std::isfinite(colour[c]);
+    }
+    if (!finite || intensity < 0 || colour[0] < 0 || colour[1] < 0 || colour[2] < 0)
+    {
+      vtkErrorMacro("Light " << lightIndex
+                             << " has a non-finite position, focal point, colour or intensity, or "
+                                "a negative intensity or colour; all must be finite and >= 0.");
+      return false;
+    }
+    LightSetup ls;
+    ls.Positional = light->GetPositional();
+    for (int c = 0; c < 3; ++c)
+    {
+      ls.Colour[c] = colour[c] * intensity;
+    }
+    double p[3], f[3], axisWorld[3] = { fw[0] - pw[0], fw[1] - pw[1], fw[2] - pw[2] };
+    toLocalPoint(pw, p);
+    toLocalPoint(fw, f);
+    double axis[3];
+    toLocalVector(axisWorld, axis);
+    const bool isSpot = ls.Positional && light->GetConeAngle() < 90.0;
+    if ((!ls.Positional || isSpot) && !Normalize(axis))
+    {
+      vtkErrorMacro("Light " << lightIndex
+                             << " is directional or a spot but its position equals its focal "
+                                "point; they must differ to give a direction.");
+      return false;
+    }
+    if (isSpot && !(light->GetConeAngle() > 0.0))
+    {
+      vtkErrorMacro("Light " << lightIndex << " has cone angle " << light->GetConeAngle()
+                             << "; a spot needs (0, 90) degrees, a point light >= 90.");
+      return false;
+    }
+    const double maxColour = std::max({ ls.Colour[0], ls.Colour[1], ls.Colour[2] });
+    if (!ls.Positional)
+    {
+      // Rectangle perpendicular to the direction covering the box's projection.
+      double b1[3], b2[3];
+      Basis(axis, b1, b2);
+      double umin = 1e300, umax = -1e300, wmin = 1e300, wmax = -1e300, dmin = 1e300;
+      for (int corner = 0; corner < 8; ++corner)
+      {
+        const double q[3] = { (corner & 1) ? m.ProxyHi[0] : m.ProxyLo[0],
+          (corner & 2) ? m.ProxyHi[1] : m.ProxyLo[1], (corner & 4) ? m.ProxyHi[2] : m.ProxyLo[2] };
+        umin = std::min(umin, Dot(q, b1));
+        umax = std::max(umax, Dot(q, b1));
+        wmin = std::min(wmin, Dot(q, b2));
+        wmax = std::max(wmax, Dot(q, b2));
+        dmin = std::min(dmin, Dot(q, axis));
+      }
+      const double back = dmin - 0.01 * boxRadius - 1e-6;
+      // A disc of angular radius delta tilts rays by up to delta: widen the rectangle by what
+      // they drift sideways across the box.
+      const double delta = vtkMath::RadiansFromDegrees(this->DirectionalLightAngularRadius);
+      ls.Extent = std::sin(delta);
+      const double margin = std::tan(delta) * (2.0 * boxRadius + 0.01 * boxRadius);
+      umin -= margin;
+      wmin -= margin;
+      umax += margin;
+      wmax += margin;
+      for (int c = 0; c < 3; ++c)
+      {
+        ls.Origin[c] = b1[c] * umin + b2[c] * wmin + axis[c] * back;
+        ls.Axis[c] = axis[c];
+        ls.Basis1[c] = b1[c] * (umax - umin);
+        ls.Basis2[c] = b2[c] * (wmax - wmin);
+      }
+      ls.Measure = (umax - umin) * (wmax - wmin);
+    }
+    else
+    {
+      std::copy(p, p + 3, ls.Origin);
+      double toBox[3] = { boxCentre[0] - p[0], boxCentre[1] - p[1], boxCentre[2] - p[2] };
+      const double distance = std::sqrt(Dot(toBox, toBox));
+      bool inside = true;
+      for (int c = 0; c < 3; ++c)
+      {
+        inside = inside && p[c] >= m.ProxyLo[c] && p[c] <= m.ProxyHi[c];
+      }
+      double capAxis[3] = { 0, 0, 1 };
+      ls.OneMinusCos = 2.0; // whole sphere
+      // A sphere light reaches the box from anywhere on its disc: widen the cap by its radius.
+      ls.Extent = this->LightRadius;
+      const double reach = boxRadius + this->LightRadius;
+      if (!inside && distance > reach * (1 + 1e-9))
+      {
+        const double s = reach / distance;
+        ls.OneMinusCos = s * s / (1.0 + std::sqrt(1.0 - s * s));
+        for (int c = 0; c < 3; ++c)
+        {
+          capAxis[c] = toBox[c] / distance;
+        }
+      }
+      if (isSpot)
+      {
+        const double half = vtkMath::RadiansFromDegrees(light->GetConeAngle());
+        const double spotOmc = 2.0 * std::sin(0.5 * half) * std::sin(0.5 * half);
+        std::copy(axis, axis + 3, ls.SpotAxis);
+        ls.SpotCos = std::cos(half);
+        ls.Exponent = light->GetExponent();
+        if (spotOmc < ls.OneMinusCos)
+        {
+          ls.OneMinusCos = spotOmc;
+          std::copy(axis, axis + 3, capAxis);
+        }
+      }
+      std::copy(capAxis, capAxis + 3, ls.Axis);
+      Basis(ls.Axis, ls.Basis1, ls.Basis2);
+      ls.Measure = 2.0 * vtkMath::Pi() * ls.OneMinusCos;
+    }
+    ls.Bound = maxColour * ls.Measure;
+    if (ls.Bound > 0)
+    {
+      lights.push_back(ls);
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// Photon budget: proportional to each light's power towards the box.
+void vtkPhotonTracer::SharePhotons(Internals& run)
+{
+  std::vector<LightSetup>& lights = run.Lights;
+  double& totalBound = run.TotalBound;
+  totalBound = 0;
+  for (const auto& ls : lights)
+  {
+    totalBound += ls.Bound;
+  }
+  unsigned int assigned = 0;
+  std::vector<std::pair<double, size_t>> remainders;
+  for (size_t l = 0; l < lights.size(); ++l)
+  {
+    const double share = this->NumberOfPhotons * lights[l].Bound / totalBound;
+    lights[l].Photons = static_cast<unsigned int>(std::floor(share));
+    assigned += lights[l].Photons;
+    remainders.emplace_back(share - std::floor(share), l);
+  }
+  std::sort(remainders.rbegin(), remainders.rend());
+  for (size_t r = 0;
+       assigned < static_cast<unsigned int>(this->NumberOfPhotons) && r < remainders.size();
+       ++r, ++assigned)
+  {
+    lights[remainders[r].second].Photons++;
+  }
+  run.Photons = this->NumberOfPhotons;
+}
