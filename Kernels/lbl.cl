@@ -21,48 +21,48 @@
 // f_0 + sum f_i, i.e. turns absorption into delayed scattering. Here the absorbed power leaves the
 // lattice. The exponential T_i (instead of the paper's 1 - sigma_t) keeps every weight in [0, 1]
 // for any optical depth per voxel; to first order in sigma_t len the two agree.
-// Then out_i goes to f_i(r + c_i). Leaving the grid: vacuum (LBL_BOUNDARY 0: the power escapes)
-// or mirror (LBL_BOUNDARY 1: it comes back into f_opp(i)(r)).
+// Then out_i goes to f_i(r + c_i). Leaving the grid: vacuum (REFRACTA_LBL_BOUNDARY 0: the power escapes)
+// or mirror (REFRACTA_LBL_BOUNDARY 1: it comes back into f_opp(i)(r)).
 //
-// Build options (-D): LBL_Q (6 or 18 directions), LBL_NCLASS (number of distinct step lengths),
-// LBL_CLASSES (brace list: the length class of each direction), LBL_BOUNDARY (0 vacuum,
-// 1 mirror), LBL_SOURCE_PHASE (0: the source is isotropic; 1: it is distributed over the
+// Build options (-D): REFRACTA_LBL_Q (6 or 18 directions), REFRACTA_LBL_NCLASS (number of distinct step lengths),
+// REFRACTA_LBL_CLASSES (brace list: the length class of each direction), REFRACTA_LBL_BOUNDARY (0 vacuum,
+// 1 mirror), REFRACTA_LBL_SOURCE_PHASE (0: the source is isotropic; 1: it is distributed over the
 // directions by the HG phase function around the source direction), and for the blocked kernels
-// LBL_B (block edge b) and LBL_SUBSTEPS (lattice steps per interface exchange, a power of two).
+// REFRACTA_LBL_B (block edge b) and REFRACTA_LBL_SUBSTEPS (lattice steps per interface exchange, a power of two).
 //
-// Coefficients: coef[(c * 3 + ch) * N + v] = T for length class c; coef[(LBL_NCLASS * 3 + ch) *
-// N + v] = albedo; coef[(LBL_NCLASS * 3 + 3) * N + v] = g. Source: src[ch * N + v] = S1 (power per
-// unit volume per step), and with LBL_SOURCE_PHASE src[(3 + a) * N + v] = the mean direction.
+// Coefficients: coef[(c * 3 + ch) * N + v] = T for length class c; coef[(REFRACTA_LBL_NCLASS * 3 + ch) *
+// N + v] = albedo; coef[(REFRACTA_LBL_NCLASS * 3 + 3) * N + v] = g. Source: src[ch * N + v] = S1 (power per
+// unit volume per step), and with REFRACTA_LBL_SOURCE_PHASE src[(3 + a) * N + v] = the mean direction.
 
-#ifndef LBL_Q
-#define LBL_Q 6
+#ifndef REFRACTA_LBL_Q
+#define REFRACTA_LBL_Q 6
 #endif
-#ifndef LBL_NCLASS
-#define LBL_NCLASS 1
+#ifndef REFRACTA_LBL_NCLASS
+#define REFRACTA_LBL_NCLASS 1
 #endif
-#ifndef LBL_CLASSES
-#define LBL_CLASSES { 0, 0, 0, 0, 0, 0 }
+#ifndef REFRACTA_LBL_CLASSES
+#define REFRACTA_LBL_CLASSES { 0, 0, 0, 0, 0, 0 }
 #endif
-#ifndef LBL_BOUNDARY
-#define LBL_BOUNDARY 0
+#ifndef REFRACTA_LBL_BOUNDARY
+#define REFRACTA_LBL_BOUNDARY 0
 #endif
-#ifndef LBL_SOURCE_PHASE
-#define LBL_SOURCE_PHASE 0
+#ifndef REFRACTA_LBL_SOURCE_PHASE
+#define REFRACTA_LBL_SOURCE_PHASE 0
 #endif
 
 // Directions come in opposite pairs (2k, 2k + 1), so opp(i) = i ^ 1.
 __constant int lbl_cx[18] = { 1, -1, 0, 0, 0, 0, 1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0 };
 __constant int lbl_cy[18] = { 0, 0, 1, -1, 0, 0, 1, -1, -1, 1, 0, 0, 0, 0, 1, -1, 1, -1 };
 __constant int lbl_cz[18] = { 0, 0, 0, 0, 1, -1, 0, 0, 0, 0, 1, -1, -1, 1, 1, -1, -1, 1 };
-__constant int lbl_class[LBL_Q] = LBL_CLASSES;
+__constant int lbl_class[REFRACTA_LBL_Q] = REFRACTA_LBL_CLASSES;
 
-#define LBL_COEF_ALBEDO (LBL_NCLASS * 3)
-#define LBL_COEF_G (LBL_NCLASS * 3 + 3)
+#define LBL_COEF_ALBEDO (REFRACTA_LBL_NCLASS * 3)
+#define LBL_COEF_G (REFRACTA_LBL_NCLASS * 3 + 3)
 
 // Source weights over the directions for voxel v (sum 1).
 inline void lbl_source_weights(__global const float* src, size_t n, size_t v, float g, float* w)
 {
-#if LBL_SOURCE_PHASE
+#if REFRACTA_LBL_SOURCE_PHASE
   const float3 d = (float3)(src[3 * n + v], src[4 * n + v], src[5 * n + v]);
   const float len = length(d);
   if (len > 1e-6f)
@@ -70,14 +70,14 @@ inline void lbl_source_weights(__global const float* src, size_t n, size_t v, fl
     const float3 u = d / len;
     float sum = 0.0f;
     #pragma unroll
-    for (int i = 0; i < LBL_Q; ++i)
+    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
     {
       const float3 c = normalize((float3)((float)lbl_cx[i], (float)lbl_cy[i], (float)lbl_cz[i]));
       w[i] = refracta_hg_phase(dot(u, c), g);
       sum += w[i];
     }
     #pragma unroll
-    for (int i = 0; i < LBL_Q; ++i)
+    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
     {
       w[i] /= sum;
     }
@@ -85,9 +85,9 @@ inline void lbl_source_weights(__global const float* src, size_t n, size_t v, fl
   }
 #endif
   #pragma unroll
-  for (int i = 0; i < LBL_Q; ++i)
+  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
   {
-    w[i] = 1.0f / (float)LBL_Q;
+    w[i] = 1.0f / (float)REFRACTA_LBL_Q;
   }
 }
 
@@ -97,17 +97,17 @@ inline void lbl_collide(const float* fin, float* out, const float* t, float a, f
 {
   const float gf = fmax(g, 0.0f);
   const float gb = fmax(-g, 0.0f);
-  float collided[LBL_Q];
+  float collided[REFRACTA_LBL_Q];
   float sum = 0.0f;
   #pragma unroll
-  for (int j = 0; j < LBL_Q; ++j)
+  for (int j = 0; j < REFRACTA_LBL_Q; ++j)
   {
     collided[j] = (1.0f - t[lbl_class[j]]) * fin[j];
     sum += collided[j];
   }
-  const float iso = a * (1.0f - gf - gb) * sum / (float)LBL_Q;
+  const float iso = a * (1.0f - gf - gb) * sum / (float)REFRACTA_LBL_Q;
   #pragma unroll
-  for (int i = 0; i < LBL_Q; ++i)
+  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
   {
     out[i] = t[lbl_class[i]] * fin[i] + a * gf * collided[i] + a * gb * collided[i ^ 1] + iso +
       q * wsrc[i];
@@ -131,12 +131,12 @@ __kernel void lbl_step(__global const float* fcur, __global float* fnext,
   const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
   const size_t v = refracta_voxel_index(dims, x, y, z);
   const float g = coef[LBL_COEF_G * n + v];
-  float wsrc[LBL_Q];
+  float wsrc[REFRACTA_LBL_Q];
   lbl_source_weights(src, n, v, g, wsrc);
-  long offset[LBL_Q];
-  bool inGrid[LBL_Q];
+  long offset[REFRACTA_LBL_Q];
+  bool inGrid[REFRACTA_LBL_Q];
   #pragma unroll
-  for (int i = 0; i < LBL_Q; ++i)
+  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
   {
     const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
     inGrid[i] = tx >= 0 && ty >= 0 && tz >= 0 && tx < dims.x && ty < dims.y && tz < dims.z;
@@ -145,30 +145,30 @@ __kernel void lbl_step(__global const float* fcur, __global float* fnext,
   #pragma unroll
   for (int ch = 0; ch < 3; ++ch)
   {
-    float t[LBL_NCLASS];
+    float t[REFRACTA_LBL_NCLASS];
     #pragma unroll
-    for (int c = 0; c < LBL_NCLASS; ++c)
+    for (int c = 0; c < REFRACTA_LBL_NCLASS; ++c)
     {
       t[c] = coef[(c * 3 + ch) * n + v];
     }
     const float a = coef[(LBL_COEF_ALBEDO + ch) * n + v];
-    float fin[LBL_Q], out[LBL_Q];
+    float fin[REFRACTA_LBL_Q], out[REFRACTA_LBL_Q];
     #pragma unroll
-    for (int i = 0; i < LBL_Q; ++i)
+    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
     {
       fin[i] = fcur[(i * 3 + ch) * n + v];
     }
     lbl_collide(fin, out, t, a, g, src[ch * n + v], wsrc);
     // Branch-free stores (so that the work-item loop vectorises): a packet leaving the grid is
-    // written to its mirror entry (LBL_BOUNDARY 1) or to a scratch float past the state's end.
+    // written to its mirror entry (REFRACTA_LBL_BOUNDARY 1) or to a scratch float past the state's end.
     #pragma unroll
-    for (int i = 0; i < LBL_Q; ++i)
+    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
     {
       const size_t inside = (size_t)(i * 3 + ch) * n + v + (size_t)offset[i];
-#if LBL_BOUNDARY == 1
+#if REFRACTA_LBL_BOUNDARY == 1
       const size_t outside = (size_t)((i ^ 1) * 3 + ch) * n + v;
 #else
-      const size_t outside = (size_t)LBL_Q * 3 * n;
+      const size_t outside = (size_t)REFRACTA_LBL_Q * 3 * n;
 #endif
       fnext[inGrid[i] ? inside : outside] = out[i];
     }
@@ -176,27 +176,27 @@ __kernel void lbl_step(__global const float* fcur, __global float* fnext,
 }
 
 // ---------------------------------------------------------------------------------------------
-// Blocked steps (Bernabei et al. III-C, D3Q6 only): the grid is cut into blocks of LBL_B^3
-// voxels; one work-group of LBL_B^3 work-items per block iterates LBL_SUBSTEPS lattice steps in
+// Blocked steps (Bernabei et al. III-C, D3Q6 only): the grid is cut into blocks of REFRACTA_LBL_B^3
+// voxels; one work-group of REFRACTA_LBL_B^3 work-items per block iterates REFRACTA_LBL_SUBSTEPS lattice steps in
 // local memory. Density streaming out of the block is summed over the substeps per face voxel and
 // written to the block's own outgoing interface (6 faces x b^2 x RGB); density streaming in is
 // read from the neighbours' outgoing interfaces of the previous launch and injected as 1/m of it
 // at each of the m substeps (m a power of two, so the split is exact and energy is conserved to
 // the last bit). The host swaps the two interface buffers between launches (the alternation of
 // Fig. 5): a launch reads one and writes the other, so no location is read and written by
-// concurrent work-groups. With LBL_SUBSTEPS = 1 this is step for step the global update; with
+// concurrent work-groups. With REFRACTA_LBL_SUBSTEPS = 1 this is step for step the global update; with
 // m > 1 the transient differs, but the fixed point (the steady state) is the same: at the global
 // fixed point each face passes the same flux at every substep, and m of them summed, then split
 // by m, reproduces it.
-#ifdef LBL_B
-#define LBL_B3 (LBL_B * LBL_B * LBL_B)
-#define LBL_INV_SUBSTEPS (1.0f / (float)LBL_SUBSTEPS)
+#ifdef REFRACTA_LBL_B
+#define LBL_B3 (REFRACTA_LBL_B * REFRACTA_LBL_B * REFRACTA_LBL_B)
+#define LBL_INV_SUBSTEPS (1.0f / (float)REFRACTA_LBL_SUBSTEPS)
 
 // Position of local voxel (lx, ly, lz) on the block face crossed by direction i.
 inline int lbl_face_pos(int i, int lx, int ly, int lz)
 {
   const int axis = i >> 1;
-  return axis == 0 ? ly + LBL_B * lz : (axis == 1 ? lx + LBL_B * lz : lx + LBL_B * ly);
+  return axis == 0 ? ly + REFRACTA_LBL_B * lz : (axis == 1 ? lx + REFRACTA_LBL_B * lz : lx + REFRACTA_LBL_B * ly);
 }
 
 // Linear index of the block that entry i of voxel (x, y, z) streams in from when that is another
@@ -208,36 +208,36 @@ inline int lbl_inbound_block(int i, int x, int y, int z, int4 dims, int4 nblocks
   {
     return -1;
   }
-  const int bx = sx / LBL_B, by = sy / LBL_B, bz = sz / LBL_B;
-  if (bx == x / LBL_B && by == y / LBL_B && bz == z / LBL_B)
+  const int bx = sx / REFRACTA_LBL_B, by = sy / REFRACTA_LBL_B, bz = sz / REFRACTA_LBL_B;
+  if (bx == x / REFRACTA_LBL_B && by == y / REFRACTA_LBL_B && bz == z / REFRACTA_LBL_B)
   {
     return -1;
   }
   return bx + nblocks.x * (by + nblocks.y * bz);
 }
 
-// Work layout: global (nbx, nby, nbz) * LBL_B, local (LBL_B, LBL_B, LBL_B).
-__kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_block(
+// Work layout: global (nbx, nby, nbz) * REFRACTA_LBL_B, local (REFRACTA_LBL_B, REFRACTA_LBL_B, REFRACTA_LBL_B).
+__kernel __attribute__((reqd_work_group_size(REFRACTA_LBL_B, REFRACTA_LBL_B, REFRACTA_LBL_B))) void lbl_block(
   __global float* state, __global const float* coef, __global const float* src,
   __global const float* ifaceIn, __global float* ifaceOut, const int4 dims, const int4 nblocks)
 {
-  __local float bufA[LBL_Q * 3 * LBL_B3];
-  __local float bufB[LBL_Q * 3 * LBL_B3];
+  __local float bufA[REFRACTA_LBL_Q * 3 * LBL_B3];
+  __local float bufB[REFRACTA_LBL_Q * 3 * LBL_B3];
   const int lx = get_local_id(0), ly = get_local_id(1), lz = get_local_id(2);
   const int bx = get_group_id(0), by = get_group_id(1), bz = get_group_id(2);
-  const int x = bx * LBL_B + lx, y = by * LBL_B + ly, z = bz * LBL_B + lz;
+  const int x = bx * REFRACTA_LBL_B + lx, y = by * REFRACTA_LBL_B + ly, z = bz * REFRACTA_LBL_B + lz;
   const bool active = x < dims.x && y < dims.y && z < dims.z;
-  const int lid = lx + LBL_B * (ly + LBL_B * lz);
+  const int lid = lx + REFRACTA_LBL_B * (ly + REFRACTA_LBL_B * lz);
   const int blk = bx + nblocks.x * (by + nblocks.y * bz);
   const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
   const size_t v = active ? refracta_voxel_index(dims, x, y, z) : 0;
 
-  float t[3][LBL_NCLASS], a[3], q[3], wsrc[LBL_Q];
+  float t[3][REFRACTA_LBL_NCLASS], a[3], q[3], wsrc[REFRACTA_LBL_Q];
   float g = 0.0f;
-  float inflow[LBL_Q][3], outAcc[LBL_Q][3];
-  bool inbound[LBL_Q];
+  float inflow[REFRACTA_LBL_Q][3], outAcc[REFRACTA_LBL_Q][3];
+  bool inbound[REFRACTA_LBL_Q];
   #pragma unroll
-  for (int i = 0; i < LBL_Q; ++i)
+  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
   {
     inbound[i] = false;
     #pragma unroll
@@ -257,7 +257,7 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
     for (int ch = 0; ch < 3; ++ch)
     {
       #pragma unroll
-      for (int c = 0; c < LBL_NCLASS; ++c)
+      for (int c = 0; c < REFRACTA_LBL_NCLASS; ++c)
       {
         t[ch][c] = coef[(c * 3 + ch) * n + v];
       }
@@ -265,13 +265,13 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
       q[ch] = src[ch * n + v];
     }
     #pragma unroll
-    for (int i = 0; i < LBL_Q; ++i)
+    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
     {
       const int nb = lbl_inbound_block(i, x, y, z, dims, nblocks);
       if (nb >= 0)
       {
         inbound[i] = true;
-        const size_t base = ((size_t)(nb * 6 + i) * LBL_B * LBL_B + lbl_face_pos(i, lx, ly, lz)) * 3;
+        const size_t base = ((size_t)(nb * 6 + i) * REFRACTA_LBL_B * REFRACTA_LBL_B + lbl_face_pos(i, lx, ly, lz)) * 3;
         #pragma unroll
         for (int ch = 0; ch < 3; ++ch)
         {
@@ -282,7 +282,7 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
   }
   barrier(CLK_LOCAL_MEM_FENCE);
 
-  for (int s = 0; s < LBL_SUBSTEPS; ++s)
+  for (int s = 0; s < REFRACTA_LBL_SUBSTEPS; ++s)
   {
     __local float* cur = (s & 1) ? bufB : bufA;
     __local float* nxt = (s & 1) ? bufA : bufB;
@@ -291,32 +291,32 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
       #pragma unroll
       for (int ch = 0; ch < 3; ++ch)
       {
-        float fin[LBL_Q], out[LBL_Q];
+        float fin[REFRACTA_LBL_Q], out[REFRACTA_LBL_Q];
         #pragma unroll
-        for (int i = 0; i < LBL_Q; ++i)
+        for (int i = 0; i < REFRACTA_LBL_Q; ++i)
         {
           // Entries streaming in from a neighbour block come from the interface, 1/m per substep.
           fin[i] = inbound[i] ? inflow[i][ch] : cur[(i * 3 + ch) * LBL_B3 + lid];
         }
         lbl_collide(fin, out, t[ch], a[ch], g, q[ch], wsrc);
         #pragma unroll
-        for (int i = 0; i < LBL_Q; ++i)
+        for (int i = 0; i < REFRACTA_LBL_Q; ++i)
         {
           const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
           const int ux = lx + lbl_cx[i], uy = ly + lbl_cy[i], uz = lz + lbl_cz[i];
           if (tx < 0 || ty < 0 || tz < 0 || tx >= dims.x || ty >= dims.y || tz >= dims.z)
           {
-#if LBL_BOUNDARY == 1
+#if REFRACTA_LBL_BOUNDARY == 1
             nxt[((i ^ 1) * 3 + ch) * LBL_B3 + lid] = out[i];
 #endif
           }
-          else if (ux < 0 || uy < 0 || uz < 0 || ux >= LBL_B || uy >= LBL_B || uz >= LBL_B)
+          else if (ux < 0 || uy < 0 || uz < 0 || ux >= REFRACTA_LBL_B || uy >= REFRACTA_LBL_B || uz >= REFRACTA_LBL_B)
           {
             outAcc[i][ch] += out[i];
           }
           else
           {
-            nxt[(i * 3 + ch) * LBL_B3 + ux + LBL_B * (uy + LBL_B * uz)] = out[i];
+            nxt[(i * 3 + ch) * LBL_B3 + ux + REFRACTA_LBL_B * (uy + REFRACTA_LBL_B * uz)] = out[i];
           }
         }
       }
@@ -326,9 +326,9 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
 
   if (active)
   {
-    __local float* last = ((LBL_SUBSTEPS - 1) & 1) ? bufA : bufB;
+    __local float* last = ((REFRACTA_LBL_SUBSTEPS - 1) & 1) ? bufA : bufB;
     #pragma unroll
-    for (int i = 0; i < LBL_Q; ++i)
+    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
     {
       #pragma unroll
       for (int ch = 0; ch < 3; ++ch)
@@ -339,10 +339,10 @@ __kernel __attribute__((reqd_work_group_size(LBL_B, LBL_B, LBL_B))) void lbl_blo
       const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
       const int ux = lx + lbl_cx[i], uy = ly + lbl_cy[i], uz = lz + lbl_cz[i];
       const bool inGrid = tx >= 0 && ty >= 0 && tz >= 0 && tx < dims.x && ty < dims.y && tz < dims.z;
-      const bool inBlock = ux >= 0 && uy >= 0 && uz >= 0 && ux < LBL_B && uy < LBL_B && uz < LBL_B;
+      const bool inBlock = ux >= 0 && uy >= 0 && uz >= 0 && ux < REFRACTA_LBL_B && uy < REFRACTA_LBL_B && uz < REFRACTA_LBL_B;
       if (inGrid && !inBlock)
       {
-        const size_t base = ((size_t)(blk * 6 + i) * LBL_B * LBL_B + lbl_face_pos(i, lx, ly, lz)) * 3;
+        const size_t base = ((size_t)(blk * 6 + i) * REFRACTA_LBL_B * REFRACTA_LBL_B + lbl_face_pos(i, lx, ly, lz)) * 3;
         #pragma unroll
         for (int ch = 0; ch < 3; ++ch)
         {
@@ -367,13 +367,13 @@ __kernel void lbl_block_finalize(
   const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
   const size_t v = refracta_voxel_index(dims, x, y, z);
   #pragma unroll
-  for (int i = 0; i < LBL_Q; ++i)
+  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
   {
     const int nb = lbl_inbound_block(i, x, y, z, dims, nblocks);
     if (nb >= 0)
     {
-      const size_t base = ((size_t)(nb * 6 + i) * LBL_B * LBL_B +
-                            lbl_face_pos(i, x % LBL_B, y % LBL_B, z % LBL_B)) * 3;
+      const size_t base = ((size_t)(nb * 6 + i) * REFRACTA_LBL_B * REFRACTA_LBL_B +
+                            lbl_face_pos(i, x % REFRACTA_LBL_B, y % REFRACTA_LBL_B, z % REFRACTA_LBL_B)) * 3;
       #pragma unroll
       for (int ch = 0; ch < 3; ++ch)
       {
@@ -401,7 +401,7 @@ __kernel void lbl_probes(__global const float* state, __global const uint* probe
   {
     float sum = 0.0f;
     #pragma unroll
-    for (int i = 0; i < LBL_Q; ++i)
+    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
     {
       sum += state[(i * 3 + ch) * n + v];
     }
@@ -427,7 +427,7 @@ __kernel void lbl_scattered(
   {
     float sum = 0.0f;
     #pragma unroll
-    for (int i = 0; i < LBL_Q; ++i)
+    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
     {
       sum += (1.0f - coef[(lbl_class[i] * 3 + ch) * n + v]) * state[(i * 3 + ch) * n + v];
     }

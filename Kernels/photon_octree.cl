@@ -11,16 +11,16 @@
 //   level k: min/max over the (up to) 2x2x2 children of level k-1; level k has ceil(N / 2^k)
 //            nodes per axis, so any grid size works (remainder nodes just have fewer children).
 // Labelling walks each voxel's ancestors from the coarsest level to the finest and takes the
-// first whose range is < EPS (unlimited step) or < EPS2 (step capped), as in section 5.3.
+// first whose range is < REFRACTA_EPS (unlimited step) or < REFRACTA_EPS2 (step capped), as in section 5.3.
 //
 // Options: -DEPS=<float> primary tolerance, -DEPS2=<float> secondary tolerance.
 // Work layout: one work-item per voxel (or per node of the level being built), 1D.
 
-#ifndef EPS
-#define EPS 0.005f
+#ifndef REFRACTA_EPS
+#define REFRACTA_EPS 0.005f
 #endif
-#ifndef EPS2
-#define EPS2 0.02f
+#ifndef REFRACTA_EPS2
+#define REFRACTA_EPS2 0.02f
 #endif
 
 inline int3 photon_voxel_ijk(int4 dims, size_t id)
@@ -150,12 +150,12 @@ __kernel void photon_octree_label(__global const float2* pyramid,
       (dims.z + (1 << k) - 1) >> k, 0);
     const float2 r = pyramid[levelOffsets[k] + refracta_voxel_index(dk, c.x >> k, c.y >> k, c.z >> k)];
     const float range = r.y - r.x;
-    if (range < EPS)
+    if (range < REFRACTA_EPS)
     {
       label = (uchar)k;
       break;
     }
-    if (range < EPS2)
+    if (range < REFRACTA_EPS2)
     {
       label = (uchar)(k | 0x80);
       break;

@@ -19,21 +19,21 @@
 //
 // photon_march: one work-item per photon, marching it to termination. Each step advances x and
 // v = n dx/ds along the ray equation (x' = v / n, v' = grad n) with a midpoint (RK2) update,
-// step = clamp(octree step, MIN_STEP, MAX_STEP or CAP_STEP), |dv| bounded by MAX_TURN * n and
+// step = clamp(octree step, REFRACTA_MIN_STEP, REFRACTA_MAX_STEP or REFRACTA_CAP_STEP), |dv| bounded by REFRACTA_MAX_TURN * n and
 // |v| renormalised to n. The chord of the step is walked voxel by voxel (3D DDA, the paper's line
 // rasterisation): in each piece sigma_t and the albedo are sampled at the piece's midpoint,
 // the power lost over the piece, P (1 - exp(-sigma_t l)), is split into absorbed and scattered,
 // and the scattered part is deposited into that voxel's Radiance accumulator (with the piece's
 // direction weighted by it into the RadianceDirection accumulator). Termination: the photon
-// leaves the domain (escaped), Russian roulette below ROULETTE x its initial power (killed;
+// leaves the domain (escaped), Russian roulette below REFRACTA_ROULETTE x its initial power (killed;
 // survivors are boosted by 1/q and the boost is tallied so the books close), the step cap
-// MAX_STEPS (its power is tallied as remaining), or a non-finite state (never expected; counted).
+// REFRACTA_MAX_STEPS (its power is tallied as remaining), or a non-finite state (never expected; counted).
 //
-// Variants (-D, 0 or 1): REFRACT (curved rays with n and grad n lookups; 0: straight rays, one
-// step to the exit), ADAPTIVE (octree step; 0: FIXED_STEP), EXTINCTION (anything attenuates; 0:
-// no piece walk at all), DEPOSIT (anything scatters; 0: no radiance accumulation).
-// Lengths (MIN_STEP, MAX_STEP, CAP_STEP, FIXED_STEP) are in world units; EXT_STEP_LIMIT is an
-// optical depth (0: off); ROULETTE a fraction of the initial power; REFRACTA_FIXED_SCALE the
+// Variants (-D, 0 or 1): REFRACTA_REFRACT (curved rays with n and grad n lookups; 0: straight rays, one
+// step to the exit), REFRACTA_ADAPTIVE (octree step; 0: REFRACTA_FIXED_STEP), REFRACTA_EXTINCTION (anything attenuates; 0:
+// no piece walk at all), REFRACTA_DEPOSIT (anything scatters; 0: no radiance accumulation).
+// Lengths (REFRACTA_MIN_STEP, REFRACTA_MAX_STEP, REFRACTA_CAP_STEP, REFRACTA_FIXED_STEP) are in world units; REFRACTA_EXT_STEP_LIMIT is an
+// optical depth (0: off); REFRACTA_ROULETTE a fraction of the initial power; REFRACTA_FIXED_SCALE the
 // fixed-point scale of refracta_atomics.cl.
 //
 // Tallies (fixed point, REFRACTA_FIXED_SCALE): tallies[3 * T + c] for the books T =
@@ -41,41 +41,41 @@
 // PHOTON_COUNTER_PIECES; the outcome of a photon is the index of its counter (escaped, roulette,
 // step cap, invalid). The layout is defined once, in photon_tallies.cl.
 
-#ifndef REFRACT
-#define REFRACT 1
+#ifndef REFRACTA_REFRACT
+#define REFRACTA_REFRACT 1
 #endif
-#ifndef ADAPTIVE
-#define ADAPTIVE 1
+#ifndef REFRACTA_ADAPTIVE
+#define REFRACTA_ADAPTIVE 1
 #endif
-#ifndef EXTINCTION
-#define EXTINCTION 1
+#ifndef REFRACTA_EXTINCTION
+#define REFRACTA_EXTINCTION 1
 #endif
-#ifndef DEPOSIT
-#define DEPOSIT 1
+#ifndef REFRACTA_DEPOSIT
+#define REFRACTA_DEPOSIT 1
 #endif
-#ifndef MIN_STEP
-#define MIN_STEP 1.0f
+#ifndef REFRACTA_MIN_STEP
+#define REFRACTA_MIN_STEP 1.0f
 #endif
-#ifndef MAX_STEP
-#define MAX_STEP 64.0f
+#ifndef REFRACTA_MAX_STEP
+#define REFRACTA_MAX_STEP 64.0f
 #endif
-#ifndef CAP_STEP
-#define CAP_STEP 8.0f
+#ifndef REFRACTA_CAP_STEP
+#define REFRACTA_CAP_STEP 8.0f
 #endif
-#ifndef FIXED_STEP
-#define FIXED_STEP 1.0f
+#ifndef REFRACTA_FIXED_STEP
+#define REFRACTA_FIXED_STEP 1.0f
 #endif
-#ifndef MAX_STEPS
-#define MAX_STEPS 10000
+#ifndef REFRACTA_MAX_STEPS
+#define REFRACTA_MAX_STEPS 10000
 #endif
-#ifndef EXT_STEP_LIMIT
-#define EXT_STEP_LIMIT 0.0f
+#ifndef REFRACTA_EXT_STEP_LIMIT
+#define REFRACTA_EXT_STEP_LIMIT 0.0f
 #endif
-#ifndef ROULETTE
-#define ROULETTE 0.001f
+#ifndef REFRACTA_ROULETTE
+#define REFRACTA_ROULETTE 0.001f
 #endif
-#ifndef MAX_TURN
-#define MAX_TURN 0.5f
+#ifndef REFRACTA_MAX_TURN
+#define REFRACTA_MAX_TURN 0.5f
 #endif
 
 // R2 sequence generators (plastic number) as 32-bit fractions.
@@ -206,7 +206,7 @@ inline void photon_finish(volatile __global long* tallies, volatile __global lon
   atom_add(counters + PHOTON_COUNTER_PIECES, (long)ps->pieces);
 }
 
-#if EXTINCTION
+#if REFRACTA_EXTINCTION
 // One voxel piece: attenuate, split the loss, deposit the scattered part, then roulette.
 inline void photon_piece(photon_state* ps, float3 mid, float length, float3 direction,
   size_t voxel, __global const float* extinction, __global const float* albedo, int4 dims,
@@ -216,7 +216,7 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
   const float3 lost = ps->power * (-expm1(-sigmaT * length));
   ps->power = fmax(ps->power - lost, (float3)(0.0f));
   ps->pieces++;
-#if DEPOSIT
+#if REFRACTA_DEPOSIT
   const float3 sc = lost * clamp(refracta_sample3(albedo, dims, mid), 0.0f, 1.0f);
   ps->scattered += sc;
   ps->absorbed += lost - sc;
@@ -319,12 +319,12 @@ inline void photon_walk(photon_state* ps, float3 x0, float3 x1, float t1, int4 d
 }
 #endif
 
-#if REFRACT
+#if REFRACTA_REFRACT
 // Step length at x for unit direction d (world units).
 inline float photon_step(float3 x, float3 d, __global const uchar* octree,
   __global const float* extinction, int4 dims, float4 spacing)
 {
-#if ADAPTIVE
+#if REFRACTA_ADAPTIVE
   const float3 u = refracta_to_voxel(x, spacing);
   const int3 c = clamp(convert_int3_rte(u), (int3)(0), (int3)(dims.x - 1, dims.y - 1, dims.z - 1));
   const uchar code = octree[refracta_voxel_index(dims, c.x, c.y, c.z)];
@@ -336,29 +336,29 @@ inline float photon_step(float3 x, float3 d, __global const uchar* octree,
   const float3 tmax = fmax((blo - x) * inv, (bhi - x) * inv);
   const float exitT = fmax(fmin(fmin(tmax.x, tmax.y), tmax.z), 0.0f);
   const float minSpacing = fmin(fmin(spacing.x, spacing.y), spacing.z);
-  float h = clamp(exitT + 1e-3f * minSpacing, MIN_STEP, (code & 0x80) ? CAP_STEP : MAX_STEP);
+  float h = clamp(exitT + 1e-3f * minSpacing, REFRACTA_MIN_STEP, (code & 0x80) ? REFRACTA_CAP_STEP : REFRACTA_MAX_STEP);
 #else
-  float h = FIXED_STEP;
+  float h = REFRACTA_FIXED_STEP;
 #endif
-#if EXTINCTION
-  if (EXT_STEP_LIMIT > 0.0f)
+#if REFRACTA_EXTINCTION
+  if (REFRACTA_EXT_STEP_LIMIT > 0.0f)
   {
     const float3 st = refracta_sample3(extinction, dims, refracta_to_voxel(x, spacing));
     const float m = fmax(st.x, fmax(st.y, st.z));
     if (m > 0.0f)
     {
-      h = fmax(fmin(h, EXT_STEP_LIMIT / m), ADAPTIVE ? MIN_STEP : 0.0f);
+      h = fmax(fmin(h, REFRACTA_EXT_STEP_LIMIT / m), REFRACTA_ADAPTIVE ? REFRACTA_MIN_STEP : 0.0f);
     }
   }
 #endif
   return h;
 }
 
-// dv bounded to MAX_TURN * n: a steep index step turns a ray over several steps, never at once.
+// dv bounded to REFRACTA_MAX_TURN * n: a steep index step turns a ray over several steps, never at once.
 inline float3 photon_bounded(float3 dv, float n)
 {
   const float m = length(dv);
-  const float limit = MAX_TURN * n;
+  const float limit = REFRACTA_MAX_TURN * n;
   return m > limit ? dv * (limit / m) : dv;
 }
 
@@ -393,7 +393,7 @@ inline int photon_curved_step(photon_state* ps, float3* x, float3* v, int* steps
   __global const float* gradient, int4 dims, float4 spacing, volatile __global long* radiance,
   volatile __global long* directionSum)
 {
-  if (*steps >= MAX_STEPS)
+  if (*steps >= REFRACTA_MAX_STEPS)
   {
     return PHOTON_COUNTER_STEP_CAP;
   }
@@ -412,7 +412,7 @@ inline int photon_curved_step(photon_state* ps, float3* x, float3* v, int* steps
     float e1;
     tExit = refracta_intersect_box(*x, x1 - *x, lo, hi, &e0, &e1) ? clamp(e1, 0.0f, 1.0f) : 0.0f;
   }
-#if EXTINCTION
+#if REFRACTA_EXTINCTION
   photon_walk(ps, *x, x1, tExit, dims, spacing, extinction, albedo, radiance, directionSum);
   if (ps->dead)
   {
@@ -451,7 +451,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
     atom_add(counters + PHOTON_COUNTER_MISSED, 1L);
     return;
   }
-  ps.threshold = ROULETTE * p0;
+  ps.threshold = REFRACTA_ROULETTE * p0;
   ps.absorbed = ps.scattered = ps.killed = ps.gained = (float3)(0.0f);
   ps.rng = refracta_rng_seed(seed, id);
   ps.pieces = 0;
@@ -465,14 +465,14 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   float3 x = photonPos[id].xyz;
   const float3 d0 = normalize(photonDir[id].xyz);
 
-#if !REFRACT
+#if !REFRACTA_REFRACT
   // Straight ray: a single step from the start to the domain's exit.
   float t0;
   float t1;
   if (refracta_intersect_box(x, d0, lo, hi, &t0, &t1) && t1 > 0.0f)
   {
     steps = 1;
-#if EXTINCTION
+#if REFRACTA_EXTINCTION
     photon_walk(&ps, x + t0 * d0, x + t1 * d0, 1.0f, dims, spacing, extinction, albedo, radiance,
       directionSum);
 #endif
@@ -539,14 +539,14 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
       status[id] = (uint4)(2u, 0u, 0u, 0u);
       return;
     }
-    ps.threshold = ROULETTE * p0;
+    ps.threshold = REFRACTA_ROULETTE * p0;
     ps.absorbed = ps.scattered = ps.killed = ps.gained = (float3)(0.0f);
     ps.rng = refracta_rng_seed(seed, id);
     ps.pieces = 0;
     emitted = ps.power;
     x = photonPos[id].xyz;
     const float3 d0 = normalize(photonDir[id].xyz);
-#if REFRACT
+#if REFRACTA_REFRACT
     v = d0 * refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
 #else
     // Straight ray: start at the box entry (photon_march's single step starts there too).
@@ -581,7 +581,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   ps.dead = 0;
   int steps = (int)st.y;
   int outcome = -1; // -1 still marching; 2 escaped, 3 roulette, 4 step cap, 5 invalid
-#if !REFRACT
+#if !REFRACTA_REFRACT
   {
     float t0;
     float t1;
@@ -597,7 +597,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
       {
         steps = 1; // photon_march counts a straight ray as one step
       }
-#if EXTINCTION
+#if REFRACTA_EXTINCTION
       photon_walk(&ps, x, x + len * v, 1.0f, dims, spacing, extinction, albedo, radiance,
         directionSum);
 #endif

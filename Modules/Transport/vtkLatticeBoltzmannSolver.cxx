@@ -294,16 +294,16 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   }
   vtkOpenCLContext* context = this->GetContext();
   std::ostringstream options;
-  options << "-DLBL_Q=" << q << " -DLBL_NCLASS=" << this->ClassLengths.size() << " -DLBL_CLASSES={";
+  options << "-DREFRACTA_LBL_Q=" << q << " -DREFRACTA_LBL_NCLASS=" << this->ClassLengths.size() << " -DREFRACTA_LBL_CLASSES={";
   for (int i = 0; i < q; ++i)
   {
     options << (i ? "," : "") << this->DirectionClass[i];
   }
-  options << "} -DLBL_BOUNDARY=" << this->Boundary
-          << " -DLBL_SOURCE_PHASE=" << this->SourceDistribution;
+  options << "} -DREFRACTA_LBL_BOUNDARY=" << this->Boundary
+          << " -DREFRACTA_LBL_SOURCE_PHASE=" << this->SourceDistribution;
   if (blocked)
   {
-    options << " -DLBL_B=" << this->BlockSize << " -DLBL_SUBSTEPS=" << this->StepsPerExchange;
+    options << " -DREFRACTA_LBL_B=" << this->BlockSize << " -DREFRACTA_LBL_SUBSTEPS=" << this->StepsPerExchange;
   }
   cl_program program = context->GetProgram({ "refracta_common.cl", "lbl.cl" }, options.str(), this);
   if (!program)

@@ -133,9 +133,15 @@ int vtkPhotonDiffusionSchedule::RequestData(
   }
 
   // Photon pass, with the diffusion interleaved between its chunks.
-  vtkNew<vtkImageData> copy;
-  copy->ShallowCopy(medium);
-  this->Tracer->SetInputData(copy);
+  if (!this->TracerInput || medium != this->TracerInputSource ||
+    medium->GetMTime() != this->TracerInputTime)
+  {
+    this->TracerInput = vtkSmartPointer<vtkImageData>::New();
+    this->TracerInput->ShallowCopy(medium);
+    this->TracerInputSource = medium;
+    this->TracerInputTime = medium->GetMTime();
+  }
+  this->Tracer->SetInputData(this->TracerInput);
   const bool interleaved = this->Mode == INTERLEAVED;
   this->Tracer->SetStepsPerChunk(interleaved ? this->StepsPerChunk : 0);
   int diffusionSteps = 0;

@@ -39,6 +39,7 @@
 #include "vtkImageAlgorithm.h"
 #include "vtkSmartPointer.h" // for members
 
+class vtkImageData;
 class vtkLatticeBoltzmannSolver;
 class vtkPhotonTracer;
 
@@ -105,6 +106,11 @@ protected:
   double PhotonShare = 0.5; // the photon pass's share of the progress
   vtkSmartPointer<vtkPhotonTracer> Tracer;
   vtkSmartPointer<vtkLatticeBoltzmannSolver> Solver;
+  // The tracer's input: a shallow copy of the medium, made again only when the medium changed,
+  // so that the tracer keeps its uploaded medium and octree across light changes.
+  vtkSmartPointer<vtkImageData> TracerInput;
+  vtkImageData* TracerInputSource = nullptr;
+  vtkMTimeType TracerInputTime = 0;
 
 private:
   vtkPhotonDiffusionSchedule(const vtkPhotonDiffusionSchedule&) = delete;

@@ -62,6 +62,58 @@ vtkPhotonTracer::vtkPhotonTracer()
 
 vtkPhotonTracer::~vtkPhotonTracer() = default;
 
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::TakeCachedMedium(Internals& run)
+{
+  MediumCache* c = this->Cache.get();
+  const bool same = c && c->Input == run.Input && c->InputTime == run.Input->GetMTime() &&
+    c->Context == this->GetContext() && c->PrimaryTolerance == this->PrimaryTolerance &&
+    c->SecondaryTolerance == this->SecondaryTolerance &&
+    c->AdaptiveStepping == this->AdaptiveStepping && c->UseProxyBounds == this->UseProxyBounds;
+  if (!same)
+  {
+    this->Cache.reset(); // releases the old medium's device buffers now
+    return false;
+  }
+  run.M = std::move(c->M);
+  run.NBuffer = std::move(c->NBuffer);
+  run.GradBuffer = std::move(c->GradBuffer);
+  run.Octree = std::move(c->Octree);
+  run.ExtBuffer = std::move(c->ExtBuffer);
+  run.AlbBuffer = std::move(c->AlbBuffer);
+  run.Alloc.Bytes += c->Bytes;
+  run.ReusedMedium = true;
+  this->Cache.reset();
+  return true;
+}
+
+void vtkPhotonTracer::KeepMedium(Internals& run)
+{
+  auto c = std::make_unique<MediumCache>();
+  c->Input = run.Input;
+  c->InputTime = run.Input->GetMTime();
+  c->Context = run.Context;
+  c->PrimaryTolerance = this->PrimaryTolerance;
+  c->SecondaryTolerance = this->SecondaryTolerance;
+  c->AdaptiveStepping = this->AdaptiveStepping;
+  c->UseProxyBounds = this->UseProxyBounds;
+  // The device bytes of the kept buffers, as the allocator counted them when they were made.
+  const Medium& m = run.M;
+  auto rounded = [](size_t bytes)
+  { return static_cast<double>((std::max<size_t>(bytes, 1) + 15) / 16 * 16); };
+  const size_t v = m.Voxels;
+  c->Bytes = rounded((m.Curved ? v : 1) * 4) + rounded(m.Curved ? v * 12 : 16) +
+    rounded(this->UsedOctree ? v : 16) + rounded((m.Attenuates ? v * 3 : 1) * 4) +
+    rounded((m.Scatters ? v * 3 : 1) * 4);
+  c->M = std::move(run.M);
+  c->NBuffer = std::move(run.NBuffer);
+  c->GradBuffer = std::move(run.GradBuffer);
+  c->Octree = std::move(run.Octree);
+  c->ExtBuffer = std::move(run.ExtBuffer);
+  c->AlbBuffer = std::move(run.AlbBuffer);
+  this->Cache = std::move(c);
+}
+
 void vtkPhotonTracer::AddLight(vtkLight* light)
 {
   if (light)
@@ -218,6 +270,11 @@ bool vtkPhotonTracer::BuildOctreeStage(Internals& run)
   vtkOpenCLBuffer& gradBuffer = run.GradBuffer;
   vtkOpenCLBuffer& octree = run.Octree;
   auto start = Clock::now();
+  if (run.ReusedMedium)
+  {
+    return this->ReportProgress(
+      run, ProgressOctree); // index, gradient and octree are on the device
+  }
   nBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
     (m.Curved ? voxels : 1) * sizeof(float), m.N.data(), "RefractiveIndex");
   if (!nBuffer)
@@ -294,17 +351,18 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   std::ostringstream scaleLiteral;
   scaleLiteral << "0x1p" << std::ilogb(deviceScale) << "f";
   std::ostringstream options;
-  options << "-DREFRACTA_FIXED_SCALE=" << scaleLiteral.str() << " -DREFRACT=" << m.Curved
-          << " -DADAPTIVE=" << this->AdaptiveStepping << " -DEXTINCTION=" << m.Attenuates
-          << " -DDEPOSIT=" << m.Scatters
-          << " -DMIN_STEP=" << FloatLiteral(this->MinimumStep * voxelUnit)
-          << " -DMAX_STEP=" << FloatLiteral(this->MaximumStep * voxelUnit) << " -DCAP_STEP="
+  options << "-DREFRACTA_FIXED_SCALE=" << scaleLiteral.str() << " -DREFRACTA_REFRACT=" << m.Curved
+          << " -DREFRACTA_ADAPTIVE=" << this->AdaptiveStepping
+          << " -DREFRACTA_EXTINCTION=" << m.Attenuates << " -DREFRACTA_DEPOSIT=" << m.Scatters
+          << " -DREFRACTA_MIN_STEP=" << FloatLiteral(this->MinimumStep * voxelUnit)
+          << " -DREFRACTA_MAX_STEP=" << FloatLiteral(this->MaximumStep * voxelUnit)
+          << " -DREFRACTA_CAP_STEP="
           << FloatLiteral(std::min(this->SecondaryStepLimit, this->MaximumStep) * voxelUnit)
-          << " -DFIXED_STEP=" << FloatLiteral(this->FixedStep * voxelUnit)
-          << " -DMAX_STEPS=" << this->MaximumNumberOfSteps
-          << " -DEXT_STEP_LIMIT=" << FloatLiteral(this->ExtinctionStepLimit)
-          << " -DROULETTE=" << FloatLiteral(this->RouletteThreshold)
-          << " -DMAX_TURN=" << FloatLiteral(this->MaximumTurn);
+          << " -DREFRACTA_FIXED_STEP=" << FloatLiteral(this->FixedStep * voxelUnit)
+          << " -DREFRACTA_MAX_STEPS=" << this->MaximumNumberOfSteps
+          << " -DREFRACTA_EXT_STEP_LIMIT=" << FloatLiteral(this->ExtinctionStepLimit)
+          << " -DREFRACTA_ROULETTE=" << FloatLiteral(this->RouletteThreshold)
+          << " -DREFRACTA_MAX_TURN=" << FloatLiteral(this->MaximumTurn);
   run.Trace = ctx->GetProgram(
     { "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl", "photon_trace.cl" },
     options.str(), this);
@@ -387,10 +445,13 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
   vtkOpenCLBuffer& counters = run.Counters;
   const auto start = Clock::now();
   const size_t accumulators = m.Scatters ? voxels * 3 : 1;
-  extBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-    (m.Attenuates ? voxels * 3 : 1) * sizeof(float), m.Extinction.data(), "Extinction");
-  albBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-    (m.Scatters ? voxels * 3 : 1) * sizeof(float), m.Albedo.data(), "Albedo");
+  if (!run.ReusedMedium)
+  {
+    extBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      (m.Attenuates ? voxels * 3 : 1) * sizeof(float), m.Extinction.data(), "Extinction");
+    albBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      (m.Scatters ? voxels * 3 : 1) * sizeof(float), m.Albedo.data(), "Albedo");
+  }
   radFixed =
     alloc.Make(CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "radiance accumulator");
   dirFixed =
@@ -704,15 +765,17 @@ int vtkPhotonTracer::RequestData(
   this->UsedCurvedRays = this->UsedExtinction = this->UsedDeposit = false;
   this->UsedOctree = this->ComputedGradient = false;
 
+  this->LastRunAborted = false;
+  Internals run;
+  run.Input = input;
+  // The medium kept from the last run was validated then; a new one is validated now.
   vtkNew<vtkMediumValidator> validator;
-  if (!validator->Validate(input))
+  this->LastRunReusedMedium = input && this->TakeCachedMedium(run);
+  if (!this->LastRunReusedMedium && !validator->Validate(input))
   {
     vtkErrorMacro("Input 0 is not a valid Refracta medium: " << validator->GetErrorMessage());
     return 0;
   }
-  this->LastRunAborted = false;
-  Internals run;
-  run.Input = input;
   if (!this->SetUpLights(run))
   {
     return 0;
@@ -732,6 +795,7 @@ int vtkPhotonTracer::RequestData(
   }
   this->PeakDeviceMemoryBytes = run.Alloc.Bytes;
   this->WriteOutput(run, output);
+  this->KeepMedium(run);
   this->ReportProgress(run, 1.0);
   return 1;
 }

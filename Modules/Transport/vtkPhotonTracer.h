@@ -63,6 +63,7 @@
 #ifndef __VTK_WRAP__
 #include "vtkOpenCLHandle.h" // for cl_mem in the chunk callback
 #include <functional>        // for the chunk callback
+#include <memory>            // for std::unique_ptr
 #endif
 
 class vtkLight;
@@ -278,6 +279,16 @@ public:
    */
   vtkGetMacro(LastRunAborted, bool);
 
+  /**
+   * Whether the last run reused the medium of the run before (its host copy and its device
+   * buffers: refractive index, gradient, octree, extinction, albedo) instead of reading and
+   * uploading it again and rebuilding the octree. It does when the input is the same object with
+   * the same MTime, on the same context, with the same octree settings (PrimaryTolerance,
+   * SecondaryTolerance, AdaptiveStepping, UseProxyBounds): a light change then re-runs the
+   * photon generation and marching only. An aborted or failed run drops the kept medium.
+   */
+  vtkGetMacro(LastRunReusedMedium, bool);
+
 #ifndef __VTK_WRAP__
   /**
    * Called after each chunk (on the context's queue, nothing waited for): the fixed-point
@@ -333,6 +344,7 @@ protected:
   int PhotonBatchSize = 0;
   int NumberOfBatches = 0;
   bool LastRunAborted = false;
+  bool LastRunReusedMedium = false;
 #ifndef __VTK_WRAP__
   ChunkCallback Callback;
 #endif
@@ -352,6 +364,10 @@ private:
   vtkPhotonTracer(const vtkPhotonTracer&) = delete;
   void operator=(const vtkPhotonTracer&) = delete;
   struct Internals;
+  struct MediumCache;
+  std::unique_ptr<MediumCache> Cache; // the medium kept from the last successful run
+  bool TakeCachedMedium(Internals& run);
+  void KeepMedium(Internals& run);
   // Reports max(progress, the last value reported) and returns false when AbortExecute is set.
   bool ReportProgress(Internals& run, double progress);
   // The stages of RequestData, in order; each returns false after reporting an error.

@@ -176,8 +176,23 @@ struct vtkPhotonTracer::Internals
   std::vector<cl_long> Tally, Count;
   vtkNew<vtkFloatArray> Radiance;
   vtkNew<vtkFloatArray> Direction;
-  double Progress = 0.0; // last value reported, so that progress never goes back
-  bool Aborted = false;  // the run stopped because AbortExecute was set
+  double Progress = 0.0;     // last value reported, so that progress never goes back
+  bool Aborted = false;      // the run stopped because AbortExecute was set
+  bool ReusedMedium = false; // M and the medium's buffers came from the MediumCache
+};
+
+//------------------------------------------------------------------------------
+// The medium a successful run leaves for the next one, and what it was made from.
+struct vtkPhotonTracer::MediumCache
+{
+  vtkImageData* Input = nullptr;
+  vtkMTimeType InputTime = 0;
+  vtkOpenCLContext* Context = nullptr;
+  double PrimaryTolerance = 0, SecondaryTolerance = 0;
+  bool AdaptiveStepping = false, UseProxyBounds = false;
+  vtkPhotonTracerDetail::Medium M;
+  vtkOpenCLBuffer NBuffer, GradBuffer, Octree, ExtBuffer, AlbBuffer;
+  double Bytes = 0; // device bytes of those buffers
 };
 
 #endif

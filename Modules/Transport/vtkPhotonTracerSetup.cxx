@@ -111,7 +111,8 @@ bool Run1D(vtkOpenCLContext* ctx, cl_kernel kernel, size_t count, const char* la
 bool RunOctree(vtkOpenCLContext* ctx, vtkObject* reporter, Allocator& alloc, cl_mem nBuffer,
   const int dims[3], double eps, double eps2, vtkOpenCLBuffer& octree)
 {
-  const std::string options = "-DEPS=" + FloatLiteral(eps) + " -DEPS2=" + FloatLiteral(eps2);
+  const std::string options =
+    "-DREFRACTA_EPS=" + FloatLiteral(eps) + " -DREFRACTA_EPS2=" + FloatLiteral(eps2);
   cl_program program = ctx->GetProgram(
     { "refracta_atomics.cl", "refracta_common.cl", "photon_octree.cl" }, options, reporter);
   if (!program)
@@ -193,7 +194,10 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
 {
   vtkImageData* input = run.Input;
   Medium& m = run.M;
-  LoadMedium(input, this->UseProxyBounds, m);
+  if (!run.ReusedMedium)
+  {
+    LoadMedium(input, this->UseProxyBounds, m);
+  }
   vtkNew<vtkRefractaGridFrame> grid;
   grid->SetImage(input);
   auto toLocalPoint = [&](const double p[3], double out[3]) { grid->WorldToLocalPoint(p, out); };

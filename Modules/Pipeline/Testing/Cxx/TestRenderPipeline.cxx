@@ -146,6 +146,15 @@ TEST(RenderPipeline, StagesRerunOnlyWhatChanged)
   ASSERT_TRUE(pipeline->Render(40, 30));
   ExpectCounts(pipeline, { 2, 2, 5, 1 }, "light move: light passes and view, same medium");
   EXPECT_EQ(pipeline->GetViewPass()->GetNumberOfUploads(), uploads + 1) << "lighting only";
+  EXPECT_TRUE(pipeline->GetPhotonTracer()->GetLastRunReusedMedium())
+    << "a light move neither re-uploads the medium nor rebuilds the octree";
+  {
+    // ... and the kept medium gives the image a fresh pipeline gives.
+    auto fresh = MakePipeline(medium, light, camera);
+    fresh->GetViewPass()->SetStepSize(0.5);
+    ASSERT_TRUE(fresh->Render(40, 30));
+    EXPECT_EQ(fresh->GetImage(), pipeline->GetImage());
+  }
 
   pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 13);
   ASSERT_TRUE(pipeline->Render(40, 30));
@@ -154,6 +163,7 @@ TEST(RenderPipeline, StagesRerunOnlyWhatChanged)
   medium->Modified();
   ASSERT_TRUE(pipeline->Render(40, 30));
   ExpectCounts(pipeline, { 3, 4, 7, 2 }, "medium change: everything");
+  EXPECT_FALSE(pipeline->GetPhotonTracer()->GetLastRunReusedMedium());
 
   pipeline->GetEffectPlan()->SetTolerance(0.02);
   ASSERT_TRUE(pipeline->Render(40, 30));
