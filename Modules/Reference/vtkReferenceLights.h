@@ -53,8 +53,9 @@ struct Light
     return Radiance * std::pow(c, Exponent);
   }
 
-  // Solid-angle pdf of the uniform cone that this light subtends from x, evaluated at w; fills the
-  // cone for sampling when asked.
+  // The cone of directions this light subtends from x (its axis and 1 - cos of its half-angle),
+  // sampled uniformly by the connections. False when x is inside the sphere: then the whole
+  // sphere of directions (pdf positive, no contribution).
   bool Cone(const Vec3& x, Vec3& axis, double& omcMax) const
   {
     if (Directional)
@@ -78,6 +79,7 @@ struct Light
     omcMax = sin2 / (1 + cosMax);
     return true;
   }
+  // Solid-angle pdf of the uniform cone of Cone(x) at the unit direction w.
   double ConePdf(const Vec3& x, const Vec3& w) const
   {
     Vec3 axis;
