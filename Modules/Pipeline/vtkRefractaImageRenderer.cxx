@@ -38,11 +38,11 @@ vtkRefractaImageRenderer::vtkRefractaImageRenderer()
     [](vtkObject*, unsigned long, void* clientData, void* callData)
     {
       auto* self = static_cast<vtkRefractaImageRenderer*>(clientData);
-      if (self->GetAbortExecute())
+      self->UpdateProgress(*static_cast<double*>(callData));
+      if (self->GetAbortExecute()) // set before, or by an observer of this very progress event
       {
         self->Pipeline->AbortRender();
       }
-      self->UpdateProgress(*static_cast<double*>(callData));
     });
   this->Pipeline->AddObserver(vtkCommand::ProgressEvent, forward);
   this->Pipeline->SetEventOwner(this);

@@ -501,16 +501,25 @@ bool vtkRefractaRenderPipeline::Render(int width, int height, const float* depth
     return false;
   }
 
-  // Which stages will run decides how the progress range is shared among them.
+  // Which stages will run decides how the progress range is shared among them; without a light
+  // that is on, the light stage only hands over the lighting data (or nothing).
   const bool plan = this->PlanIsStale();
   const bool light = plan || this->LightingIsStale();
+  bool anyLightOn = false;
+  for (vtkLight* l : in.CurrentLightList())
+  {
+    anyLightOn = anyLightOn || l->GetSwitch();
+  }
   const bool stages[NUMBER_OF_STAGES] = { plan, light, true };
   double total = 0;
   for (int s = 0; s < NUMBER_OF_STAGES; ++s)
   {
-    in.StageWeight[s] = stages[s]
-      ? (in.LastSeconds[s] >= 0 ? in.LastSeconds[s] + 1e-3 : DefaultStageSeconds[s])
-      : 0.0;
+    double seconds = in.LastSeconds[s] >= 0 ? in.LastSeconds[s] + 1e-3 : DefaultStageSeconds[s];
+    if (s == LIGHTING && (!anyLightOn || in.LightingData))
+    {
+      seconds = 1e-3;
+    }
+    in.StageWeight[s] = stages[s] ? seconds : 0.0;
     total += in.StageWeight[s];
   }
   double start = 0;
@@ -524,8 +533,18 @@ bool vtkRefractaRenderPipeline::Render(int width, int height, const float* depth
   double zero = 0;
   this->InvokeEvent(vtkCommand::ProgressEvent, &zero);
 
+  // An abort between stages stops before the next one starts.
+  auto aborted = [&]()
+  {
+    this->LastRenderAborted = this->LastRenderAborted || in.Abort;
+    return this->LastRenderAborted;
+  };
   auto run = [&](int stage, bool (vtkRefractaRenderPipeline::*body)()) -> bool
   {
+    if (aborted())
+    {
+      return false;
+    }
     const char* name = GetStageName(stage);
     this->InvokeEvent(vtkCommand::StartEvent, const_cast<char*>(name));
     const auto t0 = std::chrono::steady_clock::now();
@@ -565,6 +584,10 @@ bool vtkRefractaRenderPipeline::Render(int width, int height, const float* depth
   {
     this->ReportProgress(VIEW, 1.0);
     return true;
+  }
+  if (aborted())
+  {
+    return false;
   }
   this->InvokeEvent(vtkCommand::StartEvent, const_cast<char*>(GetStageName(VIEW)));
   const auto t0 = std::chrono::steady_clock::now();

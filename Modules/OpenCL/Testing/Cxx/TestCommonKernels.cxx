@@ -13,7 +13,7 @@
 
 namespace
 {
-const std::vector<std::string> Files = { "refracta_common.cl" };
+const std::vector<std::string> Files = { "refracta_common.cl", "refracta_common_tests.cl" };
 
 double HostTrilinear(const std::vector<float>& f, const int d[3], const double u[3])
 {
