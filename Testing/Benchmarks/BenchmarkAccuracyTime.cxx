@@ -33,6 +33,7 @@
 //     [--knobs a,b,...] [--cache DIR] [--smoke]
 #include "RefractaBenchmark.h"
 #include "RefractaPipeline.h"
+#include "RefractaReferenceImages.h"
 #include "RefractaScenes.h"
 
 #include "vtkCamera.h"
@@ -65,7 +66,12 @@
 
 namespace
 {
+using refracta::bench::Image;
+using refracta::bench::NoiseLevel;
 using refracta::bench::PipelineKnobs;
+using refracta::bench::ReadImage;
+using refracta::bench::RelativeError;
+using refracta::bench::RenderReference;
 using refracta::bench::Table;
 using refracta::scenes::Scene;
 
@@ -142,13 +148,6 @@ std::vector<Knob> MakeKnobs(const Settings& settings)
 }
 
 // An RGB image with its per-pixel standard error (zero for the pipeline).
-struct Image
-{
-  std::vector<double> Value;
-  std::vector<double> Error;
-  double Seconds = 0.0;
-};
-
 // Which pixels (i + W j) see the scene's region of interest: the bounding rectangle of its box's
 // projected corners.
 std::vector<bool> RegionMask(const Scene& scene, int w, int h)
@@ -178,64 +177,6 @@ std::vector<bool> RegionMask(const Scene& scene, int w, int h)
     }
   }
   return mask;
-}
-
-// Relative RMSE of `image` against `reference` over the masked pixels, with the reference's
-// variance taken out: E[(a - r)^2] = (a - truth)^2 + var(r) for an unbiased r independent of a.
-double RelativeError(const Image& image, const Image& reference, const std::vector<bool>& mask)
-{
-  double squared = 0.0, variance = 0.0, norm = 0.0;
-  for (size_t p = 0; p < mask.size(); ++p)
-  {
-    if (!mask[p])
-    {
-      continue;
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-      const size_t v = 3 * p + c;
-      const double d = image.Value[v] - reference.Value[v];
-      squared += d * d;
-      variance += reference.Error[v] * reference.Error[v];
-      norm += reference.Value[v] * reference.Value[v];
-    }
-  }
-  return norm > 0 ? std::sqrt(std::max(0.0, squared - variance) / norm) : 0.0;
-}
-
-// sqrt(sum SE^2 / sum value^2): the relative RMSE the reference's own noise amounts to.
-double NoiseLevel(const Image& image, const std::vector<bool>& mask)
-{
-  double variance = 0.0, norm = 0.0;
-  for (size_t v = 0; v < image.Value.size(); ++v)
-  {
-    if (mask[v / 3])
-    {
-      variance += image.Error[v] * image.Error[v];
-      norm += image.Value[v] * image.Value[v];
-    }
-  }
-  return norm > 0 ? std::sqrt(variance / norm) : 0.0;
-}
-
-Image ReadImage(vtkImageData* output)
-{
-  Image image;
-  vtkDataArray* hdr = output->GetPointData()->GetArray("HDR");
-  vtkDataArray* se = output->GetPointData()->GetArray("StandardError");
-  for (vtkIdType p = 0; hdr && p < hdr->GetNumberOfTuples(); ++p)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      image.Value.push_back(hdr->GetComponent(p, c));
-      image.Error.push_back(se ? std::max(0.0, se->GetComponent(p, c)) : 0.0);
-    }
-  }
-  if (vtkDataArray* seconds = output->GetFieldData()->GetArray("RenderSeconds"))
-  {
-    image.Seconds = seconds->GetComponent(0, 0);
-  }
-  return image;
 }
 
 // Write an image as an 8-bit PNG, scaled so that the reference's 99th percentile maps to white,
@@ -287,34 +228,6 @@ double WhiteScale(const Image& reference)
   std::nth_element(values.begin(), values.begin() + values.size() * 99 / 100, values.end());
   const double p99 = values[values.size() * 99 / 100];
   return p99 > 0 ? 1.0 / p99 : 1.0;
-}
-
-// Render `scene` with the reference renderer; `output`, when given, receives its whole output.
-Image RenderReference(
-  const Scene& scene, int size, int spp, unsigned int seed, vtkImageData* output = nullptr)
-{
-  vtkNew<vtkReferenceRenderer> reference;
-  reference->SetInputData(scene.Medium);
-  reference->SetCamera(scene.Camera);
-  for (const auto& light : scene.Lights)
-  {
-    reference->AddLight(light);
-  }
-  reference->SetImageSize(size, size);
-  reference->SetBackgroundColor(scene.Background[0], scene.Background[1], scene.Background[2]);
-  reference->SetLightRadius(scene.LightRadius);
-  reference->SetDirectionalLightAngularRadius(scene.LightAngularRadius);
-  reference->SetSamplesPerPixel(spp);
-  reference->SetSeed(seed);
-  const auto start = std::chrono::steady_clock::now();
-  reference->Update();
-  Image image = ReadImage(reference->GetOutput());
-  image.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (output)
-  {
-    output->ShallowCopy(reference->GetOutput());
-  }
-  return image;
 }
 
 // The converged reference, read from the cache directory when an earlier run left it there.

@@ -46,6 +46,7 @@
 // number of threads) and the photon tracer's Seed is its default 1 with 64-bit fixed-point
 // deposits, so on one OpenCL device every run of this test gives the same numbers; on another
 // device the pipeline's photon streams and float rounding differ (the bounds leave room for that).
+#include "RefractaReferenceImages.h"
 #include "RefractaScenes.h"
 
 #include "vtkCamera.h"
@@ -72,50 +73,14 @@
 
 namespace
 {
+using refracta::bench::Image;
+using refracta::bench::ReadImage;
+using refracta::bench::RenderReference;
 using refracta::scenes::Scene;
-
-struct Image
-{
-  std::vector<double> Value; // RGB per pixel, row 0 at the bottom
-  std::vector<double> Error; // the reference's standard error; 0 for the pipeline
-  double Seconds = 0.0;
-};
 
 double Since(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-Image RenderReference(const Scene& scene, int size, int spp, unsigned int seed)
-{
-  const auto start = std::chrono::steady_clock::now();
-  vtkNew<vtkReferenceRenderer> reference;
-  reference->SetInputData(scene.Medium);
-  reference->SetCamera(scene.Camera);
-  for (const auto& light : scene.Lights)
-  {
-    reference->AddLight(light);
-  }
-  reference->SetImageSize(size, size);
-  reference->SetBackgroundColor(scene.Background[0], scene.Background[1], scene.Background[2]);
-  reference->SetLightRadius(scene.LightRadius);
-  reference->SetDirectionalLightAngularRadius(scene.LightAngularRadius);
-  reference->SetSamplesPerPixel(spp);
-  reference->SetSeed(seed);
-  reference->Update();
-  Image image;
-  vtkDataArray* hdr = reference->GetOutput()->GetPointData()->GetArray("HDR");
-  vtkDataArray* se = reference->GetOutput()->GetPointData()->GetArray("StandardError");
-  for (vtkIdType p = 0; hdr && se && p < hdr->GetNumberOfTuples(); ++p)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      image.Value.push_back(hdr->GetComponent(p, c));
-      image.Error.push_back(std::max(0.0, se->GetComponent(p, c)));
-    }
-  }
-  image.Seconds = Since(start);
-  return image;
 }
 
 Image RenderPipeline(const Scene& scene, int size, int quality, bool multipleScattering,
@@ -137,18 +102,7 @@ Image RenderPipeline(const Scene& scene, int size, int quality, bool multipleSca
   renderer->SetImageSize(size, size);
   renderer->SetBackgroundColor(scene.Background[0], scene.Background[1], scene.Background[2]);
   renderer->Update();
-  Image image;
-  if (vtkDataArray* hdr = renderer->GetOutput()->GetPointData()->GetArray("HDR"))
-  {
-    for (vtkIdType p = 0; p < hdr->GetNumberOfTuples(); ++p)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        image.Value.push_back(hdr->GetComponent(p, c));
-      }
-    }
-  }
-  image.Error.assign(image.Value.size(), 0.0);
+  Image image = ReadImage(renderer->GetOutput());
   image.Seconds = Since(start);
   if (summary)
   {
@@ -182,7 +136,7 @@ Statistics Measure(
   const Image& image, const Image& reference, const std::vector<bool>& seen, double k, double b)
 {
   Statistics s;
-  double squared = 0.0, variance = 0.0, norm = 0.0, diff = 0.0, sum = 0.0;
+  double diff = 0.0, sum = 0.0;
   int failed = 0;
   double rms = 0.0;
   int count = 0;
@@ -202,16 +156,13 @@ Statistics Measure(
       continue;
     }
     const double r = reference.Value[v], d = image.Value[v] - r;
-    squared += d * d;
-    variance += reference.Error[v] * reference.Error[v];
-    norm += r * r;
     diff += d;
     sum += r;
     ++s.Values;
     failed += std::abs(d) > k * reference.Error[v] + b * std::max(std::abs(r), rms) ? 1 : 0;
   }
-  s.RelativeError = norm > 0 ? std::sqrt(std::max(0.0, squared - variance) / norm) : 0.0;
-  s.Noise = norm > 0 ? std::sqrt(variance / norm) : 0.0;
+  s.RelativeError = refracta::bench::RelativeError(image, reference, seen);
+  s.Noise = refracta::bench::NoiseLevel(reference, seen);
   s.FailedFraction = s.Values ? double(failed) / s.Values : 1.0;
   s.Bias = sum > 0 ? diff / sum : 0.0;
   return s;
