@@ -8,7 +8,7 @@ inclusion such as a calcification or a metal bead): a sphere of tissue of radius
 bone shell 8 mm thick, open towards the camera (a trepanned skull, so to speak), with a 30 mm
 inclusion off centre. vtkTransferFunctionMedium maps it
 through an ordinary vtkVolumeProperty (scalar opacity per voxel -> extinction, colour -> albedo)
-to a medium; vtkRefractaImageRenderer lights it with a warm key light from the upper left and a
+to a medium; vtkRefractaImageRenderer lights it with a warm key light from the left and a
 weak cool fill light from the right (photon pass for single scattering, the Lattice-Boltzmann
 pass for multiple scattering, DRAFT preset) and renders it headless, with Reinhard tone mapping.
 
@@ -62,7 +62,7 @@ medium.SetInputData(ct); medium.SetVolumeProperty(prop); medium.SetAnisotropy(0.
 
 # --- Two directional lights (irradiance per unit area) and the camera ---
 key = vtkLight(); key.SetPositional(False); key.SetPosition(-1, 0.6, 0.1); key.SetFocalPoint(0, 0, 0)
-key.SetDiffuseColor(1.0, 0.9, 0.75); key.SetIntensity(1.0)        # warm, from the upper left
+key.SetDiffuseColor(1.0, 0.9, 0.75); key.SetIntensity(1.0)        # warm, from the left
 fill = vtkLight(); fill.SetPositional(False); fill.SetPosition(1, -0.2, 0.3); fill.SetFocalPoint(0, 0, 0)
 fill.SetDiffuseColor(0.6, 0.75, 1.0); fill.SetIntensity(0.1)     # cool, weak, from the right
 camera = vtkCamera(); camera.SetPosition(0, 0, 600); camera.SetFocalPoint(0, 0, 0); camera.SetViewAngle(22)
