@@ -1,0 +1,32 @@
+# Installs the build tree into a private prefix, then configures, builds and runs the C++ example
+# in this folder against it, the way a user outside the tree would (find_package(Refracta)).
+#   cmake -DBUILD_DIR=... -DWORK_DIR=... [-DOUTPUT=out.png] [-DVOXELS=48] [-DSANITIZE=address,undefined]
+#         [-DCXX_LAUNCHER=ccache] -P RunExample.cmake
+# (Testing/Install/RunInstallTest.cmake does the same for a minimal consumer.)
+file(REMOVE_RECURSE "${WORK_DIR}")
+function (run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if (NOT rc EQUAL 0)
+    message(FATAL_ERROR "Command failed (${rc}): ${ARGN}\n${out}")
+  endif ()
+  message(STATUS "${out}")
+endfunction ()
+run("${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${WORK_DIR}/prefix")
+set(flags "")
+if (SANITIZE)  # a sanitized Refracta needs a sanitized program (the runtime first in the link)
+  list(APPEND flags "-DCMAKE_CXX_FLAGS=-fsanitize=${SANITIZE}")
+endif ()
+if (CXX_LAUNCHER)
+  list(APPEND flags "-DCMAKE_CXX_COMPILER_LAUNCHER=${CXX_LAUNCHER}")
+endif ()
+run("${CMAKE_COMMAND}" -S "${CMAKE_CURRENT_LIST_DIR}" -B "${WORK_DIR}/build"
+  "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix" -DCMAKE_BUILD_TYPE=Release ${flags})
+run("${CMAKE_COMMAND}" --build "${WORK_DIR}/build")
+if (NOT OUTPUT)
+  set(OUTPUT "${WORK_DIR}/render_sphere.png")
+endif ()
+if (NOT VOXELS)
+  set(VOXELS 64)
+endif ()
+run("${WORK_DIR}/build/render_sphere" "${OUTPUT}" "${VOXELS}")
+message(STATUS "Examples/Cxx built against the installed package and ran")
