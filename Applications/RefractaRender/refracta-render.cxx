@@ -140,8 +140,16 @@ int Render(const json& scene, const std::string& base, const Options& options)
 
   // The scene: the medium, then what surrounds it.
   Timer mediumTimer;
+  if (!options.Quiet)
+  {
+    std::cout << "  medium ..." << std::endl;
+  }
   const SceneMedium medium = ReadMedium(scene, base);
   seconds["medium"] = mediumTimer.Seconds();
+  if (!options.Quiet)
+  {
+    std::cout << "  medium done, " << seconds["medium"].get<double>() << " s" << std::endl;
+  }
   const int lightCount = AddLights(scene, renderer);
   vtkSmartPointer<vtkCamera> camera = ReadCamera(scene, medium.Image);
   ReadBackground(scene, base, renderer);
