@@ -17,6 +17,7 @@
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaViewPassOccupancy.h"
 
 #include <algorithm>
 #include <chrono>
@@ -26,6 +27,8 @@
 #include <sstream>
 
 vtkStandardNewMacro(vtkRefractaViewPass);
+
+using namespace vtkRefractaViewPassDetail;
 
 namespace
 {
@@ -61,33 +64,6 @@ void RotateToLocal(const vtkRefractaGridFrame* grid, std::vector<float>& vectors
       vectors[i + c] = static_cast<float>(local[c]);
     }
   }
-}
-
-// Per-voxel flags for empty-space skipping (view_pass.cl, REFRACTA_SKIP).
-constexpr uint8_t SourceFlag = 1;   // extinction, emission, Radiance or MultipleScattering != 0
-constexpr uint8_t GradientFlag = 2; // grad n != 0 (only where rays may bend)
-
-// Sets `flag` in flags[i] for every tuple i of `values` (`comps` per tuple) with a nonzero value.
-void MarkNonzero(
-  const std::vector<float>& values, int comps, uint8_t flag, std::vector<uint8_t>& flags)
-{
-  const size_t n = flags.size();
-  for (size_t i = 0; i < n; ++i)
-  {
-    for (int c = 0; c < comps; ++c)
-    {
-      if (values[i * comps + c] != 0.0f)
-      {
-        flags[i] |= flag;
-        break;
-      }
-    }
-  }
-}
-
-int FloorDiv(int a, int b)
-{
-  return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
 
 cl_float4 Float4(const double v[3], double w = 0.0)
@@ -135,20 +111,14 @@ struct vtkRefractaViewPass::Internals
   std::vector<uint8_t> MediumFlags, LightingFlags;
   bool OccupancyDirty = true;
   int OccupancyCellSize = 0;
-  int CellDims[3] = { 0, 0, 0 };
-  double ActiveFraction[2] = { 1.0, 1.0 }; // fraction of cells with SourceFlag; with either flag
+  MacroCellGrid Cells; // the occupancy on the host, and its active cells
   vtkOpenCLBuffer Occupancy;
   double BuildSeconds = 0.0;
-  int ActiveLo[2][3] = { { 0, 0, 0 }, { 0, 0, 0 } }; // active cells' bounding box, per mask
-  int ActiveHi[2][3] = { { -1, -1, -1 }, { -1, -1, -1 } };
 
   vtkOpenCLBuffer Dummy;
 
-  // Builds the macro-cell occupancy for cells of b^3 voxels from the voxel flags, and uploads it.
-  // Cell c (per axis) covers continuous voxel coordinates [c b - 1/2, (c + 1) b - 1/2); a
-  // trilinear sample there reads voxels c b - 1 .. (c + 1) b (refracta_make_stencil clamps to the
-  // grid), and a sample up to one voxel outside it reads c b - 2 .. (c + 1) b + 1: the cell takes
-  // the OR of the flags over that range, so the kernel's eps nudges and rounding stay safe.
+  // Builds the macro-cell occupancy (BuildMacroCellGrid) when the flags or b changed, and
+  // uploads it.
   bool BuildOccupancy(int b, vtkObject* owner)
   {
     if (!this->OccupancyDirty && this->OccupancyCellSize == b && this->Occupancy)
@@ -156,94 +126,9 @@ struct vtkRefractaViewPass::Internals
       return true;
     }
     const auto start = std::chrono::steady_clock::now();
-    int cells[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      cells[a] = (this->Dims[a] + b - 1) / b;
-      this->CellDims[a] = cells[a];
-    }
-    const size_t numberOfCells = static_cast<size_t>(cells[0]) * cells[1] * cells[2];
-    std::vector<uint8_t> occupancy(numberOfCells, 0);
-    const bool lit = !this->LightingFlags.empty();
-    // Per axis, the range of cells whose dilated voxel range [c b - 2, (c + 1) b + 1] holds v.
-    auto cellRange = [&](int v, int a, int& lo, int& hi)
-    {
-      lo = std::max(0, -FloorDiv(-(v - b - 1), b)); // ceil((v - b - 1) / b)
-      hi = std::min(cells[a] - 1, FloorDiv(v + 2, b));
-    };
-    for (int k = 0; k < this->Dims[2]; ++k)
-    {
-      int k0, k1;
-      cellRange(k, 2, k0, k1);
-      for (int j = 0; j < this->Dims[1]; ++j)
-      {
-        int j0, j1;
-        cellRange(j, 1, j0, j1);
-        const size_t row =
-          static_cast<size_t>(this->Dims[0]) * (j + static_cast<size_t>(this->Dims[1]) * k);
-        for (int i = 0; i < this->Dims[0]; ++i)
-        {
-          const uint8_t f =
-            this->MediumFlags[row + i] | (lit ? this->LightingFlags[row + i] : uint8_t(0));
-          if (!f)
-          {
-            continue;
-          }
-          int i0, i1;
-          cellRange(i, 0, i0, i1);
-          for (int ck = k0; ck <= k1; ++ck)
-          {
-            for (int cj = j0; cj <= j1; ++cj)
-            {
-              for (int ci = i0; ci <= i1; ++ci)
-              {
-                occupancy[ci +
-                  static_cast<size_t>(cells[0]) * (cj + static_cast<size_t>(cells[1]) * ck)] |= f;
-              }
-            }
-          }
-        }
-      }
-    }
-    // Counts and bounding boxes (in cells) of the active cells, for straight rays (SourceFlag)
-    // and curved ones (either flag).
-    size_t source = 0, either = 0;
-    for (int m = 0; m < 2; ++m)
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        this->ActiveLo[m][a] = cells[a];
-        this->ActiveHi[m][a] = -1;
-      }
-    }
-    for (int ck = 0; ck < cells[2]; ++ck)
-    {
-      for (int cj = 0; cj < cells[1]; ++cj)
-      {
-        for (int ci = 0; ci < cells[0]; ++ci)
-        {
-          const uint8_t c = occupancy[ci +
-            static_cast<size_t>(cells[0]) * (cj + static_cast<size_t>(cells[1]) * ck)];
-          const int ijk[3] = { ci, cj, ck };
-          for (int m = 0; m < 2; ++m)
-          {
-            if (c & (m == 0 ? SourceFlag : (SourceFlag | GradientFlag)))
-            {
-              (m == 0 ? source : either) += 1;
-              for (int a = 0; a < 3; ++a)
-              {
-                this->ActiveLo[m][a] = std::min(this->ActiveLo[m][a], ijk[a]);
-                this->ActiveHi[m][a] = std::max(this->ActiveHi[m][a], ijk[a]);
-              }
-            }
-          }
-        }
-      }
-    }
-    this->ActiveFraction[0] = static_cast<double>(source) / numberOfCells;
-    this->ActiveFraction[1] = static_cast<double>(either) / numberOfCells;
+    this->Cells = BuildMacroCellGrid(this->Dims, b, this->MediumFlags, this->LightingFlags);
     this->Occupancy = this->GetContext()->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-      occupancy.size(), occupancy.data(), "empty-space occupancy", owner);
+      this->Cells.Cells.size(), this->Cells.Cells.data(), "empty-space occupancy", owner);
     if (!this->Occupancy)
     {
       return false;
@@ -829,7 +714,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     {
       return false;
     }
-    this->LastActiveCellFraction = in.ActiveFraction[curved ? 1 : 0];
+    this->LastActiveCellFraction = in.Cells.ActiveFraction[curved ? 1 : 0];
     this->OccupancySeconds = in.BuildSeconds;
     skipping = this->LastActiveCellFraction < 1.0;
   }
@@ -908,14 +793,15 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   const cl_int2 envSize = { { std::max(in.EnvironmentSize[0], 1),
     std::max(in.EnvironmentSize[1], 1) } };
 
-  const cl_int4 cellDims = { { in.CellDims[0], in.CellDims[1], in.CellDims[2],
+  const cl_int4 cellDims = { { in.Cells.CellDims[0], in.Cells.CellDims[1], in.Cells.CellDims[2],
     in.OccupancyCellSize > 0 ? in.OccupancyCellSize : 1 } };
   const cl_uint skipMask = curved ? (SourceFlag | GradientFlag) : SourceFlag;
   const int m = curved ? 1 : 0;
-  const bool anyActive = in.ActiveHi[m][0] >= 0;
-  const cl_int4 activeLo = { { in.ActiveLo[m][0], in.ActiveLo[m][1], in.ActiveLo[m][2],
-    anyActive ? 1 : 0 } };
-  const cl_int4 activeHi = { { in.ActiveHi[m][0], in.ActiveHi[m][1], in.ActiveHi[m][2], 0 } };
+  const bool anyActive = in.Cells.ActiveHi[m][0] >= 0;
+  const cl_int4 activeLo = { { in.Cells.ActiveLo[m][0], in.Cells.ActiveLo[m][1],
+    in.Cells.ActiveLo[m][2], anyActive ? 1 : 0 } };
+  const cl_int4 activeHi = { { in.Cells.ActiveHi[m][0], in.Cells.ActiveHi[m][1],
+    in.Cells.ActiveHi[m][2], 0 } };
   const cl_int w = width, h = height;
   const cl_int status = vtkOpenCLSetKernelArgs(kernel.Get(), dims, spacing, buf(in.Extinction),
     buf(in.Emission), buf(in.Anisotropy), buf(in.Index), buf(in.Gradient), buf(in.Radiance),
