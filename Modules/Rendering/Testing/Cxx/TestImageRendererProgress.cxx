@@ -3,6 +3,7 @@
 // AbortExecuteOn() at the first value above 0.2 makes Update() return within 0.5 s with an empty
 // output; after AbortExecuteOff() the next Update() renders the full image, and the tiled image
 // is identical to the untiled one.
+#include "ProgressTestUtilities.h"
 #include "RenderingTestUtilities.h"
 
 #include "vtkCamera.h"
@@ -24,28 +25,8 @@
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-class ProgressLog : public vtkCommand
-{
-public:
-  static ProgressLog* New() { return new ProgressLog; }
-  void Execute(vtkObject* caller, unsigned long, void* data) override
-  {
-    const double p = *static_cast<double*>(data);
-    this->Values.push_back(p);
-    if (!this->Aborted && p > this->AbortAbove)
-    {
-      this->Aborted = true;
-      this->AbortTime = Clock::now();
-      static_cast<vtkAlgorithm*>(caller)->AbortExecuteOn();
-    }
-  }
-  std::vector<double> Values;
-  double AbortAbove = 2.0;
-  bool Aborted = false;
-  Clock::time_point AbortTime;
-};
+using refracta_test::Clock;
+using refracta_test::ProgressLog;
 
 // A glass ball with a graded index, emitting and absorbing: curved rays.
 vtkSmartPointer<vtkImageData> GlowingBall(int n)
@@ -100,9 +81,7 @@ TEST(ImageRendererProgress, ProgressAbortAndTiles)
 
   // 2. The full render after AbortExecuteOff().
   renderer->AbortExecuteOff();
-  log->Values.clear();
-  log->Aborted = false;
-  log->AbortAbove = 2.0;
+  log->Reset(2.0);
   start = Clock::now();
   renderer->Update();
   std::printf("full render %.2f s, %d tiles\n",
@@ -110,21 +89,7 @@ TEST(ImageRendererProgress, ProgressAbortAndTiles)
     renderer->GetViewPass()->GetLastNumberOfTiles());
   EXPECT_FALSE(renderer->GetLastRunAborted());
   ASSERT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 640 * 480);
-  std::set<double> distinct;
-  for (size_t i = 0; i < log->Values.size(); ++i)
-  {
-    EXPECT_GE(log->Values[i], 0.0);
-    EXPECT_LE(log->Values[i], 1.0);
-    if (i > 0)
-    {
-      EXPECT_GE(log->Values[i], log->Values[i - 1]) << "progress went back at event " << i;
-    }
-    distinct.insert(log->Values[i]);
-  }
-  ASSERT_FALSE(log->Values.empty());
-  EXPECT_EQ(log->Values.back(), 1.0);
-  EXPECT_GE(distinct.size(), 8u);
-  std::printf("%zu progress events, %zu distinct values\n", log->Values.size(), distinct.size());
+  refracta_test::ExpectGoodProgress(log->Values, "image renderer");
   vtkNew<vtkImageData> tiled;
   tiled->DeepCopy(renderer->GetOutput());
 

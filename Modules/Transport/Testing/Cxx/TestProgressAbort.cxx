@@ -3,6 +3,7 @@
 // Update() return within 0.5 s with an empty output; after AbortExecuteOff() the next Update()
 // gives the full result. Photon batches and chunks do not change the photon pass's result.
 #include "PhotonTestUtilities.h"
+#include "ProgressTestUtilities.h"
 
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -26,55 +27,9 @@
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-// Records the progress values; calls AbortExecuteOn() at the first value above AbortAbove.
-class ProgressLog : public vtkCommand
-{
-public:
-  static ProgressLog* New() { return new ProgressLog; }
-  void Execute(vtkObject* caller, unsigned long, void* data) override
-  {
-    const double p = *static_cast<double*>(data);
-    this->Values.push_back(p);
-    if (!this->Aborted && p > this->AbortAbove)
-    {
-      this->Aborted = true;
-      this->AbortTime = Clock::now();
-      static_cast<vtkAlgorithm*>(caller)->AbortExecuteOn();
-    }
-  }
-  void Reset(double abortAbove)
-  {
-    this->Values.clear();
-    this->Aborted = false;
-    this->AbortAbove = abortAbove;
-  }
-  std::vector<double> Values;
-  double AbortAbove = 2.0; // > 1: never abort
-  bool Aborted = false;
-  Clock::time_point AbortTime;
-};
-
-void ExpectGoodProgress(const std::vector<double>& values, const char* what)
-{
-  ASSERT_FALSE(values.empty()) << what;
-  std::set<double> distinct;
-  for (size_t i = 0; i < values.size(); ++i)
-  {
-    EXPECT_GE(values[i], 0.0) << what;
-    EXPECT_LE(values[i], 1.0) << what;
-    if (i > 0)
-    {
-      EXPECT_GE(values[i], values[i - 1]) << what << ": progress went back at event " << i;
-    }
-    distinct.insert(values[i]);
-  }
-  EXPECT_EQ(values.back(), 1.0) << what;
-  EXPECT_GE(distinct.size(), 8u) << what;
-  std::printf(
-    "%s: %zu progress events, %zu distinct values\n", what, values.size(), distinct.size());
-}
+using refracta_test::Clock;
+using refracta_test::ExpectGoodProgress;
+using refracta_test::ProgressLog;
 
 // Runs `filter` with an abort at the first progress above 0.2; returns the seconds from the abort
 // to the return of Update().
