@@ -295,3 +295,25 @@ TEST(RenderPipeline, SameImageAsThePassesWiredByHand)
   EXPECT_GT(maximum, 0.0);
   EXPECT_LE(difference, 1e-5 * maximum);
 }
+
+TEST(RenderPipeline, MissingInputsAreErrorsThatNameThem)
+{
+  std::vector<std::string> messages;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&messages);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
+    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
+  vtkNew<vtkRefractaRenderPipeline> pipeline;
+  pipeline->AddObserver(vtkCommand::ErrorEvent, onError);
+  EXPECT_FALSE(pipeline->Render(16, 16));
+  pipeline->SetMedium(Fog());
+  EXPECT_FALSE(pipeline->Render(16, 16));
+  pipeline->SetCamera(Front());
+  EXPECT_FALSE(pipeline->Render(0, 16));
+  ASSERT_EQ(messages.size(), 3u);
+  EXPECT_NE(messages[0].find("SetMedium"), std::string::npos) << messages[0];
+  EXPECT_NE(messages[1].find("SetCamera"), std::string::npos) << messages[1];
+  EXPECT_NE(messages[2].find("0 x 16"), std::string::npos) << messages[2];
+  EXPECT_TRUE(pipeline->GetImage().empty());
+  EXPECT_TRUE(pipeline->Render(16, 16)) << "usable once the inputs are there";
+}

@@ -2,6 +2,8 @@
 // wavelet, extent -10..10, a transfer function, the renderer's default headlight) is exposed
 // alike by both mappers; SelectScalarArray, clipping planes and cropping are honoured; a missing
 // array and a blend mode it does not render are reported once, not on every Render.
+#include "MapperTestUtilities.h"
+
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
@@ -32,19 +34,6 @@ namespace
 {
 const int Size = 80;
 
-vtkRenderWindow* SharedWindow()
-{
-  static vtkSmartPointer<vtkRenderWindow> window;
-  if (!window)
-  {
-    window = vtkSmartPointer<vtkRenderWindow>::New();
-    window->SetOffScreenRendering(1);
-    window->SetSize(Size, Size);
-    window->SetMultiSamples(0);
-  }
-  return window;
-}
-
 // Counts the events of one kind and keeps the last message.
 class EventCounter : public vtkCommand
 {
@@ -63,7 +52,7 @@ public:
 // background, the renderer's automatic headlight, ResetCamera.
 struct WaveletScene
 {
-  vtkSmartPointer<vtkRenderWindow> Window = SharedWindow();
+  vtkSmartPointer<vtkRenderWindow> Window = refracta_test::SharedWindow(Size);
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkVolume> Volume;
   vtkNew<vtkRTAnalyticSource> Wavelet;
@@ -98,18 +87,7 @@ struct WaveletScene
     this->Renderer->ResetCamera();
   }
 
-  vtkSmartPointer<vtkImageData> Capture()
-  {
-    this->Window->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(this->Window);
-    grab->SetInputBufferTypeToRGB();
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    auto image = vtkSmartPointer<vtkImageData>::New();
-    image->DeepCopy(grab->GetOutput());
-    return image;
-  }
+  vtkSmartPointer<vtkImageData> Capture() { return refracta_test::Capture(this->Window); }
 };
 
 // Mean brightness (0..255, mean of RGB) over the pixels where the volume shows (any channel

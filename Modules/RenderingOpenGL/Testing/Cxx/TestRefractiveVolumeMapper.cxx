@@ -10,6 +10,7 @@
 // - on the front sphere: its colour, untouched.
 // Tolerance 3/255 (8-bit rounding of both the geometry pass and the blend), checked at pixel
 // centres away from silhouettes. The cache is asserted by counting stage executions.
+#include "MapperTestUtilities.h"
 #include "RenderingTestUtilities.h"
 
 #include "vtkActor.h"
@@ -47,24 +48,9 @@ const double Sigma[3] = { 1.0, 2.0, 3.0 };
 const double Top = 1.0 + 0.5 / 15; // box top in z
 const double Depth = 16.0 / 15;
 
-// One window for the whole process: every X connection is a chance for the virtual X server of
-// a loaded machine to refuse one, so the tests share a single connection.
-vtkRenderWindow* SharedWindow()
-{
-  static vtkSmartPointer<vtkRenderWindow> window;
-  if (!window)
-  {
-    window = vtkSmartPointer<vtkRenderWindow>::New();
-    window->SetOffScreenRendering(1);
-    window->SetSize(Size, Size);
-    window->SetMultiSamples(0);
-  }
-  return window;
-}
-
 struct Scene
 {
-  vtkSmartPointer<vtkRenderWindow> Window = SharedWindow();
+  vtkSmartPointer<vtkRenderWindow> Window = refracta_test::SharedWindow(Size);
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkVolume> Volume;
   vtkNew<vtkRefractiveVolumeMapper> Mapper;
@@ -108,18 +94,7 @@ struct Scene
     this->Renderer->AddActor(actor);
   }
 
-  vtkSmartPointer<vtkImageData> Capture()
-  {
-    this->Window->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(this->Window);
-    grab->SetInputBufferTypeToRGB();
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    auto image = vtkSmartPointer<vtkImageData>::New();
-    image->DeepCopy(grab->GetOutput());
-    return image;
-  }
+  vtkSmartPointer<vtkImageData> Capture() { return refracta_test::Capture(this->Window); }
 };
 
 vtkSmartPointer<vtkImageData> AbsorbingCube()
