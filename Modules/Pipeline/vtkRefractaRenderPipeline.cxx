@@ -479,6 +479,19 @@ void vtkRefractaRenderPipeline::ReportProgress(int stage, double fraction)
 //------------------------------------------------------------------------------
 bool vtkRefractaRenderPipeline::Render(int width, int height, const float* depthLimit)
 {
+  return this->RunStages(true, width, height, depthLimit);
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::UpdateLighting()
+{
+  return this->RunStages(false, 0, 0, nullptr);
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::RunStages(
+  bool withView, int width, int height, const float* depthLimit)
+{
   Internals& in = *this->Internal;
   in.Abort = false;
   in.ViewPass->SetAbortRender(false);
@@ -490,12 +503,12 @@ bool vtkRefractaRenderPipeline::Render(int width, int height, const float* depth
     vtkErrorMacro("No medium: call SetMedium() with a Refracta medium (vtkImageData) first.");
     return false;
   }
-  if (!in.Camera)
+  if (withView && !in.Camera)
   {
     vtkErrorMacro("No camera: call SetCamera() with a vtkCamera first.");
     return false;
   }
-  if (width < 1 || height < 1)
+  if (withView && (width < 1 || height < 1))
   {
     vtkErrorMacro("The image size " << width << " x " << height << " has no pixels.");
     return false;
@@ -510,7 +523,7 @@ bool vtkRefractaRenderPipeline::Render(int width, int height, const float* depth
   {
     anyLightOn = anyLightOn || l->GetSwitch();
   }
-  const bool stages[NUMBER_OF_STAGES] = { plan, light, true };
+  const bool stages[NUMBER_OF_STAGES] = { plan, light, withView };
   double total = 0;
   for (int s = 0; s < NUMBER_OF_STAGES; ++s)
   {
@@ -525,7 +538,7 @@ bool vtkRefractaRenderPipeline::Render(int width, int height, const float* depth
   double start = 0;
   for (int s = 0; s < NUMBER_OF_STAGES; ++s)
   {
-    in.StageWeight[s] /= total;
+    in.StageWeight[s] = total > 0 ? in.StageWeight[s] / total : 0.0; // 0: lighting up to date
     in.StageStart[s] = start;
     start += in.StageWeight[s];
   }
@@ -566,6 +579,10 @@ bool vtkRefractaRenderPipeline::Render(int width, int height, const float* depth
   if (light && !run(LIGHTING, &vtkRefractaRenderPipeline::RunLighting))
   {
     return false;
+  }
+  if (!withView)
+  {
+    return true;
   }
 
   // The view stage.

@@ -217,6 +217,13 @@ public:
    */
   bool Render(int width, int height, const float* depthLimit = nullptr);
 
+  /**
+   * Run the plan and light stages that changed, without a camera or a view: for front ends that
+   * want the lighting volume only (GetLighting(), e.g. the ParaView plugin's lighting filter).
+   * Same caching, events, errors and abort as Render(); the view stage is left as it was.
+   */
+  bool UpdateLighting();
+
   ///@{
   /**
    * The last image: width x height RGBA floats, linear radiance with A = 1 - mean transmittance
@@ -283,6 +290,7 @@ protected:
   vtkRefractaRenderPipeline();
   ~vtkRefractaRenderPipeline() override;
 
+  bool RunStages(bool view, int width, int height, const float* depthLimit);
   bool RunPlan();
   bool RunLighting();
   bool RunView(int width, int height, const float* depthLimit);

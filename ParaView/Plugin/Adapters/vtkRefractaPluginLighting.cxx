@@ -1,0 +1,202 @@
+#include "vtkRefractaPluginLighting.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkDoubleArray.h"
+#include "vtkEffectPlan.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkLightCollection.h"
+#include "vtkObjectFactory.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPointData.h"
+#include "vtkRefractaPluginLightList.h"
+#include "vtkRefractaRenderPipeline.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <algorithm>
+
+vtkStandardNewMacro(vtkRefractaPluginLighting);
+
+namespace
+{
+// Forwards the pipeline's progress to the filter and the filter's abort flag to the pipeline.
+void ForwardProgress(vtkObject* caller, unsigned long, void* clientData, void* callData)
+{
+  auto* self = static_cast<vtkRefractaPluginLighting*>(clientData);
+  self->UpdateProgress(*static_cast<double*>(callData));
+  if (self->GetAbortExecute())
+  {
+    static_cast<vtkRefractaRenderPipeline*>(caller)->AbortRender();
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+vtkRefractaPluginLighting::vtkRefractaPluginLighting()
+  : Pipeline(vtkSmartPointer<vtkRefractaRenderPipeline>::New())
+  , Lights(vtkSmartPointer<vtkRefractaPluginLightList>::New())
+  , Quality(vtkEffectPlan::INTERACTIVE)
+{
+  this->Pipeline->SetEventOwner(this);
+  vtkNew<vtkCallbackCommand> progress;
+  progress->SetCallback(ForwardProgress);
+  progress->SetClientData(this);
+  this->Pipeline->AddObserver(vtkCommand::ProgressEvent, progress);
+  this->ApplyQuality();
+}
+
+//------------------------------------------------------------------------------
+vtkRefractaPluginLighting::~vtkRefractaPluginLighting()
+{
+  this->Pipeline->SetEventOwner(nullptr);
+}
+
+//------------------------------------------------------------------------------
+vtkRefractaRenderPipeline* vtkRefractaPluginLighting::GetPipeline()
+{
+  return this->Pipeline;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginLighting::SetLight(int index, double type, double px, double py, double pz,
+  double fx, double fy, double fz, double r, double g, double b, double intensity,
+  double coneAngle)
+{
+  this->Lights->SetLight(index, type, px, py, pz, fx, fy, fz, r, g, b, intensity, coneAngle);
+  this->Pipeline->SetLights(this->Lights->GetLights());
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginLighting::RemoveAllLights()
+{
+  this->Lights->RemoveAllLights();
+  this->Pipeline->RemoveAllLights();
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginLighting::ApplyQuality()
+{
+  this->Pipeline->SetQuality(this->Quality);
+  if (this->NumberOfPhotons > 0)
+  {
+    this->Pipeline->GetPhotonTracer()->SetNumberOfPhotons(this->NumberOfPhotons);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginLighting::SetQuality(int quality)
+{
+  quality = std::min(std::max(quality, static_cast<int>(vtkEffectPlan::DRAFT)),
+    static_cast<int>(vtkEffectPlan::PRODUCTION));
+  if (quality != this->Quality)
+  {
+    this->Quality = quality;
+    this->ApplyQuality();
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginLighting::SetNumberOfPhotons(int photons)
+{
+  photons = std::max(photons, 0);
+  if (photons != this->NumberOfPhotons)
+  {
+    this->NumberOfPhotons = photons;
+    this->ApplyQuality();
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginLighting::SetSeed(int seed)
+{
+  this->Pipeline->GetPhotonTracer()->SetSeed(static_cast<unsigned int>(seed));
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaPluginLighting::GetSeed()
+{
+  return static_cast<int>(this->Pipeline->GetPhotonTracer()->GetSeed());
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginLighting::SetMultipleScattering(bool on)
+{
+  this->Pipeline->SetMultipleScattering(on);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaPluginLighting::GetMultipleScattering()
+{
+  return this->Pipeline->GetMultipleScattering();
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkRefractaPluginLighting::GetMTime()
+{
+  return std::max(this->Superclass::GetMTime(), this->Pipeline->GetInputsMTime());
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaPluginLighting::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaPluginLighting::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* medium = vtkImageData::GetData(inputVector[0], 0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  output->Initialize();
+  this->Pipeline->SetMedium(medium);
+  if (!this->Pipeline->UpdateLighting())
+  {
+    return this->Pipeline->GetLastRenderAborted() ? 1 : 0; // the pipeline said why
+  }
+  vtkNew<vtkFieldData> fieldData;
+  if (vtkImageData* lighting = this->Pipeline->GetLighting())
+  {
+    output->CopyStructure(lighting);
+    output->GetPointData()->ShallowCopy(lighting->GetPointData());
+    fieldData->ShallowCopy(lighting->GetFieldData());
+  }
+  else
+  {
+    output->CopyStructure(medium);
+    vtkWarningMacro("No light pass ran: " << this->Pipeline->GetEffectPlan()->GetSummary()
+                                          << " (a light must be on and the medium must scatter).");
+  }
+  this->Pipeline->GetEffectPlan()->RecordInFieldData(fieldData);
+  for (int stage : { vtkRefractaRenderPipeline::PLAN, vtkRefractaRenderPipeline::LIGHTING })
+  {
+    vtkNew<vtkDoubleArray> seconds;
+    seconds->SetName(stage == vtkRefractaRenderPipeline::PLAN ? "PlanSeconds" : "LightingSeconds");
+    seconds->InsertNextValue(this->Pipeline->GetStageSeconds(stage));
+    fieldData->AddArray(seconds);
+  }
+  output->SetFieldData(fieldData);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginLighting::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Quality: " << this->Quality << "\n";
+  os << indent << "NumberOfPhotons: " << this->NumberOfPhotons << "\n";
+  os << indent << "Lights:\n";
+  this->Lights->PrintSelf(os, indent.GetNextIndent());
+}

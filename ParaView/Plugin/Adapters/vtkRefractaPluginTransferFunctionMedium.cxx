@@ -1,0 +1,197 @@
+#include "vtkRefractaPluginTransferFunctionMedium.h"
+
+#include "vtkColorTransferFunction.h"
+#include "vtkDataObject.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTransferFunctionMedium.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+
+vtkStandardNewMacro(vtkRefractaPluginTransferFunctionMedium);
+
+//------------------------------------------------------------------------------
+vtkRefractaPluginTransferFunctionMedium::vtkRefractaPluginTransferFunctionMedium()
+  : Medium(vtkSmartPointer<vtkTransferFunctionMedium>::New())
+  , Property(vtkSmartPointer<vtkVolumeProperty>::New())
+{
+  this->Property->SetScalarOpacityUnitDistance(1.0);
+  this->Medium->SetVolumeProperty(this->Property);
+  // Default: the active point scalars.
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+}
+
+//------------------------------------------------------------------------------
+vtkRefractaPluginTransferFunctionMedium::~vtkRefractaPluginTransferFunctionMedium() = default;
+
+//------------------------------------------------------------------------------
+vtkTransferFunctionMedium* vtkRefractaPluginTransferFunctionMedium::GetMediumFilter()
+{
+  return this->Medium;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginTransferFunctionMedium::SetColorTransferFunction(
+  vtkColorTransferFunction* function)
+{
+  if (function != this->Property->GetRGBTransferFunction(0) || !function)
+  {
+    if (function)
+    {
+      this->Property->SetColor(function);
+    }
+    else
+    {
+      this->Property->SetColor(vtkSmartPointer<vtkColorTransferFunction>::New());
+    }
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkColorTransferFunction* vtkRefractaPluginTransferFunctionMedium::GetColorTransferFunction()
+{
+  return this->Property->GetRGBTransferFunction(0);
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginTransferFunctionMedium::SetScalarOpacityFunction(
+  vtkPiecewiseFunction* function)
+{
+  this->ScalarOpacity = function;
+  this->Property->SetScalarOpacity(function);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+vtkPiecewiseFunction* vtkRefractaPluginTransferFunctionMedium::GetScalarOpacityFunction()
+{
+  return this->ScalarOpacity;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginTransferFunctionMedium::SetRefractiveIndexFunction(
+  vtkPiecewiseFunction* function)
+{
+  this->Medium->SetRefractiveIndexFunction(function);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+vtkPiecewiseFunction* vtkRefractaPluginTransferFunctionMedium::GetRefractiveIndexFunction()
+{
+  return this->Medium->GetRefractiveIndexFunction();
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginTransferFunctionMedium::SetScalarOpacityUnitDistance(double distance)
+{
+  this->Property->SetScalarOpacityUnitDistance(std::max(distance, 1e-12));
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+double vtkRefractaPluginTransferFunctionMedium::GetScalarOpacityUnitDistance()
+{
+  return this->Property->GetScalarOpacityUnitDistance();
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginTransferFunctionMedium::SetAnisotropy(double g)
+{
+  this->Medium->SetAnisotropy(g);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+double vtkRefractaPluginTransferFunctionMedium::GetAnisotropy()
+{
+  return this->Medium->GetAnisotropy();
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginTransferFunctionMedium::SetEmissionScale(double scale)
+{
+  this->Medium->SetEmissionScale(scale);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+double vtkRefractaPluginTransferFunctionMedium::GetEmissionScale()
+{
+  return this->Medium->GetEmissionScale();
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkRefractaPluginTransferFunctionMedium::GetMTime()
+{
+  // The transfer functions are edited in place by ParaView's colour map editor.
+  return std::max(this->Superclass::GetMTime(), this->Medium->GetMTime());
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaPluginTransferFunctionMedium::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // The whole input: the medium is made on the input's whole grid.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaPluginTransferFunctionMedium::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  output->Initialize();
+  int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
+  if (!scalars || association != vtkDataObject::FIELD_ASSOCIATION_POINTS)
+  {
+    vtkInformation* info = this->GetInputArrayInformation(0);
+    const char* name =
+      info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : "";
+    vtkErrorMacro("The input has no point array '"
+      << (name ? name : "") << "' to map (" << (scalars ? "it is cell data" : "not found")
+      << "); select a point-data scalar array (values at voxel centres), e.g. after Cell Data to "
+         "Point Data.");
+    return 0;
+  }
+  if (!this->ScalarOpacity)
+  {
+    vtkErrorMacro("No scalar opacity function: set ScalarOpacityFunction.");
+    return 0;
+  }
+  vtkNew<vtkImageData> scalarImage;
+  scalarImage->ShallowCopy(input);
+  scalarImage->GetPointData()->SetScalars(scalars);
+  this->Medium->SetInputData(scalarImage);
+  this->Medium->Update();
+  this->Medium->SetInputData(nullptr);
+  vtkImageData* medium = this->Medium->GetOutput();
+  if (medium->GetNumberOfPoints() == 0)
+  {
+    return 0; // vtkTransferFunctionMedium said why
+  }
+  output->ShallowCopy(medium);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginTransferFunctionMedium::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ScalarOpacityUnitDistance: " << this->GetScalarOpacityUnitDistance() << "\n";
+  os << indent << "Medium:\n";
+  this->Medium->PrintSelf(os, indent.GetNextIndent());
+}
