@@ -1,7 +1,10 @@
 #include "vtkRefractaVolumeRepresentation.h"
 
+#include "vtkDataSet.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLODVolume.h"
+#include "vtkPointData.h"
+#include "vtkRefractaMedium.h"
 #include "vtkRefractiveVolumeMapper.h"
 
 vtkStandardNewMacro(vtkRefractaVolumeRepresentation);
@@ -55,6 +58,27 @@ void vtkRefractaVolumeRepresentation::SetRefractaNumberOfPhotons(int photons)
 void vtkRefractaVolumeRepresentation::UpdateMapperParameters()
 {
   this->Superclass::UpdateMapperParameters();
+  // ParaView's volume (vtkPVLODVolume::CanRender) draws only when the mapper's selected scalars
+  // exist. A medium needs no colour array (the mapper reads its arrays by their names), so when
+  // none is chosen, one of the medium's own arrays is selected: the mapper then sees a medium
+  // and ignores the selection.
+  vtkDataSet* input = this->VolumeMapper->GetInput();
+  const char* selected = this->VolumeMapper->GetArrayName();
+  const bool hasSelection = selected && selected[0] && input &&
+    input->GetPointData()->GetAbstractArray(selected);
+  if (input && !hasSelection)
+  {
+    for (int id = 0; id < vtkRefractaMedium::NUMBER_OF_ARRAYS; ++id)
+    {
+      const char* name = vtkRefractaMedium::GetArrayName(id);
+      if (input->GetPointData()->GetArray(name))
+      {
+        this->VolumeMapper->SelectScalarArray(name);
+        this->VolumeMapper->SetScalarMode(VTK_SCALAR_MODE_USE_POINT_FIELD_DATA);
+        break;
+      }
+    }
+  }
   this->Actor->SetMapper(this->VolumeMapper);
   this->Actor->SetVisibility(this->GetVisibility());
 }
