@@ -9,6 +9,7 @@
 #include "vtkInformationVector.h"
 #include "vtkLightCollection.h"
 #include "vtkObjectFactory.h"
+#include "vtkRefractaPluginInputCheck.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
 #include "vtkRefractaPluginLightList.h"
@@ -145,12 +146,39 @@ vtkMTimeType vtkRefractaPluginLighting::GetMTime()
 }
 
 //------------------------------------------------------------------------------
+int vtkRefractaPluginLighting::FillInputPortInformation(int port, vtkInformation* info)
+{
+  // Any data object: a wrong type is reported once by RequestInformation (see
+  // vtkRefractaPluginInputCheck.h) instead of by every pipeline pass.
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaPluginLighting::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const std::string wrong0 = refracta_plugin::CheckImageInput(
+    inputVector, 0, "Refracta Lighting", "a Refracta medium (vtkImageData), e.g. from Refracta Mesh Voxelizer or Refracta Transfer Function Medium");
+  if (!wrong0.empty())
+  {
+    vtkErrorMacro(<< wrong0);
+    return refracta_plugin::EmptyInformation(outputVector);
+  }
+  return this->Superclass::RequestInformation(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
 int vtkRefractaPluginLighting::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())) // not for a wrong type
+  {
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
   return 1;
 }
 
@@ -161,6 +189,10 @@ int vtkRefractaPluginLighting::RequestData(
   vtkImageData* medium = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
+  if (!medium)
+  {
+    return 1; // a wrong input type, reported by RequestInformation
+  }
   this->Pipeline->SetMedium(medium);
   if (!this->Pipeline->UpdateLighting())
   {

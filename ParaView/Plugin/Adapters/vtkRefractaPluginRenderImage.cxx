@@ -4,6 +4,7 @@
 #include "vtkEffectPlan.h"
 #include "vtkLightCollection.h"
 #include "vtkObjectFactory.h"
+#include "vtkRefractaPluginInputCheck.h"
 #include "vtkPhotonTracer.h"
 #include "vtkRefractaPluginLightList.h"
 #include "vtkRefractaRenderPipeline.h"
@@ -117,6 +118,48 @@ void vtkRefractaPluginRenderImage::SetMultipleScattering(bool on)
 {
   this->GetPipeline()->SetMultipleScattering(on);
   this->Modified();
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaPluginRenderImage::FillInputPortInformation(int port, vtkInformation* info)
+{
+  // Any data object: a wrong type is reported once by RequestInformation (see
+  // vtkRefractaPluginInputCheck.h) instead of by every pipeline pass.
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaPluginRenderImage::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const char* valid[2] = { "a Refracta medium (vtkImageData), e.g. from Refracta Mesh Voxelizer",
+    "a lighting volume (vtkImageData) from Refracta Lighting" };
+  for (int port = 0; port < 2; ++port)
+  {
+    const std::string wrong =
+      refracta_plugin::CheckImageInput(inputVector, port, "Refracta Render Image", valid[port]);
+    if (!wrong.empty())
+    {
+      vtkErrorMacro(<< wrong);
+      return refracta_plugin::EmptyInformation(outputVector);
+    }
+  }
+  return this->Superclass::RequestInformation(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaPluginRenderImage::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!refracta_plugin::CheckImageInput(inputVector, 0, "", "").empty() ||
+    !refracta_plugin::CheckImageInput(inputVector, 1, "", "").empty())
+  {
+    vtkImageData::GetData(outputVector, 0)->Initialize();
+    return 1; // a wrong input type, reported by RequestInformation
+  }
+  return this->Superclass::RequestData(request, inputVector, outputVector);
 }
 
 //------------------------------------------------------------------------------

@@ -76,6 +76,10 @@ protected:
   vtkRefractaPluginRenderImage();
   ~vtkRefractaPluginRenderImage() override;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
   void ApplyQuality();
 
   vtkSmartPointer<vtkRefractaPluginLightList> Lights;

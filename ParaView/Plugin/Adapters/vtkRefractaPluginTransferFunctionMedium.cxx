@@ -6,6 +6,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
+#include "vtkRefractaPluginInputCheck.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -137,13 +138,40 @@ vtkMTimeType vtkRefractaPluginTransferFunctionMedium::GetMTime()
 }
 
 //------------------------------------------------------------------------------
+int vtkRefractaPluginTransferFunctionMedium::FillInputPortInformation(int port, vtkInformation* info)
+{
+  // Any data object: a wrong type is reported once by RequestInformation (see
+  // vtkRefractaPluginInputCheck.h) instead of by every pipeline pass.
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaPluginTransferFunctionMedium::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const std::string wrong0 = refracta_plugin::CheckImageInput(
+    inputVector, 0, "Refracta Transfer Function Medium", "a scalar volume (vtkImageData with a point array); resample other data to an image first (Resample To Image)");
+  if (!wrong0.empty())
+  {
+    vtkErrorMacro(<< wrong0);
+    return refracta_plugin::EmptyInformation(outputVector);
+  }
+  return this->Superclass::RequestInformation(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
 int vtkRefractaPluginTransferFunctionMedium::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   // The whole input: the medium is made on the input's whole grid.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())) // not for a wrong type
+  {
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
   return 1;
 }
 
@@ -154,6 +182,10 @@ int vtkRefractaPluginTransferFunctionMedium::RequestData(
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
+  if (!input)
+  {
+    return 1; // a wrong input type, reported by RequestInformation
+  }
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
   if (!scalars || association != vtkDataObject::FIELD_ASSOCIATION_POINTS)

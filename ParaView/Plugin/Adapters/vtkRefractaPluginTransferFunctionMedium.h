@@ -94,6 +94,8 @@ protected:
   vtkRefractaPluginTransferFunctionMedium();
   ~vtkRefractaPluginTransferFunctionMedium() override;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 

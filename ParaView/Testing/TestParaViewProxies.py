@@ -1,0 +1,133 @@
+"""pvpython: the plugin loads, every Refracta proxy is created, and the proxies give what the
+Refracta classes give when called directly.
+
+- Every filter proxy (RefractaMeshVoxelizer, RefractaTransferFunctionMedium, RefractaLighting,
+  RefractaRenderImage) is created and updated, and the "Refracta" representation type is offered
+  for image data.
+- The voxelizer proxy on a sphere gives the same medium as refracta.vtkMeshVoxelizer with the same
+  mesh, material and grid: every array equal bit for bit (numpy array_equal on the raw floats),
+  and the same grid.
+- The transfer-function proxy on ParaView's wavelet gives the same medium as
+  refracta.vtkTransferFunctionMedium with a vtkVolumeProperty holding the same functions, bit for
+  bit.
+- The lighting and render-image outputs carry the effect plan's summary and the stage times in
+  their field data (what ParaView's Information panel shows).
+"""
+import numpy as np
+
+import refracta
+from paraview import servermanager
+from paraview import simple
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkRenderingCore import vtkVolumeProperty
+
+import refracta_pv_testing as rt
+
+rt.load_plugin()
+for name in ("RefractaMeshVoxelizer", "RefractaTransferFunctionMedium", "RefractaLighting",
+             "RefractaRenderImage"):
+    assert hasattr(simple, name), "the plugin must define the %s proxy" % name
+
+
+def arrays(image):
+    pd = image.GetPointData()
+    return {pd.GetArrayName(i): vtk_to_numpy(pd.GetArray(i)) for i in range(pd.GetNumberOfArrays())}
+
+
+def assert_same_image(a, b, what):
+    assert a.GetDimensions() == b.GetDimensions(), what + ": dimensions differ"
+    assert a.GetOrigin() == b.GetOrigin() and a.GetSpacing() == b.GetSpacing(), what + ": grid differs"
+    aa, bb = arrays(a), arrays(b)
+    assert sorted(aa) == sorted(bb), "%s: arrays %s vs %s" % (what, sorted(aa), sorted(bb))
+    for name in aa:
+        assert aa[name].dtype == bb[name].dtype, "%s: %s dtype differs" % (what, name)
+        assert np.array_equal(aa[name], bb[name]), "%s: %s differs (max |d| %g)" % (
+            what, name, np.abs(aa[name].astype(float) - bb[name]).max())
+    print("%s: %d arrays, %d points, bitwise equal" % (what, len(aa), a.GetNumberOfPoints()))
+
+
+# --- Voxelizer proxy vs vtkMeshVoxelizer ---
+sphere, medium, image = rt.make_scene(simple, dims=24)
+medium.UpdatePipeline()
+proxy_medium = servermanager.Fetch(medium)
+mesh = servermanager.Fetch(sphere)
+direct = refracta.vtkMeshVoxelizer()
+direct.AddInputData(mesh)
+material = refracta.vtkMediumMaterial()
+row = rt.GLASS
+material.SetRefractiveIndex(row[0]); material.SetExtinction(*row[1:4]); material.SetAlbedo(*row[4:7])
+material.SetAnisotropy(row[7]); material.SetEmission(*row[8:11])
+direct.SetMaterial(0, material)
+direct.SetDimensions(24, 24, 24)
+direct.SetPadding(0.15)
+direct.SetSmoothingWindow(5)
+direct.Update()
+assert proxy_medium.GetNumberOfPoints() == 24 ** 3
+assert_same_image(proxy_medium, direct.GetOutput(), "RefractaMeshVoxelizer vs vtkMeshVoxelizer")
+assert refracta.vtkMediumValidator().Validate(proxy_medium), "the proxy's medium must validate"
+
+# --- Transfer-function proxy vs vtkTransferFunctionMedium ---
+wavelet = simple.Wavelet(WholeExtent=[-6, 6, -6, 6, -6, 6])
+colour = simple.GetColorTransferFunction("RTData")
+colour.RGBPoints = [40.0, 0.2, 0.3, 0.9, 160.0, 0.9, 0.9, 0.9, 280.0, 0.95, 0.6, 0.2]
+colour.Discretize = 0
+opacity = simple.GetOpacityTransferFunction("RTData")
+opacity.Points = [40.0, 0.0, 0.5, 0.0, 150.0, 0.1, 0.5, 0.0, 280.0, 0.7, 0.5, 0.0]
+tf = simple.RefractaTransferFunctionMedium(Input=wavelet)
+tf.Scalars = ["POINTS", "RTData"]
+tf.ColorTransferFunction = colour
+tf.ScalarOpacityFunction = opacity
+tf.ScalarOpacityUnitDistance = 1.0
+tf.Anisotropy = 0.4
+tf.EmissionScale = 0.5
+tf.UpdatePipeline()
+proxy_tf = servermanager.Fetch(tf)
+data = servermanager.Fetch(wavelet)
+data.GetPointData().SetActiveScalars("RTData")
+prop = vtkVolumeProperty()
+prop.SetColor(colour.GetClientSideObject())      # the same function objects (built-in session)
+prop.SetScalarOpacity(opacity.GetClientSideObject())
+prop.SetScalarOpacityUnitDistance(1.0)
+direct_tf = refracta.vtkTransferFunctionMedium()
+direct_tf.SetInputData(data)
+direct_tf.SetVolumeProperty(prop)
+direct_tf.SetAnisotropy(0.4)
+direct_tf.SetEmissionScale(0.5)
+direct_tf.Update()
+assert_same_image(proxy_tf, direct_tf.GetOutput(),
+                  "RefractaTransferFunctionMedium vs vtkTransferFunctionMedium")
+
+# --- Lighting and render image: outputs and their field data ---
+lighting = simple.RefractaLighting(Input=medium)
+lighting.Lights = rt.LIGHT
+lighting.Quality = "Draft"
+lighting.NumberOfPhotons = 20000
+lighting.MultipleScattering = 0                  # the lattice takes ~25 s on PoCL here
+lighting.UpdatePipeline()
+lit = servermanager.Fetch(lighting)
+names = [lit.GetPointData().GetArrayName(i) for i in range(lit.GetPointData().GetNumberOfArrays())]
+print("RefractaLighting arrays:", names)
+assert lit.GetNumberOfPoints() == 24 ** 3 and "Radiance" in names, "a lighting volume on the grid"
+assert "MultipleScattering" not in names, "MultipleScattering = 0 must switch the lattice off"
+radiance = vtk_to_numpy(lit.GetPointData().GetArray("Radiance"))
+assert np.isfinite(radiance).all() and radiance.max() > 0, "the lit sphere scatters light"
+summary = lit.GetFieldData().GetAbstractArray("PlanSummary").GetValue(0)
+print("RefractaLighting plan:", summary, "| lighting %.3f s" %
+      lit.GetFieldData().GetArray("LightingSeconds").GetValue(0))
+assert "SingleScattering on" in summary and "MultipleScattering off" in summary
+assert lit.GetFieldData().GetArray("LightingSeconds").GetValue(0) > 0
+
+image.UpdatePipeline()
+picture = servermanager.Fetch(image)
+assert picture.GetDimensions() == (96, 96, 1)
+for field in ("PlanSummary", "PlanSeconds", "LightingSeconds", "ViewSeconds"):
+    assert picture.GetFieldData().GetAbstractArray(field) is not None, field + " in field data"
+info = image.GetDataInformation().DataInformation.GetFieldDataInformation()
+assert info.GetArrayInformation("PlanSummary") is not None, "the Information panel sees the plan"
+
+# --- The representation type, offered for image data ---
+view = simple.CreateRenderView()
+display = simple.Show(medium, view)
+assert "Refracta" in display.GetProperty("Representation").Available, "Refracta representation"
+print("representation types:", display.GetProperty("Representation").Available)
+print("OK")
