@@ -196,7 +196,9 @@ int vtkRefractaPluginLighting::RequestData(
   this->Pipeline->SetMedium(medium);
   if (!this->Pipeline->UpdateLighting())
   {
-    return this->Pipeline->GetLastRenderAborted() ? 1 : 0; // the pipeline said why
+    // The pipeline said why (once); an empty output that stays until something changes, so
+    // ParaView does not re-run the filter on every render.
+    return 1;
   }
   vtkNew<vtkFieldData> fieldData;
   if (vtkImageData* lighting = this->Pipeline->GetLighting())

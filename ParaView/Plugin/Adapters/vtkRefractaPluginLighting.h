@@ -21,8 +21,9 @@
  *
  * Knobs (defaults): Quality (vtkEffectPlan::DRAFT, INTERACTIVE (default), PRODUCTION: the
  * pipeline's presets), NumberOfPhotons (0 (default): the preset's), Seed (default 1),
- * MultipleScattering (default on). Errors of the pipeline are reported as this filter's (once
- * per distinct message) and leave the output empty.
+ * MultipleScattering (default on). Errors of the pipeline (once per distinct message) leave
+ * the output empty; the execution still counts as done, so ParaView does not re-run the filter
+ * (and repeat the message) on every render until something changes.
  */
 #ifndef vtkRefractaPluginLighting_h
 #define vtkRefractaPluginLighting_h

@@ -1,8 +1,12 @@
 #include "vtkRefractaPluginMeshVoxelizer.h"
 
+#include "vtkImageData.h"
 #include "vtkMediumMaterial.h"
 #include "vtkNew.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
 
@@ -75,6 +79,24 @@ void vtkRefractaPluginMeshVoxelizer::SetGridSpacing(double sx, double sy, double
     std::copy(s, s + 3, this->Spacing);
     this->Modified();
   }
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaPluginMeshVoxelizer::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestData(request, inputVector, outputVector))
+  {
+    // Reported by vtkMeshVoxelizer. The output keeps no arrays but spans the requested extent
+    // (the one-voxel grid RequestInformation advertised), so the pipeline sees the request
+    // satisfied and does not run the filter (and repeat the message) again until something
+    // changes; an image with no points would never satisfy it.
+    vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+    output->Initialize();
+    output->SetExtent(outputVector->GetInformationObject(0)->Get(
+      vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()));
+  }
+  return 1;
 }
 
 //------------------------------------------------------------------------------

@@ -14,6 +14,10 @@
  *   sizing mode, so that a proxy can push both and choose with SetSizingMode() (vtkMeshVoxelizer's
  *   SetDimensions()/SetSpacing() select their mode, which depends on the order they are called).
  *   A grid spacing of 0 in the SPACING mode is reported by vtkMeshVoxelizer as a bad grid.
+ *
+ * Bad meshes are reported by vtkMeshVoxelizer (once per execution) and leave the output without
+ * arrays (on the requested extent); the execution then counts as done for the pipeline, so ParaView does not run the filter (and
+ * repeat the message) again on every render until an input or a property changes.
  */
 #ifndef vtkRefractaPluginMeshVoxelizer_h
 #define vtkRefractaPluginMeshVoxelizer_h
@@ -67,6 +71,8 @@ public:
 protected:
   vtkRefractaPluginMeshVoxelizer();
   ~vtkRefractaPluginMeshVoxelizer() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
   vtkRefractaPluginMeshVoxelizer(const vtkRefractaPluginMeshVoxelizer&) = delete;

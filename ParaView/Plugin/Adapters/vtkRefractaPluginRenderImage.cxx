@@ -2,6 +2,7 @@
 
 #include "vtkCamera.h"
 #include "vtkEffectPlan.h"
+#include "vtkImageData.h"
 #include "vtkLightCollection.h"
 #include "vtkObjectFactory.h"
 #include "vtkRefractaPluginInputCheck.h"
@@ -159,7 +160,13 @@ int vtkRefractaPluginRenderImage::RequestData(
     vtkImageData::GetData(outputVector, 0)->Initialize();
     return 1; // a wrong input type, reported by RequestInformation
   }
-  return this->Superclass::RequestData(request, inputVector, outputVector);
+  if (!this->Superclass::RequestData(request, inputVector, outputVector))
+  {
+    // Reported by the render pipeline (once per distinct message); an empty output that stays
+    // until something changes, so ParaView does not re-run the filter on every render.
+    vtkImageData::GetData(outputVector, 0)->Initialize();
+  }
+  return 1;
 }
 
 //------------------------------------------------------------------------------

@@ -197,12 +197,12 @@ int vtkRefractaPluginTransferFunctionMedium::RequestData(
       << (name ? name : "") << "' to map (" << (scalars ? "it is cell data" : "not found")
       << "); select a point-data scalar array (values at voxel centres), e.g. after Cell Data to "
          "Point Data.");
-    return 0;
+    return 1; // empty output until something changes (ParaView would re-run a failure)
   }
   if (!this->ScalarOpacity)
   {
     vtkErrorMacro("No scalar opacity function: set ScalarOpacityFunction.");
-    return 0;
+    return 1;
   }
   vtkNew<vtkImageData> scalarImage;
   scalarImage->ShallowCopy(input);
@@ -213,7 +213,7 @@ int vtkRefractaPluginTransferFunctionMedium::RequestData(
   vtkImageData* medium = this->Medium->GetOutput();
   if (medium->GetNumberOfPoints() == 0)
   {
-    return 0; // vtkTransferFunctionMedium said why
+    return 1; // vtkTransferFunctionMedium said why; empty output until something changes
   }
   output->ShallowCopy(medium);
   return 1;
