@@ -55,8 +55,7 @@ bool CheckRow(const double values[vtkRefractaPluginLightList::LIGHT_VALUES], std
 
 //------------------------------------------------------------------------------
 void vtkRefractaPluginLightList::SetLight(int index, double type, double px, double py, double pz,
-  double fx, double fy, double fz, double r, double g, double b, double intensity,
-  double coneAngle)
+  double fx, double fy, double fz, double r, double g, double b, double intensity, double coneAngle)
 {
   if (index < 0 || index > 1023)
   {

@@ -6,12 +6,12 @@
  * set by SetLight(index, ...) (the XML's repeat_command with use_index) and cleared by
  * RemoveAllLights(). The row, in world units:
  *   type (0 directional, 1 point, 2 spot), position (x, y, z), focal point (x, y, z),
- *   colour (r, g, b, linear, each >= 0), intensity (>= 0), spot cone half angle (degrees, in (0, 90); ignored for the other types).
- * A directional light shines from its position towards its focal point (only the direction
- * counts); a point light sits at its position; a spot light sits at its position, points at its
- * focal point and lights a cone of the given half angle. Intensity x colour is read as
- * vtkRefractaRenderPipeline reads a light (RADIOMETRIC_LIGHT_UNITS: irradiance in W m^-2 for a
- * directional light, radiant intensity in W sr^-1 for point and spot lights).
+ *   colour (r, g, b, linear, each >= 0), intensity (>= 0), spot cone half angle (degrees, in (0,
+ * 90); ignored for the other types). A directional light shines from its position towards its focal
+ * point (only the direction counts); a point light sits at its position; a spot light sits at its
+ * position, points at its focal point and lights a cone of the given half angle. Intensity x colour
+ * is read as vtkRefractaRenderPipeline reads a light (RADIOMETRIC_LIGHT_UNITS: irradiance in W m^-2
+ * for a directional light, radiant intensity in W sr^-1 for point and spot lights).
  *
  * Rows that are not finite or name an unknown type are reported (vtkErrorMacro naming the row
  * and what would be valid) and switched off. The lights are owned here; GetLights() hands them

@@ -9,9 +9,9 @@
 #include "vtkInformationVector.h"
 #include "vtkLightCollection.h"
 #include "vtkObjectFactory.h"
-#include "vtkRefractaPluginInputCheck.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
+#include "vtkRefractaPluginInputCheck.h"
 #include "vtkRefractaPluginLightList.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -62,8 +62,7 @@ vtkRefractaRenderPipeline* vtkRefractaPluginLighting::GetPipeline()
 
 //------------------------------------------------------------------------------
 void vtkRefractaPluginLighting::SetLight(int index, double type, double px, double py, double pz,
-  double fx, double fy, double fz, double r, double g, double b, double intensity,
-  double coneAngle)
+  double fx, double fy, double fz, double r, double g, double b, double intensity, double coneAngle)
 {
   this->Lights->SetLight(index, type, px, py, pz, fx, fy, fz, r, g, b, intensity, coneAngle);
   this->Pipeline->SetLights(this->Lights->GetLights());
@@ -159,8 +158,9 @@ int vtkRefractaPluginLighting::FillInputPortInformation(int port, vtkInformation
 int vtkRefractaPluginLighting::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  const std::string wrong0 = refracta_plugin::CheckImageInput(
-    inputVector, 0, "Refracta Lighting", "a Refracta medium (vtkImageData), e.g. from Refracta Mesh Voxelizer or Refracta Transfer Function Medium");
+  const std::string wrong0 = refracta_plugin::CheckImageInput(inputVector, 0, "Refracta Lighting",
+    "a Refracta medium (vtkImageData), e.g. from Refracta Mesh Voxelizer or Refracta Transfer "
+    "Function Medium");
   if (!wrong0.empty())
   {
     vtkErrorMacro(<< wrong0);

@@ -1,10 +1,10 @@
 #include "vtkRefractaPluginMeshVoxelizer.h"
 
 #include "vtkImageData.h"
-#include "vtkMediumMaterial.h"
-#include "vtkNew.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMediumMaterial.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 

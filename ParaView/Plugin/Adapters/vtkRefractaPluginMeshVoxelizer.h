@@ -16,8 +16,9 @@
  *   A grid spacing of 0 in the SPACING mode is reported by vtkMeshVoxelizer as a bad grid.
  *
  * Bad meshes are reported by vtkMeshVoxelizer (once per execution) and leave the output without
- * arrays (on the requested extent); the execution then counts as done for the pipeline, so ParaView does not run the filter (and
- * repeat the message) again on every render until an input or a property changes.
+ * arrays (on the requested extent); the execution then counts as done for the pipeline, so ParaView
+ * does not run the filter (and repeat the message) again on every render until an input or a
+ * property changes.
  */
 #ifndef vtkRefractaPluginMeshVoxelizer_h
 #define vtkRefractaPluginMeshVoxelizer_h
@@ -41,8 +42,8 @@ public:
    * Homogeneous material of the mesh on input connection `connection` (see the class comment).
    */
   void SetMaterialParameters(int connection, double n, double extinctionR, double extinctionG,
-    double extinctionB, double albedoR, double albedoG, double albedoB, double g,
-    double emissionR, double emissionG, double emissionB);
+    double extinctionB, double albedoR, double albedoG, double albedoB, double g, double emissionR,
+    double emissionG, double emissionB);
 
   /**
    * Forget every material set so far (each connection falls back to vacuum).
@@ -53,8 +54,8 @@ public:
    * Homogeneous material outside every mesh. Default vacuum (1, 0 0 0, 0 0 0, 0, 0 0 0).
    */
   void SetSurroundingMaterialParameters(double n, double extinctionR, double extinctionG,
-    double extinctionB, double albedoR, double albedoG, double albedoB, double g,
-    double emissionR, double emissionG, double emissionB);
+    double extinctionB, double albedoR, double albedoG, double albedoB, double g, double emissionR,
+    double emissionG, double emissionB);
 
   /**
    * Voxels per axis used in the DIMENSIONS mode (each >= 1); default 64^3. Does not change the

@@ -5,8 +5,8 @@
 #include "vtkImageData.h"
 #include "vtkLightCollection.h"
 #include "vtkObjectFactory.h"
-#include "vtkRefractaPluginInputCheck.h"
 #include "vtkPhotonTracer.h"
+#include "vtkRefractaPluginInputCheck.h"
 #include "vtkRefractaPluginLightList.h"
 #include "vtkRefractaRenderPipeline.h"
 
@@ -56,9 +56,8 @@ void vtkRefractaPluginRenderImage::SetCameraViewAngle(double degrees)
 }
 
 //------------------------------------------------------------------------------
-void vtkRefractaPluginRenderImage::SetLight(int index, double type, double px, double py,
-  double pz, double fx, double fy, double fz, double r, double g, double b, double intensity,
-  double coneAngle)
+void vtkRefractaPluginRenderImage::SetLight(int index, double type, double px, double py, double pz,
+  double fx, double fy, double fz, double r, double g, double b, double intensity, double coneAngle)
 {
   this->Lights->SetLight(index, type, px, py, pz, fx, fy, fz, r, g, b, intensity, coneAngle);
   this->GetPipeline()->SetLights(this->Lights->GetLights());

@@ -6,9 +6,9 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
-#include "vtkRefractaPluginInputCheck.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkRefractaPluginInputCheck.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTransferFunctionMedium.h"
 #include "vtkVolumeProperty.h"
@@ -138,7 +138,8 @@ vtkMTimeType vtkRefractaPluginTransferFunctionMedium::GetMTime()
 }
 
 //------------------------------------------------------------------------------
-int vtkRefractaPluginTransferFunctionMedium::FillInputPortInformation(int port, vtkInformation* info)
+int vtkRefractaPluginTransferFunctionMedium::FillInputPortInformation(
+  int port, vtkInformation* info)
 {
   // Any data object: a wrong type is reported once by RequestInformation (see
   // vtkRefractaPluginInputCheck.h) instead of by every pipeline pass.
@@ -151,8 +152,10 @@ int vtkRefractaPluginTransferFunctionMedium::FillInputPortInformation(int port, 
 int vtkRefractaPluginTransferFunctionMedium::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  const std::string wrong0 = refracta_plugin::CheckImageInput(
-    inputVector, 0, "Refracta Transfer Function Medium", "a scalar volume (vtkImageData with a point array); resample other data to an image first (Resample To Image)");
+  const std::string wrong0 =
+    refracta_plugin::CheckImageInput(inputVector, 0, "Refracta Transfer Function Medium",
+      "a scalar volume (vtkImageData with a point array); resample other data to an image first "
+      "(Resample To Image)");
   if (!wrong0.empty())
   {
     vtkErrorMacro(<< wrong0);

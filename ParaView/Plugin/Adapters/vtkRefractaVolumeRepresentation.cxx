@@ -64,8 +64,8 @@ void vtkRefractaVolumeRepresentation::UpdateMapperParameters()
   // and ignores the selection.
   vtkDataSet* input = this->VolumeMapper->GetInput();
   const char* selected = this->VolumeMapper->GetArrayName();
-  const bool hasSelection = selected && selected[0] && input &&
-    input->GetPointData()->GetAbstractArray(selected);
+  const bool hasSelection =
+    selected && selected[0] && input && input->GetPointData()->GetAbstractArray(selected);
   if (input && !hasSelection)
   {
     for (int id = 0; id < vtkRefractaMedium::NUMBER_OF_ARRAYS; ++id)
