@@ -73,7 +73,7 @@ case "$command" in
     # a virtual framebuffer (Mesa's software rasterizer) when no display is present.
     runner=()
     if [ -z "${DISPLAY:-}" ]; then
-      runner=(xvfb-run -a -s "-screen 0 1280x1024x24")
+      runner=(xvfb-run -a -s "-screen 0 1280x1024x24 -noreset")
     fi
     cd "$build_dir"
     # shellcheck disable=SC2086
@@ -90,7 +90,7 @@ case "$command" in
     export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:${UBSAN_OPTIONS:-}"
     runner=()
     if [ -z "${DISPLAY:-}" ]; then
-      runner=(xvfb-run -a -s "-screen 0 1280x1024x24")
+      runner=(xvfb-run -a -s "-screen 0 1280x1024x24 -noreset")
     fi
     cd "$build_dir"
     # shellcheck disable=SC2086
