@@ -47,8 +47,8 @@ public:
 
   /**
    * True when every cell of `input` (polygons, strips, lines, vertices) refers to existing
-   * points; otherwise `why` names the first bad cell, its id and the valid range. VTK's own
-   * filters (bounds, triangulation) read out of bounds on such a mesh, so check it first.
+   * points; otherwise `why` names the first bad cell, its id and the valid range. VTK's bounds
+   * and triangulation trust the ids, so check them before either runs.
    */
   static bool CheckPointIds(vtkPolyData* input, std::string& why);
 

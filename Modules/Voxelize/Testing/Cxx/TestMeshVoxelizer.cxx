@@ -633,7 +633,7 @@ TEST(MeshVoxelizer, InvalidMeshesGiveTheirMessages)
   nan->GetPoints()->SetPoint(2, 0, std::numeric_limits<double>::quiet_NaN(), 0);
   ExpectError(nan, "NaN or infinite coordinates (first: point 2");
 
-  // Found by fuzzing (Testing/Fuzz): ids out of range made VTK's bounds read out of bounds,
+  // Found by the fuzz targets' seeds (Testing/Fuzz): ids out of range were read out of bounds,
   // and coordinates near DBL_MAX overflowed the grid's extent to an infinite spacing.
   ExpectError(Mesh(TetPoints, { TetFaces[0], TetFaces[1], TetFaces[2], { 1, 2, 4 } }),
     "polygon cell 3 refers to point id 4 but the mesh has 4 points (valid ids: 0 to 3)");
