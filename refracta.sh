@@ -6,6 +6,9 @@
 #   ./refracta.sh build                              install what is missing, build
 #   ./refracta.sh sanitize                           build in build-asan with AddressSanitizer and
 #                                                    UndefinedBehaviorSanitizer, run the C++ tests
+#   ./refracta.sh fuzz [TARGET...]                   build the libFuzzer targets in build-fuzz (clang,
+#                                                    ASan, UBSan) and run each RUNS times (default 1e6,
+#                                                    at most FUZZ_SECONDS, default 7200, per target)
 #
 # Environment: BUILD_DIR (default ./build), JOBS (default: number of cores),
 # CTEST_ARGS (extra arguments for ctest, e.g. "-L long" or "-LE long").
@@ -29,6 +32,8 @@ packages=(
   libosmesa6-dev xvfb xauth
   libgtest-dev libbenchmark-dev
   nlohmann-json3-dev
+  # Fuzzing (./refracta.sh fuzz): clang's libFuzzer.
+  clang
 )
 
 install_missing_packages() {
@@ -96,8 +101,23 @@ case "$command" in
     # shellcheck disable=SC2086
     "${runner[@]}" ctest --output-on-failure -j "$jobs" ${CTEST_ARGS:--LE long}
     ;;
+  fuzz)
+    # Documentation/Developing.md, "Fuzzing": every Refracta library instrumented for libFuzzer's
+    # coverage, ASan and UBSan; the runs, their corpora and any crash input go to
+    # build-fuzz/Testing/fuzz-runs/<target>/.
+    install_missing_packages
+    build_dir="${BUILD_DIR:-$here/build-fuzz}"
+    if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+      cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
+        -DCMAKE_CXX_COMPILER=clang++ -DREFRACTA_FUZZ=ON -DREFRACTA_WRAP_PYTHON=OFF \
+        -DREFRACTA_BUILD_BENCHMARKS=OFF
+    fi
+    cmake --build "$build_dir" -j "$jobs" --target refracta-fuzzers
+    "$here/Testing/Fuzz/run_fuzzers.sh" "$build_dir/bin" "$build_dir/Testing/fuzz-runs" \
+      "${RUNS:-1000000}" "${FUZZ_SECONDS:-7200}" "$@"
+    ;;
   *)
-    echo "usage: $0 {render|test|build|sanitize} [args...]" >&2
+    echo "usage: $0 {render|test|build|sanitize|fuzz} [args...]" >&2
     exit 2
     ;;
 esac

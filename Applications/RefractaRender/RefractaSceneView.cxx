@@ -6,6 +6,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkRefractaImageRenderer.h"
@@ -116,6 +117,16 @@ vtkSmartPointer<vtkCamera> ReadCamera(const json& scene, vtkImageData* medium)
     Fail("scene.camera.position", "must differ from the focal point");
   }
   auto up = Vector(cam, "view_up", "scene.camera", { 0, 1, 0 }, 3, -1e30, 1e30);
+  // The view-up must give the image a vertical: not zero, not along the line of sight.
+  const double dir[3] = { fp[0] - pos[0], fp[1] - pos[1], fp[2] - pos[2] };
+  double side[3];
+  vtkMath::Cross(dir, up.data(), side);
+  if (!(vtkMath::Norm(side) > 1e-9 * vtkMath::Norm(dir) * vtkMath::Norm(up.data())))
+  {
+    Fail("scene.camera.view_up",
+      "must be non-zero and not parallel to the line of sight "
+      "(from position to focal_point)");
+  }
   auto camera = vtkSmartPointer<vtkCamera>::New();
   camera->SetFocalPoint(fp.data());
   camera->SetPosition(pos.data());

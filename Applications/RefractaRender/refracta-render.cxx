@@ -19,12 +19,11 @@
 #include "RefractaDeviceCheck.h"
 #include "RefractaRenderOutputs.h"
 #include "RefractaRenderReport.h"
+#include "RefractaScene.h"
 #include "RefractaSceneJson.h"
 #include "RefractaSceneMedium.h"
 #include "RefractaSceneSettings.h"
-#include "RefractaSceneView.h"
 
-#include "vtkCamera.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
@@ -129,35 +128,17 @@ int Render(const json& scene, const std::string& base, const Options& options)
 {
   Timer total;
   json seconds = json::object();
-  CheckKeys(
-    scene, "scene", { "image", "camera", "background", "medium", "lights", "quality", "effects" });
-
   // One render pipeline does the work (vtkRefractaRenderPipeline, through the image renderer
-  // that tone-maps its image); a quality preset in the settings configures it first.
+  // that tone-maps its image); the scene configures both.
   vtkNew<vtkRefractaImageRenderer> renderer;
   vtkRefractaRenderPipeline* pipeline = renderer->GetPipeline();
-  const RenderSettings settings = ReadSettings(scene, pipeline);
-
-  // The scene: the medium, then what surrounds it.
-  Timer mediumTimer;
-  if (!options.Quiet)
-  {
-    std::cout << "  medium ..." << std::endl;
-  }
-  const SceneMedium medium = ReadMedium(scene, base);
-  seconds["medium"] = mediumTimer.Seconds();
-  if (!options.Quiet)
-  {
-    std::cout << "  medium done, " << seconds["medium"].get<double>() << " s" << std::endl;
-  }
-  const int lightCount = AddLights(scene, renderer);
-  vtkSmartPointer<vtkCamera> camera = ReadCamera(scene, medium.Image);
-  ReadBackground(scene, base, renderer);
+  const Scene read = ReadScene(scene, base, renderer, options.Quiet);
+  const RenderSettings& settings = read.Settings;
+  const SceneMedium& medium = read.Medium;
+  const int lightCount = read.LightCount;
+  seconds["medium"] = read.MediumSeconds;
 
   // The render: plan, light passes, view pass, each stage printed as it runs.
-  ApplySettings(settings, renderer);
-  renderer->SetInputData(medium.Image);
-  renderer->SetCamera(camera);
   {
     StageReporter reporter(pipeline, options.Quiet);
     renderer->Update();

@@ -15,7 +15,10 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 vtkStandardNewMacro(vtkTransferFunctionMedium);
 
@@ -83,30 +86,131 @@ int vtkTransferFunctionMedium::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// The medium values at one scalar, or why the transfer functions give none (non-finite values,
+// or values a float array cannot hold).
+struct PointMapping
+{
+  double Sigma = 0.0;
+  double Colour[3] = { 0, 0, 0 };
+  double Index = 1.0;
+
+  // Empty when the values are usable; otherwise what is wrong and what would be valid.
+  std::string Map(double s, vtkPiecewiseFunction* opacity, vtkColorTransferFunction* colour,
+    vtkPiecewiseFunction* grey, vtkPiecewiseFunction* index, double unit, double emissionScale)
+  {
+    std::ostringstream why;
+    const double a = opacity->GetValue(s);
+    if (std::isnan(a))
+    {
+      why << "the scalar opacity function is NaN at scalar " << s
+          << "; opacities must be numbers in [0, 1]";
+      return why.str();
+    }
+    this->Sigma = -std::log1p(-std::min(std::max(a, 0.0), 1.0 - 1e-6)) / unit;
+    if (grey)
+    {
+      this->Colour[0] = this->Colour[1] = this->Colour[2] = grey->GetValue(s);
+    }
+    else
+    {
+      colour->GetColor(s, this->Colour);
+    }
+    for (double& c : this->Colour)
+    {
+      if (std::isnan(c))
+      {
+        why << "the colour transfer function is NaN at scalar " << s
+            << "; colours (albedos) must be numbers in [0, 1]";
+        return why.str();
+      }
+      c = std::min(std::max(c, 0.0), 1.0);
+    }
+    const double emission = emissionScale * this->Sigma;
+    if (!(this->Sigma <= FLT_MAX) || !(emission <= FLT_MAX))
+    {
+      why << "the extinction " << this->Sigma << " (opacity " << a << " over the unit distance "
+          << unit << ") times the emission scale " << emissionScale
+          << " exceeds the float range at scalar " << s
+          << "; use a larger ScalarOpacityUnitDistance or a smaller EmissionScale";
+      return why.str();
+    }
+    if (index)
+    {
+      const double value = index->GetValue(s);
+      this->Index = std::max(1.0, value);
+      if (!(value <= FLT_MAX)) // NaN, +Inf, or beyond a float
+      {
+        why << "the refractive index function gives " << value << " at scalar " << s
+            << "; indices must be finite numbers >= 1";
+        return why.str();
+      }
+    }
+    return std::string();
+  }
+};
+}
+
+//------------------------------------------------------------------------------
+bool vtkTransferFunctionMedium::CheckInputs(vtkImageData* input, vtkDataArray* scalars)
+{
+  if (!this->VolumeProperty)
+  {
+    vtkErrorMacro("No volume property: call SetVolumeProperty() with the vtkVolumeProperty whose "
+                  "transfer functions map the scalars.");
+    return false;
+  }
+  if (!input || !scalars)
+  {
+    vtkErrorMacro("The input image has no point scalars to map (a vtkImageData with one "
+                  "scalar point array is needed).");
+    return false;
+  }
+  const char* name = scalars->GetName() ? scalars->GetName() : "(unnamed)";
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    vtkErrorMacro("The input scalars '" << name << "' have " << scalars->GetNumberOfComponents()
+                                        << " components; the transfer-function mapping needs 1.");
+    return false;
+  }
+  if (input->GetNumberOfPoints() == 0 || scalars->GetNumberOfTuples() != input->GetNumberOfPoints())
+  {
+    vtkErrorMacro("The input scalars '" << name << "' have " << scalars->GetNumberOfTuples()
+                                        << " values but the image has "
+                                        << input->GetNumberOfPoints()
+                                        << " points; a non-empty image with one scalar per point "
+                                           "is needed.");
+    return false;
+  }
+  const double unit = this->VolumeProperty->GetScalarOpacityUnitDistance(0);
+  if (!std::isfinite(unit) || !(unit > 0.0))
+  {
+    vtkErrorMacro("The volume property's ScalarOpacityUnitDistance is "
+      << unit << "; it must be finite and > 0 (world units).");
+    return false;
+  }
+  // The clamping setters pass NaN through.
+  if (std::isnan(this->Anisotropy) || std::isnan(this->EmissionScale))
+  {
+    vtkErrorMacro("Anisotropy (" << this->Anisotropy << ") and EmissionScale ("
+                                 << this->EmissionScale
+                                 << ") must be numbers: g in [-0.9999, 0.9999], scale >= 0.");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 int vtkTransferFunctionMedium::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
-  if (!this->VolumeProperty)
-  {
-    vtkErrorMacro("No volume property: call SetVolumeProperty() with the vtkVolumeProperty whose "
-                  "transfer functions map the scalars.");
-    return 0;
-  }
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
-  if (!input || !scalars)
+  if (!this->CheckInputs(input, scalars))
   {
-    vtkErrorMacro("The input image has no point scalars to map (a vtkImageData with one "
-                  "scalar point array is needed).");
-    return 0;
-  }
-  if (scalars->GetNumberOfComponents() != 1)
-  {
-    vtkErrorMacro("The input scalars '" << (scalars->GetName() ? scalars->GetName() : "(unnamed)")
-                                        << "' have " << scalars->GetNumberOfComponents()
-                                        << " components; the transfer-function mapping needs 1.");
     return 0;
   }
   vtkVolumeProperty* property = this->VolumeProperty;
@@ -143,6 +247,7 @@ int vtkTransferFunctionMedium::RequestData(
   vtkFloatArray* emission =
     this->EmissionScale > 0 ? make(vtkRefractaMedium::EmissionName(), 3) : nullptr;
   anisotropy->FillValue(static_cast<float>(g));
+  PointMapping point;
   for (vtkIdType i = 0; i < n; ++i)
   {
     if (i % 65536 == 0)
@@ -150,40 +255,30 @@ int vtkTransferFunctionMedium::RequestData(
       this->UpdateProgress(static_cast<double>(i) / n);
     }
     const double s = scalars->GetComponent(i, 0);
-    if (!std::isfinite(s))
+    const std::string why = std::isfinite(s)
+      ? point.Map(s, opacity, colour, greyFunction, this->RefractiveIndexFunction, unit,
+          this->EmissionScale)
+      : "every scalar must be finite";
+    if (!why.empty())
     {
-      vtkErrorMacro("The input scalars have the non-finite value "
-        << s << " at point " << i << "; every scalar must be finite.");
+      vtkErrorMacro("Cannot map the input scalar " << s << " at point " << i << ": " << why << ".");
       output->Initialize();
       return 0;
-    }
-    const double a = std::min(std::max(opacity->GetValue(s), 0.0), 1.0 - 1e-6);
-    const double sigma = -std::log1p(-a) / unit;
-    double c[3];
-    if (grey)
-    {
-      c[0] = c[1] = c[2] = greyFunction->GetValue(s);
-    }
-    else
-    {
-      colour->GetColor(s, c);
     }
     float* e = extinction->GetPointer(3 * i);
     float* al = albedo->GetPointer(3 * i);
     for (int k = 0; k < 3; ++k)
     {
-      c[k] = std::min(std::max(c[k], 0.0), 1.0);
-      e[k] = static_cast<float>(sigma);
-      al[k] = static_cast<float>(c[k]);
+      e[k] = static_cast<float>(point.Sigma);
+      al[k] = static_cast<float>(point.Colour[k]);
       if (emission)
       {
-        emission->SetComponent(i, k, this->EmissionScale * c[k] * sigma);
+        emission->SetComponent(i, k, this->EmissionScale * point.Colour[k] * point.Sigma);
       }
     }
     if (index)
     {
-      index->SetValue(
-        i, static_cast<float>(std::max(1.0, this->RefractiveIndexFunction->GetValue(s))));
+      index->SetValue(i, static_cast<float>(point.Index));
     }
   }
   this->UpdateProgress(1.0);

@@ -20,8 +20,11 @@
  *   (C = sum T a c), so an existing volume rendering looks the same. Default 0 (no emission).
  *
  * Output: a medium on the input's grid (origin, spacing and direction matrix copied) with the
- * arrays above. Errors (no property, no point scalars, more than one component, non-finite
- * scalars): vtkErrorMacro naming the problem, RequestData returns 0, the output is empty.
+ * arrays above. Errors (no property, no point scalars, more than one component, a scalar count
+ * other than the point count or an empty image, non-finite scalars, a unit distance that is not
+ * finite and > 0, NaN Anisotropy or EmissionScale, transfer functions that give NaN, or values
+ * beyond the float range): vtkErrorMacro naming the problem and what would be valid,
+ * RequestData returns 0, the output is empty.
  */
 #ifndef vtkTransferFunctionMedium_h
 #define vtkTransferFunctionMedium_h
@@ -30,6 +33,8 @@
 #include "vtkImageAlgorithm.h"
 #include "vtkSmartPointer.h" // for members
 
+class vtkDataArray;
+class vtkImageData;
 class vtkPiecewiseFunction;
 class vtkVolumeProperty;
 
@@ -80,6 +85,12 @@ protected:
 
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /**
+   * The checks that do not depend on the scalars' values; false (with an error) when the
+   * mapping cannot run.
+   */
+  bool CheckInputs(vtkImageData* input, vtkDataArray* scalars);
 
   vtkSmartPointer<vtkVolumeProperty> VolumeProperty;
   vtkSmartPointer<vtkPiecewiseFunction> RefractiveIndexFunction;

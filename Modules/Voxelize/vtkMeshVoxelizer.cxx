@@ -465,6 +465,13 @@ bool vtkMeshVoxelizer::ComputeGrid(const double meshBounds[6], int dims[3], doub
       why = os.str();
       return false;
     }
+    if (!std::isfinite(extent))
+    {
+      os << "the box to voxelize is too large along " << axes[a] << " ([" << box[2 * a] << ", "
+         << box[2 * a + 1] << "]: its extent overflows); use smaller Bounds or coordinates";
+      why = os.str();
+      return false;
+    }
     if (this->SizingMode == DIMENSIONS)
     {
       dims[a] = this->Dimensions[a];
@@ -492,6 +499,17 @@ bool vtkMeshVoxelizer::ComputeGrid(const double meshBounds[6], int dims[3], doub
       spacing[a] = this->Spacing[a];
       origin[a] = 0.5 * (box[2 * a] + box[2 * a + 1]) - 0.5 * (dims[a] - 1) * spacing[a];
     }
+    // The gradient of n is stored as float: voxels below 1e-30 would overflow it, and a spacing
+    // lost in the origin's rounding would put every voxel in one place.
+    if (!(spacing[a] >= 1e-30) || origin[a] + spacing[a] == origin[a])
+    {
+      os << "the voxels are too thin along " << axes[a] << " (spacing " << spacing[a] << " at "
+         << origin[a] << ", box [" << box[2 * a] << ", " << box[2 * a + 1]
+         << "]); voxels must be at least 1e-30 world units and not lost in the origin's "
+            "rounding: use larger Bounds or Spacing, or fewer voxels";
+      why = os.str();
+      return false;
+    }
   }
   return true;
 }
@@ -518,7 +536,8 @@ int vtkMeshVoxelizer::RequestInformation(
         producer->Update(producerPort);
       }
       vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], c);
-      if (mesh && mesh->GetNumberOfPoints() > 0)
+      std::string badIds; // RequestData reports it; computing bounds would read out of range
+      if (mesh && mesh->GetNumberOfPoints() > 0 && PreparedMesh::CheckPointIds(mesh, badIds))
       {
         double b[6];
         mesh->GetBounds(b);

@@ -51,7 +51,8 @@
  * faces). The other arrays are not smoothed.
  *
  * **Validation.** Each mesh is checked before voxelizing (CGAL and exact predicates); errors
- * (no output): null or empty mesh, NaN or infinite coordinates, degenerate (collinear) faces,
+ * (no output): null or empty mesh, cells that refer to missing points (ids out of range), NaN,
+ * infinite or too large coordinates (beyond +-1e100), degenerate (collinear) faces,
  * open surfaces (boundary edges), non-manifold edges or vertices, non-orientable surfaces,
  * self-intersections (CheckSelfIntersections, default on), zero volume. Warnings (repaired):
  * polygons and strips triangulated, faces with a repeated vertex dropped, faces oriented

@@ -79,13 +79,21 @@ bool PreparedMesh::Prepare(vtkPolyData* input, int connection, bool checkSelfInt
     return fail(os.str());
   }
 
-  // NaN or infinite coordinates make every geometric test meaningless: reject, naming the first.
+  std::string badIds;
+  if (!CheckPointIds(input, badIds))
+  {
+    return fail(badIds);
+  }
+
+  // NaN, infinite or huge coordinates make the geometric tests meaningless (products of three
+  // coordinates overflow past 1e100): reject, naming the first.
   vtkIdType badPoints = 0, firstBad = -1;
   for (vtkIdType i = 0; i < numPoints; ++i)
   {
     double p[3];
     input->GetPoint(i, p);
-    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+    if (!(std::abs(p[0]) <= MaximumCoordinate && std::abs(p[1]) <= MaximumCoordinate &&
+          std::abs(p[2]) <= MaximumCoordinate))
     {
       firstBad = badPoints++ == 0 ? i : firstBad;
     }
@@ -95,8 +103,11 @@ bool PreparedMesh::Prepare(vtkPolyData* input, int connection, bool checkSelfInt
     double p[3];
     input->GetPoint(firstBad, p);
     std::ostringstream os;
-    os << badPoints << " points have NaN or infinite coordinates (first: point " << firstBad
-       << " = " << PointText(p) << "); every coordinate must be finite";
+    const bool finite = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+    os << badPoints << " points have " << (finite ? "too large" : "NaN or infinite")
+       << " coordinates (first: point " << firstBad << " = " << PointText(p)
+       << "); every coordinate must be finite and within +-" << MaximumCoordinate
+       << " (scale the mesh)";
     return fail(os.str());
   }
 
@@ -420,6 +431,43 @@ bool PreparedMesh::Prepare(vtkPolyData* input, int connection, bool checkSelfInt
   // single-threaded (a query inside the bounding box triggers it).
   this->Classify(c);
 #endif
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool PreparedMesh::CheckPointIds(vtkPolyData* input, std::string& why)
+{
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  const std::pair<const char*, vtkCellArray*> kinds[] = { { "polygon", input->GetPolys() },
+    { "triangle strip", input->GetStrips() }, { "line", input->GetLines() },
+    { "vertex", input->GetVerts() } };
+  for (const auto& kind : kinds)
+  {
+    if (!kind.second)
+    {
+      continue;
+    }
+    vtkIdType cell = 0;
+    auto it = vtk::TakeSmartPointer(kind.second->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cell)
+    {
+      vtkIdType n;
+      const vtkIdType* ids;
+      it->GetCurrentCell(n, ids);
+      for (vtkIdType v = 0; v < n; ++v)
+      {
+        if (ids[v] < 0 || ids[v] >= numPoints)
+        {
+          std::ostringstream os;
+          os << kind.first << " cell " << cell << " refers to point id " << ids[v]
+             << " but the mesh has " << numPoints << " points (valid ids: 0 to " << numPoints - 1
+             << "); every cell must use existing points";
+          why = os.str();
+          return false;
+        }
+      }
+    }
+  }
   return true;
 }
 

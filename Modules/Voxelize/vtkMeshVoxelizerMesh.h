@@ -45,6 +45,19 @@ public:
   bool Prepare(vtkPolyData* input, int connection, bool checkSelfIntersections,
     std::vector<std::string>& errors, std::vector<std::string>& warnings);
 
+  /**
+   * True when every cell of `input` (polygons, strips, lines, vertices) refers to existing
+   * points; otherwise `why` names the first bad cell, its id and the valid range. VTK's bounds
+   * and triangulation trust the ids, so check them before either runs.
+   */
+  static bool CheckPointIds(vtkPolyData* input, std::string& why);
+
+  /**
+   * Largest coordinate magnitude accepted (1e100): the inside test and the volume multiply three
+   * coordinate differences, which must stay finite.
+   */
+  static constexpr double MaximumCoordinate = 1e100;
+
   /// Vertex coordinates (x, y, z per vertex) after merging exactly coincident points.
   std::vector<double> Points;
   /// Triangles (vertex ids), consistently oriented with outward normals.

@@ -18,8 +18,8 @@
 #include "vtkPointData.h"
 #include "vtkReferenceRenderer.h"
 #include "vtkRefractaImageRenderer.h"
-#include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaRenderPipeline.h"
 #include "vtkSceneAnalysis.h"
 #include "vtkSmartPointer.h"
 
@@ -52,6 +52,15 @@ struct HardCase
   bool NoLightPower = false;     // nothing is emitted at all
   bool Opaque = false;           // nothing gets through: no photon escapes with power
   bool Conservative = false;     // albedo 1: nothing is absorbed
+  // Known answers of the newer cases (negative: none).
+  double ExpectedEmitted = -1;     // photon pass, per channel: I x the solid angle entering
+  double ExpectedAbsorbed = -1;    // photon pass, per channel, within 3%
+  bool NoneMissed = false;         // the light is inside: every photon starts in the medium
+  double CentreTransmittance = -1; // pipeline image, centre pixels = background x this (3%)
+  bool ImageIsBackground = false;  // pipeline image = background in every pixel (0.5%)
+  double Exposure = 1.0;           // the pipeline image's tone mapping
+  int ToneMapping = vtkRefractaImageRenderer::CLAMP;
+  int ExpectedRGB = -1; // every tone-mapped channel (0..255) of the pipeline image
 };
 
 using Field = std::function<Voxel(double, double, double)>; // at grid-local voxel centres
@@ -131,6 +140,137 @@ vtkSmartPointer<vtkCamera> Camera(std::array<double, 3> at, std::array<double, 3
 double Smooth(double d, double width)
 {
   return 0.5 * (1.0 - std::tanh(d / width));
+}
+
+HardCase& Add(std::vector<HardCase>& cases, std::string name, vtkSmartPointer<vtkImageData> medium,
+  std::vector<vtkSmartPointer<vtkLight>> lights, vtkSmartPointer<vtkCamera> camera)
+{
+  cases.push_back({ std::move(name), medium, std::move(lights), camera });
+  return cases.back();
+}
+
+// The camera inside the medium: inside a fog, and at the centre of a glass ball.
+void AddViewpointCases(std::vector<HardCase>& cases, int n)
+{
+  const double h = 1.0 / n;
+  const double c = 0.5 - 0.5 * h; // the box's centre (a voxel corner)
+  // A pure absorber, no light: looking along +x from the centre, the view crosses 0.5 of fog to
+  // the box's face (at (n - 0.5) h), so the centre pixels are the background x exp(-0.5 sigma).
+  const double sigma = 1.0;
+  Add(cases, "camera inside the medium",
+    MakeMedium({ n, n, n }, { h, h, h },
+      [=](double, double, double)
+      {
+        Voxel v;
+        v.SigmaT = sigma;
+        return v;
+      }),
+    {}, Camera({ c, c, c }, { 1, c, c }))
+    .CentreTransmittance = std::exp(-0.5 * sigma);
+  // Clear glass (n = 1.5 in a ball of radius 0.3, vacuum around): from the ball's centre every
+  // view ray is radial, meets the interface head-on and leaves unbent and unattenuated, so the
+  // image is the background everywhere (basic radiance: the background is not divided by n^2).
+  Add(cases, "camera inside glass",
+    MakeMedium({ n, n, n }, { h, h, h },
+      [=](double x, double y, double z)
+      {
+        Voxel v;
+        const double r = std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
+        v.N = 1.0 + 0.5 * Smooth(r - 0.3, h);
+        return v;
+      }),
+    { Light(false, { c, 3, c }, { c, c, c }, 1.0) }, Camera({ c, c, c }, { c, c, 1 }))
+    .ImageIsBackground = true;
+  cases.back().NothingInteracts = true;
+}
+
+// Point lights exactly on a voxel face inside a fog, and on a corner and a face of the box of an
+// opaque absorber (what enters is absorbed at once, so the absorbed power is the light's
+// intensity times the solid angle of the box seen from the light: pi / 2 from a corner, 2 pi
+// from a face).
+void AddLightPlacementCases(std::vector<HardCase>& cases)
+{
+  const int n = 8;
+  const double h = 1.0 / n;
+  const double c = 0.5 - 0.5 * h;
+  auto fog = [](double sigmaT, double albedo)
+  {
+    return [=](double, double, double)
+    {
+      Voxel v;
+      v.SigmaT = sigmaT;
+      v.Albedo = albedo;
+      return v;
+    };
+  };
+  auto front = [=] { return Camera({ c, c, 3.0 }, { c, c, c }); };
+  const double pi = 3.14159265358979323846;
+  // x on the face between voxels 2 and 3, y and z at voxel centres: every photon starts inside.
+  HardCase& face =
+    Add(cases, "point light on a voxel face", MakeMedium({ n, n, n }, { h, h, h }, fog(2.0, 0.8)),
+      { Light(true, { 2.5 * h, 3 * h, 4 * h }, { 1, 3 * h, 4 * h }, 1.0) }, front());
+  face.NoneMissed = true;
+  face.ExpectedEmitted = 4 * pi;
+  HardCase& corner = Add(cases, "point light on the grid's corner",
+    MakeMedium({ n, n, n }, { h, h, h }, fog(1e3 / h, 0.0)),
+    { Light(true, { -0.5 * h, -0.5 * h, -0.5 * h }, { c, c, c }, 1.0) }, front());
+  corner.ExpectedAbsorbed = pi / 2;
+  HardCase& boxFace = Add(cases, "point light on the box's face",
+    MakeMedium({ n, n, n }, { h, h, h }, fog(1e3 / h, 0.0)),
+    { Light(true, { c, c, -0.5 * h }, { c, c, c }, 1.0) }, front());
+  boxFace.ExpectedAbsorbed = 2 * pi;
+}
+
+// Denormal and 1e30 coefficients, refraction on an anisotropic grid, and exposure extremes.
+void AddExtremeValueCases(std::vector<HardCase>& cases)
+{
+  const int n = 8;
+  const double h = 1.0 / n;
+  const double c = 0.5 - 0.5 * h;
+  auto fog = [](double sigmaT, double albedo)
+  {
+    return [=](double, double, double)
+    {
+      Voxel v;
+      v.SigmaT = sigmaT;
+      v.Albedo = albedo;
+      return v;
+    };
+  };
+  auto above = [=] { return Light(false, { c, 3, c }, { c, c, c }, 1.0); };
+  auto front = [=] { return Camera({ c, c, 3.0 }, { c, c, c }); };
+  // 1e-40 is below FLT_MIN (a denormal float): nothing may interact, nothing may turn NaN.
+  Add(cases, "denormal extinction 1e-40", MakeMedium({ n, n, n }, { h, h, h }, fog(1e-40, 0.5)),
+    { above() }, front())
+    .NothingInteracts = true;
+  Add(cases, "extinction 1e30", MakeMedium({ n, n, n }, { h, h, h }, fog(1e30, 0.5)), { above() },
+    front())
+    .Opaque = true;
+  // A tilted index ramp (1 to 1.6 along x + z) on voxels of 0.01 x 0.04 x 0.02, clear: rays bend
+  // but nothing is absorbed or scattered, so every photon escapes with all its power.
+  Add(cases, "refraction on anisotropic spacing",
+    MakeMedium({ 12, 12, 12 }, { 0.01, 0.04, 0.02 },
+      [](double x, double, double z)
+      {
+        Voxel v;
+        v.N = 1.0 + 0.6 * Smooth(0.17 - x - z, 0.03);
+        return v;
+      }),
+    { Light(false, { -1, 2, 0.5 }, { 0.06, 0.22, 0.11 }, 1.0) },
+    Camera({ 0.06, 0.22, 3.0 }, { 0.06, 0.22, 0.11 }))
+    .NothingInteracts = true;
+  // Exposure at the ends of its range: 1e30 saturates every channel that has any light (every
+  // pixel sees the background through the fog), 1e-30 leaves every channel black.
+  HardCase& bright = Add(cases, "exposure 1e30",
+    MakeMedium({ n, n, n }, { h, h, h }, fog(2.0, 0.8)), { above() }, front());
+  bright.Exposure = 1e30;
+  bright.ToneMapping = vtkRefractaImageRenderer::REINHARD;
+  bright.ExpectedRGB = 255;
+  HardCase& dark = Add(cases, "exposure 1e-30", MakeMedium({ n, n, n }, { h, h, h }, fog(2.0, 0.8)),
+    { above() }, front());
+  dark.Exposure = 1e-30;
+  dark.ToneMapping = vtkRefractaImageRenderer::EXPONENTIAL;
+  dark.ExpectedRGB = 0;
 }
 
 std::vector<HardCase> MakeCases()
@@ -240,6 +380,9 @@ std::vector<HardCase> MakeCases()
     .NoLightPower = true;
   add("all vacuum", MakeMedium({ n, n, n }, { h, h, h }, fog(0.0, 0.0, 0.0)), { fromAbove() })
     .NothingInteracts = true;
+  AddViewpointCases(cases, n);
+  AddLightPlacementCases(cases);
+  AddExtremeValueCases(cases);
   return cases;
 }
 
@@ -274,6 +417,41 @@ void ExpectFiniteArrays(
       }
     }
     EXPECT_EQ(bad, 0) << what << ": array " << name;
+  }
+}
+
+// The pipeline image's known answers (16 x 16, background (0.25, 0.5, 0.75)).
+void ExpectKnownImage(const HardCase& c, vtkImageData* image)
+{
+  vtkDataArray* hdr = image->GetPointData()->GetArray("HDR");
+  vtkDataArray* rgb = image->GetPointData()->GetArray("RGB");
+  ASSERT_TRUE(hdr && rgb) << c.Name;
+  const double background[3] = { 0.25, 0.5, 0.75 };
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    if (c.CentreTransmittance >= 0)
+    {
+      double centre = 0.0;
+      for (vtkIdType p : { 7 + 16 * 7, 8 + 16 * 7, 7 + 16 * 8, 8 + 16 * 8 })
+      {
+        centre += 0.25 * hdr->GetComponent(p, ch);
+      }
+      EXPECT_NEAR(centre, background[ch] * c.CentreTransmittance,
+        0.03 * background[ch] * c.CentreTransmittance)
+        << c.Name << " channel " << ch;
+    }
+    for (vtkIdType p = 0; p < 256; ++p)
+    {
+      if (c.ImageIsBackground)
+      {
+        EXPECT_NEAR(hdr->GetComponent(p, ch), background[ch], 0.005 * background[ch])
+          << c.Name << " pixel " << p;
+      }
+      if (c.ExpectedRGB >= 0)
+      {
+        EXPECT_EQ(rgb->GetComponent(p, ch), c.ExpectedRGB) << c.Name << " pixel " << p;
+      }
+    }
   }
 }
 
@@ -326,6 +504,10 @@ TEST_P(HardCases, PhotonTracerStaysFiniteAndConservesEnergy)
   ExpectFiniteArrays(out, { vtkRefractaLightingVolume::RadianceName() }, c.Name);
 
   EXPECT_EQ(FieldValue(out, "TerminatedInvalid"), 0) << c.Name;
+  if (c.NoneMissed)
+  {
+    EXPECT_EQ(FieldValue(out, "PhotonsMissed"), 0) << c.Name;
+  }
   // Every photon ends in exactly one way: missed the medium, escaped, roulette, or the step cap.
   EXPECT_EQ(FieldValue(out, "PhotonsMissed") + FieldValue(out, "TerminatedEscaped") +
       FieldValue(out, "TerminatedRoulette") + FieldValue(out, "TerminatedStepCap"),
@@ -369,6 +551,14 @@ TEST_P(HardCases, PhotonTracerStaysFiniteAndConservesEnergy)
     if (c.Conservative)
     {
       EXPECT_EQ(absorbed, 0.0) << c.Name;
+    }
+    if (c.ExpectedEmitted >= 0)
+    {
+      EXPECT_NEAR(emitted, c.ExpectedEmitted, 1e-4 * c.ExpectedEmitted) << c.Name;
+    }
+    if (c.ExpectedAbsorbed >= 0)
+    {
+      EXPECT_NEAR(absorbed, c.ExpectedAbsorbed, 0.03 * c.ExpectedAbsorbed) << c.Name;
     }
     if (c.NothingInteracts)
     {
@@ -439,6 +629,8 @@ TEST_P(HardCases, FullPipelineStaysFinite)
   renderer->SetCamera(c.Camera);
   renderer->SetImageSize(16, 16);
   renderer->SetBackgroundColor(0.25, 0.5, 0.75);
+  renderer->SetExposure(c.Exposure);
+  renderer->SetToneMapping(c.ToneMapping);
   renderer->Update();
   if (vtkImageData* lighting = pipeline->GetLighting())
   {
@@ -465,6 +657,7 @@ TEST_P(HardCases, FullPipelineStaysFinite)
       EXPECT_FLOAT_EQ(hdr->GetComponent(p, 2), 0.75f);
     }
   }
+  ExpectKnownImage(c, image);
 }
 
 INSTANTIATE_TEST_SUITE_P(Stability, HardCases,

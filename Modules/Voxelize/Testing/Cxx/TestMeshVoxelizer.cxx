@@ -633,6 +633,39 @@ TEST(MeshVoxelizer, InvalidMeshesGiveTheirMessages)
   nan->GetPoints()->SetPoint(2, 0, std::numeric_limits<double>::quiet_NaN(), 0);
   ExpectError(nan, "NaN or infinite coordinates (first: point 2");
 
+  // Found by the fuzz targets' seeds (Testing/Fuzz): ids out of range were read out of bounds,
+  // and coordinates near DBL_MAX overflowed the grid's extent to an infinite spacing.
+  ExpectError(Mesh(TetPoints, { TetFaces[0], TetFaces[1], TetFaces[2], { 1, 2, 4 } }),
+    "polygon cell 3 refers to point id 4 but the mesh has 4 points (valid ids: 0 to 3)");
+  ExpectError(Mesh(TetPoints, { TetFaces[0], TetFaces[1], TetFaces[2], { 1, -1, 3 } }),
+    "refers to point id -1");
+  auto huge = Mesh(TetPoints, TetFaces);
+  vtkNew<vtkPoints> doublePoints;
+  doublePoints->SetDataTypeToDouble();
+  for (const auto& p : TetPoints)
+  {
+    doublePoints->InsertNextPoint(p.data());
+  }
+  doublePoints->SetPoint(1, 1e300, 0, 0);
+  huge->SetPoints(doublePoints);
+  ExpectError(huge, "too large coordinates (first: point 1");
+  {
+    vtkNew<vtkMeshVoxelizer> vox;
+    vtkNew<vtkTest::ErrorObserver> observer;
+    vox->AddObserver(vtkCommand::ErrorEvent, observer);
+    vox->AddInputData(Mesh(TetPoints, TetFaces));
+    vox->SetBounds(-1.7e308, 1.7e308, 0, 1, 0, 1);
+    vox->Update();
+    EXPECT_EQ(observer->CheckErrorMessage("too large along x"), 0);
+    vox->SetBounds(0, 1e-320, 0, 1, 0, 1);
+    vox->Update();
+    EXPECT_EQ(observer->CheckErrorMessage("too thin along x"), 0);
+    vox->SetBounds(1e20, 1e20 + 1e5, 0, 1, 0, 1); // spacing lost in the origin's rounding
+    vox->Update();
+    EXPECT_EQ(observer->CheckErrorMessage("too thin along x"), 0);
+    EXPECT_EQ(vox->GetOutput()->GetNumberOfPoints(), 0);
+  }
+
   auto open = Mesh(TetPoints, { TetFaces[0], TetFaces[1], TetFaces[2] });
   ExpectError(open, "not closed: 3 boundary edges");
 

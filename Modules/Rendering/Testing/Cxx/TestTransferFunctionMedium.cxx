@@ -1,0 +1,151 @@
+// vtkTransferFunctionMedium: the mapping (Beer-Lambert extinction from opacity, albedo from
+// colour, index, emission) on a small image, and every rejected input with its message. The
+// rejected inputs were found by fuzzing (Testing/Fuzz/Corpus/FuzzTransferFunctionMedium): before,
+// they gave NaN or infinite medium arrays.
+#include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
+#include "vtkDoubleArray.h"
+#include "vtkImageData.h"
+#include "vtkMediumValidator.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRefractaMedium.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkTransferFunctionMedium.h"
+#include "vtkVolumeProperty.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace
+{
+const double NaN = std::numeric_limits<double>::quiet_NaN();
+
+// A 2 x 2 x 2 image of scalars 0..7 / 7 and a property: opacity 0 -> 0, 1 -> 0.5; colour white
+// to red; unit distance 0.5.
+struct Fixture
+{
+  vtkNew<vtkImageData> Image;
+  vtkNew<vtkPiecewiseFunction> Opacity;
+  vtkNew<vtkColorTransferFunction> Colour;
+  vtkNew<vtkVolumeProperty> Property;
+  vtkNew<vtkPiecewiseFunction> Index;
+  vtkNew<vtkTransferFunctionMedium> Mapping;
+  vtkNew<vtkTest::ErrorObserver> Observer;
+
+  Fixture()
+  {
+    this->Image->SetDimensions(2, 2, 2);
+    vtkNew<vtkDoubleArray> s;
+    s->SetName("density");
+    s->SetNumberOfTuples(8);
+    for (int i = 0; i < 8; ++i)
+    {
+      s->SetValue(i, i / 7.0);
+    }
+    this->Image->GetPointData()->SetScalars(s);
+    this->Opacity->AddPoint(0, 0);
+    this->Opacity->AddPoint(1, 0.5);
+    this->Colour->AddRGBPoint(0, 1, 1, 1);
+    this->Colour->AddRGBPoint(1, 1, 0, 0);
+    this->Property->SetScalarOpacity(this->Opacity);
+    this->Property->SetColor(this->Colour);
+    this->Property->SetScalarOpacityUnitDistance(0.5);
+    this->Index->AddPoint(0, 1);
+    this->Index->AddPoint(1, 1.5);
+    this->Mapping->SetInputData(this->Image);
+    this->Mapping->SetVolumeProperty(this->Property);
+    this->Mapping->SetRefractiveIndexFunction(this->Index);
+    this->Mapping->SetEmissionScale(1.0);
+    this->Mapping->AddObserver(vtkCommand::ErrorEvent, this->Observer);
+  }
+
+  // Runs the mapping and expects it to fail with `message` and an empty output.
+  void ExpectError(const std::string& message)
+  {
+    this->Mapping->Update();
+    EXPECT_EQ(this->Observer->CheckErrorMessage(message), 0) << message;
+    EXPECT_EQ(this->Mapping->GetOutput()->GetNumberOfPoints(), 0) << message;
+  }
+};
+}
+
+TEST(TransferFunctionMedium, MapsOpacityColourIndexAndEmission)
+{
+  Fixture f;
+  f.Mapping->Update();
+  EXPECT_FALSE(f.Observer->GetError()) << f.Observer->GetErrorMessage();
+  vtkImageData* out = f.Mapping->GetOutput();
+  vtkNew<vtkMediumValidator> validator;
+  EXPECT_TRUE(validator->Validate(out)) << validator->GetErrorMessage();
+  vtkPointData* pd = out->GetPointData();
+  // The last point: s = 1, opacity 0.5 over 0.5 world units -> sigma = ln 2 / 0.5.
+  const double sigma = std::log(2.0) / 0.5;
+  EXPECT_NEAR(pd->GetArray(vtkRefractaMedium::ExtinctionName())->GetComponent(7, 0), sigma, 1e-6);
+  EXPECT_NEAR(pd->GetArray(vtkRefractaMedium::AlbedoName())->GetComponent(7, 1), 0.0, 1e-6);
+  EXPECT_NEAR(
+    pd->GetArray(vtkRefractaMedium::RefractiveIndexName())->GetComponent(7, 0), 1.5, 1e-6);
+  EXPECT_NEAR(pd->GetArray(vtkRefractaMedium::EmissionName())->GetComponent(7, 0), sigma, 1e-5);
+  EXPECT_NEAR(pd->GetArray(vtkRefractaMedium::ExtinctionName())->GetComponent(0, 0), 0.0, 1e-9);
+}
+
+TEST(TransferFunctionMedium, BadUnitDistanceIsRejected)
+{
+  for (double unit : { 0.0, -1.0, NaN })
+  {
+    Fixture f;
+    f.Property->SetScalarOpacityUnitDistance(unit);
+    f.ExpectError("ScalarOpacityUnitDistance is");
+  }
+}
+
+TEST(TransferFunctionMedium, NaNFromTheFunctionsIsRejected)
+{
+  {
+    Fixture f;
+    f.Opacity->AddPoint(0.5, NaN);
+    f.ExpectError("the scalar opacity function is NaN at scalar");
+  }
+  {
+    Fixture f;
+    f.Colour->AddRGBPoint(0.5, NaN, 0, 0);
+    f.ExpectError("the colour transfer function is NaN at scalar");
+  }
+  {
+    Fixture f;
+    f.Index->AddPoint(0.5, NaN);
+    f.ExpectError("the refractive index function gives nan");
+  }
+  {
+    Fixture f;
+    f.Mapping->SetAnisotropy(NaN);
+    f.ExpectError("must be numbers: g in [-0.9999, 0.9999]");
+  }
+}
+
+TEST(TransferFunctionMedium, ValuesBeyondFloatAreRejected)
+{
+  Fixture f;
+  f.Property->SetScalarOpacityUnitDistance(1e-30);
+  f.Mapping->SetEmissionScale(1e30);
+  f.ExpectError("exceeds the float range");
+}
+
+TEST(TransferFunctionMedium, ScalarsThatDoNotFitTheGridAreRejected)
+{
+  {
+    Fixture f;
+    f.Image->GetPointData()->GetScalars()->SetNumberOfTuples(6);
+    f.ExpectError("have 6 values but the image has 8 points");
+  }
+  {
+    Fixture f;
+    f.Image->SetDimensions(0, 2, 2);
+    f.Image->GetPointData()->GetScalars()->SetNumberOfTuples(0);
+    f.ExpectError("a non-empty image with one scalar per point");
+  }
+}
