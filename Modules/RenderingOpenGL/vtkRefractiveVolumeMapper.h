@@ -55,6 +55,7 @@
 class vtkEffectPlan;
 class vtkImageData;
 class vtkOpenCLContext;
+class vtkOpenGLRenderWindow;
 class vtkCamera;
 class vtkPiecewiseFunction;
 class vtkRefractaRenderPipeline;
@@ -236,6 +237,9 @@ protected:
   void CutAwayClippedRegions(vtkImageData* medium, vtkVolume* volume);
   void WarnAboutUnsupportedModes();
   void ReportOnce(const std::string& message);
+  bool UpdateActiveBox();
+  void ClassifyPixels(const vtkRefractaViewPass::RayFrame& frame, int width, int height);
+  void Composite(vtkOpenGLRenderWindow* window, int x0, int y0, int width, int height);
   static std::vector<float> DepthToPathLengths(vtkRenderer* renderer, vtkCamera* camera,
     const vtkRefractaViewPass::RayFrame& frame, int width, int height,
     const std::vector<float>& depth);
