@@ -12,6 +12,7 @@
 #include "vtkSceneAnalysis.h"
 
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <unistd.h>
 
@@ -230,6 +231,30 @@ void PrintLightPass(const json& light)
               << ")\n";
   }
 }
+
+// "surfaces" line: how many of each kind, the triangles; nothing without surfaces.
+void PrintSurfaces(const json& surfaces, double seconds)
+{
+  if (!surfaces.is_object() || surfaces.value("count", 0) == 0)
+  {
+    return;
+  }
+  std::map<std::string, int> kinds;
+  for (const json& s : surfaces["list"])
+  {
+    ++kinds[s["kind"].get<std::string>()];
+  }
+  std::string list;
+  for (const char* kind : { "plane", "box", "sphere", "file" })
+  {
+    if (kinds.count(kind))
+    {
+      list += (list.empty() ? "" : ", ") + std::to_string(kinds[kind]) + " " + kind;
+    }
+  }
+  std::cout << "  surfaces  " << surfaces["count"].get<int>() << " (" << list << "), "
+            << surfaces["triangles"].get<long long>() << " triangles, " << seconds << " s\n";
+}
 }
 
 void PrintSummary(const json& report)
@@ -254,6 +279,7 @@ void PrintSummary(const json& report)
             << medium["dimensions"][1].get<int>() << " x " << medium["dimensions"][2].get<int>()
             << " (" << medium["source"].get<std::string>() << "), "
             << seconds["medium"].get<double>() << " s\n";
+  PrintSurfaces(report["surfaces"], seconds.value("surfaces", 0.0));
   PrintLightPass(report["light_pass"]);
   std::cout << "  view      " << (view["curved_rays"].get<bool>() ? "curved" : "straight")
             << " rays, " << view["total_steps"].get<double>() << " steps, "

@@ -22,6 +22,7 @@
 #include "RefractaSceneJson.h"
 #include "RefractaSceneMedium.h"
 #include "RefractaSceneSettings.h"
+#include "RefractaSceneSurfaces.h"
 #include "RefractaSceneView.h"
 
 #include "vtkCamera.h"
@@ -129,8 +130,8 @@ int Render(const json& scene, const std::string& base, const Options& options)
 {
   Timer total;
   json seconds = json::object();
-  CheckKeys(
-    scene, "scene", { "image", "camera", "background", "medium", "lights", "quality", "effects" });
+  CheckKeys(scene, "scene",
+    { "image", "camera", "background", "medium", "surfaces", "lights", "quality", "effects" });
 
   // One render pipeline does the work (vtkRefractaRenderPipeline, through the image renderer
   // that tone-maps its image); a quality preset in the settings configures it first.
@@ -138,7 +139,11 @@ int Render(const json& scene, const std::string& base, const Options& options)
   vtkRefractaRenderPipeline* pipeline = renderer->GetPipeline();
   const RenderSettings settings = ReadSettings(scene, pipeline);
 
-  // The scene: the medium, then what surrounds it.
+  // The scene: the surfaces (read first: a bad entry fails before the voxelizer runs), the
+  // medium, then what surrounds them.
+  Timer surfacesTimer;
+  const std::vector<SceneSurface> surfaces = ReadSurfaces(scene, base);
+  seconds["surfaces"] = surfacesTimer.Seconds();
   Timer mediumTimer;
   if (!options.Quiet)
   {
@@ -152,7 +157,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
   }
   const int lightCount = AddLights(scene, renderer);
   vtkSmartPointer<vtkCamera> camera = ReadCamera(scene, medium.Image);
-  ReadBackground(scene, base, renderer);
+  const bool environmentLight = ReadBackground(scene, base, renderer);
 
   // The render: plan, light passes, view pass, each stage printed as it runs.
   ApplySettings(settings, renderer);
@@ -193,6 +198,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
   report["image"] = ImageReport(settings);
   report["quality"] = QualityReport(settings);
   report["medium"] = medium.Report;
+  report["surfaces"] = SurfacesReport(surfaces);
   report["light_pass"] = LightPassReport(pipeline, lightCount);
   report["view_pass"] = ViewPassReport(renderer);
   report["seconds"] = seconds;
