@@ -18,7 +18,10 @@
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaActorSurfaces.h"
+#include "vtkRefractaBVH.h"
 #include "vtkRefractaRendererBackground.h"
+#include "vtkRefractaSurfaceSet.h"
 #include "vtkRefractiveVolumeMapperCompositing.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkRenderer.h"
@@ -36,6 +39,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -151,6 +155,9 @@ struct vtkRefractiveVolumeMapper::Internals
   vtkTimeStamp CutTime;
   std::vector<double> CutCropping; // the cropping settings it was cut with
   vtkNew<vtkRefractaRendererBackground> Background;
+  vtkNew<vtkRefractaActorSurfaces> Actors;
+  vtkRefractaSurfaceSet* ClassifiedWith = nullptr; // the surfaces the pixel kinds were made for
+  vtkTimeStamp ClassifiedTime;
   // The medium's active box (see vtkRefractiveVolumeMapperCompositing.h) and what it was
   // computed from.
   vtkRefractiveVolumeMapperDetail::LocalBox ActiveBox;
@@ -300,6 +307,16 @@ vtkImageData* vtkRefractiveVolumeMapper::GetLighting()
 vtkRefractaViewPass* vtkRefractiveVolumeMapper::GetViewPass()
 {
   return this->Internal->Pipeline->GetViewPass();
+}
+
+vtkRefractaActorSurfaces* vtkRefractiveVolumeMapper::GetActorSurfaceCollector()
+{
+  return this->Internal->Actors;
+}
+
+vtkRefractaRendererBackground* vtkRefractiveVolumeMapper::GetBackgroundConverter()
+{
+  return this->Internal->Background;
 }
 
 vtkRefractaRenderPipeline* vtkRefractiveVolumeMapper::GetPipeline()
@@ -587,12 +604,23 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
                      "view up is parallel to the view direction).");
     return;
   }
+  // The renderer's opaque actors as surfaces (rebuilt only where they changed).
+  vtkRefractaSurfaceSet* surfaces = nullptr;
+  if (this->ActorSurfaces)
+  {
+    in.Actors->Update(renderer, volume);
+    surfaces = in.Actors->GetNumberOfActors() > 0 ? in.Actors->GetSurfaces() : nullptr;
+  }
   const bool boxChanged = this->UpdateActiveBox();
-  if (boxChanged || depth != in.Depth || in.Limits.size() != pixels)
+  const bool surfacesChanged = surfaces != in.ClassifiedWith ||
+    (surfaces && surfaces->GetMTime() > in.ClassifiedTime.GetMTime());
+  if (boxChanged || surfacesChanged || depth != in.Depth || in.Limits.size() != pixels)
   {
     in.Limits = this->DepthToPathLengths(renderer, camera, frame, width, height, depth);
     in.Depth = std::move(depth);
-    this->ClassifyPixels(frame, width, height);
+    this->ClassifyPixels(renderer, camera, frame, surfaces, width, height);
+    in.ClassifiedWith = surfaces;
+    in.ClassifiedTime.Modified();
   }
 
   vtkRefractaRenderPipeline* pipeline = in.Pipeline;
@@ -600,6 +628,7 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   pipeline->SetLights(renderer->GetLights());
   pipeline->SetCamera(camera);
   pipeline->SetPropMatrix(volume->GetMatrix());
+  pipeline->SetSurfaces(surfaces);
   in.Background->Apply(renderer, camera, pipeline->GetViewPass());
   if (!pipeline->Render(width, height, in.Limits.data()))
   {
@@ -624,17 +653,34 @@ bool vtkRefractiveVolumeMapper::UpdateActiveBox()
 }
 
 //------------------------------------------------------------------------------
-void vtkRefractiveVolumeMapper::ClassifyPixels(
-  const vtkRefractaViewPass::RayFrame& frame, int width, int height)
+void vtkRefractiveVolumeMapper::ClassifyPixels(vtkRenderer* renderer, vtkCamera* camera,
+  const vtkRefractaViewPass::RayFrame& frame, vtkRefractaSurfaceSet* surfaces, int width,
+  int height)
 {
   using namespace vtkRefractiveVolumeMapperDetail;
   Internals& in = *this->Internal;
+  // Depth drawn by a taken actor is the pipeline's own surface: no limit there (the view ray
+  // meets the surface itself, bent or not). Without foreign props every drawn depth is ours;
+  // with them, the BVH tells which pixels' depth is a surface of the set.
+  const bool foreignProps = in.Actors->GetNumberOfForeignProps() > 0 || !surfaces;
+  vtkRefractaBVH* bvh = nullptr;
+  std::unique_ptr<DepthRays> rays;
+  if (surfaces && foreignProps && surfaces->Build())
+  {
+    bvh = surfaces->GetBVH();
+    rays.reset(new DepthRays(renderer, camera));
+  }
   in.Kinds.assign(static_cast<size_t>(width) * height, CLEAR);
   for (int j = 0; j < height; ++j)
   {
     for (int i = 0; i < width; ++i)
     {
       const size_t p = i + static_cast<size_t>(width) * j;
+      if (std::isfinite(in.Limits[p]) &&
+        (!foreignProps || (bvh && rays->HitsSurface(bvh, i, j, width, height, in.Depth[p]))))
+      {
+        in.Limits[p] = std::numeric_limits<float>::infinity();
+      }
       if (std::isfinite(in.Limits[p]))
       {
         in.Kinds[p] = FOREIGN;
@@ -697,6 +743,7 @@ void vtkRefractiveVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "AutomaticExposure: " << this->AutomaticExposure << "\n";
   os << indent << "LastExposure: " << this->LastExposure << "\n";
+  os << indent << "ActorSurfaces: " << this->ActorSurfaces << "\n";
   os << indent << "Pipeline:\n";
   this->Internal->Pipeline->PrintSelf(os, indent.GetNextIndent());
 }

@@ -1,6 +1,9 @@
 #include "vtkRefractiveVolumeMapperCompositing.h"
 
+#include "vtkCamera.h"
 #include "vtkDataArray.h"
+#include "vtkRefractaBVH.h"
+#include "vtkRenderer.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
 #include "vtkRefractaMedium.h"
@@ -125,6 +128,30 @@ bool RayCrossesBox(const vtkRefractaViewPass::RayFrame& frame, int i, int j, int
     t1 = std::min(t1, tb);
   }
   return t0 <= t1;
+}
+
+DepthRays::DepthRays(vtkRenderer* renderer, vtkCamera* camera)
+{
+  vtkMatrix4x4* projection =
+    camera->GetCompositeProjectionTransformMatrix(renderer->GetTiledAspectRatio(), -1, 1);
+  vtkMatrix4x4::Invert(projection, this->Inverse);
+}
+
+bool DepthRays::HitsSurface(
+  vtkRefractaBVH* bvh, int i, int j, int width, int height, float depth) const
+{
+  const double sx = 2.0 * (i + 0.5) / width - 1.0, sy = 2.0 * (j + 0.5) / height - 1.0;
+  double nearNdc[4] = { sx, sy, -1.0, 1.0 }, farNdc[4] = { sx, sy, 2.0 * depth - 1.0, 1.0 };
+  double nearWorld[4], farWorld[4];
+  this->Inverse->MultiplyPoint(nearNdc, nearWorld);
+  this->Inverse->MultiplyPoint(farNdc, farWorld);
+  double origin[3], direction[3], hit[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    origin[a] = nearWorld[a] / nearWorld[3];
+    direction[a] = farWorld[a] / farWorld[3] - origin[a];
+  }
+  return bvh->IntersectRay(origin, direction, 1.01, hit) >= 0;
 }
 
 void CompositingImages(const std::vector<float>& image, const std::vector<float>& transmittance,

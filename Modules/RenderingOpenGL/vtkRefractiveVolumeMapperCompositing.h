@@ -13,12 +13,18 @@
 #ifndef vtkRefractiveVolumeMapperCompositing_h
 #define vtkRefractiveVolumeMapperCompositing_h
 
+#include "vtkNew.h"
 #include "vtkRefractaViewPass.h" // for RayFrame
+
+#include "vtkMatrix4x4.h"
 
 #include <cstdint>
 #include <vector>
 
+class vtkCamera;
 class vtkImageData;
+class vtkRefractaBVH;
+class vtkRenderer;
 
 namespace vtkRefractiveVolumeMapperDetail
 {
@@ -46,6 +52,22 @@ LocalBox ActiveBox(vtkImageData* medium, double margin);
 /// vtkRefractaViewPass::ComputeRayFrame), before `limit` (path length) where one is given.
 bool RayCrossesBox(const vtkRefractaViewPass::RayFrame& frame, int i, int j, int width,
   int height, const LocalBox& box, double limit);
+
+/// The straight camera rays of the depth buffer's pixels, in world coordinates: from the near
+/// plane to the depth drawn there.
+class DepthRays
+{
+public:
+  DepthRays(vtkRenderer* renderer, vtkCamera* camera);
+
+  /// Whether the depth drawn at pixel (i, j) (`depth` in [0, 1)) is a triangle of `bvh`: the
+  /// closest hit along the pixel's ray lies at or before the drawn point (1% of the ray's
+  /// length as slack for the depth buffer's precision).
+  bool HitsSurface(vtkRefractaBVH* bvh, int i, int j, int width, int height, float depth) const;
+
+private:
+  vtkNew<vtkMatrix4x4> Inverse; // normalized device -> world
+};
 
 /// The RGBA images the mapper draws for the kinds above: `multiply` (blended with ZERO,
 /// SRC_COLOR: 0 where COVERED, T where FOREIGN, 1 where CLEAR) and `add` (ONE, ONE: E L where
