@@ -8,6 +8,8 @@
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
 #include "vtkPoints.h"
+#include "vtkRefractaSurfaceMaterial.h"
+#include "vtkRefractaSurfaceSet.h"
 #include "vtkTriangle.h"
 #include "vtkTriangleFilter.h"
 
@@ -209,6 +211,26 @@ vtkSmartPointer<vtkPolyData> MakePlane(
   plane->SetPoint2(p2);
   plane->Update();
   return Triangulate(plane->GetOutput());
+}
+
+vtkSmartPointer<vtkRefractaSurfaceSet> MakeSurfaceSet(const std::vector<SceneSurface>& surfaces)
+{
+  if (surfaces.empty())
+  {
+    return nullptr;
+  }
+  auto set = vtkSmartPointer<vtkRefractaSurfaceSet>::New();
+  for (const SceneSurface& s : surfaces)
+  {
+    vtkNew<vtkRefractaSurfaceMaterial> material;
+    material->SetAlbedo(s.Material.Albedo.data());
+    material->SetUseChecker(s.Material.Checker);
+    material->SetCheckerSquares(s.Material.Squares[0], s.Material.Squares[1]);
+    material->SetCheckerColor1(s.Material.Color1.data());
+    material->SetCheckerColor2(s.Material.Color2.data());
+    set->AddSurface(s.Mesh, material);
+  }
+  return set;
 }
 
 json SurfacesReport(const std::vector<SceneSurface>& surfaces)

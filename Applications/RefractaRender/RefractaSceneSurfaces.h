@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+class vtkRefractaSurfaceSet;
+
 namespace RefractaRender
 {
 /// The most triangles all surfaces of a scene may hold together: 2^22 = 4,194,304 (the BVH and
@@ -57,6 +59,10 @@ std::vector<SceneSurface> ReadSurfaces(const json& scene, const std::string& bas
 /// v = -z). Texture coordinates run 0..1 along u and v.
 vtkSmartPointer<vtkPolyData> MakePlane(
   const double center[3], const double normal[3], double width, double height);
+
+/// The pipeline's surface set for `surfaces` (meshes in world coordinates, no matrices); nullptr
+/// when there are none.
+vtkSmartPointer<vtkRefractaSurfaceSet> MakeSurfaceSet(const std::vector<SceneSurface>& surfaces);
 
 /// The report's "surfaces": count, triangles, and per surface its kind and triangles.
 json SurfacesReport(const std::vector<SceneSurface>& surfaces);

@@ -31,6 +31,7 @@
 #include "vtkOpenCLContext.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaSurfaceSet.h"
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
@@ -166,6 +167,10 @@ int Render(const json& scene, const std::string& base, const Options& options)
   // The render: plan, light passes, view pass, each stage printed as it runs.
   ApplySettings(settings, renderer);
   renderer->SetInputData(medium.Image);
+  vtkSmartPointer<vtkRefractaSurfaceSet> surfaceSet = MakeSurfaceSet(surfaces);
+  // PENDING(surfcore): renderer->SetSurfaces(surfaceSet); environment light switch from
+  // environmentLight.
+  (void)environmentLight;
   renderer->SetCamera(camera);
   {
     StageReporter reporter(pipeline, options.Quiet);
