@@ -7,6 +7,7 @@
 #include "vtkImageData.h"
 #include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkSceneAnalysis.h"
@@ -90,9 +91,10 @@ json FieldDataToJson(vtkFieldData* fd)
   for (int i = 0; fd && i < fd->GetNumberOfArrays(); ++i)
   {
     vtkDataArray* a = fd->GetArray(i);
-    if (!a || !a->GetName() || a->GetNumberOfTuples() < 1)
+    if (!a || !a->GetName() || a->GetNumberOfTuples() < 1 ||
+      std::string(a->GetName()) == vtkRefractaLightingVolume::SurfaceIrradianceName())
     {
-      continue;
+      continue; // the surfaces' irradiance is one tuple per texel, not a statistic
     }
     if (a->GetNumberOfComponents() == 1)
     {
@@ -226,8 +228,11 @@ void PrintLightPass(const json& light)
     Sum3(light, "EnergyAbsorbed", out) && Sum3(light, "EnergyEscaped", out) &&
     Sum3(light, "EnergyRemaining", out))
   {
-    std::cout << "  energy    emitted " << emitted << " = scattered+absorbed+escaped+remaining "
-              << out << " (relative difference " << (emitted > 0 ? (out - emitted) / emitted : 0.0)
+    // The surfaces' term where the scene has surfaces (the photon tracer's EnergySurface).
+    const bool surfaces = Sum3(light, "EnergySurface", out);
+    std::cout << "  energy    emitted " << emitted << " = scattered+absorbed+"
+              << (surfaces ? "surfaces+" : "") << "escaped+remaining " << out
+              << " (relative difference " << (emitted > 0 ? (out - emitted) / emitted : 0.0)
               << ")\n";
   }
 }

@@ -233,7 +233,7 @@ vtkSmartPointer<vtkRefractaSurfaceSet> MakeSurfaceSet(const std::vector<SceneSur
   return set;
 }
 
-json SurfacesReport(const std::vector<SceneSurface>& surfaces)
+json SurfacesReport(const std::vector<SceneSurface>& surfaces, vtkRefractaSurfaceSet* set)
 {
   json report;
   long long triangles = 0;
@@ -247,6 +247,13 @@ json SurfacesReport(const std::vector<SceneSurface>& surfaces)
   report["count"] = surfaces.size();
   report["triangles"] = triangles;
   report["list"] = list;
+  if (set)
+  {
+    report["texels"] = set->GetNumberOfTexels();
+    report["texel_size"] = set->GetEffectiveTexelSize();
+    report["dropped_triangles"] = set->GetNumberOfDroppedTriangles();
+    report["build_seconds"] = set->GetBuildSeconds();
+  }
   return report;
 }
 }

@@ -64,8 +64,9 @@ vtkSmartPointer<vtkPolyData> MakePlane(
 /// when there are none.
 vtkSmartPointer<vtkRefractaSurfaceSet> MakeSurfaceSet(const std::vector<SceneSurface>& surfaces);
 
-/// The report's "surfaces": count, triangles, and per surface its kind and triangles.
-json SurfacesReport(const std::vector<SceneSurface>& surfaces);
+/// The report's "surfaces": count, triangles, per surface its kind and triangles, and from the
+/// built set (where there is one) its texels, texel size, dropped triangles and build seconds.
+json SurfacesReport(const std::vector<SceneSurface>& surfaces, vtkRefractaSurfaceSet* set);
 }
 
 #endif

@@ -29,6 +29,7 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
+#include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaSurfaceSet.h"
@@ -168,8 +169,9 @@ int Render(const json& scene, const std::string& base, const Options& options)
   ApplySettings(settings, renderer);
   renderer->SetInputData(medium.Image);
   vtkSmartPointer<vtkRefractaSurfaceSet> surfaceSet = MakeSurfaceSet(surfaces);
-  // PENDING(surfcore): renderer->SetSurfaces(surfaceSet); environment light switch from
-  // environmentLight.
+  // PENDING(surfcore): renderer->SetSurfaces(surfaceSet) (the pipeline's, for both passes) and
+  // the environment light switch from environmentLight; until then the photon pass alone.
+  pipeline->GetPhotonTracer()->SetSurfaces(surfaceSet);
   (void)environmentLight;
   renderer->SetCamera(camera);
   {
@@ -207,7 +209,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
   report["image"] = ImageReport(settings);
   report["quality"] = QualityReport(settings);
   report["medium"] = medium.Report;
-  report["surfaces"] = SurfacesReport(surfaces);
+  report["surfaces"] = SurfacesReport(surfaces, surfaceSet);
   report["light_pass"] = LightPassReport(pipeline, lightCount);
   report["view_pass"] = ViewPassReport(renderer);
   report["seconds"] = seconds;
