@@ -697,7 +697,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   // Environment basis (vtkRefractaEnvironmentMap) in the grid-local frame.
   double basis[3][3];
   EnvironmentBasisLocal(this->EnvironmentUp, this->EnvironmentRight, frame.WorldToLocal, basis);
-  const cl_float4 envRight = Float4(basis[0]), envUp = Float4(basis[1]), envFront = Float4(basis[2]);
+  const cl_float4 envRight = Float4(basis[0]), envUp = Float4(basis[1]),
+                  envFront = Float4(basis[2]);
   const cl_int2 envSize = { { std::max(in.EnvironmentSize[0], 1),
     std::max(in.EnvironmentSize[1], 1) } };
 
@@ -732,15 +733,15 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   }
   const auto start = std::chrono::steady_clock::now();
   // Tiles of whole rows (RunTiles); after each, progress, and a requested abort stops.
-  const bool finished = RunTiles(context, kernel.Get(), width, height, this->TilePixels,
-    this->TileSeconds, this,
-    [this](double progress)
-    {
-      ++this->LastNumberOfTiles;
-      this->InvokeEvent(vtkCommand::ProgressEvent, &progress);
-      this->LastRenderAborted = this->AbortRender && progress < 1.0;
-      return !this->LastRenderAborted;
-    });
+  const bool finished =
+    RunTiles(context, kernel.Get(), width, height, this->TilePixels, this->TileSeconds, this,
+      [this](double progress)
+      {
+        ++this->LastNumberOfTiles;
+        this->InvokeEvent(vtkCommand::ProgressEvent, &progress);
+        this->LastRenderAborted = this->AbortRender && progress < 1.0;
+        return !this->LastRenderAborted;
+      });
   if (!finished)
   {
     return false;

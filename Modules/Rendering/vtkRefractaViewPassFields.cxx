@@ -3,8 +3,8 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkPointData.h"
 #include "vtkMath.h"
+#include "vtkPointData.h"
 #include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaGridFrame.h"
 
@@ -56,7 +56,10 @@ std::vector<float> CentralDifferenceGradient(
   const size_t n = static_cast<size_t>(dims[0]) * dims[1] * dims[2];
   std::vector<float> gradient(n * 3, 0.0f);
   auto at = [&](const int* p)
-  { return index[p[0] + static_cast<size_t>(dims[0]) * (p[1] + static_cast<size_t>(dims[1]) * p[2])]; };
+  {
+    return index[p[0] +
+      static_cast<size_t>(dims[0]) * (p[1] + static_cast<size_t>(dims[1]) * p[2])];
+  };
   for (int k = 0; k < dims[2]; ++k)
   {
     for (int j = 0; j < dims[1]; ++j)
@@ -64,7 +67,8 @@ std::vector<float> CentralDifferenceGradient(
       for (int i = 0; i < dims[0]; ++i)
       {
         const int ijk[3] = { i, j, k };
-        const size_t idx = i + static_cast<size_t>(dims[0]) * (j + static_cast<size_t>(dims[1]) * k);
+        const size_t idx =
+          i + static_cast<size_t>(dims[0]) * (j + static_cast<size_t>(dims[1]) * k);
         for (int a = 0; a < 3; ++a)
         {
           if (dims[a] < 2)

@@ -11,7 +11,7 @@
 
 #include <functional> // for the tile callback
 #include <string>     // for the error message and the options
-#include <vector> // for the values
+#include <vector>     // for the values
 
 class vtkDataArray;
 class vtkObject;
@@ -45,17 +45,17 @@ bool CheckLightingArray(
 // What a view-pass kernel is compiled for (each flag one -D option of Kernels/view_pass.cl).
 struct KernelVariant
 {
-  bool Curved = false;      // REFRACTA_CURVED
-  bool Parallel = false;    // REFRACTA_PARALLEL
-  bool IndexVaries = false; // REFRACTA_INDEX_WEIGHT (sources / n^2 per step)
-  double UniformIndex = 1;  // else REFRACTA_SOURCE_SCALE = 1 / n^2 when n != 1
-  bool Single = false;      // REFRACTA_HAS_SINGLE
-  bool Multiple = false;    // REFRACTA_HAS_MULTIPLE
-  bool Emission = false;    // REFRACTA_HAS_EMISSION
-  bool Environment = false; // REFRACTA_HAS_ENVIRONMENT
-  bool DepthLimit = false;  // REFRACTA_HAS_DEPTH_LIMIT
-  bool Skip = false;        // REFRACTA_SKIP
-  bool Surfaces = false;    // REFRACTA_HAS_SURFACES
+  bool Curved = false;       // REFRACTA_CURVED
+  bool Parallel = false;     // REFRACTA_PARALLEL
+  bool IndexVaries = false;  // REFRACTA_INDEX_WEIGHT (sources / n^2 per step)
+  double UniformIndex = 1;   // else REFRACTA_SOURCE_SCALE = 1 / n^2 when n != 1
+  bool Single = false;       // REFRACTA_HAS_SINGLE
+  bool Multiple = false;     // REFRACTA_HAS_MULTIPLE
+  bool Emission = false;     // REFRACTA_HAS_EMISSION
+  bool Environment = false;  // REFRACTA_HAS_ENVIRONMENT
+  bool DepthLimit = false;   // REFRACTA_HAS_DEPTH_LIMIT
+  bool Skip = false;         // REFRACTA_SKIP
+  bool Surfaces = false;     // REFRACTA_HAS_SURFACES
   bool NearestTexel = false; // REFRACTA_SURFACE_NEAREST
 };
 

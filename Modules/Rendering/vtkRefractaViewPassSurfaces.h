@@ -51,7 +51,7 @@ public:
 
 private:
   vtkSmartPointer<vtkRefractaSurfaceSet> Set;
-  int UploadedBuild = -1;        // the set's GetNumberOfBuilds() at the last upload
+  int UploadedBuild = -1; // the set's GetNumberOfBuilds() at the last upload
   int NodeCount = 0;
   vtkIdType Texels = 0;
   double FrameOrigin[3] = { 0, 0, 0 };
