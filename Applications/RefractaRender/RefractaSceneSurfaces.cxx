@@ -171,8 +171,9 @@ std::vector<SceneSurface> ReadSurfaces(const json& scene, const std::string& bas
     if (triangles > MaximumSurfaceTriangles)
     {
       std::ostringstream os;
-      os << "the surfaces up to this one hold " << triangles << " triangles, more than the limit of "
-         << MaximumSurfaceTriangles << " per scene (decimate the mesh, e.g. vtkQuadricDecimation)";
+      os << "the surfaces up to this one hold " << triangles
+         << " triangles, more than the limit of " << MaximumSurfaceTriangles
+         << " per scene (decimate the mesh, e.g. vtkQuadricDecimation)";
       Fail(path, os.str());
     }
   }
@@ -241,8 +242,8 @@ json SurfacesReport(const std::vector<SceneSurface>& surfaces, vtkRefractaSurfac
   for (const SceneSurface& s : surfaces)
   {
     triangles += s.Triangles;
-    list.push_back({ { "kind", s.Kind }, { "triangles", s.Triangles },
-      { "checker", s.Material.Checker } });
+    list.push_back(
+      { { "kind", s.Kind }, { "triangles", s.Triangles }, { "checker", s.Material.Checker } });
   }
   report["count"] = surfaces.size();
   report["triangles"] = triangles;

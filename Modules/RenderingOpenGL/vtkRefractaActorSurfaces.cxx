@@ -145,8 +145,8 @@ std::vector<double> vtkRefractaActorSurfaces::Signature() const
     signature.push_back(static_cast<double>(mapper->GetMTime()));
     signature.push_back(static_cast<double>(mapper->GetInput()->GetMTime()));
     signature.push_back(static_cast<double>(actor->GetProperty()->GetMTime()));
-    signature.push_back(static_cast<double>(
-      mapper->GetLookupTable() ? mapper->GetLookupTable()->GetMTime() : 0));
+    signature.push_back(
+      static_cast<double>(mapper->GetLookupTable() ? mapper->GetLookupTable()->GetMTime() : 0));
   }
   return signature;
 }

@@ -70,8 +70,8 @@ void DirectionToViewport(vtkCamera* camera, double aspect, const double d[3], do
   double c[3];
   for (int r = 0; r < 3; ++r)
   {
-    c[r] = view->GetElement(r, 0) * d[0] + view->GetElement(r, 1) * d[1] +
-      view->GetElement(r, 2) * d[2];
+    c[r] =
+      view->GetElement(r, 0) * d[0] + view->GetElement(r, 1) * d[1] + view->GetElement(r, 2) * d[2];
   }
   const double length = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
   const double ahead = std::max(-c[2], 1e-9 * length); // behind the camera: towards the edges

@@ -84,8 +84,8 @@ public:
    * The radiance a screen-space background (rules 2, 3) shows in world direction `d` for
    * `camera`: what the baked map samples. For tests and for documentation of the convention.
    */
-  static void ScreenBackgroundAt(vtkRenderer* renderer, vtkCamera* camera, double aspect,
-    const double d[3], double rgb[3]);
+  static void ScreenBackgroundAt(
+    vtkRenderer* renderer, vtkCamera* camera, double aspect, const double d[3], double rgb[3]);
 
 protected:
   vtkRefractaRendererBackground();

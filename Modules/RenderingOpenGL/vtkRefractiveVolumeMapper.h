@@ -196,10 +196,10 @@ public:
    * as if it glowed (unshaded compositing is physically a medium under unit ambient light), while
    * this mapper computes the light the scene's lights actually scatter, which for the same lights
    * is several times dimmer (measured 0.25x on VTK's wavelet with the default headlight, in
-   * VTK light units; 1.07x with metering); metering makes the mapper a drop-in that shows a comparably exposed image.
-   * The exposure is metered again only when the medium or the lighting was recomputed, never on
-   * a camera move, so brightness stays comparable while the view changes. Turn it off for
-   * radiometrically calibrated output (then pixel = Exposure x radiance).
+   * VTK light units; 1.07x with metering); metering makes the mapper a drop-in that shows a
+   * comparably exposed image. The exposure is metered again only when the medium or the lighting
+   * was recomputed, never on a camera move, so brightness stays comparable while the view changes.
+   * Turn it off for radiometrically calibrated output (then pixel = Exposure x radiance).
    */
   vtkSetMacro(AutomaticExposure, bool);
   vtkGetMacro(AutomaticExposure, bool);

@@ -2,11 +2,11 @@
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
-#include "vtkRefractaBVH.h"
-#include "vtkRenderer.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
+#include "vtkRefractaBVH.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRenderer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -92,8 +92,8 @@ LocalBox ActiveBox(vtkImageData* medium, double margin)
   return box;
 }
 
-bool RayCrossesBox(const vtkRefractaViewPass::RayFrame& frame, int i, int j, int width,
-  int height, const LocalBox& box, double limit)
+bool RayCrossesBox(const vtkRefractaViewPass::RayFrame& frame, int i, int j, int width, int height,
+  const LocalBox& box, double limit)
 {
   if (box.IsEmpty())
   {

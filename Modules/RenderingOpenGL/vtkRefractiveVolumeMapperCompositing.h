@@ -50,8 +50,8 @@ LocalBox ActiveBox(vtkImageData* medium, double margin);
 
 /// Whether the straight camera ray of pixel (i, j) crosses `box` (frame from
 /// vtkRefractaViewPass::ComputeRayFrame), before `limit` (path length) where one is given.
-bool RayCrossesBox(const vtkRefractaViewPass::RayFrame& frame, int i, int j, int width,
-  int height, const LocalBox& box, double limit);
+bool RayCrossesBox(const vtkRefractaViewPass::RayFrame& frame, int i, int j, int width, int height,
+  const LocalBox& box, double limit);
 
 /// The straight camera rays of the depth buffer's pixels, in world coordinates: from the near
 /// plane to the depth drawn there.

@@ -59,7 +59,8 @@ TEST(DefaultScene, ImageAndCaustic)
   {
     double p[4] = { x, -0.8, z, 1.0 }, ndc[4];
     projection->MultiplyPoint(p, ndc);
-    const int i0 = static_cast<int>((ndc[0] / ndc[3] + 1) * 64), j0 = static_cast<int>((ndc[1] / ndc[3] + 1) * 64);
+    const int i0 = static_cast<int>((ndc[0] / ndc[3] + 1) * 64),
+              j0 = static_cast<int>((ndc[1] / ndc[3] + 1) * 64);
     double best = 0;
     for (int j = j0 - 1; j <= j0 + 1; ++j)
     {

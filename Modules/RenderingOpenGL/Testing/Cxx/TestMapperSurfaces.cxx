@@ -207,7 +207,8 @@ TEST(MapperSurfaces, BallLensInvertsAPlaneActor)
   {
     for (int i = 0; i < Size; ++i)
     {
-      const double x = (2.0 * (i + 0.5) / Size - 1.0) * 0.5, y = (2.0 * (j + 0.5) / Size - 1.0) * 0.5;
+      const double x = (2.0 * (i + 0.5) / Size - 1.0) * 0.5,
+                   y = (2.0 * (j + 0.5) / Size - 1.0) * 0.5;
       const double b = std::hypot(x, y);
       double o[3] = { x, y, 3 }, d[3] = { 0, 0, -1 };
       TraceSharpSphere(o, d);
@@ -308,15 +309,16 @@ TEST(MapperSurfaces, BentRaysSeeTheRenderersGradientBackground)
       const double sx = 2.0 * (i + 0.5) / Size - 1.0, sy = 2.0 * (j + 0.5) / Size - 1.0;
       double o[3] = { 0, 0, 2.5 }, d[3] = { sx * t, sy * t, -1 };
       vtkMath::Normalize(d);
-      const double b = std::sqrt(std::max(vtkMath::Dot(o, o) - std::pow(vtkMath::Dot(o, d), 2), 0.0));
+      const double b =
+        std::sqrt(std::max(vtkMath::Dot(o, o) - std::pow(vtkMath::Dot(o, d), 2), 0.0));
       if (std::abs(b - Radius) < RimBand)
       {
         continue;
       }
       TraceSharpSphere(o, d);
       // The viewport height at which this camera sees direction d (clamped), and the gradient.
-      const double y = d[2] < 0 ? std::min(std::max(d[1] / (-d[2] * t), -1.0), 1.0)
-                                : (d[1] > 0 ? 1.0 : -1.0);
+      const double y =
+        d[2] < 0 ? std::min(std::max(d[1] / (-d[2] * t), -1.0), 1.0) : (d[1] > 0 ? 1.0 : -1.0);
       const double f = 0.5 * (y + 1.0);
       const unsigned char* rgb = Pixel(image, i, j);
       const int error =
@@ -326,8 +328,8 @@ TEST(MapperSurfaces, BentRaysSeeTheRenderersGradientBackground)
       ++judged;
     }
   }
-  std::cout << judged << " pixels judged, " << over << " off by more than 8 / 255, worst "
-            << worst << " / 255\n";
+  std::cout << judged << " pixels judged, " << over << " off by more than 8 / 255, worst " << worst
+            << " / 255\n";
   EXPECT_GT(judged, Size * Size / 2);
   EXPECT_LE(over, judged / 100);
   EXPECT_LE(worst, 20);
