@@ -29,7 +29,6 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
-#include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaSurfaceSet.h"
@@ -169,9 +168,8 @@ int Render(const json& scene, const std::string& base, const Options& options)
   ApplySettings(settings, renderer);
   renderer->SetInputData(medium.Image);
   vtkSmartPointer<vtkRefractaSurfaceSet> surfaceSet = MakeSurfaceSet(surfaces);
-  // PENDING(surfcore): renderer->SetSurfaces(surfaceSet) (the pipeline's, for both passes) and
-  // the environment light switch from environmentLight; until then the photon pass alone.
-  pipeline->GetPhotonTracer()->SetSurfaces(surfaceSet);
+  renderer->SetSurfaces(surfaceSet);
+  // PENDING(surfcore): the environment light switch from environmentLight.
   (void)environmentLight;
   renderer->SetCamera(camera);
   {

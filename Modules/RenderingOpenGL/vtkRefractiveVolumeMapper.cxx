@@ -628,7 +628,7 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   pipeline->SetLights(renderer->GetLights());
   pipeline->SetCamera(camera);
   pipeline->SetPropMatrix(volume->GetMatrix());
-  // PENDING(surfcore): pipeline->SetSurfaces(surfaces);
+  pipeline->SetSurfaces(surfaces);
   in.Background->Apply(renderer, camera, pipeline->GetViewPass());
   if (!pipeline->Render(width, height, in.Limits.data()))
   {
