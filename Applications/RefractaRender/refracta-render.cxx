@@ -57,7 +57,7 @@ const char* const DefaultScene = R"JSON({
   "background": { "checker": { "squares": [24, 12],
                   "color1": [0.9, 0.85, 0.75], "color2": [0.08, 0.12, 0.3] } },
   "medium": {
-    "grid": { "dimensions": [80, 72, 80], "bounds": [-1, 1, -0.8, 1, -1, 1] },
+    "grid": { "dimensions": [80, 76, 80], "bounds": [-1, 1, -0.9, 1, -1, 1] },
     "surrounding": { "extinction": [0.35, 0.35, 0.35], "albedo": [0.9, 0.9, 0.9],
                      "anisotropy": 0.3 },
     "meshes": [

@@ -44,7 +44,7 @@ medium.AddInputConnection(sphere.GetOutputPort()); medium.SetMaterial(0, glass)
 medium.AddInputConnection(cube.GetOutputPort()); medium.SetMaterial(1, water)
 medium.SetSurroundingMaterial(haze)
 medium.SetDimensions(args.size, args.size * 3 // 4, args.size * 3 // 4)
-medium.SetBounds(-1, 1, -0.6, 0.9, -0.75, 0.75)
+medium.SetBounds(-1, 1, -0.7, 0.9, -0.75, 0.75)  # the floor inside the grid
 
 # The surfaces: a checkered floor and a back wall (model coordinates, no matrices).
 floor = vtkPlaneSource(); floor.SetOrigin(-1.6, -0.6, 1.2); floor.SetPoint1(1.6, -0.6, 1.2)
