@@ -23,7 +23,8 @@ vtkSmartPointer<vtkCamera> ReadCamera(const json& scene, vtkImageData* medium);
 
 /// Sets the background colour or environment map of "scene.background" (files relative to
 /// `base`) and the environment's up and right directions; returns "illuminates" (default false:
-/// whether the background also lights the scene, photons emitted from it).
+/// whether the background also lights the scene; true is refused until the photon pass emits
+/// from the environment).
 bool ReadBackground(const json& scene, const std::string& base, vtkRefractaImageRenderer* renderer);
 }
 
