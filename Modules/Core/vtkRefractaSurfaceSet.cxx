@@ -156,6 +156,16 @@ int vtkRefractaSurfaceSet::GetNumberOfSurfaces() const
   return static_cast<int>(this->Impl->Surfaces.size());
 }
 
+int vtkRefractaSurfaceSet::GetNumberOfNonEmptySurfaces() const
+{
+  int count = 0;
+  for (const auto& s : this->Impl->Surfaces)
+  {
+    count += (s.Mesh->GetNumberOfPolys() + s.Mesh->GetNumberOfStrips() > 0) ? 1 : 0;
+  }
+  return count;
+}
+
 vtkPolyData* vtkRefractaSurfaceSet::GetSurface(int index) const
 {
   return index >= 0 && index < this->GetNumberOfSurfaces() ? this->Impl->Surfaces[index].Mesh

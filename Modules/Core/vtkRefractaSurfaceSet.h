@@ -63,11 +63,20 @@ public:
    */
   void RemoveAllSurfaces();
 
+  /**
+   * Number of surfaces added.
+   */
+  int GetNumberOfSurfaces() const;
+
+  /**
+   * Number of surfaces with at least one polygon or triangle strip (without building).
+   */
+  int GetNumberOfNonEmptySurfaces() const;
+
   ///@{
   /**
    * The surfaces as added (nullptr for an index out of range).
    */
-  int GetNumberOfSurfaces() const;
   vtkPolyData* GetSurface(int index) const;
   vtkRefractaSurfaceMaterial* GetMaterial(int index) const;
   vtkMatrix4x4* GetMatrix(int index) const;

@@ -12,6 +12,7 @@
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
 #include "vtkMediumValidator.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
@@ -114,6 +115,10 @@ vtkMTimeType vtkPhotonTracer::GetMTime()
   for (this->Lights->InitTraversal(it); (light = this->Lights->GetNextLight(it));)
   {
     t = std::max(t, light->GetMTime());
+  }
+  if (this->MediumToWorld)
+  {
+    t = std::max(t, this->MediumToWorld->GetMTime());
   }
   return this->Surfaces ? std::max(t, this->Surfaces->GetMTime()) : t;
 }

@@ -83,6 +83,7 @@
 
 class vtkLight;
 class vtkLightCollection;
+class vtkMatrix4x4;
 class vtkOpenCLContext;
 class vtkRefractaSurfaceSet;
 
@@ -110,6 +111,17 @@ public:
    */
   void SetSurfaces(vtkRefractaSurfaceSet* surfaces);
   vtkRefractaSurfaceSet* GetSurfaces();
+  ///@}
+
+  ///@{
+  /**
+   * Placement of the medium in the surfaces' world: the matrix from the medium's data frame (the
+   * frame of its vtkImageData and of the lights given here) to the world coordinates of the
+   * surfaces, a vtkProp3D's matrix; it must be rigid (rotation and translation). nullptr
+   * (default): the identity.
+   */
+  void SetMediumToWorld(vtkMatrix4x4* matrix);
+  vtkMatrix4x4* GetMediumToWorld();
   ///@}
 
   ///@{
@@ -355,6 +367,7 @@ protected:
   vtkSmartPointer<vtkLightCollection> Lights;
   vtkSmartPointer<vtkOpenCLContext> Context;
   vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
+  vtkSmartPointer<vtkMatrix4x4> MediumToWorld;
   int NumberOfPhotons = 65536;
   unsigned int Seed = 1;
   double PrimaryTolerance = 0.005;

@@ -6,6 +6,7 @@
 
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
 #include "vtkRefractaBVH.h"
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaLightingVolume.h"
@@ -39,6 +40,20 @@ vtkRefractaSurfaceSet* vtkPhotonTracer::GetSurfaces()
   return this->Surfaces;
 }
 
+void vtkPhotonTracer::SetMediumToWorld(vtkMatrix4x4* matrix)
+{
+  if (this->MediumToWorld != matrix)
+  {
+    this->MediumToWorld = matrix;
+    this->Modified();
+  }
+}
+
+vtkMatrix4x4* vtkPhotonTracer::GetMediumToWorld()
+{
+  return this->MediumToWorld;
+}
+
 //------------------------------------------------------------------------------
 bool vtkPhotonTracer::PrepareSurfaces(Internals& run)
 {
@@ -64,14 +79,24 @@ bool vtkPhotonTracer::PrepareSurfaces(Internals& run)
   this->UsedSurfaces = true;
   vtkNew<vtkRefractaGridFrame> grid;
   grid->SetImage(run.Input);
+  // Grid-local -> world of the surfaces: the medium's placement after the grid's own map.
+  vtkNew<vtkMatrix4x4> localToData, localToWorld, worldToData;
+  grid->GetLocalToWorldMatrix(localToData);
+  localToWorld->DeepCopy(localToData);
+  if (this->MediumToWorld)
+  {
+    vtkMatrix4x4::Multiply4x4(this->MediumToWorld, localToData, localToWorld);
+    vtkMatrix4x4::Invert(this->MediumToWorld, worldToData);
+  }
   double b[6];
   this->Surfaces->GetBounds(b);
   for (int corner = 0; corner < 8; ++corner)
   {
     const double world[3] = { b[(corner & 1) ? 1 : 0], b[(corner & 2) ? 3 : 2],
       b[(corner & 4) ? 5 : 4] };
-    double local[3];
-    grid->WorldToLocalPoint(world, local);
+    double data[4] = { world[0], world[1], world[2], 1.0 }, local[3];
+    worldToData->MultiplyPoint(data, data);
+    grid->WorldToLocalPoint(data, local);
     for (int a = 0; a < 3; ++a)
     {
       run.EmitLo[a] = std::min(run.EmitLo[a], local[a]);
@@ -79,7 +104,7 @@ bool vtkPhotonTracer::PrepareSurfaces(Internals& run)
     }
   }
   // Grid-local -> surface frame: world = LocalToWorld x, surface = world - FrameOrigin.
-  const double* l2w = grid->GetLocalToWorld();
+  const double* l2w = localToWorld->GetData();
   const double* frameOrigin = this->Surfaces->GetBVH()->GetFrameOrigin();
   for (int r = 0; r < 3; ++r)
   {
