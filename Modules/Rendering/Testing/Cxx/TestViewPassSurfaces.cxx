@@ -27,6 +27,7 @@
 #include "vtkPlaneSource.h"
 #include "vtkPolyData.h"
 #include "vtkRefractaBVH.h"
+#include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaSurfaceMaterial.h"
 #include "vtkRefractaSurfaceSet.h"
@@ -736,4 +737,64 @@ TEST(ViewPassSurfaces, BadIrradianceIsAnErrorNamingTheArray)
   ASSERT_TRUE(pass->Render(camera, 8, 8, nullptr, nullptr, hdr));
   EXPECT_EQ(hdr[4 * (4 + 8 * 4)], 0.0f);
   EXPECT_EQ(hdr[4 * (4 + 8 * 4) + 3], 1.0f);
+}
+
+//------------------------------------------------------------------------------
+// Through the render pipeline (vtkRefractaImageRenderer::SetSurfaces): the pipeline passes its set
+// to the photon pass and the view pass, so the plane under a point light appears, opaque, with
+// the inverse-square cosine falloff (ratio of 8 x 8 blocks at rho = 0 and rho = 3 against
+// (h^2 / (h^2 + rho^2))^(3/2), within 5%: photon noise at the pipeline's 2^18 photons), and a
+// camera move renders again without uploading the surfaces again.
+TEST(ViewPassSurfaces, ThroughTheRenderPipeline)
+{
+  const double h = 5.0;
+  auto medium = refracta_test::MakeGrid(8, 8, 8, 0.5);
+  medium->SetOrigin(-1.75, -1.75, h - 1.75);
+  refracta_test::AddConstant(medium, "Extinction", 3, 0, 0, 0);
+  const double o0[3] = { -10, -10, 0 }, p1[3] = { 10, -10, 0 }, p2[3] = { -10, 10, 0 };
+  vtkNew<vtkRefractaSurfaceSet> set;
+  set->AddSurface(Plane(o0, p1, p2), Material(0.5, 0.5, 0.5));
+  vtkNew<vtkLight> light;
+  light->SetPositional(true);
+  light->SetPosition(0, 0, h);
+  light->SetFocalPoint(0, 0, 0);
+  light->SetConeAngle(180);
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0, 0, 12);
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetViewUp(0, 1, 0);
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(6);
+  vtkNew<vtkRefractaImageRenderer> renderer;
+  renderer->SetInputData(medium);
+  renderer->SetSurfaces(set);
+  renderer->AddLight(light);
+  renderer->SetCamera(camera);
+  renderer->SetImageSize(96, 96);
+  renderer->Update();
+  auto* hdr = vtkFloatArray::SafeDownCast(renderer->GetOutput()->GetPointData()->GetArray("HDR"));
+  ASSERT_NE(hdr, nullptr);
+  auto block = [&](int ci, int cj)
+  {
+    double sum = 0;
+    for (int j = cj - 4; j < cj + 4; ++j)
+    {
+      for (int i = ci - 4; i < ci + 4; ++i)
+      {
+        sum += hdr->GetComponent(i + 96 * j, 0) / 64;
+        EXPECT_EQ(hdr->GetComponent(i + 96 * j, 3), 1.0) << "the plane is opaque";
+      }
+    }
+    return sum;
+  };
+  const double centre = block(48, 48), off = block(48 + 24, 48); // rho = 0 and rho = 3
+  EXPECT_GT(centre, 0.0);
+  const double want = std::pow(h * h / (h * h + 9.0), 1.5);
+  std::cout << "pipeline: L(rho = 3) / L(0) = " << off / centre << ", analytic " << want << "\n";
+  EXPECT_NEAR(off / centre, want, 0.05 * want);
+  vtkRefractaViewPass* pass = renderer->GetViewPass();
+  EXPECT_EQ(pass->GetNumberOfSurfaceUploads(), 1);
+  camera->Azimuth(20);
+  renderer->Update();
+  EXPECT_EQ(pass->GetNumberOfSurfaceUploads(), 1) << "a camera move must not upload surfaces";
 }
