@@ -31,7 +31,7 @@ const ChoiceTable<int> EffectModes = { { "auto", vtkEffectPlan::AUTOMATIC },
 
 // The keys of "scene.effects", in vtkEffectPlan's effect order.
 const char* const EffectKeys[vtkEffectPlan::NUMBER_OF_EFFECTS] = { "refraction", "absorption",
-  "single_scattering", "multiple_scattering", "emission" };
+  "single_scattering", "multiple_scattering", "emission", "surface_lighting" };
 
 void ReadImage(const json& scene, RenderSettings& s)
 {
