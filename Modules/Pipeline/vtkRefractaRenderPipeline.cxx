@@ -831,7 +831,7 @@ bool vtkRefractaRenderPipeline::RunView(int width, int height, const float* dept
 {
   Internals& in = *this->Internal;
   in.ViewDone = false;
-  in.ViewPass->SetSurfaces(in.Surfaces); // TEMPORARY(surffront): surfview's line, until merged
+  in.ViewPass->SetSurfaces(in.Surfaces);
   if (!in.ViewPass->Render(
         in.Camera, width, height, in.PropMatrix, depthLimit, in.Image, &in.Transmittance))
   {
