@@ -14,17 +14,22 @@
 #define PHOTON_TALLY_REMAINING 4 /* at the step cap or on an invalid state */
 #define PHOTON_TALLY_KILLED 5    /* by Russian roulette */
 #define PHOTON_TALLY_GAINED 6    /* added to roulette survivors */
-#define PHOTON_TALLY_BOOKS 7
+#define PHOTON_TALLY_SURFACE 7   /* absorbed by surfaces (vtkRefractaSurfaceSet) */
+#define PHOTON_TALLY_BOOKS 8
 #define PHOTON_TALLY_COUNT (3 * PHOTON_TALLY_BOOKS) /* longs in the tallies buffer */
 
 #define PHOTON_COUNTER_MARCHED 0
 #define PHOTON_COUNTER_MISSED 1
-#define PHOTON_COUNTER_ESCAPED 2   /* outcomes 2..5 index their counters */
+#define PHOTON_COUNTER_ESCAPED 2   /* outcomes 2..5 and 8 index their counters */
 #define PHOTON_COUNTER_ROULETTE 3
 #define PHOTON_COUNTER_STEP_CAP 4
 #define PHOTON_COUNTER_INVALID 5
 #define PHOTON_COUNTER_STEPS 6
 #define PHOTON_COUNTER_PIECES 7
-#define PHOTON_COUNTER_COUNT 8 /* longs in the counters buffer */
+#define PHOTON_COUNTER_SURFACE 8      /* outcome: ended on a surface (black, or albedo roulette) */
+#define PHOTON_COUNTER_SURFACE_HITS 9 /* surface hits of all photons */
+#define PHOTON_COUNTER_COUNT 10       /* longs in the counters buffer */
+
+#define PHOTON_STATE_FLOAT4S 9 /* float4 of one photon's state in photon_march_chunk */
 
 #endif

@@ -36,10 +36,21 @@
 // optical depth (0: off); REFRACTA_ROULETTE a fraction of the initial power; REFRACTA_FIXED_SCALE the
 // fixed-point scale of refracta_atomics.cl.
 //
+// Surfaces (REFRACTA_SURFACES 1; prepend refracta_surfaces.cl): opaque triangles of a
+// vtkRefractaSurfaceSet in a BVH (surface frame; `frame` maps grid-local points to it). Photons
+// then also fly outside the medium's box, in straight lines, between the surfaces and the box
+// (photon_surface_event): inside the box every curved step's chord (straight rays: every flight)
+// is tested against the BVH; a hit ends the chord's voxel walk there, adds the photon's power to
+// the hit texel's irradiance accumulator, books power x (1 - albedo) as absorbed by the surface and
+// keeps power x albedo, which goes on with Russian roulette on the albedo (survival probability
+// max(albedo), survivors boosted, books kept) in a cosine-weighted direction about the normal on
+// the incoming side, from a point `surfaceEpsilon` off the surface. A photon that leaves
+// the box without meeting a surface escapes.
+//
 // Tallies (fixed point, REFRACTA_FIXED_SCALE): tallies[3 * T + c] for the books T =
 // PHOTON_TALLY_EMITTED ... PHOTON_TALLY_GAINED; counters: PHOTON_COUNTER_MARCHED ...
 // PHOTON_COUNTER_PIECES; the outcome of a photon is the index of its counter (escaped, roulette,
-// step cap, invalid). The layout is defined once, in photon_tallies.cl.
+// step cap, invalid, surface). The layout is defined once, in photon_tallies.cl.
 
 #ifndef REFRACTA_REFRACT
 #define REFRACTA_REFRACT 1
@@ -76,6 +87,9 @@
 #endif
 #ifndef REFRACTA_MAX_TURN
 #define REFRACTA_MAX_TURN 0.5f
+#endif
+#ifndef REFRACTA_SURFACES
+#define REFRACTA_SURFACES 0
 #endif
 
 // R2 sequence generators (plastic number) as 32-bit fractions.
@@ -178,22 +192,26 @@ typedef struct
   float3 scattered;
   float3 killed;
   float3 gained;
+  float3 surface; // absorbed by surfaces
   uint rng;
   uint pieces;
+  uint hits; // surface hits
   int dead;
 } photon_state;
 
 // Adds a finished photon's books to the fixed-point tallies (order: emitted, absorbed, escaped,
-// scattered, remaining, roulette-killed, roulette-gained; RGB each) and its counters. What power
-// it still carries is escaped (outcome 2), gone with roulette (3) or remaining (4, 5).
+// scattered, remaining, roulette-killed, roulette-gained, surface; RGB each) and its counters.
+// What power it still carries is escaped (outcome 2), gone with roulette (3) or remaining (4, 5);
+// a photon that ended on a surface (8) carries none.
 inline void photon_finish(volatile __global long* tallies, volatile __global long* counters,
   float3 emitted, const photon_state* ps, int outcome, int steps)
 {
   const float3 none = (float3)(0.0f);
   const float3 escaped = outcome == PHOTON_COUNTER_ESCAPED ? ps->power : none;
-  const float3 remaining = outcome >= PHOTON_COUNTER_STEP_CAP ? ps->power : none;
+  const float3 remaining =
+    (outcome == PHOTON_COUNTER_STEP_CAP || outcome == PHOTON_COUNTER_INVALID) ? ps->power : none;
   const float3 books[PHOTON_TALLY_BOOKS] = { emitted, ps->absorbed, escaped, ps->scattered, remaining, ps->killed,
-    ps->gained };
+    ps->gained, ps->surface };
   for (int t = 0; t < PHOTON_TALLY_BOOKS; ++t)
   {
     refracta_atomic_add_fixed(tallies + 3 * t + 0, books[t].x);
@@ -204,6 +222,10 @@ inline void photon_finish(volatile __global long* tallies, volatile __global lon
   atom_add(counters + outcome, 1L);
   atom_add(counters + PHOTON_COUNTER_STEPS, (long)steps);
   atom_add(counters + PHOTON_COUNTER_PIECES, (long)ps->pieces);
+  if (ps->hits > 0u)
+  {
+    atom_add(counters + PHOTON_COUNTER_SURFACE_HITS, (long)ps->hits);
+  }
 }
 
 #if REFRACTA_EXTINCTION
@@ -429,13 +451,226 @@ inline int photon_curved_step(photon_state* ps, float3* x, float3* v, int* steps
 }
 #endif
 
+#if REFRACTA_SURFACES
+// The surfaces a photon can meet: the BVH and atlas of refracta_surfaces.cl, the irradiance
+// accumulators (fixed point, 3 per texel) and the affine map grid-local -> surface frame
+// (rows of [R | T]; R is a rotation, so lengths and ray parameters are kept).
+typedef struct
+{
+  __global const float4* nodes;
+  int nodeCount;
+  __global const float4* triangles;
+  __global const int4* triInfo;
+  __global const float* albedo;
+  volatile __global long* irradiance;
+  float4 row0, row1, row2;
+  float epsilon; // offset of a reflected photon from the surface (grid-local units)
+} photon_surfaces;
+
+inline void photon_set_surfaces(photon_surfaces* s, __global const float4* nodes, int nodeCount,
+  __global const float4* triangles, __global const int4* info, __global const float* albedo,
+  volatile __global long* irradiance, float4 row0, float4 row1, float4 row2, float epsilon)
+{
+  s->epsilon = epsilon;
+  s->nodes = nodes;
+  s->nodeCount = nodeCount;
+  s->triangles = triangles;
+  s->triInfo = info;
+  s->albedo = albedo;
+  s->irradiance = irradiance;
+  s->row0 = row0;
+  s->row1 = row1;
+  s->row2 = row2;
+}
+
+inline float3 photon_to_surface_point(const photon_surfaces* s, float3 p)
+{
+  return (float3)(dot(s->row0.xyz, p) + s->row0.w, dot(s->row1.xyz, p) + s->row1.w,
+    dot(s->row2.xyz, p) + s->row2.w);
+}
+
+inline float3 photon_to_surface_vector(const photon_surfaces* s, float3 d)
+{
+  return (float3)(dot(s->row0.xyz, d), dot(s->row1.xyz, d), dot(s->row2.xyz, d));
+}
+
+// Closest surface hit of x + t d (grid-local) with t in (0, tMax), in units of d.
+inline refracta_hit photon_trace_surfaces(const photon_surfaces* s, float3 x, float3 d, float tMax)
+{
+  return refracta_bvh_closest(s->nodes, s->nodeCount, s->triangles,
+    photon_to_surface_point(s, x), photon_to_surface_vector(s, d), 0.0f, tMax);
+}
+
+// Whether x is inside the medium's box.
+inline bool photon_in_box(float3 x, float3 lo, float3 hi)
+{
+  return all(x >= lo) && all(x <= hi);
+}
+
+// The photon at *x (on the surface) travelling along unit d meets triangle h: deposit, book,
+// roulette on the albedo, and diffuse reflection. Returns -1 (goes on from *x along *dir) or
+// PHOTON_COUNTER_SURFACE (absorbed).
+inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, float3 d,
+  refracta_hit h, const photon_surfaces* s)
+{
+  const int4 info = s->triInfo[h.triangle];
+  const int texel = info.x + refracta_texel_index(h.u, h.v, info.y);
+  refracta_atomic_add_fixed(s->irradiance + 3 * texel, ps->power.x);
+  refracta_atomic_add_fixed(s->irradiance + 3 * texel + 1, ps->power.y);
+  refracta_atomic_add_fixed(s->irradiance + 3 * texel + 2, ps->power.z);
+  ps->hits++;
+  const float3 a = clamp(vload3(texel, s->albedo), 0.0f, 1.0f);
+  const float3 reflected = ps->power * a;
+  ps->surface += ps->power - reflected;
+  ps->power = reflected;
+  const float q = fmax(a.x, fmax(a.y, a.z));
+  if (!(q > 0.0f) || refracta_rng_uniform(&ps->rng) >= q)
+  {
+    ps->killed += ps->power;
+    ps->power = (float3)(0.0f);
+    return PHOTON_COUNTER_SURFACE;
+  }
+  const float3 boosted = ps->power / q;
+  ps->gained += boosted - ps->power;
+  ps->power = boosted;
+  // The normal in the grid-local frame (R^T n), turned towards the side the photon came from.
+  const float3 ns = refracta_triangle_normal(s->triangles, h.triangle);
+  float3 n = normalize(ns.x * s->row0.xyz + ns.y * s->row1.xyz + ns.z * s->row2.xyz);
+  n = dot(n, d) > 0.0f ? -n : n;
+  // Cosine-weighted direction about n (Malley's method).
+  const float u1 = refracta_rng_uniform(&ps->rng);
+  const float phi = 2.0f * REFRACTA_PI * refracta_rng_uniform(&ps->rng);
+  const float r = sqrt(u1);
+  const float3 helper = fabs(n.x) < 0.9f ? (float3)(1.0f, 0.0f, 0.0f) : (float3)(0.0f, 1.0f, 0.0f);
+  const float3 e1 = normalize(cross(n, helper));
+  const float3 e2 = cross(n, e1);
+  *dir = normalize(r * cos(phi) * e1 + r * sin(phi) * e2 + sqrt(fmax(0.0f, 1.0f - u1)) * n);
+  *x += s->epsilon * n;
+  return -1;
+}
+
+// v for a photon at x travelling along unit d: n(x) d inside a refracting medium, d elsewhere.
+inline float3 photon_velocity(float3 x, float3 d, float3 lo, float3 hi,
+  __global const float* refractiveIndex, int4 dims, float4 spacing)
+{
+#if REFRACTA_REFRACT
+  if (photon_in_box(x, lo, hi))
+  {
+    return d * refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
+  }
+#endif
+  return d;
+}
+
+// One event of a photon with surfaces: a curved step inside a refracting medium's box, else a
+// straight flight (through the box when n is constant) to the next surface, to the box (curved
+// rays continue inside it) or out of the scene. -1: it goes on; else its outcome.
+inline int photon_surface_event(photon_state* ps, float3* x, float3* v, int* steps, float3 lo,
+  float3 hi, __global const uchar* octree, __global const float* extinction,
+  __global const float* albedo, __global const float* refractiveIndex,
+  __global const float* gradient, int4 dims, float4 spacing, volatile __global long* radiance,
+  volatile __global long* directionSum, const photon_surfaces* s)
+{
+  if (*steps >= REFRACTA_MAX_STEPS)
+  {
+    return PHOTON_COUNTER_STEP_CAP;
+  }
+  ++*steps;
+  float3 d;
+  refracta_hit h;
+#if REFRACTA_REFRACT
+  if (photon_in_box(*x, lo, hi))
+  {
+    float3 x1, v1;
+    photon_advance(*x, *v, octree, extinction, refractiveIndex, gradient, dims, spacing, &x1, &v1);
+    if (!all(isfinite(x1)) || !all(isfinite(v1)))
+    {
+      return PHOTON_COUNTER_INVALID;
+    }
+    const float3 chord = x1 - *x;
+    const bool inBox = photon_in_box(x1, lo, hi);
+    float tExit = 1.0f;
+    if (!inBox)
+    {
+      float e0;
+      float e1;
+      tExit = refracta_intersect_box(*x, chord, lo, hi, &e0, &e1) ? clamp(e1, 0.0f, 1.0f) : 0.0f;
+    }
+    h = photon_trace_surfaces(s, *x, chord, tExit);
+#if REFRACTA_EXTINCTION
+    photon_walk(ps, *x, x1, h.triangle >= 0 ? h.t : tExit, dims, spacing, extinction, albedo,
+      radiance, directionSum);
+    if (ps->dead)
+    {
+      return PHOTON_COUNTER_ROULETTE;
+    }
+#endif
+    d = normalize(chord);
+    if (h.triangle < 0 && inBox)
+    {
+      *x = x1;
+      *v = v1;
+      return -1;
+    }
+    if (h.triangle < 0)
+    {
+      // Out of the box: on in a straight line from just outside it.
+      *x += tExit * chord + s->epsilon * d;
+      *v = d;
+      return -1;
+    }
+    *x += h.t * chord;
+  }
+  else
+#endif
+  {
+    d = normalize(*v);
+    h = photon_trace_surfaces(s, *x, d, INFINITY);
+    float t0;
+    float t1;
+    const bool box = refracta_intersect_box(*x, d, lo, hi, &t0, &t1) && t1 > t0;
+#if REFRACTA_REFRACT
+    if (box && t0 < h.t)
+    {
+      // Into the medium before any surface: curved steps from its face.
+      *x = clamp(*x + t0 * d, lo, hi);
+      *v = photon_velocity(*x, d, lo, hi, refractiveIndex, dims, spacing);
+      return -1;
+    }
+#elif REFRACTA_EXTINCTION
+    if (box && t0 < h.t)
+    {
+      photon_walk(ps, *x + t0 * d, *x + fmin(t1, h.t) * d, 1.0f, dims, spacing, extinction, albedo,
+        radiance, directionSum);
+      if (ps->dead)
+      {
+        return PHOTON_COUNTER_ROULETTE;
+      }
+    }
+#endif
+    if (h.triangle < 0)
+    {
+      return PHOTON_COUNTER_ESCAPED;
+    }
+    *x += h.t * d;
+  }
+  float3 dir;
+  const int outcome = photon_surface_interact(ps, x, &dir, d, h, s);
+  *v = photon_velocity(*x, dir, lo, hi, refractiveIndex, dims, spacing);
+  return outcome;
+}
+#endif
+
 __kernel void photon_march(__global const float4* photonPos, __global const float4* photonDir,
   __global const float4* photonPower, const uint count, __global const float* refractiveIndex,
   __global const float* gradient, __global const float* extinction, __global const float* albedo,
   __global const uchar* octree, const int4 dims, const float4 spacing,
   volatile __global long* radiance, volatile __global long* directionSum,
   volatile __global long* tallies, volatile __global long* counters, const uint seed,
-  const uint first)
+  const uint first, __global const float4* surfaceNodes, const int surfaceNodeCount,
+  __global const float4* surfaceTriangles, __global const int4* surfaceInfo,
+  __global const float* surfaceAlbedo, volatile __global long* surfaceIrradiance,
+  const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon)
 {
   // Launched in chunks (for progress reports); the stream depends on the photon, not the chunk.
   const uint id = first + (uint)get_global_id(0);
@@ -453,8 +688,10 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   }
   ps.threshold = REFRACTA_ROULETTE * p0;
   ps.absorbed = ps.scattered = ps.killed = ps.gained = (float3)(0.0f);
+  ps.surface = (float3)(0.0f);
   ps.rng = refracta_rng_seed(seed, id);
   ps.pieces = 0;
+  ps.hits = 0;
   ps.dead = 0;
   const float3 emitted = ps.power;
   int steps = 0;
@@ -465,7 +702,17 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   float3 x = photonPos[id].xyz;
   const float3 d0 = normalize(photonDir[id].xyz);
 
-#if !REFRACTA_REFRACT
+#if REFRACTA_SURFACES
+  photon_surfaces surf;
+  photon_set_surfaces(&surf, surfaceNodes, surfaceNodeCount, surfaceTriangles, surfaceInfo,
+    surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon);
+  float3 v = photon_velocity(x, d0, lo, hi, refractiveIndex, dims, spacing);
+  do
+  {
+    outcome = photon_surface_event(&ps, &x, &v, &steps, lo, hi, octree, extinction, albedo,
+      refractiveIndex, gradient, dims, spacing, radiance, directionSum, &surf);
+  } while (outcome < 0);
+#elif !REFRACTA_REFRACT
   // Straight ray: a single step from the start to the domain's exit.
   float t0;
   float t1;
@@ -496,9 +743,10 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
 // photon_march_chunk (added for the interleaved photon/diffusion schedule of Bernabei et al.,
 // section III-B): the same marching as photon_march, resumable. Each launch advances every
 // photon by at most `chunkSteps` steps (curved rays: marcher steps; straight rays: segments of
-// one voxel edge, since a straight ray is otherwise a single step to the exit) and keeps its
-// state in `state` (8 float4 per photon: x, v, power + roulette threshold, absorbed, scattered,
-// killed, gained, emitted) and `status` (status 0 new / 1 marching / 2 done, steps, rng,
+// one voxel edge, since a straight ray is otherwise a single step to the exit; with surfaces:
+// photon_surface_event's events) and keeps its state in `state` (PHOTON_STATE_FLOAT4S float4 per
+// photon: x, v, power + roulette threshold, absorbed, scattered, killed, gained, emitted, surface
+// + surface hits) and `status` (status 0 new / 1 marching / 2 done, steps, rng,
 // pieces). Deposits go to the same fixed-point accumulators as photon_march (they replace the
 // paper's Ray History Buffer and its OpenGL blending: the accumulation is atomic here); a
 // finished photon adds its tallies and counters exactly as photon_march does, so a chunked run
@@ -511,7 +759,11 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   const int4 dims, const float4 spacing, volatile __global long* radiance,
   volatile __global long* directionSum, volatile __global long* tallies,
   volatile __global long* counters, const uint seed, const uint first, __global float4* state,
-  __global uint4* status, const uint chunkSteps, volatile __global int* active)
+  __global uint4* status, const uint chunkSteps, volatile __global int* active,
+  __global const float4* surfaceNodes, const int surfaceNodeCount,
+  __global const float4* surfaceTriangles, __global const int4* surfaceInfo,
+  __global const float* surfaceAlbedo, volatile __global long* surfaceIrradiance,
+  const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon)
 {
   const uint id = first + (uint)get_global_id(0);
   if (id >= count)
@@ -523,7 +775,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   {
     return;
   }
-  __global float4* s = state + 8 * (size_t)id;
+  __global float4* s = state + PHOTON_STATE_FLOAT4S * (size_t)id;
   photon_state ps;
   float3 x, v, emitted;
   float3 lo;
@@ -541,12 +793,16 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     }
     ps.threshold = REFRACTA_ROULETTE * p0;
     ps.absorbed = ps.scattered = ps.killed = ps.gained = (float3)(0.0f);
+    ps.surface = (float3)(0.0f);
     ps.rng = refracta_rng_seed(seed, id);
     ps.pieces = 0;
+    ps.hits = 0;
     emitted = ps.power;
     x = photonPos[id].xyz;
     const float3 d0 = normalize(photonDir[id].xyz);
-#if REFRACTA_REFRACT
+#if REFRACTA_SURFACES
+    v = photon_velocity(x, d0, lo, hi, refractiveIndex, dims, spacing);
+#elif REFRACTA_REFRACT
     v = d0 * refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
 #else
     // Straight ray: start at the box entry (photon_march's single step starts there too).
@@ -575,13 +831,24 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.killed = s[5].xyz;
     ps.gained = s[6].xyz;
     emitted = s[7].xyz;
+    ps.surface = s[8].xyz;
+    ps.hits = as_uint(s[8].w);
     ps.rng = st.z;
     ps.pieces = st.w;
   }
   ps.dead = 0;
   int steps = (int)st.y;
-  int outcome = -1; // -1 still marching; 2 escaped, 3 roulette, 4 step cap, 5 invalid
-#if !REFRACTA_REFRACT
+  int outcome = -1; // -1 still marching; 2 escaped, 3 roulette, 4 step cap, 5 invalid, 8 surface
+#if REFRACTA_SURFACES
+  photon_surfaces surf;
+  photon_set_surfaces(&surf, surfaceNodes, surfaceNodeCount, surfaceTriangles, surfaceInfo,
+    surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon);
+  for (uint c = 0; c < chunkSteps && outcome < 0; ++c)
+  {
+    outcome = photon_surface_event(&ps, &x, &v, &steps, lo, hi, octree, extinction, albedo,
+      refractiveIndex, gradient, dims, spacing, radiance, directionSum, &surf);
+  }
+#elif !REFRACTA_REFRACT
   {
     float t0;
     float t1;
@@ -630,6 +897,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     s[5] = (float4)(ps.killed, 0.0f);
     s[6] = (float4)(ps.gained, 0.0f);
     s[7] = (float4)(emitted, 0.0f);
+    s[8] = (float4)(ps.surface, as_float(ps.hits));
     status[id] = (uint4)(1u, (uint)steps, ps.rng, ps.pieces);
     atomic_inc(active);
     return;

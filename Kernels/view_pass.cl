@@ -29,7 +29,19 @@
 // given), REFRACTA_HAS_EMISSION, REFRACTA_HAS_ENVIRONMENT (equirectangular background image),
 // REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length), REFRACTA_INDEX_WEIGHT (sources
 // weighted by 1 / n^2 with n sampled per step), REFRACTA_SOURCE_SCALE=<1 / n^2> (a uniform n != 1),
-// REFRACTA_SKIP (empty-space skipping, below).
+// REFRACTA_SKIP (empty-space skipping, below), REFRACTA_HAS_SURFACES (opaque triangle surfaces,
+// below; view_surfaces.cl), REFRACTA_SURFACE_NEAREST (no irradiance interpolation).
+//
+// Surfaces (-DREFRACTA_HAS_SURFACES): the surface set's BVH (nodes, nodeCount, triangles) and atlas
+// (triInfo, surfaceAlbedo, surfaceIrradiance) in the surface frame (view_surfaces.cl). Surfaces
+// may lie inside, behind, under or around the medium's box, so the whole path is tested: a
+// straight ray asks once for its closest hit from the camera and marches the medium up to it (the
+// hit is its depth limit); a curved ray tests the straight run from the camera to the box, every
+// step's chord, every skipped run, and the straight ray from its exit point. A ray that meets a
+// surface stops there and adds T L_s / n^2 (L_s = E rho / pi, view_surfaces.cl; n the index at the
+// hit, 1 outside the box); its pixel is opaque (alpha 1, transmittance 0) and surfaceDepth[pixel]
+// is the path length from the ray's origin to the hit (INFINITY when the ray meets none), in the
+// grid-local units of the depth limit.
 //
 // Empty-space skipping (-DREFRACTA_SKIP): `occupancy` holds one byte per macro cell of
 // cellDims.w^3 voxels (cellDims.xyz cells; cell c covers continuous voxel coordinates
@@ -259,7 +271,11 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   __global const float* environment, const int2 envSize, const float4 envRight,
   const float4 envUp, const float4 envFront, __global const float* depthLimit,
   __global const uchar* occupancy, const int4 cellDims, const int4 activeLo, const int4 activeHi,
-  const uint skipMask, __global float* hdr, __global uint* steps, __global float* transmittanceOut)
+  const uint skipMask, __global const float4* nodes, const int nodeCount,
+  __global const float4* triangles, __global const int* triInfo,
+  __global const float* surfaceAlbedo, __global const float* surfaceIrradiance,
+  const float4 toSurface0, const float4 toSurface1, const float4 toSurface2, __global float* hdr,
+  __global uint* steps, __global float* transmittanceOut, __global float* surfaceDepthOut)
 {
   const int pi = (int)get_global_id(0);
   const int pj = (int)get_global_id(1);
@@ -278,10 +294,30 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   float3 d = normalize(camW.xyz + sx * camU.xyz + sy * camV.xyz);
 #endif
 #ifdef REFRACTA_HAS_DEPTH_LIMIT
-  const float limit = depthLimit[pixel];
+  float limit = depthLimit[pixel];
 #else
-  const float limit = INFINITY;
+  float limit = INFINITY;
 #endif
+#ifdef REFRACTA_HAS_SURFACES
+#define REFRACTA_VIEW_SURFACES nodes, nodeCount, triangles, toSurface0, toSurface1, toSurface2
+  // The surface the ray meets (-1: none yet), where, and the path length to it.
+  int surfaceTri = -1;
+  float surfaceU = 0.0f, surfaceV = 0.0f, surfaceDepth = INFINITY;
+  float3 surfacePoint = origin;
+  float th, uh, vh; // a query's hit
+#ifndef REFRACTA_CURVED
+  // Straight rays: the closest hit along the whole ray ends the path (a depth limit).
+  surfaceTri = refracta_view_surface_hit(REFRACTA_VIEW_SURFACES, origin, d, limit, &th, &uh, &vh);
+  if (surfaceTri >= 0)
+  {
+    surfaceU = uh;
+    surfaceV = vh;
+    surfaceDepth = limit = th;
+    surfacePoint = origin + th * d;
+  }
+#endif
+#endif
+  bool stoppedEarly = false; // the cutoff or the step cap ended the ray before its end
 
   float3 lo, hi;
   refracta_domain(dims, spacing, &lo, &hi);
@@ -290,7 +326,20 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   uint count = 0;
   bool seesBackground = true; // false when stopped by geometry, the cutoff or the step cap
   float t0, t1;
-  if (refracta_intersect_box(origin, d, lo, hi, &t0, &t1) && t0 < limit)
+  const bool meetsBox = refracta_intersect_box(origin, d, lo, hi, &t0, &t1);
+#if defined(REFRACTA_HAS_SURFACES) && defined(REFRACTA_CURVED)
+  // Curved rays are straight until they enter the box: a surface on the way ends them there.
+  surfaceTri = refracta_view_surface_hit(
+    REFRACTA_VIEW_SURFACES, origin, d, meetsBox ? fmin(t0, limit) : limit, &th, &uh, &vh);
+  if (surfaceTri >= 0)
+  {
+    surfaceU = uh;
+    surfaceV = vh;
+    surfaceDepth = limit = th;
+    surfacePoint = origin + th * d;
+  }
+#endif
+  if (meetsBox && t0 < limit)
   {
     float travelled = t0;
     float3 x = origin + t0 * d;
@@ -326,7 +375,16 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
         // Only whole steps that end before the box exit and the depth limit are skipped: the
         // step that meets either is marched as without skipping.
         run = fmin(run, fmin(toExit, limit - travelled));
-        const int k = min((int)floor(run / stepLength), maxSteps - 1 - s);
+        int k = min((int)floor(run / stepLength), maxSteps - 1 - s);
+#if defined(REFRACTA_HAS_SURFACES) && defined(REFRACTA_CURVED)
+        // Never jump over a surface: stop short of it, the ordinary step meets it.
+        if (k > 0 &&
+          refracta_view_surface_hit(REFRACTA_VIEW_SURFACES, xs, ds, (float)k * stepLength, &th,
+            &uh, &vh) >= 0)
+        {
+          k = (int)floor(th / stepLength);
+        }
+#endif
         if (k > 0)
         {
           s += k;
@@ -387,6 +445,23 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
         len = fmax(limit - travelled, 0.0f);
         blocked = true;
       }
+#if defined(REFRACTA_HAS_SURFACES) && defined(REFRACTA_CURVED)
+      // This step's chord against the surfaces; a hit ends the ray there.
+      if (len > 0.0f)
+      {
+        surfaceTri =
+          refracta_view_surface_hit(REFRACTA_VIEW_SURFACES, x, len * chord, 1.0f, &th, &uh, &vh);
+      }
+      if (surfaceTri >= 0)
+      {
+        surfaceU = uh;
+        surfaceV = vh;
+        len *= th;
+        surfaceDepth = travelled + len;
+        surfacePoint = x + len * chord;
+        blocked = true;
+      }
+#endif
       const refracta_view_stencil st =
         refracta_view_make_stencil(dims, refracta_to_voxel(x + (0.5f * len) * chord, spacing));
       const float3 sigma = refracta_view_sample3(extinction, &st);
@@ -414,12 +489,26 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
       {
 #ifdef REFRACTA_CURVED
         d = normalize(vNext);
+#if defined(REFRACTA_HAS_SURFACES)
+        // Straight again outside the box: a surface there is seen instead of the background.
+        const float3 exitPoint = x + len * chord;
+        surfaceTri = refracta_view_surface_hit(
+          REFRACTA_VIEW_SURFACES, exitPoint, d, limit - travelled, &th, &uh, &vh);
+        if (surfaceTri >= 0)
+        {
+          surfaceU = uh;
+          surfaceV = vh;
+          surfaceDepth = travelled + th;
+          surfacePoint = exitPoint + th * d;
+        }
+#endif
 #endif
         break;
       }
       if (fmax(transmittance.x, fmax(transmittance.y, transmittance.z)) < cutoff)
       {
         seesBackground = false;
+        stoppedEarly = true;
         break;
       }
 #ifdef REFRACTA_CURVED
@@ -430,6 +519,7 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
       if (s + 1 == maxSteps)
       {
         seesBackground = false; // trapped (e.g. total internal reflection): no background
+        stoppedEarly = true;
       }
     }
   }
@@ -437,7 +527,33 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   {
     seesBackground = false; // the ray meets opaque geometry before the medium
   }
-  if (seesBackground)
+  bool onSurface = false;
+#ifdef REFRACTA_HAS_SURFACES
+  onSurface = surfaceTri >= 0 && !stoppedEarly;
+  if (onSurface)
+  {
+    float3 ls = refracta_view_surface_radiance(
+      triInfo, surfaceAlbedo, surfaceIrradiance, surfaceTri, surfaceU, surfaceV);
+    // Basic radiance: a surface inside the medium is seen divided by n^2 (1 outside the box).
+    const bool inBox = all(surfacePoint >= lo) && all(surfacePoint <= hi);
+#ifdef REFRACTA_INDEX_WEIGHT
+    if (inBox)
+    {
+      const float nHit =
+        refracta_sample1(refractiveIndex, dims, refracta_to_voxel(surfacePoint, spacing));
+      ls *= 1.0f / (nHit * nHit);
+    }
+#elif defined(REFRACTA_SOURCE_SCALE)
+    ls *= inBox ? REFRACTA_SOURCE_SCALE : 1.0f;
+#endif
+    radianceSum += transmittance * ls;
+    transmittance = (float3)(0.0f); // opaque: nothing behind the surface shows through
+  }
+  surfaceDepthOut[pixel] = onSurface ? surfaceDepth : INFINITY;
+#else
+  surfaceDepthOut[pixel] = INFINITY;
+#endif
+  if (seesBackground && !onSurface)
   {
     radianceSum += transmittance *
       refracta_background(d, background, environment, envSize, envRight, envUp, envFront);

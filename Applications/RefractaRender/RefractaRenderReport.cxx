@@ -7,11 +7,13 @@
 #include "vtkImageData.h"
 #include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkSceneAnalysis.h"
 
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <unistd.h>
 
@@ -89,9 +91,10 @@ json FieldDataToJson(vtkFieldData* fd)
   for (int i = 0; fd && i < fd->GetNumberOfArrays(); ++i)
   {
     vtkDataArray* a = fd->GetArray(i);
-    if (!a || !a->GetName() || a->GetNumberOfTuples() < 1)
+    if (!a || !a->GetName() || a->GetNumberOfTuples() < 1 ||
+      std::string(a->GetName()) == vtkRefractaLightingVolume::SurfaceIrradianceName())
     {
-      continue;
+      continue; // the surfaces' irradiance is one tuple per texel, not a statistic
     }
     if (a->GetNumberOfComponents() == 1)
     {
@@ -225,10 +228,37 @@ void PrintLightPass(const json& light)
     Sum3(light, "EnergyAbsorbed", out) && Sum3(light, "EnergyEscaped", out) &&
     Sum3(light, "EnergyRemaining", out))
   {
-    std::cout << "  energy    emitted " << emitted << " = scattered+absorbed+escaped+remaining "
-              << out << " (relative difference " << (emitted > 0 ? (out - emitted) / emitted : 0.0)
+    // The surfaces' term where the scene has surfaces (the photon tracer's EnergySurface).
+    const bool surfaces = Sum3(light, "EnergySurface", out);
+    std::cout << "  energy    emitted " << emitted << " = scattered+absorbed+"
+              << (surfaces ? "surfaces+" : "") << "escaped+remaining " << out
+              << " (relative difference " << (emitted > 0 ? (out - emitted) / emitted : 0.0)
               << ")\n";
   }
+}
+
+// "surfaces" line: how many of each kind, the triangles; nothing without surfaces.
+void PrintSurfaces(const json& surfaces, double seconds)
+{
+  if (!surfaces.is_object() || surfaces.value("count", 0) == 0)
+  {
+    return;
+  }
+  std::map<std::string, int> kinds;
+  for (const json& s : surfaces["list"])
+  {
+    ++kinds[s["kind"].get<std::string>()];
+  }
+  std::string list;
+  for (const char* kind : { "plane", "box", "sphere", "file" })
+  {
+    if (kinds.count(kind))
+    {
+      list += (list.empty() ? "" : ", ") + std::to_string(kinds[kind]) + " " + kind;
+    }
+  }
+  std::cout << "  surfaces  " << surfaces["count"].get<int>() << " (" << list << "), "
+            << surfaces["triangles"].get<long long>() << " triangles, " << seconds << " s\n";
 }
 }
 
@@ -254,6 +284,7 @@ void PrintSummary(const json& report)
             << medium["dimensions"][1].get<int>() << " x " << medium["dimensions"][2].get<int>()
             << " (" << medium["source"].get<std::string>() << "), "
             << seconds["medium"].get<double>() << " s\n";
+  PrintSurfaces(report["surfaces"], seconds.value("surfaces", 0.0));
   PrintLightPass(report["light_pass"]);
   std::cout << "  view      " << (view["curved_rays"].get<bool>() ? "curved" : "straight")
             << " rays, " << view["total_steps"].get<double>() << " steps, "

@@ -6,6 +6,7 @@
 #include "vtkCamera.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaSurfaceSet.h"
 
 #include <iostream>
 
@@ -14,13 +15,17 @@ namespace RefractaRender
 Scene ReadScene(
   const json& scene, const std::string& base, vtkRefractaImageRenderer* renderer, bool quiet)
 {
-  CheckKeys(
-    scene, "scene", { "image", "camera", "background", "medium", "lights", "quality", "effects" });
+  CheckKeys(scene, "scene",
+    { "image", "camera", "background", "medium", "surfaces", "lights", "quality", "effects" });
   Scene out;
   // A quality preset in the settings configures the pipeline first.
   out.Settings = ReadSettings(scene, renderer->GetPipeline());
 
-  // The medium, then what surrounds it.
+  // The surfaces (read first: a bad entry fails before the voxelizer runs), the medium, then
+  // what surrounds them.
+  Timer surfacesTimer;
+  out.Surfaces = ReadSurfaces(scene, base);
+  out.SurfacesSeconds = surfacesTimer.Seconds();
   Timer mediumTimer;
   if (!quiet)
   {
@@ -34,10 +39,12 @@ Scene ReadScene(
   }
   out.LightCount = AddLights(scene, renderer);
   out.Camera = ReadCamera(scene, out.Medium.Image);
-  ReadBackground(scene, base, renderer);
+  out.EnvironmentLight = ReadBackground(scene, base, renderer);
 
   ApplySettings(out.Settings, renderer);
   renderer->SetInputData(out.Medium.Image);
+  out.SurfaceSet = MakeSurfaceSet(out.Surfaces);
+  renderer->SetSurfaces(out.SurfaceSet);
   renderer->SetCamera(out.Camera);
   return out;
 }

@@ -6,13 +6,16 @@
 
 #include "RefractaSceneMedium.h"
 #include "RefractaSceneSettings.h"
+#include "RefractaSceneSurfaces.h"
 
 #include "vtkSmartPointer.h"
 
 #include <string>
+#include <vector>
 
 class vtkCamera;
 class vtkRefractaImageRenderer;
+class vtkRefractaSurfaceSet;
 
 namespace RefractaRender
 {
@@ -21,13 +24,17 @@ struct Scene
 {
   RenderSettings Settings;
   SceneMedium Medium;
+  std::vector<SceneSurface> Surfaces;
+  vtkSmartPointer<vtkRefractaSurfaceSet> SurfaceSet;
   int LightCount = 0;
   vtkSmartPointer<vtkCamera> Camera;
+  bool EnvironmentLight = false; ///< background.illuminates
+  double SurfacesSeconds = 0.0;
   double MediumSeconds = 0.0;
 };
 
 /// Reads `scene` (file names relative to `base`) and configures `renderer` with it: settings,
-/// medium as its input, lights, camera, background. Prints the medium stage unless `quiet`.
+/// surfaces, medium as its input, lights, camera, background. Prints the medium stage unless `quiet`.
 /// Throws SceneError for a bad scene, std::runtime_error where building the medium fails.
 Scene ReadScene(
   const json& scene, const std::string& base, vtkRefractaImageRenderer* renderer, bool quiet);

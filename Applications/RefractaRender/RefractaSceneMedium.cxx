@@ -101,7 +101,10 @@ vtkSmartPointer<vtkMediumMaterial> ReadMaterial(const json& m, const std::string
   material->SetEmission(em.data());
   return material;
 }
+}
 
+// ---------------------------------------------------------------------------------------------
+// Mesh descriptions shared by the medium's meshes and the surfaces.
 vtkSmartPointer<vtkPolyData> ReadSphere(const json& s, const std::string& p)
 {
   CheckKeys(s, p, { "center", "radius", "resolution" });
@@ -142,13 +145,15 @@ vtkSmartPointer<vtkPolyData> ReadMeshFile(
   const std::string file = Resolve(base, name.get<std::string>());
   auto reader = ReadFile(MeshReaders, file, p, ".ply, .stl, .obj or .vtp");
   vtkSmartPointer<vtkPolyData> poly = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
-  if (!poly || poly->GetNumberOfPolys() == 0)
+  if (!poly || poly->GetNumberOfPolys() + poly->GetNumberOfStrips() == 0)
   {
     Fail(p, "'" + file + "' holds no polygons");
   }
   return poly;
 }
 
+namespace
+{
 vtkSmartPointer<vtkPolyData> ReadMesh(
   const json& mesh, const std::string& path, const std::string& base)
 {

@@ -1,13 +1,14 @@
 // The medium of a refracta-render scene ("scene.medium"): meshes voxelized with their materials
 // (vtkMeshVoxelizer), or a volume file, taken as it is when it holds Refracta's arrays or mapped
-// through transfer functions (vtkTransferFunctionMedium). Also the image and file helpers the
-// rest of the scene uses.
+// through transfer functions (vtkTransferFunctionMedium). Also the mesh, image and file helpers
+// the rest of the scene uses (the surfaces read their meshes here too).
 #ifndef RefractaSceneMedium_h
 #define RefractaSceneMedium_h
 
 #include "RefractaSceneJson.h"
 
 #include "vtkImageData.h"
+#include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
 #include <string>
@@ -25,6 +26,18 @@ struct SceneMedium
 /// Builds the medium "scene.medium" describes; file names are relative to `base`. Throws
 /// SceneError for a bad description, std::runtime_error where a filter fails.
 SceneMedium ReadMedium(const json& scene, const std::string& base);
+
+/// A triangulated sphere from {"center", "radius", "resolution"} (theta resolution; phi half
+/// of it). Used by the medium's meshes and by the surfaces.
+vtkSmartPointer<vtkPolyData> ReadSphere(const json& sphere, const std::string& path);
+
+/// A triangulated axis-aligned box from {"bounds"} (required).
+vtkSmartPointer<vtkPolyData> ReadBox(const json& box, const std::string& path);
+
+/// Reads a mesh file (.ply, .stl, .obj, .vtp; `name` relative to `base`) that holds polygons;
+/// failures name the scene key `path`.
+vtkSmartPointer<vtkPolyData> ReadMeshFile(
+  const json& name, const std::string& path, const std::string& base);
 
 /// Reads an image or volume file (.vti, .mha, .mhd, .nrrd, .nhdr, .png, .jpg); failures name
 /// the scene key `path`.

@@ -30,8 +30,10 @@ const ChoiceTable<int> EffectModes = { { "auto", vtkEffectPlan::AUTOMATIC },
   { "on", vtkEffectPlan::FORCE_ON }, { "off", vtkEffectPlan::FORCE_OFF } };
 
 // The keys of "scene.effects", in vtkEffectPlan's effect order.
-const char* const EffectKeys[vtkEffectPlan::NUMBER_OF_EFFECTS] = { "refraction", "absorption",
-  "single_scattering", "multiple_scattering", "emission" };
+const char* const EffectKeys[] = { "refraction", "absorption", "single_scattering",
+  "multiple_scattering", "emission", "surface_lighting" };
+static_assert(sizeof(EffectKeys) / sizeof(EffectKeys[0]) == vtkEffectPlan::NUMBER_OF_EFFECTS,
+  "one scene key per effect of vtkEffectPlan");
 
 void ReadImage(const json& scene, RenderSettings& s)
 {

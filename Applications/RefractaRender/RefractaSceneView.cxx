@@ -139,10 +139,11 @@ vtkSmartPointer<vtkCamera> ReadCamera(const json& scene, vtkImageData* medium)
   return camera;
 }
 
-void ReadBackground(const json& scene, const std::string& base, vtkRefractaImageRenderer* renderer)
+bool ReadBackground(const json& scene, const std::string& base, vtkRefractaImageRenderer* renderer)
 {
   const json bg = scene.value("background", json::object());
-  CheckKeys(bg, "scene.background", { "color", "environment", "checker", "up", "right" });
+  CheckKeys(
+    bg, "scene.background", { "color", "environment", "checker", "up", "right", "illuminates" });
   if (bg.contains("environment") + bg.contains("checker") + bg.contains("color") > 1)
   {
     Fail("scene.background", "give one of 'color', 'environment' or 'checker'");
@@ -172,5 +173,14 @@ void ReadBackground(const json& scene, const std::string& base, vtkRefractaImage
   auto right = Vector(bg, "right", "scene.background", { 1, 0, 0 }, 3, -1e30, 1e30);
   renderer->SetEnvironmentUp(up[0], up[1], up[2]);
   renderer->SetEnvironmentRight(right[0], right[1], right[2]);
+  const bool illuminates = Boolean(bg, "illuminates", "scene.background", false);
+  if (illuminates)
+  {
+    // Until the photon pass emits from the environment (issue #13), say so rather than ignore it.
+    Fail("scene.background.illuminates",
+      "true is not available yet: the photon pass does not emit light from the background in "
+      "this build (leave it out or set it false)");
+  }
+  return illuminates;
 }
 }

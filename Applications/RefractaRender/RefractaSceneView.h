@@ -22,8 +22,10 @@ int AddLights(const json& scene, vtkRefractaImageRenderer* renderer);
 vtkSmartPointer<vtkCamera> ReadCamera(const json& scene, vtkImageData* medium);
 
 /// Sets the background colour or environment map of "scene.background" (files relative to
-/// `base`) and the environment's up and right directions.
-void ReadBackground(const json& scene, const std::string& base, vtkRefractaImageRenderer* renderer);
+/// `base`) and the environment's up and right directions; returns "illuminates" (default false:
+/// whether the background also lights the scene; true is refused until the photon pass emits
+/// from the environment).
+bool ReadBackground(const json& scene, const std::string& base, vtkRefractaImageRenderer* renderer);
 }
 
 #endif

@@ -23,12 +23,14 @@
 #include "RefractaSceneJson.h"
 #include "RefractaSceneMedium.h"
 #include "RefractaSceneSettings.h"
+#include "RefractaSceneSurfaces.h"
 
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaSurfaceSet.h"
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
@@ -43,9 +45,10 @@ using namespace RefractaRender;
 
 namespace
 {
-// The embedded default scene: a glass sphere (n = 1.5) in a light fog above a scattering floor,
-// lit by a spot light from above (the sphere focuses it into a caustic on the floor and in the
-// fog), in front of a checkerboard environment that the sphere bends.
+// The embedded default scene: a glass sphere (n = 1.5) in a light fog above a checkered floor
+// (an opaque Lambertian surface), lit by a spot light from above: the sphere focuses it into a
+// caustic on the floor and in the fog, in front of a checkerboard environment that the sphere
+// bends.
 const char* const DefaultScene = R"JSON({
   "image": { "width": 256, "height": 256, "exposure": 1.5, "tone_mapping": "reinhard" },
   "camera": { "position": [0.0, 0.55, 3.2], "focal_point": [0.0, -0.1, 0.0],
@@ -53,16 +56,19 @@ const char* const DefaultScene = R"JSON({
   "background": { "checker": { "squares": [24, 12],
                   "color1": [0.9, 0.85, 0.75], "color2": [0.08, 0.12, 0.3] } },
   "medium": {
-    "grid": { "dimensions": [80, 80, 80], "bounds": [-1, 1, -1, 1, -1, 1] },
+    "grid": { "dimensions": [80, 76, 80], "bounds": [-1, 1, -0.9, 1, -1, 1] },
     "surrounding": { "extinction": [0.35, 0.35, 0.35], "albedo": [0.9, 0.9, 0.9],
                      "anisotropy": 0.3 },
     "meshes": [
       { "sphere": { "center": [0, 0.05, 0], "radius": 0.42, "resolution": 96 },
-        "material": { "refractive_index": 1.5, "extinction": [0.02, 0.02, 0.02] } },
-      { "box": { "bounds": [-1.2, 1.2, -1.2, -0.8, -1.2, 1.2] },
-        "material": { "extinction": [12, 12, 12], "albedo": [0.85, 0.8, 0.7] } }
+        "material": { "refractive_index": 1.5, "extinction": [0.02, 0.02, 0.02] } }
     ]
   },
+  "surfaces": [
+    { "plane": { "center": [0, -0.8, 0], "normal": [0, 1, 0], "size": [2.4, 2.4] },
+      "material": { "checker": { "squares": [8, 8], "color1": [0.85, 0.8, 0.7],
+                                 "color2": [0.45, 0.42, 0.38] } } }
+  ],
   "lights": [
     { "type": "spot", "position": [0, 3, 0], "focal_point": [0, 0, 0], "cone_angle": 12,
       "exponent": 1, "color": [1.0, 0.95, 0.85], "intensity": 60 }
@@ -136,6 +142,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
   const RenderSettings& settings = read.Settings;
   const SceneMedium& medium = read.Medium;
   const int lightCount = read.LightCount;
+  seconds["surfaces"] = read.SurfacesSeconds;
   seconds["medium"] = read.MediumSeconds;
 
   // The render: plan, light passes, view pass, each stage printed as it runs.
@@ -174,6 +181,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
   report["image"] = ImageReport(settings);
   report["quality"] = QualityReport(settings);
   report["medium"] = medium.Report;
+  report["surfaces"] = SurfacesReport(read.Surfaces, read.SurfaceSet);
   report["light_pass"] = LightPassReport(pipeline, lightCount);
   report["view_pass"] = ViewPassReport(renderer);
   report["seconds"] = seconds;
@@ -192,7 +200,7 @@ void PrintUsage(std::ostream& os)
         "                       [--radiance FILE.vti] [--report FILE.json] [--preview] [--quiet]\n"
         "       refracta-render --print-default-scene | --list-devices | --device-check | --help\n"
         "  Without --scene, renders the embedded default scene (a glass sphere in fog over a\n"
-        "  scattering floor, lit by a spot light) to refracta.png. The scene format is documented\n"
+        "  checkered floor, lit by a spot light) to refracta.png. The scene format is documented\n"
         "  in the README. --preview: half the image size and grid resolution, a quarter of the\n"
         "  photons. Each stage is printed as it starts and ends, with a progress bar on a "
         "terminal;\n"

@@ -20,7 +20,7 @@ vtkStandardNewMacro(vtkEffectPlan);
 namespace
 {
 const char* const EffectNames[vtkEffectPlan::NUMBER_OF_EFFECTS] = { "Refraction", "Absorption",
-  "SingleScattering", "MultipleScattering", "Emission" };
+  "SingleScattering", "MultipleScattering", "Emission", "SurfaceLighting" };
 
 bool IsEffect(int effect)
 {
@@ -223,6 +223,12 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
   detail.str("");
   detail << "max emission " << analysis->GetMaximumEmission();
   this->DecideEffect(EMISSION, analysis->GetHasEmission() ? 1.0 : 0.0, detail.str().c_str());
+
+  detail.str("");
+  detail << analysis->GetNumberOfSurfaces() << " surface(s), "
+         << analysis->GetNumberOfPoweredLights() << " powered light(s)";
+  this->DecideEffect(SURFACE_LIGHTING, (lit && analysis->GetNumberOfSurfaces() > 0) ? 1.0 : 0.0,
+    detail.str().c_str());
 
   // Without absorption there is no extinction, hence no scattering to simulate.
   if (!this->Enabled[ABSORPTION] && this->Modes[ABSORPTION] != FORCE_ON)

@@ -16,6 +16,11 @@
  *   single scattering is on, else 0. Every further order of scattering carries at most q of the
  *   previous one, so multiply scattered light is at most q of all scattered light.
  * - Emission (off: emission ignored): 1 if anything emits, else 0.
+ * - SurfaceLighting (off: the photon pass ignores the opaque surfaces, and is not run for them):
+ *   1 if a powered light exists and the scene has surfaces (vtkSceneAnalysis::SetSurfaces), else
+ *   0. Light on a surface (its shadows, the caustics a clear glass ball focuses on a floor) comes
+ *   only from the photon pass, so surfaces turn the photon pass on even in a medium that does not
+ *   scatter at all.
  *
  * Each effect can be forced on or off (SetEffectMode), overriding the decision; the plan
  * records why it chose what it chose. The plan prints itself (PrintSelf), summarises
@@ -50,6 +55,7 @@ public:
     SINGLE_SCATTERING,
     MULTIPLE_SCATTERING,
     EMISSION,
+    SURFACE_LIGHTING,
     NUMBER_OF_EFFECTS
   };
 
@@ -165,9 +171,10 @@ protected:
 
   double Tolerance = 0.01;
   int Quality = INTERACTIVE;
-  int Modes[NUMBER_OF_EFFECTS] = { AUTOMATIC, AUTOMATIC, AUTOMATIC, AUTOMATIC, AUTOMATIC };
-  bool Enabled[NUMBER_OF_EFFECTS] = { true, true, true, true, true };
-  double Estimates[NUMBER_OF_EFFECTS] = { 0, 0, 0, 0, 0 };
+  int Modes[NUMBER_OF_EFFECTS] = { AUTOMATIC, AUTOMATIC, AUTOMATIC, AUTOMATIC, AUTOMATIC,
+    AUTOMATIC };
+  bool Enabled[NUMBER_OF_EFFECTS] = { true, true, true, true, true, true };
+  double Estimates[NUMBER_OF_EFFECTS] = { 0, 0, 0, 0, 0, 0 };
   std::string Reasons[NUMBER_OF_EFFECTS];
   bool Decided = false;
 

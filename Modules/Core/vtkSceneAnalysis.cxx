@@ -1,5 +1,8 @@
 #include "vtkSceneAnalysis.h"
 
+#include "vtkPolyData.h"
+#include "vtkRefractaSurfaceSet.h"
+
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -340,6 +343,15 @@ void vtkSceneAnalysis::SetLights(vtkLightCollection* lights)
   this->Modified();
 }
 
+namespace
+{
+// Surfaces with something to hit (the plan depends on their presence only).
+int CountSurfaces(vtkRefractaSurfaceSet* set)
+{
+  return set ? set->GetNumberOfNonEmptySurfaces() : 0;
+}
+}
+
 //------------------------------------------------------------------------------
 void vtkSceneAnalysis::Reset()
 {
@@ -352,6 +364,7 @@ void vtkSceneAnalysis::Reset()
   this->HasScattering = this->HasEmission = false;
   this->MaximumEmission = this->OccupiedFraction = 0.0;
   this->NumberOfPoweredLights = 0;
+  this->NumberOfSurfaces = 0;
 }
 
 //------------------------------------------------------------------------------
@@ -443,8 +456,24 @@ bool vtkSceneAnalysis::Analyze()
       this->LightOpticalThickness[l] = ProbeTowardLight(fields, this->Medium, this->Lights[l]);
     }
   }
+  this->NumberOfSurfaces = CountSurfaces(this->Surfaces);
   this->Modified();
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkSceneAnalysis::SetSurfaces(vtkRefractaSurfaceSet* surfaces)
+{
+  if (this->Surfaces != surfaces)
+  {
+    this->Surfaces = surfaces;
+    this->Modified();
+  }
+}
+
+vtkRefractaSurfaceSet* vtkSceneAnalysis::GetSurfaces()
+{
+  return this->Surfaces;
 }
 
 //------------------------------------------------------------------------------
@@ -497,6 +526,7 @@ void vtkSceneAnalysis::RecordInFieldData(vtkFieldData* fieldData) const
   add("AnalysisMaximumEmission", { this->MaximumEmission });
   add("AnalysisOccupiedFraction", { this->OccupiedFraction });
   add("AnalysisNumberOfPoweredLights", { static_cast<double>(this->NumberOfPoweredLights) });
+  add("AnalysisNumberOfSurfaces", { static_cast<double>(this->NumberOfSurfaces) });
 }
 
 //------------------------------------------------------------------------------
@@ -509,7 +539,7 @@ std::string vtkSceneAnalysis::GetSummary() const
     << ", tau_s <= " << this->MaximumScatteringThickness << ", albedo in [" << this->AlbedoRange[0]
     << ", " << this->AlbedoRange[1] << "], emission " << (this->HasEmission ? "yes" : "no")
     << ", occupied " << 100.0 * this->OccupiedFraction << "%, " << this->NumberOfPoweredLights
-    << " powered light(s)";
+    << " powered light(s), " << this->NumberOfSurfaces << " surface(s)";
   return s.str();
 }
 

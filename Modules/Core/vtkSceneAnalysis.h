@@ -31,6 +31,7 @@ class vtkFieldData;
 class vtkImageData;
 class vtkLight;
 class vtkLightCollection;
+class vtkRefractaSurfaceSet;
 
 class REFRACTACORE_EXPORT vtkSceneAnalysis : public vtkObject
 {
@@ -56,6 +57,15 @@ public:
   void RemoveAllLights();
   void SetLights(vtkLightCollection* lights);
   int GetNumberOfLights() const { return static_cast<int>(this->Lights.size()); }
+  ///@}
+
+  ///@{
+  /**
+   * The opaque surfaces of the scene (vtkRefractaSurfaceSet, world coordinates; default none).
+   * Only their presence is analysed: GetNumberOfSurfaces() counts those with polygons or strips.
+   */
+  void SetSurfaces(vtkRefractaSurfaceSet* surfaces);
+  vtkRefractaSurfaceSet* GetSurfaces();
   ///@}
 
   /**
@@ -131,6 +141,11 @@ public:
   vtkGetMacro(NumberOfPoweredLights, int);
 
   /**
+   * Number of surfaces (of SetSurfaces) with at least one polygon or triangle strip.
+   */
+  vtkGetMacro(NumberOfSurfaces, int);
+
+  /**
    * Write the facts as field-data arrays named "Analysis<Fact>".
    */
   void RecordInFieldData(vtkFieldData* fieldData) const;
@@ -162,6 +177,8 @@ protected:
   double MaximumEmission = 0.0;
   double OccupiedFraction = 0.0;
   int NumberOfPoweredLights = 0;
+  int NumberOfSurfaces = 0;
+  vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
 
 private:
   vtkSceneAnalysis(const vtkSceneAnalysis&) = delete;

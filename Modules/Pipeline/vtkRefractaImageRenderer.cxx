@@ -70,6 +70,16 @@ int vtkRefractaImageRenderer::FillInputPortInformation(int port, vtkInformation*
   return 1;
 }
 
+void vtkRefractaImageRenderer::SetSurfaces(vtkRefractaSurfaceSet* surfaces)
+{
+  this->Pipeline->SetSurfaces(surfaces); // the pipeline's MTime is part of this one's
+}
+
+vtkRefractaSurfaceSet* vtkRefractaImageRenderer::GetSurfaces()
+{
+  return this->Pipeline->GetSurfaces();
+}
+
 void vtkRefractaImageRenderer::SetLightingData(vtkImageData* lighting)
 {
   if (lighting)

@@ -66,6 +66,7 @@ class vtkImageData;
 class vtkOpenCLContext;
 class vtkLight;
 class vtkRefractaRenderPipeline;
+class vtkRefractaSurfaceSet;
 class vtkRefractaViewPass;
 class vtkTexture;
 class vtkUnsignedCharArray;
@@ -83,6 +84,15 @@ public:
     REINHARD = 1,
     EXPONENTIAL = 2
   };
+
+  ///@{
+  /**
+   * Opaque surfaces of the scene (world coordinates), passed to the pipeline
+   * (vtkRefractaRenderPipeline::SetSurfaces). Default none.
+   */
+  void SetSurfaces(vtkRefractaSurfaceSet* surfaces);
+  vtkRefractaSurfaceSet* GetSurfaces();
+  ///@}
 
   ///@{
   /**

@@ -17,6 +17,8 @@
 #include "vtkOutputWindow.h"
 #include "vtkPhotonDiffusionSchedule.h"
 #include "vtkPhotonTracer.h"
+#include "vtkPolyData.h"
+#include "vtkRefractaSurfaceSet.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkSceneAnalysis.h"
 #include "vtkSmartPointer.h"
@@ -28,6 +30,15 @@
 #include <string>
 
 vtkStandardNewMacro(vtkRefractaRenderPipeline);
+
+namespace
+{
+// Surfaces with something to hit (the plan depends on their presence only).
+int CountSurfaces(vtkRefractaSurfaceSet* set)
+{
+  return set ? set->GetNumberOfNonEmptySurfaces() : 0;
+}
+}
 
 namespace
 {
@@ -61,6 +72,9 @@ struct vtkRefractaRenderPipeline::Internals
   vtkNew<vtkEffectPlan> Plan;
   vtkNew<vtkPhotonDiffusionSchedule> Schedule;
   vtkNew<vtkRefractaViewPass> ViewPass;
+
+  vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
+  int PlannedSurfaces = 0; // surfaces with triangles when the plan last ran
 
   // Products of the stages.
   vtkSmartPointer<vtkImageData> Planned;
@@ -226,6 +240,20 @@ void vtkRefractaRenderPipeline::SetLightingData(vtkImageData* lighting)
 vtkImageData* vtkRefractaRenderPipeline::GetLightingData()
 {
   return this->Internal->LightingData;
+}
+
+void vtkRefractaRenderPipeline::SetSurfaces(vtkRefractaSurfaceSet* surfaces)
+{
+  if (this->Internal->Surfaces != surfaces)
+  {
+    this->Internal->Surfaces = surfaces;
+    this->Modified();
+  }
+}
+
+vtkRefractaSurfaceSet* vtkRefractaRenderPipeline::GetSurfaces()
+{
+  return this->Internal->Surfaces;
 }
 
 void vtkRefractaRenderPipeline::AddLight(vtkLight* light)
@@ -441,6 +469,10 @@ vtkMTimeType vtkRefractaRenderPipeline::GetInputsMTime()
   {
     t = std::max(t, env->GetMTime());
   }
+  if (in.Surfaces)
+  {
+    t = std::max(t, in.Surfaces->GetMTime());
+  }
   return t;
 }
 
@@ -451,7 +483,8 @@ bool vtkRefractaRenderPipeline::PlanIsStale()
   return !in.PlanDone || in.Medium != in.PlannedFrom || in.Medium->GetMTime() > planTime ||
     this->GetMTime() > planTime || in.Plan->GetMTime() > planTime ||
     in.CurrentLightList() != in.LightList || this->GetLightsMTime() > planTime ||
-    (in.PropMatrix && in.PropMatrix->GetMTime() > planTime);
+    (in.PropMatrix && in.PropMatrix->GetMTime() > planTime) ||
+    in.Analysis->GetSurfaces() != in.Surfaces || CountSurfaces(in.Surfaces) != in.PlannedSurfaces;
 }
 
 bool vtkRefractaRenderPipeline::LightingIsStale()
@@ -460,7 +493,8 @@ bool vtkRefractaRenderPipeline::LightingIsStale()
   const vtkMTimeType lightTime = in.LightTime.GetMTime();
   return !in.LightDone || in.PlanTime.GetMTime() > lightTime ||
     in.Schedule->GetMTime() > lightTime ||
-    (in.LightingData && in.LightingData->GetMTime() > lightTime);
+    (in.LightingData && in.LightingData->GetMTime() > lightTime) ||
+    (in.Surfaces && in.Surfaces->GetMTime() > lightTime);
 }
 
 //------------------------------------------------------------------------------
@@ -648,6 +682,7 @@ bool vtkRefractaRenderPipeline::RunPlan()
   }
   in.DataLights = vtkSmartPointer<vtkLightCollection>::New();
   in.Analysis->SetMedium(in.Medium);
+  in.Analysis->SetSurfaces(in.Surfaces);
   in.Analysis->RemoveAllLights();
   for (vtkLight* light : in.CurrentLightList())
   {
@@ -725,6 +760,7 @@ bool vtkRefractaRenderPipeline::RunPlan()
     in.Decisions[e] = in.Plan->IsEnabled(e);
   }
   in.PlannedFrom = in.Medium;
+  in.PlannedSurfaces = CountSurfaces(in.Surfaces);
   in.LightList = in.CurrentLightList();
   in.LastError.clear();
   in.PlanDone = true;
@@ -739,7 +775,10 @@ bool vtkRefractaRenderPipeline::RunLighting()
   Internals& in = *this->Internal;
   in.LightDone = in.ViewDone = false;
   in.Lighting = nullptr;
-  const bool lit = in.Plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING) &&
+  // Surfaces need the photon pass even where nothing in the medium scatters (a caustic of a
+  // clear glass ball on a floor).
+  const bool surfaces = in.Plan->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING);
+  const bool lit = (in.Plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING) || surfaces) &&
     in.Analysis->GetNumberOfPoweredLights() > 0;
   if (in.LightingData)
   {
@@ -749,6 +788,8 @@ bool vtkRefractaRenderPipeline::RunLighting()
   {
     vtkPhotonTracer* tracer = in.Schedule->GetPhotonTracer();
     tracer->SetLights(in.DataLights);
+    tracer->SetSurfaces(surfaces ? in.Surfaces.Get() : nullptr);
+    tracer->SetMediumToWorld(in.PropMatrix);
     vtkAlgorithm* pass = tracer;
     vtkImageData* output = nullptr;
     if (in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
@@ -807,6 +848,7 @@ bool vtkRefractaRenderPipeline::RunView(int width, int height, const float* dept
 {
   Internals& in = *this->Internal;
   in.ViewDone = false;
+  in.ViewPass->SetSurfaces(in.Surfaces);
   if (!in.ViewPass->Render(
         in.Camera, width, height, in.PropMatrix, depthLimit, in.Image, &in.Transmittance))
   {

@@ -28,8 +28,8 @@
  * 3. **VIEW**: vtkRefractaViewPass (GetViewPass()) for the camera. Runs when an earlier stage ran,
  *    or the camera, the image size, the depth limits, the placement or a view setting changed;
  *    otherwise the previous image is returned as it is.
- * So a camera move runs the view pass only; a light move runs the light passes and the view
- * pass on the medium already on the device; a medium change runs everything.
+ * So a camera move runs the view pass only; a light move or a surface move runs the light passes
+ * and the view pass on the medium already on the device; a medium change runs everything.
  *
  * Progress and abort: Render() invokes vtkCommand::StartEvent and EndEvent around each stage that
  * runs (call data: the stage's name, a const char*), and vtkCommand::ProgressEvent (call data: a
@@ -60,6 +60,7 @@ class vtkMatrix4x4;
 class vtkOpenCLContext;
 class vtkPhotonDiffusionSchedule;
 class vtkPhotonTracer;
+class vtkRefractaSurfaceSet;
 class vtkRefractaViewPass;
 class vtkSceneAnalysis;
 
@@ -103,6 +104,17 @@ public:
    */
   void SetMedium(vtkImageData* medium);
   vtkImageData* GetMedium();
+  ///@}
+
+  ///@{
+  /**
+   * Opaque surfaces of the scene (world coordinates; default none). The photon pass lights them
+   * (the plan's SurfaceLighting effect turns it on whenever a powered light and a surface exist)
+   * and the view pass shows them. Moving a surface (its matrix or mesh) re-runs the light passes
+   * and the view, never the plan's medium stage; adding or removing surfaces re-plans.
+   */
+  void SetSurfaces(vtkRefractaSurfaceSet* surfaces);
+  vtkRefractaSurfaceSet* GetSurfaces();
   ///@}
 
   ///@{

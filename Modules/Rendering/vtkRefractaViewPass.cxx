@@ -17,7 +17,10 @@
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaSurfaceSet.h"
+#include "vtkRefractaViewPassFields.h"
 #include "vtkRefractaViewPassOccupancy.h"
+#include "vtkRefractaViewPassSurfaces.h"
 
 #include <algorithm>
 #include <chrono>
@@ -32,40 +35,6 @@ using namespace vtkRefractaViewPassDetail;
 
 namespace
 {
-// Copies an array's values into floats, `comps` components per tuple (fast path for floats).
-void FetchFloats(vtkDataArray* array, int comps, std::vector<float>& out)
-{
-  const vtkIdType n = array->GetNumberOfTuples();
-  out.resize(static_cast<size_t>(n) * comps);
-  if (auto* floats = vtkFloatArray::SafeDownCast(array))
-  {
-    std::copy(floats->GetPointer(0), floats->GetPointer(0) + out.size(), out.begin());
-    return;
-  }
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    for (int c = 0; c < comps; ++c)
-    {
-      out[i * comps + c] = static_cast<float>(array->GetComponent(i, c));
-    }
-  }
-}
-
-// Rotates world-frame vectors (3 per tuple) into the grid-local frame.
-void RotateToLocal(const vtkRefractaGridFrame* grid, std::vector<float>& vectors)
-{
-  for (size_t i = 0; i + 2 < vectors.size(); i += 3)
-  {
-    const double world[3] = { vectors[i], vectors[i + 1], vectors[i + 2] };
-    double local[3];
-    grid->WorldToLocalVector(world, local);
-    for (int c = 0; c < 3; ++c)
-    {
-      vectors[i + c] = static_cast<float>(local[c]);
-    }
-  }
-}
-
 cl_float4 Float4(const double v[3], double w = 0.0)
 {
   cl_float4 r;
@@ -114,6 +83,10 @@ struct vtkRefractaViewPass::Internals
   MacroCellGrid Cells; // the occupancy on the host, and its active cells
   vtkOpenCLBuffer Occupancy;
   double BuildSeconds = 0.0;
+
+  // Surfaces: the set given, and its arrays and irradiance on the device.
+  vtkSmartPointer<vtkRefractaSurfaceSet> SurfaceSet;
+  SurfaceBuffers Surfaces;
 
   vtkOpenCLBuffer Dummy;
 
@@ -164,8 +137,10 @@ void vtkRefractaViewPass::SetContext(vtkOpenCLContext* context)
   if (this->Internal->Context != context)
   {
     // Buffers belong to a context: drop them so they are uploaded again to the new one.
+    vtkSmartPointer<vtkRefractaSurfaceSet> surfaces = this->Internal->SurfaceSet;
     this->Internal.reset(new Internals);
     this->Internal->Context = context;
+    this->Internal->SurfaceSet = surfaces;
     this->Modified();
   }
 }
@@ -187,6 +162,35 @@ void vtkRefractaViewPass::SetEnvironmentMap(vtkImageData* image)
 vtkImageData* vtkRefractaViewPass::GetEnvironmentMap()
 {
   return this->Internal->Environment;
+}
+
+void vtkRefractaViewPass::SetSurfaces(vtkRefractaSurfaceSet* surfaces)
+{
+  if (this->Internal->SurfaceSet != surfaces)
+  {
+    this->Internal->SurfaceSet = surfaces;
+    this->Modified();
+  }
+}
+
+vtkRefractaSurfaceSet* vtkRefractaViewPass::GetSurfaces()
+{
+  return this->Internal->SurfaceSet;
+}
+
+int vtkRefractaViewPass::GetNumberOfSurfaceUploads()
+{
+  return this->Internal->Surfaces.GetNumberOfUploads();
+}
+
+vtkMTimeType vtkRefractaViewPass::GetMTime()
+{
+  vtkMTimeType time = this->Superclass::GetMTime();
+  if (vtkRefractaSurfaceSet* surfaces = this->Internal->SurfaceSet)
+  {
+    time = std::max(time, surfaces->GetMTime());
+  }
+  return time;
 }
 
 bool vtkRefractaViewPass::GetMediumIsRefractive() const
@@ -294,38 +298,7 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
     }
     else
     {
-      // Central differences (one-sided at the edges) along the grid axes.
-      gradient.assign(n * 3, 0.0f);
-      const int* dims = in.Dims;
-      for (int k = 0; k < dims[2]; ++k)
-      {
-        for (int j = 0; j < dims[1]; ++j)
-        {
-          for (int i = 0; i < dims[0]; ++i)
-          {
-            const int ijk[3] = { i, j, k };
-            const size_t idx =
-              i + static_cast<size_t>(dims[0]) * (j + static_cast<size_t>(dims[1]) * k);
-            for (int a = 0; a < 3; ++a)
-            {
-              if (dims[a] < 2)
-              {
-                continue;
-              }
-              int lo[3] = { i, j, k }, hi[3] = { i, j, k };
-              lo[a] = std::max(ijk[a] - 1, 0);
-              hi[a] = std::min(ijk[a] + 1, dims[a] - 1);
-              auto at = [&](const int* p)
-              {
-                return nValues[p[0] +
-                  static_cast<size_t>(dims[0]) * (p[1] + static_cast<size_t>(dims[1]) * p[2])];
-              };
-              gradient[idx * 3 + a] =
-                static_cast<float>((at(hi) - at(lo)) / ((hi[a] - lo[a]) * in.Spacing[a]));
-            }
-          }
-        }
-      }
+      gradient = CentralDifferenceGradient(nValues, in.Dims, in.Spacing);
     }
     // Curved rays are straight exactly where the grad n samples are zero (the integrator never
     // reads n itself except to scale |v|), so that is what the skipping test needs.
@@ -356,6 +329,10 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
 bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
 {
   Internals& in = *this->Internal;
+  if (!in.Surfaces.SetLighting(lighting, this))
+  {
+    return false;
+  }
   if (!lighting)
   {
     if (in.Lighting || !in.LightingFlags.empty())
@@ -396,26 +373,11 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
   const vtkIdType n = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
   auto check = [&](vtkDataArray* a, const char* name, bool nonNegative) -> bool
   {
-    if (a->GetNumberOfComponents() != 3 || a->GetNumberOfTuples() != n)
+    std::string error;
+    if (!CheckLightingArray(a, name, n, nonNegative, error))
     {
-      vtkErrorMacro("The lighting volume's point array '"
-        << name << "' has " << a->GetNumberOfComponents() << " components and "
-        << a->GetNumberOfTuples() << " tuples; it needs 3 components and " << n << " tuples.");
+      vtkErrorMacro(<< error);
       return false;
-    }
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        const double v = a->GetComponent(i, c);
-        if (!std::isfinite(v) || (nonNegative && v < 0))
-        {
-          vtkErrorMacro("The lighting volume's point array '"
-            << name << "' has the invalid value " << v << " at tuple " << i << " component " << c
-            << "; values must be finite" << (nonNegative ? " and >= 0." : "."));
-          return false;
-        }
-      }
     }
     return true;
   };
@@ -577,7 +539,8 @@ bool vtkRefractaViewPass::ComputeRayFrame(vtkCamera* camera, vtkImageData* mediu
 
 //------------------------------------------------------------------------------
 bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMatrix4x4* propMatrix,
-  const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance)
+  const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance,
+  std::vector<float>* surfaceDepth)
 {
   this->LastRenderAborted = false;
   this->LastNumberOfTiles = 0;
@@ -619,41 +582,29 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   vtkImageData* env = in.Environment;
   if (env && (in.EnvironmentUploaded != env || in.EnvironmentTime != env->GetMTime()))
   {
-    int ed[3];
-    env->GetDimensions(ed);
-    vtkDataArray* scalars = env->GetPointData()->GetScalars();
-    if (!scalars || ed[2] != 1 || ed[0] < 1 || ed[1] < 1 ||
-      (scalars->GetNumberOfComponents() != 3 && scalars->GetNumberOfComponents() != 4))
+    std::vector<float> rgb;
+    std::string error;
+    if (!EnvironmentToRGB(env, rgb, in.EnvironmentSize, error))
     {
-      vtkErrorMacro("The environment map must be a 2D vtkImageData (W x H x 1) with RGB or RGBA "
-                    "point scalars; got "
-        << ed[0] << " x " << ed[1] << " x " << ed[2] << " with "
-        << (scalars ? scalars->GetNumberOfComponents() : 0) << " scalar components.");
+      vtkErrorMacro(<< error);
       return false;
     }
-    const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
-    const int comps = scalars->GetNumberOfComponents();
-    std::vector<float> rgb(static_cast<size_t>(ed[0]) * ed[1] * 3);
-    for (vtkIdType i = 0; i < static_cast<vtkIdType>(ed[0]) * ed[1]; ++i)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        double v = scalars->GetComponent(i, c);
-        v = bytes ? v / 255.0 : v;
-        rgb[i * 3 + c] = std::isfinite(v) ? static_cast<float>(std::max(v, 0.0)) : 0.0f;
-      }
-    }
-    (void)comps;
     in.EnvironmentBuffer = context->CreateBuffer(
       CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, rgb.size() * 4, rgb.data(), "environment map", this);
     if (!in.EnvironmentBuffer)
     {
       return false;
     }
-    in.EnvironmentSize[0] = ed[0];
-    in.EnvironmentSize[1] = ed[1];
     in.EnvironmentUploaded = env;
     in.EnvironmentTime = env->GetMTime();
+  }
+
+  // Surfaces: built and uploaded when the set's build is new, the irradiance when it changed.
+  SurfaceBuffers& surf = in.Surfaces;
+  if (!surf.Update(in.SurfaceSet, context, this) ||
+    (surf.Active() && !surf.PrepareIrradiance(context, this)))
+  {
+    return false;
   }
 
   const bool curved = this->RayMode == CURVED ? static_cast<bool>(in.Index)
@@ -661,48 +612,6 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   if (this->RayMode == CURVED && !in.Index)
   {
     vtkDebugMacro("RayMode CURVED with a constant refractive index: rays are straight.");
-  }
-  std::string options;
-  if (curved)
-  {
-    options += " -DREFRACTA_CURVED";
-  }
-  if (frame.Parallel)
-  {
-    options += " -DREFRACTA_PARALLEL";
-  }
-  // Sources count 1 / n^2 (basic radiance): per step where n varies, as a constant where it is
-  // uniform and not 1.
-  if (in.Index)
-  {
-    options += " -DREFRACTA_INDEX_WEIGHT";
-  }
-  else if (in.UniformIndex != 1.0)
-  {
-    std::ostringstream scale;
-    scale.precision(9);
-    scale << " -DREFRACTA_SOURCE_SCALE=" << 1.0 / (in.UniformIndex * in.UniformIndex) << "f";
-    options += scale.str();
-  }
-  if (in.HasSingle)
-  {
-    options += " -DREFRACTA_HAS_SINGLE";
-  }
-  if (in.HasMultiple)
-  {
-    options += " -DREFRACTA_HAS_MULTIPLE";
-  }
-  if (in.HasEmission)
-  {
-    options += " -DREFRACTA_HAS_EMISSION";
-  }
-  if (env)
-  {
-    options += " -DREFRACTA_HAS_ENVIRONMENT";
-  }
-  if (depthLimit)
-  {
-    options += " -DREFRACTA_HAS_DEPTH_LIMIT";
   }
   // Empty-space skipping: only worth a kernel variant when some macro cell is empty for these
   // rays (straight rays ignore grad n).
@@ -718,11 +627,22 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     this->OccupancySeconds = in.BuildSeconds;
     skipping = this->LastActiveCellFraction < 1.0;
   }
-  if (skipping)
-  {
-    options += " -DREFRACTA_SKIP";
-  }
-  cl_program program = context->GetProgram({ "refracta_common.cl", "view_pass.cl" }, options, this);
+  KernelVariant variant;
+  variant.Curved = curved;
+  variant.Parallel = frame.Parallel;
+  variant.IndexVaries = static_cast<bool>(in.Index);
+  variant.UniformIndex = in.UniformIndex;
+  variant.Single = in.HasSingle;
+  variant.Multiple = in.HasMultiple;
+  variant.Emission = in.HasEmission;
+  variant.Environment = env != nullptr;
+  variant.DepthLimit = depthLimit != nullptr;
+  variant.Skip = skipping;
+  variant.Surfaces = surf.Active();
+  variant.NearestTexel = this->SurfaceFilter == NEAREST_TEXEL;
+  cl_program program = context->GetProgram(
+    { "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl", "view_pass.cl" },
+    KernelOptions(variant), this);
   if (!program)
   {
     return false;
@@ -749,13 +669,16 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 4, nullptr, "step counts", this);
   vtkOpenCLBuffer transmittanceBuffer =
     context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 16, nullptr, "transmittance image", this);
+  vtkOpenCLBuffer surfaceDepthBuffer =
+    context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 4, nullptr, "surface depth", this);
   vtkOpenCLBuffer depthBuffer;
   if (depthLimit)
   {
     depthBuffer = context->CreateBuffer(
       CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, pixels * 4, depthLimit, "depth limits", this);
   }
-  if (!hdrBuffer || !stepBuffer || !transmittanceBuffer || (depthLimit && !depthBuffer))
+  if (!hdrBuffer || !stepBuffer || !transmittanceBuffer || !surfaceDepthBuffer ||
+    (depthLimit && !depthBuffer))
   {
     return false;
   }
@@ -771,25 +694,11 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   const cl_float cutoff = static_cast<float>(this->TransmittanceCutoff);
   const cl_float4 background = Float4(this->BackgroundColor);
 
-  // Environment basis (vtkRefractaEnvironmentMap: right, up, front = up x right, in world),
-  // then rotated to grid-local (prop and D), so the kernel's dot products are the world ones.
-  double er[3], eu[3], ef[3];
-  vtkRefractaEnvironmentMap::ComputeBasis(this->EnvironmentUp, this->EnvironmentRight, er, eu, ef);
-  // A world direction x maps to local L x (L the linear part of WorldToLocal); dot(x, e) =
-  // dot(L x, L^-T e); for the rigid transforms used here L^-T = L, so rotate e by L and
-  // re-normalise.
-  auto toLocal = [&](const double v[3])
-  {
-    double out[3];
-    for (int row = 0; row < 3; ++row)
-    {
-      out[row] = frame.WorldToLocal[row][0] * v[0] + frame.WorldToLocal[row][1] * v[1] +
-        frame.WorldToLocal[row][2] * v[2];
-    }
-    vtkMath::Normalize(out);
-    return Float4(out);
-  };
-  const cl_float4 envRight = toLocal(er), envUp = toLocal(eu), envFront = toLocal(ef);
+  // Environment basis (vtkRefractaEnvironmentMap) in the grid-local frame.
+  double basis[3][3];
+  EnvironmentBasisLocal(this->EnvironmentUp, this->EnvironmentRight, frame.WorldToLocal, basis);
+  const cl_float4 envRight = Float4(basis[0]), envUp = Float4(basis[1]),
+                  envFront = Float4(basis[2]);
   const cl_int2 envSize = { { std::max(in.EnvironmentSize[0], 1),
     std::max(in.EnvironmentSize[1], 1) } };
 
@@ -802,6 +711,12 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     in.Cells.ActiveLo[m][2], anyActive ? 1 : 0 } };
   const cl_int4 activeHi = { { in.Cells.ActiveHi[m][0], in.Cells.ActiveHi[m][1],
     in.Cells.ActiveHi[m][2], 0 } };
+  cl_float4 toSurface[3] = {};
+  if (surf.Active())
+  {
+    surf.ComputeLocalToSurface(frame.WorldToLocal, toSurface);
+  }
+  const cl_int nodeCount = surf.GetNodeCount();
   const cl_int w = width, h = height;
   const cl_int status = vtkOpenCLSetKernelArgs(kernel.Get(), dims, spacing, buf(in.Extinction),
     buf(in.Emission), buf(in.Anisotropy), buf(in.Index), buf(in.Gradient), buf(in.Radiance),
@@ -809,46 +724,27 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     Float4(frame.V), Float4(frame.W), w, h, stepLength, maxSteps, cutoff, background,
     env ? in.EnvironmentBuffer.Get() : in.Dummy.Get(), envSize, envRight, envUp, envFront,
     buf(depthBuffer), skipping ? in.Occupancy.Get() : in.Dummy.Get(), cellDims, activeLo, activeHi,
-    skipMask, hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get());
+    skipMask, buf(surf.Nodes), nodeCount, buf(surf.Triangles), buf(surf.TriangleInfo),
+    buf(surf.Albedo), buf(surf.Irradiance), toSurface[0], toSurface[1], toSurface[2],
+    hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(), surfaceDepthBuffer.Get());
   if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this))
   {
     return false;
   }
   const auto start = std::chrono::steady_clock::now();
-  // Tiles of whole rows (a global offset on the same kernel: every pixel computes exactly what it
-  // would in one launch), each waited for, so that progress is reported and an abort is seen
-  // between them.
-  // The first tile has TilePixels pixels; later ones are sized from the measured rate to take
-  // about TileSeconds (at most twice the previous tile, at least one row).
-  int rowsPerTile = std::max(1, std::min(height, this->TilePixels / width));
-  for (int row = 0, rows = 0; row < height; row += rows)
+  // Tiles of whole rows (RunTiles); after each, progress, and a requested abort stops.
+  const bool finished =
+    RunTiles(context, kernel.Get(), width, height, this->TilePixels, this->TileSeconds, this,
+      [this](double progress)
+      {
+        ++this->LastNumberOfTiles;
+        this->InvokeEvent(vtkCommand::ProgressEvent, &progress);
+        this->LastRenderAborted = this->AbortRender && progress < 1.0;
+        return !this->LastRenderAborted;
+      });
+  if (!finished)
   {
-    rows = std::min(rowsPerTile, height - row);
-    const auto tileStart = std::chrono::steady_clock::now();
-    const size_t offset[2] = { 0, static_cast<size_t>(row) };
-    const size_t global[2] = { static_cast<size_t>(width), static_cast<size_t>(rows) };
-    if (!context->Check(clEnqueueNDRangeKernel(context->GetQueue(), kernel.Get(), 2, offset, global,
-                          nullptr, 0, nullptr, nullptr),
-          "clEnqueueNDRangeKernel(refracta_view_pass)", this) ||
-      !context->Finish(this))
-    {
-      return false;
-    }
-    ++this->LastNumberOfTiles;
-    if (this->TileSeconds > 0)
-    {
-      const double seconds = std::max(
-        1e-6, std::chrono::duration<double>(std::chrono::steady_clock::now() - tileStart).count());
-      const double wanted = rows * this->TileSeconds / seconds;
-      rowsPerTile = static_cast<int>(std::max(1.0, std::min(wanted, 2.0 * rows)));
-    }
-    double progress = static_cast<double>(row + rows) / height;
-    this->InvokeEvent(vtkCommand::ProgressEvent, &progress);
-    if (this->AbortRender && row + rows < height)
-    {
-      this->LastRenderAborted = true;
-      return false;
-    }
+    return false;
   }
   hdr.resize(pixels * 4);
   std::vector<cl_uint> steps(pixels);
@@ -860,6 +756,12 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   if (transmittance &&
     (transmittance->resize(pixels * 4),
       !context->ReadBuffer(transmittanceBuffer.Get(), pixels * 16, transmittance->data(), this)))
+  {
+    return false;
+  }
+  if (surfaceDepth &&
+    (surfaceDepth->resize(pixels),
+      !context->ReadBuffer(surfaceDepthBuffer.Get(), pixels * 4, surfaceDepth->data(), this)))
   {
     return false;
   }
@@ -899,6 +801,11 @@ void vtkRefractaViewPass::PrintSelf(ostream& os, vtkIndent indent)
      << this->EnvironmentRight[1] << ", " << this->EnvironmentRight[2] << ")\n";
   os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
   os << indent << "MacroCellSize: " << this->MacroCellSize << " voxels\n";
+  os << indent << "Surfaces: " << this->Internal->SurfaceSet.Get() << "\n";
+  os << indent << "SurfaceFilter: "
+     << (this->SurfaceFilter == NEAREST_TEXEL ? "NEAREST_TEXEL" : "LINEAR_TEXEL") << "\n";
+  os << indent << "NumberOfSurfaceUploads: " << this->Internal->Surfaces.GetNumberOfUploads()
+     << "\n";
   os << indent << "LastSkipping: " << (this->LastSkipping ? "yes" : "no") << "\n";
   os << indent << "LastActiveCellFraction: " << this->LastActiveCellFraction << "\n";
   os << indent << "LastSeconds: " << this->LastSeconds << "\n";

@@ -41,6 +41,16 @@
  *
  * The lighting volume must be on the medium's grid and carry `Radiance` (S1, RGB) with
  * `RadianceDirection` (3, unit, in the grid-local frame), and/or `MultipleScattering` (S_ms, RGB).
+ *
+ * Surfaces (SetSurfaces()): opaque two-sided Lambertian triangles (vtkRefractaSurfaceSet, world
+ * coordinates) inside, behind, under or around the medium. A view ray, curved in the medium and
+ * straight outside it, stops at the first surface it meets and adds T E rho / (pi n^2): E the
+ * irradiance the photon pass stored per texel (the lighting volume's field array
+ * vtkRefractaLightingVolume::SurfaceIrradianceName(); none: the surfaces are unlit, black),
+ * reconstructed at the hit point (SurfaceFilter), rho the texel's albedo, T the transmittance of
+ * the path, n the index at the hit (1 outside the medium's box). The pixel is then opaque (alpha
+ * 1, transmittance 0). The set's BVH, triangles and atlas are uploaded once per Build() of the set
+ * (GetNumberOfSurfaceUploads()); a camera move uploads nothing.
  */
 #ifndef vtkRefractaViewPass_h
 #define vtkRefractaViewPass_h
@@ -56,6 +66,7 @@ class vtkCamera;
 class vtkImageData;
 class vtkMatrix4x4;
 class vtkOpenCLContext;
+class vtkRefractaSurfaceSet;
 
 class REFRACTARENDERING_EXPORT vtkRefractaViewPass : public vtkObject
 {
@@ -69,6 +80,12 @@ public:
     AUTO = 0,
     STRAIGHT = 1,
     CURVED = 2
+  };
+
+  enum SurfaceFilters
+  {
+    NEAREST_TEXEL = 0, ///< the hit texel's irradiance, piecewise constant
+    LINEAR_TEXEL = 1   ///< linear within the hit texel between its corners' neighbour means
   };
 
   ///@{
@@ -149,6 +166,37 @@ public:
   vtkGetVector3Macro(EnvironmentRight, double);
   ///@}
 
+  ///@{
+  /**
+   * Opaque surfaces seen by the view rays (see the class description); nullptr (default): none.
+   * The set is built (cached) and uploaded in Render() when its Build() is new.
+   */
+  void SetSurfaces(vtkRefractaSurfaceSet* surfaces);
+  vtkRefractaSurfaceSet* GetSurfaces();
+  ///@}
+
+  ///@{
+  /**
+   * How the surface irradiance is reconstructed at a hit (Documentation/Physics.md, "Surfaces in
+   * the view pass"): LINEAR_TEXEL (default) interpolates within the hit texel between values at
+   * its corners, each the mean of the texels of its triangle that touch the corner (exact for a
+   * linear irradiance away from the triangle's edges, and it averages photon noise);
+   * NEAREST_TEXEL reads the hit texel alone.
+   */
+  vtkSetClampMacro(SurfaceFilter, int, NEAREST_TEXEL, LINEAR_TEXEL);
+  vtkGetMacro(SurfaceFilter, int);
+  ///@}
+
+  /**
+   * Number of times surface geometry (BVH, triangles, atlas) was uploaded to the device.
+   */
+  int GetNumberOfSurfaceUploads();
+
+  /**
+   * Modification time, including the surface set's (its meshes, materials and matrices).
+   */
+  vtkMTimeType GetMTime() override;
+
   /**
    * Check and (when changed) upload the medium. Returns false after an error naming the problem.
    */
@@ -156,7 +204,9 @@ public:
 
   /**
    * Check and (when changed) upload the lighting volume; nullptr means none (emission and
-   * background only). Call after SetMedium(). Returns false after an error.
+   * background only). Call after SetMedium(). Its field array SurfaceIrradianceName() (3
+   * components, one tuple per texel of the surface set, finite and >= 0) lights the surfaces.
+   * Returns false after an error.
    */
   bool SetLighting(vtkImageData* lighting);
 
@@ -165,7 +215,10 @@ public:
    * medium's data coordinates to world (a vtkVolume's matrix). `depthLimit` (may be nullptr; W H
    * floats) caps each pixel's path length in the medium's world units (opaque geometry).
    * Fills `hdr` with W H RGBA floats (A = 1 - mean transmittance) and, when given,
-   * `transmittance` with W H RGBA floats (the path's RGB transmittance, A = 0). Returns false
+   * `transmittance` with W H RGBA floats (the path's RGB transmittance, A = 0; 0 where a surface
+   * is hit), and `surfaceDepth` with W H floats: the path length from the ray's origin to the
+   * surface it meets, in the units of `depthLimit` (grid-local, along the possibly curved path),
+   * +infinity where it meets none. Returns false
    * after an error, or without a message when aborted (see SetAbortRender()).
    *
    * Progress and abort: the image is rendered in tiles of whole rows (see TilePixels)
@@ -175,7 +228,8 @@ public:
    * with GetLastRenderAborted() true and `hdr` untouched.
    */
   bool Render(vtkCamera* camera, int width, int height, vtkMatrix4x4* propMatrix,
-    const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance = nullptr);
+    const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance = nullptr,
+    std::vector<float>* surfaceDepth = nullptr);
 
   ///@{
   /**
@@ -280,6 +334,7 @@ protected:
   double EnvironmentRight[3] = { 1.0, 0.0, 0.0 };
   bool EmptySpaceSkipping = true;
   int MacroCellSize = 8;
+  int SurfaceFilter = LINEAR_TEXEL;
   bool LastSkipping = false;
   double LastActiveCellFraction = 1.0;
   double OccupancySeconds = 0.0;

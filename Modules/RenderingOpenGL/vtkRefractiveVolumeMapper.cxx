@@ -17,8 +17,13 @@
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
+#include "vtkRefractaActorSurfaces.h"
+#include "vtkRefractaBVH.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaRendererBackground.h"
+#include "vtkRefractaSurfaceSet.h"
 #include "vtkRefractaViewPass.h"
+#include "vtkRefractiveVolumeMapperCompositing.h"
 #include "vtkRenderer.h"
 #include "vtkTimeStamp.h"
 #include "vtkTransferFunctionMedium.h"
@@ -32,7 +37,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -147,6 +154,16 @@ struct vtkRefractiveVolumeMapper::Internals
   vtkImageData* Uncut = nullptr;        // what Medium was cut from
   vtkTimeStamp CutTime;
   std::vector<double> CutCropping; // the cropping settings it was cut with
+  vtkNew<vtkRefractaRendererBackground> Background;
+  vtkNew<vtkRefractaActorSurfaces> Actors;
+  vtkRefractaSurfaceSet* ClassifiedWith = nullptr; // the surfaces the pixel kinds were made for
+  vtkTimeStamp ClassifiedTime;
+  // The medium's active box (see vtkRefractiveVolumeMapperCompositing.h) and what it was
+  // computed from.
+  vtkRefractiveVolumeMapperDetail::LocalBox ActiveBox;
+  vtkImageData* ActiveBoxMedium = nullptr;
+  vtkMTimeType ActiveBoxTime = 0;
+  std::vector<std::uint8_t> Kinds; // per pixel, vtkRefractiveVolumeMapperDetail::PixelKind
 
   // The view stage's depth input: the raw depth buffer and the path-length limits it gave.
   std::vector<float> Depth;
@@ -290,6 +307,16 @@ vtkImageData* vtkRefractiveVolumeMapper::GetLighting()
 vtkRefractaViewPass* vtkRefractiveVolumeMapper::GetViewPass()
 {
   return this->Internal->Pipeline->GetViewPass();
+}
+
+vtkRefractaActorSurfaces* vtkRefractiveVolumeMapper::GetActorSurfaceCollector()
+{
+  return this->Internal->Actors;
+}
+
+vtkRefractaRendererBackground* vtkRefractiveVolumeMapper::GetBackgroundConverter()
+{
+  return this->Internal->Background;
 }
 
 vtkRefractaRenderPipeline* vtkRefractiveVolumeMapper::GetPipeline()
@@ -565,8 +592,8 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   vtkCamera* camera = renderer->GetActiveCamera();
   const size_t pixels = static_cast<size_t>(width) * height;
 
-  // Depth of the opaque geometry drawn so far -> path-length limit along each pixel's ray; the
-  // conversion runs only when the depth buffer or the view changed.
+  // Depth of the opaque geometry drawn so far -> path-length limits and the pixels' kinds; the
+  // conversion runs only when the depth buffer, the view or the medium's active box changed.
   std::vector<float> depth(pixels, 1.0f);
   window->GetZbufferData(x0, y0, x0 + width - 1, y0 + height - 1, depth.data());
   vtkRefractaViewPass::RayFrame frame;
@@ -577,10 +604,23 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
                      "view up is parallel to the view direction).");
     return;
   }
-  if (depth != in.Depth || in.Limits.size() != pixels)
+  // The renderer's opaque actors as surfaces (rebuilt only where they changed).
+  vtkRefractaSurfaceSet* surfaces = nullptr;
+  if (this->ActorSurfaces)
+  {
+    in.Actors->Update(renderer, volume);
+    surfaces = in.Actors->GetNumberOfActors() > 0 ? in.Actors->GetSurfaces() : nullptr;
+  }
+  const bool boxChanged = this->UpdateActiveBox();
+  const bool surfacesChanged = surfaces != in.ClassifiedWith ||
+    (surfaces && surfaces->GetMTime() > in.ClassifiedTime.GetMTime());
+  if (boxChanged || surfacesChanged || depth != in.Depth || in.Limits.size() != pixels)
   {
     in.Limits = this->DepthToPathLengths(renderer, camera, frame, width, height, depth);
     in.Depth = std::move(depth);
+    this->ClassifyPixels(renderer, camera, frame, surfaces, width, height);
+    in.ClassifiedWith = surfaces;
+    in.ClassifiedTime.Modified();
   }
 
   vtkRefractaRenderPipeline* pipeline = in.Pipeline;
@@ -588,20 +628,79 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   pipeline->SetLights(renderer->GetLights());
   pipeline->SetCamera(camera);
   pipeline->SetPropMatrix(volume->GetMatrix());
-  vtkRefractaViewPass* view = pipeline->GetViewPass();
-  view->SetBackgroundColor(0, 0, 0);
-  view->SetEnvironmentMap(nullptr);
+  pipeline->SetSurfaces(surfaces);
+  in.Background->Apply(renderer, camera, pipeline->GetViewPass());
   if (!pipeline->Render(width, height, in.Limits.data()))
   {
     return;
   }
   in.LastMessage.clear();
+  this->Composite(window, x0, y0, width, height);
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractiveVolumeMapper::UpdateActiveBox()
+{
+  Internals& in = *this->Internal;
+  if (in.ActiveBoxMedium == in.Medium && in.Medium->GetMTime() <= in.ActiveBoxTime)
+  {
+    return false;
+  }
+  in.ActiveBox = vtkRefractiveVolumeMapperDetail::ActiveBox(in.Medium, 2.0);
+  in.ActiveBoxMedium = in.Medium;
+  in.ActiveBoxTime = in.Medium->GetMTime();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractiveVolumeMapper::ClassifyPixels(vtkRenderer* renderer, vtkCamera* camera,
+  const vtkRefractaViewPass::RayFrame& frame, vtkRefractaSurfaceSet* surfaces, int width,
+  int height)
+{
+  using namespace vtkRefractiveVolumeMapperDetail;
+  Internals& in = *this->Internal;
+  // Depth drawn by a taken actor is the pipeline's own surface: no limit there (the view ray
+  // meets the surface itself, bent or not). Without foreign props every drawn depth is ours;
+  // with them, the BVH tells which pixels' depth is a surface of the set.
+  const bool foreignProps = in.Actors->GetNumberOfForeignProps() > 0 || !surfaces;
+  vtkRefractaBVH* bvh = nullptr;
+  std::unique_ptr<DepthRays> rays;
+  if (surfaces && foreignProps && surfaces->Build())
+  {
+    bvh = surfaces->GetBVH();
+    rays.reset(new DepthRays(renderer, camera));
+  }
+  in.Kinds.assign(static_cast<size_t>(width) * height, CLEAR);
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const size_t p = i + static_cast<size_t>(width) * j;
+      if (std::isfinite(in.Limits[p]) &&
+        (!foreignProps || (bvh && rays->HitsSurface(bvh, i, j, width, height, in.Depth[p]))))
+      {
+        in.Limits[p] = std::numeric_limits<float>::infinity();
+      }
+      if (std::isfinite(in.Limits[p]))
+      {
+        in.Kinds[p] = FOREIGN;
+      }
+      else if (RayCrossesBox(frame, i, j, width, height, in.ActiveBox, in.Limits[p]))
+      {
+        in.Kinds[p] = COVERED;
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractiveVolumeMapper::Composite(
+  vtkOpenGLRenderWindow* window, int x0, int y0, int width, int height)
+{
+  Internals& in = *this->Internal;
+  vtkRefractaRenderPipeline* pipeline = in.Pipeline;
   const std::vector<float>& image = pipeline->GetImage();
   const std::vector<float>& transmittanceImage = pipeline->GetTransmittance();
-
-  // Per-channel compositing in two blended draws: first dst *= T (blend ZERO, SRC_COLOR), then
-  // dst += E L (blend ONE, ONE). Together: dst = E L + T dst, channel by channel.
-  std::vector<float> radiance(pixels * 4), transmittance(pixels * 4);
   double exposureValue = this->Exposure;
   if (this->AutomaticExposure)
   {
@@ -614,17 +713,12 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     exposureValue *= in.MeteredExposure;
   }
   this->LastExposure = exposureValue;
-  const float exposure = static_cast<float>(exposureValue);
-  for (size_t p = 0; p < pixels; ++p)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      radiance[4 * p + c] = std::min(std::max(exposure * image[4 * p + c], 0.0f), 1.0f);
-      transmittance[4 * p + c] = std::min(std::max(transmittanceImage[4 * p + c], 0.0f), 1.0f);
-    }
-    radiance[4 * p + 3] = 0.0f;
-    transmittance[4 * p + 3] = 1.0f;
-  }
+
+  // Per-channel compositing in two blended draws: first dst *= M (blend ZERO, SRC_COLOR), then
+  // dst += A (blend ONE, ONE), M and A per pixel kind (vtkRefractiveVolumeMapperCompositing.h).
+  std::vector<float> multiply, add;
+  vtkRefractiveVolumeMapperDetail::CompositingImages(
+    image, transmittanceImage, in.Kinds, static_cast<float>(exposureValue), multiply, add);
   vtkOpenGLState* state = window->GetState();
   vtkOpenGLState::ScopedglBlendFuncSeparate blendSaver(state);
   vtkOpenGLState::ScopedglEnableDisable blendEnable(state, GL_BLEND);
@@ -634,9 +728,9 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglDepthMask(GL_FALSE);
   state->vtkglBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ZERO, GL_ONE);
-  window->DrawPixels(x0, y0, x0 + width - 1, y0 + height - 1, 4, VTK_FLOAT, transmittance.data());
+  window->DrawPixels(x0, y0, x0 + width - 1, y0 + height - 1, 4, VTK_FLOAT, multiply.data());
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
-  window->DrawPixels(x0, y0, x0 + width - 1, y0 + height - 1, 4, VTK_FLOAT, radiance.data());
+  window->DrawPixels(x0, y0, x0 + width - 1, y0 + height - 1, 4, VTK_FLOAT, add.data());
 }
 
 //------------------------------------------------------------------------------
@@ -649,6 +743,7 @@ void vtkRefractiveVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "AutomaticExposure: " << this->AutomaticExposure << "\n";
   os << indent << "LastExposure: " << this->LastExposure << "\n";
+  os << indent << "ActorSurfaces: " << this->ActorSurfaces << "\n";
   os << indent << "Pipeline:\n";
   this->Internal->Pipeline->PrintSelf(os, indent.GetNextIndent());
 }

@@ -29,14 +29,31 @@
  * GetNumberOfMediumBuilds(), GetNumberOfLightPassRuns() and GetNumberOfViewPassRuns() count the
  * executions, for tests and for users tuning interactivity.
  *
- * Compositing rule: VTK draws opaque geometry before volumes. The mapper reads the depth buffer
- * of that geometry, converts each pixel's depth to a path length along the pixel's view ray, and
- * stops the ray there; it then composites per RGB channel over the frame (two blended draws):
- *   pixel = Exposure * L_medium + T * pixel_before,  T = the path's RGB transmittance,
- * so geometry and background behind the medium are dimmed by the medium's transmittance, and
- * geometry in front of or inside the medium hides what is behind it.
- * What is behind the medium is not seen through refraction (the frame underneath is not bent),
- * and along curved rays the stopping length is the path length, exact for straight rays only.
+ * Surfaces and background (see vtkRefractaActorSurfaces and vtkRefractaRendererBackground): the
+ * renderer's visible opaque polydata actors become surfaces of the pipeline (their matrices,
+ * their diffuse colour or mapped scalar colours as albedo), so light and view rays in the medium
+ * meet them: glass shows them bent, inverted or magnified, lit by the medium's caustics and
+ * shadowed by it. The renderer's background (colour, gradient, background texture, or the
+ * environment texture with UseImageBasedLighting) is what a bent view ray sees when it escapes.
+ * ActorSurfaces (default on) switches the actors off as surfaces. The surface set is rebuilt
+ * only when the taken actors or their mappers, inputs, properties or lookup tables change;
+ * moving an actor re-runs the light passes (and the view pass), never the medium stage.
+ *
+ * Compositing rule: VTK draws opaque geometry and the background before volumes. The mapper
+ * reads the depth buffer of that geometry and sorts the pixels (see
+ * vtkRefractiveVolumeMapperCompositing.h):
+ * - a pixel whose straight camera ray crosses the medium's active box (the voxels with n != 1,
+ *   extinction or emission, grown by two voxels) and whose depth, if any, is one of the
+ *   pipeline's surfaces is **replaced** by the view pass's radiance, which holds the medium, the
+ *   surfaces and the background seen along the bent ray: pixel = Exposure * L;
+ * - a pixel whose depth is drawn by a prop that is not a surface (a translucent-free prop that
+ *   vtkRefractaActorSurfaces does not take, or any actor with ActorSurfaces off) stops the view
+ *   ray at that depth (converted to a path length, exact for straight rays only) and is
+ *   **blended**: pixel = Exposure * L_medium + T * pixel_before, T the path's RGB
+ *   transmittance, so such geometry behind the medium is dimmed but not bent, and geometry in
+ *   front of it hides it;
+ * - every other pixel keeps what VTK drew (surfaces are drawn by VTK where no medium covers
+ *   them, with VTK's shading).
  * Translucent geometry is ignored. The mapper writes no depth. Values are clamped to [0, 1] as
  * VTK's own shading is (no tone curve).
  */
@@ -55,9 +72,13 @@
 class vtkEffectPlan;
 class vtkImageData;
 class vtkOpenCLContext;
+class vtkOpenGLRenderWindow;
 class vtkCamera;
 class vtkPiecewiseFunction;
+class vtkRefractaActorSurfaces;
 class vtkRefractaRenderPipeline;
+class vtkRefractaRendererBackground;
+class vtkRefractaSurfaceSet;
 class vtkSceneAnalysis;
 
 class REFRACTARENDERINGOPENGL_EXPORT vtkRefractiveVolumeMapper : public vtkVolumeMapper
@@ -175,16 +196,38 @@ public:
    * as if it glowed (unshaded compositing is physically a medium under unit ambient light), while
    * this mapper computes the light the scene's lights actually scatter, which for the same lights
    * is several times dimmer (measured 0.25x on VTK's wavelet with the default headlight, in
-   * VTK light units; 1.07x with metering); metering makes the mapper a drop-in that shows a comparably exposed image.
-   * The exposure is metered again only when the medium or the lighting was recomputed, never on
-   * a camera move, so brightness stays comparable while the view changes. Turn it off for
-   * radiometrically calibrated output (then pixel = Exposure x radiance).
+   * VTK light units; 1.07x with metering); metering makes the mapper a drop-in that shows a
+   * comparably exposed image. The exposure is metered again only when the medium or the lighting
+   * was recomputed, never on a camera move, so brightness stays comparable while the view changes.
+   * Turn it off for radiometrically calibrated output (then pixel = Exposure x radiance).
    */
   vtkSetMacro(AutomaticExposure, bool);
   vtkGetMacro(AutomaticExposure, bool);
   vtkBooleanMacro(AutomaticExposure, bool);
   vtkGetMacro(LastExposure, double); ///< the multiplier used by the last draw
   ///@}
+
+  ///@{
+  /**
+   * Take the renderer's visible opaque polydata actors as surfaces of the light and view passes
+   * (see the class description and vtkRefractaActorSurfaces). Default on. Off: every actor is
+   * composited by depth, unbent, as before surfaces existed.
+   */
+  vtkSetMacro(ActorSurfaces, bool);
+  vtkGetMacro(ActorSurfaces, bool);
+  vtkBooleanMacro(ActorSurfaces, bool);
+  ///@}
+
+  /**
+   * The actors taken as surfaces by the last render and their surface set (GetSurfaces(),
+   * GetNumberOfRebuilds()).
+   */
+  vtkRefractaActorSurfaces* GetActorSurfaceCollector();
+
+  /**
+   * The conversion of the renderer's background (GetLastSource()).
+   */
+  vtkRefractaRendererBackground* GetBackgroundConverter();
 
   ///@{
   /**
@@ -236,6 +279,11 @@ protected:
   void CutAwayClippedRegions(vtkImageData* medium, vtkVolume* volume);
   void WarnAboutUnsupportedModes();
   void ReportOnce(const std::string& message);
+  bool UpdateActiveBox();
+  void ClassifyPixels(vtkRenderer* renderer, vtkCamera* camera,
+    const vtkRefractaViewPass::RayFrame& frame, vtkRefractaSurfaceSet* surfaces, int width,
+    int height);
+  void Composite(vtkOpenGLRenderWindow* window, int x0, int y0, int width, int height);
   static std::vector<float> DepthToPathLengths(vtkRenderer* renderer, vtkCamera* camera,
     const vtkRefractaViewPass::RayFrame& frame, int width, int height,
     const std::vector<float>& depth);
@@ -245,6 +293,7 @@ protected:
   double Exposure = 1.0;
   bool AutomaticExposure = true;
   double LastExposure = 1.0;
+  bool ActorSurfaces = true;
 
 private:
   vtkRefractiveVolumeMapper(const vtkRefractiveVolumeMapper&) = delete;

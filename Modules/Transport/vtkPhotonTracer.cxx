@@ -12,12 +12,14 @@
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
 #include "vtkMediumValidator.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaSurfaceSet.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -63,57 +65,6 @@ vtkPhotonTracer::vtkPhotonTracer()
 vtkPhotonTracer::~vtkPhotonTracer() = default;
 
 //------------------------------------------------------------------------------
-bool vtkPhotonTracer::TakeCachedMedium(Internals& run)
-{
-  MediumCache* c = this->Cache.get();
-  const bool same = c && c->Input == run.Input && c->InputTime == run.Input->GetMTime() &&
-    c->Context == this->GetContext() && c->PrimaryTolerance == this->PrimaryTolerance &&
-    c->SecondaryTolerance == this->SecondaryTolerance &&
-    c->AdaptiveStepping == this->AdaptiveStepping && c->UseProxyBounds == this->UseProxyBounds;
-  if (!same)
-  {
-    this->Cache.reset(); // releases the old medium's device buffers now
-    return false;
-  }
-  run.M = std::move(c->M);
-  run.NBuffer = std::move(c->NBuffer);
-  run.GradBuffer = std::move(c->GradBuffer);
-  run.Octree = std::move(c->Octree);
-  run.ExtBuffer = std::move(c->ExtBuffer);
-  run.AlbBuffer = std::move(c->AlbBuffer);
-  run.Alloc.Bytes += c->Bytes;
-  run.ReusedMedium = true;
-  this->Cache.reset();
-  return true;
-}
-
-void vtkPhotonTracer::KeepMedium(Internals& run)
-{
-  auto c = std::make_unique<MediumCache>();
-  c->Input = run.Input;
-  c->InputTime = run.Input->GetMTime();
-  c->Context = run.Context;
-  c->PrimaryTolerance = this->PrimaryTolerance;
-  c->SecondaryTolerance = this->SecondaryTolerance;
-  c->AdaptiveStepping = this->AdaptiveStepping;
-  c->UseProxyBounds = this->UseProxyBounds;
-  // The device bytes of the kept buffers, as the allocator counted them when they were made.
-  const Medium& m = run.M;
-  auto rounded = [](size_t bytes)
-  { return static_cast<double>((std::max<size_t>(bytes, 1) + 15) / 16 * 16); };
-  const size_t v = m.Voxels;
-  c->Bytes = rounded((m.Curved ? v : 1) * 4) + rounded(m.Curved ? v * 12 : 16) +
-    rounded(this->UsedOctree ? v : 16) + rounded((m.Attenuates ? v * 3 : 1) * 4) +
-    rounded((m.Scatters ? v * 3 : 1) * 4);
-  c->M = std::move(run.M);
-  c->NBuffer = std::move(run.NBuffer);
-  c->GradBuffer = std::move(run.GradBuffer);
-  c->Octree = std::move(run.Octree);
-  c->ExtBuffer = std::move(run.ExtBuffer);
-  c->AlbBuffer = std::move(run.AlbBuffer);
-  this->Cache = std::move(c);
-}
-
 void vtkPhotonTracer::AddLight(vtkLight* light)
 {
   if (light)
@@ -165,7 +116,11 @@ vtkMTimeType vtkPhotonTracer::GetMTime()
   {
     t = std::max(t, light->GetMTime());
   }
-  return t;
+  if (this->MediumToWorld)
+  {
+    t = std::max(t, this->MediumToWorld->GetMTime());
+  }
+  return this->Surfaces ? std::max(t, this->Surfaces->GetMTime()) : t;
 }
 
 int vtkPhotonTracer::FillInputPortInformation(int, vtkInformation* info)
@@ -363,8 +318,9 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DREFRACTA_EXT_STEP_LIMIT=" << FloatLiteral(this->ExtinctionStepLimit)
           << " -DREFRACTA_ROULETTE=" << FloatLiteral(this->RouletteThreshold)
           << " -DREFRACTA_MAX_TURN=" << FloatLiteral(this->MaximumTurn);
-  run.Trace = ctx->GetProgram(
-    { "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl", "photon_trace.cl" },
+  options << " -DREFRACTA_SURFACES=" << (run.Surfaces ? 1 : 0);
+  run.Trace = ctx->GetProgram({ "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl",
+                                "refracta_surfaces.cl", "photon_trace.cl" },
     options.str(), this);
   cl_program trace = run.Trace;
   if (!trace)
@@ -402,7 +358,7 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
             positional, Float4(ls.Origin), Float4(ls.Axis), Float4(ls.Basis1), Float4(ls.Basis2),
             Float4(ls.SpotAxis, ls.SpotCos), params,
             Float4(ls.Colour[0] / unit, ls.Colour[1] / unit, ls.Colour[2] / unit),
-            Float4(m.ProxyLo), Float4(m.ProxyHi), r1, r2, static_cast<cl_float>(ls.Extent)),
+            Float4(run.EmitLo), Float4(run.EmitHi), r1, r2, static_cast<cl_float>(ls.Extent)),
           "clSetKernelArg(photon_generate)", this) ||
       !Run1D(ctx, generate.Get(), count, "photon_generate", this))
     {
@@ -461,6 +417,7 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
     alloc.Make(CL_MEM_READ_WRITE, PHOTON_COUNTER_COUNT * sizeof(cl_long), nullptr, "counters");
   vtkOpenCLKernel march = ctx->CreateKernel(trace, "photon_march", this);
   if (!extBuffer || !albBuffer || !radFixed || !dirFixed || !tallies || !counters || !march ||
+    !this->UploadSurfaces(run) || !this->SetSurfaceArguments(run, march.Get(), 17) ||
     !ctx->ZeroBuffer(radFixed.Get(), accumulators * sizeof(cl_long), this) ||
     !ctx->ZeroBuffer(dirFixed.Get(), accumulators * sizeof(cl_long), this) ||
     !ctx->ZeroBuffer(tallies.Get(), PHOTON_TALLY_COUNT * sizeof(cl_long), this) ||
@@ -479,12 +436,13 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
     // (e.g. the Lattice-Boltzmann diffusion of what is already deposited) is enqueued between
     // launches.
     vtkOpenCLKernel marchChunk = ctx->CreateKernel(trace, "photon_march_chunk", this);
-    vtkOpenCLBuffer state =
-      alloc.Make(CL_MEM_READ_WRITE, photons * 8 * sizeof(cl_float4), nullptr, "photon state");
+    vtkOpenCLBuffer state = alloc.Make(CL_MEM_READ_WRITE,
+      photons * PHOTON_STATE_FLOAT4S * sizeof(cl_float4), nullptr, "photon state");
     vtkOpenCLBuffer status =
       alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_uint4), nullptr, "photon status");
     vtkOpenCLBuffer active = alloc.Make(CL_MEM_READ_WRITE, sizeof(cl_int), nullptr, "active");
     if (!marchChunk || !state || !status || !active ||
+      !this->SetSurfaceArguments(run, marchChunk.Get(), 21) ||
       !ctx->ZeroBuffer(status.Get(), photons * sizeof(cl_uint4), this))
     {
       return false;
@@ -717,6 +675,8 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
   addCount("TerminatedInvalid", count[PHOTON_COUNTER_INVALID]);
   addCount("TotalSteps", count[PHOTON_COUNTER_STEPS]);
   addCount("TotalVoxelPieces", count[PHOTON_COUNTER_PIECES]);
+  addCount("TerminatedSurface", count[PHOTON_COUNTER_SURFACE]);
+  addCount("SurfaceHits", count[PHOTON_COUNTER_SURFACE_HITS]);
   auto energy = [&](int t, int c) { return static_cast<double>(tally[3 * t + c]) / scale; };
   auto addEnergy = [&](const char* name, const std::array<double, 3>& v)
   {
@@ -746,6 +706,8 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
   addEnergy("EnergyRemaining", remaining);
   addEnergy("EnergyRouletteKilled", e[PHOTON_TALLY_KILLED]);
   addEnergy("EnergyRouletteGained", e[PHOTON_TALLY_GAINED]);
+  addEnergy("EnergySurface", e[PHOTON_TALLY_SURFACE]);
+  this->WriteSurfaceOutput(run, output);
 }
 
 //------------------------------------------------------------------------------
@@ -764,7 +726,7 @@ int vtkPhotonTracer::RequestData(
   this->SmoothingSeconds = this->PeakDeviceMemoryBytes = 0;
   this->UsedCurvedRays = this->UsedExtinction = this->UsedDeposit = false;
   this->UsedOctree = this->ComputedGradient = false;
-
+  this->UsedSurfaces = this->LastRunReusedSurfaces = false;
   this->LastRunAborted = false;
   Internals run;
   run.Input = input;
@@ -782,7 +744,7 @@ int vtkPhotonTracer::RequestData(
   }
   this->SharePhotons(run);
   if (!this->InitializeDevice(run) || !this->BuildOctreeStage(run) || !this->GeneratePhotons(run) ||
-    !this->MarchPhotons(run) || !this->ResolveRadiance(run))
+    !this->MarchPhotons(run) || !this->ResolveRadiance(run) || !this->ResolveSurfaces(run))
   {
     if (run.Aborted)
     {
@@ -796,6 +758,7 @@ int vtkPhotonTracer::RequestData(
   this->PeakDeviceMemoryBytes = run.Alloc.Bytes;
   this->WriteOutput(run, output);
   this->KeepMedium(run);
+  this->KeepSurfaces(run);
   this->ReportProgress(run, 1.0);
   return 1;
 }
@@ -826,6 +789,8 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfBatches: " << this->NumberOfBatches << "\n";
   os << indent << "LastRunAborted: " << this->LastRunAborted << "\n";
   os << indent << "UseProxyBounds: " << this->UseProxyBounds << "\n";
+  os << indent << "Surfaces: " << this->Surfaces.Get() << " (used " << this->UsedSurfaces
+     << ", reused " << this->LastRunReusedSurfaces << ")\n";
   os << indent << "Stage seconds (octree, generation, marching, smoothing): " << this->OctreeSeconds
      << ", " << this->GenerationSeconds << ", " << this->MarchingSeconds << ", "
      << this->SmoothingSeconds << "\n";

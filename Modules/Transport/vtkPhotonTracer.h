@@ -24,6 +24,21 @@
  * power carried at the step cap + RouletteKilled - RouletteGained (the last two are equal in
  * expectation: Russian roulette is unbiased).
  *
+ * Surfaces (SetSurfaces(), a vtkRefractaSurfaceSet; default none): opaque two-sided Lambertian
+ * triangles anywhere in the scene, inside, around or outside the medium's box. Lights then emit
+ * towards the union of the medium's (proxy) box and the surfaces' bounds; photons fly in straight
+ * lines outside the box and curved inside it, and every step or flight is tested against the
+ * surfaces' BVH. A photon that meets a surface adds its power to the hit texel's irradiance, loses
+ * (1 - albedo) of it to the surface and is reflected diffusely (cosine-weighted, Russian roulette
+ * on the albedo) or ends there; reflected photons go on depositing in-scattered power in the
+ * medium. Output: the field-data array vtkRefractaLightingVolume::SurfaceIrradianceName()
+ * (3 components, one tuple per texel of the set's atlas: irradiance, power per unit area, RGB),
+ * `EnergySurface` (RGB, absorbed by surfaces), `SurfaceHits` and `TerminatedSurface` (photons
+ * that ended on a surface). With surfaces the books read Emitted = Absorbed + Surface + Escaped +
+ * Scattered + Remaining. The set's device arrays (BVH, triangles, texel albedo) are uploaded once
+ * per build of the set and kept between runs, like the medium's; moving a surface rebuilds the set
+ * and re-runs this pass, never the medium's octree (see GetLastRunReusedSurfaces()).
+ *
  * Work, in stages (each timed, see Get*Seconds()):
  * 1. Octree (only when n varies and AdaptiveStepping is on): the dense level array built on the
  *    device from a min/max pyramid of n, with PrimaryTolerance eps (unlimited step inside a node)
@@ -68,7 +83,9 @@
 
 class vtkLight;
 class vtkLightCollection;
+class vtkMatrix4x4;
 class vtkOpenCLContext;
+class vtkRefractaSurfaceSet;
 
 class REFRACTATRANSPORT_EXPORT vtkPhotonTracer : public vtkImageAlgorithm
 {
@@ -85,6 +102,26 @@ public:
   void RemoveAllLights();
   void SetLights(vtkLightCollection* lights);
   vtkLightCollection* GetLights();
+  ///@}
+
+  ///@{
+  /**
+   * Opaque surfaces lit by the photons (see the class description). nullptr (default) or an
+   * empty set: none. The set is built (vtkRefractaSurfaceSet::Build) when this pass runs.
+   */
+  void SetSurfaces(vtkRefractaSurfaceSet* surfaces);
+  vtkRefractaSurfaceSet* GetSurfaces();
+  ///@}
+
+  ///@{
+  /**
+   * Placement of the medium in the surfaces' world: the matrix from the medium's data frame (the
+   * frame of its vtkImageData and of the lights given here) to the world coordinates of the
+   * surfaces, a vtkProp3D's matrix; it must be rigid (rotation and translation). nullptr
+   * (default): the identity.
+   */
+  void SetMediumToWorld(vtkMatrix4x4* matrix);
+  vtkMatrix4x4* GetMediumToWorld();
   ///@}
 
   ///@{
@@ -289,6 +326,13 @@ public:
    */
   vtkGetMacro(LastRunReusedMedium, bool);
 
+  /**
+   * Whether the last run had surfaces, and whether it reused the device copy of the surface set
+   * (same set, not rebuilt since, same context) instead of uploading it.
+   */
+  vtkGetMacro(UsedSurfaces, bool);
+  vtkGetMacro(LastRunReusedSurfaces, bool);
+
 #ifndef __VTK_WRAP__
   /**
    * Called after each chunk (on the context's queue, nothing waited for): the fixed-point
@@ -322,6 +366,8 @@ protected:
 
   vtkSmartPointer<vtkLightCollection> Lights;
   vtkSmartPointer<vtkOpenCLContext> Context;
+  vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
+  vtkSmartPointer<vtkMatrix4x4> MediumToWorld;
   int NumberOfPhotons = 65536;
   unsigned int Seed = 1;
   double PrimaryTolerance = 0.005;
@@ -345,6 +391,8 @@ protected:
   int NumberOfBatches = 0;
   bool LastRunAborted = false;
   bool LastRunReusedMedium = false;
+  bool UsedSurfaces = false;
+  bool LastRunReusedSurfaces = false;
 #ifndef __VTK_WRAP__
   ChunkCallback Callback;
 #endif
@@ -366,6 +414,19 @@ private:
   struct Internals;
   struct MediumCache;
   std::unique_ptr<MediumCache> Cache; // the medium kept from the last successful run
+  struct SurfaceCache;
+  std::unique_ptr<SurfaceCache> KeptSurfaces; // the surfaces' device arrays of the last run
+  // The surface stage (vtkPhotonTracerSurfaces.cxx): build the set and the emission box; upload
+  // (or take the kept) device arrays and the irradiance accumulator; set the kernels' surface
+  // arguments from index `first`; read back the irradiance; keep the arrays for the next run.
+  bool PrepareSurfaces(Internals& run);
+  bool UploadSurfaces(Internals& run);
+#ifndef __VTK_WRAP__
+  bool SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint first);
+#endif
+  bool ResolveSurfaces(Internals& run);
+  void WriteSurfaceOutput(Internals& run, vtkImageData* output);
+  void KeepSurfaces(Internals& run);
   bool TakeCachedMedium(Internals& run);
   void KeepMedium(Internals& run);
   // Reports max(progress, the last value reported) and returns false when AbortExecute is set.

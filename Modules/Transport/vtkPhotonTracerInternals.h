@@ -8,6 +8,8 @@
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPhotonTracer.h"
+#include "vtkRefractaSurfaceSet.h"
+#include "vtkWeakPointer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -18,6 +20,7 @@
 #include <vector>
 
 class vtkImageData;
+class vtkRefractaSurfaceSet;
 
 namespace vtkPhotonTracerDetail
 {
@@ -163,6 +166,15 @@ struct vtkPhotonTracer::Internals
   vtkImageData* Input = nullptr;
   vtkPhotonTracerDetail::Medium M;
   std::vector<vtkPhotonTracerDetail::LightSetup> Lights;
+  // Lights aim at this box (grid-local): the proxy box, grown by the surfaces' bounds.
+  double EmitLo[3] = { 0, 0, 0 }, EmitHi[3] = { 0, 0, 0 };
+  // Surfaces (nullptr when none): the built set, its device arrays, the irradiance accumulator,
+  // the rows of the grid-local -> surface-frame map, the offset of reflected photons.
+  vtkRefractaSurfaceSet* Surfaces = nullptr;
+  vtkOpenCLBuffer SurfNodes, SurfTriangles, SurfInfo, SurfAlbedo, SurfIrradiance;
+  cl_float4 Frame[3];
+  double SurfaceEpsilon = 0;
+  vtkNew<vtkFloatArray> Irradiance;
   double TotalBound = 0; // sum of the lights' power bounds towards the box
   size_t Photons = 0;
   vtkOpenCLContext* Context = nullptr;
@@ -193,6 +205,18 @@ struct vtkPhotonTracer::MediumCache
   vtkPhotonTracerDetail::Medium M;
   vtkOpenCLBuffer NBuffer, GradBuffer, Octree, ExtBuffer, AlbBuffer;
   double Bytes = 0; // device bytes of those buffers
+};
+
+//------------------------------------------------------------------------------
+// The surfaces' device arrays a successful run leaves for the next one, and what they were made
+// from (the set, its build count, the context).
+struct vtkPhotonTracer::SurfaceCache
+{
+  vtkWeakPointer<vtkRefractaSurfaceSet> Set;
+  int Builds = -1;
+  vtkOpenCLContext* Context = nullptr;
+  vtkOpenCLBuffer Nodes, Triangles, Info, Albedo;
+  double Bytes = 0;
 };
 
 #endif

@@ -1,5 +1,5 @@
 // The host-side set-up stages of vtkPhotonTracer: reading the medium, converting the lights to
-// the grid-local frame, sharing out the photons, and the octree.
+// the grid-local frame, sharing out the photons, the octree, and the medium kept between runs.
 #include "vtkPhotonTracerInternals.h"
 
 #include "vtkCollection.h"
@@ -198,14 +198,21 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
   {
     LoadMedium(input, this->UseProxyBounds, m);
   }
+  if (!this->PrepareSurfaces(run))
+  {
+    return false;
+  }
+  // The box the lights aim at: the proxy box, grown by the surfaces' bounds.
+  const double* emitLo = run.EmitLo;
+  const double* emitHi = run.EmitHi;
   vtkNew<vtkRefractaGridFrame> grid;
   grid->SetImage(input);
   auto toLocalPoint = [&](const double p[3], double out[3]) { grid->WorldToLocalPoint(p, out); };
   auto toLocalVector = [&](const double d[3], double out[3]) { grid->WorldToLocalVector(d, out); };
-  const double boxCentre[3] = { 0.5 * (m.ProxyLo[0] + m.ProxyHi[0]),
-    0.5 * (m.ProxyLo[1] + m.ProxyHi[1]), 0.5 * (m.ProxyLo[2] + m.ProxyHi[2]) };
-  const double halfDiag[3] = { 0.5 * (m.ProxyHi[0] - m.ProxyLo[0]),
-    0.5 * (m.ProxyHi[1] - m.ProxyLo[1]), 0.5 * (m.ProxyHi[2] - m.ProxyLo[2]) };
+  const double boxCentre[3] = { 0.5 * (emitLo[0] + emitHi[0]), 0.5 * (emitLo[1] + emitHi[1]),
+    0.5 * (emitLo[2] + emitHi[2]) };
+  const double halfDiag[3] = { 0.5 * (emitHi[0] - emitLo[0]), 0.5 * (emitHi[1] - emitLo[1]),
+    0.5 * (emitHi[2] - emitLo[2]) };
   const double boxRadius = std::sqrt(Dot(halfDiag, halfDiag));
 
   std::vector<LightSetup>& lights = run.Lights;
@@ -269,8 +276,8 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
       double umin = 1e300, umax = -1e300, wmin = 1e300, wmax = -1e300, dmin = 1e300;
       for (int corner = 0; corner < 8; ++corner)
       {
-        const double q[3] = { (corner & 1) ? m.ProxyHi[0] : m.ProxyLo[0],
-          (corner & 2) ? m.ProxyHi[1] : m.ProxyLo[1], (corner & 4) ? m.ProxyHi[2] : m.ProxyLo[2] };
+        const double q[3] = { (corner & 1) ? emitHi[0] : emitLo[0],
+          (corner & 2) ? emitHi[1] : emitLo[1], (corner & 4) ? emitHi[2] : emitLo[2] };
         umin = std::min(umin, Dot(q, b1));
         umax = std::max(umax, Dot(q, b1));
         wmin = std::min(wmin, Dot(q, b2));
@@ -304,7 +311,7 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
       bool inside = true;
       for (int c = 0; c < 3; ++c)
       {
-        inside = inside && p[c] >= m.ProxyLo[c] && p[c] <= m.ProxyHi[c];
+        inside = inside && p[c] >= emitLo[c] && p[c] <= emitHi[c];
       }
       double capAxis[3] = { 0, 0, 1 };
       ls.OneMinusCos = 2.0; // whole sphere
@@ -374,4 +381,56 @@ void vtkPhotonTracer::SharePhotons(Internals& run)
     lights[remainders[r].second].Photons++;
   }
   run.Photons = this->NumberOfPhotons;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::TakeCachedMedium(Internals& run)
+{
+  MediumCache* c = this->Cache.get();
+  const bool same = c && c->Input == run.Input && c->InputTime == run.Input->GetMTime() &&
+    c->Context == this->GetContext() && c->PrimaryTolerance == this->PrimaryTolerance &&
+    c->SecondaryTolerance == this->SecondaryTolerance &&
+    c->AdaptiveStepping == this->AdaptiveStepping && c->UseProxyBounds == this->UseProxyBounds;
+  if (!same)
+  {
+    this->Cache.reset(); // releases the old medium's device buffers now
+    return false;
+  }
+  run.M = std::move(c->M);
+  run.NBuffer = std::move(c->NBuffer);
+  run.GradBuffer = std::move(c->GradBuffer);
+  run.Octree = std::move(c->Octree);
+  run.ExtBuffer = std::move(c->ExtBuffer);
+  run.AlbBuffer = std::move(c->AlbBuffer);
+  run.Alloc.Bytes += c->Bytes;
+  run.ReusedMedium = true;
+  this->Cache.reset();
+  return true;
+}
+
+void vtkPhotonTracer::KeepMedium(Internals& run)
+{
+  auto c = std::make_unique<MediumCache>();
+  c->Input = run.Input;
+  c->InputTime = run.Input->GetMTime();
+  c->Context = run.Context;
+  c->PrimaryTolerance = this->PrimaryTolerance;
+  c->SecondaryTolerance = this->SecondaryTolerance;
+  c->AdaptiveStepping = this->AdaptiveStepping;
+  c->UseProxyBounds = this->UseProxyBounds;
+  // The device bytes of the kept buffers, as the allocator counted them when they were made.
+  const Medium& m = run.M;
+  auto rounded = [](size_t bytes)
+  { return static_cast<double>((std::max<size_t>(bytes, 1) + 15) / 16 * 16); };
+  const size_t v = m.Voxels;
+  c->Bytes = rounded((m.Curved ? v : 1) * 4) + rounded(m.Curved ? v * 12 : 16) +
+    rounded(this->UsedOctree ? v : 16) + rounded((m.Attenuates ? v * 3 : 1) * 4) +
+    rounded((m.Scatters ? v * 3 : 1) * 4);
+  c->M = std::move(run.M);
+  c->NBuffer = std::move(run.NBuffer);
+  c->GradBuffer = std::move(run.GradBuffer);
+  c->Octree = std::move(run.Octree);
+  c->ExtBuffer = std::move(run.ExtBuffer);
+  c->AlbBuffer = std::move(run.AlbBuffer);
+  this->Cache = std::move(c);
 }

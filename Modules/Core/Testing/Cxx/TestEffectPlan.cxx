@@ -7,7 +7,10 @@
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
+#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkRefractaSurfaceSet.h"
 #include "vtkSceneAnalysis.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
@@ -349,4 +352,50 @@ TEST(SceneAnalysis, TinyAndThinGrids)
   EXPECT_NEAR(analysis->GetMaximumOpticalThickness(2), 2.56, 1e-5);
   EXPECT_NEAR(analysis->GetMaximumOpticalThickness(0), 0.01, 1e-6);
   EXPECT_DOUBLE_EQ(analysis->GetOccupiedFraction(), 0.5);
+}
+
+TEST(EffectPlan, SurfacesNeedThePhotonPassInAClearMedium)
+{
+  // Clear glass (n = 1.5 in the middle, nothing absorbs): alone it needs no light pass; with a
+  // floor and a powered light, SurfaceLighting is on (the caustic on the floor) and the plan says
+  // why; an empty surface, no light or a forced-off mode turn it off.
+  auto glass = MakeMedium(8, 8, 8, 0.25,
+    [](int i, int j, int k)
+    {
+      Voxel v;
+      v.N = (i > 2 && i < 5 && j > 2 && j < 5 && k > 2 && k < 5) ? 1.5 : 1.0;
+      return v;
+    });
+  vtkNew<vtkSceneAnalysis> analysis;
+  vtkNew<vtkEffectPlan> plan;
+  auto sun = MakeDirectionalLight(1.0);
+  Plan(glass, sun, plan, analysis);
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING));
+  EXPECT_STREQ(vtkEffectPlan::GetEffectName(vtkEffectPlan::SURFACE_LIGHTING), "SurfaceLighting");
+
+  vtkNew<vtkRefractaSurfaceSet> surfaces;
+  vtkNew<vtkPolyData> empty;
+  surfaces->AddSurface(empty);
+  analysis->SetSurfaces(surfaces);
+  Plan(glass, sun, plan, analysis);
+  EXPECT_EQ(analysis->GetNumberOfSurfaces(), 0);
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING));
+
+  vtkNew<vtkPlaneSource> floor;
+  floor->Update();
+  surfaces->AddSurface(floor->GetOutput());
+  Plan(glass, sun, plan, analysis);
+  EXPECT_EQ(analysis->GetNumberOfSurfaces(), 1);
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING));
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
+  EXPECT_NE(std::string(plan->GetReason(vtkEffectPlan::SURFACE_LIGHTING)).find("1 surface(s)"),
+    std::string::npos);
+  EXPECT_NE(analysis->GetSummary().find("1 surface(s)"), std::string::npos);
+
+  Plan(glass, nullptr, plan, analysis);
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING)) << "no light, nothing to light";
+  plan->SetEffectMode(vtkEffectPlan::SURFACE_LIGHTING, vtkEffectPlan::FORCE_OFF);
+  Plan(glass, sun, plan, analysis);
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING));
 }

@@ -64,6 +64,9 @@ struct Scene
     this->Renderer->SetBackground(1, 1, 1);
     this->Volume->SetMapper(this->Mapper);
     this->Mapper->AutomaticExposureOff(); // these tests check radiometric compositing
+    // The spheres are composited by depth (the rule for props that are not surfaces);
+    // TestMapperSurfaces covers actors as surfaces.
+    this->Mapper->ActorSurfacesOff();
     this->Renderer->AddVolume(this->Volume);
     AddSphere(this->Inner, 0.5, 0.5, 0.5, 0.25, 0.2, 0.8, 0.4);
     AddSphere(this->Front, 0.85, 0.85, 1.5, 0.1, 0.9, 0.3, 0.1);

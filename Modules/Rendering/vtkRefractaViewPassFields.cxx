@@ -1,0 +1,240 @@
+#include "vtkRefractaViewPassFields.h"
+
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkPointData.h"
+#include "vtkRefractaEnvironmentMap.h"
+#include "vtkRefractaGridFrame.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace vtkRefractaViewPassDetail
+{
+//------------------------------------------------------------------------------
+void FetchFloats(vtkDataArray* array, int comps, std::vector<float>& out)
+{
+  const vtkIdType n = array->GetNumberOfTuples();
+  out.resize(static_cast<size_t>(n) * comps);
+  if (auto* floats = vtkFloatArray::SafeDownCast(array))
+  {
+    std::copy(floats->GetPointer(0), floats->GetPointer(0) + out.size(), out.begin());
+    return;
+  }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < comps; ++c)
+    {
+      out[i * comps + c] = static_cast<float>(array->GetComponent(i, c));
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void RotateToLocal(const vtkRefractaGridFrame* grid, std::vector<float>& vectors)
+{
+  for (size_t i = 0; i + 2 < vectors.size(); i += 3)
+  {
+    const double world[3] = { vectors[i], vectors[i + 1], vectors[i + 2] };
+    double local[3];
+    grid->WorldToLocalVector(world, local);
+    for (int c = 0; c < 3; ++c)
+    {
+      vectors[i + c] = static_cast<float>(local[c]);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+std::vector<float> CentralDifferenceGradient(
+  const std::vector<float>& index, const int dims[3], const double spacing[3])
+{
+  const size_t n = static_cast<size_t>(dims[0]) * dims[1] * dims[2];
+  std::vector<float> gradient(n * 3, 0.0f);
+  auto at = [&](const int* p)
+  {
+    return index[p[0] +
+      static_cast<size_t>(dims[0]) * (p[1] + static_cast<size_t>(dims[1]) * p[2])];
+  };
+  for (int k = 0; k < dims[2]; ++k)
+  {
+    for (int j = 0; j < dims[1]; ++j)
+    {
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        const int ijk[3] = { i, j, k };
+        const size_t idx =
+          i + static_cast<size_t>(dims[0]) * (j + static_cast<size_t>(dims[1]) * k);
+        for (int a = 0; a < 3; ++a)
+        {
+          if (dims[a] < 2)
+          {
+            continue;
+          }
+          int lo[3] = { i, j, k }, hi[3] = { i, j, k };
+          lo[a] = std::max(ijk[a] - 1, 0);
+          hi[a] = std::min(ijk[a] + 1, dims[a] - 1);
+          gradient[idx * 3 + a] =
+            static_cast<float>((at(hi) - at(lo)) / ((hi[a] - lo[a]) * spacing[a]));
+        }
+      }
+    }
+  }
+  return gradient;
+}
+
+//------------------------------------------------------------------------------
+bool EnvironmentToRGB(vtkImageData* image, std::vector<float>& rgb, int size[2], std::string& error)
+{
+  int ed[3];
+  image->GetDimensions(ed);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (!scalars || ed[2] != 1 || ed[0] < 1 || ed[1] < 1 ||
+    (scalars->GetNumberOfComponents() != 3 && scalars->GetNumberOfComponents() != 4))
+  {
+    std::ostringstream msg;
+    msg << "The environment map must be a 2D vtkImageData (W x H x 1) with RGB or RGBA point "
+           "scalars; got "
+        << ed[0] << " x " << ed[1] << " x " << ed[2] << " with "
+        << (scalars ? scalars->GetNumberOfComponents() : 0) << " scalar components.";
+    error = msg.str();
+    return false;
+  }
+  const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
+  rgb.assign(static_cast<size_t>(ed[0]) * ed[1] * 3, 0.0f);
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(ed[0]) * ed[1]; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      double v = scalars->GetComponent(i, c);
+      v = bytes ? v / 255.0 : v;
+      rgb[i * 3 + c] = std::isfinite(v) ? static_cast<float>(std::max(v, 0.0)) : 0.0f;
+    }
+  }
+  size[0] = ed[0];
+  size[1] = ed[1];
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool CheckLightingArray(
+  vtkDataArray* array, const char* name, vtkIdType tuples, bool nonNegative, std::string& error)
+{
+  std::ostringstream msg;
+  if (array->GetNumberOfComponents() != 3 || array->GetNumberOfTuples() != tuples)
+  {
+    msg << "The lighting volume's point array '" << name << "' has "
+        << array->GetNumberOfComponents() << " components and " << array->GetNumberOfTuples()
+        << " tuples; it needs 3 components and " << tuples << " tuples.";
+    error = msg.str();
+    return false;
+  }
+  for (vtkIdType i = 0; i < tuples; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double v = array->GetComponent(i, c);
+      if (!std::isfinite(v) || (nonNegative && v < 0))
+      {
+        msg << "The lighting volume's point array '" << name << "' has the invalid value " << v
+            << " at tuple " << i << " component " << c << "; values must be finite"
+            << (nonNegative ? " and >= 0." : ".");
+        error = msg.str();
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+std::string KernelOptions(const KernelVariant& v)
+{
+  std::string options;
+  auto flag = [&](bool on, const char* name)
+  {
+    if (on)
+    {
+      options += std::string(" -D") + name;
+    }
+  };
+  flag(v.Curved, "REFRACTA_CURVED");
+  flag(v.Parallel, "REFRACTA_PARALLEL");
+  // Sources count 1 / n^2 (basic radiance): per step where n varies, as a constant where it is
+  // uniform and not 1.
+  flag(v.IndexVaries, "REFRACTA_INDEX_WEIGHT");
+  if (!v.IndexVaries && v.UniformIndex != 1.0)
+  {
+    std::ostringstream scale;
+    scale.precision(9);
+    scale << " -DREFRACTA_SOURCE_SCALE=" << 1.0 / (v.UniformIndex * v.UniformIndex) << "f";
+    options += scale.str();
+  }
+  flag(v.Single, "REFRACTA_HAS_SINGLE");
+  flag(v.Multiple, "REFRACTA_HAS_MULTIPLE");
+  flag(v.Emission, "REFRACTA_HAS_EMISSION");
+  flag(v.Environment, "REFRACTA_HAS_ENVIRONMENT");
+  flag(v.DepthLimit, "REFRACTA_HAS_DEPTH_LIMIT");
+  flag(v.Skip, "REFRACTA_SKIP");
+  flag(v.Surfaces, "REFRACTA_HAS_SURFACES");
+  flag(v.Surfaces && v.NearestTexel, "REFRACTA_SURFACE_NEAREST");
+  return options;
+}
+
+//------------------------------------------------------------------------------
+void EnvironmentBasisLocal(
+  const double up[3], const double right[3], const double worldToLocal[4][4], double out[3][3])
+{
+  double basis[3][3];
+  vtkRefractaEnvironmentMap::ComputeBasis(up, right, basis[0], basis[1], basis[2]);
+  // A world direction x maps to local L x (L the linear part of WorldToLocal); dot(x, e) =
+  // dot(L x, L^-T e); for the rigid transforms used here L^-T = L, so rotate e by L and
+  // re-normalise.
+  for (int b = 0; b < 3; ++b)
+  {
+    for (int row = 0; row < 3; ++row)
+    {
+      out[b][row] = worldToLocal[row][0] * basis[b][0] + worldToLocal[row][1] * basis[b][1] +
+        worldToLocal[row][2] * basis[b][2];
+    }
+    vtkMath::Normalize(out[b]);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool RunTiles(vtkOpenCLContext* context, cl_kernel kernel, int width, int height, int tilePixels,
+  double tileSeconds, vtkObject* owner, const std::function<bool(double)>& afterTile)
+{
+  int rowsPerTile = std::max(1, std::min(height, tilePixels / width));
+  for (int row = 0, rows = 0; row < height; row += rows)
+  {
+    rows = std::min(rowsPerTile, height - row);
+    const auto tileStart = std::chrono::steady_clock::now();
+    const size_t offset[2] = { 0, static_cast<size_t>(row) };
+    const size_t global[2] = { static_cast<size_t>(width), static_cast<size_t>(rows) };
+    if (!context->Check(clEnqueueNDRangeKernel(context->GetQueue(), kernel, 2, offset, global,
+                          nullptr, 0, nullptr, nullptr),
+          "clEnqueueNDRangeKernel(refracta_view_pass)", owner) ||
+      !context->Finish(owner))
+    {
+      return false;
+    }
+    if (tileSeconds > 0)
+    {
+      const double seconds = std::max(
+        1e-6, std::chrono::duration<double>(std::chrono::steady_clock::now() - tileStart).count());
+      const double wanted = rows * tileSeconds / seconds;
+      rowsPerTile = static_cast<int>(std::max(1.0, std::min(wanted, 2.0 * rows)));
+    }
+    if (!afterTile(static_cast<double>(row + rows) / height))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+}

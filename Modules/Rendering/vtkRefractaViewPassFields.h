@@ -1,0 +1,81 @@
+// Private to vtkRefractaViewPass (not installed): host-side conversions of the fields the view
+// pass uploads (arrays to floats, world vectors to the grid-local frame, the central-difference
+// gradient of the refractive index, the environment image to linear RGB floats, checks of the
+// lighting arrays) and the compile options of the kernel variant (Kernels/view_pass.cl).
+#ifndef vtkRefractaViewPassFields_h
+#define vtkRefractaViewPassFields_h
+
+#include "vtkType.h" // for vtkIdType
+
+#include "vtkOpenCLContext.h" // for cl_kernel
+
+#include <functional> // for the tile callback
+#include <string>     // for the error message and the options
+#include <vector>     // for the values
+
+class vtkDataArray;
+class vtkObject;
+class vtkImageData;
+class vtkRefractaGridFrame;
+
+namespace vtkRefractaViewPassDetail
+{
+// Copies an array's values into floats, `comps` components per tuple (fast path for floats).
+void FetchFloats(vtkDataArray* array, int comps, std::vector<float>& out);
+
+// Rotates world-frame vectors (3 per tuple) into the grid-local frame.
+void RotateToLocal(const vtkRefractaGridFrame* grid, std::vector<float>& vectors);
+
+// grad n along the grid axes (grid-local frame) by central differences, one-sided at the edges;
+// `index` holds n per voxel (x fastest), the result 3 floats per voxel.
+std::vector<float> CentralDifferenceGradient(
+  const std::vector<float>& index, const int dims[3], const double spacing[3]);
+
+// The environment image as linear RGB floats (unsigned char divided by 255; non-finite or
+// negative values as 0) and its size. False with `error` set when it is not a W x H x 1 image
+// with 3- or 4-component point scalars.
+bool EnvironmentToRGB(
+  vtkImageData* image, std::vector<float>& rgb, int size[2], std::string& error);
+
+// Whether a lighting point array has 3 components, `tuples` tuples and finite (and, when asked,
+// non-negative) values; else false with `error` naming the array and what is wrong.
+bool CheckLightingArray(
+  vtkDataArray* array, const char* name, vtkIdType tuples, bool nonNegative, std::string& error);
+
+// What a view-pass kernel is compiled for (each flag one -D option of Kernels/view_pass.cl).
+struct KernelVariant
+{
+  bool Curved = false;       // REFRACTA_CURVED
+  bool Parallel = false;     // REFRACTA_PARALLEL
+  bool IndexVaries = false;  // REFRACTA_INDEX_WEIGHT (sources / n^2 per step)
+  double UniformIndex = 1;   // else REFRACTA_SOURCE_SCALE = 1 / n^2 when n != 1
+  bool Single = false;       // REFRACTA_HAS_SINGLE
+  bool Multiple = false;     // REFRACTA_HAS_MULTIPLE
+  bool Emission = false;     // REFRACTA_HAS_EMISSION
+  bool Environment = false;  // REFRACTA_HAS_ENVIRONMENT
+  bool DepthLimit = false;   // REFRACTA_HAS_DEPTH_LIMIT
+  bool Skip = false;         // REFRACTA_SKIP
+  bool Surfaces = false;     // REFRACTA_HAS_SURFACES
+  bool NearestTexel = false; // REFRACTA_SURFACE_NEAREST
+};
+
+// The build options of a kernel variant.
+std::string KernelOptions(const KernelVariant& variant);
+
+// The environment's basis (vtkRefractaEnvironmentMap: right, up, front = up x right, in world)
+// rotated into the grid-local frame by the linear part of `worldToLocal` and re-normalised:
+// out[0] right, out[1] up, out[2] front, so the kernel's dot products are the world ones.
+void EnvironmentBasisLocal(
+  const double up[3], const double right[3], const double worldToLocal[4][4], double out[3][3]);
+
+// Runs the 2D kernel over width x height in tiles of whole rows (a global offset on the same
+// kernel: every pixel computes exactly what it would in one launch), each waited for. The first
+// tile has tilePixels pixels (whole rows, at least one); later ones are sized from the measured
+// rate to take about tileSeconds (at most twice the previous tile; 0: all of tilePixels). After
+// each tile `afterTile(fraction of rows done)` is called; returning false stops (an abort).
+// False after an OpenCL error (reported on `owner`) or a stop.
+bool RunTiles(vtkOpenCLContext* context, cl_kernel kernel, int width, int height, int tilePixels,
+  double tileSeconds, vtkObject* owner, const std::function<bool(double)>& afterTile);
+}
+
+#endif

@@ -1,0 +1,341 @@
+// vtkRefractiveVolumeMapper with surfaces (the renderer's opaque actors) and the renderer's
+// background, in an offscreen vtkRenderWindow (run under xvfb-run).
+//
+// Medium: a glass ball lens, n = 1.5 inside radius R = 0.35 about the origin, on a 64^3 grid
+// (spacing 1/63) with the index ramped linearly from 1.5 to 1 over w = 2 voxels about r = R (the
+// smoothing a voxelized mesh gets). Expected images come from an independent trace of the SHARP
+// sphere of radius R in double precision (Snell's law at entry and exit) done in this test:
+// - ball lens over a plane actor 3 R behind the centre (beyond the focus at f = n R / (2 (n - 1))
+//   = 1.5 R), its left half red, its right half blue (cell colours through the mapper's scalar
+//   colouring): each pixel's colour class (red or blue) must be the one at the traced ray's hit
+//   on the plane. Pixels in a rim band |b - R| < 0.05 (3 voxels: the ramp plus the trilinear
+//   footprint; b the ray's distance from the centre) and pixels whose traced hit lies within
+//   0.06 of the colour edge x = 0 (texel and pixel footprint) are not judged. Required: 95% of
+//   the judged pixels inside the silhouette and 98% outside agree; inside, the halves are swapped
+//   (a ball lens inverts).
+// - moving the plane actor re-runs the light passes and rebuilds the surface set's BVH, but not
+//   the medium stage, and the actor collection is not rebuilt.
+// - ball lens over a vertical gradient background (red at the bottom, blue at the top of the
+//   viewport), perspective camera: each pixel's colour must be the gradient at the viewport
+//   position of its traced exit direction (the convention of vtkRefractaRendererBackground):
+//   away from the rim band, 99% of the pixels within 8/255 and all within 20/255 (measured: 40
+//   of 8032 above 8, worst 13, where b / R ~ 0.75 and the exit direction changes fastest); inside
+//   the lens, the top shows the bottom colour.
+#include "MapperTestUtilities.h"
+#include "RenderingTestUtilities.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkLight.h"
+#include "vtkMath.h"
+#include "vtkPlaneSource.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRefractaActorSurfaces.h"
+#include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaRendererBackground.h"
+#include "vtkRefractaSurfaceSet.h"
+#include "vtkRefractiveVolumeMapper.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVolume.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+const int Size = 96;
+const int N = 64;
+const double Radius = 0.35;
+const double Ramp = 2.0 / (N - 1); // index ramp width, world units
+const double IndexInside = 1.5;
+const double PlaneZ = -3 * Radius;
+const double RimBand = 0.05;
+
+vtkSmartPointer<vtkImageData> BallLens()
+{
+  const double origin[3] = { -0.5, -0.5, -0.5 };
+  auto medium = refracta_test::MakeGrid(N, N, N, 1.0 / (N - 1), origin);
+  vtkFloatArray* n = refracta_test::AddConstant(medium, "RefractiveIndex", 1, 1.0);
+  for (vtkIdType p = 0; p < medium->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    medium->GetPoint(p, x);
+    const double r = vtkMath::Norm(x);
+    const double f = std::min(std::max((Radius + 0.5 * Ramp - r) / Ramp, 0.0), 1.0);
+    n->SetValue(p, static_cast<float>(1.0 + (IndexInside - 1.0) * f));
+  }
+  return medium;
+}
+
+// Snell's law: the refracted unit direction of unit `d` at a surface with unit normal `normal`
+// (facing the incoming ray), from index n1 to n2. Returns false on total internal reflection.
+bool Refract(const double d[3], const double normal[3], double n1, double n2, double out[3])
+{
+  const double eta = n1 / n2, cosi = -vtkMath::Dot(d, normal);
+  const double k = 1 - eta * eta * (1 - cosi * cosi);
+  if (k < 0)
+  {
+    return false;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    out[a] = eta * d[a] + (eta * cosi - std::sqrt(k)) * normal[a];
+  }
+  return true;
+}
+
+// The sharp sphere (radius R at the origin, index 1.5) acting on the ray o + t d (d unit):
+// replaces (o, d) by the ray leaving the sphere; false where the ray misses it (unchanged).
+bool TraceSharpSphere(double o[3], double d[3])
+{
+  const double b = vtkMath::Dot(o, d), c = vtkMath::Dot(o, o) - Radius * Radius;
+  const double disc = b * b - c;
+  if (disc <= 0)
+  {
+    return false;
+  }
+  const double t = -b - std::sqrt(disc);
+  double p[3], normal[3], inside[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    p[a] = o[a] + t * d[a];
+    normal[a] = p[a] / Radius;
+  }
+  Refract(d, normal, 1.0, IndexInside, inside);
+  const double t2 = -2 * vtkMath::Dot(p, inside); // the chord through the sphere
+  for (int a = 0; a < 3; ++a)
+  {
+    o[a] = p[a] + t2 * inside[a];
+    normal[a] = -o[a] / Radius; // facing the ray inside
+  }
+  Refract(inside, normal, IndexInside, 1.0, d);
+  return true;
+}
+
+struct Scene
+{
+  vtkSmartPointer<vtkRenderWindow> Window = refracta_test::SharedWindow(Size);
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkRefractiveVolumeMapper> Mapper;
+
+  Scene()
+  {
+    this->Window->GetRenderers()->RemoveAllItems();
+    this->Window->AddRenderer(this->Renderer);
+    this->Volume->SetMapper(this->Mapper);
+    this->Mapper->SetInputData(BallLens());
+    this->Mapper->AutomaticExposureOff();
+    this->Mapper->MultipleScatteringOff();
+    this->Mapper->SetNumberOfPhotons(1 << 16);
+    this->Renderer->AddVolume(this->Volume);
+  }
+
+  vtkSmartPointer<vtkImageData> Capture() { return refracta_test::Capture(this->Window); }
+};
+
+// A plane actor at z = PlaneZ, 3 x 3, left half red, right half blue (cell colours).
+void AddSplitPlane(vtkRenderer* renderer, vtkActor* actor)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-1.5, -1.5, PlaneZ);
+  plane->SetPoint1(1.5, -1.5, PlaneZ);
+  plane->SetPoint2(-1.5, 1.5, PlaneZ);
+  plane->SetResolution(2, 1);
+  plane->Update();
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetNumberOfComponents(3);
+  colours->InsertNextTuple3(255, 0, 0);
+  colours->InsertNextTuple3(0, 0, 255);
+  plane->GetOutput()->GetCellData()->SetScalars(colours);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(plane->GetOutput());
+  mapper->SetScalarModeToUseCellData();
+  actor->SetMapper(mapper);
+  renderer->AddActor(actor);
+}
+
+const unsigned char* Pixel(vtkImageData* image, int i, int j)
+{
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  return rgb->GetPointer(3 * (i + Size * j));
+}
+
+void UseParallelCamera(vtkRenderer* renderer)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(0.5);
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetPosition(0, 0, 3);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetClippingRange(0.5, 6);
+}
+
+void AddLightAlongView(vtkRenderer* renderer)
+{
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetPosition(0, 0, 3);
+  light->SetFocalPoint(0, 0, 0);
+  light->SetIntensity(1.0);
+  renderer->AutomaticLightCreationOff();
+  renderer->RemoveAllLights();
+  renderer->AddLight(light);
+}
+}
+
+TEST(MapperSurfaces, BallLensInvertsAPlaneActor)
+{
+  Scene scene;
+  vtkNew<vtkActor> plane;
+  AddSplitPlane(scene.Renderer, plane);
+  UseParallelCamera(scene.Renderer);
+  AddLightAlongView(scene.Renderer);
+  scene.Mapper->SetExposure(4.0);
+  vtkSmartPointer<vtkImageData> image = scene.Capture();
+  ASSERT_EQ(scene.Mapper->GetActorSurfaceCollector()->GetNumberOfActors(), 1);
+
+  int judged[2] = { 0, 0 }, agreed[2] = { 0, 0 }, dark = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      const double x = (2.0 * (i + 0.5) / Size - 1.0) * 0.5,
+                   y = (2.0 * (j + 0.5) / Size - 1.0) * 0.5;
+      const double b = std::hypot(x, y);
+      double o[3] = { x, y, 3 }, d[3] = { 0, 0, -1 };
+      TraceSharpSphere(o, d);
+      const double hitX = o[0] + (PlaneZ - o[2]) / d[2] * d[0];
+      if (std::abs(b - Radius) < RimBand || std::abs(hitX) < 0.06)
+      {
+        continue;
+      }
+      const unsigned char* rgb = Pixel(image, i, j);
+      if (rgb[0] + rgb[2] < 12)
+      {
+        ++dark;
+        continue;
+      }
+      const int inside = b < Radius ? 1 : 0;
+      ++judged[inside];
+      agreed[inside] += (rgb[0] > rgb[2]) == (hitX < 0);
+    }
+  }
+  std::cout << "inside the silhouette " << agreed[1] << " of " << judged[1]
+            << " pixels agree with the sharp-sphere trace, outside " << agreed[0] << " of "
+            << judged[0] << "; " << dark << " dark pixels\n";
+  EXPECT_GT(judged[1], 300);
+  EXPECT_GE(agreed[1], 0.95 * judged[1]);
+  EXPECT_GE(agreed[0], 0.98 * judged[0]);
+  EXPECT_LT(dark, Size * Size / 10);
+  // Inverted: right of the centre inside the lens shows the red (left) half, and vice versa.
+  const unsigned char* right = Pixel(image, Size / 2 + 14, Size / 2);
+  const unsigned char* left = Pixel(image, Size / 2 - 15, Size / 2);
+  EXPECT_GT(right[0], right[2] + 20);
+  EXPECT_GT(left[2], left[0] + 20);
+  // Outside the lens the plane is seen directly: blue on the right.
+  const unsigned char* outside = Pixel(image, Size - 4, Size / 2);
+  EXPECT_GT(outside[2], outside[0] + 20);
+}
+
+TEST(MapperSurfaces, MovingAnActorRelightsWithoutRebuildingTheMedium)
+{
+  Scene scene;
+  vtkNew<vtkActor> plane;
+  AddSplitPlane(scene.Renderer, plane);
+  UseParallelCamera(scene.Renderer);
+  AddLightAlongView(scene.Renderer);
+  scene.Window->Render();
+  vtkRefractaActorSurfaces* actors = scene.Mapper->GetActorSurfaceCollector();
+  const int lightRuns = scene.Mapper->GetNumberOfLightPassRuns();
+  const int mediumBuilds = scene.Mapper->GetNumberOfMediumBuilds();
+  const int setBuilds = actors->GetSurfaces()->GetNumberOfBuilds();
+  const int rebuilds = actors->GetNumberOfRebuilds();
+  EXPECT_EQ(lightRuns, 1);
+  EXPECT_EQ(rebuilds, 1);
+
+  scene.Window->Render(); // nothing changed: nothing re-runs
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), lightRuns);
+  EXPECT_EQ(actors->GetNumberOfRebuilds(), rebuilds);
+
+  plane->SetPosition(0.1, 0.0, -0.05);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), lightRuns + 1) << "a moved actor re-lights";
+  EXPECT_EQ(scene.Mapper->GetNumberOfMediumBuilds(), mediumBuilds) << "but keeps the medium";
+  EXPECT_EQ(actors->GetSurfaces()->GetNumberOfBuilds(), setBuilds + 1);
+  EXPECT_EQ(actors->GetNumberOfRebuilds(), rebuilds) << "same actors: the set is not rebuilt";
+
+  scene.Renderer->GetActiveCamera()->Azimuth(5);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), lightRuns + 1) << "a camera move only views";
+
+  // Translucent: no longer a surface (the scene then has none, which re-plans).
+  plane->GetProperty()->SetOpacity(0.5);
+  scene.Window->Render();
+  EXPECT_EQ(actors->GetNumberOfActors(), 0);
+  EXPECT_EQ(scene.Mapper->GetPipeline()->GetSurfaces(), nullptr);
+}
+
+TEST(MapperSurfaces, BentRaysSeeTheRenderersGradientBackground)
+{
+  Scene scene;
+  scene.Renderer->GradientBackgroundOn();
+  scene.Renderer->SetBackground(1, 0, 0);  // bottom
+  scene.Renderer->SetBackground2(0, 0, 1); // top
+  scene.Renderer->AutomaticLightCreationOff();
+  scene.Renderer->RemoveAllLights();
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetPosition(0, 0, 2.5);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetViewAngle(30);
+  camera->SetClippingRange(0.5, 6);
+  vtkSmartPointer<vtkImageData> image = scene.Capture();
+  EXPECT_EQ(scene.Mapper->GetBackgroundConverter()->GetLastSource(),
+    vtkRefractaRendererBackground::GRADIENT);
+
+  const double t = std::tan(vtkMath::RadiansFromDegrees(15.0));
+  int judged = 0, worst = 0, over = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      const double sx = 2.0 * (i + 0.5) / Size - 1.0, sy = 2.0 * (j + 0.5) / Size - 1.0;
+      double o[3] = { 0, 0, 2.5 }, d[3] = { sx * t, sy * t, -1 };
+      vtkMath::Normalize(d);
+      const double b =
+        std::sqrt(std::max(vtkMath::Dot(o, o) - std::pow(vtkMath::Dot(o, d), 2), 0.0));
+      if (std::abs(b - Radius) < RimBand)
+      {
+        continue;
+      }
+      TraceSharpSphere(o, d);
+      // The viewport height at which this camera sees direction d (clamped), and the gradient.
+      const double y =
+        d[2] < 0 ? std::min(std::max(d[1] / (-d[2] * t), -1.0), 1.0) : (d[1] > 0 ? 1.0 : -1.0);
+      const double f = 0.5 * (y + 1.0);
+      const unsigned char* rgb = Pixel(image, i, j);
+      const int error =
+        std::max(std::abs(rgb[0] - 255.0 * (1 - f)), std::abs(rgb[2] - 255.0 * f)) + 0.5;
+      worst = std::max(worst, error);
+      over += error > 8;
+      ++judged;
+    }
+  }
+  std::cout << judged << " pixels judged, " << over << " off by more than 8 / 255, worst " << worst
+            << " / 255\n";
+  EXPECT_GT(judged, Size * Size / 2);
+  EXPECT_LE(over, judged / 100);
+  EXPECT_LE(worst, 20);
+  // Inverted: above the centre, inside the lens, the bottom colour (red) dominates.
+  const unsigned char* top = Pixel(image, Size / 2, Size / 2 + 12);
+  EXPECT_GT(top[0], top[2] + 40);
+}

@@ -1,0 +1,97 @@
+/**
+ * @class   vtkRefractaActorSurfaces
+ * @brief   The opaque polydata actors of a vtkRenderer as a vtkRefractaSurfaceSet, so that light
+ *          and view rays in the medium meet them.
+ *
+ * vtkRefractiveVolumeMapper calls Update() on every render. An actor is **taken** when
+ * - it is a vtkActor in the renderer's actor collection, visible (GetVisibility()),
+ * - its mapper is a vtkPolyDataMapper (or a subclass) whose input is a vtkPolyData with
+ *   polygons or strips (verts and lines are no surfaces and are ignored),
+ * - it is opaque: property opacity 1 and no translucent geometry
+ *   (!HasTranslucentPolygonalGeometry(): no alpha < 1 in its mapped colours or texture).
+ * Its placement is the actor's matrix (actor->GetMatrix(): position, orientation, scale, origin
+ * and user matrix), its albedo
+ * - the mapper's mapped scalar colours (mapper->MapScalars(1.0): RGBA per point or per cell, as
+ *   VTK colours it) where the mapper shows scalars (ScalarVisibility on and scalars present;
+ *   with InterpolateScalarsBeforeMapping the lookup table is applied per point instead),
+ * - otherwise the property's diffuse colour (its Diffuse, Ambient and Specular coefficients are
+ *   not used: a surface is Lambertian with that albedo).
+ * A texture is not sampled: a textured actor is taken with its colour as above, and an actor
+ * with texture coordinates but no texture uses its colour too.
+ *
+ * **Not taken** (left to VTK's drawing and composited by depth, see vtkRefractiveVolumeMapper):
+ * invisible actors, translucent actors (opacity < 1 or translucent colours/texture), actors whose
+ * mapper is not a vtkPolyDataMapper (composite datasets, glyph mappers of other kinds, images,
+ * other volumes) and any prop that is not a vtkActor (assemblies, image actors). Those visible
+ * props with opaque geometry are counted by GetNumberOfForeignProps().
+ *
+ * Cache: the surface set is rebuilt (its meshes and materials replaced) only when the list of
+ * taken actors or the MTime of an actor's mapper, input, property or lookup table changes;
+ * moving an actor only modifies its matrix, which the set reads at Build(), so a move re-runs
+ * the light passes but never the medium stage. GetNumberOfRebuilds() counts the rebuilds.
+ */
+#ifndef vtkRefractaActorSurfaces_h
+#define vtkRefractaActorSurfaces_h
+
+#include "RefractaRenderingOpenGLModule.h" // for export macro
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // for members
+
+#include <vector> // for std::vector
+
+class vtkActor;
+class vtkPolyData;
+class vtkProp;
+class vtkRefractaSurfaceSet;
+class vtkRenderer;
+
+class REFRACTARENDERINGOPENGL_EXPORT vtkRefractaActorSurfaces : public vtkObject
+{
+public:
+  static vtkRefractaActorSurfaces* New();
+  vtkTypeMacro(vtkRefractaActorSurfaces, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Collects the renderer's actors (`exclude`, the volume being rendered, is skipped) and
+   * rebuilds the set where they changed (see the class description).
+   */
+  void Update(vtkRenderer* renderer, vtkProp* exclude);
+
+  /// The surfaces of the last Update() (never nullptr; empty without taken actors).
+  vtkRefractaSurfaceSet* GetSurfaces();
+
+  /// Whether an actor would be taken (the rules of the class description).
+  static bool IsTaken(vtkActor* actor);
+
+  /// The actors taken by the last Update().
+  int GetNumberOfActors() const { return static_cast<int>(this->Taken.size()); }
+  vtkActor* GetActor(int i) const;
+
+  /// Visible props with opaque geometry that the last Update() did not take.
+  vtkGetMacro(NumberOfForeignProps, int);
+
+  /// How many times the set's meshes and materials were rebuilt.
+  vtkGetMacro(NumberOfRebuilds, int);
+
+protected:
+  vtkRefractaActorSurfaces();
+  ~vtkRefractaActorSurfaces() override;
+
+private:
+  vtkRefractaActorSurfaces(const vtkRefractaActorSurfaces&) = delete;
+  void operator=(const vtkRefractaActorSurfaces&) = delete;
+
+  static vtkPolyData* ActorInput(vtkActor* actor);
+  static bool IsForeign(vtkProp* prop);
+  std::vector<double> Signature() const;
+  void Rebuild();
+
+  vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
+  std::vector<vtkSmartPointer<vtkActor>> Taken;
+  std::vector<double> BuiltSignature;
+  int NumberOfForeignProps = 0;
+  int NumberOfRebuilds = 0;
+};
+
+#endif

@@ -1,0 +1,282 @@
+// The surface stage of vtkPhotonTracer: builds the vtkRefractaSurfaceSet, grows the box the lights
+// aim at by the surfaces' bounds, uploads the BVH, triangles, texel table and albedo once per
+// build of the set (kept between runs), and turns the fixed-point texel deposits into irradiance.
+#include "vtkPhotonTracer.h"
+#include "vtkPhotonTracerInternals.h"
+
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
+#include "vtkRefractaBVH.h"
+#include "vtkRefractaGridFrame.h"
+#include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaSurfaceSet.h"
+
+#include "refracta_surfaces.cl" // the flattened surface layout, shared with the kernels
+
+using namespace vtkPhotonTracerDetail;
+
+namespace
+{
+// Offset of a reflected photon from the surface, relative to the size of the scene: some hundred
+// float roundings of the hit point, far below any length that matters for the light.
+constexpr double RelativeSurfaceEpsilon = 1e-5;
+// Margin around the surfaces' bounds in the box the lights aim at, relative to the scene's size.
+constexpr double RelativeEmitMargin = 1e-3;
+}
+
+//------------------------------------------------------------------------------
+void vtkPhotonTracer::SetSurfaces(vtkRefractaSurfaceSet* surfaces)
+{
+  if (this->Surfaces != surfaces)
+  {
+    this->Surfaces = surfaces;
+    this->Modified();
+  }
+}
+
+vtkRefractaSurfaceSet* vtkPhotonTracer::GetSurfaces()
+{
+  return this->Surfaces;
+}
+
+void vtkPhotonTracer::SetMediumToWorld(vtkMatrix4x4* matrix)
+{
+  if (this->MediumToWorld != matrix)
+  {
+    this->MediumToWorld = matrix;
+    this->Modified();
+  }
+}
+
+vtkMatrix4x4* vtkPhotonTracer::GetMediumToWorld()
+{
+  return this->MediumToWorld;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::PrepareSurfaces(Internals& run)
+{
+  const Medium& m = run.M;
+  std::copy(m.ProxyLo, m.ProxyLo + 3, run.EmitLo);
+  std::copy(m.ProxyHi, m.ProxyHi + 3, run.EmitHi);
+  run.Surfaces = nullptr;
+  if (!this->Surfaces || this->Surfaces->GetNumberOfSurfaces() == 0)
+  {
+    return true;
+  }
+  if (!this->Surfaces->Build())
+  {
+    vtkErrorMacro("The surface set could not be built (see its error); the photon pass needs a "
+                  "set within its limits or no surfaces.");
+    return false;
+  }
+  if (this->Surfaces->GetNumberOfTriangles() == 0)
+  {
+    return true; // nothing left to hit (empty or rejected meshes were reported by the set)
+  }
+  run.Surfaces = this->Surfaces;
+  this->UsedSurfaces = true;
+  vtkNew<vtkRefractaGridFrame> grid;
+  grid->SetImage(run.Input);
+  // Grid-local -> world of the surfaces: the medium's placement after the grid's own map.
+  vtkNew<vtkMatrix4x4> localToData, localToWorld, worldToData;
+  grid->GetLocalToWorldMatrix(localToData);
+  localToWorld->DeepCopy(localToData);
+  if (this->MediumToWorld)
+  {
+    vtkMatrix4x4::Multiply4x4(this->MediumToWorld, localToData, localToWorld);
+    vtkMatrix4x4::Invert(this->MediumToWorld, worldToData);
+  }
+  double b[6];
+  this->Surfaces->GetBounds(b);
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double world[3] = { b[(corner & 1) ? 1 : 0], b[(corner & 2) ? 3 : 2],
+      b[(corner & 4) ? 5 : 4] };
+    double data[4] = { world[0], world[1], world[2], 1.0 }, local[3];
+    worldToData->MultiplyPoint(data, data);
+    grid->WorldToLocalPoint(data, local);
+    for (int a = 0; a < 3; ++a)
+    {
+      run.EmitLo[a] = std::min(run.EmitLo[a], local[a]);
+      run.EmitHi[a] = std::max(run.EmitHi[a], local[a]);
+    }
+  }
+  // Grid-local -> surface frame: world = LocalToWorld x, surface = world - FrameOrigin.
+  const double* l2w = localToWorld->GetData();
+  const double* frameOrigin = this->Surfaces->GetBVH()->GetFrameOrigin();
+  for (int r = 0; r < 3; ++r)
+  {
+    run.Frame[r] =
+      Float4(l2w[4 * r], l2w[4 * r + 1], l2w[4 * r + 2], l2w[4 * r + 3] - frameOrigin[r]);
+  }
+  double size = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    size = std::max(
+      { size, run.EmitHi[a] - run.EmitLo[a], std::fabs(run.EmitLo[a]), std::fabs(run.EmitHi[a]) });
+  }
+  run.SurfaceEpsilon = RelativeSurfaceEpsilon * size;
+  // Photons start where their ray enters this box: grow it so that they start off any surface
+  // on its boundary (a photon starting on a surface would not see it, t > 0 only).
+  for (int a = 0; a < 3; ++a)
+  {
+    run.EmitLo[a] -= RelativeEmitMargin * size;
+    run.EmitHi[a] += RelativeEmitMargin * size;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::UploadSurfaces(Internals& run)
+{
+  vtkOpenCLContext* ctx = run.Context;
+  Allocator& alloc = run.Alloc;
+  this->LastRunReusedSurfaces = false;
+  if (!run.Surfaces)
+  {
+    // The kernels take the arguments whatever the variant: placeholders.
+    run.SurfNodes = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "surface nodes (none)");
+    run.SurfTriangles = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "surface triangles (none)");
+    run.SurfInfo = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "surface texels (none)");
+    run.SurfAlbedo = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "surface albedo (none)");
+    run.SurfIrradiance = alloc.Make(CL_MEM_READ_WRITE, 16, nullptr, "surface irradiance (none)");
+    for (auto& row : run.Frame)
+    {
+      row = Float4(0, 0, 0, 0);
+    }
+    this->KeptSurfaces.reset();
+    return run.SurfNodes && run.SurfTriangles && run.SurfInfo && run.SurfAlbedo &&
+      run.SurfIrradiance;
+  }
+  vtkRefractaSurfaceSet* set = run.Surfaces;
+  SurfaceCache* kept = this->KeptSurfaces.get();
+  if (kept && kept->Set == set && kept->Builds == set->GetNumberOfBuilds() && kept->Context == ctx)
+  {
+    run.SurfNodes = std::move(kept->Nodes);
+    run.SurfTriangles = std::move(kept->Triangles);
+    run.SurfInfo = std::move(kept->Info);
+    run.SurfAlbedo = std::move(kept->Albedo);
+    alloc.Bytes += kept->Bytes;
+    this->LastRunReusedSurfaces = true;
+  }
+  else
+  {
+    const vtkRefractaBVH* bvh = set->GetBVH();
+    const auto& nodes = bvh->GetNodes();
+    const auto& triangles = bvh->GetFloatTriangles();
+    const auto& info = set->GetTriangleInfo();
+    const auto& albedo = set->GetTexelAlbedo();
+    const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
+    run.SurfNodes = alloc.Make(in, nodes.size() * sizeof(float), nodes.data(), "surface BVH");
+    run.SurfTriangles =
+      alloc.Make(in, triangles.size() * sizeof(float), triangles.data(), "surface triangles");
+    run.SurfInfo = alloc.Make(in, info.size() * sizeof(int), info.data(), "surface texel table");
+    run.SurfAlbedo =
+      alloc.Make(in, albedo.size() * sizeof(float), albedo.data(), "surface texel albedo");
+  }
+  this->KeptSurfaces.reset();
+  const size_t accumulators = 3 * static_cast<size_t>(set->GetNumberOfTexels());
+  run.SurfIrradiance = alloc.Make(
+    CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "surface irradiance accumulator");
+  return run.SurfNodes && run.SurfTriangles && run.SurfInfo && run.SurfAlbedo &&
+    run.SurfIrradiance &&
+    ctx->ZeroBuffer(run.SurfIrradiance.Get(), accumulators * sizeof(cl_long), this);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint first)
+{
+  const cl_int nodeCount =
+    run.Surfaces ? static_cast<cl_int>(run.Surfaces->GetBVH()->GetNumberOfNodes()) : 0;
+  const cl_float epsilon = static_cast<cl_float>(run.SurfaceEpsilon);
+  const cl_mem nodes = run.SurfNodes.Get(), triangles = run.SurfTriangles.Get();
+  const cl_mem info = run.SurfInfo.Get(), albedo = run.SurfAlbedo.Get();
+  const cl_mem irradiance = run.SurfIrradiance.Get();
+  cl_int status = CL_SUCCESS;
+  cl_uint index = first;
+  auto set = [&](size_t bytes, const void* value)
+  {
+    if (status == CL_SUCCESS)
+    {
+      status = clSetKernelArg(kernel, index++, bytes, value);
+    }
+  };
+  set(sizeof(cl_mem), &nodes);
+  set(sizeof(cl_int), &nodeCount);
+  set(sizeof(cl_mem), &triangles);
+  set(sizeof(cl_mem), &info);
+  set(sizeof(cl_mem), &albedo);
+  set(sizeof(cl_mem), &irradiance);
+  for (const auto& row : run.Frame)
+  {
+    set(sizeof(cl_float4), &row);
+  }
+  set(sizeof(cl_float), &epsilon);
+  return run.Context->Check(status, "clSetKernelArg(surfaces)", this);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::ResolveSurfaces(Internals& run)
+{
+  if (!run.Surfaces)
+  {
+    return true;
+  }
+  const vtkIdType texels = run.Surfaces->GetNumberOfTexels();
+  std::vector<cl_long> fixed(3 * static_cast<size_t>(texels));
+  if (!run.Context->ReadBuffer(
+        run.SurfIrradiance.Get(), fixed.size() * sizeof(cl_long), fixed.data(), this))
+  {
+    return false;
+  }
+  const std::vector<double>& areas = run.Surfaces->GetTexelAreas();
+  vtkFloatArray* irradiance = run.Irradiance;
+  irradiance->SetName(vtkRefractaLightingVolume::SurfaceIrradianceName());
+  irradiance->SetNumberOfComponents(3);
+  irradiance->SetNumberOfTuples(texels);
+  for (vtkIdType t = 0; t < texels; ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      // Deposited flux / texel area; rounding of the fixed point can leave a tiny negative.
+      const double flux = static_cast<double>(fixed[3 * t + c]) / run.Scale;
+      irradiance->SetTypedComponent(t, c, static_cast<float>(std::max(flux, 0.0) / areas[t]));
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkPhotonTracer::WriteSurfaceOutput(Internals& run, vtkImageData* output)
+{
+  if (run.Surfaces)
+  {
+    output->GetFieldData()->AddArray(run.Irradiance);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkPhotonTracer::KeepSurfaces(Internals& run)
+{
+  if (!run.Surfaces)
+  {
+    return;
+  }
+  auto kept = std::make_unique<SurfaceCache>();
+  kept->Set = run.Surfaces;
+  kept->Builds = run.Surfaces->GetNumberOfBuilds();
+  kept->Context = run.Context;
+  auto rounded = [](size_t bytes)
+  { return static_cast<double>((std::max<size_t>(bytes, 1) + 15) / 16 * 16); };
+  kept->Bytes = rounded(run.Surfaces->GetBVH()->GetNodes().size() * 4) +
+    rounded(run.Surfaces->GetBVH()->GetFloatTriangles().size() * 4) +
+    rounded(run.Surfaces->GetTriangleInfo().size() * 4) +
+    rounded(run.Surfaces->GetTexelAlbedo().size() * 4);
+  kept->Nodes = std::move(run.SurfNodes);
+  kept->Triangles = std::move(run.SurfTriangles);
+  kept->Info = std::move(run.SurfInfo);
+  kept->Albedo = std::move(run.SurfAlbedo);
+  this->KeptSurfaces = std::move(kept);
+}
