@@ -53,11 +53,11 @@
  *   so that its irradiance on a plane perpendicular to it is E;
  * - point / spot: a sphere of radius LightRadius (world units; must be set > 0 for positional
  *   lights: 0, the default, is a delta light as in every pass, which this renderer refuses with
- *   an error naming 1% of the medium diagonal as a value to use) whose radiance towards a direction w is I(w) / (pi r^2) (I(w) = the intensity of
- *   Physics.md, cos^e inside the cone for spots), so its radiant intensity is I(w).
- * As the extents go to 0 the image converges to the delta-light answer (error O(extent^2)). Lights
- * are not seen directly by view rays (like the pipeline's view pass). A ray is tested against
- * light spheres on each integrator chord.
+ *   an error naming 1% of the medium diagonal as a value to use) whose radiance towards a direction
+ * w is I(w) / (pi r^2) (I(w) = the intensity of Physics.md, cos^e inside the cone for spots), so
+ * its radiant intensity is I(w). As the extents go to 0 the image converges to the delta-light
+ * answer (error O(extent^2)). Lights are not seen directly by view rays (like the pipeline's view
+ * pass). A ray is tested against light spheres on each integrator chord.
  *
  * **Camera**: vtkCamera converted to the grid-local frame; perspective with the vertical full
  * ViewAngle and aspect W / H, or parallel with ParallelScale = half the viewport height; rays
@@ -87,6 +87,7 @@
 class vtkCamera;
 class vtkLight;
 class vtkLightCollection;
+class vtkRefractaSurfaceSet;
 
 class REFRACTAREFERENCE_EXPORT vtkReferenceRenderer : public vtkImageAlgorithm
 {
@@ -148,6 +149,27 @@ public:
   vtkGetVector3Macro(EnvironmentUp, double);
   vtkSetVector3Macro(EnvironmentRight, double);
   vtkGetVector3Macro(EnvironmentRight, double);
+  ///@}
+
+  ///@{
+  /**
+   * Whether the background (the EnvironmentMap, else BackgroundColor) also lights the scene: off
+   * (default), it is only seen by view rays that leave unscattered; on, it is an emitter like
+   * the lights, sampled at every vertex (see the class documentation).
+   */
+  vtkSetMacro(BackgroundIlluminates, bool);
+  vtkGetMacro(BackgroundIlluminates, bool);
+  vtkBooleanMacro(BackgroundIlluminates, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Opaque two-sided Lambertian surfaces (world coordinates; built with
+   * vtkRefractaSurfaceSet::Build() when the renderer runs). Default none. Paths meet them inside
+   * and outside the medium (see the class documentation).
+   */
+  void SetSurfaces(vtkRefractaSurfaceSet* surfaces);
+  vtkRefractaSurfaceSet* GetSurfaces();
   ///@}
 
   ///@{
@@ -286,6 +308,8 @@ protected:
   vtkSmartPointer<vtkCamera> Camera;
   vtkSmartPointer<vtkLightCollection> Lights;
   vtkSmartPointer<vtkImageData> EnvironmentMap;
+  vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
+  bool BackgroundIlluminates = false;
   int ImageSize[2] = { 256, 256 };
   double BackgroundColor[3] = { 0.0, 0.0, 0.0 };
   double EnvironmentUp[3] = { 0.0, 1.0, 0.0 };
