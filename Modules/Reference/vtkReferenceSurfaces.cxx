@@ -30,12 +30,11 @@ std::string Surfaces::Load(vtkRefractaSurfaceSet* set, const Medium& m)
     return std::string(); // every surface rejected or degenerate: the set reported why
   }
   BVH = set->GetBVH();
-  // Grid-local -> BVH frame: world = LocalToWorld(local), BVH point = world - frame origin.
-  const double* origin = BVH->GetFrameOrigin();
+  // Grid-local -> world (the frame of the BVH's host traversal): a rotation and a translation.
   const double zero[3] = { 0, 0, 0 };
   double t[3];
   m.Grid->LocalToWorldPoint(zero, t);
-  Translation = Vec3(t[0] - origin[0], t[1] - origin[1], t[2] - origin[2]);
+  Translation = Vec3(t[0], t[1], t[2]);
   for (int a = 0; a < 3; ++a)
   {
     double e[3] = { 0, 0, 0 }, c[3];
@@ -55,16 +54,16 @@ std::string Surfaces::Load(vtkRefractaSurfaceSet* set, const Medium& m)
   return std::string();
 }
 
-Vec3 Surfaces::RotateToBVH(const Vec3& v) const
+Vec3 Surfaces::RotateToWorld(const Vec3& v) const
 {
   const double* R = Rotation;
   return Vec3(R[0] * v.x + R[1] * v.y + R[2] * v.z, R[3] * v.x + R[4] * v.y + R[5] * v.z,
     R[6] * v.x + R[7] * v.y + R[8] * v.z);
 }
 
-Vec3 Surfaces::ToBVH(const Vec3& p) const
+Vec3 Surfaces::ToWorld(const Vec3& p) const
 {
-  return RotateToBVH(p) + Translation;
+  return RotateToWorld(p) + Translation;
 }
 
 bool Surfaces::Closest(const Vec3& o, const Vec3& d, double tMax, SurfaceHit& hit) const
@@ -73,7 +72,7 @@ bool Surfaces::Closest(const Vec3& o, const Vec3& d, double tMax, SurfaceHit& hi
   {
     return false;
   }
-  const Vec3 ob = ToBVH(o), db = RotateToBVH(d);
+  const Vec3 ob = ToWorld(o), db = RotateToWorld(d);
   const double origin[3] = { ob.x, ob.y, ob.z }, dir[3] = { db.x, db.y, db.z };
   double h[3];
   const vtkIdType tri = BVH->IntersectRay(origin, dir, tMax, h);
@@ -93,7 +92,8 @@ Vec3 Surfaces::Normal(const SurfaceHit& hit) const
   const double* p = &BVH->GetTriangles()[9 * static_cast<size_t>(hit.Triangle)];
   const Vec3 e1(p[3] - p[0], p[4] - p[1], p[5] - p[2]), e2(p[6] - p[0], p[7] - p[1], p[8] - p[2]);
   const Vec3 nb = glm::cross(e1, e2);
-  // BVH frame -> grid-local: the transpose of the rotation.
+  // The BVH's stored triangles are relative to its frame origin (a translation: edges are world
+  // vectors); world -> grid-local is the transpose of the rotation.
   const double* R = Rotation;
   return Normalized(Vec3(R[0] * nb.x + R[3] * nb.y + R[6] * nb.z,
     R[1] * nb.x + R[4] * nb.y + R[7] * nb.z, R[2] * nb.x + R[5] * nb.y + R[8] * nb.z));

@@ -2,9 +2,9 @@
  * Internal to RefractaReference (a private header: not wrapped, not installed). The opaque
  * surfaces of the reference renderer: a built vtkRefractaSurfaceSet seen from the grid-local frame.
  * Rays are intersected with the set's host BVH (vtkRefractaBVH: double precision, the watertight
- * test of Woop, Benthin and Wald) after mapping them to the BVH's frame (world minus its frame
- * origin; the grid-local frame differs from the world by a rotation and a translation, so
- * distances along a ray are the same in both). A hit's albedo is the set's baked per-texel albedo
+ * test of Woop, Benthin and Wald) after mapping them to world coordinates (the grid-local frame
+ * differs from the world by a rotation and a translation, so distances along a ray are the same in
+ * both). A hit's albedo is the set's baked per-texel albedo
  * at the texel of its barycentrics, looked up with the set's own texel function, so the reference
  * and the OpenCL passes see the same colour at the same point.
  */
@@ -40,7 +40,7 @@ struct Surfaces
 {
   vtkSmartPointer<vtkRefractaSurfaceSet> Set;
   const vtkRefractaBVH* BVH = nullptr;
-  // BVH frame point = Rotation * local + Translation (row-major 3 x 3).
+  // World point = Rotation * local + Translation (row-major 3 x 3).
   double Rotation[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   Vec3 Translation = Vec3(0.0);
   // Distance (world units) a ray leaving a surface starts off it, along the normal on its side:
@@ -72,8 +72,8 @@ struct Surfaces
   }
 
 private:
-  Vec3 ToBVH(const Vec3& local) const;
-  Vec3 RotateToBVH(const Vec3& local) const;
+  Vec3 ToWorld(const Vec3& local) const;
+  Vec3 RotateToWorld(const Vec3& local) const;
 };
 } // namespace reference
 } // namespace refracta

@@ -179,6 +179,75 @@ TEST(ReferenceSurfaces, DiffusePlaneUnderPointLight)
 }
 
 // ---------------------------------------------------------------------------------------------
+// A directional light of irradiance E (on a plane perpendicular to it) from 36.87 degrees off the
+// normal (direction (0.6, 0, 0.8)): the plane's radiance is albedo E 0.8 / pi everywhere. The
+// light is a disc of angular radius 0.5 degree, reached by connections that escape; the
+// irradiance it gives a tilted plane differs from E cos(theta) by O(delta^2) = 1e-5 relative.
+TEST(ReferenceSurfaces, DiffusePlaneUnderDirectionalLight)
+{
+  const double albedo[3] = { 0.3, 0.6, 0.9 }, E = 1.5, towards[3] = { 0.6, 0, 0.8 };
+  const double boxCentre[3] = { 4, 4, 3 };
+  const int n = 4;
+  vtkNew<vtkReferenceRenderer> r;
+  r->SetInputData(VacuumBox(boxCentre));
+  r->SetCamera(DownCamera(1.0));
+  r->AddLight(Directional(towards, E));
+  r->SetSurfaces(OneSurface(Square(5, 0), albedo));
+  r->SetImageSize(n, n);
+  r->SetSamplesPerPixel(Spp(256));
+  r->SetSeed(19);
+  r->Update();
+  ExpectImage(
+    r->GetOutput(), n, [&](int, int, int c) { return albedo[c] * E * 0.8 / Pi; },
+    "plane under a directional light");
+}
+
+// ---------------------------------------------------------------------------------------------
+// An opaque square (half-size 0.3, at z = 0.5) between the point light (z = 1) and the floor,
+// single scattering only (MaximumScatteringDepth 1): the camera sees the square's lit top where
+// |x|, |y| < 0.3 (albedo I cos / (pi r^2) with the light 0.5 above it), the floor's umbra (exactly
+// 0: no connection gets past the square) where the square's shadow |x|, |y| < 0.6 falls, and the
+// lit floor elsewhere. The pixel centres are at least 0.025 from the shadow's edge, wider than the
+// penumbra of the light's radius 0.01.
+TEST(ReferenceSurfaces, OpaqueSquareCastsShadow)
+{
+  const double albedo[3] = { 0.8, 0.8, 0.8 }, I = 2.0, s = 1.0;
+  const double lp[3] = { 0, 0, 1 }, boxCentre[3] = { 4, 4, 3 };
+  const int n = 8;
+  auto surfaces = OneSurface(Square(5, 0), albedo);
+  vtkNew<vtkRefractaSurfaceMaterial> material;
+  material->SetAlbedo(albedo);
+  surfaces->AddSurface(Square(0.3, 0.5), material);
+  vtkNew<vtkReferenceRenderer> r;
+  r->SetInputData(VacuumBox(boxCentre));
+  r->SetCamera(DownCamera(s));
+  r->AddLight(PointLight(lp, I));
+  r->SetLightRadius(0.01);
+  r->SetSurfaces(surfaces);
+  r->SetMaximumScatteringDepth(1);
+  r->SetImageSize(n, n);
+  r->SetSamplesPerPixel(Spp(256));
+  r->SetSeed(23);
+  r->Update();
+  ExpectImage(
+    r->GetOutput(), n,
+    [&](int i, int j, int c)
+    {
+      double x, y;
+      PixelXY(i, j, n, s, x, y);
+      const double m = std::max(std::abs(x), std::abs(y));
+      const double h = m < 0.3 ? 0.5 : 1.0; // the light's height above what the pixel sees
+      if (m >= 0.3 && m < 0.6)
+      {
+        return 0.0;
+      }
+      const double r2 = x * x + y * y + h * h;
+      return albedo[c] * I * (h / std::sqrt(r2)) / (Pi * r2);
+    },
+    "floor shadowed by an opaque square");
+}
+
+// ---------------------------------------------------------------------------------------------
 // The same plane under an absorbing slab (sigma_t = 2 per unit, albedo 0, z in [0.4, 0.6],
 // laterally far wider than the image): the light reaching a point crosses the slab obliquely
 // (Beer-Lambert factor exp(-sigma dz / cos(theta))) and the vertical view ray crosses it once
