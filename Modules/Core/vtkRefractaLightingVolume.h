@@ -13,6 +13,13 @@
  * MultipleScattering  | 3     | S_ms = sigma_s phi_ms, power per unit volume scattered out of the
  * diffuse field, isotropic (RGB, >= 0; vtkLatticeBoltzmannLighting) |
  *
+ * Surfaces (vtkRefractaSurfaceSet) are lit in the same passes. Their irradiance is not a point
+ * array but a field-data array of the lighting volume, SurfaceIrradianceName(): a vtkFloatArray
+ * with 3 components and one tuple per texel of the surface set's atlas (in the set's texel order),
+ * the irradiance E on the texel in power per unit area (RGB, >= 0; the flux that arrived on the
+ * texel from either side divided by its area). Every stage that copies a lighting volume passes
+ * it through.
+ *
  * Only static methods are used; New() exists so that it can be wrapped and printed.
  */
 #ifndef vtkRefractaLightingVolume_h
@@ -47,6 +54,11 @@ public:
   static const char* RadianceDirectionName() { return "RadianceDirection"; }
   static const char* MultipleScatteringName() { return "MultipleScattering"; }
   ///@}
+
+  /**
+   * Name of the field-data array with the surfaces' irradiance (see the class description).
+   */
+  static const char* SurfaceIrradianceName() { return "SurfaceIrradiance"; }
 
   /**
    * Name of the array with the given id, or nullptr for an id out of range.

@@ -1,0 +1,325 @@
+// refracta_surfaces.cl: opaque triangle surfaces for the OpenCL passes (photon_trace.cl,
+// view_pass.cl). The flattened layout below is the one definition shared with the host:
+// vtkRefractaBVH.cxx and vtkRefractaSurfaceSet.cxx include this file as a C++ header and see only
+// the macros (the device functions are compiled only by an OpenCL compiler, __OPENCL_VERSION__).
+//
+// Frame: every flattened coordinate is in the "surface frame", world minus the set's
+// FrameOrigin (vtkRefractaBVH::GetFrameOrigin(), the centre of the surfaces' bounds), so that
+// float keeps its precision for scenes far from the world origin. A pass maps its own frame to it
+// with one affine map computed on the host in double.
+//
+// Buffers (all produced by vtkRefractaSurfaceSet::Build()):
+//   triangles  float4[3 * T]: v0, v1, v2 of triangle t at 3t, 3t + 1, 3t + 2 (w unused); the
+//              triangles are in BVH order (the leaves reference contiguous ranges).
+//   nodes      float4[2 * N]: node k = (lo.xyz, as_float(a)), (hi.xyz, as_float(count)); count > 0:
+//              a leaf holding triangles [a, a + count); count == 0: an interior node whose first
+//              child is k + 1 (depth-first order) and second child is a. Node 0 is the root.
+//   triInfo    int4[T]: (first texel, subdivision n, surface index, 0).
+//   albedo     float[3 * texels]: RGB albedo in [0, 1] of each texel.
+//   texel area float[texels] (world units^2), for irradiance = flux / area on the host.
+//
+// Texel index: triangle t with subdivision n is cut into n^2 equal-area sub-triangles. With the
+// barycentric weights (u, v) of v1 and v2, a = n u and b = n v; cell (i, j) = (floor a, floor b)
+// holds an upright sub-triangle (frac a + frac b < 1, or a + b < i + j + 1 here) and, when
+// i + j <= n - 2, an inverted one above it. Row j holds 2 (n - j) - 1 texels, so
+//   texel = j (2 n - j) + 2 i + inverted.
+// Points on the boundary or slightly outside (rounding) are clamped into the triangle.
+#ifndef REFRACTA_SURFACES_CL
+#define REFRACTA_SURFACES_CL
+
+#define REFRACTA_TRIANGLE_FLOAT4S 3  /* float4 per triangle */
+#define REFRACTA_BVH_NODE_FLOAT4S 2  /* float4 per BVH node */
+#define REFRACTA_TRIANGLE_INFO_INTS 4 /* ints per triangle in triInfo */
+#define REFRACTA_TRIANGLE_INFO_TEXEL 0
+#define REFRACTA_TRIANGLE_INFO_SUBDIVISION 1
+#define REFRACTA_TRIANGLE_INFO_SURFACE 2
+#define REFRACTA_BVH_STACK_SIZE 64 /* traversal stack; the build never exceeds this depth */
+#define REFRACTA_BVH_MAX_DEPTH 60
+
+#ifdef __OPENCL_VERSION__
+
+#ifdef cl_khr_fp64
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#endif
+
+// A ray prepared for the watertight test of Woop, Benthin and Wald (2013, JCGT 2(1)): kz is the
+// axis of the direction's largest component, (kx, ky) the other two (swapped when d[kz] < 0 to
+// keep the winding), shear (sx, sy, sz) maps the ray onto +z.
+typedef struct
+{
+  float3 origin;
+  float3 dir;
+  float3 invDir;
+  int kx, ky, kz;
+  float sx, sy, sz;
+} refracta_ray;
+
+typedef struct
+{
+  float t;    // distance along the ray (units of |dir|)
+  float u, v; // barycentric weights of v1 and v2
+  int triangle; // -1: no hit
+} refracta_hit;
+
+inline float refracta_component(float3 p, int axis)
+{
+  return axis == 0 ? p.x : (axis == 1 ? p.y : p.z);
+}
+
+inline refracta_ray refracta_make_ray(float3 origin, float3 dir)
+{
+  refracta_ray r;
+  r.origin = origin;
+  r.dir = dir;
+  r.invDir = (float3)(1.0f) / dir;
+  const float3 a = fabs(dir);
+  r.kz = (a.x > a.y) ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+  r.kx = r.kz == 2 ? 0 : r.kz + 1;
+  r.ky = r.kx == 2 ? 0 : r.kx + 1;
+  if (refracta_component(dir, r.kz) < 0.0f)
+  {
+    const int swap = r.kx;
+    r.kx = r.ky;
+    r.ky = swap;
+  }
+  const float dz = refracta_component(dir, r.kz);
+  r.sx = refracta_component(dir, r.kx) / dz;
+  r.sy = refracta_component(dir, r.ky) / dz;
+  r.sz = 1.0f / dz;
+  return r;
+}
+
+// The 2D edge function x1 y2 - y1 x2, never contracted into an fma: the same edge seen from the
+// two triangles that share it must give exactly opposite values (watertightness).
+inline float refracta_edge(float x1, float y1, float x2, float y2)
+{
+#pragma OPENCL FP_CONTRACT OFF
+  const float p = x1 * y2;
+  const float q = y1 * x2;
+  return p - q;
+}
+
+// Watertight ray-triangle test; true and (t, u, v) when the ray hits in (tMin, tMax).
+inline bool refracta_intersect_triangle(const refracta_ray* r, float3 p0, float3 p1, float3 p2,
+  float tMin, float tMax, float* tOut, float* uOut, float* vOut)
+{
+  const float3 a = p0 - r->origin;
+  const float3 b = p1 - r->origin;
+  const float3 c = p2 - r->origin;
+  const float az = refracta_component(a, r->kz);
+  const float bz = refracta_component(b, r->kz);
+  const float cz = refracta_component(c, r->kz);
+  const float ax = refracta_component(a, r->kx) - r->sx * az;
+  const float ay = refracta_component(a, r->ky) - r->sy * az;
+  const float bx = refracta_component(b, r->kx) - r->sx * bz;
+  const float by = refracta_component(b, r->ky) - r->sy * bz;
+  const float cx = refracta_component(c, r->kx) - r->sx * cz;
+  const float cy = refracta_component(c, r->ky) - r->sy * cz;
+  float U = refracta_edge(cx, cy, bx, by);
+  float V = refracta_edge(ax, ay, cx, cy);
+  float W = refracta_edge(bx, by, ax, ay);
+#ifdef cl_khr_fp64
+  if (U == 0.0f || V == 0.0f || W == 0.0f)
+  {
+    // Exactly on an edge in float: decide in double, as the paper does.
+    U = (float)((double)cx * (double)by - (double)cy * (double)bx);
+    V = (float)((double)ax * (double)cy - (double)ay * (double)cx);
+    W = (float)((double)bx * (double)ay - (double)by * (double)ax);
+  }
+#endif
+  if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f))
+  {
+    return false;
+  }
+  const float det = U + V + W;
+  if (det == 0.0f)
+  {
+    return false;
+  }
+  const float T = U * (r->sz * az) + V * (r->sz * bz) + W * (r->sz * cz);
+  const float inv = 1.0f / det;
+  const float t = T * inv;
+  if (!(t > tMin) || !(t < tMax))
+  {
+    return false;
+  }
+  *tOut = t;
+  *uOut = V * inv;
+  *vOut = W * inv;
+  return true;
+}
+
+// Entry distance of the ray into the node's box when it enters before tMax, else INFINITY.
+inline float refracta_node_entry(const refracta_ray* r, float4 lo, float4 hi, float tMax)
+{
+  const float3 ta = (lo.xyz - r->origin) * r->invDir;
+  const float3 tb = (hi.xyz - r->origin) * r->invDir;
+  const float3 tmin = fmin(ta, tb);
+  const float3 tmax = fmax(ta, tb);
+  const float enter = fmax(fmax(tmin.x, tmin.y), fmax(tmin.z, 0.0f));
+  // 1 + 2 gamma(3) (Pharr, Jakob and Humphreys, 3rd ed., 6.8.2): a ray grazing a face of the
+  // box is not rejected by the rounding of the slab distances.
+  const float leave = fmin(fmin(tmax.x, tmax.y), tmax.z) * 1.0000004f;
+  return (enter <= leave && enter < tMax) ? enter : INFINITY;
+}
+
+// Closest hit of the ray origin + t dir with t in (tMin, tMax), or hit.triangle = -1. A stack of
+// REFRACTA_BVH_STACK_SIZE nodes, nearer child first. An empty set has zero nodes: no hit.
+inline refracta_hit refracta_bvh_closest(__global const float4* nodes, int nodeCount,
+  __global const float4* triangles, float3 origin, float3 dir, float tMin, float tMax)
+{
+  refracta_hit hit;
+  hit.t = tMax;
+  hit.u = hit.v = 0.0f;
+  hit.triangle = -1;
+  if (nodeCount <= 0)
+  {
+    return hit;
+  }
+  const refracta_ray r = refracta_make_ray(origin, dir);
+  int stack[REFRACTA_BVH_STACK_SIZE];
+  int top = 0;
+  int node = 0;
+  if (refracta_node_entry(&r, nodes[0], nodes[1], hit.t) == INFINITY)
+  {
+    return hit;
+  }
+  while (true)
+  {
+    const float4 lo = nodes[2 * node];
+    const float4 hi = nodes[2 * node + 1];
+    const int count = as_int(hi.w);
+    if (count > 0)
+    {
+      const int first = as_int(lo.w);
+      for (int k = first; k < first + count; ++k)
+      {
+        float t, u, v;
+        if (refracta_intersect_triangle(&r, triangles[3 * k].xyz, triangles[3 * k + 1].xyz,
+              triangles[3 * k + 2].xyz, tMin, hit.t, &t, &u, &v))
+        {
+          hit.t = t;
+          hit.u = u;
+          hit.v = v;
+          hit.triangle = k;
+        }
+      }
+    }
+    else
+    {
+      const int c0 = node + 1;
+      const int c1 = as_int(lo.w);
+      float e0 = refracta_node_entry(&r, nodes[2 * c0], nodes[2 * c0 + 1], hit.t);
+      float e1 = refracta_node_entry(&r, nodes[2 * c1], nodes[2 * c1 + 1], hit.t);
+      int near = c0;
+      int far = c1;
+      if (e1 < e0)
+      {
+        near = c1;
+        far = c0;
+        const float s = e0;
+        e0 = e1;
+        e1 = s;
+      }
+      if (e0 != INFINITY)
+      {
+        if (e1 != INFINITY && top < REFRACTA_BVH_STACK_SIZE)
+        {
+          stack[top++] = far;
+        }
+        node = near;
+        continue;
+      }
+    }
+    // Pop the next node that the (possibly shortened) ray still reaches.
+    node = -1;
+    while (top > 0)
+    {
+      const int candidate = stack[--top];
+      if (refracta_node_entry(&r, nodes[2 * candidate], nodes[2 * candidate + 1], hit.t) !=
+        INFINITY)
+      {
+        node = candidate;
+        break;
+      }
+    }
+    if (node < 0)
+    {
+      break;
+    }
+  }
+  return hit;
+}
+
+// Whether any triangle meets the ray within (tMin, tMax) (shadow rays): stops at the first hit.
+inline bool refracta_bvh_occluded(__global const float4* nodes, int nodeCount,
+  __global const float4* triangles, float3 origin, float3 dir, float tMin, float tMax)
+{
+  if (nodeCount <= 0)
+  {
+    return false;
+  }
+  const refracta_ray r = refracta_make_ray(origin, dir);
+  int stack[REFRACTA_BVH_STACK_SIZE];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0)
+  {
+    const int node = stack[--top];
+    const float4 lo = nodes[2 * node];
+    const float4 hi = nodes[2 * node + 1];
+    if (refracta_node_entry(&r, lo, hi, tMax) == INFINITY)
+    {
+      continue;
+    }
+    const int count = as_int(hi.w);
+    if (count > 0)
+    {
+      const int first = as_int(lo.w);
+      for (int k = first; k < first + count; ++k)
+      {
+        float t, u, v;
+        if (refracta_intersect_triangle(&r, triangles[3 * k].xyz, triangles[3 * k + 1].xyz,
+              triangles[3 * k + 2].xyz, tMin, tMax, &t, &u, &v))
+        {
+          return true;
+        }
+      }
+    }
+    else if (top + 2 <= REFRACTA_BVH_STACK_SIZE)
+    {
+      stack[top++] = as_int(lo.w);
+      stack[top++] = node + 1;
+    }
+  }
+  return false;
+}
+
+// Unit geometric normal of triangle k (the winding's normal; surfaces are two-sided).
+inline float3 refracta_triangle_normal(__global const float4* triangles, int k)
+{
+  const float3 p0 = triangles[3 * k].xyz;
+  return normalize(cross(triangles[3 * k + 1].xyz - p0, triangles[3 * k + 2].xyz - p0));
+}
+
+// Texel of barycentric weights (u, v) (of v1, v2) within a triangle of subdivision n, in
+// [0, n^2). The same arithmetic, step for step, as vtkRefractaSurfaceSet::TexelIndex.
+inline int refracta_texel_index(float u, float v, int n)
+{
+  const float fn = (float)n;
+  const float a = clamp(u * fn, 0.0f, fn);
+  const float b = clamp(v * fn, 0.0f, fn);
+  int j = min((int)floor(b), n - 1);
+  int i = min((int)floor(a), n - 1);
+  if (i + j > n - 1)
+  {
+    i = n - 1 - j; // past the hypotenuse by rounding: the last upright texel of the row
+    return j * (2 * n - j) + 2 * i;
+  }
+  const float s = a + b;
+  const int inverted = (i + j <= n - 2 && s > (float)(i + j + 1)) ? 1 : 0;
+  return j * (2 * n - j) + 2 * i + inverted;
+}
+
+#endif // __OPENCL_VERSION__
+#endif // REFRACTA_SURFACES_CL

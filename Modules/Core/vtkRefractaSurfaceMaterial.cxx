@@ -1,0 +1,97 @@
+#include "vtkRefractaSurfaceMaterial.h"
+
+#include "vtkObjectFactory.h"
+
+#include <algorithm>
+#include <cmath>
+
+vtkStandardNewMacro(vtkRefractaSurfaceMaterial);
+
+//------------------------------------------------------------------------------
+void vtkRefractaSurfaceMaterial::SetColor(double target[3], double r, double g, double b)
+{
+  const double in[3] = { r, g, b };
+  bool changed = false;
+  for (int c = 0; c < 3; ++c)
+  {
+    // NaN goes to 0: std::clamp would keep it.
+    const double v = in[c] >= 0.0 ? std::min(in[c], 1.0) : 0.0;
+    changed = changed || v != target[c];
+    target[c] = v;
+  }
+  if (changed)
+  {
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaSurfaceMaterial::SetAlbedo(double r, double g, double b)
+{
+  this->SetColor(this->Albedo, r, g, b);
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaSurfaceMaterial::SetCheckerColor1(double r, double g, double b)
+{
+  this->SetColor(this->CheckerColor1, r, g, b);
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaSurfaceMaterial::SetCheckerColor2(double r, double g, double b)
+{
+  this->SetColor(this->CheckerColor2, r, g, b);
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaSurfaceMaterial::SetCheckerSquares(int u, int v)
+{
+  u = std::max(1, std::min(u, 4096));
+  v = std::max(1, std::min(v, 4096));
+  if (u != this->CheckerSquares[0] || v != this->CheckerSquares[1])
+  {
+    this->CheckerSquares[0] = u;
+    this->CheckerSquares[1] = v;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaSurfaceMaterial::EvaluateChecker(double u, double v, double rgb[3]) const
+{
+  const long long i = static_cast<long long>(std::floor(u * this->CheckerSquares[0]));
+  const long long j = static_cast<long long>(std::floor(v * this->CheckerSquares[1]));
+  const double* color = ((i + j) % 2 == 0) ? this->CheckerColor1 : this->CheckerColor2;
+  std::copy(color, color + 3, rgb);
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaSurfaceMaterial::DeepCopy(vtkRefractaSurfaceMaterial* other)
+{
+  if (!other)
+  {
+    return;
+  }
+  this->SetAlbedo(other->Albedo);
+  this->SetUseChecker(other->UseChecker);
+  this->SetCheckerSquares(other->CheckerSquares);
+  this->SetCheckerColor1(other->CheckerColor1);
+  this->SetCheckerColor2(other->CheckerColor2);
+  this->SetUseScalarColors(other->UseScalarColors);
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaSurfaceMaterial::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Albedo: (" << this->Albedo[0] << ", " << this->Albedo[1] << ", "
+     << this->Albedo[2] << ")\n";
+  os << indent << "UseChecker: " << this->UseChecker << "\n";
+  os << indent << "CheckerSquares: (" << this->CheckerSquares[0] << ", " << this->CheckerSquares[1]
+     << ")\n";
+  os << indent << "CheckerColor1: (" << this->CheckerColor1[0] << ", " << this->CheckerColor1[1]
+     << ", " << this->CheckerColor1[2] << ")\n";
+  os << indent << "CheckerColor2: (" << this->CheckerColor2[0] << ", " << this->CheckerColor2[1]
+     << ", " << this->CheckerColor2[2] << ")\n";
+  os << indent << "UseScalarColors: " << this->UseScalarColors << "\n";
+}

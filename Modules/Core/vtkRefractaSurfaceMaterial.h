@@ -1,0 +1,114 @@
+/**
+ * @class   vtkRefractaSurfaceMaterial
+ * @brief   The Lambertian appearance of an opaque Refracta surface.
+ *
+ * Surfaces are two-sided Lambertian reflectors: a photon that meets one deposits its flux and is
+ * reflected diffusely with probability equal to the albedo (per RGB channel, as a weight), the
+ * rest is absorbed. The albedo of a point comes from one of three sources, in this order:
+ *
+ * 1. UseScalarColors (default off) and the polydata carries colour scalars (point or cell
+ *    scalars that are unsigned char 0-255 with 3 or 4 components, or float/double in [0, 1] with
+ *    3 or 4 components; alpha is ignored): those colours, as the VTK mapper would map them. A
+ *    mesh without such scalars falls back to the next source (vtkRefractaSurfaceSet warns).
+ * 2. UseChecker (default off): a checkerboard of CheckerSquares (default 8 x 8) squares over the
+ *    texture coordinates (u, v) in [0, 1]: square (floor(u Su), floor(v Sv)) takes CheckerColor1
+ *    (default (0.9, 0.9, 0.9)) when the sum of its indices is even, CheckerColor2 (default
+ *    (0.1, 0.1, 0.1)) when odd. Texture coordinates are the polydata's TCoords when present
+ *    (first two components), else planar: the mesh's own (untransformed) points projected on the
+ *    two axes of its largest bounding-box extents, scaled to [0, 1] over that box.
+ * 3. Albedo (default (0.8, 0.8, 0.8)).
+ *
+ * All colours are linear RGB, clamped to [0, 1] by the setters (an albedo above 1 would create
+ * energy). vtkRefractaSurfaceSet bakes the chosen source into one albedo per texel, so every
+ * pass sees one colour path.
+ */
+#ifndef vtkRefractaSurfaceMaterial_h
+#define vtkRefractaSurfaceMaterial_h
+
+#include "RefractaCoreModule.h" // for export macro
+#include "vtkObject.h"
+
+class REFRACTACORE_EXPORT vtkRefractaSurfaceMaterial : public vtkObject
+{
+public:
+  static vtkRefractaSurfaceMaterial* New();
+  vtkTypeMacro(vtkRefractaSurfaceMaterial, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Diffuse albedo (linear RGB, each clamped to [0, 1]). Default (0.8, 0.8, 0.8).
+   */
+  void SetAlbedo(double r, double g, double b);
+  void SetAlbedo(const double rgb[3]) { this->SetAlbedo(rgb[0], rgb[1], rgb[2]); }
+  vtkGetVector3Macro(Albedo, double);
+  ///@}
+
+  ///@{
+  /**
+   * Checkerboard over the texture coordinates (see the class description). Default off.
+   */
+  vtkSetMacro(UseChecker, bool);
+  vtkGetMacro(UseChecker, bool);
+  vtkBooleanMacro(UseChecker, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Number of checker squares along u and v, each clamped to [1, 4096]. Default 8 x 8.
+   */
+  void SetCheckerSquares(int u, int v);
+  void SetCheckerSquares(const int uv[2]) { this->SetCheckerSquares(uv[0], uv[1]); }
+  vtkGetVector2Macro(CheckerSquares, int);
+  ///@}
+
+  ///@{
+  /**
+   * The two checker colours (linear RGB, clamped to [0, 1]). Defaults (0.9, 0.9, 0.9) and
+   * (0.1, 0.1, 0.1).
+   */
+  void SetCheckerColor1(double r, double g, double b);
+  void SetCheckerColor1(const double rgb[3]) { this->SetCheckerColor1(rgb[0], rgb[1], rgb[2]); }
+  vtkGetVector3Macro(CheckerColor1, double);
+  void SetCheckerColor2(double r, double g, double b);
+  void SetCheckerColor2(const double rgb[3]) { this->SetCheckerColor2(rgb[0], rgb[1], rgb[2]); }
+  vtkGetVector3Macro(CheckerColor2, double);
+  ///@}
+
+  ///@{
+  /**
+   * Take the albedo from the polydata's colour scalars (see the class description). Default off.
+   */
+  vtkSetMacro(UseScalarColors, bool);
+  vtkGetMacro(UseScalarColors, bool);
+  vtkBooleanMacro(UseScalarColors, bool);
+  ///@}
+
+  /**
+   * The checker colour at texture coordinates (u, v) (whatever UseChecker says).
+   */
+  void EvaluateChecker(double u, double v, double rgb[3]) const;
+
+  /**
+   * Copies every setting of `other` (nullptr: nothing).
+   */
+  void DeepCopy(vtkRefractaSurfaceMaterial* other);
+
+protected:
+  vtkRefractaSurfaceMaterial() = default;
+  ~vtkRefractaSurfaceMaterial() override = default;
+
+  double Albedo[3] = { 0.8, 0.8, 0.8 };
+  bool UseChecker = false;
+  int CheckerSquares[2] = { 8, 8 };
+  double CheckerColor1[3] = { 0.9, 0.9, 0.9 };
+  double CheckerColor2[3] = { 0.1, 0.1, 0.1 };
+  bool UseScalarColors = false;
+
+private:
+  vtkRefractaSurfaceMaterial(const vtkRefractaSurfaceMaterial&) = delete;
+  void operator=(const vtkRefractaSurfaceMaterial&) = delete;
+  void SetColor(double target[3], double r, double g, double b);
+};
+
+#endif
