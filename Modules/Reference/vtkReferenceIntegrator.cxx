@@ -28,6 +28,21 @@ void Tracer::CheckSpheres(const Vec3& o, const Vec3& d, double len, double& tHit
   }
 }
 
+Event Tracer::CheckSegment(
+  const Vec3& o, const Vec3& d, double len, double& tHit, int& which, RayState& r) const
+{
+  tHit = Inf;
+  which = -1;
+  CheckSpheres(o, d, len, tHit, which);
+  if (Surf && Surf->Closest(o, d, std::min(len, tHit), r.Surface))
+  {
+    tHit = r.Surface.T;
+    which = -1;
+    return Event::HitSurface;
+  }
+  return tHit < Inf ? Event::HitLight : Event::Reached;
+}
+
 // Start a curved ray at x (inside or on the box) with unit direction d.
 void Tracer::Start(RayState& r, const Vec3& x, const Vec3& d) const
 {
@@ -82,8 +97,8 @@ double Tracer::RKStep(const Vec3& x, const Vec3& v, double h, Vec3& xn, Vec3& vn
 }
 
 // Move along the ray by arc length `dist` (may be Inf) inside the box. `moved` returns the arc
-// length travelled, `hit` the light sphere index for HitLight, `steps` accumulates accepted
-// steps.
+// length travelled, `hit` the light sphere index for HitLight (a HitSurface's hit is in
+// r.Surface), `steps` accumulates accepted steps.
 Event Tracer::Advance(RayState& r, double dist, double& moved, int& hit, int64_t& steps) const
 {
   moved = 0;
@@ -92,14 +107,14 @@ Event Tracer::Advance(RayState& r, double dist, double& moved, int& hit, int64_t
   {
     const double tExit = StraightExit(r.X, r.Dir);
     const double len = std::min(dist, tExit);
-    double tHit = Inf;
-    CheckSpheres(r.X, r.Dir, len, tHit, hit);
+    double tHit;
+    const Event ev = CheckSegment(r.X, r.Dir, len, tHit, hit, r);
     ++steps;
-    if (tHit < Inf)
+    if (ev != Event::Reached)
     {
       r.X = r.X + tHit * r.Dir;
       moved = tHit;
-      return Event::HitLight;
+      return ev;
     }
     r.X = r.X + len * r.Dir;
     moved = len;
@@ -123,15 +138,15 @@ Event Tracer::Advance(RayState& r, double dist, double& moved, int& hit, int64_t
       // is still exactly 0).
       const double len = std::min(dist - moved, std::min(tExit, tBlock + 0.5 * hMin));
       ++steps;
-      if (Lights)
+      if (Lights || Surf)
       {
-        double tHit = Inf;
-        CheckSpheres(r.X, r.Dir, len, tHit, hit);
-        if (tHit < Inf)
+        double tHit;
+        const Event ev = CheckSegment(r.X, r.Dir, len, tHit, hit, r);
+        if (ev != Event::Reached)
         {
           r.X = r.X + tHit * r.Dir;
           moved += tHit;
-          return Event::HitLight;
+          return ev;
         }
       }
       r.X = r.X + len * r.Dir;
@@ -163,17 +178,19 @@ Event Tracer::Advance(RayState& r, double dist, double& moved, int& hit, int64_t
     ++steps;
     const Vec3 chord = xn - r.X;
     const double clen = glm::length(chord);
-    if (Lights && clen > 0)
+    if ((Lights || Surf) && clen > 0)
     {
-      double tHit = Inf;
-      CheckSpheres(r.X, (1.0 / clen) * chord, clen, tHit, hit);
-      if (tHit < Inf)
+      // Lights and surfaces are met on the chord of the step (its straight secant, within the
+      // integrator's tolerance of the curved path).
+      double tHit;
+      const Event ev = CheckSegment(r.X, (1.0 / clen) * chord, clen, tHit, hit, r);
+      if (ev != Event::Reached)
       {
         const double frac = tHit / clen;
         r.X = r.X + frac * chord;
         r.Dir = (1.0 / clen) * chord;
         moved += frac * h;
-        return Event::HitLight;
+        return ev;
       }
     }
     double n;

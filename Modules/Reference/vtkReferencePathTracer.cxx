@@ -1,7 +1,5 @@
 #include "vtkReferencePathTracer.h"
 
-#include "vtkRefractaEnvironmentMap.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -10,44 +8,32 @@ namespace refracta
 {
 namespace reference
 {
-Vec3 Scene::BackgroundRadiance(const Vec3& dLocal) const
+namespace
 {
-  if (Env.empty())
-  {
-    return Background;
-  }
-  const Vec3 d = M.ToWorldVector(dLocal);
-  const double dw[3] = { d.x, d.y, d.z };
-  double uv[2], rgb[3];
-  vtkRefractaEnvironmentMap::DirectionToTexture(dw, EnvUp, EnvRight, uv);
-  vtkRefractaEnvironmentMap::Sample(Env.data(), EnvW, EnvH, uv[0], uv[1], rgb);
-  return ToVec3(rgb);
+// Largest component of v that the estimate uses (all three when grey, else channel ch).
+double Largest(const Vec3& v, int ch, bool grey)
+{
+  return grey ? std::max(v.x, std::max(v.y, v.z)) : v[ch];
 }
 
-// Radiance arriving from lights along a ray that left the box at x with direction d
-// (straight from here on): the first light sphere in the way, else every directional disc
-// containing d.
-Vec3 Scene::EscapedLightRadiance(const Vec3& x, const Vec3& d) const
+// Cosine-weighted direction about the unit normal n (pdf cos / pi).
+Vec3 SampleCosine(const Vec3& n, double u1, double u2)
 {
-  double tHit = Inf;
-  int which = -1;
-  for (size_t i = 0; i < Lights.size(); ++i)
-  {
-    if (!Lights[i].Directional)
-    {
-      const double t = Lights[i].HitSphere(x, d, Inf);
-      if (t < tHit)
-      {
-        tHit = t;
-        which = static_cast<int>(i);
-      }
-    }
-  }
-  if (which >= 0)
-  {
-    const Light& l = Lights[which];
-    return (l.SphereFactor(-d)) * l.Colour;
-  }
+  const double r = std::sqrt(u1), phi = 2 * Pi * u2;
+  Vec3 t, b;
+  Basis(n, t, b);
+  return Normalized(
+    (r * std::cos(phi)) * t + (r * std::sin(phi)) * b + std::sqrt(std::max(0.0, 1 - u1)) * n);
+}
+} // namespace
+
+Vec3 Scene::BackgroundRadiance(const Vec3& dLocal) const
+{
+  return Env.Radiance(M.ToWorldVector(dLocal));
+}
+
+Vec3 Scene::EscapedRadiance(const Vec3& d) const
+{
   Vec3 r(0.0);
   for (const Light& l : Lights)
   {
@@ -56,36 +42,109 @@ Vec3 Scene::EscapedLightRadiance(const Vec3& x, const Vec3& d) const
       r += l.Radiance * l.Colour;
     }
   }
+  if (EnvLight)
+  {
+    r += BackgroundRadiance(d);
+  }
   return r;
 }
 
-// Light arriving at x (inside the box) along the curved ray leaving x in direction w, times the
-// transmittance to the light, estimated by ratio tracking (the tentative-collision weights
-// (1 - sigma_t / majorant) multiply; Russian roulette once the weight is small). Only the
-// channel `ch` matters for the transmittance (all three when grey).
+Scene::Outside Scene::FlyOutside(
+  Vec3& x, const Vec3& d, bool enterBox, bool lights, int& light, SurfaceHit& hit) const
+{
+  double tBox = Inf, t0, t1;
+  // A ray on the box's boundary that only touches it (a chord shorter than 1e-12 of the
+  // diagonal) does not enter: that is the ray leaving it.
+  if (enterBox && M.Intersect(x, d, t0, t1) && t1 > t0 + 1e-12 * M.Diagonal)
+  {
+    tBox = t0;
+  }
+  double t = tBox;
+  light = -1;
+  if (lights)
+  {
+    for (size_t i = 0; i < Lights.size(); ++i)
+    {
+      if (!Lights[i].Directional)
+      {
+        const double ti = Lights[i].HitSphere(x, d, t);
+        if (ti < t)
+        {
+          t = ti;
+          light = static_cast<int>(i);
+        }
+      }
+    }
+  }
+  if (!Surf.Empty() && Surf.Closest(x, d, t, hit))
+  {
+    x = x + hit.T * d;
+    return Outside::Surface;
+  }
+  if (light >= 0)
+  {
+    x = x + t * d;
+    return Outside::Light;
+  }
+  if (tBox < Inf)
+  {
+    x = x + tBox * d;
+    return Outside::Entered;
+  }
+  return Outside::Escaped;
+}
+
 Vec3 Scene::Connect(const Vec3& x, const Vec3& w, int ch, Rng& rng, bool& truncated) const
 {
   double weight = 1;
+  Vec3 p = x, d = w;
+  bool inBox = M.Inside(p, 0), mayEnter = true;
   RayState ray;
-  TLight.Start(ray, x, w);
+  if (inBox)
+  {
+    TLight.Start(ray, p, d);
+  }
   for (;;)
   {
+    if (!inBox)
+    {
+      int light;
+      SurfaceHit hit;
+      switch (FlyOutside(p, d, mayEnter, true, light, hit))
+      {
+        case Outside::Surface:
+          return Vec3(0.0);
+        case Outside::Light:
+          return (weight * Lights[light].SphereFactor(-d)) * Lights[light].Colour;
+        case Outside::Escaped:
+          return weight * EscapedRadiance(d);
+        case Outside::Entered:
+          inBox = true;
+          TLight.Start(ray, p, d);
+          continue;
+      }
+    }
     double majorant;
     int hit;
     const Event ev = AdvanceOptical(TLight, ray, -std::log(1 - rng.Uniform()), ch, hit, majorant);
-    if (ev == Event::Stuck)
+    switch (ev)
     {
-      truncated = true;
-      return Vec3(0.0);
-    }
-    if (ev == Event::HitLight)
-    {
-      const Light& l = Lights[hit];
-      return (weight * l.SphereFactor(-ray.Dir)) * l.Colour;
-    }
-    if (ev == Event::Exited)
-    {
-      return weight * EscapedLightRadiance(ray.X, ray.Dir);
+      case Event::Stuck:
+        truncated = true;
+        return Vec3(0.0);
+      case Event::HitSurface:
+        return Vec3(0.0);
+      case Event::HitLight:
+        return (weight * Lights[hit].SphereFactor(-ray.Dir)) * Lights[hit].Colour;
+      case Event::Exited:
+        // Straight from here on; a convex box is not entered again.
+        inBox = false;
+        mayEnter = false;
+        p = ray.X;
+        d = ray.Dir;
+        continue;
+      case Event::Reached:
+        break;
     }
     Medium::Stencil st;
     M.MakeStencil(ray.X, st);
@@ -102,37 +161,160 @@ Vec3 Scene::Connect(const Vec3& x, const Vec3& w, int ch, Rng& rng, bool& trunca
   }
 }
 
-// One path from a view ray. channel < 0: grey medium, RGB carried together; else only that
-// channel is estimated (returned in that component). `truncated` is set when the path hit a
-// safety limit.
-//
-// At every scattering vertex the light that reaches the vertex without a further collision is
-// estimated by one connection ray whose direction is drawn from the one-sample MIS mixture
-// 0.5 HG + 0.5 (cone of a uniformly chosen light), weighted HG / mixture, its transmittance by
-// ratio tracking; the path itself continues in an HG direction and only its later collisions
-// contribute (light it reaches unscattered was already counted by the connection).
+Vec3 Scene::SampleEmitter(const Vec3& x, Rng& rng) const
+{
+  const int n = NumEmitters();
+  const int j = std::min(n - 1, static_cast<int>(rng.Uniform() * n));
+  if (j < static_cast<int>(Lights.size()))
+  {
+    Vec3 axis;
+    double omc;
+    Lights[j].Cone(x, axis, omc);
+    return SampleCone(axis, omc, rng.Uniform(), rng.Uniform());
+  }
+  const double u1 = rng.Uniform(), u2 = rng.Uniform(), u3 = rng.Uniform(), u4 = rng.Uniform();
+  const Vec3 dw = Env.Sample(u1, u2, u3, u4);
+  const double a[3] = { dw.x, dw.y, dw.z };
+  return Normalized(M.ToLocalVector(a));
+}
+
+double Scene::EmitterPdf(const Vec3& x, const Vec3& w) const
+{
+  double pdf = 0;
+  for (const Light& l : Lights)
+  {
+    pdf += l.ConePdf(x, w);
+  }
+  if (EnvLight)
+  {
+    pdf += Env.Pdf(M.ToWorldVector(w));
+  }
+  return pdf / NumEmitters();
+}
+
+bool Scene::Scatter(
+  int& depth, Vec3& beta, const Vec3& albedo, int ch, bool grey, Rng& rng, bool& truncated) const
+{
+  if (NumEmitters() == 0 || Largest(albedo, ch, grey) <= 0 ||
+    (MaxDepth >= 0 && depth + 1 > MaxDepth))
+  {
+    return false;
+  }
+  if (depth + 1 > MaxVertices)
+  {
+    truncated = true;
+    return false;
+  }
+  beta *= albedo;
+  if (depth >= RouletteDepth)
+  {
+    const double q = std::min(1.0, Largest(beta, ch, grey));
+    if (rng.Uniform() >= q)
+    {
+      return false;
+    }
+    beta /= q;
+  }
+  ++depth;
+  return true;
+}
+
+Vec3 Scene::SurfaceDirect(const Vec3& x, const Vec3& n, int ch, Rng& rng, bool& truncated) const
+{
+  const Vec3 w =
+    rng.Uniform() < 0.5 ? SampleCosine(n, rng.Uniform(), rng.Uniform()) : SampleEmitter(x, rng);
+  const double c = glm::dot(n, w);
+  if (!(c > 0))
+  {
+    return Vec3(0.0); // below the surface: the cosine (and the BRDF term) is 0
+  }
+  const double q = 0.5 * c / Pi + 0.5 * EmitterPdf(x, w);
+  return (c / (Pi * q)) * Connect(Surf.Leave(x, n, w), w, ch, rng, truncated);
+}
+
+Vec3 Scene::MediumDirect(
+  const Vec3& x, const Vec3& dir, double g, int ch, Rng& rng, bool& truncated) const
+{
+  const Vec3 w =
+    rng.Uniform() < 0.5 ? SampleHG(g, dir, rng.Uniform(), rng.Uniform()) : SampleEmitter(x, rng);
+  const double p = HGPhase(g, OneMinusCos(dir, w));
+  const double q = 0.5 * p + 0.5 * EmitterPdf(x, w);
+  if (!(q > 0 && p > 0))
+  {
+    return Vec3(0.0);
+  }
+  return (p / q) * Connect(x, w, ch, rng, truncated);
+}
+
 Vec3 Scene::Trace(Vec3 origin, Vec3 dir, int channel, Rng& rng, bool& truncated) const
 {
   Vec3 result(0.0);
-  const int ch = channel < 0 ? 0 : channel;
-  const Vec3 mask = channel < 0 ? Vec3(1, 1, 1) : Vec3(channel == 0, channel == 1, channel == 2);
-  double t0, t1;
-  if (!M.Inside(origin, 0))
-  {
-    if (!M.Intersect(origin, dir, t0, t1))
-    {
-      return mask * BackgroundRadiance(dir);
-    }
-    origin = origin + t0 * dir;
-  }
-  const bool lightsPresent = !Lights.empty();
-  const double nLights = static_cast<double>(Lights.size());
-  double beta = 1;
+  const bool grey = channel < 0;
+  const int ch = grey ? 0 : channel;
+  const Vec3 mask = grey ? Vec3(1, 1, 1) : Vec3(channel == 0, channel == 1, channel == 2);
+  Vec3 beta(1.0);
   int depth = 0;
+  Vec3 x = origin, d = dir;
+  bool inBox = M.Inside(x, 0), mayEnter = true;
   RayState ray;
-  T.Start(ray, origin, dir);
+  if (inBox)
+  {
+    T.Start(ray, x, d);
+  }
+  // A surface hit at x (arriving along d): next-event estimation, then a cosine-weighted bounce.
+  auto reflect = [&](const SurfaceHit& hit) -> bool
+  {
+    Vec3 n = Surf.Normal(hit);
+    if (glm::dot(n, d) > 0)
+    {
+      n = -n; // two-sided: the side the path arrives on
+    }
+    if (!Scatter(depth, beta, Surf.Albedo(hit), ch, grey, rng, truncated))
+    {
+      return false;
+    }
+    result += beta * (mask * SurfaceDirect(x, n, ch, rng, truncated));
+    if (MaxDepth >= 0 && depth + 1 > MaxDepth)
+    {
+      return false;
+    }
+    d = SampleCosine(n, rng.Uniform(), rng.Uniform());
+    x = Surf.Leave(x, n, d);
+    inBox = M.Inside(x, 0);
+    mayEnter = true;
+    if (inBox)
+    {
+      T.Start(ray, x, d);
+    }
+    return true;
+  };
   for (;;)
   {
+    if (!inBox)
+    {
+      int light;
+      SurfaceHit hit;
+      const Outside o = FlyOutside(x, d, mayEnter, false, light, hit);
+      if (o == Outside::Escaped)
+      {
+        if (depth == 0)
+        {
+          result += beta * (mask * BackgroundRadiance(d));
+        }
+        return result;
+      }
+      if (o == Outside::Entered)
+      {
+        inBox = true;
+        T.Start(ray, x, d);
+        continue;
+      }
+      if (!reflect(hit))
+      {
+        return result;
+      }
+      continue;
+    }
     double majorant;
     int hit;
     // The path's own rays never test light spheres: lights are not seen by view rays, and
@@ -145,11 +327,21 @@ Vec3 Scene::Trace(Vec3 origin, Vec3 dir, int channel, Rng& rng, bool& truncated)
     }
     if (ev == Event::Exited)
     {
-      if (depth == 0)
+      inBox = false;
+      mayEnter = false; // a convex box is not entered again by a straight ray
+      x = ray.X;
+      d = ray.Dir;
+      continue;
+    }
+    if (ev == Event::HitSurface)
+    {
+      x = ray.X;
+      d = ray.Dir;
+      if (!reflect(ray.Surface))
       {
-        result += beta * (mask * BackgroundRadiance(ray.Dir));
+        return result;
       }
-      return result;
+      continue;
     }
     // Tentative collision.
     Medium::Stencil st;
@@ -167,56 +359,12 @@ Vec3 Scene::Trace(Vec3 origin, Vec3 dir, int channel, Rng& rng, bool& truncated)
       continue; // null collision
     }
     // Real collision: the scattered part carries on with weight albedo.
-    const double albedo = M.Sample3(M.Albedo, st)[ch];
-    if (!lightsPresent || albedo <= 0 || (MaxDepth >= 0 && depth + 1 > MaxDepth))
+    if (!Scatter(depth, beta, M.Sample3(M.Albedo, st), ch, grey, rng, truncated))
     {
       return result;
     }
-    if (depth + 1 > MaxVertices)
-    {
-      truncated = true;
-      return result;
-    }
-    beta *= albedo;
-    if (depth >= RouletteDepth)
-    {
-      const double q = std::min(1.0, beta);
-      if (rng.Uniform() >= q)
-      {
-        return result;
-      }
-      beta /= q;
-    }
-    ++depth;
     const double g = M.Sample1(M.G, st);
-    // Light reaching this vertex: one-sample MIS connection.
-    {
-      Vec3 w;
-      if (rng.Uniform() < 0.5)
-      {
-        w = SampleHG(g, ray.Dir, rng.Uniform(), rng.Uniform());
-      }
-      else
-      {
-        const size_t j = std::min(Lights.size() - 1, static_cast<size_t>(rng.Uniform() * nLights));
-        Vec3 axis;
-        double omc;
-        Lights[j].Cone(ray.X, axis, omc);
-        w = SampleCone(axis, omc, rng.Uniform(), rng.Uniform());
-      }
-      const double p = HGPhase(g, OneMinusCos(ray.Dir, w));
-      double lightPdf = 0;
-      for (const Light& l : Lights)
-      {
-        lightPdf += l.ConePdf(ray.X, w);
-      }
-      const double q = 0.5 * p + 0.5 * lightPdf / nLights;
-      if (q > 0 && p > 0)
-      {
-        const Vec3 li = Connect(ray.X, w, ch, rng, truncated);
-        result += (beta * p / q) * (mask * li);
-      }
-    }
+    result += beta * (mask * MediumDirect(ray.X, ray.Dir, g, ch, rng, truncated));
     if (MaxDepth >= 0 && depth + 1 > MaxDepth)
     {
       return result;

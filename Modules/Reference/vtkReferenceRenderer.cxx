@@ -17,6 +17,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkReferencePathTracer.h"
+#include "vtkRefractaSurfaceSet.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
@@ -137,6 +138,19 @@ vtkImageData* vtkReferenceRenderer::GetEnvironmentMap()
   return this->EnvironmentMap;
 }
 
+void vtkReferenceRenderer::SetSurfaces(vtkRefractaSurfaceSet* surfaces)
+{
+  if (this->Surfaces != surfaces)
+  {
+    this->Surfaces = surfaces;
+    this->Modified();
+  }
+}
+vtkRefractaSurfaceSet* vtkReferenceRenderer::GetSurfaces()
+{
+  return this->Surfaces;
+}
+
 vtkMTimeType vtkReferenceRenderer::GetMTime()
 {
   vtkMTimeType t = this->Superclass::GetMTime();
@@ -147,6 +161,10 @@ vtkMTimeType vtkReferenceRenderer::GetMTime()
   if (this->EnvironmentMap)
   {
     t = std::max(t, this->EnvironmentMap->GetMTime());
+  }
+  if (this->Surfaces)
+  {
+    t = std::max(t, this->Surfaces->GetMTime());
   }
   this->Lights->InitTraversal();
   while (vtkLight* l = this->Lights->GetNextItem())
@@ -316,11 +334,9 @@ int vtkReferenceRenderer::RequestData(
       return 0;
     }
     const double scale = s->GetDataType() == VTK_UNSIGNED_CHAR ? 1.0 / 255.0 : 1.0;
-    scene.EnvW = dims[0];
-    scene.EnvH = dims[1];
-    std::copy(this->EnvironmentUp, this->EnvironmentUp + 3, scene.EnvUp);
-    std::copy(this->EnvironmentRight, this->EnvironmentRight + 3, scene.EnvRight);
-    scene.Env.resize(3 * static_cast<size_t>(dims[0]) * dims[1]);
+    scene.Env.W = dims[0];
+    scene.Env.H = dims[1];
+    scene.Env.Rgb.resize(3 * static_cast<size_t>(dims[0]) * dims[1]);
     for (vtkIdType i = 0; i < s->GetNumberOfTuples(); ++i)
     {
       for (int c = 0; c < 3; ++c)
@@ -332,11 +348,21 @@ int vtkReferenceRenderer::RequestData(
                                                 << "; radiance must be finite and >= 0.");
           return 0;
         }
-        scene.Env[3 * i + c] = v;
+        scene.Env.Rgb[3 * i + c] = v;
       }
     }
   }
-  scene.Background = ToVec3(this->BackgroundColor);
+  scene.Env.Colour = ToVec3(this->BackgroundColor);
+  std::copy(this->EnvironmentUp, this->EnvironmentUp + 3, scene.Env.Up);
+  std::copy(this->EnvironmentRight, this->EnvironmentRight + 3, scene.Env.Right);
+  // A black background has nothing to sample: it illuminates nothing either way.
+  scene.EnvLight = this->BackgroundIlluminates && scene.Env.BuildSampling();
+  const std::string surfaceError = scene.Surf.Load(this->Surfaces, m);
+  if (!surfaceError.empty())
+  {
+    vtkErrorMacro("Surfaces: " << surfaceError << ".");
+    return 0;
+  }
   // LightRadius = 0 is a delta light, as in every pass. This estimator reaches a point or spot
   // light only by tracing a (possibly curved) ray that hits its sphere, which a point cannot be:
   // it needs an explicit radius, and says so rather than choosing one.
@@ -362,6 +388,7 @@ int vtkReferenceRenderer::RequestData(
   scene.T.M = &scene.M;
   scene.T.Tol = this->IntegratorTolerance;
   scene.T.MaxStep = this->MaximumStep;
+  scene.T.Surf = scene.Surf.Empty() ? nullptr : &scene.Surf;
   scene.TLight = scene.T;
   scene.TLight.Lights = &scene.Lights;
 
@@ -548,6 +575,8 @@ void vtkReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
      << ", " << this->EnvironmentUp[2] << ")\n";
   os << indent << "EnvironmentRight: (" << this->EnvironmentRight[0] << ", "
      << this->EnvironmentRight[1] << ", " << this->EnvironmentRight[2] << ")\n";
+  os << indent << "BackgroundIlluminates: " << this->BackgroundIlluminates << "\n";
+  os << indent << "Surfaces: " << this->Surfaces.Get() << "\n";
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MaximumScatteringDepth: " << this->MaximumScatteringDepth << "\n";

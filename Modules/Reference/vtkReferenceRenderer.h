@@ -34,14 +34,21 @@
  *   per voxel; positions along the curved path are advanced by arc length;
  * - emission eps is collected along the view ray up to its first real collision (estimator
  *   eps / majorant at every tentative collision); it is seen, it does not illuminate;
- * - the background (BackgroundColor or the EnvironmentMap) is added only to view rays that leave
- *   the medium unscattered; it illuminates nothing;
- * - at a real collision the path scatters with probability albedo (else it is absorbed) into a
- *   direction drawn from the one-sample MIS mixture 0.5 HG + 0.5 (uniform cone towards one light,
- *   chosen uniformly), weighted by HG / mixture (<= 2). The CURVED ray is then traced from there:
- *   if it reaches a light without a real collision the light's radiance is added. The mixture pdf
- *   is positive wherever HG is, so this stays unbiased where rays bend. Russian roulette from
- *   depth RouletteDepth (survival = min(1, max throughput)).
+ * - the background (BackgroundColor or the EnvironmentMap) is seen by view rays that leave
+ *   unscattered and unreflected; it illuminates nothing unless BackgroundIlluminates is on (see
+ *   "Background light" below);
+ * - at a real collision the path carries on with weight albedo; the light reaching the vertex is
+ *   estimated by one connection ray whose direction is drawn from the one-sample MIS mixture
+ *   0.5 HG + 0.5 (one emitter chosen uniformly: the uniform cone towards a light, or the
+ *   background's distribution when it illuminates), weighted by HG / mixture (<= 2). The CURVED
+ *   ray is then traced from there: if it reaches a light (or escapes, for directional lights and
+ *   an illuminating background) without a real collision or a surface in the way, that radiance
+ *   is added. The mixture pdf is positive wherever HG is, so this stays unbiased where rays bend.
+ *   The path continues in an HG direction. Russian roulette from depth RouletteDepth
+ *   (survival = min(1, max throughput)).
+ * - surfaces (SetSurfaces, see below) are met on every straight segment and on the chord of every
+ *   curved integrator step; each reflection counts as a scattering event (MaximumScatteringDepth,
+ *   RouletteDepth, MaximumPathVertices);
  * - Channels: when Extinction and Albedo are grey (the three components equal in every voxel) one
  *   path carries RGB; otherwise each sample traces one path per channel.
  *
@@ -53,11 +60,37 @@
  *   so that its irradiance on a plane perpendicular to it is E;
  * - point / spot: a sphere of radius LightRadius (world units; must be set > 0 for positional
  *   lights: 0, the default, is a delta light as in every pass, which this renderer refuses with
- *   an error naming 1% of the medium diagonal as a value to use) whose radiance towards a direction w is I(w) / (pi r^2) (I(w) = the intensity of
- *   Physics.md, cos^e inside the cone for spots), so its radiant intensity is I(w).
- * As the extents go to 0 the image converges to the delta-light answer (error O(extent^2)). Lights
- * are not seen directly by view rays (like the pipeline's view pass). A ray is tested against
- * light spheres on each integrator chord.
+ *   an error naming 1% of the medium diagonal as a value to use) whose radiance towards a direction
+ * w is I(w) / (pi r^2) (I(w) = the intensity of Physics.md, cos^e inside the cone for spots), so
+ * its radiant intensity is I(w). As the extents go to 0 the image converges to the delta-light
+ * answer (error O(extent^2)). Lights are not seen directly by view rays (like the pipeline's view
+ * pass). A ray is tested against light spheres on each integrator chord.
+ *
+ * **Surfaces** (vtkRefractaSurfaceSet, world coordinates, built when the renderer runs): opaque
+ * two-sided Lambertian triangles, inside, around or outside the medium's box. Outside the box rays
+ * are straight and meet surfaces (and, for connections, light spheres) before the box; after
+ * leaving the box a ray does not enter it again until it is reflected (a convex box). Rays are
+ * intersected with the set's host BVH (vtkRefractaBVH: double precision, the watertight test of
+ * Woop, Benthin and Wald), so no path leaks through the edges of a closed mesh. A hit's albedo is
+ * the set's baked albedo of the texel holding it (vtkRefractaSurfaceSet::TexelIndex, the lookup of
+ * the OpenCL passes), so the reference sees the colour the passes see, checker and scalar colours
+ * included. At a hit the path is continued (weight albedo) after next-event estimation: one
+ * connection ray drawn from the one-sample MIS mixture 0.5 cosine + 0.5 (a uniformly chosen
+ * emitter: a light's cone, or the background when it illuminates), weighted
+ * (cos / pi) / mixture, with the transmittance through the medium by ratio tracking and surfaces
+ * occluding; then a cosine-weighted bounce about the normal on the side the path arrived from.
+ * Rays leaving a surface start 1e-9 of the scene's size off it. Surfaces are not emitters.
+ *
+ * **Background light** (BackgroundIlluminates, off by default; refracta-render's
+ * `background.illuminates`): the background becomes an emitter at infinity, sampled at every
+ * medium and surface vertex together with the lights (same mixture as above: 0.5 HG or cosine +
+ * 0.5 emitters, each emitter chosen with probability 1 / (number of lights + 1)). An environment
+ * map is sampled by luminance: texel (i, j) with probability proportional to its solid angle times
+ * the largest Rec. 709 luminance of it and its 8 neighbours (so the pdf is positive wherever the
+ * bilinear lookup is), then uniformly in solid angle within it (u uniform, sin(latitude) uniform);
+ * a uniform colour uniformly over the sphere. A connection ray that escapes collects the
+ * background's radiance (and that of the directional discs it points into). The background still
+ * reaches the camera directly only along view rays that escape unscattered.
  *
  * **Camera**: vtkCamera converted to the grid-local frame; perspective with the vertical full
  * ViewAngle and aspect W / H, or parallel with ParallelScale = half the viewport height; rays
@@ -87,6 +120,7 @@
 class vtkCamera;
 class vtkLight;
 class vtkLightCollection;
+class vtkRefractaSurfaceSet;
 
 class REFRACTAREFERENCE_EXPORT vtkReferenceRenderer : public vtkImageAlgorithm
 {
@@ -148,6 +182,27 @@ public:
   vtkGetVector3Macro(EnvironmentUp, double);
   vtkSetVector3Macro(EnvironmentRight, double);
   vtkGetVector3Macro(EnvironmentRight, double);
+  ///@}
+
+  ///@{
+  /**
+   * Whether the background (the EnvironmentMap, else BackgroundColor) also lights the scene: off
+   * (default), it is only seen by view rays that leave unscattered; on, it is an emitter like
+   * the lights, sampled at every vertex (see the class documentation).
+   */
+  vtkSetMacro(BackgroundIlluminates, bool);
+  vtkGetMacro(BackgroundIlluminates, bool);
+  vtkBooleanMacro(BackgroundIlluminates, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Opaque two-sided Lambertian surfaces (world coordinates; built with
+   * vtkRefractaSurfaceSet::Build() when the renderer runs). Default none. Paths meet them inside
+   * and outside the medium (see the class documentation).
+   */
+  void SetSurfaces(vtkRefractaSurfaceSet* surfaces);
+  vtkRefractaSurfaceSet* GetSurfaces();
   ///@}
 
   ///@{
@@ -286,6 +341,8 @@ protected:
   vtkSmartPointer<vtkCamera> Camera;
   vtkSmartPointer<vtkLightCollection> Lights;
   vtkSmartPointer<vtkImageData> EnvironmentMap;
+  vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
+  bool BackgroundIlluminates = false;
   int ImageSize[2] = { 256, 256 };
   double BackgroundColor[3] = { 0.0, 0.0, 0.0 };
   double EnvironmentUp[3] = { 0.0, 1.0, 0.0 };

@@ -1,0 +1,81 @@
+/**
+ * Internal to RefractaReference (a private header: not wrapped, not installed). The opaque
+ * surfaces of the reference renderer: a built vtkRefractaSurfaceSet seen from the grid-local frame.
+ * Rays are intersected with the set's host BVH (vtkRefractaBVH: double precision, the watertight
+ * test of Woop, Benthin and Wald) after mapping them to world coordinates (the grid-local frame
+ * differs from the world by a rotation and a translation, so distances along a ray are the same in
+ * both). A hit's albedo is the set's baked per-texel albedo
+ * at the texel of its barycentrics, looked up with the set's own texel function, so the reference
+ * and the OpenCL passes see the same colour at the same point.
+ */
+#ifndef vtkReferenceSurfaces_h
+#define vtkReferenceSurfaces_h
+
+#include "vtkReferenceMath.h"
+
+#include "vtkSmartPointer.h"
+#include "vtkType.h" // for vtkIdType
+
+#include <string>
+
+class vtkRefractaSurfaceSet;
+class vtkRefractaBVH;
+
+namespace refracta
+{
+namespace reference
+{
+struct Medium;
+
+// A ray-surface hit: distance along the (unit) ray, BVH position of the triangle, barycentric
+// weights of its second and third vertex.
+struct SurfaceHit
+{
+  double T = Inf;
+  vtkIdType Triangle = -1;
+  double U = 0, V = 0;
+};
+
+struct Surfaces
+{
+  vtkSmartPointer<vtkRefractaSurfaceSet> Set;
+  const vtkRefractaBVH* BVH = nullptr;
+  // World point = Rotation * local + Translation (row-major 3 x 3).
+  double Rotation[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  Vec3 Translation = Vec3(0.0);
+  // Distance (world units) a ray leaving a surface starts off it, along the normal on its side:
+  // 1e-9 of the scene's size, far above double rounding of the hit point and far below any
+  // feature the renderer resolves.
+  double Offset = 0;
+
+  // Builds the set (vtkRefractaSurfaceSet::Build) and takes its BVH. An empty set, or none,
+  // leaves this empty. Returns an error message when the set cannot be built.
+  std::string Load(vtkRefractaSurfaceSet* set, const Medium& m);
+
+  bool Empty() const { return BVH == nullptr; }
+
+  // Closest hit of the grid-local ray o + t d (d unit) with t in (0, tMax).
+  bool Closest(const Vec3& o, const Vec3& d, double tMax, SurfaceHit& hit) const;
+
+  // Unit geometric normal of the hit's triangle in the grid-local frame (either orientation:
+  // surfaces are two-sided).
+  Vec3 Normal(const SurfaceHit& hit) const;
+
+  // RGB albedo of the texel holding the hit.
+  Vec3 Albedo(const SurfaceHit& hit) const;
+
+  // Where a ray leaving the surface point x in direction w starts: x moved by Offset along the
+  // normal n, towards the side w points to.
+  Vec3 Leave(const Vec3& x, const Vec3& n, const Vec3& w) const
+  {
+    return x + (glm::dot(n, w) >= 0 ? Offset : -Offset) * n;
+  }
+
+private:
+  Vec3 ToWorld(const Vec3& local) const;
+  Vec3 RotateToWorld(const Vec3& local) const;
+};
+} // namespace reference
+} // namespace refracta
+
+#endif

@@ -1,0 +1,242 @@
+// Refracta.SurfacesAgainstReference (issue #13): the render pipeline (vtkRefractaImageRenderer at
+// the DRAFT preset: photon pass with surfaces, lattice, view pass with surfaces) against the
+// unbiased reference renderer (vtkReferenceRenderer with the same vtkRefractaSurfaceSet) on a
+// diffuse floor in fog under a spot light, no glass:
+// - fog: a 24^3 box [0, 1]^3 (spacing 1/24, origin 1/48), sigma_t 1.5, albedo 0.8, g 0.3, n 1;
+// - floor: a square y = 0.1 inside the fog, x, z in [-1, 2] (it runs out of the box), albedo 0.75;
+// - a spot light at (0.5, 1.6, 0.5) aimed straight down, cone 30 degrees, exponent 1, intensity 3,
+//   radius 0.01 in both renderers (the reference cannot use a delta light);
+// - a perspective camera from (0.5, 0.9, 2.2) towards (0.5, 0.2, 0.5), 40 degrees, 32 x 32 pixels.
+//
+// Statistic: regions of 4 x 4 pixels (64 regions). Per region and channel, the reference's mean R
+// has the standard error SE = sqrt(sum of the pixels' SE^2) / 16. A region passes when
+//     |P - R| <= K_SIGMA SE + B max(R, RMS_R),
+// P the pipeline's mean, RMS_R the root mean square of the regions' R (the dim regions are held to
+// the image's scale, as in TestPipelineAgainstReference.cxx). K_SIGMA = 4 (a Gaussian mean exceeds
+// it with probability 6e-5; the reference is seeded, so the result is reproducible). B is the
+// pipeline's model error budget at the draft preset. At most MAX_FAILED_REGIONS may fail. A
+// pipeline image scaled by 1.3 must fail (the test can fail), and so must the pipeline's image of
+// the scene without the floor (the floor's light must be there).
+//
+// B = 0.10 is PROVISIONAL: when this test was written the photon and view passes with surfaces
+// were not merged, so no measurement of the draft preset on surfaces existed. 0.10 is the draft
+// preset's measured region error on the heterogeneous cloud (6.3%) plus its claimed error vs the
+// finest setting (2.5%), rounded up; the first run prints the measured region errors, which is
+// what B should then be set from (with a margin) in the documentation and here.
+#include "RefractaReferenceImages.h"
+
+#include "vtkCamera.h"
+#include "vtkEffectPlan.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkReferenceRenderer.h"
+#include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaMedium.h"
+#include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaSurfaceMaterial.h"
+#include "vtkRefractaSurfaceSet.h"
+#include "vtkSmartPointer.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+using refracta::bench::Image;
+using refracta::bench::ReadImage;
+
+constexpr int SIZE = 32;
+constexpr int BLOCK = 4;
+constexpr double K_SIGMA = 4.0;
+constexpr double B = 0.10; // provisional, see the header
+constexpr int MAX_FAILED_REGIONS = 1;
+constexpr double LIGHT_RADIUS = 0.01;
+
+struct Scene
+{
+  vtkSmartPointer<vtkImageData> Medium;
+  vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
+  vtkSmartPointer<vtkLight> Light;
+  vtkSmartPointer<vtkCamera> Camera;
+};
+
+vtkSmartPointer<vtkImageData> Fog()
+{
+  const int n = 24;
+  auto medium = vtkSmartPointer<vtkImageData>::New();
+  medium->SetDimensions(n, n, n);
+  medium->SetSpacing(1.0 / n, 1.0 / n, 1.0 / n);
+  medium->SetOrigin(0.5 / n, 0.5 / n, 0.5 / n);
+  // Uniform arrays; the missing ones (n, emission) take their defaults (1, 0).
+  auto uniform = [&](const char* name, double value, int components)
+  {
+    vtkNew<vtkFloatArray> a;
+    a->SetName(name);
+    a->SetNumberOfComponents(components);
+    a->SetNumberOfTuples(medium->GetNumberOfPoints());
+    a->Fill(value);
+    medium->GetPointData()->AddArray(a);
+  };
+  uniform(vtkRefractaMedium::ExtinctionName(), 1.5, 3);
+  uniform(vtkRefractaMedium::AlbedoName(), 0.8, 3);
+  uniform(vtkRefractaMedium::AnisotropyName(), 0.3, 1);
+  return medium;
+}
+
+Scene FloorInFog(bool withFloor)
+{
+  Scene s;
+  s.Medium = Fog();
+  s.Surfaces = vtkSmartPointer<vtkRefractaSurfaceSet>::New();
+  if (withFloor)
+  {
+    vtkNew<vtkPlaneSource> floor;
+    floor->SetOrigin(-1, 0.1, 2);
+    floor->SetPoint1(2, 0.1, 2);
+    floor->SetPoint2(-1, 0.1, -1);
+    floor->Update();
+    vtkNew<vtkRefractaSurfaceMaterial> material;
+    material->SetAlbedo(0.75, 0.75, 0.75);
+    s.Surfaces->AddSurface(floor->GetOutput(), material);
+  }
+  s.Light = vtkSmartPointer<vtkLight>::New();
+  s.Light->SetLightTypeToSceneLight();
+  s.Light->PositionalOn();
+  s.Light->SetPosition(0.5, 1.6, 0.5);
+  s.Light->SetFocalPoint(0.5, 0.0, 0.5);
+  s.Light->SetConeAngle(30);
+  s.Light->SetExponent(1);
+  s.Light->SetIntensity(3);
+  s.Camera = vtkSmartPointer<vtkCamera>::New();
+  s.Camera->SetPosition(0.5, 0.9, 2.2);
+  s.Camera->SetFocalPoint(0.5, 0.2, 0.5);
+  s.Camera->SetViewUp(0, 1, 0);
+  s.Camera->SetViewAngle(40);
+  return s;
+}
+
+Image RenderReference(const Scene& s, int spp)
+{
+  vtkNew<vtkReferenceRenderer> r;
+  r->SetInputData(s.Medium);
+  r->SetCamera(s.Camera);
+  r->AddLight(s.Light);
+  r->SetLightRadius(LIGHT_RADIUS);
+  r->SetSurfaces(s.Surfaces);
+  r->SetImageSize(SIZE, SIZE);
+  r->SetSamplesPerPixel(spp);
+  r->SetSeed(1);
+  r->Update();
+  return ReadImage(r->GetOutput());
+}
+
+Image RenderPipeline(const Scene& s)
+{
+  vtkNew<vtkRefractaImageRenderer> renderer;
+  vtkRefractaRenderPipeline* pipeline = renderer->GetPipeline();
+  pipeline->SetQuality(vtkEffectPlan::DRAFT);
+  pipeline->GetPhotonTracer()->SetLightRadius(LIGHT_RADIUS);
+  renderer->AddLight(s.Light);
+  renderer->SetSurfaces(s.Surfaces);
+  renderer->SetInputData(s.Medium);
+  renderer->SetCamera(s.Camera);
+  renderer->SetImageSize(SIZE, SIZE);
+  renderer->Update();
+  return ReadImage(renderer->GetOutput());
+}
+
+struct Regions
+{
+  std::vector<double> Mean, Error; // per region and channel
+  double Rms = 0;
+};
+
+Regions Pool(const Image& image)
+{
+  const int nb = SIZE / BLOCK;
+  Regions r;
+  r.Mean.assign(3 * nb * nb, 0.0);
+  r.Error.assign(3 * nb * nb, 0.0);
+  for (int j = 0; j < SIZE; ++j)
+  {
+    for (int i = 0; i < SIZE; ++i)
+    {
+      const int region = i / BLOCK + nb * (j / BLOCK);
+      for (int c = 0; c < 3; ++c)
+      {
+        const size_t v = 3 * (static_cast<size_t>(j) * SIZE + i) + c;
+        r.Mean[3 * region + c] += image.Value[v] / (BLOCK * BLOCK);
+        const double se = image.Error.empty() ? 0.0 : std::max(0.0, image.Error[v]);
+        r.Error[3 * region + c] += se * se;
+      }
+    }
+  }
+  double sum2 = 0;
+  for (size_t k = 0; k < r.Mean.size(); ++k)
+  {
+    r.Error[k] = std::sqrt(r.Error[k]) / (BLOCK * BLOCK);
+    sum2 += r.Mean[k] * r.Mean[k];
+  }
+  r.Rms = std::sqrt(sum2 / r.Mean.size());
+  return r;
+}
+
+// Number of failed region values of `image` against the reference regions; prints the largest
+// relative region error.
+int FailedRegions(const Image& image, const Regions& ref, const std::string& what)
+{
+  const Regions p = Pool(image);
+  int failed = 0;
+  double worst = 0, worstZ = 0;
+  for (size_t k = 0; k < ref.Mean.size(); ++k)
+  {
+    const double d = std::abs(p.Mean[k] - ref.Mean[k]);
+    const double scale = std::max(ref.Mean[k], ref.Rms);
+    worst = std::max(worst, d / scale);
+    worstZ = std::max(worstZ, ref.Error[k] > 0 ? d / ref.Error[k] : 0.0);
+    failed += d > K_SIGMA * ref.Error[k] + B * scale ? 1 : 0;
+  }
+  std::cout << "  " << what << ": largest region error " << 100 * worst
+            << "% of max(R, RMS_R), largest |P - R| / SE " << worstZ << ", failed " << failed
+            << " of " << ref.Mean.size() << " region values" << std::endl;
+  return failed;
+}
+
+Image Scaled(Image image, double f)
+{
+  for (double& v : image.Value)
+  {
+    v *= f;
+  }
+  return image;
+}
+} // namespace
+
+TEST(SurfacesAgainstReference, DiffuseFloorInFogUnderSpotLight)
+{
+  const Scene scene = FloorInFog(true);
+  const Image reference = RenderReference(scene, 512);
+  const Image pipeline = RenderPipeline(scene);
+  ASSERT_EQ(reference.Value.size(), 3u * SIZE * SIZE);
+  ASSERT_EQ(pipeline.Value.size(), reference.Value.size()) << "pipeline image has the wrong size";
+  const Regions ref = Pool(reference);
+  std::cout << "reference " << reference.Seconds << " s, pipeline (draft) " << pipeline.Seconds
+            << " s; bound per region value " << K_SIGMA << " SE + " << 100 * B
+            << "% of max(R, RMS_R)" << std::endl;
+  EXPECT_LE(FailedRegions(pipeline, ref, "pipeline"), MAX_FAILED_REGIONS);
+  EXPECT_GT(FailedRegions(Scaled(pipeline, 1.3), ref, "pipeline x 1.3"), MAX_FAILED_REGIONS)
+    << "a 30% error passes: the test cannot see it";
+  EXPECT_GT(FailedRegions(RenderPipeline(FloorInFog(false)), ref, "pipeline without the floor"),
+    MAX_FAILED_REGIONS)
+    << "the floor's light is not measured: the test cannot see it";
+}
