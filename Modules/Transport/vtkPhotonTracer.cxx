@@ -49,6 +49,8 @@ constexpr double ProgressMarched = 0.99;
 constexpr double TargetBatchSeconds = 0.05;
 constexpr size_t MinimumBatch = 1024;
 constexpr size_t MaximumBatch = size_t(1) << 20;
+// Curved steps are halved at most this often by the step control (StepTolerance).
+constexpr int MaximumHalvings = 6;
 
 }
 
@@ -362,7 +364,9 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DREFRACTA_MAX_STEPS=" << this->MaximumNumberOfSteps
           << " -DREFRACTA_EXT_STEP_LIMIT=" << FloatLiteral(this->ExtinctionStepLimit)
           << " -DREFRACTA_ROULETTE=" << FloatLiteral(this->RouletteThreshold)
-          << " -DREFRACTA_MAX_TURN=" << FloatLiteral(this->MaximumTurn);
+          << " -DREFRACTA_MAX_TURN=" << FloatLiteral(this->MaximumTurn)
+          << " -DREFRACTA_STEP_TOLERANCE=" << FloatLiteral(this->StepTolerance)
+          << " -DREFRACTA_MAX_HALVINGS=" << (this->StepTolerance > 0 ? MaximumHalvings : 0);
   run.Trace = ctx->GetProgram(
     { "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl", "photon_trace.cl" },
     options.str(), this);
@@ -820,6 +824,7 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RouletteThreshold: " << this->RouletteThreshold << "\n";
   os << indent << "MaximumNumberOfSteps: " << this->MaximumNumberOfSteps << "\n";
   os << indent << "MaximumTurn: " << this->MaximumTurn << "\n";
+  os << indent << "StepTolerance: " << this->StepTolerance << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";
   os << indent << "StepsPerChunk: " << this->StepsPerChunk << "\n";
   os << indent << "PhotonBatchSize: " << this->PhotonBatchSize << "\n";
