@@ -7,6 +7,7 @@
 #include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -16,6 +17,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <unistd.h>
 
 vtkStandardNewMacro(vtkOpenCLContext);
 
@@ -183,18 +185,6 @@ int FindSelectedDevice(const std::vector<DeviceEntry>& entries, const std::strin
   return -1;
 }
 
-// 64-bit FNV-1a: stable across processes and platforms, which std::hash is not.
-std::uint64_t Fnv1a(const std::string& text)
-{
-  std::uint64_t hash = 1469598103934665603ull;
-  for (unsigned char c : text)
-  {
-    hash ^= c;
-    hash *= 1099511628211ull;
-  }
-  return hash;
-}
-
 std::string BuildLog(cl_program program, cl_device_id device)
 {
   size_t size = 0;
@@ -221,7 +211,10 @@ vtkSmartPointer<vtkOpenCLContext>& DefaultContext()
 }
 
 //------------------------------------------------------------------------------
-vtkOpenCLContext::vtkOpenCLContext() = default;
+vtkOpenCLContext::vtkOpenCLContext()
+  : DiskCache(vtkSmartPointer<vtkOpenCLBinaryCache>::New())
+{
+}
 
 //------------------------------------------------------------------------------
 vtkOpenCLContext::~vtkOpenCLContext()
@@ -240,6 +233,7 @@ vtkOpenCLContext::~vtkOpenCLContext()
   }
   this->SetDeviceSelection(nullptr);
   this->SetBinaryCacheDirectory(nullptr);
+  this->SetSimulatedMissingExtensions(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -447,6 +441,9 @@ bool vtkOpenCLContext::SelectDevice()
     static_cast<double>(DeviceValue<cl_ulong>(entry.Device, CL_DEVICE_GLOBAL_MEM_SIZE));
   this->MaxAllocationBytes =
     static_cast<double>(DeviceValue<cl_ulong>(entry.Device, CL_DEVICE_MAX_MEM_ALLOC_SIZE));
+  this->LocalMemoryBytes =
+    static_cast<double>(DeviceValue<cl_ulong>(entry.Device, CL_DEVICE_LOCAL_MEM_SIZE));
+  this->MaxWorkGroupSize = DeviceValue<size_t>(entry.Device, CL_DEVICE_MAX_WORK_GROUP_SIZE);
 
   cl_int error = CL_SUCCESS;
   const cl_context_properties properties[] = { CL_CONTEXT_PLATFORM,
@@ -462,12 +459,6 @@ bool vtkOpenCLContext::SelectDevice()
   {
     return false;
   }
-  if (!this->HasExtension("cl_khr_int64_base_atomics"))
-  {
-    vtkWarningMacro("Device '" << this->DeviceName
-                               << "' lacks cl_khr_int64_base_atomics; the transport passes, which "
-                                  "accumulate in 64-bit fixed point, will fail to build on it.");
-  }
   vtkDebugMacro("Selected OpenCL device " << this->DeviceName << " on " << this->PlatformName);
   return true;
 }
@@ -478,6 +469,15 @@ bool vtkOpenCLContext::HasExtension(const char* name) const
   if (!name || !*name)
   {
     return false;
+  }
+  if (this->SimulatedMissingExtensions)
+  {
+    std::istringstream missing(this->SimulatedMissingExtensions);
+    if (std::find(std::istream_iterator<std::string>(missing), std::istream_iterator<std::string>(),
+          std::string(name)) != std::istream_iterator<std::string>())
+    {
+      return false;
+    }
   }
   std::istringstream words(this->Extensions);
   return std::find(std::istream_iterator<std::string>(words), std::istream_iterator<std::string>(),
@@ -532,6 +532,15 @@ std::string vtkOpenCLContext::CacheKey(const std::string& source, const std::str
 cl_program vtkOpenCLContext::GetProgram(
   const std::vector<std::string>& kernelFiles, const std::string& options, vtkObject* reporter)
 {
+  std::string label;
+  const std::string source = this->ConcatenateKernelFiles(kernelFiles, label, reporter);
+  return source.empty() ? nullptr : this->GetProgramFromSource(source, options, label, reporter);
+}
+
+//------------------------------------------------------------------------------
+std::string vtkOpenCLContext::ConcatenateKernelFiles(
+  const std::vector<std::string>& kernelFiles, std::string& labelOut, vtkObject* reporter)
+{
   std::string source;
   std::ostringstream label;
   int line = 1;
@@ -547,7 +556,7 @@ cl_program vtkOpenCLContext::GetProgram(
         msg << " " << vtkOpenCLKernelLibrary::GetKernelFileName(i);
       }
       this->ReportError(msg.str(), reporter);
-      return nullptr;
+      return std::string();
     }
     std::string piece(text);
     if (!piece.empty() && piece.back() != '\n')
@@ -559,7 +568,79 @@ cl_program vtkOpenCLContext::GetProgram(
     line += lines;
     source += piece;
   }
-  return this->GetProgramFromSource(source, options, label.str(), reporter);
+  labelOut = label.str();
+  return source;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkOpenCLContext::GetBinaryCachePath(
+  const std::vector<std::string>& kernelFiles, const std::string& options)
+{
+  std::string label;
+  const std::string source = this->ConcatenateKernelFiles(kernelFiles, label, nullptr);
+  if (source.empty() || !this->Initialize() || !this->UseBinaryCache)
+  {
+    return std::string();
+  }
+  this->UpdateBinaryCacheDirectory();
+  return this->DiskCache->GetEntryPath(this->CacheKey(source, options));
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenCLContext::UpdateBinaryCacheDirectory()
+{
+  const std::string directory = this->UseBinaryCache ? this->ResolveCacheDirectory() : "";
+  if (directory != this->DiskCache->GetDirectory())
+  {
+    this->DiskCache->SetDirectory(directory);
+    this->WarnedAboutDiskCache = false;
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkOpenCLContext::CheckRequiredExtensions(
+  const std::string& source, const std::string& label, vtkObject* reporter)
+{
+  // OpenCL C enables an optional feature with "#pragma OPENCL EXTENSION <name> : enable" (double
+  // needs cl_khr_fp64 so): those lines are the program's requirements.
+  std::istringstream lines(source);
+  std::string line;
+  while (std::getline(lines, line))
+  {
+    std::istringstream words(line);
+    std::string hash, pragma, opencl, extension, name;
+    words >> hash;
+    if (hash == "#")
+    {
+      words >> pragma;
+    }
+    else if (hash == "#pragma")
+    {
+      pragma = "pragma";
+    }
+    if (pragma != "pragma" || !(words >> opencl >> extension >> name) || opencl != "OPENCL" ||
+      extension != "EXTENSION" || name == "all" || this->HasExtension(name.c_str()))
+    {
+      continue;
+    }
+    std::ostringstream msg;
+    msg << "Cannot build OpenCL program [" << label << "]: it needs the extension " << name
+        << ", which device '" << this->DeviceName << "' (" << this->PlatformName
+        << ") does not offer";
+    if (name == "cl_khr_fp64")
+    {
+      msg << " (double precision)";
+    }
+    else if (name == "cl_khr_int64_base_atomics")
+    {
+      msg << " (64-bit atomics: the transport passes accumulate in 64-bit fixed point)";
+    }
+    msg << ". Choose another device with REFRACTA_OPENCL_DEVICE; the devices are:\n"
+        << ListDevices();
+    this->ReportError(msg.str(), reporter);
+    return false;
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -581,20 +662,12 @@ cl_program vtkOpenCLContext::GetProgramFromSource(const std::string& source,
     return found->second;
   }
 
-  std::string binaryPath;
-  if (this->UseBinaryCache)
+  if (!this->CheckRequiredExtensions(source, label, reporter))
   {
-    const std::string directory = this->ResolveCacheDirectory();
-    if (!directory.empty())
-    {
-      char name[32];
-      std::snprintf(
-        name, sizeof(name), "%016llx.clbin", static_cast<unsigned long long>(Fnv1a(key)));
-      binaryPath = directory + "/" + name;
-    }
+    return nullptr;
   }
-
-  cl_program program = binaryPath.empty() ? nullptr : this->LoadBinary(binaryPath, options);
+  this->UpdateBinaryCacheDirectory();
+  cl_program program = this->LoadBinary(key, options);
   if (program)
   {
     ++this->NumberOfBinaryLoads;
@@ -607,10 +680,7 @@ cl_program vtkOpenCLContext::GetProgramFromSource(const std::string& source,
       return nullptr;
     }
     ++this->NumberOfSourceBuilds;
-    if (!binaryPath.empty())
-    {
-      this->SaveBinary(program, binaryPath);
-    }
+    this->SaveBinary(program, key);
   }
   this->Programs[key] = program;
   return program;
@@ -644,16 +714,18 @@ cl_program vtkOpenCLContext::BuildFromSource(const std::string& source, const st
 }
 
 //------------------------------------------------------------------------------
-cl_program vtkOpenCLContext::LoadBinary(const std::string& path, const std::string& options)
+cl_program vtkOpenCLContext::LoadBinary(const std::string& key, const std::string& options)
 {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
+  std::vector<unsigned char> binary;
+  std::string why;
+  const int found = this->DiskCache->Load(key, binary, &why);
+  if (found == vtkOpenCLBinaryCache::REJECTED)
   {
+    ++this->NumberOfRejectedBinaries;
+    vtkDebugMacro("Kernel-cache entry rejected (" << why << "); rebuilding it from source.");
     return nullptr;
   }
-  const std::vector<unsigned char> binary(
-    (std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (binary.empty())
+  if (found != vtkOpenCLBinaryCache::LOADED)
   {
     return nullptr;
   }
@@ -663,25 +735,29 @@ cl_program vtkOpenCLContext::LoadBinary(const std::string& path, const std::stri
   cl_int error = CL_SUCCESS;
   cl_program program =
     clCreateProgramWithBinary(this->Context, 1, &this->Device, &size, &data, &binaryStatus, &error);
-  if (error != CL_SUCCESS || binaryStatus != CL_SUCCESS)
+  if (error == CL_SUCCESS && binaryStatus == CL_SUCCESS &&
+    clBuildProgram(program, 1, &this->Device, options.c_str(), nullptr, nullptr) == CL_SUCCESS)
   {
-    if (program)
-    {
-      clReleaseProgram(program);
-    }
-    return nullptr; // a stale or foreign binary: fall back to compiling the source
+    return program;
   }
-  if (clBuildProgram(program, 1, &this->Device, options.c_str(), nullptr, nullptr) != CL_SUCCESS)
+  // The checksum held but the driver refuses the binary (another driver build wrote it): the
+  // entry is useless, so it is deleted and rebuilt like a corrupt one.
+  if (program)
   {
     clReleaseProgram(program);
-    return nullptr;
   }
-  return program;
+  ++this->NumberOfRejectedBinaries;
+  this->DiskCache->Remove(key);
+  return nullptr;
 }
 
 //------------------------------------------------------------------------------
-void vtkOpenCLContext::SaveBinary(cl_program program, const std::string& path)
+void vtkOpenCLContext::SaveBinary(cl_program program, const std::string& key)
 {
+  if (!this->DiskCache->IsEnabled())
+  {
+    return;
+  }
   size_t size = 0;
   if (clGetProgramInfo(program, CL_PROGRAM_BINARY_SIZES, sizeof(size), &size, nullptr) !=
       CL_SUCCESS ||
@@ -695,27 +771,14 @@ void vtkOpenCLContext::SaveBinary(cl_program program, const std::string& path)
   {
     return;
   }
-  const std::string directory = vtksys::SystemTools::GetFilenamePath(path);
-  if (!vtksys::SystemTools::MakeDirectory(directory))
+  if (!this->DiskCache->Store(key, binary) && !this->DiskCache->IsEnabled() &&
+    !this->WarnedAboutDiskCache)
   {
-    vtkDebugMacro("Cannot create kernel cache directory " << directory);
-    return;
-  }
-  // Write then rename, so a concurrent process never reads a half-written binary.
-  const std::string temporary =
-    path + ".tmp" + std::to_string(reinterpret_cast<std::uintptr_t>(this));
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(binary.data()), static_cast<std::streamsize>(size));
-    if (!out)
-    {
-      vtksys::SystemTools::RemoveFile(temporary);
-      return;
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
-  {
-    vtksys::SystemTools::RemoveFile(temporary);
+    this->WarnedAboutDiskCache = true;
+    vtkWarningMacro("OpenCL kernel cache off: "
+      << this->DiskCache->GetDisabledReason()
+      << ". Kernels are compiled from source in this process; set REFRACTA_KERNEL_CACHE_DIR to a "
+         "writable folder to keep them between runs.");
   }
 }
 
@@ -787,22 +850,43 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
 }
 
 //------------------------------------------------------------------------------
+void vtkOpenCLContext::SetFailingEnqueue(int n)
+{
+  this->FailingEnqueue = n > 0 ? this->NumberOfEnqueues + n : 0;
+}
+
+//------------------------------------------------------------------------------
+bool vtkOpenCLContext::InjectedFault(const char* call, vtkObject* reporter)
+{
+  ++this->NumberOfEnqueues;
+  if (this->FailingEnqueue <= 0 || this->NumberOfEnqueues != this->FailingEnqueue)
+  {
+    return false;
+  }
+  this->FailingEnqueue = 0;
+  const std::string injected = std::string(call) + " [injected fault, SetFailingEnqueue]";
+  return !this->Check(CL_OUT_OF_RESOURCES, injected.c_str(), reporter);
+}
+
+//------------------------------------------------------------------------------
 bool vtkOpenCLContext::WriteBuffer(
   cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter)
 {
   return bytes == 0 ||
-    this->Check(
-      clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
-      "clEnqueueWriteBuffer", reporter);
+    (!this->InjectedFault("clEnqueueWriteBuffer", reporter) &&
+      this->Check(
+        clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
+        "clEnqueueWriteBuffer", reporter));
 }
 
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::ReadBuffer(cl_mem buffer, size_t bytes, void* data, vtkObject* reporter)
 {
   return bytes == 0 ||
-    this->Check(
-      clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
-      "clEnqueueReadBuffer", reporter);
+    (!this->InjectedFault("clEnqueueReadBuffer", reporter) &&
+      this->Check(
+        clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
+        "clEnqueueReadBuffer", reporter));
 }
 
 //------------------------------------------------------------------------------
@@ -810,14 +894,58 @@ bool vtkOpenCLContext::ZeroBuffer(cl_mem buffer, size_t bytes, vtkObject* report
 {
   const cl_uint zero = 0;
   return bytes == 0 ||
-    this->Check(clEnqueueFillBuffer(this->Queue, buffer, &zero, sizeof(zero), 0,
-                  (bytes / sizeof(zero)) * sizeof(zero), 0, nullptr, nullptr),
-      "clEnqueueFillBuffer", reporter);
+    (!this->InjectedFault("clEnqueueFillBuffer", reporter) &&
+      this->Check(clEnqueueFillBuffer(this->Queue, buffer, &zero, sizeof(zero), 0,
+                    (bytes / sizeof(zero)) * sizeof(zero), 0, nullptr, nullptr),
+        "clEnqueueFillBuffer", reporter));
+}
+
+//------------------------------------------------------------------------------
+bool vtkOpenCLContext::CheckLaunch(cl_kernel kernel, const size_t* localSize, cl_uint dimensions,
+  const char* label, vtkObject* reporter)
+{
+  size_t kernelMaximum = 0;
+  cl_ulong kernelLocal = 0;
+  clGetKernelWorkGroupInfo(kernel, this->Device, CL_KERNEL_WORK_GROUP_SIZE, sizeof(kernelMaximum),
+    &kernelMaximum, nullptr);
+  clGetKernelWorkGroupInfo(
+    kernel, this->Device, CL_KERNEL_LOCAL_MEM_SIZE, sizeof(kernelLocal), &kernelLocal, nullptr);
+  size_t group = 1;
+  for (cl_uint d = 0; localSize && d < dimensions; ++d)
+  {
+    group *= std::max<size_t>(localSize[d], 1);
+  }
+  size_t allowed = this->GetMaximumWorkGroupSize();
+  if (kernelMaximum > 0)
+  {
+    allowed = std::min(allowed, kernelMaximum);
+  }
+  std::ostringstream msg;
+  if (localSize && group > allowed)
+  {
+    msg << "Kernel " << label << " runs in work-groups of " << group << " work-items, but device '"
+        << this->DeviceName << "' allows at most " << allowed
+        << " for it (CL_KERNEL_WORK_GROUP_SIZE / CL_DEVICE_MAX_WORK_GROUP_SIZE). Choose another "
+           "device with REFRACTA_OPENCL_DEVICE.";
+  }
+  else if (static_cast<double>(kernelLocal) > this->GetLocalMemoryBytes())
+  {
+    msg << "Kernel " << label << " needs " << kernelLocal
+        << " bytes of local memory per work-group, but device '" << this->DeviceName << "' has "
+        << this->GetLocalMemoryBytes()
+        << " (CL_DEVICE_LOCAL_MEM_SIZE). Choose another device with REFRACTA_OPENCL_DEVICE.";
+  }
+  else
+  {
+    return true;
+  }
+  this->ReportError(msg.str(), reporter);
+  return false;
 }
 
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::RunKernel(cl_kernel kernel, cl_uint dimensions, const size_t* globalSize,
-  const size_t* localSize, const char* label, vtkObject* reporter)
+  const size_t* localSize, const char* label, vtkObject* reporter, const size_t* globalOffset)
 {
   size_t global[3] = { 1, 1, 1 };
   for (cl_uint d = 0; d < dimensions && d < 3; ++d)
@@ -833,9 +961,54 @@ bool vtkOpenCLContext::RunKernel(cl_kernel kernel, cl_uint dimensions, const siz
     }
   }
   const std::string call = std::string("clEnqueueNDRangeKernel(") + label + ")";
-  return this->Check(clEnqueueNDRangeKernel(this->Queue, kernel, dimensions, nullptr, global,
-                       localSize, 0, nullptr, nullptr),
-    call.c_str(), reporter);
+  return this->CheckLaunch(kernel, localSize, dimensions, label, reporter) &&
+    !this->InjectedFault(call.c_str(), reporter) &&
+    this->Check(clEnqueueNDRangeKernel(this->Queue, kernel, dimensions, globalOffset, global,
+                  localSize, 0, nullptr, nullptr),
+      call.c_str(), reporter);
+}
+
+//------------------------------------------------------------------------------
+double vtkOpenCLContext::GetMaximumAllocationBytes() const
+{
+  return this->SimulatedMaximumAllocationBytes > 0
+    ? std::min(this->SimulatedMaximumAllocationBytes, this->MaxAllocationBytes)
+    : this->MaxAllocationBytes;
+}
+
+double vtkOpenCLContext::GetGlobalMemoryBytes() const
+{
+  return this->SimulatedGlobalMemoryBytes > 0
+    ? std::min(this->SimulatedGlobalMemoryBytes, this->GlobalMemoryBytes)
+    : this->GlobalMemoryBytes;
+}
+
+double vtkOpenCLContext::GetLocalMemoryBytes() const
+{
+  return this->SimulatedLocalMemoryBytes > 0
+    ? std::min(this->SimulatedLocalMemoryBytes, this->LocalMemoryBytes)
+    : this->LocalMemoryBytes;
+}
+
+double vtkOpenCLContext::GetHostMemoryBytes() const
+{
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long pageSize = sysconf(_SC_PAGE_SIZE);
+  const double physical = pages > 0 && pageSize > 0 ? double(pages) * double(pageSize) : 0.0;
+  if (this->SimulatedHostMemoryBytes > 0)
+  {
+    return physical > 0 ? std::min(physical, this->SimulatedHostMemoryBytes)
+                        : this->SimulatedHostMemoryBytes;
+  }
+  return physical;
+}
+
+size_t vtkOpenCLContext::GetMaximumWorkGroupSize() const
+{
+  const size_t device = this->MaxWorkGroupSize > 0 ? this->MaxWorkGroupSize : 1;
+  return this->SimulatedMaximumWorkGroupSize > 0
+    ? std::min(device, static_cast<size_t>(this->SimulatedMaximumWorkGroupSize))
+    : device;
 }
 
 //------------------------------------------------------------------------------
@@ -861,4 +1034,32 @@ void vtkOpenCLContext::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfSourceBuilds: " << this->NumberOfSourceBuilds << "\n";
   os << indent << "NumberOfBinaryLoads: " << this->NumberOfBinaryLoads << "\n";
   os << indent << "NumberOfMemoryCacheHits: " << this->NumberOfMemoryCacheHits << "\n";
+  os << indent << "NumberOfRejectedBinaries: " << this->NumberOfRejectedBinaries << "\n";
+  os << indent << "NumberOfEnqueues: " << this->NumberOfEnqueues << "\n";
+  os << indent << "MaximumAllocationBytes: " << this->GetMaximumAllocationBytes() << "\n";
+  os << indent << "GlobalMemoryBytes: " << this->GetGlobalMemoryBytes() << "\n";
+  os << indent << "LocalMemoryBytes: " << this->GetLocalMemoryBytes() << "\n";
+  os << indent << "HostMemoryBytes: " << this->GetHostMemoryBytes() << "\n";
+  os << indent << "MaximumWorkGroupSize: " << this->GetMaximumWorkGroupSize() << "\n";
+  os << indent << "DiskCache:\n";
+  this->DiskCache->PrintSelf(os, indent.GetNextIndent());
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+std::atomic<long long> LiveHandles[3];
+}
+
+long long vtkOpenCLLiveHandles(int kind)
+{
+  return kind >= 0 && kind < 3 ? LiveHandles[kind].load() : 0;
+}
+
+void vtkOpenCLCountHandle(int kind, int change)
+{
+  if (kind >= 0 && kind < 3)
+  {
+    LiveHandles[kind] += change;
+  }
 }

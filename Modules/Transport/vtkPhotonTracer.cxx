@@ -15,6 +15,7 @@
 #include "vtkMediumValidator.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
+#include "vtkOpenCLMemoryPlan.h"
 #include "vtkPointData.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
@@ -254,6 +255,69 @@ bool vtkPhotonTracer::InitializeDevice(Internals& run)
   this->ComputedGradient = m.Curved && !m.HasGradient;
 
   run.Alloc = Allocator{ ctx, this };
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// Before any allocation: the run's device buffers and host copies against the device's limits.
+bool vtkPhotonTracer::PlanMemory(Internals& run)
+{
+  const Medium& m = run.M;
+  const double v = static_cast<double>(m.Voxels);
+  const double p = static_cast<double>(run.Photons);
+  std::ostringstream gridText, photonText;
+  gridText << "grid " << m.Dims[0] << " x " << m.Dims[1] << " x " << m.Dims[2];
+  photonText << run.Photons << " photons";
+  const std::string grid = gridText.str(), photons = photonText.str();
+  const std::string gridSetting = "the grid size", photonSetting = "NumberOfPhotons";
+  vtkNew<vtkOpenCLMemoryPlan> plan;
+  plan->Reset("photon pass");
+  if (!run.ReusedMedium)
+  {
+    plan->AddDeviceBuffer(grid, "refractive index", (m.Curved ? v : 1) * 4, gridSetting);
+    plan->AddDeviceBuffer(grid, "index gradient", m.Curved ? v * 12 : 16, gridSetting);
+    if (m.Curved && this->AdaptiveStepping)
+    {
+      // The level array, and the min/max pyramid (8 bytes a node, 8/7 of the voxels in all).
+      plan->AddDeviceBuffer(grid, "octree", v, gridSetting);
+      plan->AddDeviceBuffer(grid, "octree pyramid", v * 8 * 8 / 7, gridSetting);
+    }
+    plan->AddDeviceBuffer(grid, "extinction", (m.Attenuates ? v : 1) * 12, gridSetting);
+    plan->AddDeviceBuffer(grid, "albedo", (m.Scatters ? v : 1) * 12, gridSetting);
+  }
+  for (const char* what : { "photon positions", "photon directions", "photon powers" })
+  {
+    plan->AddDeviceBuffer(photons, what, p * 16, photonSetting);
+  }
+  if (this->StepsPerChunk > 0)
+  {
+    plan->AddDeviceBuffer(photons, "photon state (chunked march)", p * 128, photonSetting);
+    plan->AddDeviceBuffer(photons, "photon status (chunked march)", p * 16, photonSetting);
+  }
+  const double accumulators = m.Scatters ? v * 3 * 8 : 8;
+  plan->AddDeviceBuffer(grid, "radiance accumulator", accumulators, gridSetting);
+  plan->AddDeviceBuffer(grid, "direction accumulator", accumulators, gridSetting);
+  if (m.Scatters)
+  {
+    const int fields = this->Smoothing ? 4 : 2; // radiance and direction, smoothed copies
+    for (int f = 0; f < fields; ++f)
+    {
+      plan->AddDeviceBuffer(
+        grid, f % 2 ? "direction field" : "radiance field", v * 12, gridSetting);
+    }
+  }
+  // Host: the medium's float copies (index, gradient, extinction, albedo) and the two outputs.
+  plan->AddHostMemory(
+    grid, "medium copies", v * 4 * (1 + 3 + 3 + (m.HasGradient ? 3 : 0)), gridSetting);
+  plan->AddHostMemory(grid, "Radiance and RadianceDirection", v * 12 * 2, gridSetting);
+  this->PlannedDeviceMemoryBytes =
+    plan->GetDeviceBytes() + (run.ReusedMedium ? run.Alloc.Bytes : 0);
+  this->PlannedHostMemoryBytes = plan->GetHostBytes();
+  if (!plan->Fits(run.Context))
+  {
+    vtkErrorMacro(<< plan->GetMessage());
+    return false;
+  }
   return true;
 }
 
@@ -766,6 +830,7 @@ int vtkPhotonTracer::RequestData(
   output->Initialize();
   this->OctreeSeconds = this->GenerationSeconds = this->MarchingSeconds = 0;
   this->SmoothingSeconds = this->PeakDeviceMemoryBytes = 0;
+  this->PlannedDeviceMemoryBytes = this->PlannedHostMemoryBytes = 0;
   this->UsedCurvedRays = this->UsedExtinction = this->UsedDeposit = false;
   this->UsedOctree = this->ComputedGradient = false;
 
@@ -785,8 +850,8 @@ int vtkPhotonTracer::RequestData(
     return 0;
   }
   this->SharePhotons(run);
-  if (!this->InitializeDevice(run) || !this->BuildOctreeStage(run) || !this->GeneratePhotons(run) ||
-    !this->MarchPhotons(run) || !this->ResolveRadiance(run))
+  if (!this->InitializeDevice(run) || !this->PlanMemory(run) || !this->BuildOctreeStage(run) ||
+    !this->GeneratePhotons(run) || !this->MarchPhotons(run) || !this->ResolveRadiance(run))
   {
     if (run.Aborted)
     {
@@ -835,6 +900,8 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
      << ", " << this->GenerationSeconds << ", " << this->MarchingSeconds << ", "
      << this->SmoothingSeconds << "\n";
   os << indent << "PeakDeviceMemoryBytes: " << this->PeakDeviceMemoryBytes << "\n";
+  os << indent << "PlannedDeviceMemoryBytes: " << this->PlannedDeviceMemoryBytes << "\n";
+  os << indent << "PlannedHostMemoryBytes: " << this->PlannedHostMemoryBytes << "\n";
   os << indent << "Plan: curved " << this->UsedCurvedRays << ", extinction " << this->UsedExtinction
      << ", deposit " << this->UsedDeposit << ", octree " << this->UsedOctree
      << ", gradient computed " << this->ComputedGradient << "\n";

@@ -249,6 +249,20 @@ public:
 
   ///@{
   /**
+   * Memory planning: before it allocates anything, a run estimates its device buffers (index,
+   * gradient, octree, coefficients, photon state, accumulators, smoothing) and host copies from
+   * the grid size and NumberOfPhotons and checks them against the context's limits
+   * (vtkOpenCLMemoryPlan). What does not fit fails the run at once with a message naming the
+   * buffer, the limit and the setting to lower (NumberOfPhotons or the grid size).
+   * GetPlannedDeviceMemoryBytes() / GetPlannedHostMemoryBytes() are the last plan's totals
+   * (bytes); GetPeakDeviceMemoryBytes() is what the run then allocated.
+   */
+  vtkGetMacro(PlannedDeviceMemoryBytes, double);
+  vtkGetMacro(PlannedHostMemoryBytes, double);
+  ///@}
+
+  ///@{
+  /**
    * The plan of the last run: curved rays (n varies), attenuation, deposits (something
    * scatters), octree built, gradient computed on the device.
    */
@@ -371,6 +385,8 @@ protected:
   double MarchingSeconds = 0;
   double SmoothingSeconds = 0;
   double PeakDeviceMemoryBytes = 0;
+  double PlannedDeviceMemoryBytes = 0;
+  double PlannedHostMemoryBytes = 0;
   bool UsedCurvedRays = false;
   bool UsedExtinction = false;
   bool UsedDeposit = false;
@@ -391,6 +407,7 @@ private:
   bool SetUpLights(Internals& run);
   void SharePhotons(Internals& run);
   bool InitializeDevice(Internals& run);
+  bool PlanMemory(Internals& run);
   bool BuildOctreeStage(Internals& run);
   bool GeneratePhotons(Internals& run);
   bool MarchPhotons(Internals& run);
