@@ -46,11 +46,15 @@ double Sum(const Entries& entries)
 }
 
 template <typename Entries>
-const typename Entries::value_type* Largest(const Entries& entries)
+const typename Entries::value_type* Largest(const Entries& entries, bool newOnly = false)
 {
   const typename Entries::value_type* best = nullptr;
   for (const auto& e : entries)
   {
+    if (newOnly && e.Resident)
+    {
+      continue;
+    }
     if (!best || e.Bytes > best->Bytes)
     {
       best = &e;
@@ -72,13 +76,19 @@ void vtkOpenCLMemoryPlan::Reset(const std::string& pass)
 void vtkOpenCLMemoryPlan::AddDeviceBuffer(
   const std::string& subject, const std::string& what, double bytes, const std::string& setting)
 {
-  this->Device.push_back({ subject, what, bytes, setting });
+  this->Device.push_back({ subject, what, bytes, setting, false });
+}
+
+void vtkOpenCLMemoryPlan::AddResidentDeviceBuffer(
+  const std::string& subject, const std::string& what, double bytes, const std::string& setting)
+{
+  this->Device.push_back({ subject, what, bytes, setting, true });
 }
 
 void vtkOpenCLMemoryPlan::AddHostMemory(
   const std::string& subject, const std::string& what, double bytes, const std::string& setting)
 {
-  this->Host.push_back({ subject, what, bytes, setting });
+  this->Host.push_back({ subject, what, bytes, setting, false });
 }
 
 double vtkOpenCLMemoryPlan::GetDeviceBytes() const
@@ -118,14 +128,15 @@ bool vtkOpenCLMemoryPlan::Fits(vtkOpenCLContext* context)
   this->Message.clear();
   std::ostringstream msg;
   const double perAllocation = context->GetMaximumAllocationBytes();
+  const Entry* largestNew = Largest(this->Device, true);
   const Entry* largest = Largest(this->Device);
   const std::string device = std::string("device '") + context->GetDeviceName() + "'";
-  if (largest && perAllocation > 0 && largest->Bytes > perAllocation)
+  if (largestNew && perAllocation > 0 && largestNew->Bytes > perAllocation)
   {
-    msg << this->Pass << ": " << largest->Subject << " needs " << FormatBytes(largest->Bytes)
-        << " for the " << largest->What << "; " << device << " allows "
+    msg << this->Pass << ": " << largestNew->Subject << " needs " << FormatBytes(largestNew->Bytes)
+        << " for the " << largestNew->What << "; " << device << " allows "
         << FormatBytes(perAllocation) << " per allocation (CL_DEVICE_MAX_MEM_ALLOC_SIZE): lower "
-        << largest->Setting << ".";
+        << largestNew->Setting << ".";
   }
   const double global = context->GetGlobalMemoryBytes();
   const double deviceTotal = this->GetDeviceBytes();

@@ -43,6 +43,13 @@ public:
     const std::string& subject, const std::string& what, double bytes, const std::string& setting);
 
   /**
+   * Device memory already allocated (e.g. arrays uploaded earlier) that stays in use: it counts
+   * towards the global memory, not against the per-allocation limit.
+   */
+  void AddResidentDeviceBuffer(
+    const std::string& subject, const std::string& what, double bytes, const std::string& setting);
+
+  /**
    * Host memory of `bytes` bytes, described as for AddDeviceBuffer.
    */
   void AddHostMemory(
@@ -87,6 +94,7 @@ protected:
     std::string What;
     double Bytes;
     std::string Setting;
+    bool Resident;
   };
   std::string Pass;
   std::vector<Entry> Device;

@@ -118,10 +118,10 @@ struct vtkRefractaViewPass::Internals
 
   vtkOpenCLBuffer Dummy;
 
-  // Device bytes held by the uploaded medium, lighting, environment and occupancy buffers.
-  double UploadedBytes() const
+  // Device bytes of each uploaded buffer (medium, lighting, environment, occupancy).
+  std::vector<double> UploadedBytes() const
   {
-    double total = 0;
+    std::vector<double> sizes;
     for (const vtkOpenCLBuffer* b : { &this->Extinction, &this->Emission, &this->Anisotropy,
            &this->Index, &this->Gradient, &this->Radiance, &this->RadianceDirection,
            &this->Multiple, &this->EnvironmentBuffer, &this->Occupancy, &this->Dummy })
@@ -130,10 +130,10 @@ struct vtkRefractaViewPass::Internals
       if (*b &&
         clGetMemObjectInfo(b->Get(), CL_MEM_SIZE, sizeof(size), &size, nullptr) == CL_SUCCESS)
       {
-        total += static_cast<double>(size);
+        sizes.push_back(static_cast<double>(size));
       }
     }
-    return total;
+    return sizes;
   }
 
   // Builds the macro-cell occupancy (BuildMacroCellGrid) when the flags or b changed, and
@@ -933,8 +933,11 @@ bool vtkRefractaViewPass::PlanImageMemory(
   {
     plan->AddDeviceBuffer(subject.str(), "depth limits", slice * 4, "the image size");
   }
-  plan->AddDeviceBuffer("the medium and lighting arrays", "grid buffers",
-    this->Internal->UploadedBytes(), "the grid size");
+  for (double bytes : this->Internal->UploadedBytes())
+  {
+    plan->AddResidentDeviceBuffer(
+      "the uploaded arrays", "medium or lighting array", bytes, "the grid size");
+  }
   const double pixels = row * height;
   plan->AddHostMemory(subject.str(), "HDR image", pixels * 16, "the image size");
   plan->AddHostMemory(subject.str(), "step counts", pixels * 4, "the image size");
