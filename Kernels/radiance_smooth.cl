@@ -4,9 +4,13 @@
 // radiance_resolve: one work-item per voxel; fixed point -> float; Radiance divided by the voxel
 //   volume (Physics.md: power per unit volume), the direction sums kept unnormalised.
 // radiance_smooth: one work-item per voxel, 3-component field. Kernel: the binomial (1, 2, 1) / 4
-//   per axis (a 3x3x3 approximation of a Gaussian). It is applied in scatter form: each source
-//   voxel's weights are renormalised over the neighbours that exist, so the total over the grid
-//   is conserved exactly (the smoothing moves energy, it never creates or loses it at the edges).
+//   per axis (a 3x3x3 approximation of a Gaussian), with a mirror boundary: a weight that falls
+//   outside the grid lands on the voxel mirrored back inside (the face voxel itself). Per axis the
+//   operator is then a symmetric matrix whose rows and columns all sum to 1, so a constant field
+//   stays constant at faces, edges and corners (rows) and the total over the grid is conserved
+//   (columns): the smoothing moves energy, it never creates or loses it, and it biases no layer.
+//   (Renormalising each source voxel's weights over the neighbours that exist also conserves the
+//   total, but a uniform field then reads 0.92 in the face layer and 1.08 in the next.)
 // radiance_normalize: one work-item per voxel; unit direction, or zero where nothing arrived.
 
 __kernel void radiance_resolve(__global const long* radianceFixed,
@@ -25,10 +29,11 @@ __kernel void radiance_resolve(__global const long* radianceFixed,
   }
 }
 
-// Sum of the in-grid binomial weights around index i on an axis of n voxels.
-inline float radiance_axis_norm(int i, int n)
+// Mirror of index i into [0, n): the neighbour beyond a face is the face voxel itself
+// (half-sample symmetric reflection, -1 -> 0 and n -> n - 1).
+inline int radiance_mirror(int i, int n)
 {
-  return 0.5f + (i > 0 ? 0.25f : 0.0f) + (i < n - 1 ? 0.25f : 0.0f);
+  return i < 0 ? 0 : (i >= n ? n - 1 : i);
 }
 
 __kernel void radiance_smooth(
@@ -45,28 +50,16 @@ __kernel void radiance_smooth(
   float3 sum = (float3)(0.0f);
   for (int dk = -1; dk <= 1; ++dk)
   {
-    const int kk = k + dk;
-    if (kk < 0 || kk >= dims.z)
-    {
-      continue;
-    }
-    const float wk = (dk == 0 ? 0.5f : 0.25f) / radiance_axis_norm(kk, dims.z);
+    const int kk = radiance_mirror(k + dk, dims.z);
+    const float wk = dk == 0 ? 0.5f : 0.25f;
     for (int dj = -1; dj <= 1; ++dj)
     {
-      const int jj = j + dj;
-      if (jj < 0 || jj >= dims.y)
-      {
-        continue;
-      }
-      const float wj = wk * (dj == 0 ? 0.5f : 0.25f) / radiance_axis_norm(jj, dims.y);
+      const int jj = radiance_mirror(j + dj, dims.y);
+      const float wj = wk * (dj == 0 ? 0.5f : 0.25f);
       for (int di = -1; di <= 1; ++di)
       {
-        const int ii = i + di;
-        if (ii < 0 || ii >= dims.x)
-        {
-          continue;
-        }
-        const float w = wj * (di == 0 ? 0.5f : 0.25f) / radiance_axis_norm(ii, dims.x);
+        const int ii = radiance_mirror(i + di, dims.x);
+        const float w = wj * (di == 0 ? 0.5f : 0.25f);
         sum += w * vload3(refracta_voxel_index(dims, ii, jj, kk), in);
       }
     }

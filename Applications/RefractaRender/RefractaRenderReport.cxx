@@ -5,6 +5,7 @@
 #include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkOpenCLMemoryPlan.h"
 #include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaLightingVolume.h"
@@ -157,6 +158,9 @@ json LightPassReport(vtkRefractaRenderPipeline* pipeline, int lightCount)
   report["smoothing_seconds"] = tracer->GetSmoothingSeconds();
   report["curved_rays"] = tracer->GetUsedCurvedRays();
   report["octree"] = tracer->GetUsedOctree();
+  report["device_memory_planned_bytes"] = tracer->GetPlannedDeviceMemoryBytes();
+  report["device_memory_used_bytes"] = tracer->GetPeakDeviceMemoryBytes();
+  report["host_memory_planned_bytes"] = tracer->GetPlannedHostMemoryBytes();
   report["photon_seconds"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING);
   if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
   {
@@ -183,7 +187,10 @@ json ViewPassReport(vtkRefractaImageRenderer* renderer)
   return { { "curved_rays", view->GetLastCurved() }, { "total_steps", view->GetLastTotalSteps() },
     { "steps_per_pixel", view->GetLastTotalSteps() / (double(size[0]) * size[1]) },
     { "empty_space_skipping", view->GetLastSkipping() },
-    { "active_cell_fraction", view->GetLastActiveCellFraction() } };
+    { "active_cell_fraction", view->GetLastActiveCellFraction() },
+    { "buffer_tiles", view->GetLastNumberOfBufferTiles() },
+    { "device_memory_planned_bytes", view->GetPlannedDeviceMemoryBytes() },
+    { "memory_plan", view->GetMemoryPlan()->GetSummary() } };
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -215,6 +222,13 @@ void PrintLightPass(const json& light)
   std::cout << "  light     " << light.value("NumberOfPhotons", 0.0) << " photons, "
             << light.value("TotalSteps", 0.0) << " steps, " << light.value("photon_seconds", 0.0)
             << " s\n";
+  std::cout << "  memory    photon pass: device "
+            << vtkOpenCLMemoryPlan::FormatBytes(light.value("device_memory_planned_bytes", 0.0))
+            << " planned, "
+            << vtkOpenCLMemoryPlan::FormatBytes(light.value("device_memory_used_bytes", 0.0))
+            << " used; host "
+            << vtkOpenCLMemoryPlan::FormatBytes(light.value("host_memory_planned_bytes", 0.0))
+            << " planned\n";
   if (light["multiple_scattering"].is_object())
   {
     const json& ms = light["multiple_scattering"];
@@ -293,6 +307,8 @@ void PrintSummary(const json& report)
                      "% of macro cells active), "
                                                          : std::string("no empty space skipped, "))
             << seconds["view_pass"].get<double>() << " s\n";
+  std::cout << "  memory    view pass: " << view["memory_plan"].get<std::string>() << " planned, "
+            << view["buffer_tiles"].get<int>() << " buffer tile(s)\n";
   std::cout << "  total     " << seconds["total"].get<double>() << " s\n";
 }
 }

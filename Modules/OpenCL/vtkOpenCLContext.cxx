@@ -7,6 +7,7 @@
 #include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -16,6 +17,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <unistd.h>
 
 vtkStandardNewMacro(vtkOpenCLContext);
 
@@ -23,177 +25,6 @@ namespace
 {
 // Refracta's version goes into the binary-cache key: a new release never loads an old binary.
 constexpr const char* RefractaCacheVersion = "refracta-0.1.0";
-
-struct DeviceEntry
-{
-  cl_platform_id Platform;
-  cl_device_id Device;
-  int PlatformIndex;
-  int DeviceIndex;
-  std::string PlatformName;
-  std::string DeviceName;
-  std::string Vendor;
-  cl_device_type Type;
-};
-
-std::string PlatformString(cl_platform_id platform, cl_platform_info what)
-{
-  size_t size = 0;
-  if (clGetPlatformInfo(platform, what, 0, nullptr, &size) != CL_SUCCESS || size == 0)
-  {
-    return std::string();
-  }
-  std::string value(size, '\0');
-  clGetPlatformInfo(platform, what, size, &value[0], nullptr);
-  value.resize(std::strlen(value.c_str()));
-  return value;
-}
-
-std::string DeviceString(cl_device_id device, cl_device_info what)
-{
-  size_t size = 0;
-  if (clGetDeviceInfo(device, what, 0, nullptr, &size) != CL_SUCCESS || size == 0)
-  {
-    return std::string();
-  }
-  std::string value(size, '\0');
-  clGetDeviceInfo(device, what, size, &value[0], nullptr);
-  value.resize(std::strlen(value.c_str()));
-  return value;
-}
-
-template <typename T>
-T DeviceValue(cl_device_id device, cl_device_info what)
-{
-  T value{};
-  clGetDeviceInfo(device, what, sizeof(T), &value, nullptr);
-  return value;
-}
-
-std::string Lowercase(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
-const char* TypeName(cl_device_type type)
-{
-  if (type & CL_DEVICE_TYPE_GPU)
-  {
-    return "GPU";
-  }
-  if (type & CL_DEVICE_TYPE_CPU)
-  {
-    return "CPU";
-  }
-  if (type & CL_DEVICE_TYPE_ACCELERATOR)
-  {
-    return "accelerator";
-  }
-  return "other";
-}
-
-// All devices of all platforms, or the error of clGetPlatformIDs.
-cl_int EnumerateDevices(std::vector<DeviceEntry>& entries)
-{
-  cl_uint numberOfPlatforms = 0;
-  cl_int status = clGetPlatformIDs(0, nullptr, &numberOfPlatforms);
-  if (status != CL_SUCCESS)
-  {
-    return status;
-  }
-  std::vector<cl_platform_id> platforms(numberOfPlatforms);
-  if (numberOfPlatforms > 0)
-  {
-    clGetPlatformIDs(numberOfPlatforms, platforms.data(), nullptr);
-  }
-  for (cl_uint p = 0; p < numberOfPlatforms; ++p)
-  {
-    cl_uint numberOfDevices = 0;
-    if (clGetDeviceIDs(platforms[p], CL_DEVICE_TYPE_ALL, 0, nullptr, &numberOfDevices) !=
-      CL_SUCCESS)
-    {
-      continue;
-    }
-    std::vector<cl_device_id> devices(numberOfDevices);
-    clGetDeviceIDs(platforms[p], CL_DEVICE_TYPE_ALL, numberOfDevices, devices.data(), nullptr);
-    for (cl_uint d = 0; d < numberOfDevices; ++d)
-    {
-      entries.push_back({ platforms[p], devices[d], static_cast<int>(p), static_cast<int>(d),
-        PlatformString(platforms[p], CL_PLATFORM_NAME), DeviceString(devices[d], CL_DEVICE_NAME),
-        DeviceString(devices[d], CL_DEVICE_VENDOR),
-        DeviceValue<cl_device_type>(devices[d], CL_DEVICE_TYPE) });
-    }
-  }
-  return CL_SUCCESS;
-}
-
-// Index into `entries` of the device that `selection` names, or -1.
-int FindSelectedDevice(const std::vector<DeviceEntry>& entries, const std::string& selection)
-{
-  const std::string wanted = Lowercase(selection);
-  auto firstOfType = [&](cl_device_type type)
-  {
-    for (size_t i = 0; i < entries.size(); ++i)
-    {
-      if (entries[i].Type & type)
-      {
-        return static_cast<int>(i);
-      }
-    }
-    return -1;
-  };
-  if (wanted.empty())
-  {
-    int found = firstOfType(CL_DEVICE_TYPE_GPU);
-    found = found >= 0 ? found : firstOfType(CL_DEVICE_TYPE_CPU);
-    return found >= 0 ? found : (entries.empty() ? -1 : 0);
-  }
-  if (wanted == "gpu")
-  {
-    return firstOfType(CL_DEVICE_TYPE_GPU);
-  }
-  if (wanted == "cpu")
-  {
-    return firstOfType(CL_DEVICE_TYPE_CPU);
-  }
-  int p = -1;
-  int d = -1;
-  char tail = 0;
-  if (std::sscanf(wanted.c_str(), "%d:%d%c", &p, &d, &tail) == 2)
-  {
-    for (size_t i = 0; i < entries.size(); ++i)
-    {
-      if (entries[i].PlatformIndex == p && entries[i].DeviceIndex == d)
-      {
-        return static_cast<int>(i);
-      }
-    }
-    return -1;
-  }
-  for (size_t i = 0; i < entries.size(); ++i)
-  {
-    const std::string text =
-      Lowercase(entries[i].PlatformName + " " + entries[i].DeviceName + " " + entries[i].Vendor);
-    if (text.find(wanted) != std::string::npos)
-    {
-      return static_cast<int>(i);
-    }
-  }
-  return -1;
-}
-
-// 64-bit FNV-1a: stable across processes and platforms, which std::hash is not.
-std::uint64_t Fnv1a(const std::string& text)
-{
-  std::uint64_t hash = 1469598103934665603ull;
-  for (unsigned char c : text)
-  {
-    hash ^= c;
-    hash *= 1099511628211ull;
-  }
-  return hash;
-}
 
 std::string BuildLog(cl_program program, cl_device_id device)
 {
@@ -221,7 +52,10 @@ vtkSmartPointer<vtkOpenCLContext>& DefaultContext()
 }
 
 //------------------------------------------------------------------------------
-vtkOpenCLContext::vtkOpenCLContext() = default;
+vtkOpenCLContext::vtkOpenCLContext()
+  : DiskCache(vtkSmartPointer<vtkOpenCLBinaryCache>::New())
+{
+}
 
 //------------------------------------------------------------------------------
 vtkOpenCLContext::~vtkOpenCLContext()
@@ -240,6 +74,7 @@ vtkOpenCLContext::~vtkOpenCLContext()
   }
   this->SetDeviceSelection(nullptr);
   this->SetBinaryCacheDirectory(nullptr);
+  this->SetSimulatedMissingExtensions(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -254,81 +89,6 @@ vtkOpenCLContext* vtkOpenCLContext::GetDefault()
 }
 
 //------------------------------------------------------------------------------
-const char* vtkOpenCLContext::GetErrorName(int code)
-{
-  switch (code)
-  {
-#define REFRACTA_CL_ERROR(name)                                                                    \
-  case name:                                                                                       \
-    return #name
-    REFRACTA_CL_ERROR(CL_SUCCESS);
-    REFRACTA_CL_ERROR(CL_DEVICE_NOT_FOUND);
-    REFRACTA_CL_ERROR(CL_DEVICE_NOT_AVAILABLE);
-    REFRACTA_CL_ERROR(CL_COMPILER_NOT_AVAILABLE);
-    REFRACTA_CL_ERROR(CL_MEM_OBJECT_ALLOCATION_FAILURE);
-    REFRACTA_CL_ERROR(CL_OUT_OF_RESOURCES);
-    REFRACTA_CL_ERROR(CL_OUT_OF_HOST_MEMORY);
-    REFRACTA_CL_ERROR(CL_PROFILING_INFO_NOT_AVAILABLE);
-    REFRACTA_CL_ERROR(CL_MEM_COPY_OVERLAP);
-    REFRACTA_CL_ERROR(CL_IMAGE_FORMAT_MISMATCH);
-    REFRACTA_CL_ERROR(CL_IMAGE_FORMAT_NOT_SUPPORTED);
-    REFRACTA_CL_ERROR(CL_BUILD_PROGRAM_FAILURE);
-    REFRACTA_CL_ERROR(CL_MAP_FAILURE);
-    REFRACTA_CL_ERROR(CL_MISALIGNED_SUB_BUFFER_OFFSET);
-    REFRACTA_CL_ERROR(CL_EXEC_STATUS_ERROR_FOR_EVENTS_IN_WAIT_LIST);
-    REFRACTA_CL_ERROR(CL_COMPILE_PROGRAM_FAILURE);
-    REFRACTA_CL_ERROR(CL_LINKER_NOT_AVAILABLE);
-    REFRACTA_CL_ERROR(CL_LINK_PROGRAM_FAILURE);
-    REFRACTA_CL_ERROR(CL_DEVICE_PARTITION_FAILED);
-    REFRACTA_CL_ERROR(CL_KERNEL_ARG_INFO_NOT_AVAILABLE);
-    REFRACTA_CL_ERROR(CL_INVALID_VALUE);
-    REFRACTA_CL_ERROR(CL_INVALID_DEVICE_TYPE);
-    REFRACTA_CL_ERROR(CL_INVALID_PLATFORM);
-    REFRACTA_CL_ERROR(CL_INVALID_DEVICE);
-    REFRACTA_CL_ERROR(CL_INVALID_CONTEXT);
-    REFRACTA_CL_ERROR(CL_INVALID_QUEUE_PROPERTIES);
-    REFRACTA_CL_ERROR(CL_INVALID_COMMAND_QUEUE);
-    REFRACTA_CL_ERROR(CL_INVALID_HOST_PTR);
-    REFRACTA_CL_ERROR(CL_INVALID_MEM_OBJECT);
-    REFRACTA_CL_ERROR(CL_INVALID_IMAGE_FORMAT_DESCRIPTOR);
-    REFRACTA_CL_ERROR(CL_INVALID_IMAGE_SIZE);
-    REFRACTA_CL_ERROR(CL_INVALID_SAMPLER);
-    REFRACTA_CL_ERROR(CL_INVALID_BINARY);
-    REFRACTA_CL_ERROR(CL_INVALID_BUILD_OPTIONS);
-    REFRACTA_CL_ERROR(CL_INVALID_PROGRAM);
-    REFRACTA_CL_ERROR(CL_INVALID_PROGRAM_EXECUTABLE);
-    REFRACTA_CL_ERROR(CL_INVALID_KERNEL_NAME);
-    REFRACTA_CL_ERROR(CL_INVALID_KERNEL_DEFINITION);
-    REFRACTA_CL_ERROR(CL_INVALID_KERNEL);
-    REFRACTA_CL_ERROR(CL_INVALID_ARG_INDEX);
-    REFRACTA_CL_ERROR(CL_INVALID_ARG_VALUE);
-    REFRACTA_CL_ERROR(CL_INVALID_ARG_SIZE);
-    REFRACTA_CL_ERROR(CL_INVALID_KERNEL_ARGS);
-    REFRACTA_CL_ERROR(CL_INVALID_WORK_DIMENSION);
-    REFRACTA_CL_ERROR(CL_INVALID_WORK_GROUP_SIZE);
-    REFRACTA_CL_ERROR(CL_INVALID_WORK_ITEM_SIZE);
-    REFRACTA_CL_ERROR(CL_INVALID_GLOBAL_OFFSET);
-    REFRACTA_CL_ERROR(CL_INVALID_EVENT_WAIT_LIST);
-    REFRACTA_CL_ERROR(CL_INVALID_EVENT);
-    REFRACTA_CL_ERROR(CL_INVALID_OPERATION);
-    REFRACTA_CL_ERROR(CL_INVALID_GL_OBJECT);
-    REFRACTA_CL_ERROR(CL_INVALID_BUFFER_SIZE);
-    REFRACTA_CL_ERROR(CL_INVALID_MIP_LEVEL);
-    REFRACTA_CL_ERROR(CL_INVALID_GLOBAL_WORK_SIZE);
-    REFRACTA_CL_ERROR(CL_INVALID_PROPERTY);
-    REFRACTA_CL_ERROR(CL_INVALID_IMAGE_DESCRIPTOR);
-    REFRACTA_CL_ERROR(CL_INVALID_COMPILER_OPTIONS);
-    REFRACTA_CL_ERROR(CL_INVALID_LINKER_OPTIONS);
-    REFRACTA_CL_ERROR(CL_INVALID_DEVICE_PARTITION_COUNT);
-#undef REFRACTA_CL_ERROR
-    case -1001:
-      return "CL_PLATFORM_NOT_FOUND_KHR";
-    default:
-      return "unknown OpenCL error";
-  }
-}
-
-//------------------------------------------------------------------------------
 double vtkOpenCLContext::ChooseFixedPointScale(double largestSum)
 {
   if (!(largestSum > 0.0) || !std::isfinite(largestSum))
@@ -338,25 +98,6 @@ double vtkOpenCLContext::ChooseFixedPointScale(double largestSum)
   // Largest power of two with largestSum * scale <= 2^62 (one bit of headroom below 2^63).
   const int exponent = 62 - static_cast<int>(std::ceil(std::log2(largestSum)));
   return std::ldexp(1.0, std::max(-1000, std::min(exponent, 1000)));
-}
-
-//------------------------------------------------------------------------------
-std::string vtkOpenCLContext::ListDevices()
-{
-  std::vector<DeviceEntry> entries;
-  const cl_int status = EnumerateDevices(entries);
-  std::ostringstream out;
-  if (status != CL_SUCCESS || entries.empty())
-  {
-    out << "no OpenCL device (clGetPlatformIDs: " << GetErrorName(status) << ")\n";
-    return out.str();
-  }
-  for (const auto& e : entries)
-  {
-    out << e.PlatformIndex << ":" << e.DeviceIndex << "  " << e.PlatformName << "  /  "
-        << e.DeviceName << "  (" << TypeName(e.Type) << ")\n";
-  }
-  return out.str();
 }
 
 //------------------------------------------------------------------------------
@@ -390,98 +131,6 @@ bool vtkOpenCLContext::Initialize()
     this->Ready = this->SelectDevice();
   }
   return this->Ready;
-}
-
-//------------------------------------------------------------------------------
-bool vtkOpenCLContext::SelectDevice()
-{
-  std::vector<DeviceEntry> entries;
-  const cl_int status = EnumerateDevices(entries);
-  if (status != CL_SUCCESS || entries.empty())
-  {
-    std::ostringstream msg;
-    msg << "No OpenCL platform or device found (clGetPlatformIDs: " << GetErrorName(status)
-        << "). Refracta needs an OpenCL driver: on Debian install pocl-opencl-icd (CPU) or your "
-           "GPU vendor's OpenCL ICD, and check /etc/OpenCL/vendors (or OCL_ICD_VENDORS).";
-    this->ReportError(msg.str(), nullptr);
-    return false;
-  }
-
-  std::string selection;
-  const char* origin = "default";
-  if (this->DeviceSelection && *this->DeviceSelection)
-  {
-    selection = this->DeviceSelection;
-    origin = "SetDeviceSelection";
-  }
-  else if (const char* env = std::getenv("REFRACTA_OPENCL_DEVICE"))
-  {
-    selection = env;
-    origin = "REFRACTA_OPENCL_DEVICE";
-  }
-  const int chosen = FindSelectedDevice(entries, selection);
-  if (chosen < 0)
-  {
-    std::ostringstream msg;
-    msg << "No OpenCL device matches the selection '" << selection << "' (from " << origin
-        << "). Use 'gpu', 'cpu', 'P:D' or part of a name; the devices are:\n"
-        << ListDevices();
-    this->ReportError(msg.str(), nullptr);
-    return false;
-  }
-
-  const DeviceEntry& entry = entries[chosen];
-  this->Platform = entry.Platform;
-  this->Device = entry.Device;
-  this->PlatformName = entry.PlatformName;
-  this->PlatformVersion = PlatformString(entry.Platform, CL_PLATFORM_VERSION);
-  this->DeviceName = entry.DeviceName;
-  this->DeviceVendor = entry.Vendor;
-  this->DeviceVersion = DeviceString(entry.Device, CL_DEVICE_VERSION);
-  this->DriverVersion = DeviceString(entry.Device, CL_DRIVER_VERSION);
-  this->Extensions = DeviceString(entry.Device, CL_DEVICE_EXTENSIONS);
-  this->IsGPU = (entry.Type & CL_DEVICE_TYPE_GPU) != 0;
-  this->ComputeUnits =
-    static_cast<int>(DeviceValue<cl_uint>(entry.Device, CL_DEVICE_MAX_COMPUTE_UNITS));
-  this->GlobalMemoryBytes =
-    static_cast<double>(DeviceValue<cl_ulong>(entry.Device, CL_DEVICE_GLOBAL_MEM_SIZE));
-  this->MaxAllocationBytes =
-    static_cast<double>(DeviceValue<cl_ulong>(entry.Device, CL_DEVICE_MAX_MEM_ALLOC_SIZE));
-
-  cl_int error = CL_SUCCESS;
-  const cl_context_properties properties[] = { CL_CONTEXT_PLATFORM,
-    reinterpret_cast<cl_context_properties>(this->Platform), 0 };
-  this->Context = clCreateContext(properties, 1, &this->Device, nullptr, nullptr, &error);
-  if (!this->Check(error, "clCreateContext"))
-  {
-    return false;
-  }
-  this->Queue =
-    clCreateCommandQueue(this->Context, this->Device, CL_QUEUE_PROFILING_ENABLE, &error);
-  if (!this->Check(error, "clCreateCommandQueue"))
-  {
-    return false;
-  }
-  if (!this->HasExtension("cl_khr_int64_base_atomics"))
-  {
-    vtkWarningMacro("Device '" << this->DeviceName
-                               << "' lacks cl_khr_int64_base_atomics; the transport passes, which "
-                                  "accumulate in 64-bit fixed point, will fail to build on it.");
-  }
-  vtkDebugMacro("Selected OpenCL device " << this->DeviceName << " on " << this->PlatformName);
-  return true;
-}
-
-//------------------------------------------------------------------------------
-bool vtkOpenCLContext::HasExtension(const char* name) const
-{
-  if (!name || !*name)
-  {
-    return false;
-  }
-  std::istringstream words(this->Extensions);
-  return std::find(std::istream_iterator<std::string>(words), std::istream_iterator<std::string>(),
-           std::string(name)) != std::istream_iterator<std::string>();
 }
 
 //------------------------------------------------------------------------------
@@ -532,6 +181,15 @@ std::string vtkOpenCLContext::CacheKey(const std::string& source, const std::str
 cl_program vtkOpenCLContext::GetProgram(
   const std::vector<std::string>& kernelFiles, const std::string& options, vtkObject* reporter)
 {
+  std::string label;
+  const std::string source = this->ConcatenateKernelFiles(kernelFiles, label, reporter);
+  return source.empty() ? nullptr : this->GetProgramFromSource(source, options, label, reporter);
+}
+
+//------------------------------------------------------------------------------
+std::string vtkOpenCLContext::ConcatenateKernelFiles(
+  const std::vector<std::string>& kernelFiles, std::string& labelOut, vtkObject* reporter)
+{
   std::string source;
   std::ostringstream label;
   int line = 1;
@@ -547,7 +205,7 @@ cl_program vtkOpenCLContext::GetProgram(
         msg << " " << vtkOpenCLKernelLibrary::GetKernelFileName(i);
       }
       this->ReportError(msg.str(), reporter);
-      return nullptr;
+      return std::string();
     }
     std::string piece(text);
     if (!piece.empty() && piece.back() != '\n')
@@ -559,7 +217,33 @@ cl_program vtkOpenCLContext::GetProgram(
     line += lines;
     source += piece;
   }
-  return this->GetProgramFromSource(source, options, label.str(), reporter);
+  labelOut = label.str();
+  return source;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkOpenCLContext::GetBinaryCachePath(
+  const std::vector<std::string>& kernelFiles, const std::string& options)
+{
+  std::string label;
+  const std::string source = this->ConcatenateKernelFiles(kernelFiles, label, nullptr);
+  if (source.empty() || !this->Initialize() || !this->UseBinaryCache)
+  {
+    return std::string();
+  }
+  this->UpdateBinaryCacheDirectory();
+  return this->DiskCache->GetEntryPath(this->CacheKey(source, options));
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenCLContext::UpdateBinaryCacheDirectory()
+{
+  const std::string directory = this->UseBinaryCache ? this->ResolveCacheDirectory() : "";
+  if (directory != this->DiskCache->GetDirectory())
+  {
+    this->DiskCache->SetDirectory(directory);
+    this->WarnedAboutDiskCache = false;
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -581,20 +265,12 @@ cl_program vtkOpenCLContext::GetProgramFromSource(const std::string& source,
     return found->second;
   }
 
-  std::string binaryPath;
-  if (this->UseBinaryCache)
+  if (!this->CheckRequiredExtensions(source, label, reporter))
   {
-    const std::string directory = this->ResolveCacheDirectory();
-    if (!directory.empty())
-    {
-      char name[32];
-      std::snprintf(
-        name, sizeof(name), "%016llx.clbin", static_cast<unsigned long long>(Fnv1a(key)));
-      binaryPath = directory + "/" + name;
-    }
+    return nullptr;
   }
-
-  cl_program program = binaryPath.empty() ? nullptr : this->LoadBinary(binaryPath, options);
+  this->UpdateBinaryCacheDirectory();
+  cl_program program = this->LoadBinary(key, options);
   if (program)
   {
     ++this->NumberOfBinaryLoads;
@@ -607,10 +283,7 @@ cl_program vtkOpenCLContext::GetProgramFromSource(const std::string& source,
       return nullptr;
     }
     ++this->NumberOfSourceBuilds;
-    if (!binaryPath.empty())
-    {
-      this->SaveBinary(program, binaryPath);
-    }
+    this->SaveBinary(program, key);
   }
   this->Programs[key] = program;
   return program;
@@ -644,16 +317,18 @@ cl_program vtkOpenCLContext::BuildFromSource(const std::string& source, const st
 }
 
 //------------------------------------------------------------------------------
-cl_program vtkOpenCLContext::LoadBinary(const std::string& path, const std::string& options)
+cl_program vtkOpenCLContext::LoadBinary(const std::string& key, const std::string& options)
 {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
+  std::vector<unsigned char> binary;
+  std::string why;
+  const int found = this->DiskCache->Load(key, binary, &why);
+  if (found == vtkOpenCLBinaryCache::REJECTED)
   {
+    ++this->NumberOfRejectedBinaries;
+    vtkDebugMacro("Kernel-cache entry rejected (" << why << "); rebuilding it from source.");
     return nullptr;
   }
-  const std::vector<unsigned char> binary(
-    (std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (binary.empty())
+  if (found != vtkOpenCLBinaryCache::LOADED)
   {
     return nullptr;
   }
@@ -663,25 +338,29 @@ cl_program vtkOpenCLContext::LoadBinary(const std::string& path, const std::stri
   cl_int error = CL_SUCCESS;
   cl_program program =
     clCreateProgramWithBinary(this->Context, 1, &this->Device, &size, &data, &binaryStatus, &error);
-  if (error != CL_SUCCESS || binaryStatus != CL_SUCCESS)
+  if (error == CL_SUCCESS && binaryStatus == CL_SUCCESS &&
+    clBuildProgram(program, 1, &this->Device, options.c_str(), nullptr, nullptr) == CL_SUCCESS)
   {
-    if (program)
-    {
-      clReleaseProgram(program);
-    }
-    return nullptr; // a stale or foreign binary: fall back to compiling the source
+    return program;
   }
-  if (clBuildProgram(program, 1, &this->Device, options.c_str(), nullptr, nullptr) != CL_SUCCESS)
+  // The checksum held but the driver refuses the binary (another driver build wrote it): the
+  // entry is useless, so it is deleted and rebuilt like a corrupt one.
+  if (program)
   {
     clReleaseProgram(program);
-    return nullptr;
   }
-  return program;
+  ++this->NumberOfRejectedBinaries;
+  this->DiskCache->Remove(key);
+  return nullptr;
 }
 
 //------------------------------------------------------------------------------
-void vtkOpenCLContext::SaveBinary(cl_program program, const std::string& path)
+void vtkOpenCLContext::SaveBinary(cl_program program, const std::string& key)
 {
+  if (!this->DiskCache->IsEnabled())
+  {
+    return;
+  }
   size_t size = 0;
   if (clGetProgramInfo(program, CL_PROGRAM_BINARY_SIZES, sizeof(size), &size, nullptr) !=
       CL_SUCCESS ||
@@ -695,27 +374,14 @@ void vtkOpenCLContext::SaveBinary(cl_program program, const std::string& path)
   {
     return;
   }
-  const std::string directory = vtksys::SystemTools::GetFilenamePath(path);
-  if (!vtksys::SystemTools::MakeDirectory(directory))
+  if (!this->DiskCache->Store(key, binary) && !this->DiskCache->IsEnabled() &&
+    !this->WarnedAboutDiskCache)
   {
-    vtkDebugMacro("Cannot create kernel cache directory " << directory);
-    return;
-  }
-  // Write then rename, so a concurrent process never reads a half-written binary.
-  const std::string temporary =
-    path + ".tmp" + std::to_string(reinterpret_cast<std::uintptr_t>(this));
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(binary.data()), static_cast<std::streamsize>(size));
-    if (!out)
-    {
-      vtksys::SystemTools::RemoveFile(temporary);
-      return;
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
-  {
-    vtksys::SystemTools::RemoveFile(temporary);
+    this->WarnedAboutDiskCache = true;
+    vtkWarningMacro("OpenCL kernel cache off: "
+      << this->DiskCache->GetDisabledReason()
+      << ". Kernels are compiled from source in this process; set REFRACTA_KERNEL_CACHE_DIR to a "
+         "writable folder to keep them between runs.");
   }
 }
 
@@ -787,22 +453,43 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
 }
 
 //------------------------------------------------------------------------------
+void vtkOpenCLContext::SetFailingEnqueue(int n)
+{
+  this->FailingEnqueue = n > 0 ? this->NumberOfEnqueues + n : 0;
+}
+
+//------------------------------------------------------------------------------
+bool vtkOpenCLContext::InjectedFault(const char* call, vtkObject* reporter)
+{
+  ++this->NumberOfEnqueues;
+  if (this->FailingEnqueue <= 0 || this->NumberOfEnqueues != this->FailingEnqueue)
+  {
+    return false;
+  }
+  this->FailingEnqueue = 0;
+  const std::string injected = std::string(call) + " [injected fault, SetFailingEnqueue]";
+  return !this->Check(CL_OUT_OF_RESOURCES, injected.c_str(), reporter);
+}
+
+//------------------------------------------------------------------------------
 bool vtkOpenCLContext::WriteBuffer(
   cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter)
 {
   return bytes == 0 ||
-    this->Check(
-      clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
-      "clEnqueueWriteBuffer", reporter);
+    (!this->InjectedFault("clEnqueueWriteBuffer", reporter) &&
+      this->Check(
+        clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
+        "clEnqueueWriteBuffer", reporter));
 }
 
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::ReadBuffer(cl_mem buffer, size_t bytes, void* data, vtkObject* reporter)
 {
   return bytes == 0 ||
-    this->Check(
-      clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
-      "clEnqueueReadBuffer", reporter);
+    (!this->InjectedFault("clEnqueueReadBuffer", reporter) &&
+      this->Check(
+        clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
+        "clEnqueueReadBuffer", reporter));
 }
 
 //------------------------------------------------------------------------------
@@ -810,14 +497,15 @@ bool vtkOpenCLContext::ZeroBuffer(cl_mem buffer, size_t bytes, vtkObject* report
 {
   const cl_uint zero = 0;
   return bytes == 0 ||
-    this->Check(clEnqueueFillBuffer(this->Queue, buffer, &zero, sizeof(zero), 0,
-                  (bytes / sizeof(zero)) * sizeof(zero), 0, nullptr, nullptr),
-      "clEnqueueFillBuffer", reporter);
+    (!this->InjectedFault("clEnqueueFillBuffer", reporter) &&
+      this->Check(clEnqueueFillBuffer(this->Queue, buffer, &zero, sizeof(zero), 0,
+                    (bytes / sizeof(zero)) * sizeof(zero), 0, nullptr, nullptr),
+        "clEnqueueFillBuffer", reporter));
 }
 
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::RunKernel(cl_kernel kernel, cl_uint dimensions, const size_t* globalSize,
-  const size_t* localSize, const char* label, vtkObject* reporter)
+  const size_t* localSize, const char* label, vtkObject* reporter, const size_t* globalOffset)
 {
   size_t global[3] = { 1, 1, 1 };
   for (cl_uint d = 0; d < dimensions && d < 3; ++d)
@@ -833,9 +521,11 @@ bool vtkOpenCLContext::RunKernel(cl_kernel kernel, cl_uint dimensions, const siz
     }
   }
   const std::string call = std::string("clEnqueueNDRangeKernel(") + label + ")";
-  return this->Check(clEnqueueNDRangeKernel(this->Queue, kernel, dimensions, nullptr, global,
-                       localSize, 0, nullptr, nullptr),
-    call.c_str(), reporter);
+  return this->CheckLaunch(kernel, localSize, dimensions, label, reporter) &&
+    !this->InjectedFault(call.c_str(), reporter) &&
+    this->Check(clEnqueueNDRangeKernel(this->Queue, kernel, dimensions, globalOffset, global,
+                  localSize, 0, nullptr, nullptr),
+      call.c_str(), reporter);
 }
 
 //------------------------------------------------------------------------------
@@ -861,4 +551,13 @@ void vtkOpenCLContext::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfSourceBuilds: " << this->NumberOfSourceBuilds << "\n";
   os << indent << "NumberOfBinaryLoads: " << this->NumberOfBinaryLoads << "\n";
   os << indent << "NumberOfMemoryCacheHits: " << this->NumberOfMemoryCacheHits << "\n";
+  os << indent << "NumberOfRejectedBinaries: " << this->NumberOfRejectedBinaries << "\n";
+  os << indent << "NumberOfEnqueues: " << this->NumberOfEnqueues << "\n";
+  os << indent << "MaximumAllocationBytes: " << this->GetMaximumAllocationBytes() << "\n";
+  os << indent << "GlobalMemoryBytes: " << this->GetGlobalMemoryBytes() << "\n";
+  os << indent << "LocalMemoryBytes: " << this->GetLocalMemoryBytes() << "\n";
+  os << indent << "HostMemoryBytes: " << this->GetHostMemoryBytes() << "\n";
+  os << indent << "MaximumWorkGroupSize: " << this->GetMaximumWorkGroupSize() << "\n";
+  os << indent << "DiskCache:\n";
+  this->DiskCache->PrintSelf(os, indent.GetNextIndent());
 }

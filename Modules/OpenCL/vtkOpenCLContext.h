@@ -13,11 +13,26 @@
  *
  * Programs are built from the embedded files of vtkOpenCLKernelLibrary with -D options and
  * cached twice: in memory (one cl_program per source + options), and as device binaries on disk
- * in a user cache directory, so that a second process start loads the binary instead of
- * compiling. The directory is REFRACTA_KERNEL_CACHE_DIR if set, else
+ * in a user cache directory (vtkOpenCLBinaryCache), so that a second process start loads the
+ * binary instead of compiling. The directory is REFRACTA_KERNEL_CACHE_DIR if set, else
  * $XDG_CACHE_HOME/refracta/kernels, else $HOME/.cache/refracta/kernels. A cache entry's key is a
  * hash of the source, the options, the Refracta version and the platform, device and driver
- * versions, so a driver update never loads a stale binary.
+ * versions, so a driver update never loads a stale binary. Entries carry a checksum: a truncated,
+ * corrupt or foreign entry (or one the driver refuses) is deleted and rebuilt; entries are written
+ * to a temporary file and renamed into place, so concurrent processes are safe; a folder that
+ * cannot be written gives one warning and the disk cache is off from then on.
+ *
+ * Device capabilities are checked where they are needed, with messages that name the device and
+ * the limit: a program's `#pragma OPENCL EXTENSION <name> : enable` lines before it is built (e.g.
+ * cl_khr_int64_base_atomics for the transport passes, cl_khr_fp64 for a program using double);
+ * a launch's work-group size against the kernel's maximum on the device and the kernel's local
+ * memory against the device's. Memory limits (GetMaximumAllocationBytes(),
+ * GetGlobalMemoryBytes(), GetHostMemoryBytes()) feed each pass's vtkOpenCLMemoryPlan.
+ *
+ * Test hooks (all off by default): SetSimulated*() pretend the device or the host is smaller than
+ * it is (allocation size, global, local and host memory, work-group size, missing extensions),
+ * and SetFailingEnqueue(n) makes the n-th enqueue from then on fail as a driver error would, so
+ * that the passes' error paths can be exercised on any machine.
  *
  * Every OpenCL failure becomes a vtkErrorMacro message naming the call, the error code's name
  * and number, and the device; a failed program build adds the build log and which lines of the
@@ -41,7 +56,9 @@
 #include <vector> // for std::vector
 
 #ifndef __VTK_WRAP__
-#include "vtkOpenCLHandle.h" // for vtkOpenCLKernel, vtkOpenCLBuffer
+#include "vtkOpenCLBinaryCache.h" // for the disk cache
+#include "vtkOpenCLHandle.h"      // for vtkOpenCLKernel, vtkOpenCLBuffer
+#include "vtkSmartPointer.h"      // for the disk cache
 #endif
 
 class REFRACTAOPENCL_EXPORT vtkOpenCLContext : public vtkObject
@@ -93,9 +110,53 @@ public:
   const char* GetDriverVersion() const { return this->DriverVersion.c_str(); }
   bool GetIsGPU() const { return this->IsGPU; }
   int GetNumberOfComputeUnits() const { return this->ComputeUnits; }
-  double GetGlobalMemoryMiB() const { return this->GlobalMemoryBytes / 1048576.0; }
-  double GetMaximumAllocationMiB() const { return this->MaxAllocationBytes / 1048576.0; }
+  double GetGlobalMemoryMiB() const { return this->GetGlobalMemoryBytes() / 1048576.0; }
+  double GetMaximumAllocationMiB() const { return this->GetMaximumAllocationBytes() / 1048576.0; }
   bool HasExtension(const char* name) const;
+  ///@}
+
+  ///@{
+  /**
+   * Limits the passes plan with, in bytes (valid after Initialize()): the largest single buffer
+   * (CL_DEVICE_MAX_MEM_ALLOC_SIZE), the device's global memory (CL_DEVICE_GLOBAL_MEM_SIZE), its
+   * local memory per work-group (CL_DEVICE_LOCAL_MEM_SIZE), the host's physical memory, and the
+   * largest work-group (CL_DEVICE_MAX_WORK_GROUP_SIZE); each the smaller of the real value and
+   * its SetSimulated*() value when one is set.
+   */
+  double GetMaximumAllocationBytes() const;
+  double GetGlobalMemoryBytes() const;
+  double GetLocalMemoryBytes() const;
+  double GetHostMemoryBytes() const;
+  size_t GetMaximumWorkGroupSize() const;
+  ///@}
+
+  ///@{
+  /**
+   * Test hooks: pretend a smaller device or host (bytes; work-items), or a device without the
+   * listed extensions (space-separated names). 0 or empty (default): the real value.
+   */
+  vtkSetMacro(SimulatedMaximumAllocationBytes, double);
+  vtkGetMacro(SimulatedMaximumAllocationBytes, double);
+  vtkSetMacro(SimulatedGlobalMemoryBytes, double);
+  vtkGetMacro(SimulatedGlobalMemoryBytes, double);
+  vtkSetMacro(SimulatedLocalMemoryBytes, double);
+  vtkGetMacro(SimulatedLocalMemoryBytes, double);
+  vtkSetMacro(SimulatedHostMemoryBytes, double);
+  vtkGetMacro(SimulatedHostMemoryBytes, double);
+  vtkSetMacro(SimulatedMaximumWorkGroupSize, int);
+  vtkGetMacro(SimulatedMaximumWorkGroupSize, int);
+  vtkSetStringMacro(SimulatedMissingExtensions);
+  vtkGetStringMacro(SimulatedMissingExtensions);
+  ///@}
+
+  ///@{
+  /**
+   * Test hook: the n-th enqueue from this call on (kernel launch, buffer write, read or fill;
+   * 1 = the next one) fails with CL_OUT_OF_RESOURCES as a driver error would, once; 0 (default)
+   * disarms it. GetNumberOfEnqueues() counts the enqueues since the context was created.
+   */
+  void SetFailingEnqueue(int n);
+  vtkGetMacro(NumberOfEnqueues, int);
   ///@}
 
   /**
@@ -131,12 +192,21 @@ public:
   ///@{
   /**
    * How programs were obtained since this context was created: compiled from source, loaded
-   * from a disk binary, or found in the memory cache.
+   * from a disk binary, or found in the memory cache; and how many disk entries were rejected
+   * (truncated, corrupt, foreign or refused by the driver: deleted and rebuilt).
    */
   vtkGetMacro(NumberOfSourceBuilds, int);
   vtkGetMacro(NumberOfBinaryLoads, int);
   vtkGetMacro(NumberOfMemoryCacheHits, int);
+  vtkGetMacro(NumberOfRejectedBinaries, int);
   ///@}
+
+  /**
+   * The path of the disk-cache entry of a program (as GetProgram() would build it), or empty
+   * when the disk cache is off. For tests and diagnostics.
+   */
+  std::string GetBinaryCachePath(
+    const std::vector<std::string>& kernelFiles, const std::string& options);
 
   /**
    * Compile a program from embedded kernel files (comma-separated names, in order) and options,
@@ -195,10 +265,13 @@ public:
 
   /**
    * Enqueue a kernel over `dimensions` global sizes (each rounded up to a multiple of the local
-   * size when one is given; kernels guard their range). Returns true on success.
+   * size when one is given; kernels guard their range), optionally from a global offset. The
+   * work-group size and the kernel's local memory are checked against the device first. Returns
+   * true on success.
    */
   bool RunKernel(cl_kernel kernel, cl_uint dimensions, const size_t* globalSize,
-    const size_t* localSize, const char* label, vtkObject* reporter = nullptr);
+    const size_t* localSize, const char* label, vtkObject* reporter = nullptr,
+    const size_t* globalOffset = nullptr);
 
   /**
    * clFinish on the queue, reporting errors.
@@ -220,6 +293,12 @@ protected:
   bool SelectDevice();
   std::string ResolveCacheDirectory() const;
   std::string CacheKey(const std::string& source, const std::string& options) const;
+  std::string ConcatenateKernelFiles(
+    const std::vector<std::string>& kernelFiles, std::string& label, vtkObject* reporter);
+  bool CheckRequiredExtensions(
+    const std::string& source, const std::string& label, vtkObject* reporter);
+  bool InjectedFault(const char* call, vtkObject* reporter);
+  void UpdateBinaryCacheDirectory();
 
   char* DeviceSelection = nullptr;
   char* BinaryCacheDirectory = nullptr;
@@ -229,6 +308,15 @@ protected:
   int NumberOfSourceBuilds = 0;
   int NumberOfBinaryLoads = 0;
   int NumberOfMemoryCacheHits = 0;
+  int NumberOfRejectedBinaries = 0;
+  int NumberOfEnqueues = 0;
+  int FailingEnqueue = 0; // absolute enqueue number that fails, 0: none
+  double SimulatedMaximumAllocationBytes = 0;
+  double SimulatedGlobalMemoryBytes = 0;
+  double SimulatedLocalMemoryBytes = 0;
+  double SimulatedHostMemoryBytes = 0;
+  int SimulatedMaximumWorkGroupSize = 0;
+  char* SimulatedMissingExtensions = nullptr;
 
   std::string PlatformName;
   std::string PlatformVersion;
@@ -241,6 +329,8 @@ protected:
   int ComputeUnits = 0;
   double GlobalMemoryBytes = 0;
   double MaxAllocationBytes = 0;
+  double LocalMemoryBytes = 0;
+  size_t MaxWorkGroupSize = 0;
   std::string LastErrorMessage;
 
 #ifndef __VTK_WRAP__
@@ -250,8 +340,12 @@ protected:
   cl_command_queue Queue = nullptr;
   cl_program BuildFromSource(const std::string& source, const std::string& options,
     const std::string& label, vtkObject* reporter);
-  cl_program LoadBinary(const std::string& path, const std::string& options);
-  void SaveBinary(cl_program program, const std::string& path);
+  cl_program LoadBinary(const std::string& key, const std::string& options);
+  void SaveBinary(cl_program program, const std::string& key);
+  bool CheckLaunch(cl_kernel kernel, const size_t* localSize, cl_uint dimensions, const char* label,
+    vtkObject* reporter);
+  vtkSmartPointer<vtkOpenCLBinaryCache> DiskCache;
+  bool WarnedAboutDiskCache = false;
   std::map<std::string, cl_program> Programs;
   std::mutex ProgramsMutex;
 #endif

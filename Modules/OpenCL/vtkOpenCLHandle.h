@@ -4,32 +4,46 @@
  *
  * vtkOpenCLHandle<cl_mem> (alias vtkOpenCLBuffer), vtkOpenCLHandle<cl_kernel>
  * (vtkOpenCLKernel) and vtkOpenCLHandle<cl_event> (vtkOpenCLEvent) release their object when
- * they go out of scope, so an early return on an error path leaks nothing.
+ * they go out of scope, so an early return on an error path leaks nothing. Each kind is counted
+ * while owned (vtkOpenCLLiveHandles()), so tests can check that nothing leaks.
  */
 #ifndef vtkOpenCLHandle_h
 #define vtkOpenCLHandle_h
 
 #ifndef __VTK_WRAP__
 
+#include "RefractaOpenCLModule.h" // for export macro
+
 #include <CL/cl.h>
 
 #include <utility> // for std::exchange
+
+/**
+ * Number of OpenCL objects of each kind owned by live vtkOpenCLHandle objects in this process
+ * (0: cl_mem, 1: cl_kernel, 2: cl_event). For leak checks: a pass that has released everything
+ * leaves the counts where they were.
+ */
+REFRACTAOPENCL_EXPORT long long vtkOpenCLLiveHandles(int kind);
+REFRACTAOPENCL_EXPORT void vtkOpenCLCountHandle(int kind, int change);
 
 template <typename T>
 struct vtkOpenCLReleaser;
 template <>
 struct vtkOpenCLReleaser<cl_mem>
 {
+  static constexpr int Kind = 0;
   static void Release(cl_mem h) { clReleaseMemObject(h); }
 };
 template <>
 struct vtkOpenCLReleaser<cl_kernel>
 {
+  static constexpr int Kind = 1;
   static void Release(cl_kernel h) { clReleaseKernel(h); }
 };
 template <>
 struct vtkOpenCLReleaser<cl_event>
 {
+  static constexpr int Kind = 2;
   static void Release(cl_event h) { clReleaseEvent(h); }
 };
 
@@ -41,6 +55,10 @@ public:
   explicit vtkOpenCLHandle(T handle)
     : Handle(handle)
   {
+    if (handle)
+    {
+      vtkOpenCLCountHandle(vtkOpenCLReleaser<T>::Kind, +1);
+    }
   }
   ~vtkOpenCLHandle() { this->Reset(); }
   vtkOpenCLHandle(vtkOpenCLHandle&& other) noexcept
@@ -51,7 +69,8 @@ public:
   {
     if (this != &other)
     {
-      this->Reset(std::exchange(other.Handle, nullptr));
+      this->Reset();
+      this->Handle = std::exchange(other.Handle, nullptr); // already counted
     }
     return *this;
   }
@@ -65,6 +84,11 @@ public:
     if (this->Handle)
     {
       vtkOpenCLReleaser<T>::Release(this->Handle);
+      vtkOpenCLCountHandle(vtkOpenCLReleaser<T>::Kind, -1);
+    }
+    if (handle)
+    {
+      vtkOpenCLCountHandle(vtkOpenCLReleaser<T>::Kind, +1);
     }
     this->Handle = handle;
   }

@@ -12,6 +12,7 @@
 #include "vtkMediumValidator.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
+#include "vtkOpenCLMemoryPlan.h"
 #include "vtkPointData.h"
 #include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaGridFrame.h"
@@ -89,6 +90,24 @@ struct vtkRefractaViewPass::Internals
   SurfaceBuffers Surfaces;
 
   vtkOpenCLBuffer Dummy;
+
+  // Device bytes of each uploaded buffer (medium, lighting, environment, occupancy).
+  std::vector<double> UploadedBytes() const
+  {
+    std::vector<double> sizes;
+    for (const vtkOpenCLBuffer* b : { &this->Extinction, &this->Emission, &this->Anisotropy,
+           &this->Index, &this->Gradient, &this->Radiance, &this->RadianceDirection,
+           &this->Multiple, &this->EnvironmentBuffer, &this->Occupancy, &this->Dummy })
+    {
+      size_t size = 0;
+      if (*b &&
+        clGetMemObjectInfo(b->Get(), CL_MEM_SIZE, sizeof(size), &size, nullptr) == CL_SUCCESS)
+      {
+        sizes.push_back(static_cast<double>(size));
+      }
+    }
+    return sizes;
+  }
 
   // Builds the macro-cell occupancy (BuildMacroCellGrid) when the flags or b changed, and
   // uploads it.
@@ -544,6 +563,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
 {
   this->LastRenderAborted = false;
   this->LastNumberOfTiles = 0;
+  this->LastNumberOfBufferTiles = 0;
   Internals& in = *this->Internal;
   if (!in.Medium)
   {
@@ -577,6 +597,12 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     }
   }
   vtkOpenCLContext* context = in.GetContext();
+  int bufferRows = height;
+  if (!this->PlanImageMemory(
+        context, width, height, depthLimit != nullptr, transmittance != nullptr, bufferRows))
+  {
+    return false;
+  }
 
   // Environment map: upload when changed.
   vtkImageData* env = in.Environment;
@@ -663,25 +689,6 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     }
   }
   const size_t pixels = static_cast<size_t>(width) * height;
-  vtkOpenCLBuffer hdrBuffer =
-    context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 16, nullptr, "HDR image", this);
-  vtkOpenCLBuffer stepBuffer =
-    context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 4, nullptr, "step counts", this);
-  vtkOpenCLBuffer transmittanceBuffer =
-    context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 16, nullptr, "transmittance image", this);
-  vtkOpenCLBuffer surfaceDepthBuffer =
-    context->CreateBuffer(CL_MEM_WRITE_ONLY, pixels * 4, nullptr, "surface depth", this);
-  vtkOpenCLBuffer depthBuffer;
-  if (depthLimit)
-  {
-    depthBuffer = context->CreateBuffer(
-      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, pixels * 4, depthLimit, "depth limits", this);
-  }
-  if (!hdrBuffer || !stepBuffer || !transmittanceBuffer || !surfaceDepthBuffer ||
-    (depthLimit && !depthBuffer))
-  {
-    return false;
-  }
   auto buf = [&](const vtkOpenCLBuffer& b) { return b ? b.Get() : in.Dummy.Get(); };
 
   const double minSpacing = std::min({ in.Spacing[0], in.Spacing[1], in.Spacing[2] });
@@ -717,53 +724,94 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     surf.ComputeLocalToSurface(frame.WorldToLocal, toSurface);
   }
   const cl_int nodeCount = surf.GetNodeCount();
-  const cl_int w = width, h = height;
-  const cl_int status = vtkOpenCLSetKernelArgs(kernel.Get(), dims, spacing, buf(in.Extinction),
-    buf(in.Emission), buf(in.Anisotropy), buf(in.Index), buf(in.Gradient), buf(in.Radiance),
-    buf(in.RadianceDirection), buf(in.Multiple), Float4(frame.Eye), Float4(frame.U),
-    Float4(frame.V), Float4(frame.W), w, h, stepLength, maxSteps, cutoff, background,
-    env ? in.EnvironmentBuffer.Get() : in.Dummy.Get(), envSize, envRight, envUp, envFront,
-    buf(depthBuffer), skipping ? in.Occupancy.Get() : in.Dummy.Get(), cellDims, activeLo, activeHi,
-    skipMask, buf(surf.Nodes), nodeCount, buf(surf.Triangles), buf(surf.TriangleInfo),
-    buf(surf.Albedo), buf(surf.Irradiance), toSurface[0], toSurface[1], toSurface[2],
-    hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(), surfaceDepthBuffer.Get());
-  if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this))
-  {
-    return false;
-  }
   const auto start = std::chrono::steady_clock::now();
-  // Tiles of whole rows (RunTiles); after each, progress, and a requested abort stops.
-  const bool finished =
-    RunTiles(context, kernel.Get(), width, height, this->TilePixels, this->TileSeconds, this,
-      [this](double progress)
-      {
-        ++this->LastNumberOfTiles;
-        this->InvokeEvent(vtkCommand::ProgressEvent, &progress);
-        this->LastRenderAborted = this->AbortRender && progress < 1.0;
-        return !this->LastRenderAborted;
-      });
-  if (!finished)
-  {
-    return false;
-  }
-  hdr.resize(pixels * 4);
+  // Rendered into local images, handed over at the end: an aborted render leaves the caller's
+  // vectors untouched.
+  std::vector<float> image(pixels * 4);
+  std::vector<float> transmittanceImage(transmittance ? pixels * 4 : 0);
+  std::vector<float> surfaceDepthImage(surfaceDepth ? pixels : 0);
   std::vector<cl_uint> steps(pixels);
-  if (!context->ReadBuffer(hdrBuffer.Get(), pixels * 16, hdr.data(), this) ||
-    !context->ReadBuffer(stepBuffer.Get(), pixels * 4, steps.data(), this))
+  int rowsPerTile = std::max(1, std::min(height, this->TilePixels / width));
+  // Buffer tiles (PlanImageMemory): when the whole image's buffers exceed what one allocation
+  // may hold, rows [row0, row0 + rows) are rendered as an image of their own, whose frame is
+  // the slice of the full one (the kernel's pixel (i, j) of the slice is pixel (i, row0 + j)).
+  for (int row0 = 0; row0 < height; row0 += bufferRows)
   {
-    return false;
+    const int rows = std::min(bufferRows, height - row0);
+    const size_t slice = static_cast<size_t>(width) * rows;
+    vtkOpenCLBuffer hdrBuffer =
+      context->CreateBuffer(CL_MEM_WRITE_ONLY, slice * 16, nullptr, "HDR image", this);
+    vtkOpenCLBuffer stepBuffer =
+      context->CreateBuffer(CL_MEM_WRITE_ONLY, slice * 4, nullptr, "step counts", this);
+    vtkOpenCLBuffer transmittanceBuffer =
+      context->CreateBuffer(CL_MEM_WRITE_ONLY, slice * 16, nullptr, "transmittance image", this);
+    vtkOpenCLBuffer surfaceDepthBuffer =
+      context->CreateBuffer(CL_MEM_WRITE_ONLY, slice * 4, nullptr, "surface depth", this);
+    vtkOpenCLBuffer depthBuffer;
+    if (depthLimit)
+    {
+      depthBuffer = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, slice * 4,
+        depthLimit + static_cast<size_t>(width) * row0, "depth limits", this);
+    }
+    if (!hdrBuffer || !stepBuffer || !transmittanceBuffer || !surfaceDepthBuffer ||
+      (depthLimit && !depthBuffer))
+    {
+      return false;
+    }
+    // The slice's frame: sy = 2 (j + 1/2) / height - 1 of the full image is
+    // (rows / height) sy' + ((2 row0 + rows) / height - 1) in terms of the slice's own sy'.
+    RayFrame part = frame;
+    const double scaleV = static_cast<double>(rows) / height;
+    const double shiftV = (2.0 * row0 + rows) / height - 1.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      if (frame.Parallel)
+      {
+        part.Eye[c] = frame.Eye[c] + shiftV * frame.V[c];
+      }
+      else
+      {
+        part.W[c] = frame.W[c] + shiftV * frame.V[c];
+      }
+      part.V[c] = scaleV * frame.V[c];
+    }
+    const cl_int w = width, h = rows;
+    const cl_int status = vtkOpenCLSetKernelArgs(kernel.Get(), dims, spacing, buf(in.Extinction),
+      buf(in.Emission), buf(in.Anisotropy), buf(in.Index), buf(in.Gradient), buf(in.Radiance),
+      buf(in.RadianceDirection), buf(in.Multiple), Float4(part.Eye), Float4(part.U), Float4(part.V),
+      Float4(part.W), w, h, stepLength, maxSteps, cutoff, background,
+      env ? in.EnvironmentBuffer.Get() : in.Dummy.Get(), envSize, envRight, envUp, envFront,
+      buf(depthBuffer), skipping ? in.Occupancy.Get() : in.Dummy.Get(), cellDims, activeLo,
+      activeHi, skipMask, buf(surf.Nodes), nodeCount, buf(surf.Triangles), buf(surf.TriangleInfo),
+      buf(surf.Albedo), buf(surf.Irradiance), toSurface[0], toSurface[1], toSurface[2],
+      hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(), surfaceDepthBuffer.Get());
+    if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
+      !this->RunTiles(context, kernel.Get(), width, rows, row0, height, rowsPerTile))
+    {
+      return false;
+    }
+    const size_t first = static_cast<size_t>(width) * row0;
+    if (!context->ReadBuffer(hdrBuffer.Get(), slice * 16, image.data() + 4 * first, this) ||
+      !context->ReadBuffer(stepBuffer.Get(), slice * 4, steps.data() + first, this) ||
+      (transmittance &&
+        !context->ReadBuffer(
+          transmittanceBuffer.Get(), slice * 16, transmittanceImage.data() + 4 * first, this)) ||
+      (surfaceDepth &&
+        !context->ReadBuffer(
+          surfaceDepthBuffer.Get(), slice * 4, surfaceDepthImage.data() + first, this)))
+    {
+      return false;
+    }
+    ++this->LastNumberOfBufferTiles;
   }
-  if (transmittance &&
-    (transmittance->resize(pixels * 4),
-      !context->ReadBuffer(transmittanceBuffer.Get(), pixels * 16, transmittance->data(), this)))
+  hdr.swap(image);
+  if (transmittance)
   {
-    return false;
+    transmittance->swap(transmittanceImage);
   }
-  if (surfaceDepth &&
-    (surfaceDepth->resize(pixels),
-      !context->ReadBuffer(surfaceDepthBuffer.Get(), pixels * 4, surfaceDepth->data(), this)))
+  if (surfaceDepth)
   {
-    return false;
+    surfaceDepth->swap(surfaceDepthImage);
   }
   this->LastSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -776,6 +824,99 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   this->LastCurved = curved;
   this->LastSkipping = skipping;
   ++this->NumberOfRenders;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaViewPass::PlanImageMemory(
+  vtkOpenCLContext* context, int width, int height, bool depth, bool transmittance, int& bufferRows)
+{
+  // Per pixel on the device: HDR (4 floats), transmittance (4 floats), step count, surface depth,
+  // depth limit;
+  // on the host: the HDR image, the step counts and (when asked for) the transmittance image.
+  const double row = static_cast<double>(width);
+  const double perAllocation = context->GetMaximumAllocationBytes();
+  bufferRows = height;
+  if (perAllocation > 0 && row * height * 16 > perAllocation)
+  {
+    // Buffer tiles of whole rows that each fit one allocation (the largest buffer is 16 bytes a
+    // pixel); a single row that does not fit is reported below.
+    bufferRows = static_cast<int>(std::max(1.0, std::floor(perAllocation / (row * 16))));
+  }
+  std::ostringstream subject;
+  subject << "image " << width << " x " << height;
+  if (bufferRows < height)
+  {
+    subject << " (in tiles of " << bufferRows << " rows)";
+  }
+  const double slice = row * bufferRows;
+  vtkOpenCLMemoryPlan* plan = this->MemoryPlan;
+  plan->Reset("view pass");
+  plan->AddDeviceBuffer(subject.str(), "HDR buffer", slice * 16, "the image size");
+  plan->AddDeviceBuffer(subject.str(), "transmittance buffer", slice * 16, "the image size");
+  plan->AddDeviceBuffer(subject.str(), "step counts", slice * 4, "the image size");
+  plan->AddDeviceBuffer(subject.str(), "surface depth", slice * 4, "the image size");
+  if (depth)
+  {
+    plan->AddDeviceBuffer(subject.str(), "depth limits", slice * 4, "the image size");
+  }
+  for (double bytes : this->Internal->UploadedBytes())
+  {
+    plan->AddResidentDeviceBuffer(
+      "the uploaded arrays", "medium or lighting array", bytes, "the grid size");
+  }
+  const double pixels = row * height;
+  plan->AddHostMemory(subject.str(), "HDR image", pixels * 16, "the image size");
+  plan->AddHostMemory(subject.str(), "step counts", pixels * 4, "the image size");
+  if (transmittance)
+  {
+    plan->AddHostMemory(subject.str(), "transmittance image", pixels * 16, "the image size");
+  }
+  this->PlannedDeviceMemoryBytes = plan->GetDeviceBytes();
+  if (!plan->Fits(context))
+  {
+    vtkErrorMacro(<< plan->GetMessage());
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaViewPass::RunTiles(vtkOpenCLContext* context, cl_kernel kernel, int width,
+  int height, int firstRow, int imageHeight, int& rowsPerTile)
+{
+  // Tiles of whole rows (a global offset on the same kernel: every pixel computes exactly what it
+  // would in one launch), each waited for, so that progress is reported and an abort is seen
+  // between them. The first tile has TilePixels pixels; later ones are sized from the measured
+  // rate to take about TileSeconds (at most twice the previous tile, at least one row).
+  for (int row = 0, rows = 0; row < height; row += rows)
+  {
+    rows = std::min(rowsPerTile, height - row);
+    const auto tileStart = std::chrono::steady_clock::now();
+    const size_t offset[2] = { 0, static_cast<size_t>(row) };
+    const size_t global[2] = { static_cast<size_t>(width), static_cast<size_t>(rows) };
+    if (!context->RunKernel(kernel, 2, global, nullptr, "refracta_view_pass", this, offset) ||
+      !context->Finish(this))
+    {
+      return false;
+    }
+    ++this->LastNumberOfTiles;
+    if (this->TileSeconds > 0)
+    {
+      const double seconds = std::max(
+        1e-6, std::chrono::duration<double>(std::chrono::steady_clock::now() - tileStart).count());
+      const double wanted = rows * this->TileSeconds / seconds;
+      rowsPerTile = static_cast<int>(std::max(1.0, std::min(wanted, 2.0 * rows)));
+    }
+    const int done = firstRow + row + rows;
+    double progress = static_cast<double>(done) / imageHeight;
+    this->InvokeEvent(vtkCommand::ProgressEvent, &progress);
+    if (this->AbortRender && done < imageHeight)
+    {
+      this->LastRenderAborted = true;
+      return false;
+    }
+  }
   return true;
 }
 
@@ -812,4 +953,6 @@ void vtkRefractaViewPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastTotalSteps: " << this->LastTotalSteps << "\n";
   os << indent << "NumberOfUploads: " << this->NumberOfUploads << "\n";
   os << indent << "NumberOfRenders: " << this->NumberOfRenders << "\n";
+  os << indent << "LastNumberOfBufferTiles: " << this->LastNumberOfBufferTiles << "\n";
+  os << indent << "PlannedDeviceMemoryBytes: " << this->PlannedDeviceMemoryBytes << "\n";
 }

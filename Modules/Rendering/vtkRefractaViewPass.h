@@ -56,8 +56,14 @@
 #define vtkRefractaViewPass_h
 
 #include "RefractaRenderingModule.h" // for export macro
+#include "vtkNew.h"                  // for members
 #include "vtkObject.h"
-#include "vtkSmartPointer.h" // for members
+#include "vtkOpenCLMemoryPlan.h" // for the memory plan member
+#include "vtkSmartPointer.h"     // for members
+
+#ifndef __VTK_WRAP__
+#include "vtkOpenCLHandle.h" // for cl_kernel
+#endif
 
 #include <memory> // for std::unique_ptr
 #include <vector> // for std::vector
@@ -297,6 +303,23 @@ public:
   vtkGetMacro(LastNumberOfTiles, int);
   ///@}
 
+  ///@{
+  /**
+   * Memory planning. Before it allocates an image's buffers, Render() plans them
+   * (vtkOpenCLMemoryPlan): when the HDR buffer of the whole image (16 bytes a pixel) exceeds the
+   * device's largest allocation, the image is rendered in buffer tiles of whole rows, each an
+   * image of its own with the matching slice of the frustum (the pixels are the same);
+   * GetLastNumberOfBufferTiles() counts them (1: one buffer). What still does not fit (a single
+   * row, the device's global memory, the host's memory for the HDR image) fails before any
+   * image buffer is allocated, with a message naming the size, the limit and the setting to lower
+   * (the image size or the grid size). GetMemoryPlan() is the last plan;
+   * GetPlannedDeviceMemoryBytes() its device total (one buffer tile plus the uploaded arrays).
+   */
+  vtkGetMacro(LastNumberOfBufferTiles, int);
+  vtkGetMacro(PlannedDeviceMemoryBytes, double);
+  vtkOpenCLMemoryPlan* GetMemoryPlan() { return this->MemoryPlan; }
+  ///@}
+
   /**
    * Whether the current medium's refractive index varies (so AUTO traces curved rays).
    */
@@ -348,6 +371,9 @@ protected:
   bool AbortRender = false;
   bool LastRenderAborted = false;
   int LastNumberOfTiles = 0;
+  int LastNumberOfBufferTiles = 0;
+  double PlannedDeviceMemoryBytes = 0.0;
+  vtkNew<vtkOpenCLMemoryPlan> MemoryPlan;
 
 private:
   vtkRefractaViewPass(const vtkRefractaViewPass&) = delete;
@@ -355,6 +381,13 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
+
+  bool PlanImageMemory(vtkOpenCLContext* context, int width, int height, bool depth,
+    bool transmittance, int& bufferRows);
+#ifndef __VTK_WRAP__
+  bool RunTiles(vtkOpenCLContext* context, cl_kernel kernel, int width, int height, int firstRow,
+    int imageHeight, int& rowsPerTile);
+#endif
 };
 
 #endif

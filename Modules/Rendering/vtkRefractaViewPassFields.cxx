@@ -9,7 +9,6 @@
 #include "vtkRefractaGridFrame.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -205,36 +204,4 @@ void EnvironmentBasisLocal(
   }
 }
 
-//------------------------------------------------------------------------------
-bool RunTiles(vtkOpenCLContext* context, cl_kernel kernel, int width, int height, int tilePixels,
-  double tileSeconds, vtkObject* owner, const std::function<bool(double)>& afterTile)
-{
-  int rowsPerTile = std::max(1, std::min(height, tilePixels / width));
-  for (int row = 0, rows = 0; row < height; row += rows)
-  {
-    rows = std::min(rowsPerTile, height - row);
-    const auto tileStart = std::chrono::steady_clock::now();
-    const size_t offset[2] = { 0, static_cast<size_t>(row) };
-    const size_t global[2] = { static_cast<size_t>(width), static_cast<size_t>(rows) };
-    if (!context->Check(clEnqueueNDRangeKernel(context->GetQueue(), kernel, 2, offset, global,
-                          nullptr, 0, nullptr, nullptr),
-          "clEnqueueNDRangeKernel(refracta_view_pass)", owner) ||
-      !context->Finish(owner))
-    {
-      return false;
-    }
-    if (tileSeconds > 0)
-    {
-      const double seconds = std::max(
-        1e-6, std::chrono::duration<double>(std::chrono::steady_clock::now() - tileStart).count());
-      const double wanted = rows * tileSeconds / seconds;
-      rowsPerTile = static_cast<int>(std::max(1.0, std::min(wanted, 2.0 * rows)));
-    }
-    if (!afterTile(static_cast<double>(row + rows) / height))
-    {
-      return false;
-    }
-  }
-  return true;
-}
 }

@@ -9,7 +9,6 @@
 
 #include "vtkOpenCLContext.h" // for cl_kernel
 
-#include <functional> // for the tile callback
 #include <string>     // for the error message and the options
 #include <vector>     // for the values
 
@@ -68,14 +67,6 @@ std::string KernelOptions(const KernelVariant& variant);
 void EnvironmentBasisLocal(
   const double up[3], const double right[3], const double worldToLocal[4][4], double out[3][3]);
 
-// Runs the 2D kernel over width x height in tiles of whole rows (a global offset on the same
-// kernel: every pixel computes exactly what it would in one launch), each waited for. The first
-// tile has tilePixels pixels (whole rows, at least one); later ones are sized from the measured
-// rate to take about tileSeconds (at most twice the previous tile; 0: all of tilePixels). After
-// each tile `afterTile(fraction of rows done)` is called; returning false stops (an abort).
-// False after an OpenCL error (reported on `owner`) or a stop.
-bool RunTiles(vtkOpenCLContext* context, cl_kernel kernel, int width, int height, int tilePixels,
-  double tileSeconds, vtkObject* owner, const std::function<bool(double)>& afterTile);
 }
 
 #endif

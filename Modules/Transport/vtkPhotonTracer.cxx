@@ -16,6 +16,7 @@
 #include "vtkMediumValidator.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
+#include "vtkOpenCLMemoryPlan.h"
 #include "vtkPointData.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
@@ -51,6 +52,8 @@ constexpr double ProgressMarched = 0.99;
 constexpr double TargetBatchSeconds = 0.05;
 constexpr size_t MinimumBatch = 1024;
 constexpr size_t MaximumBatch = size_t(1) << 20;
+// Curved steps are halved at most this often by the step control (StepTolerance).
+constexpr int MaximumHalvings = 6;
 
 }
 
@@ -211,6 +214,69 @@ bool vtkPhotonTracer::InitializeDevice(Internals& run)
 }
 
 //------------------------------------------------------------------------------
+// Before any allocation: the run's device buffers and host copies against the device's limits.
+bool vtkPhotonTracer::PlanMemory(Internals& run)
+{
+  const Medium& m = run.M;
+  const double v = static_cast<double>(m.Voxels);
+  const double p = static_cast<double>(run.Photons);
+  std::ostringstream gridText, photonText;
+  gridText << "grid " << m.Dims[0] << " x " << m.Dims[1] << " x " << m.Dims[2];
+  photonText << run.Photons << " photons";
+  const std::string grid = gridText.str(), photons = photonText.str();
+  const std::string gridSetting = "the grid size", photonSetting = "NumberOfPhotons";
+  vtkNew<vtkOpenCLMemoryPlan> plan;
+  plan->Reset("photon pass");
+  if (!run.ReusedMedium)
+  {
+    plan->AddDeviceBuffer(grid, "refractive index", (m.Curved ? v : 1) * 4, gridSetting);
+    plan->AddDeviceBuffer(grid, "index gradient", m.Curved ? v * 12 : 16, gridSetting);
+    if (m.Curved && this->AdaptiveStepping)
+    {
+      // The level array, and the min/max pyramid (8 bytes a node, 8/7 of the voxels in all).
+      plan->AddDeviceBuffer(grid, "octree", v, gridSetting);
+      plan->AddDeviceBuffer(grid, "octree pyramid", v * 8 * 8 / 7, gridSetting);
+    }
+    plan->AddDeviceBuffer(grid, "extinction", (m.Attenuates ? v : 1) * 12, gridSetting);
+    plan->AddDeviceBuffer(grid, "albedo", (m.Scatters ? v : 1) * 12, gridSetting);
+  }
+  for (const char* what : { "photon positions", "photon directions", "photon powers" })
+  {
+    plan->AddDeviceBuffer(photons, what, p * 16, photonSetting);
+  }
+  if (this->StepsPerChunk > 0)
+  {
+    plan->AddDeviceBuffer(photons, "photon state (chunked march)", p * 128, photonSetting);
+    plan->AddDeviceBuffer(photons, "photon status (chunked march)", p * 16, photonSetting);
+  }
+  const double accumulators = m.Scatters ? v * 3 * 8 : 8;
+  plan->AddDeviceBuffer(grid, "radiance accumulator", accumulators, gridSetting);
+  plan->AddDeviceBuffer(grid, "direction accumulator", accumulators, gridSetting);
+  if (m.Scatters)
+  {
+    const int fields = this->Smoothing ? 4 : 2; // radiance and direction, smoothed copies
+    for (int f = 0; f < fields; ++f)
+    {
+      plan->AddDeviceBuffer(
+        grid, f % 2 ? "direction field" : "radiance field", v * 12, gridSetting);
+    }
+  }
+  // Host: the medium's float copies (index, gradient, extinction, albedo) and the two outputs.
+  plan->AddHostMemory(
+    grid, "medium copies", v * 4 * (1 + 3 + 3 + (m.HasGradient ? 3 : 0)), gridSetting);
+  plan->AddHostMemory(grid, "Radiance and RadianceDirection", v * 12 * 2, gridSetting);
+  this->PlannedDeviceMemoryBytes =
+    plan->GetDeviceBytes() + (run.ReusedMedium ? run.Alloc.Bytes : 0);
+  this->PlannedHostMemoryBytes = plan->GetHostBytes();
+  if (!plan->Fits(run.Context))
+  {
+    vtkErrorMacro(<< plan->GetMessage());
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 // Stage 1: upload of the refractive index, gradient (if needed) and octree.
 bool vtkPhotonTracer::BuildOctreeStage(Internals& run)
 {
@@ -317,7 +383,9 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DREFRACTA_MAX_STEPS=" << this->MaximumNumberOfSteps
           << " -DREFRACTA_EXT_STEP_LIMIT=" << FloatLiteral(this->ExtinctionStepLimit)
           << " -DREFRACTA_ROULETTE=" << FloatLiteral(this->RouletteThreshold)
-          << " -DREFRACTA_MAX_TURN=" << FloatLiteral(this->MaximumTurn);
+          << " -DREFRACTA_MAX_TURN=" << FloatLiteral(this->MaximumTurn)
+          << " -DREFRACTA_STEP_TOLERANCE=" << FloatLiteral(this->StepTolerance)
+          << " -DREFRACTA_MAX_HALVINGS=" << (this->StepTolerance > 0 ? MaximumHalvings : 0);
   options << " -DREFRACTA_SURFACES=" << (run.Surfaces ? 1 : 0);
   run.Trace = ctx->GetProgram({ "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl",
                                 "refracta_surfaces.cl", "photon_trace.cl" },
@@ -724,6 +792,7 @@ int vtkPhotonTracer::RequestData(
   output->Initialize();
   this->OctreeSeconds = this->GenerationSeconds = this->MarchingSeconds = 0;
   this->SmoothingSeconds = this->PeakDeviceMemoryBytes = 0;
+  this->PlannedDeviceMemoryBytes = this->PlannedHostMemoryBytes = 0;
   this->UsedCurvedRays = this->UsedExtinction = this->UsedDeposit = false;
   this->UsedOctree = this->ComputedGradient = false;
   this->UsedSurfaces = this->LastRunReusedSurfaces = false;
@@ -743,8 +812,9 @@ int vtkPhotonTracer::RequestData(
     return 0;
   }
   this->SharePhotons(run);
-  if (!this->InitializeDevice(run) || !this->BuildOctreeStage(run) || !this->GeneratePhotons(run) ||
-    !this->MarchPhotons(run) || !this->ResolveRadiance(run) || !this->ResolveSurfaces(run))
+  if (!this->InitializeDevice(run) || !this->PlanMemory(run) || !this->BuildOctreeStage(run) ||
+    !this->GeneratePhotons(run) || !this->MarchPhotons(run) || !this->ResolveRadiance(run) ||
+    !this->ResolveSurfaces(run))
   {
     if (run.Aborted)
     {
@@ -783,6 +853,7 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RouletteThreshold: " << this->RouletteThreshold << "\n";
   os << indent << "MaximumNumberOfSteps: " << this->MaximumNumberOfSteps << "\n";
   os << indent << "MaximumTurn: " << this->MaximumTurn << "\n";
+  os << indent << "StepTolerance: " << this->StepTolerance << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";
   os << indent << "StepsPerChunk: " << this->StepsPerChunk << "\n";
   os << indent << "PhotonBatchSize: " << this->PhotonBatchSize << "\n";
@@ -795,6 +866,8 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
      << ", " << this->GenerationSeconds << ", " << this->MarchingSeconds << ", "
      << this->SmoothingSeconds << "\n";
   os << indent << "PeakDeviceMemoryBytes: " << this->PeakDeviceMemoryBytes << "\n";
+  os << indent << "PlannedDeviceMemoryBytes: " << this->PlannedDeviceMemoryBytes << "\n";
+  os << indent << "PlannedHostMemoryBytes: " << this->PlannedHostMemoryBytes << "\n";
   os << indent << "Plan: curved " << this->UsedCurvedRays << ", extinction " << this->UsedExtinction
      << ", deposit " << this->UsedDeposit << ", octree " << this->UsedOctree
      << ", gradient computed " << this->ComputedGradient << "\n";

@@ -47,10 +47,12 @@
  *    the volume; low-discrepancy (R2) samples over each light's footprint on the medium's box, or
  *    on the tighter proxy box around the voxels that differ from empty space (UseProxyBounds).
  * 3. Marching: step = clamp(octree step, MinimumStep, MaximumStep) (or FixedStep), midpoint
- *    update of x' = v/n, v' = grad n with |dv| <= MaximumTurn * n and |v| renormalised to n;
+ *    update of x' = v/n, v' = grad n with |dv| <= MaximumTurn * n and |v| renormalised to n,
+ *    halved where grad n changes fast over the step (StepTolerance);
  *    every step's chord is walked voxel by voxel, attenuating with sigma_t sampled in each voxel
  *    piece and depositing sigma_s's share of the loss there.
- * 4. Smoothing (optional): the paper's 3x3x3 filter, total-conserving.
+ * 4. Smoothing (optional): the paper's 3x3x3 filter with a mirror boundary: total-conserving,
+ *    and a uniform field stays uniform up to the faces, edges and corners.
  * Only the work the medium needs is compiled in: straight rays (no gradient or octree lookups;
  * a RefractiveIndexGradient array is then ignored) when n is constant, no piece walk when nothing
  * attenuates, no deposits when nothing scatters (see GetUsedCurvedRays() etc.).
@@ -224,6 +226,20 @@ public:
 
   ///@{
   /**
+   * Local error tolerance of a curved step, a fraction of n (default 0.02; 0 turns the control
+   * off). After each midpoint update, the change of grad n over the step (h times the largest
+   * change between its start, middle and end) and the drift of |v| from n are compared with
+   * StepTolerance * n; while either is larger the step is halved, at most 6 times (to 1/64 of the
+   * octree or fixed step, so below MinimumStep). Both vanish where grad n is uniform, so steps
+   * shrink only at steep index changes; there the control keeps light beyond the critical angle
+   * from leaking through an interface (Documentation/Physics.md, "Step control").
+   */
+  vtkSetClampMacro(StepTolerance, double, 0.0, 1.0);
+  vtkGetMacro(StepTolerance, double);
+  ///@}
+
+  ///@{
+  /**
    * Final 3x3x3 smoothing of Radiance and RadianceDirection (default on).
    */
   vtkSetMacro(Smoothing, bool);
@@ -266,6 +282,20 @@ public:
   vtkGetMacro(MarchingSeconds, double);
   vtkGetMacro(SmoothingSeconds, double);
   vtkGetMacro(PeakDeviceMemoryBytes, double);
+  ///@}
+
+  ///@{
+  /**
+   * Memory planning: before it allocates anything, a run estimates its device buffers (index,
+   * gradient, octree, coefficients, photon state, accumulators, smoothing) and host copies from
+   * the grid size and NumberOfPhotons and checks them against the context's limits
+   * (vtkOpenCLMemoryPlan). What does not fit fails the run at once with a message naming the
+   * buffer, the limit and the setting to lower (NumberOfPhotons or the grid size).
+   * GetPlannedDeviceMemoryBytes() / GetPlannedHostMemoryBytes() are the last plan's totals
+   * (bytes); GetPeakDeviceMemoryBytes() is what the run then allocated.
+   */
+  vtkGetMacro(PlannedDeviceMemoryBytes, double);
+  vtkGetMacro(PlannedHostMemoryBytes, double);
   ///@}
 
   ///@{
@@ -381,6 +411,7 @@ protected:
   double RouletteThreshold = 0.001;
   int MaximumNumberOfSteps = 10000;
   double MaximumTurn = 0.5;
+  double StepTolerance = 0.02;
   bool Smoothing = true;
   bool UseProxyBounds = true;
   double LightRadius = 0.0;
@@ -402,6 +433,8 @@ protected:
   double MarchingSeconds = 0;
   double SmoothingSeconds = 0;
   double PeakDeviceMemoryBytes = 0;
+  double PlannedDeviceMemoryBytes = 0;
+  double PlannedHostMemoryBytes = 0;
   bool UsedCurvedRays = false;
   bool UsedExtinction = false;
   bool UsedDeposit = false;
@@ -435,6 +468,7 @@ private:
   bool SetUpLights(Internals& run);
   void SharePhotons(Internals& run);
   bool InitializeDevice(Internals& run);
+  bool PlanMemory(Internals& run);
   bool BuildOctreeStage(Internals& run);
   bool GeneratePhotons(Internals& run);
   bool MarchPhotons(Internals& run);

@@ -5,6 +5,8 @@
 // generation, marching, smoothing), device memory allocated, the process's peak resident
 // memory, and the relative L2 error of Radiance against a reference run with 0.25-voxel fixed
 // steps (same photons, same seed: the error is the stepping's, not noise). Writes a CSV.
+// `adaptive-no-control` is adaptive with StepTolerance 0 (the marcher before the step control of
+// issue 18): the run prints the control's cost as a same-run ratio.
 //
 // Usage: BenchmarkPhotonTracer [--quick] [--max-log2 K] [--runs R] [output.csv]
 //   --quick: 32^3 grid, 2^12 photons, one run, adaptive only (a smoke test of the program).
@@ -124,6 +126,10 @@ Result Measure(vtkImageData* medium, int photons, const std::string& mode, int r
   else if (mode == "adaptive-min0.5")
   {
     tracer->SetMinimumStep(0.5);
+  }
+  else if (mode == "adaptive-no-control")
+  {
+    tracer->SetStepTolerance(0.0); // the marcher before the step control (issue 18)
   }
   // Warm-up with a few photons: compiles the kernels (the photon count is not a build option).
   tracer->SetNumberOfPhotons(256);
@@ -253,6 +259,7 @@ int main(int argc, char* argv[])
     std::vector<std::string> modes = { "adaptive" };
     if (!quick)
     {
+      modes.push_back("adaptive-no-control");
       modes.push_back("fixed-1");
     }
     if (photons == (1 << 18))
@@ -277,12 +284,22 @@ int main(int argc, char* argv[])
   {
     const Result* a = nullptr;
     const Result* f = nullptr;
+    const Result* u = nullptr;
     for (const auto& r : results)
     {
       if (r.Photons == photons && r.Mode == "adaptive")
         a = &r;
       if (r.Photons == photons && r.Mode == "fixed-1")
         f = &r;
+      if (r.Photons == photons && r.Mode == "adaptive-no-control")
+        u = &r;
+    }
+    if (a && u)
+    {
+      std::printf("2^%d photons: cost of the step control (adaptive / adaptive-no-control): "
+                  "steps x%.3f, marching time x%.3f; L2 error %.4f -> %.4f\n",
+        static_cast<int>(std::lround(std::log2(photons))), a->Steps / u->Steps,
+        a->Marching / u->Marching, u->Error, a->Error);
     }
     if (a && f)
     {
