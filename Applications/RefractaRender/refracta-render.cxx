@@ -169,8 +169,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
   renderer->SetInputData(medium.Image);
   vtkSmartPointer<vtkRefractaSurfaceSet> surfaceSet = MakeSurfaceSet(surfaces);
   renderer->SetSurfaces(surfaceSet);
-  // PENDING(surfcore): the environment light switch from environmentLight.
-  (void)environmentLight;
+  pipeline->SetBackgroundIlluminates(environmentLight);
   renderer->SetCamera(camera);
   {
     StageReporter reporter(pipeline, options.Quiet);
