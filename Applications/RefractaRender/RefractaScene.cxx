@@ -45,6 +45,7 @@ Scene ReadScene(
   renderer->SetInputData(out.Medium.Image);
   out.SurfaceSet = MakeSurfaceSet(out.Surfaces);
   renderer->SetSurfaces(out.SurfaceSet);
+  renderer->GetPipeline()->SetBackgroundIlluminates(out.EnvironmentLight);
   renderer->SetCamera(out.Camera);
   return out;
 }

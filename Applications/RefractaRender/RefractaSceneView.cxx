@@ -174,13 +174,6 @@ bool ReadBackground(const json& scene, const std::string& base, vtkRefractaImage
   renderer->SetEnvironmentUp(up[0], up[1], up[2]);
   renderer->SetEnvironmentRight(right[0], right[1], right[2]);
   const bool illuminates = Boolean(bg, "illuminates", "scene.background", false);
-  if (illuminates)
-  {
-    // Until the photon pass emits from the environment (issue #13), say so rather than ignore it.
-    Fail("scene.background.illuminates",
-      "true is not available yet: the photon pass does not emit light from the background in "
-      "this build (leave it out or set it false)");
-  }
   return illuminates;
 }
 }

@@ -202,13 +202,14 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
   detail << "tau_max " << tau;
   this->DecideEffect(ABSORPTION, -std::expm1(-tau), detail.str().c_str());
 
-  const bool lit = analysis->GetNumberOfPoweredLights() > 0;
+  const bool lit = analysis->GetNumberOfPoweredLights() > 0 || analysis->GetEnvironmentLight();
   const double tauS = analysis->GetMaximumScatteringThickness();
   // Scattered light can be all the camera sees (a lit fog on black): without the camera and the
   // background there is nothing to compare it with, so any scattering of a powered light counts.
   const double single = (lit && analysis->GetHasScattering() && tauS > 0.0) ? 1.0 : 0.0;
   detail.str("");
-  detail << "tau_s " << tauS << ", " << analysis->GetNumberOfPoweredLights() << " powered light(s)";
+  detail << "tau_s " << tauS << ", " << analysis->GetNumberOfPoweredLights() << " powered light(s)"
+         << (analysis->GetEnvironmentLight() ? " and the environment" : "");
   this->DecideEffect(SINGLE_SCATTERING, single, detail.str().c_str());
 
   // Each further order of scattering carries at most q of the previous one, so light scattered
@@ -226,7 +227,8 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
 
   detail.str("");
   detail << analysis->GetNumberOfSurfaces() << " surface(s), "
-         << analysis->GetNumberOfPoweredLights() << " powered light(s)";
+         << analysis->GetNumberOfPoweredLights() << " powered light(s)"
+         << (analysis->GetEnvironmentLight() ? " and the environment" : "");
   this->DecideEffect(SURFACE_LIGHTING, (lit && analysis->GetNumberOfSurfaces() > 0) ? 1.0 : 0.0,
     detail.str().c_str());
 

@@ -549,6 +549,7 @@ void vtkSceneAnalysis::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Medium: " << this->Medium.Get() << "\n";
   os << indent << "NumberOfLights: " << this->Lights.size() << "\n";
+  os << indent << "EnvironmentLight: " << this->EnvironmentLight << "\n";
   os << indent << "Facts: " << this->GetSummary() << "\n";
   for (size_t l = 0; l < this->LightOpticalThickness.size(); ++l)
   {

@@ -140,6 +140,15 @@ public:
    */
   vtkGetMacro(NumberOfPoweredLights, int);
 
+  ///@{
+  /**
+   * Whether the background lights the scene too (vtkPhotonTracer::BackgroundIlluminates, set by
+   * the pipeline; default off): a source of light like a powered light for vtkEffectPlan.
+   */
+  vtkSetMacro(EnvironmentLight, bool);
+  vtkGetMacro(EnvironmentLight, bool);
+  ///@}
+
   /**
    * Number of surfaces (of SetSurfaces) with at least one polygon or triangle strip.
    */
@@ -177,6 +186,7 @@ protected:
   double MaximumEmission = 0.0;
   double OccupiedFraction = 0.0;
   int NumberOfPoweredLights = 0;
+  bool EnvironmentLight = false;
   int NumberOfSurfaces = 0;
   vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
 

@@ -494,7 +494,17 @@ bool vtkRefractaRenderPipeline::LightingIsStale()
   return !in.LightDone || in.PlanTime.GetMTime() > lightTime ||
     in.Schedule->GetMTime() > lightTime ||
     (in.LightingData && in.LightingData->GetMTime() > lightTime) ||
-    (in.Surfaces && in.Surfaces->GetMTime() > lightTime);
+    (in.Surfaces && in.Surfaces->GetMTime() > lightTime) ||
+    (this->BackgroundIlluminates && this->BackgroundIsNewerThan(lightTime));
+}
+
+// Whether the view pass's background (colour, map, orientation) changed after `time`: with
+// BackgroundIlluminates it is a light.
+bool vtkRefractaRenderPipeline::BackgroundIsNewerThan(vtkMTimeType time)
+{
+  Internals& in = *this->Internal;
+  vtkImageData* env = in.ViewPass->GetEnvironmentMap();
+  return in.ViewPass->GetMTime() > time || (env && env->GetMTime() > time);
 }
 
 //------------------------------------------------------------------------------
@@ -683,6 +693,7 @@ bool vtkRefractaRenderPipeline::RunPlan()
   in.DataLights = vtkSmartPointer<vtkLightCollection>::New();
   in.Analysis->SetMedium(in.Medium);
   in.Analysis->SetSurfaces(in.Surfaces);
+  in.Analysis->SetEnvironmentLight(this->BackgroundIlluminates);
   in.Analysis->RemoveAllLights();
   for (vtkLight* light : in.CurrentLightList())
   {
@@ -779,7 +790,7 @@ bool vtkRefractaRenderPipeline::RunLighting()
   // clear glass ball on a floor).
   const bool surfaces = in.Plan->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING);
   const bool lit = (in.Plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING) || surfaces) &&
-    in.Analysis->GetNumberOfPoweredLights() > 0;
+    (in.Analysis->GetNumberOfPoweredLights() > 0 || this->BackgroundIlluminates);
   if (in.LightingData)
   {
     in.Lighting = in.LightingData;
@@ -790,6 +801,12 @@ bool vtkRefractaRenderPipeline::RunLighting()
     tracer->SetLights(in.DataLights);
     tracer->SetSurfaces(surfaces ? in.Surfaces.Get() : nullptr);
     tracer->SetMediumToWorld(in.PropMatrix);
+    // The background the view pass shows is the one that lights the scene.
+    tracer->SetBackgroundIlluminates(this->BackgroundIlluminates);
+    tracer->SetBackgroundColor(in.ViewPass->GetBackgroundColor());
+    tracer->SetEnvironmentMap(in.ViewPass->GetEnvironmentMap());
+    tracer->SetEnvironmentUp(in.ViewPass->GetEnvironmentUp());
+    tracer->SetEnvironmentRight(in.ViewPass->GetEnvironmentRight());
     vtkAlgorithm* pass = tracer;
     vtkImageData* output = nullptr;
     if (in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
@@ -882,6 +899,7 @@ void vtkRefractaRenderPipeline::PrintSelf(ostream& os, vtkIndent indent)
      << (this->LightUnits == VTK_LIGHT_UNITS ? "VTK_LIGHT_UNITS" : "RADIOMETRIC_LIGHT_UNITS")
      << "\n";
   os << indent << "MultipleScatteringSchedule: " << this->MultipleScatteringSchedule << "\n";
+  os << indent << "BackgroundIlluminates: " << this->BackgroundIlluminates << "\n";
   os << indent << "NumberOfPlanRuns: " << this->NumberOfPlanRuns << "\n";
   os << indent << "NumberOfLightPassRuns: " << this->NumberOfLightPassRuns << "\n";
   os << indent << "NumberOfViewPassRuns: " << this->NumberOfViewPassRuns << "\n";

@@ -119,6 +119,18 @@ public:
 
   ///@{
   /**
+   * Whether the background (the view pass's EnvironmentMap, else its BackgroundColor, oriented by
+   * its EnvironmentUp / EnvironmentRight) also lights the scene: the photon pass emits photons
+   * from it (vtkPhotonTracer::BackgroundIlluminates) and the plan counts it as a source of light.
+   * Default off: the background is only seen.
+   */
+  vtkSetMacro(BackgroundIlluminates, bool);
+  vtkGetMacro(BackgroundIlluminates, bool);
+  vtkBooleanMacro(BackgroundIlluminates, bool);
+  ///@}
+
+  ///@{
+  /**
    * A precomputed lighting volume on the medium's grid (`Radiance`, `RadianceDirection`,
    * `MultipleScattering`, see vtkRefractaImageRenderer); replaces the light passes. Default none.
    */
@@ -307,6 +319,7 @@ protected:
   bool RunLighting();
   bool RunView(int width, int height, const float* depthLimit);
   bool PlanIsStale();
+  bool BackgroundIsNewerThan(vtkMTimeType time);
   bool LightingIsStale();
   vtkMTimeType GetLightsMTime();
   void ReportProgress(int stage, double fraction);
@@ -314,6 +327,7 @@ protected:
   bool MultipleScattering = true;
   int LightUnits = RADIOMETRIC_LIGHT_UNITS;
   int MultipleScatteringSchedule = AUTOMATIC_SCHEDULE;
+  bool BackgroundIlluminates = false;
   bool LastRenderAborted = false;
   bool LastScheduleInterleaved = false;
   int NumberOfPlanRuns = 0;

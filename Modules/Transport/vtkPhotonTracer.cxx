@@ -123,6 +123,10 @@ vtkMTimeType vtkPhotonTracer::GetMTime()
   {
     t = std::max(t, this->MediumToWorld->GetMTime());
   }
+  if (this->BackgroundIlluminates && this->EnvironmentMap)
+  {
+    t = std::max(t, this->EnvironmentMap->GetMTime());
+  }
   return this->Surfaces ? std::max(t, this->Surfaces->GetMTime()) : t;
 }
 
@@ -130,57 +134,6 @@ int vtkPhotonTracer::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
   return 1;
-}
-
-//------------------------------------------------------------------------------
-bool vtkPhotonTracer::BuildOctree(vtkImageData* medium, vtkImageData* octreeOut)
-{
-  vtkNew<vtkMediumValidator> validator;
-  if (!octreeOut || !validator->Validate(medium))
-  {
-    vtkErrorMacro("BuildOctree needs a valid medium and an output image: "
-      << (octreeOut ? validator->GetErrorMessage() : "the output image is null"));
-    return false;
-  }
-  vtkOpenCLContext* ctx = this->GetContext();
-  if (!ctx->Initialize())
-  {
-    vtkErrorMacro("No OpenCL device: " << ctx->GetLastErrorMessage());
-    return false;
-  }
-  Medium m;
-  LoadMedium(medium, false, m);
-  Allocator alloc{ ctx, this };
-  vtkOpenCLBuffer nBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-    m.Voxels * sizeof(float), m.N.data(), "RefractiveIndex");
-  vtkOpenCLBuffer octree;
-  if (!nBuffer ||
-    !RunOctree(ctx, this, alloc, nBuffer.Get(), m.Dims, this->PrimaryTolerance,
-      this->SecondaryTolerance, octree))
-  {
-    return false;
-  }
-  std::vector<unsigned char> codes(m.Voxels);
-  if (!ctx->ReadBuffer(octree.Get(), m.Voxels, codes.data(), this))
-  {
-    return false;
-  }
-  octreeOut->Initialize();
-  octreeOut->CopyStructure(medium);
-  vtkNew<vtkUnsignedCharArray> level;
-  level->SetName("OctreeLevel");
-  level->SetNumberOfTuples(static_cast<vtkIdType>(m.Voxels));
-  vtkNew<vtkUnsignedCharArray> limited;
-  limited->SetName("OctreeStepLimited");
-  limited->SetNumberOfTuples(static_cast<vtkIdType>(m.Voxels));
-  for (size_t v = 0; v < m.Voxels; ++v)
-  {
-    level->SetValue(static_cast<vtkIdType>(v), codes[v] & 0x1f);
-    limited->SetValue(static_cast<vtkIdType>(v), (codes[v] & 0x80) ? 1 : 0);
-  }
-  octreeOut->GetPointData()->AddArray(level);
-  octreeOut->GetPointData()->AddArray(limited);
-  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -387,9 +340,10 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DREFRACTA_STEP_TOLERANCE=" << FloatLiteral(this->StepTolerance)
           << " -DREFRACTA_MAX_HALVINGS=" << (this->StepTolerance > 0 ? MaximumHalvings : 0);
   options << " -DREFRACTA_SURFACES=" << (run.Surfaces ? 1 : 0);
-  run.Trace = ctx->GetProgram({ "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl",
-                                "refracta_surfaces.cl", "photon_trace.cl" },
-    options.str(), this);
+  run.Trace =
+    ctx->GetProgram({ "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl",
+                      "refracta_surfaces.cl", "photon_trace.cl", "photon_environment.cl" },
+      options.str(), this);
   cl_program trace = run.Trace;
   if (!trace)
   {
@@ -416,6 +370,15 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
     const cl_uint r2 = SplitMix(seedState);
     if (count == 0)
     {
+      continue;
+    }
+    if (ls.Environment) // the sky (vtkPhotonTracerEnvironment.cxx)
+    {
+      if (!this->GenerateEnvironmentPhotons(run, &ls - lights.data(), offset, r1, r2))
+      {
+        return false;
+      }
+      offset += count;
       continue;
     }
     const cl_int positional = ls.Positional ? 1 : 0;
@@ -795,7 +758,8 @@ int vtkPhotonTracer::RequestData(
   this->PlannedDeviceMemoryBytes = this->PlannedHostMemoryBytes = 0;
   this->UsedCurvedRays = this->UsedExtinction = this->UsedDeposit = false;
   this->UsedOctree = this->ComputedGradient = false;
-  this->UsedSurfaces = this->LastRunReusedSurfaces = false;
+  this->UsedSurfaces = this->LastRunReusedSurfaces = this->UsedEnvironment = false;
+  this->EnvironmentPhotons = 0;
   this->LastRunAborted = false;
   Internals run;
   run.Input = input;
@@ -838,6 +802,7 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfLights: " << this->Lights->GetNumberOfItems() << "\n";
+  this->PrintEnvironment(os, indent);
   os << indent << "LightRadius: " << this->LightRadius << "\n";
   os << indent << "DirectionalLightAngularRadius: " << this->DirectionalLightAngularRadius << "\n";
   os << indent << "NumberOfPhotons: " << this->NumberOfPhotons << "\n";

@@ -39,6 +39,20 @@
  * per build of the set and kept between runs, like the medium's; moving a surface rebuilds the set
  * and re-runs this pass, never the medium's octree (see GetLastRunReusedSurfaces()).
  *
+ * Environment light (BackgroundIlluminates, default off): the background (EnvironmentMap, an
+ * equirectangular vtkImageData oriented by EnvironmentUp / EnvironmentRight as
+ * vtkRefractaEnvironmentMap documents, or else the uniform BackgroundColor) emits photons too, as
+ * Szirmay-Kalos et al. light their media with the sky. Directions are importance-sampled by
+ * luminance x solid angle (a 2D CDF over the texels; the uniform sky is one texel covering the
+ * sphere), the map taken as constant over each texel; each photon starts on a disc of radius R
+ * perpendicular to its direction that covers the sphere (centre, radius R) around the emission box,
+ * so a photon carries L(w) pi R^2 / (N pdf(w)) and the irradiance of the sky on any surface in
+ * the box comes out right (uniform sky L: pi L on each side of an unoccluded plane). The map is in
+ * the surfaces' world (MediumToWorld applied), like the view pass's background. The environment
+ * shares NumberOfPhotons with the lights in proportion to its power towards the box, and its
+ * photons are booked in EnergyEmitted like the lights' (vtkPhotonTracerEnvironment.cxx,
+ * Kernels/photon_environment.cl).
+ *
  * Work, in stages (each timed, see Get*Seconds()):
  * 1. Octree (only when n varies and AdaptiveStepping is on): the dense level array built on the
  *    device from a min/max pyramid of n, with PrimaryTolerance eps (unlimited step inside a node)
@@ -81,8 +95,10 @@
 #include "vtkOpenCLHandle.h" // for cl_mem in the chunk callback
 #include <functional>        // for the chunk callback
 #include <memory>            // for std::unique_ptr
+#include <vector>            // for the environment's radiance table
 #endif
 
+class vtkImageData;
 class vtkLight;
 class vtkLightCollection;
 class vtkMatrix4x4;
@@ -125,6 +141,35 @@ public:
   void SetMediumToWorld(vtkMatrix4x4* matrix);
   vtkMatrix4x4* GetMediumToWorld();
   ///@}
+
+  ///@{
+  /**
+   * Environment light (see the class description). BackgroundIlluminates (default off) makes the
+   * background emit photons: EnvironmentMap when set (an equirectangular vtkImageData, W x H x 1,
+   * 3 or 4 component point scalars; unsigned char divided by 255, other types linear radiance in
+   * W / (m^2 sr) per channel), else the uniform BackgroundColor (linear RGB radiance, default
+   * black: no light). EnvironmentUp / EnvironmentRight (world vectors, defaults (0, 1, 0) and
+   * (1, 0, 0)) orient the map as vtkRefractaEnvironmentMap documents. Negative or non-finite
+   * radiance is an error.
+   */
+  vtkSetMacro(BackgroundIlluminates, bool);
+  vtkGetMacro(BackgroundIlluminates, bool);
+  vtkBooleanMacro(BackgroundIlluminates, bool);
+  vtkSetVector3Macro(BackgroundColor, double);
+  vtkGetVector3Macro(BackgroundColor, double);
+  void SetEnvironmentMap(vtkImageData* image);
+  vtkImageData* GetEnvironmentMap();
+  vtkSetVector3Macro(EnvironmentUp, double);
+  vtkGetVector3Macro(EnvironmentUp, double);
+  vtkSetVector3Macro(EnvironmentRight, double);
+  vtkGetVector3Macro(EnvironmentRight, double);
+  ///@}
+
+  /**
+   * Whether the last run emitted photons from the environment, and their share of the photons.
+   */
+  vtkGetMacro(UsedEnvironment, bool);
+  vtkGetMacro(EnvironmentPhotons, int);
 
   ///@{
   /**
@@ -398,6 +443,13 @@ protected:
   vtkSmartPointer<vtkOpenCLContext> Context;
   vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
   vtkSmartPointer<vtkMatrix4x4> MediumToWorld;
+  vtkSmartPointer<vtkImageData> EnvironmentMap;
+  bool BackgroundIlluminates = false;
+  double BackgroundColor[3] = { 0.0, 0.0, 0.0 };
+  double EnvironmentUp[3] = { 0.0, 1.0, 0.0 };
+  double EnvironmentRight[3] = { 1.0, 0.0, 0.0 };
+  bool UsedEnvironment = false;
+  int EnvironmentPhotons = 0;
   int NumberOfPhotons = 65536;
   unsigned int Seed = 1;
   double PrimaryTolerance = 0.005;
@@ -460,6 +512,13 @@ private:
   bool ResolveSurfaces(Internals& run);
   void WriteSurfaceOutput(Internals& run, vtkImageData* output);
   void KeepSurfaces(Internals& run);
+  // The environment light (vtkPhotonTracerEnvironment.cxx): its radiance table, CDFs and emission
+  // sphere (appended to run.Lights as one more source), and the generation launch for its photons.
+  bool SetUpEnvironment(Internals& run);
+  bool ReadEnvironmentRadiance(std::vector<double>& rgb, int size[2]);
+  bool GenerateEnvironmentPhotons(
+    Internals& run, size_t light, unsigned int offset, unsigned int r1, unsigned int r2);
+  void PrintEnvironment(ostream& os, vtkIndent indent);
   bool TakeCachedMedium(Internals& run);
   void KeepMedium(Internals& run);
   // Reports max(progress, the last value reported) and returns false when AbortExecute is set.

@@ -133,6 +133,20 @@ struct LightSetup
   double Bound = 0.0;  // largest channel of the power sent towards the box
   double Extent = 0.0; // sphere radius (positional, local units) or sin(angular radius)
   unsigned int Photons = 0;
+  bool Environment = false; // the environment light (vtkPhotonTracer::Internals::Env*)
+};
+
+// The environment light of one run: radiance per texel (RGB and luminance), the luminance x solid
+// angle CDFs (marginal over rows, conditional within each row), its basis and emission sphere in
+// the grid-local frame, and the power factor pi R^2 S (S = sum of luminance x solid angle).
+struct EnvironmentSetup
+{
+  int Size[2] = { 0, 0 };
+  std::vector<cl_float4> Texels;
+  std::vector<float> Marginal, Conditional;
+  double Right[3], Up[3], Front[3];
+  double Centre[3], Radius = 0;
+  double PowerFactor = 0;
 };
 
 // Device buffers with bookkeeping of the bytes allocated.
@@ -175,6 +189,7 @@ struct vtkPhotonTracer::Internals
   cl_float4 Frame[3];
   double SurfaceEpsilon = 0;
   vtkNew<vtkFloatArray> Irradiance;
+  vtkPhotonTracerDetail::EnvironmentSetup Env;
   double TotalBound = 0; // sum of the lights' power bounds towards the box
   size_t Photons = 0;
   vtkOpenCLContext* Context = nullptr;

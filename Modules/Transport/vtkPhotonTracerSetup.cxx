@@ -1,5 +1,6 @@
 // The host-side set-up stages of vtkPhotonTracer: reading the medium, converting the lights to
-// the grid-local frame, sharing out the photons, the octree, and the medium kept between runs.
+// the grid-local frame, sharing out the photons, the octree (BuildOctree too), and the medium kept
+// between runs.
 #include "vtkPhotonTracerInternals.h"
 
 #include "vtkCollection.h"
@@ -9,10 +10,12 @@
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMediumValidator.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaMedium.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <array>
 
@@ -350,7 +353,7 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
       lights.push_back(ls);
     }
   }
-  return true;
+  return this->SetUpEnvironment(run);
 }
 
 //------------------------------------------------------------------------------
@@ -433,4 +436,55 @@ void vtkPhotonTracer::KeepMedium(Internals& run)
   c->ExtBuffer = std::move(run.ExtBuffer);
   c->AlbBuffer = std::move(run.AlbBuffer);
   this->Cache = std::move(c);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::BuildOctree(vtkImageData* medium, vtkImageData* octreeOut)
+{
+  vtkNew<vtkMediumValidator> validator;
+  if (!octreeOut || !validator->Validate(medium))
+  {
+    vtkErrorMacro("BuildOctree needs a valid medium and an output image: "
+      << (octreeOut ? validator->GetErrorMessage() : "the output image is null"));
+    return false;
+  }
+  vtkOpenCLContext* ctx = this->GetContext();
+  if (!ctx->Initialize())
+  {
+    vtkErrorMacro("No OpenCL device: " << ctx->GetLastErrorMessage());
+    return false;
+  }
+  Medium m;
+  LoadMedium(medium, false, m);
+  Allocator alloc{ ctx, this };
+  vtkOpenCLBuffer nBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+    m.Voxels * sizeof(float), m.N.data(), "RefractiveIndex");
+  vtkOpenCLBuffer octree;
+  if (!nBuffer ||
+    !RunOctree(ctx, this, alloc, nBuffer.Get(), m.Dims, this->PrimaryTolerance,
+      this->SecondaryTolerance, octree))
+  {
+    return false;
+  }
+  std::vector<unsigned char> codes(m.Voxels);
+  if (!ctx->ReadBuffer(octree.Get(), m.Voxels, codes.data(), this))
+  {
+    return false;
+  }
+  octreeOut->Initialize();
+  octreeOut->CopyStructure(medium);
+  vtkNew<vtkUnsignedCharArray> level;
+  level->SetName("OctreeLevel");
+  level->SetNumberOfTuples(static_cast<vtkIdType>(m.Voxels));
+  vtkNew<vtkUnsignedCharArray> limited;
+  limited->SetName("OctreeStepLimited");
+  limited->SetNumberOfTuples(static_cast<vtkIdType>(m.Voxels));
+  for (size_t v = 0; v < m.Voxels; ++v)
+  {
+    level->SetValue(static_cast<vtkIdType>(v), codes[v] & 0x1f);
+    limited->SetValue(static_cast<vtkIdType>(v), (codes[v] & 0x80) ? 1 : 0);
+  }
+  octreeOut->GetPointData()->AddArray(level);
+  octreeOut->GetPointData()->AddArray(limited);
+  return true;
 }
