@@ -352,3 +352,33 @@ TEST(ViewPassAnalytic, BadInputsAreReported)
   EXPECT_FALSE(errors->GetError());
   EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 64);
 }
+
+// The view pass keeps what SetMedium() and SetLighting() were given: a caller may hand it
+// temporaries and let them go (here they are released before Render(), which reads the medium's
+// grid), and the image is the one rendered with the inputs still alive.
+TEST(ViewPassAnalytic, InputsMayBeReleasedAfterUpload)
+{
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0.7, 0.6, 5);
+  camera->SetFocalPoint(0.7, 0.6, 0.45);
+  std::vector<float> kept, released;
+  {
+    Scene scene = MakeScene(true);
+    vtkNew<vtkRefractaViewPass> pass;
+    ASSERT_TRUE(pass->SetMedium(scene.Medium));
+    ASSERT_TRUE(pass->SetLighting(scene.Lighting));
+    ASSERT_TRUE(pass->Render(camera, 16, 12, nullptr, nullptr, kept));
+  }
+  vtkNew<vtkRefractaViewPass> pass;
+  {
+    Scene scene = MakeScene(true);
+    ASSERT_TRUE(pass->SetMedium(scene.Medium));
+  }
+  {
+    Scene scene = MakeScene(true); // the same grid, a new object: still matches the medium
+    ASSERT_TRUE(pass->SetLighting(scene.Lighting));
+  }
+  ASSERT_TRUE(pass->Render(camera, 16, 12, nullptr, nullptr, released));
+  ASSERT_EQ(kept.size(), released.size());
+  EXPECT_EQ(kept, released);
+}

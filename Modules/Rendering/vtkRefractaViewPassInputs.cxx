@@ -1,0 +1,262 @@
+// vtkRefractaViewPass: validation and upload of the inputs (medium, lighting volume).
+#include "vtkRefractaViewPass.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkMediumValidator.h"
+#include "vtkOpenCLContext.h"
+#include "vtkPointData.h"
+#include "vtkRefractaGridFrame.h"
+#include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaMedium.h"
+#include "vtkRefractaViewPassFields.h"
+#include "vtkRefractaViewPassInternals.h"
+
+#include <string>
+#include <vector>
+
+using namespace vtkRefractaViewPassDetail;
+
+//------------------------------------------------------------------------------
+bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
+{
+  Internals& in = *this->Internal;
+  vtkNew<vtkMediumValidator> validator;
+  if (!validator->Validate(medium))
+  {
+    vtkErrorMacro(
+      "The medium (input port 0) is not a valid Refracta medium: " << validator->GetErrorMessage());
+    in.Medium = nullptr;
+    return false;
+  }
+  if (in.Medium == medium && in.MediumTime == medium->GetMTime() && in.Extinction)
+  {
+    return true;
+  }
+  vtkOpenCLContext* context = in.GetContext();
+  if (!context->Initialize())
+  {
+    vtkErrorMacro("No OpenCL device: " << context->GetLastErrorMessage());
+    return false;
+  }
+  in.Medium = nullptr;
+  medium->GetDimensions(in.Dims);
+  medium->GetSpacing(in.Spacing);
+  in.Grid->SetImage(medium);
+  const size_t n = static_cast<size_t>(in.Dims[0]) * in.Dims[1] * in.Dims[2];
+  vtkPointData* pd = medium->GetPointData();
+
+  auto upload = [&](int id, const char* what, vtkOpenCLBuffer& buffer,
+                  std::vector<float>* keep = nullptr) -> bool
+  {
+    const int comps = vtkRefractaMedium::GetNumberOfComponents(id);
+    std::vector<float> values;
+    if (vtkDataArray* array = pd->GetArray(vtkRefractaMedium::GetArrayName(id)))
+    {
+      FetchFloats(array, comps, values);
+    }
+    else
+    {
+      values.assign(n * comps, static_cast<float>(vtkRefractaMedium::GetDefaultValue(id)));
+    }
+    buffer = context->CreateBuffer(
+      CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4, values.data(), what, this);
+    if (keep)
+    {
+      *keep = std::move(values);
+    }
+    return static_cast<bool>(buffer);
+  };
+
+  std::vector<float> kept;
+  std::vector<uint8_t> flags(n, 0);
+  if (!upload(vtkRefractaMedium::EXTINCTION, "Extinction", in.Extinction, &kept) ||
+    !upload(vtkRefractaMedium::ANISOTROPY, "Anisotropy", in.Anisotropy))
+  {
+    return false;
+  }
+  MarkNonzero(kept, 3, SourceFlag, flags);
+  in.HasEmission = pd->GetArray(vtkRefractaMedium::EmissionName()) != nullptr;
+  if (in.HasEmission && !upload(vtkRefractaMedium::EMISSION, "Emission", in.Emission, &kept))
+  {
+    return false;
+  }
+  if (in.HasEmission)
+  {
+    MarkNonzero(kept, 3, SourceFlag, flags);
+  }
+  if (!in.HasEmission)
+  {
+    in.Emission.Reset();
+  }
+
+  // Refractive index: curved rays need n and grad n (grad n in the grid-local frame).
+  in.Refractive = false;
+  in.UniformIndex = 1.0;
+  in.Index.Reset();
+  in.Gradient.Reset();
+  if (vtkDataArray* index = pd->GetArray(vtkRefractaMedium::RefractiveIndexName()))
+  {
+    double range[2];
+    index->GetRange(range, 0);
+    in.Refractive = range[1] - range[0] > 1e-6;
+    in.UniformIndex = in.Refractive ? 1.0 : range[0];
+  }
+  if (in.Refractive)
+  {
+    std::vector<float> nValues;
+    if (!upload(vtkRefractaMedium::REFRACTIVE_INDEX, "RefractiveIndex", in.Index, &nValues))
+    {
+      return false;
+    }
+    std::vector<float> gradient;
+    if (vtkDataArray* g = pd->GetArray(vtkRefractaMedium::RefractiveIndexGradientName()))
+    {
+      FetchFloats(g, 3, gradient);
+      RotateToLocal(in.Grid, gradient);
+    }
+    else
+    {
+      gradient = CentralDifferenceGradient(nValues, in.Dims, in.Spacing);
+    }
+    // Curved rays are straight exactly where the grad n samples are zero (the integrator never
+    // reads n itself except to scale |v|), so that is what the skipping test needs.
+    MarkNonzero(gradient, 3, GradientFlag, flags);
+    in.Gradient = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      gradient.size() * 4, gradient.data(), "RefractiveIndexGradient", this);
+    if (!in.Gradient)
+    {
+      return false;
+    }
+  }
+  // A new medium invalidates the lighting volume's upload (it must match the grid).
+  in.Lighting = nullptr;
+  in.HasSingle = in.HasMultiple = false;
+  in.Radiance.Reset();
+  in.RadianceDirection.Reset();
+  in.Multiple.Reset();
+  in.MediumFlags = std::move(flags);
+  in.LightingFlags.clear();
+  in.OccupancyDirty = true;
+  in.Medium = medium;
+  in.MediumTime = medium->GetMTime();
+  ++this->NumberOfUploads;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
+{
+  Internals& in = *this->Internal;
+  if (!in.Surfaces.SetLighting(lighting, this))
+  {
+    return false;
+  }
+  if (!lighting)
+  {
+    if (in.Lighting || !in.LightingFlags.empty())
+    {
+      in.OccupancyDirty = true;
+    }
+    in.Lighting = nullptr;
+    in.HasSingle = in.HasMultiple = false;
+    in.Radiance.Reset();
+    in.RadianceDirection.Reset();
+    in.Multiple.Reset();
+    in.LightingFlags.clear();
+    return true;
+  }
+  if (!in.Medium)
+  {
+    vtkErrorMacro("SetLighting() needs a valid medium first.");
+    return false;
+  }
+  if (in.Lighting == lighting && in.LightingTime == lighting->GetMTime())
+  {
+    return true;
+  }
+  int dims[3];
+  lighting->GetDimensions(dims);
+  if (!vtkRefractaGridFrame::SameGrid(lighting, in.Medium))
+  {
+    vtkErrorMacro("The lighting volume (input port 1) has "
+      << vtkRefractaGridFrame::DescribeGrid(lighting) << " but the medium has "
+      << vtkRefractaGridFrame::DescribeGrid(in.Medium)
+      << "; it must be computed on the medium's grid.");
+    return false;
+  }
+  vtkPointData* pd = lighting->GetPointData();
+  vtkDataArray* radiance = pd->GetArray(vtkRefractaLightingVolume::RadianceName());
+  vtkDataArray* direction = pd->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
+  vtkDataArray* multiple = pd->GetArray(vtkRefractaLightingVolume::MultipleScatteringName());
+  const vtkIdType n = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  auto check = [&](vtkDataArray* a, const char* name, bool nonNegative) -> bool
+  {
+    std::string error;
+    if (!CheckLightingArray(a, name, n, nonNegative, error))
+    {
+      vtkErrorMacro(<< error);
+      return false;
+    }
+    return true;
+  };
+  if (!radiance && !multiple)
+  {
+    vtkErrorMacro("The lighting volume (input port 1) has neither a 'Radiance' nor a "
+                  "'MultipleScattering' point array; a lighting volume from vtkPhotonTracer or "
+                  "vtkLatticeBoltzmannLighting carries at least one of them.");
+    return false;
+  }
+  if (radiance && !direction)
+  {
+    vtkErrorMacro("The lighting volume has 'Radiance' but no 'RadianceDirection' point array "
+                  "(the mean travel direction of the light, 3 components).");
+    return false;
+  }
+  if ((radiance &&
+        (!check(radiance, vtkRefractaLightingVolume::RadianceName(), true) ||
+          !check(direction, vtkRefractaLightingVolume::RadianceDirectionName(), false))) ||
+    (multiple && !check(multiple, vtkRefractaLightingVolume::MultipleScatteringName(), true)))
+  {
+    return false;
+  }
+  vtkOpenCLContext* context = in.GetContext();
+  std::vector<float> values;
+  in.HasSingle = radiance != nullptr;
+  in.HasMultiple = multiple != nullptr;
+  in.Radiance.Reset();
+  in.RadianceDirection.Reset();
+  in.Multiple.Reset();
+  in.LightingFlags.assign(static_cast<size_t>(n), 0);
+  in.OccupancyDirty = true;
+  if (in.HasSingle)
+  {
+    FetchFloats(radiance, 3, values);
+    MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
+    in.Radiance = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
+      values.data(), vtkRefractaLightingVolume::RadianceName(), this);
+    // RadianceDirection is stored in the grid-local frame (vtkPhotonTracer, Physics.md).
+    FetchFloats(direction, 3, values);
+    in.RadianceDirection = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      values.size() * 4, values.data(), vtkRefractaLightingVolume::RadianceDirectionName(), this);
+    if (!in.Radiance || !in.RadianceDirection)
+    {
+      return false;
+    }
+  }
+  if (in.HasMultiple)
+  {
+    FetchFloats(multiple, 3, values);
+    MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
+    in.Multiple = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
+      values.data(), vtkRefractaLightingVolume::MultipleScatteringName(), this);
+    if (!in.Multiple)
+    {
+      return false;
+    }
+  }
+  in.Lighting = lighting;
+  in.LightingTime = lighting->GetMTime();
+  ++this->NumberOfUploads;
+  return true;
+}

@@ -1,0 +1,119 @@
+// Private to vtkRefractaViewPass (not installed): the state the view pass keeps between renders
+// (the medium, lighting volume, environment and surfaces on the device, the empty-space
+// occupancy), shared by vtkRefractaViewPass.cxx (rendering) and vtkRefractaViewPassInputs.cxx
+// (validation and upload of the inputs).
+#ifndef vtkRefractaViewPassInternals_h
+#define vtkRefractaViewPassInternals_h
+
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkOpenCLContext.h"
+#include "vtkRefractaGridFrame.h"
+#include "vtkRefractaSurfaceSet.h"
+#include "vtkRefractaViewPass.h"
+#include "vtkRefractaViewPassOccupancy.h"
+#include "vtkRefractaViewPassSurfaces.h"
+#include "vtkSmartPointer.h"
+
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+struct vtkRefractaViewPass::Internals
+{
+  vtkSmartPointer<vtkOpenCLContext> Context;
+  vtkSmartPointer<vtkImageData> Environment;
+
+  // Medium on the device. Held (not just remembered) because SetLighting() and Render() read its
+  // grid after SetMedium() returns, and a caller may let its own reference go.
+  vtkSmartPointer<vtkImageData> Medium;
+  vtkMTimeType MediumTime = 0;
+  int Dims[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  vtkNew<vtkRefractaGridFrame> Grid;
+  bool HasEmission = false;
+  bool Refractive = false;
+  double UniformIndex = 1.0; // the index where it does not vary (sources then count 1 / n^2)
+  vtkOpenCLBuffer Extinction, Emission, Anisotropy, Index, Gradient;
+
+  // Lighting on the device.
+  vtkSmartPointer<vtkImageData> Lighting;
+  vtkMTimeType LightingTime = 0;
+  bool HasSingle = false;
+  bool HasMultiple = false;
+  vtkOpenCLBuffer Radiance, RadianceDirection, Multiple;
+
+  // Environment on the device.
+  vtkSmartPointer<vtkImageData> EnvironmentUploaded;
+  vtkMTimeType EnvironmentTime = 0;
+  int EnvironmentSize[2] = { 0, 0 };
+  vtkOpenCLBuffer EnvironmentBuffer;
+
+  // Empty space: per-voxel flags of the medium and of the lighting volume (SourceFlag,
+  // GradientFlag), and the macro-cell occupancy built from them when either changes.
+  std::vector<uint8_t> MediumFlags, LightingFlags;
+  bool OccupancyDirty = true;
+  int OccupancyCellSize = 0;
+  vtkRefractaViewPassDetail::MacroCellGrid Cells; // the occupancy on the host, and its active cells
+  vtkOpenCLBuffer Occupancy;
+  double BuildSeconds = 0.0;
+
+  // Surfaces: the set given, and its arrays and irradiance on the device.
+  vtkSmartPointer<vtkRefractaSurfaceSet> SurfaceSet;
+  vtkRefractaViewPassDetail::SurfaceBuffers Surfaces;
+
+  vtkOpenCLBuffer Dummy;
+
+  // Device bytes of each uploaded buffer (medium, lighting, environment, occupancy).
+  std::vector<double> UploadedBytes() const
+  {
+    std::vector<double> sizes;
+    for (const vtkOpenCLBuffer* b : { &this->Extinction, &this->Emission, &this->Anisotropy,
+           &this->Index, &this->Gradient, &this->Radiance, &this->RadianceDirection,
+           &this->Multiple, &this->EnvironmentBuffer, &this->Occupancy, &this->Dummy })
+    {
+      size_t size = 0;
+      if (*b &&
+        clGetMemObjectInfo(b->Get(), CL_MEM_SIZE, sizeof(size), &size, nullptr) == CL_SUCCESS)
+      {
+        sizes.push_back(static_cast<double>(size));
+      }
+    }
+    return sizes;
+  }
+
+  // Builds the macro-cell occupancy (BuildMacroCellGrid) when the flags or b changed, and
+  // uploads it.
+  bool BuildOccupancy(int b, vtkObject* owner)
+  {
+    if (!this->OccupancyDirty && this->OccupancyCellSize == b && this->Occupancy)
+    {
+      return true;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    this->Cells = vtkRefractaViewPassDetail::BuildMacroCellGrid(
+      this->Dims, b, this->MediumFlags, this->LightingFlags);
+    this->Occupancy = this->GetContext()->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      this->Cells.Cells.size(), this->Cells.Cells.data(), "empty-space occupancy", owner);
+    if (!this->Occupancy)
+    {
+      return false;
+    }
+    this->OccupancyCellSize = b;
+    this->OccupancyDirty = false;
+    this->BuildSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return true;
+  }
+
+  vtkOpenCLContext* GetContext()
+  {
+    if (!this->Context)
+    {
+      this->Context = vtkOpenCLContext::GetDefault();
+    }
+    return this->Context;
+  }
+};
+
+#endif
