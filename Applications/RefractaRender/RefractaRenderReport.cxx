@@ -5,6 +5,7 @@
 #include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkLatticeBoltzmannSolver.h"
 #include "vtkOpenCLMemoryPlan.h"
 #include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
@@ -168,7 +169,9 @@ json LightPassReport(vtkRefractaRenderPipeline* pipeline, int lightCount)
       { "residual", report.value("LatticeBoltzmannResidual", 0.0) },
       { "converged", report.value("LatticeBoltzmannConverged", 0.0) != 0.0 },
       { "schedule", pipeline->GetLastScheduleInterleaved() ? "interleaved" : "sequential" },
-      { "seconds", report.value("ScheduleFinalSolveSeconds", 0.0) } };
+      { "seconds", report.value("ScheduleFinalSolveSeconds", 0.0) },
+      { "device_memory_planned_bytes",
+        pipeline->GetLatticeSolver()->GetPlannedDeviceMemoryBytes() } };
     report["multiple_scattering"] = solve;
   }
   else

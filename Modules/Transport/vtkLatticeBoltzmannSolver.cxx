@@ -1,8 +1,10 @@
 #include "vtkLatticeBoltzmannSolver.h"
 
 #include "vtkCommand.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
+#include "vtkOpenCLMemoryPlan.h"
 
 #include <algorithm>
 #include <cmath>
@@ -129,6 +131,10 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
 
   // Coefficients, planar: T per class and channel, albedo per channel, g.
   const size_t planes = static_cast<size_t>(nclass) * 3 + 4;
+  if (!this->PlanMemory(planes))
+  {
+    return false;
+  }
   this->HostCoefficients.assign(planes * n, 0.0f);
   float* coef = this->HostCoefficients.data();
   const double meanEdge = std::cbrt(spacing[0] * spacing[1] * spacing[2]);
@@ -206,6 +212,75 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
   }
   this->BuiltKey[0] = -1;
   return this->BuildKernels() && this->ResetState();
+}
+
+//------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
+{
+  const double v = static_cast<double>(this->NumberOfVoxels);
+  std::ostringstream gridText;
+  gridText << "grid " << this->Dims[0] << " x " << this->Dims[1] << " x " << this->Dims[2];
+  const std::string grid = gridText.str(), gridSetting = "the grid size";
+  const std::string stateSetting =
+    this->Lattice == D3Q18 ? "the grid size or Lattice (18 -> 6)" : gridSetting;
+  vtkNew<vtkOpenCLMemoryPlan> plan;
+  plan->Reset("Lattice-Boltzmann solver");
+  plan->AddDeviceBuffer(grid, "coefficients", static_cast<double>(planes) * v * 4, gridSetting);
+  plan->AddDeviceBuffer(grid, "source", 6 * v * 4, gridSetting);
+  for (const char* what : { "lattice state", "lattice state (next)" })
+  {
+    plan->AddDeviceBuffer(grid, what, (this->Lattice * 3 * v + 1) * 4, stateSetting);
+  }
+  if (this->UseBlocks())
+  {
+    // Interface buffers between blocks: 6 faces of b x b voxels, 3 channels, per block.
+    const int b = this->BlockSize;
+    double blocks = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      blocks *= (this->Dims[a] + b - 1) / b;
+    }
+    for (const char* what : { "block interfaces", "block interfaces (next)" })
+    {
+      plan->AddDeviceBuffer(grid, what, blocks * 6 * b * b * 3 * 4, "the grid size or BlockSize");
+    }
+  }
+  double probes = MaxSourceProbes;
+  for (int a = 0; a < 3; ++a)
+  {
+    probes *= (this->Dims[a] + this->ProbeSpacing - 1) / this->ProbeSpacing + 1;
+  }
+  plan->AddDeviceBuffer(grid, "probes", probes * 3 * 4 * 2, "ProbeSpacing");
+  plan->AddDeviceBuffer(grid, "multiple-scattering output", 3 * v * 4, gridSetting);
+  // Host: the coefficients kept for the absorption sums, the state read back for the energy
+  // books, and the output.
+  plan->AddHostMemory(grid, "coefficient copy", static_cast<double>(planes) * v * 4, gridSetting);
+  plan->AddHostMemory(grid, "state read-back", this->Lattice * 3 * v * 4, stateSetting);
+  plan->AddHostMemory(grid, "MultipleScattering", 3 * v * 4, gridSetting);
+  this->PlannedDeviceMemoryBytes = plan->GetDeviceBytes();
+  this->PlannedHostMemoryBytes = plan->GetHostBytes();
+  if (!plan->Fits(this->GetContext()))
+  {
+    vtkErrorMacro(<< plan->GetMessage());
+    return false;
+  }
+  return true;
+}
+
+double vtkLatticeBoltzmannSolver::GetAllocatedDeviceMemoryBytes() const
+{
+  double total = 0;
+  for (const vtkOpenCLBuffer* b :
+    { &this->State[0], &this->State[1], &this->Interface[0], &this->Interface[1],
+      &this->Coefficients, &this->Source, &this->Probes, &this->ProbeValues })
+  {
+    size_t size = 0;
+    if (*b && clGetMemObjectInfo(b->Get(), CL_MEM_SIZE, sizeof(size), &size, nullptr) == CL_SUCCESS)
+    {
+      total += static_cast<double>(size);
+    }
+  }
+  return total;
 }
 
 //------------------------------------------------------------------------------
@@ -294,7 +369,8 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   }
   vtkOpenCLContext* context = this->GetContext();
   std::ostringstream options;
-  options << "-DREFRACTA_LBL_Q=" << q << " -DREFRACTA_LBL_NCLASS=" << this->ClassLengths.size() << " -DREFRACTA_LBL_CLASSES={";
+  options << "-DREFRACTA_LBL_Q=" << q << " -DREFRACTA_LBL_NCLASS=" << this->ClassLengths.size()
+          << " -DREFRACTA_LBL_CLASSES={";
   for (int i = 0; i < q; ++i)
   {
     options << (i ? "," : "") << this->DirectionClass[i];
@@ -303,7 +379,8 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
           << " -DREFRACTA_LBL_SOURCE_PHASE=" << this->SourceDistribution;
   if (blocked)
   {
-    options << " -DREFRACTA_LBL_B=" << this->BlockSize << " -DREFRACTA_LBL_SUBSTEPS=" << this->StepsPerExchange;
+    options << " -DREFRACTA_LBL_B=" << this->BlockSize
+            << " -DREFRACTA_LBL_SUBSTEPS=" << this->StepsPerExchange;
   }
   cl_program program = context->GetProgram({ "refracta_common.cl", "lbl.cl" }, options.str(), this);
   if (!program)
@@ -844,6 +921,8 @@ void vtkLatticeBoltzmannSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CollisionModel: "
      << (this->CollisionModel == DIFFUSION_MATCHED ? "diffusion matched" : "exponential") << "\n";
   os << indent << "NumberOfThickVoxels: " << this->NumberOfThickVoxels << "\n";
+  os << indent << "PlannedDeviceMemoryBytes: " << this->PlannedDeviceMemoryBytes << "\n";
+  os << indent << "PlannedHostMemoryBytes: " << this->PlannedHostMemoryBytes << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
   os << indent << "CheckInterval: " << this->CheckInterval << "\n";
   os << indent << "ProbeSpacing: " << this->ProbeSpacing << "\n";

@@ -319,6 +319,22 @@ public:
   }
 #endif
 
+  ///@{
+  /**
+   * Memory planning: Initialize() estimates the solver's device buffers (coefficients, source,
+   * two lattice states of Lattice x 3 floats per voxel, block interfaces, probes, the output)
+   * and host copies from the grid size, Lattice and BlockSize, and checks them against the
+   * context's limits (vtkOpenCLMemoryPlan) before it allocates anything. What does not fit fails
+   * Initialize() with a message naming the buffer, the limit and the setting to lower.
+   * GetPlannedDeviceMemoryBytes() / GetPlannedHostMemoryBytes() are the last plan's totals
+   * (bytes); GetAllocatedDeviceMemoryBytes() sums the solver's device buffers as allocated now
+   * (the output buffer of ComputeMultipleScattering() is temporary and not included).
+   */
+  vtkGetMacro(PlannedDeviceMemoryBytes, double);
+  vtkGetMacro(PlannedHostMemoryBytes, double);
+  double GetAllocatedDeviceMemoryBytes() const;
+  ///@}
+
   /**
    * Number of voxels of the initialized grid.
    */
@@ -335,6 +351,7 @@ protected:
   {
     return this->BlockSize > 0 && this->Lattice == D3Q6;
   }
+  bool PlanMemory(size_t coefficientPlanes);
   bool BuildKernels();
   bool ReadProbes(std::vector<float>& values);
   bool SetProbes(const std::vector<cl_uint>& extra);
@@ -352,6 +369,8 @@ protected:
   int MaximumIterations = 5000;
   int CollisionModel = DIFFUSION_MATCHED;
   vtkIdType NumberOfThickVoxels = 0;
+  double PlannedDeviceMemoryBytes = 0;
+  double PlannedHostMemoryBytes = 0;
 
   int Iterations = 0;
   double Residual = -1.0;

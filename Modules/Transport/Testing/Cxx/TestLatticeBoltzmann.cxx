@@ -18,6 +18,7 @@
 #include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLatticeBoltzmannSolver.h"
 #include "vtkNew.h"
+#include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkSmartPointer.h"
@@ -599,5 +600,47 @@ TEST(LatticeBoltzmannLighting, RejectsBadInput)
     EXPECT_NE(errors->GetErrorMessage().find(c.Expected), std::string::npos)
       << c.What << ": " << errors->GetErrorMessage();
     EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0) << c.What;
+  }
+}
+
+// The solver plans its memory before it allocates: a grid whose lattice state exceeds the
+// device's per-allocation limit fails Initialize() at once with a message naming the buffer and
+// the setting to lower (for D3Q18 the lattice too), and within the limits the plan covers what
+// Initialize() allocated.
+TEST(LatticeBoltzmann, MemoryBeyondTheDeviceLimitsIsNamed)
+{
+  const Medium m = MakeRandomMedium(24, 20, 16, 0.2f, 0.9f, 5);
+  vtkNew<vtkOpenCLContext> context;
+  ASSERT_TRUE(context->Initialize());
+  // D3Q18 state: 18 x 3 floats x 7680 voxels = 1.6 MB per copy; D3Q6: 0.55 MB.
+  context->SetSimulatedMaximumAllocationBytes(1 << 20);
+  for (int lattice : { vtkLatticeBoltzmannSolver::D3Q18, vtkLatticeBoltzmannSolver::D3Q6 })
+  {
+    vtkNew<vtkLatticeBoltzmannSolver> solver;
+    vtkNew<vtkTest::ErrorObserver> errors;
+    solver->AddObserver(vtkCommand::ErrorEvent, errors);
+    solver->SetContext(context);
+    solver->SetLattice(lattice);
+    const bool ok =
+      solver->Initialize(m.Dims, m.Spacing, m.Extinction.data(), m.Albedo.data(), m.G.data());
+    const std::string msg = errors->GetErrorMessage();
+    if (lattice == vtkLatticeBoltzmannSolver::D3Q18)
+    {
+      EXPECT_FALSE(ok);
+      EXPECT_NE(msg.find("lattice state"), std::string::npos) << msg;
+      EXPECT_NE(msg.find("grid 24 x 20 x 16"), std::string::npos) << msg;
+      EXPECT_NE(msg.find("Lattice (18 -> 6)"), std::string::npos) << msg;
+      EXPECT_NE(msg.find("CL_DEVICE_MAX_MEM_ALLOC_SIZE"), std::string::npos) << msg;
+      EXPECT_EQ(solver->GetAllocatedDeviceMemoryBytes(), 0.0);
+    }
+    else
+    {
+      EXPECT_TRUE(ok) << msg;
+      EXPECT_GE(solver->GetPlannedDeviceMemoryBytes(), solver->GetAllocatedDeviceMemoryBytes());
+      EXPECT_LE(solver->GetPlannedDeviceMemoryBytes(),
+        1.25 * solver->GetAllocatedDeviceMemoryBytes() + 3 * 4 * m.N());
+      std::printf("D3Q6 24 x 20 x 16, blocked: planned %.0f device bytes, allocated %.0f\n",
+        solver->GetPlannedDeviceMemoryBytes(), solver->GetAllocatedDeviceMemoryBytes());
+    }
   }
 }
