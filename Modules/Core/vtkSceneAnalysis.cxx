@@ -20,6 +20,7 @@
 #include "vtkRefractaMedium.h"
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
+#include "vtkWeakPointer.h"
 
 #include <algorithm>
 #include <array>
@@ -292,7 +293,34 @@ bool LightHasPower(vtkLight* light)
 }
 
 //------------------------------------------------------------------------------
-vtkSceneAnalysis::vtkSceneAnalysis() = default;
+// The light-independent facts of one medium, and its extinction for the light probes.
+struct vtkSceneAnalysis::MediumCache
+{
+  vtkWeakPointer<vtkImageData> Medium;
+  vtkMTimeType MediumTime = 0;
+  MediumFields Fields; // only Dims, Spacing and SigmaT are kept after the scan
+  double RefractiveIndexRange[2] = { 1.0, 1.0 };
+  double AlbedoRange[2] = { 0.0, 0.0 };
+  bool HasScattering = false;
+  double MaximumEmission = 0.0;
+  double OccupiedFraction = 0.0;
+  double AxisOpticalThickness[3] = { 0.0, 0.0, 0.0 };
+  double MaximumOpticalThickness = 0.0;
+  double MaximumScatteringThickness = 0.0;
+  double MaximumBendingAngle = 0.0;
+  double MaximumDisplacementInVoxels = 0.0;
+
+  bool Matches(vtkImageData* medium) const
+  {
+    return medium && this->Medium == medium && this->MediumTime == medium->GetMTime();
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkSceneAnalysis::vtkSceneAnalysis()
+  : Cache(new MediumCache)
+{
+}
 vtkSceneAnalysis::~vtkSceneAnalysis() = default;
 
 //------------------------------------------------------------------------------
@@ -371,13 +399,50 @@ void vtkSceneAnalysis::Reset()
 bool vtkSceneAnalysis::Analyze()
 {
   this->Reset();
+  if (!this->Cache->Matches(this->Medium) && !this->ScanMedium())
+  {
+    return false;
+  }
+  const MediumCache& cache = *this->Cache;
+  std::copy(cache.RefractiveIndexRange, cache.RefractiveIndexRange + 2, this->RefractiveIndexRange);
+  std::copy(cache.AlbedoRange, cache.AlbedoRange + 2, this->AlbedoRange);
+  std::copy(cache.AxisOpticalThickness, cache.AxisOpticalThickness + 3, this->AxisOpticalThickness);
+  this->HasScattering = cache.HasScattering;
+  this->MaximumEmission = cache.MaximumEmission;
+  this->HasEmission = cache.MaximumEmission > 0.0;
+  this->OccupiedFraction = cache.OccupiedFraction;
+  this->MaximumOpticalThickness = cache.MaximumOpticalThickness;
+  this->MaximumScatteringThickness = cache.MaximumScatteringThickness;
+  this->MaximumBendingAngle = cache.MaximumBendingAngle;
+  this->MaximumDisplacementInVoxels = cache.MaximumDisplacementInVoxels;
+
+  for (size_t l = 0; l < this->Lights.size(); ++l)
+  {
+    if (LightHasPower(this->Lights[l]))
+    {
+      ++this->NumberOfPoweredLights;
+      this->LightOpticalThickness[l] =
+        ProbeTowardLight(cache.Fields, this->Medium, this->Lights[l]);
+    }
+  }
+  this->NumberOfSurfaces = CountSurfaces(this->Surfaces);
+  this->Modified();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSceneAnalysis::ScanMedium()
+{
+  MediumCache& cache = *this->Cache;
+  cache.Medium = nullptr;
   vtkNew<vtkMediumValidator> validator;
   if (!validator->Validate(this->Medium))
   {
     vtkErrorMacro("Cannot analyse the scene: " << validator->GetErrorMessage());
     return false;
   }
-  MediumFields fields;
+  cache = MediumCache();
+  MediumFields& fields = cache.Fields;
   fields.Load(this->Medium);
   const vtkIdType numberOfVoxels = this->Medium->GetNumberOfPoints();
 
@@ -421,43 +486,41 @@ bool vtkSceneAnalysis::Analyze()
     all.Scatters = all.Scatters || f.Scatters;
     all.Occupied += f.Occupied;
   }
-  this->RefractiveIndexRange[0] = all.NMin;
-  this->RefractiveIndexRange[1] = all.NMax;
+  cache.RefractiveIndexRange[0] = all.NMin;
+  cache.RefractiveIndexRange[1] = all.NMax;
+  cache.AlbedoRange[0] = cache.AlbedoRange[1] = 0.0;
   if (all.AlbedoMax >= all.AlbedoMin)
   {
-    this->AlbedoRange[0] = all.AlbedoMin;
-    this->AlbedoRange[1] = all.AlbedoMax;
+    cache.AlbedoRange[0] = all.AlbedoMin;
+    cache.AlbedoRange[1] = all.AlbedoMax;
   }
-  this->HasScattering = all.Scatters;
-  this->MaximumEmission = all.EmissionMax;
-  this->HasEmission = all.EmissionMax > 0.0;
-  this->OccupiedFraction = static_cast<double>(all.Occupied) / numberOfVoxels;
+  cache.HasScattering = all.Scatters;
+  cache.MaximumEmission = all.EmissionMax;
+  cache.OccupiedFraction = static_cast<double>(all.Occupied) / numberOfVoxels;
 
   double diagonal2 = 0.0;
   double minimumSpacing = std::numeric_limits<double>::max();
   for (int axis = 0; axis < 3; ++axis)
   {
     const LineIntegrals lines = IntegrateLines(fields, axis);
-    this->AxisOpticalThickness[axis] = lines.Extinction;
-    this->MaximumOpticalThickness = std::max(this->MaximumOpticalThickness, lines.Extinction);
-    this->MaximumScatteringThickness = std::max(this->MaximumScatteringThickness, lines.Scattering);
-    this->MaximumBendingAngle = std::max(this->MaximumBendingAngle, lines.Bending);
+    cache.AxisOpticalThickness[axis] = lines.Extinction;
+    cache.MaximumOpticalThickness = std::max(cache.MaximumOpticalThickness, lines.Extinction);
+    cache.MaximumScatteringThickness = std::max(cache.MaximumScatteringThickness, lines.Scattering);
+    cache.MaximumBendingAngle = std::max(cache.MaximumBendingAngle, lines.Bending);
     diagonal2 += std::pow(fields.Dims[axis] * fields.Spacing[axis], 2);
     minimumSpacing = std::min(minimumSpacing, fields.Spacing[axis]);
   }
-  this->MaximumDisplacementInVoxels =
-    this->MaximumBendingAngle * std::sqrt(diagonal2) / minimumSpacing;
+  cache.MaximumDisplacementInVoxels =
+    cache.MaximumBendingAngle * std::sqrt(diagonal2) / minimumSpacing;
 
-  for (size_t l = 0; l < this->Lights.size(); ++l)
-  {
-    if (LightHasPower(this->Lights[l]))
-    {
-      ++this->NumberOfPoweredLights;
-      this->LightOpticalThickness[l] = ProbeTowardLight(fields, this->Medium, this->Lights[l]);
-    }
-  }
-  this->NumberOfSurfaces = CountSurfaces(this->Surfaces);
-  this->Modified();
+  // The light probes need only the extinction: free the rest.
+  std::vector<float>().swap(fields.N);
+  std::vector<float>().swap(fields.Albedo);
+  std::vector<float>().swap(fields.Emission);
+  std::vector<float>().swap(fields.GradN);
+  cache.Medium = this->Medium;
+  cache.MediumTime = this->Medium->GetMTime();
+  ++this->NumberOfMediumScans;
   return true;
 }
 

@@ -24,6 +24,7 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // for members
 
+#include <memory> // for std::unique_ptr
 #include <string> // for std::string
 #include <vector> // for std::vector
 
@@ -71,8 +72,18 @@ public:
   /**
    * Compute the facts. Returns false (with a vtkErrorMacro naming the problem) when the medium
    * is missing or invalid; the facts are then those of an empty scene.
+   *
+   * The medium's facts (validation, ranges, line integrals) are kept with the medium's MTime and
+   * reused while the same medium is unmodified, so that a light or surface change re-runs only
+   * the light probes (a light move in an interactive view); the medium's extinction is kept for
+   * those probes (12 bytes per voxel). GetNumberOfMediumScans() counts the full passes.
    */
   bool Analyze();
+
+  /**
+   * How many times Analyze() scanned the whole medium (the others reused its facts).
+   */
+  vtkGetMacro(NumberOfMediumScans, int);
 
   ///@{
   /**
@@ -169,6 +180,12 @@ protected:
   ~vtkSceneAnalysis() override;
 
   void Reset();
+  bool ScanMedium();
+
+  // The medium's facts from the last scan, and what they were computed from.
+  struct MediumCache;
+  std::unique_ptr<MediumCache> Cache;
+  int NumberOfMediumScans = 0;
 
   vtkSmartPointer<vtkImageData> Medium;
   std::vector<vtkSmartPointer<vtkLight>> Lights;

@@ -399,3 +399,60 @@ TEST(EffectPlan, SurfacesNeedThePhotonPassInAClearMedium)
   Plan(glass, sun, plan, analysis);
   EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING));
 }
+
+// A light move re-runs only the light probes: the medium's facts are reused while the medium is
+// unmodified (one scan), are identical to a fresh analysis's, and are recomputed after the medium
+// changes (Modified()) or another medium is given.
+TEST(SceneAnalysis, MediumFactsAreReusedUntilTheMediumChanges)
+{
+  auto medium = MakeMedium(12, 10, 8, 0.1,
+    [](int i, int, int)
+    {
+      Voxel v;
+      v.SigmaT = 0.2 * i;
+      v.Albedo = 0.6;
+      v.N = 1.0 + 0.01 * i;
+      return v;
+    });
+  auto light = MakeDirectionalLight(1.0);
+  vtkNew<vtkSceneAnalysis> analysis;
+  analysis->SetMedium(medium);
+  analysis->AddLight(light);
+  ASSERT_TRUE(analysis->Analyze());
+  const double fromMinusX = analysis->GetOpticalThicknessTowardLight(0);
+  light->SetPosition(10, 0.5, 0.5); // now travels along -x
+  ASSERT_TRUE(analysis->Analyze());
+  EXPECT_EQ(analysis->GetNumberOfMediumScans(), 1);
+  EXPECT_NE(analysis->GetOpticalThicknessTowardLight(0), fromMinusX);
+
+  vtkNew<vtkSceneAnalysis> fresh;
+  fresh->SetMedium(medium);
+  fresh->AddLight(light);
+  ASSERT_TRUE(fresh->Analyze());
+  EXPECT_EQ(analysis->GetSummary(), fresh->GetSummary());
+  EXPECT_EQ(analysis->GetOpticalThicknessTowardLight(0), fresh->GetOpticalThicknessTowardLight(0));
+
+  // Change the medium in place: the next analysis scans it again and sees the change.
+  vtkDataArray* extinction = medium->GetPointData()->GetArray("Extinction");
+  for (vtkIdType p = 0; p < extinction->GetNumberOfTuples(); ++p)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      extinction->SetComponent(p, c, 2 * extinction->GetComponent(p, c));
+    }
+  }
+  const double before = analysis->GetMaximumOpticalThickness();
+  extinction->Modified();
+  medium->Modified();
+  ASSERT_TRUE(analysis->Analyze());
+  EXPECT_EQ(analysis->GetNumberOfMediumScans(), 2);
+  EXPECT_NEAR(analysis->GetMaximumOpticalThickness(), 2 * before, 1e-9 * before);
+
+  // An invalid medium is never served from the cache of a valid one.
+  vtkNew<vtkImageData> empty;
+  analysis->SetMedium(empty);
+  vtkNew<vtkTest::ErrorObserver> errors;
+  analysis->AddObserver(vtkCommand::ErrorEvent, errors);
+  EXPECT_FALSE(analysis->Analyze());
+  EXPECT_TRUE(errors->GetError());
+}
