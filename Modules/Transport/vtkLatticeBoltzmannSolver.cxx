@@ -461,6 +461,20 @@ bool vtkLatticeBoltzmannSolver::ResetState()
 }
 
 //------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::Restart()
+{
+  if (!this->Source)
+  {
+    vtkErrorMacro("Initialize() the solver with a grid first.");
+    return false;
+  }
+  this->SourceIsZero = true;
+  const size_t bytes = 6 * static_cast<size_t>(this->NumberOfVoxels) * sizeof(float);
+  return this->GetContext()->ZeroBuffer(this->Source.Get(), bytes, this) && this->SetProbes({}) &&
+    this->ResetState();
+}
+
+//------------------------------------------------------------------------------
 bool vtkLatticeBoltzmannSolver::SetSource(const float* s1, const float* direction)
 {
   if (!this->Source)

@@ -256,6 +256,14 @@ public:
   bool ResetState();
 
   /**
+   * Back to the state Initialize() leaves (zero lattice state, zero source, the grid probes only)
+   * on the same grid and medium, without recomputing or uploading the medium's coefficients: what
+   * a new light needs when the medium has not changed. Bit-identical to Initialize() with the
+   * same medium from then on.
+   */
+  bool Restart();
+
+  /**
    * Run n lattice steps (rounded up to StepsPerExchange in blocked mode); enqueues and, when
    * `wait` is true, waits. Returns false after reporting an error.
    */

@@ -101,19 +101,20 @@ int vtkPhotonDiffusionSchedule::FillInputPortInformation(int, vtkInformation* in
 }
 
 //------------------------------------------------------------------------------
-int vtkPhotonDiffusionSchedule::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+bool vtkPhotonDiffusionSchedule::PrepareSolver(vtkImageData* medium)
 {
-  const auto start = std::chrono::steady_clock::now();
-  vtkImageData* medium = vtkImageData::GetData(inputVector[0]);
-  vtkImageData* output = vtkImageData::GetData(outputVector);
-  output->Initialize();
-  this->LastRunAborted = false;
+  vtkLatticeBoltzmannSolver* solver = this->Solver;
+  if (medium && medium == this->TracerInputSource && medium->GetMTime() == this->SolverMediumTime &&
+    solver->GetMTime() == this->SolverSettingsTime)
+  {
+    return solver->Restart();
+  }
+  this->SolverMediumTime = 0;
   vtkNew<vtkMediumValidator> validator;
   if (!validator->Validate(medium))
   {
     vtkErrorMacro("Input 0 is not a valid medium: " << validator->GetErrorMessage());
-    return 0;
+    return false;
   }
   int dims[3];
   double spacing[3];
@@ -125,12 +126,31 @@ int vtkPhotonDiffusionSchedule::RequestData(
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
   const std::vector<float> anisotropy =
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
-  vtkLatticeBoltzmannSolver* solver = this->Solver;
   if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()))
   {
     vtkErrorMacro("The Lattice-Boltzmann solver could not be set up (see the previous message).");
+    return false;
+  }
+  ++this->NumberOfSolverInitializations;
+  this->SolverMediumTime = medium->GetMTime();
+  this->SolverSettingsTime = solver->GetMTime();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkPhotonDiffusionSchedule::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkImageData* medium = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  output->Initialize();
+  this->LastRunAborted = false;
+  if (!this->PrepareSolver(medium))
+  {
     return 0;
   }
+  vtkLatticeBoltzmannSolver* solver = this->Solver;
 
   // Photon pass, with the diffusion interleaved between its chunks.
   if (!this->TracerInput || medium != this->TracerInputSource ||

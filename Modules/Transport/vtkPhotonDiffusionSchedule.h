@@ -92,6 +92,13 @@ public:
    */
   vtkGetMacro(LastRunAborted, bool);
 
+  /**
+   * How many runs validated the medium and initialised the solver with it (uploading its
+   * coefficients); the others (the medium and the solver's settings unchanged, e.g. a light
+   * move) only restarted the solver (vtkLatticeBoltzmannSolver::Restart()).
+   */
+  vtkGetMacro(NumberOfSolverInitializations, int);
+
 protected:
   vtkPhotonDiffusionSchedule();
   ~vtkPhotonDiffusionSchedule() override;
@@ -111,6 +118,13 @@ protected:
   vtkSmartPointer<vtkImageData> TracerInput;
   vtkImageData* TracerInputSource = nullptr;
   vtkMTimeType TracerInputTime = 0;
+  // The medium the solver was last initialised with (validated, coefficients uploaded), and the
+  // solver's MTime then: while both are unchanged a run only restarts the solver.
+  vtkMTimeType SolverMediumTime = 0;
+  vtkMTimeType SolverSettingsTime = 0;
+  int NumberOfSolverInitializations = 0;
+
+  bool PrepareSolver(vtkImageData* medium);
 
 private:
   vtkPhotonDiffusionSchedule(const vtkPhotonDiffusionSchedule&) = delete;

@@ -141,3 +141,59 @@ TEST(PhotonDiffusionSchedule, InterleavedMatchesSequential)
     }
   }
 }
+
+// A light move on an unchanged medium restarts the solver instead of validating the medium and
+// uploading its coefficients again, and gives exactly what a fresh schedule gives for the moved
+// light; a modified medium is set up again.
+TEST(PhotonDiffusionSchedule, LightMoveReusesTheMediumOnTheDevice)
+{
+  vtkSmartPointer<vtkImageData> medium = MakeMedium(12, 10, 8, 0.5,
+    [](double, double, double)
+    {
+      Voxel v;
+      v.Extinction = { 1.2, 1.0, 0.8 };
+      v.Albedo = { 0.7, 0.75, 0.8 };
+      return v;
+    });
+  auto configure = [](vtkPhotonDiffusionSchedule* schedule, double lightY)
+  {
+    vtkPhotonTracer* tracer = schedule->GetPhotonTracer();
+    tracer->RemoveAllLights();
+    tracer->AddLight(Directional({ -100, lightY, 2 }, { 0, 2, 2 }, 1.0, { 1.0, 0.8, 0.6 }));
+    tracer->SetNumberOfPhotons(2048);
+    schedule->GetSolver()->SetTolerance(1e-5);
+  };
+  vtkNew<vtkPhotonDiffusionSchedule> persistent;
+  persistent->SetInputData(medium);
+  configure(persistent, 2.0);
+  persistent->Update();
+  configure(persistent, 40.0);
+  persistent->Update();
+  EXPECT_EQ(persistent->GetNumberOfSolverInitializations(), 1);
+
+  vtkNew<vtkPhotonDiffusionSchedule> fresh;
+  fresh->SetInputData(medium);
+  configure(fresh, 40.0);
+  fresh->Update();
+  const char* name = vtkRefractaLightingVolume::MultipleScatteringName();
+  vtkDataArray* a = persistent->GetOutput()->GetPointData()->GetArray(name);
+  vtkDataArray* b = fresh->GetOutput()->GetPointData()->GetArray(name);
+  ASSERT_TRUE(a && b);
+  ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+  double peak = 0;
+  for (vtkIdType t = 0; t < a->GetNumberOfTuples(); ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_EQ(a->GetComponent(t, c), b->GetComponent(t, c)) << t;
+      peak = std::max(peak, a->GetComponent(t, c));
+    }
+  }
+  EXPECT_GT(peak, 0);
+  EXPECT_EQ(Field(persistent->GetOutput(), "LatticeBoltzmannIterations"),
+    Field(fresh->GetOutput(), "LatticeBoltzmannIterations"));
+
+  medium->Modified();
+  persistent->Update();
+  EXPECT_EQ(persistent->GetNumberOfSolverInitializations(), 2);
+}
