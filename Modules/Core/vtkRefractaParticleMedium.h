@@ -22,7 +22,8 @@
  *
  * The illumination network (vtkIlluminationNetwork) writes its results as point data on a copy of
  * the particles: DirectFluenceName() (fluence of the attenuated light sources at the particle,
- * RGB, power per unit area) and MultipleFluenceName() (fluence of the light scattered by other
+ * RGB, power per unit area), DirectDirectionName() (the unit direction that light travels at the
+ * particle) and MultipleFluenceName() (fluence of the light scattered by other
  * particles and of the sky, (4 pi / D) sum_d I[p, d], RGB).
  *
  * Only static methods are used; New() exists so that it can be wrapped and printed.
@@ -61,6 +62,7 @@ public:
    */
   static const char* DirectFluenceName() { return "DirectFluence"; }
   static const char* MultipleFluenceName() { return "MultipleFluence"; }
+  static const char* DirectDirectionName() { return "DirectDirection"; }
   ///@}
 
   /**

@@ -454,7 +454,10 @@ bool vtkIlluminationNetwork::SolveRotations(vtkPolyData* output)
       << this->Tolerance << " in " << this->MaximumIterations << " iterations (residual "
       << this->Residual << ").");
   }
-  vtkNew<vtkFloatArray> direct, scattered;
+  vtkNew<vtkFloatArray> direct, scattered, travel;
+  travel->SetName(vtkRefractaParticleMedium::DirectDirectionName());
+  travel->SetNumberOfComponents(3);
+  travel->SetNumberOfTuples(static_cast<vtkIdType>(n));
   direct->SetName(vtkRefractaParticleMedium::DirectFluenceName());
   scattered->SetName(vtkRefractaParticleMedium::MultipleFluenceName());
   direct->SetNumberOfComponents(3);
@@ -464,6 +467,7 @@ bool vtkIlluminationNetwork::SolveRotations(vtkPolyData* output)
   for (size_t k = 0; k < 3 * n; ++k)
   {
     direct->SetValue(static_cast<vtkIdType>(k), static_cast<float>(in.Irradiance[k]));
+    travel->SetValue(static_cast<vtkIdType>(k), static_cast<float>(in.Travel[k]));
     scattered->SetValue(
       static_cast<vtkIdType>(k), static_cast<float>(multiple[k] / this->NumberOfRotations));
   }
@@ -472,6 +476,7 @@ bool vtkIlluminationNetwork::SolveRotations(vtkPolyData* output)
   output->GetPointData()->PassData(input->GetPointData());
   output->GetPointData()->AddArray(direct);
   output->GetPointData()->AddArray(scattered);
+  output->GetPointData()->AddArray(travel);
   vtkNew<vtkCellArray> vertices;
   for (vtkIdType p = 0; p < static_cast<vtkIdType>(n); ++p)
   {

@@ -5,7 +5,8 @@
  * Input: a vtkPointSet of particles with the arrays of vtkRefractaParticleMedium (Radius and
  * Extinction required; Albedo, Anisotropy, Emission optional). Output: a vtkPolyData with the
  * particles (points, input point data, one vertex per particle) plus
- * vtkRefractaParticleMedium::DirectFluenceName() and MultipleFluenceName().
+ * vtkRefractaParticleMedium::DirectFluenceName(), DirectDirectionName() and MultipleFluenceName().
+ * vtkParticleMediumDeposit turns that into a grid medium and lighting volume for the view pass.
  *
  * The method of Szirmay-Kalos, Sbert and Umenhoffer:
  * - D global sample directions (NumberOfDirections, default 128): a spherical Fibonacci set
