@@ -448,7 +448,7 @@ bool vtkIlluminationNetwork::SolveRotations(vtkPolyData* output)
     in.HasState = true;
   }
   this->Converged = allConverged;
-  if (!allConverged)
+  if (!allConverged && this->Tolerance > 0)
   {
     vtkWarningMacro("The illumination network did not reach Tolerance "
       << this->Tolerance << " in " << this->MaximumIterations << " iterations (residual "

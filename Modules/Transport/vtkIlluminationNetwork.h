@@ -105,6 +105,8 @@ public:
   /**
    * Convergence: relative change of I per iteration below Tolerance (default 1e-4), checked every
    * CheckInterval iterations (default 4), at most MaximumIterations (default 2000) per rotation.
+   * Tolerance 0 with MaximumIterations 1 is the paper's interactive mode: one iteration per frame
+   * (update), warm-started, without a warning that it did not converge.
    */
   vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
   vtkGetMacro(Tolerance, double);
