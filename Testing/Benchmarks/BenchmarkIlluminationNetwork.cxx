@@ -65,7 +65,8 @@ vtkSmartPointer<vtkPolyData> Cloud(int n)
   const double sigma = 10.0 / (n * 4.0 / 3.0 * 3.14159265358979 * r * r * r);
   auto cloud = vtkSmartPointer<vtkPolyData>::New();
   cloud->SetPoints(points);
-  auto add = [&](const char* name, int comps, double value) {
+  auto add = [&](const char* name, int comps, double value)
+  {
     vtkNew<vtkFloatArray> a;
     a->SetName(name);
     a->SetNumberOfComponents(comps);
