@@ -29,6 +29,11 @@ const ChoiceTable<int> RayModes = { { "auto", vtkRefractaViewPass::AUTO },
 const ChoiceTable<int> EffectModes = { { "auto", vtkEffectPlan::AUTOMATIC },
   { "on", vtkEffectPlan::FORCE_ON }, { "off", vtkEffectPlan::FORCE_OFF } };
 
+// quality.multiple_scattering_method: the Lattice-Boltzmann lattice (vtkLatticeBoltzmannSolver).
+const ChoiceTable<int> MultipleScatteringMethods = {
+  { "lbl_d3q6", vtkLatticeBoltzmannSolver::D3Q6 }, { "lbl_d3q18", vtkLatticeBoltzmannSolver::D3Q18 }
+};
+
 // The keys of "scene.effects", in vtkEffectPlan's effect order.
 const char* const EffectKeys[] = { "refraction", "absorption", "single_scattering",
   "multiple_scattering", "emission", "surface_lighting" };
@@ -53,7 +58,8 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
   CheckKeys(quality, q,
     { "preset", "photons", "seed", "view_step", "ray_mode", "transmittance_cutoff",
       "photon_min_step", "octree_tolerance", "photon_smoothing", "multiple_scattering",
-      "multiple_scattering_tolerance", "multiple_scattering_block_size", "tolerance" });
+      "multiple_scattering_tolerance", "multiple_scattering_block_size",
+      "multiple_scattering_method", "tolerance" });
   int preset;
   std::tie(s.Preset, preset) = Choice(quality, "preset", q, "none", Presets);
   const bool hasPreset = preset != NoPreset;
@@ -79,6 +85,8 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
     hasPreset ? plan->GetRecommendedLatticeTolerance() : 1e-4, 1e-8, 1.0);
   s.LatticeBlockSize = Integer(quality, "multiple_scattering_block_size", q,
     hasPreset ? plan->GetRecommendedLatticeBlockSize() : 4, 0, 8);
+  std::tie(s.MultipleScatteringMethodName, s.Lattice) =
+    Choice(quality, "multiple_scattering_method", q, "lbl_d3q6", MultipleScatteringMethods);
   // The relative image change an effect may cause and still be skipped.
   plan->SetTolerance(
     Number(quality, "tolerance", q, hasPreset ? plan->GetTolerance() : 0.01, 0.0, 1.0));
@@ -121,6 +129,7 @@ void ApplySettings(const RenderSettings& s, vtkRefractaImageRenderer* renderer)
   tracer->SetSmoothing(s.PhotonSmoothing);
   pipeline->GetLatticeSolver()->SetTolerance(s.LatticeTolerance);
   pipeline->GetLatticeSolver()->SetBlockSize(s.LatticeBlockSize);
+  pipeline->GetLatticeSolver()->SetLattice(s.Lattice);
   renderer->SetImageSize(s.Width, s.Height);
   renderer->SetExposure(s.Exposure);
   renderer->SetToneMapping(s.ToneMapping);
@@ -142,7 +151,8 @@ json QualityReport(const RenderSettings& s)
     { "photon_min_step", s.PhotonMinStep }, { "photon_smoothing", s.PhotonSmoothing },
     { "multiple_scattering", s.MultipleScattering },
     { "multiple_scattering_tolerance", s.LatticeTolerance },
-    { "multiple_scattering_block_size", s.LatticeBlockSize }, { "preset", s.Preset },
+    { "multiple_scattering_block_size", s.LatticeBlockSize },
+    { "multiple_scattering_method", s.MultipleScatteringMethodName }, { "preset", s.Preset },
     { "octree_tolerance", s.OctreeTolerance } };
 }
 }

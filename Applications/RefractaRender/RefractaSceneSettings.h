@@ -34,6 +34,8 @@ struct RenderSettings
   bool MultipleScattering = true;
   double LatticeTolerance = 1e-4;
   int LatticeBlockSize = 4;
+  std::string MultipleScatteringMethodName = "lbl_d3q6"; // quality.multiple_scattering_method
+  int Lattice = 6;                                       // 6 (D3Q6) or 18 (D3Q18)
 };
 
 /// Reads "scene.image", "scene.quality" and "scene.effects". A quality preset is set on the
