@@ -3,21 +3,29 @@
 // 0), all power ends absorbed in the medium, and the scattered power in the output arrays,
 // sum (S1 + S_ms) dV, is a / (1 - a) times the absorbed power, as it must be for a grey albedo a;
 // chunked and unchunked runs agree exactly; the single-scattering source S1 keeps its expected
-// value (it equals the deterministic pass's within the photon noise); scattered light lights a
-// floor the direct beam cannot reach; and the mode switches itself off without surfaces or without
-// a scattering medium.
+// value (it equals the deterministic pass's within the photon noise); the light the fog scatters
+// reaches a floor; a rotated and moved medium (direction matrix, origin) with its floor and light
+// moved alike gives the floor the same irradiance; and the mode switches itself off without
+// surfaces or without a scattering medium.
 #include "PhotonTestUtilities.h"
 
 #include "vtkCubeSource.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
 
 #include "vtkPhotonTracer.h"
 #include "vtkPlaneSource.h"
+#include "vtkRefractaBVH.h"
 #include "vtkRefractaMedium.h"
 #include "vtkRefractaSurfaceMaterial.h"
 #include "vtkRefractaSurfaceSet.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 
@@ -204,4 +212,120 @@ TEST(PhotonAnalogScattering, OffWithoutSurfacesOrScattering)
   EXPECT_EQ(tracer->GetOutput()->GetPointData()->GetArray(
               vtkRefractaLightingVolume::MultipleScatteringName()),
     nullptr);
+}
+
+TEST(PhotonAnalogScattering, RotatedAndMovedMediumLightsTheFloorTheSame)
+{
+  // The same scene twice: fog over a floor inside it under a spot light, once with the grid at the
+  // origin and axis-aligned, once with the grid rotated (a direction matrix) and moved (an origin)
+  // and the floor and the light moved with it. The floor's texels correspond one to one (same
+  // mesh up to the rigid map, fixed texel size); its irradiance must agree within photon noise.
+  const double angle = vtkMath::RadiansFromDegrees(40.0);
+  double axis[3] = { 1, 2, 3 };
+  vtkMath::Normalize(axis);
+  vtkNew<vtkTransform> rigid;
+  rigid->Translate(10, -5, 3);
+  rigid->RotateWXYZ(vtkMath::DegreesFromRadians(angle), axis);
+  auto place = [&](bool moved, vtkSmartPointer<vtkImageData>& medium, vtkRefractaSurfaceSet* set,
+                 std::array<double, 3>& light, std::array<double, 3>& aim)
+  {
+    medium = Fog(0.8, 0.8, 0.3);
+    vtkNew<vtkPlaneSource> floor;
+    floor->SetOrigin(-1, 0.6, -1);
+    floor->SetPoint1(4, 0.6, -1);
+    floor->SetPoint2(-1, 0.6, 4);
+    floor->SetResolution(4, 4);
+    floor->Update();
+    light = { 1.375, 5.0, 1.375 };
+    aim = { 1.375, 0.0, 1.375 };
+    vtkNew<vtkTransformPolyDataFilter> moveFloor;
+    moveFloor->SetInputConnection(floor->GetOutputPort());
+    moveFloor->SetTransform(rigid);
+    moveFloor->Update();
+    if (moved)
+    {
+      double direction[9];
+      vtkNew<vtkMatrix4x4> m;
+      rigid->GetMatrix(m);
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          direction[3 * r + c] = m->GetElement(r, c);
+        }
+      }
+      medium->SetDirectionMatrix(direction);
+      medium->SetOrigin(m->GetElement(0, 3), m->GetElement(1, 3), m->GetElement(2, 3));
+      rigid->TransformPoint(light.data(), light.data());
+      rigid->TransformPoint(aim.data(), aim.data());
+    }
+    vtkNew<vtkRefractaSurfaceMaterial> grey;
+    grey->SetAlbedo(0.5, 0.5, 0.5);
+    set->AddSurface(moved ? moveFloor->GetOutput() : floor->GetOutput(), grey);
+    set->SetTexelSize(0.1);
+  };
+  // Flux per cell of a 10 x 10 grid over the floor's own (x, z) in the axis-aligned frame: the
+  // texels of each run, their centres mapped back by the inverse of the rigid map when moved.
+  const int cells = 10;
+  std::vector<double> flux[2];
+  double total[2] = { 0, 0 };
+  vtkNew<vtkTransform> back;
+  back->DeepCopy(rigid);
+  back->Inverse();
+  for (int moved = 0; moved < 2; ++moved)
+  {
+    vtkSmartPointer<vtkImageData> medium;
+    vtkNew<vtkRefractaSurfaceSet> set;
+    std::array<double, 3> light, aim;
+    place(moved == 1, medium, set, light, aim);
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->SetInputData(medium);
+    tracer->SetSurfaces(set);
+    tracer->AnalogScatteringOn();
+    tracer->AddLight(photontest::Positional(light, aim, 25, 1, 3.0));
+    tracer->SetNumberOfPhotons(1 << 16);
+    tracer->Update();
+    vtkDataArray* irradiance = tracer->GetOutput()->GetFieldData()->GetArray(
+      vtkRefractaLightingVolume::SurfaceIrradianceName());
+    ASSERT_NE(irradiance, nullptr);
+    flux[moved].assign(cells * cells, 0.0);
+    vtkRefractaBVH* bvh = set->GetBVH();
+    const auto& info = set->GetTriangleInfo();
+    for (vtkIdType k = 0; k < set->GetNumberOfTriangles(); ++k)
+    {
+      const double* v = &bvh->GetTriangles()[9 * k];
+      const int first = info[4 * k], n = info[4 * k + 1];
+      for (int i = 0; i < n * n; ++i)
+      {
+        double c[6];
+        vtkRefractaSurfaceSet::GetTexelCorners(i, n, c);
+        const double u = (c[0] + c[2] + c[4]) / 3, w = (c[1] + c[3] + c[5]) / 3;
+        double centre[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          centre[a] = (1 - u - w) * v[a] + u * v[3 + a] + w * v[6 + a] + bvh->GetFrameOrigin()[a];
+        }
+        if (moved)
+        {
+          back->TransformPoint(centre, centre);
+        }
+        const int cx = std::min(cells - 1, std::max(0, static_cast<int>((centre[0] + 1) / 0.5)));
+        const int cz = std::min(cells - 1, std::max(0, static_cast<int>((centre[2] + 1) / 0.5)));
+        const double f = irradiance->GetComponent(first + i, 0) * set->GetTexelAreas()[first + i];
+        flux[moved][cx + cells * cz] += f;
+        total[moved] += f;
+      }
+    }
+  }
+  double worst = 0, brightest = 0;
+  for (int c = 0; c < cells * cells; ++c)
+  {
+    worst = std::max(worst, std::abs(flux[1][c] - flux[0][c]));
+    brightest = std::max(brightest, flux[0][c]);
+  }
+  std::cout << "floor flux: axis-aligned " << total[0] << ", rotated and moved " << total[1]
+            << " (ratio " << total[1] / total[0] << "); largest difference of a 0.5 x 0.5 cell "
+            << 100 * worst / brightest << "% of the brightest cell" << std::endl;
+  EXPECT_NEAR(total[1] / total[0], 1.0, 0.01);
+  EXPECT_LT(worst, 0.01 * brightest);
 }
