@@ -813,8 +813,9 @@ bool vtkRefractaRenderPipeline::RunLighting()
     // knows no surfaces, so the light it carries would never light them (Physics.md, "Surfaces
     // and multiple scattering").
     const bool multiple = in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING);
-    tracer->SetAnalogScattering(multiple && surfaces);
-    if (multiple && !surfaces)
+    const bool analog = multiple && surfaces && CountSurfaces(in.Surfaces) > 0;
+    tracer->SetAnalogScattering(analog);
+    if (multiple && !analog)
     {
       // Interleaving the lattice with the marching (Bernabei et al.) helps where the two
       // share a device with spare parallelism: measured up to 4% on an H200; on a CPU device
