@@ -48,6 +48,18 @@
 // the incoming side, from a point `surfaceEpsilon` off the surface. A photon that leaves
 // the box without meeting a surface escapes.
 //
+// Analog scattering (REFRACTA_ANALOG 1, only with REFRACTA_SURFACES and REFRACTA_DEPOSIT; see
+// vtkPhotonTracer::AnalogScattering): the lattice, which knows no surfaces, is replaced by the
+// photons themselves. A piece still deposits its expected scattered power P (1 - T) a (order 0,
+// a photon straight from a light or a surface: `radiance` and its direction, S1; order >= 1, a
+// photon that has scattered in the medium since: `multiple`, S_ms), books P (1 - T) (1 - a) as
+// absorbed, and then goes on either unscattered (power P T / (1 - q)) or scattered in the piece
+// (power P (1 - T) a / q, at an exponentially distributed point, in a Henyey-Greenstein direction,
+// order + 1), with q = sum_c P (1 - T_c) a_c / sum_c P (T_c + (1 - T_c) a_c): the choice keeps
+// the photon's total power, and any per-channel difference (coloured media) goes to the roulette
+// books (killed / gained), so the books stay exact per photon and nothing goes to `scattered`.
+// A surface's reflection resets the order to 0 (a new beam, as without analog scattering).
+//
 // Tallies (fixed point, REFRACTA_FIXED_SCALE): tallies[3 * T + c] for the books T =
 // PHOTON_TALLY_EMITTED ... PHOTON_TALLY_GAINED; counters: PHOTON_COUNTER_MARCHED ...
 // PHOTON_COUNTER_PIECES; the outcome of a photon is the index of its counter (escaped, roulette,
@@ -91,6 +103,9 @@
 #endif
 #ifndef REFRACTA_SURFACES
 #define REFRACTA_SURFACES 0
+#endif
+#ifndef REFRACTA_ANALOG
+#define REFRACTA_ANALOG 0
 #endif
 #ifndef REFRACTA_STEP_TOLERANCE
 #define REFRACTA_STEP_TOLERANCE 0.02f
@@ -204,7 +219,25 @@ typedef struct
   uint pieces;
   uint hits; // surface hits
   int dead;
+  int order;                               // scatterings since the light or the last surface
+  int collided;                            // analog: scattered in the last piece
+  float collisionDistance;                 // analog: from the start of that piece (world units)
+  float3 collisionPoint;                   // analog: where (grid-local)
+  __global const float* anisotropy;        // analog: g per voxel
+  volatile __global long* multiple;        // analog: S_ms accumulators (order >= 1)
 } photon_state;
+
+// Initial values of the fields added for analog scattering.
+inline void photon_init_analog(photon_state* ps, __global const float* anisotropy,
+  volatile __global long* multiple, int order)
+{
+  ps->order = order;
+  ps->collided = 0;
+  ps->collisionDistance = 0.0f;
+  ps->collisionPoint = (float3)(0.0f);
+  ps->anisotropy = anisotropy;
+  ps->multiple = multiple;
+}
 
 // Adds a finished photon's books to the fixed-point tallies (order: emitted, absorbed, escaped,
 // scattered, remaining, roulette-killed, roulette-gained, surface; RGB each) and its counters.
@@ -235,6 +268,67 @@ inline void photon_finish(volatile __global long* tallies, volatile __global lon
   }
 }
 
+#if REFRACTA_ANALOG
+// Analog scattering after a piece: ps->power holds the unscattered part U, `sc` the scattered
+// part S. Scatter with probability q = sum(S) / sum(U + S) (power S / q, at a distance in the
+// piece drawn from exp(-sigma s) truncated to its length, sigma the channels' mean extinction) or
+// go on (U / (1 - q)); the per-channel change of the power is booked as roulette gain or loss.
+inline void photon_choose_branch(photon_state* ps, float3 sc, float3 sigmaT, float length)
+{
+  const float3 before = ps->power + sc;
+  const float ss = sc.x + sc.y + sc.z;
+  const float total = before.x + before.y + before.z;
+  if (!(ss > 0.0f) || !(total > 0.0f))
+  {
+    return;
+  }
+  const float q = fmin(ss / total, 1.0f);
+  float3 after;
+  if (refracta_rng_uniform(&ps->rng) < q)
+  {
+    after = sc / q;
+    ps->collided = 1;
+    const float sigma = (sigmaT.x + sigmaT.y + sigmaT.z) / 3.0f;
+    const float u = refracta_rng_uniform(&ps->rng);
+    const float tau = sigma * length;
+    ps->collisionDistance = tau > 1e-6f
+      ? fmin(-log1p(u * expm1(-tau)) / sigma, length)
+      : u * length;
+  }
+  else
+  {
+    after = ps->power / (1.0f - q);
+  }
+  ps->gained += fmax(after - before, (float3)(0.0f));
+  ps->killed += fmax(before - after, (float3)(0.0f));
+  ps->power = after;
+}
+
+// A direction drawn from the Henyey-Greenstein phase function about unit d.
+inline float3 photon_sample_hg(float3 d, float g, uint* rng)
+{
+  const float u1 = refracta_rng_uniform(rng);
+  const float u2 = refracta_rng_uniform(rng);
+  float c;
+  if (fabs(g) < 1e-3f)
+  {
+    c = 1.0f - 2.0f * u1;
+  }
+  else
+  {
+    const float k = (1.0f - g * g) / (1.0f - g + 2.0f * g * u1);
+    c = (1.0f + g * g - k * k) / (2.0f * g);
+  }
+  c = clamp(c, -1.0f, 1.0f);
+  const float s = sqrt(fmax(0.0f, 1.0f - c * c));
+  const float phi = 2.0f * REFRACTA_PI * u2;
+  const float3 helper = fabs(d.x) < 0.9f ? (float3)(1.0f, 0.0f, 0.0f) : (float3)(0.0f, 1.0f, 0.0f);
+  const float3 e1 = normalize(cross(d, helper));
+  const float3 e2 = cross(d, e1);
+  return normalize(s * cos(phi) * e1 + s * sin(phi) * e2 + c * d);
+}
+#endif
+
 #if REFRACTA_EXTINCTION
 // One voxel piece: attenuate, split the loss, deposit the scattered part, then roulette.
 inline void photon_piece(photon_state* ps, float3 mid, float length, float3 direction,
@@ -247,9 +341,22 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
   ps->pieces++;
 #if REFRACTA_DEPOSIT
   const float3 sc = lost * clamp(refracta_sample3(albedo, dims, mid), 0.0f, 1.0f);
-  ps->scattered += sc;
   ps->absorbed += lost - sc;
   const float w = sc.x + sc.y + sc.z;
+#if REFRACTA_ANALOG
+  if (ps->order > 0)
+  {
+    if (w > 0.0f)
+    {
+      refracta_atomic_add_fixed(ps->multiple + 3 * voxel, sc.x);
+      refracta_atomic_add_fixed(ps->multiple + 3 * voxel + 1, sc.y);
+      refracta_atomic_add_fixed(ps->multiple + 3 * voxel + 2, sc.z);
+    }
+  }
+  else
+#else
+  ps->scattered += sc;
+#endif
   if (w > 0.0f)
   {
     refracta_atomic_add_fixed(radiance + 3 * voxel, sc.x);
@@ -259,6 +366,9 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
     refracta_atomic_add_fixed(directionSum + 3 * voxel + 1, w * direction.y);
     refracta_atomic_add_fixed(directionSum + 3 * voxel + 2, w * direction.z);
   }
+#if REFRACTA_ANALOG
+  photon_choose_branch(ps, sc, sigmaT, length);
+#endif
 #else
   ps->absorbed += lost;
 #endif
@@ -319,6 +429,14 @@ inline void photon_walk(photon_state* ps, float3 x0, float3 x1, float t1, int4 d
       photon_piece(ps, mid, (tEnd - t) * worldLength, direction,
         refracta_voxel_index(dims, cell.x, cell.y, cell.z), extinction, albedo, dims, radiance,
         directionSum);
+#if REFRACTA_ANALOG
+      if (ps->collided)
+      {
+        // The rest of the chord belongs to the scattered photon's next event.
+        ps->collisionPoint = x0 + t * (x1 - x0) + ps->collisionDistance * direction;
+        break;
+      }
+#endif
       t = tEnd;
     }
     if (tEnd >= t1)
@@ -569,6 +687,7 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
   const float3 boosted = ps->power / q;
   ps->gained += boosted - ps->power;
   ps->power = boosted;
+  ps->order = 0; // a new beam: its first scattering is S1 again
   // The normal in the grid-local frame (R^T n), turned towards the side the photon came from.
   const float3 ns = refracta_triangle_normal(s->triangles, h.triangle);
   float3 n = normalize(ns.x * s->row0.xyz + ns.y * s->row1.xyz + ns.z * s->row2.xyz);
@@ -597,6 +716,22 @@ inline float3 photon_velocity(float3 x, float3 d, float3 lo, float3 hi,
 #endif
   return d;
 }
+
+#if REFRACTA_ANALOG
+// The photon scattered at ps->collisionPoint while travelling along unit d: it goes on from there
+// in a Henyey-Greenstein direction, one order higher.
+inline void photon_scatter(photon_state* ps, float3* x, float3* v, float3 d, float3 lo, float3 hi,
+  __global const float* refractiveIndex, int4 dims, float4 spacing)
+{
+  *x = clamp(ps->collisionPoint, lo, hi);
+  const float g = clamp(
+    refracta_sample1(ps->anisotropy, dims, refracta_to_voxel(*x, spacing)), -0.999f, 0.999f);
+  const float3 dir = photon_sample_hg(d, g, &ps->rng);
+  *v = photon_velocity(*x, dir, lo, hi, refractiveIndex, dims, spacing);
+  ps->collided = 0;
+  ps->order++;
+}
+#endif
 
 // One event of a photon with surfaces: a curved step inside a refracting medium's box, else a
 // straight flight (through the box when n is constant) to the next surface, to the box (curved
@@ -640,6 +775,13 @@ inline int photon_surface_event(photon_state* ps, float3* x, float3* v, int* ste
     {
       return PHOTON_COUNTER_ROULETTE;
     }
+#if REFRACTA_ANALOG
+    if (ps->collided)
+    {
+      photon_scatter(ps, x, v, normalize(chord), lo, hi, refractiveIndex, dims, spacing);
+      return -1;
+    }
+#endif
 #endif
     d = normalize(chord);
     if (h.triangle < 0 && inBox)
@@ -682,6 +824,13 @@ inline int photon_surface_event(photon_state* ps, float3* x, float3* v, int* ste
       {
         return PHOTON_COUNTER_ROULETTE;
       }
+#if REFRACTA_ANALOG
+      if (ps->collided)
+      {
+        photon_scatter(ps, x, v, d, lo, hi, refractiveIndex, dims, spacing);
+        return -1;
+      }
+#endif
     }
 #endif
     if (h.triangle < 0)
@@ -706,7 +855,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   const uint first, __global const float4* surfaceNodes, const int surfaceNodeCount,
   __global const float4* surfaceTriangles, __global const int4* surfaceInfo,
   __global const float* surfaceAlbedo, volatile __global long* surfaceIrradiance,
-  const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon)
+  const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon,
+  __global const float* anisotropy, volatile __global long* multiple)
 {
   // Launched in chunks (for progress reports); the stream depends on the photon, not the chunk.
   const uint id = first + (uint)get_global_id(0);
@@ -729,6 +879,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   ps.pieces = 0;
   ps.hits = 0;
   ps.dead = 0;
+  photon_init_analog(&ps, anisotropy, multiple, 0);
   const float3 emitted = ps.power;
   int steps = 0;
   int outcome = PHOTON_COUNTER_ESCAPED; // counter index: 2 escaped, 3 roulette, 4 step cap, 5 invalid
@@ -799,7 +950,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   __global const float4* surfaceNodes, const int surfaceNodeCount,
   __global const float4* surfaceTriangles, __global const int4* surfaceInfo,
   __global const float* surfaceAlbedo, volatile __global long* surfaceIrradiance,
-  const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon)
+  const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon,
+  __global const float* anisotropy, volatile __global long* multiple)
 {
   const uint id = first + (uint)get_global_id(0);
   if (id >= count)
@@ -833,6 +985,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.rng = refracta_rng_seed(seed, id);
     ps.pieces = 0;
     ps.hits = 0;
+    photon_init_analog(&ps, anisotropy, multiple, 0);
     emitted = ps.power;
     x = photonPos[id].xyz;
     const float3 d0 = normalize(photonDir[id].xyz);
@@ -871,6 +1024,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.hits = as_uint(s[8].w);
     ps.rng = st.z;
     ps.pieces = st.w;
+    photon_init_analog(&ps, anisotropy, multiple, as_int(s[4].w));
   }
   ps.dead = 0;
   int steps = (int)st.y;
@@ -929,7 +1083,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     s[1] = (float4)(v, 0.0f);
     s[2] = (float4)(ps.power, ps.threshold);
     s[3] = (float4)(ps.absorbed, 0.0f);
-    s[4] = (float4)(ps.scattered, 0.0f);
+    s[4] = (float4)(ps.scattered, as_float(ps.order));
     s[5] = (float4)(ps.killed, 0.0f);
     s[6] = (float4)(ps.gained, 0.0f);
     s[7] = (float4)(emitted, 0.0f);

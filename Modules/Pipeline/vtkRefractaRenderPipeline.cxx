@@ -809,7 +809,13 @@ bool vtkRefractaRenderPipeline::RunLighting()
     tracer->SetEnvironmentRight(in.ViewPass->GetEnvironmentRight());
     vtkAlgorithm* pass = tracer;
     vtkImageData* output = nullptr;
-    if (in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
+    // With surfaces, multiple scattering is the photons' own (analog scattering): the lattice
+    // knows no surfaces, so the light it carries would never light them (Physics.md, "Surfaces
+    // and multiple scattering").
+    const bool multiple = in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING);
+    const bool analog = multiple && surfaces && CountSurfaces(in.Surfaces) > 0;
+    tracer->SetAnalogScattering(analog);
+    if (multiple && !analog)
     {
       // Interleaving the lattice with the marching (Bernabei et al.) helps where the two
       // share a device with spare parallelism: measured up to 4% on an H200; on a CPU device

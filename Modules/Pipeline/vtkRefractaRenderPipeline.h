@@ -22,9 +22,11 @@
  * 2. **LIGHTING**: when the plan enables single scattering and a powered light is on: the photon
  *    pass (GetPhotonTracer()), then, when multiple scattering is on, the Lattice-Boltzmann solver
  *    (GetLatticeSolver()) through vtkPhotonDiffusionSchedule, interleaved or sequential
- *    (MultipleScatteringSchedule). Runs when the pruned medium, a light, the placement or a light
- *    pass setting changed. Skipped entirely (and the lighting volume dropped) when the plan turns
- *    single scattering off.
+ *    (MultipleScatteringSchedule); with surfaces (SetSurfaces()) the photons scatter for real
+ *    instead and carry the multiple scattering themselves, so that it lights the surfaces
+ *    (vtkPhotonTracer::AnalogScattering; no lattice runs). Runs when the pruned medium, a light,
+ *    the placement or a light pass setting changed. Skipped entirely (and the lighting volume
+ *    dropped) when the plan turns single scattering off.
  * 3. **VIEW**: vtkRefractaViewPass (GetViewPass()) for the camera. Runs when an earlier stage ran,
  *    or the camera, the image size, the depth limits, the placement or a view setting changed;
  *    otherwise the previous image is returned as it is.

@@ -244,6 +244,20 @@ bool vtkRefractiveVolumeMapper::GetMultipleScattering()
   return this->Internal->Pipeline->GetMultipleScattering();
 }
 
+void vtkRefractiveVolumeMapper::SetBackgroundIlluminates(bool on)
+{
+  if (this->Internal->Pipeline->GetBackgroundIlluminates() != on)
+  {
+    this->Internal->Pipeline->SetBackgroundIlluminates(on);
+    this->Modified();
+  }
+}
+
+bool vtkRefractiveVolumeMapper::GetBackgroundIlluminates()
+{
+  return this->Internal->Pipeline->GetBackgroundIlluminates();
+}
+
 void vtkRefractiveVolumeMapper::SetStepSize(double voxels)
 {
   this->GetViewPass()->SetStepSize(voxels);
@@ -744,6 +758,8 @@ void vtkRefractiveVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutomaticExposure: " << this->AutomaticExposure << "\n";
   os << indent << "LastExposure: " << this->LastExposure << "\n";
   os << indent << "ActorSurfaces: " << this->ActorSurfaces << "\n";
+  os << indent << "BackgroundIlluminates: " << this->Internal->Pipeline->GetBackgroundIlluminates()
+     << "\n";
   os << indent << "Pipeline:\n";
   this->Internal->Pipeline->PrintSelf(os, indent.GetNextIndent());
 }

@@ -137,6 +137,20 @@ public:
   bool GetMultipleScattering();
   void MultipleScatteringOn() { this->SetMultipleScattering(true); }
   void MultipleScatteringOff() { this->SetMultipleScattering(false); }
+  ///@}
+
+  ///@{
+  /**
+   * Whether the renderer's background (the one bent rays see, see vtkRefractaRendererBackground)
+   * also lights the medium and the actor surfaces, as an emitter at infinity
+   * (vtkRefractaRenderPipeline::BackgroundIlluminates, vtkPhotonTracer's environment light).
+   * Default off: only the renderer's lights light the scene. Changing the background then re-runs
+   * the light passes.
+   */
+  void SetBackgroundIlluminates(bool on);
+  bool GetBackgroundIlluminates();
+  void BackgroundIlluminatesOn() { this->SetBackgroundIlluminates(true); }
+  void BackgroundIlluminatesOff() { this->SetBackgroundIlluminates(false); }
 
   ///@{
   /**

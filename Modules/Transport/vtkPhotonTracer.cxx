@@ -340,6 +340,8 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DREFRACTA_STEP_TOLERANCE=" << FloatLiteral(this->StepTolerance)
           << " -DREFRACTA_MAX_HALVINGS=" << (this->StepTolerance > 0 ? MaximumHalvings : 0);
   options << " -DREFRACTA_SURFACES=" << (run.Surfaces ? 1 : 0);
+  run.Analog = this->AnalogScattering && run.Surfaces && m.Scatters;
+  options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0);
   run.Trace =
     ctx->GetProgram({ "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl",
                       "refracta_surfaces.cl", "photon_trace.cl", "photon_environment.cl" },
@@ -448,7 +450,8 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
     alloc.Make(CL_MEM_READ_WRITE, PHOTON_COUNTER_COUNT * sizeof(cl_long), nullptr, "counters");
   vtkOpenCLKernel march = ctx->CreateKernel(trace, "photon_march", this);
   if (!extBuffer || !albBuffer || !radFixed || !dirFixed || !tallies || !counters || !march ||
-    !this->UploadSurfaces(run) || !this->SetSurfaceArguments(run, march.Get(), 17) ||
+    !this->UploadSurfaces(run) || !this->UploadAnalogScattering(run) ||
+    !this->SetSurfaceArguments(run, march.Get(), 17) ||
     !ctx->ZeroBuffer(radFixed.Get(), accumulators * sizeof(cl_long), this) ||
     !ctx->ZeroBuffer(dirFixed.Get(), accumulators * sizeof(cl_long), this) ||
     !ctx->ZeroBuffer(tallies.Get(), PHOTON_TALLY_COUNT * sizeof(cl_long), this) ||
@@ -759,6 +762,7 @@ int vtkPhotonTracer::RequestData(
   this->UsedCurvedRays = this->UsedExtinction = this->UsedDeposit = false;
   this->UsedOctree = this->ComputedGradient = false;
   this->UsedSurfaces = this->LastRunReusedSurfaces = this->UsedEnvironment = false;
+  this->UsedAnalogScattering = false;
   this->EnvironmentPhotons = 0;
   this->LastRunAborted = false;
   Internals run;
@@ -778,7 +782,7 @@ int vtkPhotonTracer::RequestData(
   this->SharePhotons(run);
   if (!this->InitializeDevice(run) || !this->PlanMemory(run) || !this->BuildOctreeStage(run) ||
     !this->GeneratePhotons(run) || !this->MarchPhotons(run) || !this->ResolveRadiance(run) ||
-    !this->ResolveSurfaces(run))
+    !this->ResolveMultipleScattering(run) || !this->ResolveSurfaces(run))
   {
     if (run.Aborted)
     {
@@ -827,6 +831,8 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "UseProxyBounds: " << this->UseProxyBounds << "\n";
   os << indent << "Surfaces: " << this->Surfaces.Get() << " (used " << this->UsedSurfaces
      << ", reused " << this->LastRunReusedSurfaces << ")\n";
+  os << indent << "AnalogScattering: " << this->AnalogScattering << " (used "
+     << this->UsedAnalogScattering << ")\n";
   os << indent << "Stage seconds (octree, generation, marching, smoothing): " << this->OctreeSeconds
      << ", " << this->GenerationSeconds << ", " << this->MarchingSeconds << ", "
      << this->SmoothingSeconds << "\n";

@@ -165,6 +165,30 @@ public:
   vtkGetVector3Macro(EnvironmentRight, double);
   ///@}
 
+  ///@{
+  /**
+   * Analog scattering with surfaces (default off). Without it the pass is deterministic
+   * attenuation: a photon deposits the scattered part of its power (S1, `Radiance`) and flies on
+   * with the unscattered part, and the light scattered at least once is left to the
+   * Lattice-Boltzmann solver, which knows no surfaces: light the medium scatters towards a surface
+   * never lights it. With AnalogScattering on (it takes effect only with surfaces and a medium
+   * that scatters; GetUsedAnalogScattering() says whether it did), a photon still deposits the
+   * expected scattered power of every voxel piece, but then really scatters there with the
+   * piece's share of scattered power (a Henyey-Greenstein direction from the medium's
+   * `Anisotropy`, at an exponentially distributed point), so scattered light reaches, lights and
+   * is reflected by the surfaces. Deposits of photons that have not scattered since their light
+   * or their last surface reflection go to `Radiance` (S1) as before; those of photons that have
+   * go to a point array vtkRefractaLightingVolume::MultipleScatteringName() (S_ms, power per unit
+   * volume, smoothed like Radiance), which then replaces the lattice's. The books stay exact per
+   * photon: Emitted = Absorbed + Surface + Escaped + Remaining, with EnergyScattered 0 (nothing
+   * is handed on to a lattice). See Documentation/Physics.md, "Surfaces and multiple scattering".
+   */
+  vtkSetMacro(AnalogScattering, bool);
+  vtkGetMacro(AnalogScattering, bool);
+  vtkBooleanMacro(AnalogScattering, bool);
+  vtkGetMacro(UsedAnalogScattering, bool);
+  ///@}
+
   /**
    * Whether the last run emitted photons from the environment, and their share of the photons.
    */
@@ -476,6 +500,8 @@ protected:
   bool LastRunReusedMedium = false;
   bool UsedSurfaces = false;
   bool LastRunReusedSurfaces = false;
+  bool AnalogScattering = false;
+  bool UsedAnalogScattering = false;
 #ifndef __VTK_WRAP__
   ChunkCallback Callback;
 #endif
@@ -510,6 +536,10 @@ private:
   bool SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint first);
 #endif
   bool ResolveSurfaces(Internals& run);
+  // Analog scattering (vtkPhotonTracerSurfaces.cxx): the anisotropy and S_ms accumulator buffers
+  // (placeholders when off), and S_ms resolved into run.Multiple.
+  bool UploadAnalogScattering(Internals& run);
+  bool ResolveMultipleScattering(Internals& run);
   void WriteSurfaceOutput(Internals& run, vtkImageData* output);
   void KeepSurfaces(Internals& run);
   // The environment light (vtkPhotonTracerEnvironment.cxx): its radiance table, CDFs and emission

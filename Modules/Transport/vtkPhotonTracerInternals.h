@@ -112,6 +112,7 @@ struct Medium
   double Spacing[3] = { 1, 1, 1 };
   size_t Voxels = 0;
   std::vector<float> N, Gradient, Extinction, Albedo;
+  std::vector<float> Anisotropy; // g per voxel (analog scattering only)
   bool HasGradient = false;
   bool Curved = false;
   bool Attenuates = false;
@@ -189,6 +190,11 @@ struct vtkPhotonTracer::Internals
   cl_float4 Frame[3];
   double SurfaceEpsilon = 0;
   vtkNew<vtkFloatArray> Irradiance;
+  // Analog scattering (vtkPhotonTracer::AnalogScattering): whether this run uses it, g per voxel
+  // on the device, the S_ms accumulators (fixed point, 3 per voxel) and the resolved S_ms.
+  bool Analog = false;
+  vtkOpenCLBuffer AnisotropyBuffer, MultipleFixed;
+  vtkNew<vtkFloatArray> Multiple;
   vtkPhotonTracerDetail::EnvironmentSetup Env;
   double TotalBound = 0; // sum of the lights' power bounds towards the box
   size_t Photons = 0;

@@ -54,6 +54,7 @@ void LoadMedium(vtkImageData* image, bool useProxy, Medium& m)
   CopyArray(n, 1, 1.0f, m.Voxels, m.N);
   CopyArray(e, 3, 0.0f, m.Voxels, m.Extinction);
   CopyArray(a, 3, 0.0f, m.Voxels, m.Albedo);
+  CopyArray(pd->GetArray(vtkRefractaMedium::AnisotropyName()), 1, 0.0f, m.Voxels, m.Anisotropy);
   m.HasGradient = g != nullptr;
   if (g)
   {

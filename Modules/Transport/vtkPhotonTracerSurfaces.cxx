@@ -7,6 +7,7 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
+#include "vtkPointData.h"
 #include "vtkRefractaBVH.h"
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaLightingVolume.h"
@@ -214,6 +215,9 @@ bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_u
     set(sizeof(cl_float4), &row);
   }
   set(sizeof(cl_float), &epsilon);
+  const cl_mem anisotropy = run.AnisotropyBuffer.Get(), multiple = run.MultipleFixed.Get();
+  set(sizeof(cl_mem), &anisotropy);
+  set(sizeof(cl_mem), &multiple);
   return run.Context->Check(status, "clSetKernelArg(surfaces)", this);
 }
 
@@ -254,6 +258,10 @@ void vtkPhotonTracer::WriteSurfaceOutput(Internals& run, vtkImageData* output)
   if (run.Surfaces)
   {
     output->GetFieldData()->AddArray(run.Irradiance);
+  }
+  if (run.Analog)
+  {
+    output->GetPointData()->AddArray(run.Multiple);
   }
 }
 

@@ -18,11 +18,13 @@
 // pipeline image scaled by 1.3 must fail (the test can fail), and so must the pipeline's image of
 // the scene without the floor (the floor's light must be there).
 //
-// B = 0.10 is PROVISIONAL: when this test was written the photon and view passes with surfaces
-// were not merged, so no measurement of the draft preset on surfaces existed. 0.10 is the draft
-// preset's measured region error on the heterogeneous cloud (6.3%) plus its claimed error vs the
-// finest setting (2.5%), rounded up; the first run prints the measured region errors, which is
-// what B should then be set from (with a margin) in the documentation and here.
+// B = 0.08 is set from the measured region errors: with the photons scattering for real where
+// there are surfaces (vtkPhotonTracer::AnalogScattering, which the pipeline turns on with
+// surfaces and multiple scattering), the smallest B that lets every region pass is 4.1% (largest
+// region error 12.8% of max(R, RMS_R) before the 4 SE allowance, largest |P - R| / SE 5.9; PoCL
+// on the CPU); 0.08 is about twice that. Before, with the lattice carrying all multiple
+// scattering and never lighting the floor, the largest region error was 47% and 102 of 192
+// region values failed. The run prints these numbers.
 #include "RefractaReferenceImages.h"
 
 #include "vtkCamera.h"
@@ -58,7 +60,7 @@ using refracta::bench::ReadImage;
 constexpr int SIZE = 32;
 constexpr int BLOCK = 4;
 constexpr double K_SIGMA = 4.0;
-constexpr double B = 0.10; // provisional, see the header
+constexpr double B = 0.08; // from the measured region errors, see the header
 constexpr int MAX_FAILED_REGIONS = 1;
 constexpr double LIGHT_RADIUS = 0.01;
 
@@ -197,18 +199,20 @@ int FailedRegions(const Image& image, const Regions& ref, const std::string& wha
 {
   const Regions p = Pool(image);
   int failed = 0;
-  double worst = 0, worstZ = 0;
+  double worst = 0, worstZ = 0, needed = 0;
   for (size_t k = 0; k < ref.Mean.size(); ++k)
   {
     const double d = std::abs(p.Mean[k] - ref.Mean[k]);
     const double scale = std::max(ref.Mean[k], ref.Rms);
     worst = std::max(worst, d / scale);
     worstZ = std::max(worstZ, ref.Error[k] > 0 ? d / ref.Error[k] : 0.0);
+    needed = std::max(needed, (d - K_SIGMA * ref.Error[k]) / scale);
     failed += d > K_SIGMA * ref.Error[k] + B * scale ? 1 : 0;
   }
   std::cout << "  " << what << ": largest region error " << 100 * worst
             << "% of max(R, RMS_R), largest |P - R| / SE " << worstZ << ", failed " << failed
-            << " of " << ref.Mean.size() << " region values" << std::endl;
+            << " of " << ref.Mean.size() << " region values; the smallest B with none failed is "
+            << 100 * needed << "%" << std::endl;
   return failed;
 }
 

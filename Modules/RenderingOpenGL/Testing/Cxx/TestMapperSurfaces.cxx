@@ -21,21 +21,27 @@
 //   away from the rim band, 99% of the pixels within 8/255 and all within 20/255 (measured: 40
 //   of 8032 above 8, worst 13, where b / R ~ 0.75 and the exit direction changes fastest); inside
 //   the lens, the top shows the bottom colour.
+// - no lights and a uniform grey background that illuminates (BackgroundIlluminates): the plane
+//   actor's mean irradiance is 2 pi L (pi L per side) within 3%, and a new background re-lights.
 #include "MapperTestUtilities.h"
 #include "RenderingTestUtilities.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
+#include "vtkFieldData.h"
 #include "vtkLight.h"
 #include "vtkMath.h"
+#include "vtkPhotonTracer.h"
 #include "vtkPlaneSource.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRefractaActorSurfaces.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaRendererBackground.h"
 #include "vtkRefractaSurfaceSet.h"
+#include "vtkRefractaViewPass.h"
 #include "vtkRefractiveVolumeMapper.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -338,4 +344,48 @@ TEST(MapperSurfaces, BentRaysSeeTheRenderersGradientBackground)
   // Inverted: above the centre, inside the lens, the bottom colour (red) dominates.
   const unsigned char* top = Pixel(image, Size / 2, Size / 2 + 12);
   EXPECT_GT(top[0], top[2] + 40);
+}
+
+TEST(MapperSurfaces, BackgroundIlluminatesLightsTheActors)
+{
+  // No lights, a uniform grey background: the plane actor behind the lens is lit only when the
+  // background illuminates. A uniform sky of radiance L gives an unoccluded plane pi L on each
+  // side (the atlas holds the sum, 2 pi L); the clear lens in front bends the sky but keeps it
+  // uniform.
+  Scene scene;
+  vtkNew<vtkActor> plane;
+  AddSplitPlane(scene.Renderer, plane);
+  UseParallelCamera(scene.Renderer);
+  scene.Renderer->AutomaticLightCreationOff();
+  scene.Renderer->RemoveAllLights();
+  scene.Renderer->SetBackground(0.5, 0.5, 0.5);
+  scene.Mapper->SetNumberOfPhotons(1 << 15); // the mean over the plane needs few
+  EXPECT_FALSE(scene.Mapper->GetBackgroundIlluminates());
+  scene.Window->Render();
+  const int runs = scene.Mapper->GetNumberOfLightPassRuns();
+  scene.Mapper->BackgroundIlluminatesOn();
+  EXPECT_TRUE(scene.Mapper->GetPipeline()->GetBackgroundIlluminates());
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), runs + 1);
+  EXPECT_TRUE(scene.Mapper->GetPipeline()->GetPhotonTracer()->GetUsedEnvironment());
+  vtkImageData* lighting = scene.Mapper->GetPipeline()->GetLighting();
+  ASSERT_NE(lighting, nullptr);
+  vtkDataArray* e =
+    lighting->GetFieldData()->GetArray(vtkRefractaLightingVolume::SurfaceIrradianceName());
+  ASSERT_NE(e, nullptr);
+  vtkRefractaSurfaceSet* set = scene.Mapper->GetActorSurfaceCollector()->GetSurfaces();
+  double flux = 0, area = 0;
+  for (vtkIdType t = 0; t < e->GetNumberOfTuples(); ++t)
+  {
+    flux += e->GetComponent(t, 0) * set->GetTexelAreas()[t];
+    area += set->GetTexelAreas()[t];
+  }
+  const double radiance = scene.Mapper->GetPipeline()->GetViewPass()->GetBackgroundColor()[0];
+  std::cout << "mean irradiance " << flux / area << " = "
+            << flux / area / (2 * vtkMath::Pi() * radiance) << " x 2 pi L (L = " << radiance << ")"
+            << std::endl;
+  EXPECT_NEAR(flux / area / (2 * vtkMath::Pi() * radiance), 1.0, 0.03);
+  scene.Renderer->SetBackground(0.25, 0.25, 0.25);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), runs + 2) << "a new sky re-lights";
 }
