@@ -14,9 +14,8 @@ using namespace vtkPhotonTracerDetail;
 
 namespace
 {
-// Points per sample: x_j, the six gradient points x_j +- Delta e_a, the six error points
-// x_j +- R_j e_a (eq. 6).
-constexpr int PointsPerSample = 13;
+// Points per sample: x_j and the six gradient points x_j +- Delta e_a.
+constexpr int PointsPerSample = 7;
 constexpr double HalfDiagonal = 0.8660254037844386; // sqrt(3) / 2
 
 // One grid G_k: vertex (a, b, c) at Origin + H (a, b, c), valid radius R = H (the paper's choice).
@@ -198,12 +197,18 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
   {
     Level& level = levels[k];
     const double radius = level.H;
-    // The 13 points of every candidate.
+    // Every candidate's 7 points (x_j and x_j +- Delta e_a), then the error points x_j +- R e_a
+    // (eq. 6) that are not already a candidate: with R = h they are the grid's neighbouring
+    // vertices, so a candidate's centre value serves its neighbours' error metric. The finest
+    // grid splits nothing and needs no error points.
+    const bool finest = k + 1 == levels.size();
     std::vector<float> points(4 * PointsPerSample * current.size(), 0.0f);
+    std::vector<int> pointOf(level.Vertices(), -1);
     for (size_t j = 0; j < current.size(); ++j)
     {
       double x[3];
       level.Position(current[j].Vertex, x);
+      pointOf[current[j].Vertex] = static_cast<int>(PointsPerSample * j);
       float* p = &points[4 * PointsPerSample * j];
       for (int q = 0; q < PointsPerSample; ++q)
       {
@@ -216,8 +221,33 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
       {
         p[4 * (1 + 2 * a) + a] += static_cast<float>(m.Spacing[a]);
         p[4 * (2 + 2 * a) + a] -= static_cast<float>(m.Spacing[a]);
-        p[4 * (7 + 2 * a) + a] += static_cast<float>(radius);
-        p[4 * (8 + 2 * a) + a] -= static_cast<float>(radius);
+      }
+    }
+    std::vector<int> errorPoint(finest ? 0 : 6 * current.size(), -1);
+    for (size_t j = 0; j < errorPoint.size() / 6; ++j)
+    {
+      const size_t v = current[j].Vertex;
+      const int ijk[3] = { static_cast<int>(v % level.Size[0]),
+        static_cast<int>((v / level.Size[0]) % level.Size[1]),
+        static_cast<int>(v / (static_cast<size_t>(level.Size[0]) * level.Size[1])) };
+      for (int q = 0; q < 6; ++q)
+      {
+        int n[3] = { ijk[0], ijk[1], ijk[2] };
+        n[q / 2] += q % 2 == 0 ? 1 : -1;
+        if (n[q / 2] < 0 || n[q / 2] >= level.Size[q / 2])
+        {
+          continue; // outside the box: nothing scatters there, no error
+        }
+        const size_t w = level.Index(n[0], n[1], n[2]);
+        if (pointOf[w] < 0)
+        {
+          double y[3];
+          level.Position(w, y);
+          pointOf[w] = static_cast<int>(points.size() / 4);
+          points.insert(points.end(),
+            { static_cast<float>(y[0]), static_cast<float>(y[1]), static_cast<float>(y[2]), 0.0f });
+        }
+        errorPoint[6 * j + q] = pointOf[w];
       }
     }
     std::vector<float> phi, flux;
@@ -271,13 +301,11 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
         }
       }
     }
-    const bool finest = k + 1 == levels.size();
     Level* next = finest ? nullptr : &levels[k + 1];
     std::vector<char> marked(next ? next->Vertices() : 0, 0);
     std::vector<Candidate> children;
     for (size_t j = 0; j < current.size(); ++j)
     {
-      const float* p = &points[4 * PointsPerSample * j];
       const float* L = &phi[4 * PointsPerSample * j];
       const float* F = &flux[4 * PointsPerSample * j];
       cl_float4 record[8];
@@ -300,16 +328,20 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
       {
         // Eq. 6 with eq. 7's single-sample estimate at the six points x_j +- R e_a.
         double error = 0;
-        for (int q = 7; q < PointsPerSample; ++q)
+        for (int q = 0; q < 6; ++q)
         {
-          const int axis = (q - 7) / 2;
-          const double offset = (q - 7) % 2 == 0 ? radius : -radius;
-          const auto sc = ScatteringAt(m, run.Scattering, p + 4 * q);
+          const int at = errorPoint[6 * j + q];
+          if (at < 0)
+          {
+            continue;
+          }
+          const double offset = q % 2 == 0 ? radius : -radius;
+          const auto sc = ScatteringAt(m, run.Scattering, &points[4 * at]);
           double worst = 0;
           for (int c = 0; c < 3; ++c)
           {
-            const double estimate = L[c] + offset * record[2 + axis].s[c];
-            worst = std::max(worst, std::fabs(estimate - L[4 * q + c]) * sc[c]);
+            const double estimate = L[c] + offset * record[2 + q / 2].s[c];
+            worst = std::max(worst, std::fabs(estimate - phi[4 * at + c]) * sc[c]);
           }
           error += worst;
         }

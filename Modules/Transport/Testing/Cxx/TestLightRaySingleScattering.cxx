@@ -251,10 +251,11 @@ TEST(LightRays, SurfacesCastShadows)
 
 // Eq. 4 with dynamic sampling against per-voxel light rays on a heterogeneous cloud, 1, 8 and
 // 64 point lights: at the default ErrorTolerance the RMS error relative to the light rays' RMS is
-// below 2% (1.4% measured), with under a fifth as many samples as voxels that scatter.
+// below 2% (1.6% to 1.8% measured on 32^3), with under a third as many samples as voxels that
+// scatter. (Whether that is faster depends on the grid: Documentation/Benchmarks.md.)
 TEST(LightRays, InterpolationMatchesLightRaysOnCloud)
 {
-  const int n = 48;
+  const int n = 32;
   auto medium = Cloud(n);
   for (int count : { 1, 8, 64 })
   {
@@ -275,7 +276,7 @@ TEST(LightRays, InterpolationMatchesLightRaysOnCloud)
               << exact->GetNumberOfEvaluatedPoints() << " voxels\n";
     EXPECT_LT(rms, 0.02) << count << " lights";
     EXPECT_EQ(interpolated->GetNumberOfUncoveredVoxels(), 0);
-    EXPECT_LT(5 * interpolated->GetNumberOfSamples(), exact->GetNumberOfEvaluatedPoints());
+    EXPECT_LT(3 * interpolated->GetNumberOfSamples(), exact->GetNumberOfEvaluatedPoints());
     EXPECT_EQ(
       b->GetFieldData()->GetAbstractArray("SingleScatteringMethod")->GetVariantValue(0).ToString(),
       "interpolated");
