@@ -5,6 +5,7 @@
 #include "vtkImageData.h"
 #include "vtkSceneAnalysis.h"
 
+#include <algorithm>
 #include <cstring>
 #include <sstream>
 
@@ -78,23 +79,25 @@ void vtkEffectPlan::DecideSingleScatteringMethod(vtkSceneAnalysis* analysis)
   }
   vtkImageData* medium = analysis->GetMedium();
   const double voxels = medium ? static_cast<double>(medium->GetNumberOfPoints()) : 0.0;
+  const double work = voxels * std::max(1, analysis->GetNumberOfPoweredLights());
   if (InterpolationMeasuredError > this->Tolerance)
   {
     this->ChosenMethod = LIGHT_RAYS;
-    why << "straight light; interpolation error " << InterpolationMeasuredError << " > tolerance "
-        << this->Tolerance;
+    why << "straight light; interpolation error " << InterpolationMeasuredError
+        << " > tolerance " << this->Tolerance;
   }
-  else if (voxels < InterpolationBreakEvenVoxels)
+  else if (work < InterpolationBreakEvenWork)
   {
     this->ChosenMethod = LIGHT_RAYS;
-    why << "straight light; " << voxels << " voxels < " << InterpolationBreakEvenVoxels
+    why << "straight light; voxels x lights " << work << " < " << InterpolationBreakEvenWork
         << ", below which light rays were measured faster";
   }
   else
   {
     this->ChosenMethod = INTERPOLATED;
-    why << "straight light; interpolation error " << InterpolationMeasuredError << " <= tolerance "
-        << this->Tolerance << " and faster from " << InterpolationBreakEvenVoxels << " voxels";
+    why << "straight light; interpolation error " << InterpolationMeasuredError
+        << " <= tolerance " << this->Tolerance << " and voxels x lights " << work
+        << " >= " << InterpolationBreakEvenWork << ", where it was measured faster";
   }
   this->MethodReason = why.str();
 }
