@@ -136,10 +136,10 @@ json PlanReport(vtkRefractaRenderPipeline* pipeline)
       { "estimated_change", plan->GetEstimatedContribution(e) }, { "reason", plan->GetReason(e) } };
   }
   report["single_scattering_method"] = { { "requested",
-                                            vtkEffectPlan::GetSingleScatteringMethodName(
-                                              plan->GetSingleScatteringMethod()) },
-    { "chosen", vtkEffectPlan::GetSingleScatteringMethodName(
-                  plan->GetChosenSingleScatteringMethod()) },
+                                           vtkEffectPlan::GetSingleScatteringMethodName(
+                                             plan->GetSingleScatteringMethod()) },
+    { "chosen",
+      vtkEffectPlan::GetSingleScatteringMethodName(plan->GetChosenSingleScatteringMethod()) },
     { "reason", plan->GetSingleScatteringMethodReason() } };
   return report;
 }

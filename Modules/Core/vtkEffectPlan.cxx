@@ -390,7 +390,8 @@ void vtkEffectPlan::PrintSelf(ostream& os, vtkIndent indent)
     os << indent << EffectNames[e] << ": " << modes[this->Modes[e]] << "; "
        << (this->Decided ? this->Reasons[e] : std::string("not decided")) << "\n";
   }
-  os << indent << "SingleScatteringMethod: "
-     << GetSingleScatteringMethodName(this->SingleScatteringMethod) << "; chosen "
-     << GetSingleScatteringMethodName(this->ChosenMethod) << " (" << this->MethodReason << ")\n";
+  os << indent
+     << "SingleScatteringMethod: " << GetSingleScatteringMethodName(this->SingleScatteringMethod)
+     << "; chosen " << GetSingleScatteringMethodName(this->ChosenMethod) << " ("
+     << this->MethodReason << ")\n";
 }

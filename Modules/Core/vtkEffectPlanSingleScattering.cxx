@@ -83,8 +83,8 @@ void vtkEffectPlan::DecideSingleScatteringMethod(vtkSceneAnalysis* analysis)
   if (InterpolationMeasuredError > this->Tolerance)
   {
     this->ChosenMethod = LIGHT_RAYS;
-    why << "straight light; interpolation error " << InterpolationMeasuredError
-        << " > tolerance " << this->Tolerance;
+    why << "straight light; interpolation error " << InterpolationMeasuredError << " > tolerance "
+        << this->Tolerance;
   }
   else if (work < InterpolationBreakEvenWork)
   {
@@ -95,8 +95,8 @@ void vtkEffectPlan::DecideSingleScatteringMethod(vtkSceneAnalysis* analysis)
   else
   {
     this->ChosenMethod = INTERPOLATED;
-    why << "straight light; interpolation error " << InterpolationMeasuredError
-        << " <= tolerance " << this->Tolerance << " and voxels x lights " << work
+    why << "straight light; interpolation error " << InterpolationMeasuredError << " <= tolerance "
+        << this->Tolerance << " and voxels x lights " << work
         << " >= " << InterpolationBreakEvenWork << ", where it was measured faster";
   }
   this->MethodReason = why.str();

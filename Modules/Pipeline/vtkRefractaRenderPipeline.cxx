@@ -5,9 +5,11 @@
 #include "vtkCommand.h"
 #include "vtkEffectPlan.h"
 #include "vtkImageData.h"
+#include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLatticeBoltzmannSolver.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkLightRaySingleScattering.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMediumValidator.h"
@@ -15,8 +17,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkOutputWindow.h"
-#include "vtkLatticeBoltzmannLighting.h"
-#include "vtkLightRaySingleScattering.h"
 #include "vtkPhotonDiffusionSchedule.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPolyData.h"
@@ -73,7 +73,7 @@ struct vtkRefractaRenderPipeline::Internals
   vtkNew<vtkSceneAnalysis> Analysis;
   vtkNew<vtkEffectPlan> Plan;
   vtkNew<vtkPhotonDiffusionSchedule> Schedule;
-  vtkNew<vtkLightRaySingleScattering> LightRays;      // straight light (vtkEffectPlan's choice)
+  vtkNew<vtkLightRaySingleScattering> LightRays;       // straight light (vtkEffectPlan's choice)
   vtkNew<vtkLatticeBoltzmannLighting> LightRayLattice; // multiple scattering from its output
   vtkNew<vtkRefractaViewPass> ViewPass;
 
