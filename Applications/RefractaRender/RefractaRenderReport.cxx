@@ -136,6 +136,12 @@ json PlanReport(vtkRefractaRenderPipeline* pipeline)
     report["effects"][vtkEffectPlan::GetEffectName(e)] = { { "enabled", plan->IsEnabled(e) },
       { "estimated_change", plan->GetEstimatedContribution(e) }, { "reason", plan->GetReason(e) } };
   }
+  report["single_scattering_method"] = { { "requested",
+                                           vtkEffectPlan::GetSingleScatteringMethodName(
+                                             plan->GetSingleScatteringMethod()) },
+    { "chosen",
+      vtkEffectPlan::GetSingleScatteringMethodName(plan->GetChosenSingleScatteringMethod()) },
+    { "reason", plan->GetSingleScatteringMethodReason() } };
   return report;
 }
 
@@ -290,6 +296,9 @@ void PrintSummary(const json& report)
             << image["height"].get<int>() << " -> " << report["output"].get<std::string>() << " on "
             << report["device"].get<std::string>() << "\n";
   std::cout << "  plan      " << report["plan"]["summary"].get<std::string>() << "\n";
+  const json& method = report["plan"]["single_scattering_method"];
+  std::cout << "  single    " << method["chosen"].get<std::string>() << " ("
+            << method["reason"].get<std::string>() << ")\n";
   std::cout << "  quality   preset " << quality["preset"].get<std::string>() << ": "
             << quality["photons"].get<int>() << " photons, photon min step "
             << quality["photon_min_step"].get<double>() << ", octree eps "

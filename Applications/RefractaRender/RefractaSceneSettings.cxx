@@ -26,6 +26,10 @@ const ChoiceTable<int> ToneMappings = { { "clamp", vtkRefractaImageRenderer::CLA
 const ChoiceTable<int> RayModes = { { "auto", vtkRefractaViewPass::AUTO },
   { "straight", vtkRefractaViewPass::STRAIGHT }, { "curved", vtkRefractaViewPass::CURVED } };
 
+const ChoiceTable<int> SingleScatteringMethods = { { "auto", vtkEffectPlan::AUTOMATIC_METHOD },
+  { "photons", vtkEffectPlan::PHOTONS }, { "light_rays", vtkEffectPlan::LIGHT_RAYS },
+  { "interpolated", vtkEffectPlan::INTERPOLATED } };
+
 const ChoiceTable<int> EffectModes = { { "auto", vtkEffectPlan::AUTOMATIC },
   { "on", vtkEffectPlan::FORCE_ON }, { "off", vtkEffectPlan::FORCE_OFF } };
 
@@ -59,7 +63,7 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
     { "preset", "photons", "seed", "view_step", "ray_mode", "transmittance_cutoff",
       "photon_min_step", "octree_tolerance", "photon_smoothing", "multiple_scattering",
       "multiple_scattering_tolerance", "multiple_scattering_block_size",
-      "multiple_scattering_method", "tolerance" });
+      "multiple_scattering_method", "tolerance", "single_scattering_method" });
   int preset;
   std::tie(s.Preset, preset) = Choice(quality, "preset", q, "none", Presets);
   const bool hasPreset = preset != NoPreset;
@@ -87,6 +91,11 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
     hasPreset ? plan->GetRecommendedLatticeBlockSize() : 4, 0, 8);
   std::tie(s.MultipleScatteringMethodName, s.Lattice) =
     Choice(quality, "multiple_scattering_method", q, "lbl_d3q6", MultipleScatteringMethods);
+  // Photons, light rays or the interpolation (vtkEffectPlan::SetSingleScatteringMethod).
+  int method;
+  std::tie(s.SingleScatteringMethodName, method) =
+    Choice(quality, "single_scattering_method", q, "auto", SingleScatteringMethods);
+  pipeline->SetSingleScatteringMethod(method);
   // The relative image change an effect may cause and still be skipped.
   plan->SetTolerance(
     Number(quality, "tolerance", q, hasPreset ? plan->GetTolerance() : 0.01, 0.0, 1.0));
@@ -150,6 +159,7 @@ json QualityReport(const RenderSettings& s)
     { "ray_mode", s.RayModeName }, { "transmittance_cutoff", s.TransmittanceCutoff },
     { "photon_min_step", s.PhotonMinStep }, { "photon_smoothing", s.PhotonSmoothing },
     { "multiple_scattering", s.MultipleScattering },
+    { "single_scattering_method", s.SingleScatteringMethodName },
     { "multiple_scattering_tolerance", s.LatticeTolerance },
     { "multiple_scattering_block_size", s.LatticeBlockSize },
     { "multiple_scattering_method", s.MultipleScatteringMethodName }, { "preset", s.Preset },

@@ -26,6 +26,7 @@ struct RenderSettings
   int Seed = 1;
   double ViewStep = 1.0;
   std::string RayModeName;
+  std::string SingleScatteringMethodName; // quality.single_scattering_method
   int RayMode = 0;
   double TransmittanceCutoff = 1e-4;
   double PhotonMinStep = 1.0;

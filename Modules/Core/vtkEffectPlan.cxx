@@ -250,6 +250,7 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
     this->Enabled[MULTIPLE_SCATTERING] = false;
     this->Reasons[MULTIPLE_SCATTERING] = "off: no single scattering to spread";
   }
+  this->DecideSingleScatteringMethod(analysis);
   // A decision is a result, not a setting: the MTime keeps tracking the settings (tolerance,
   // modes, quality) so that a pipeline can tell a changed plan from a re-decided one.
   this->Decided = true;
@@ -272,7 +273,8 @@ std::string vtkEffectPlan::GetSummary() const
       s << " (forced)";
     }
   }
-  s << "; tolerance " << this->Tolerance;
+  s << "; tolerance " << this->Tolerance << "; single scattering by "
+    << GetSingleScatteringMethodName(this->ChosenMethod);
   return s.str();
 }
 
@@ -362,6 +364,11 @@ void vtkEffectPlan::RecordInFieldData(vtkFieldData* fieldData) const
   fieldData->AddArray(estimates);
   fieldData->AddArray(tolerance);
   fieldData->AddArray(summary);
+  vtkNew<vtkStringArray> method;
+  method->SetName("PlanSingleScatteringMethod");
+  method->InsertNextValue(GetSingleScatteringMethodName(this->ChosenMethod));
+  method->InsertNextValue(this->MethodReason);
+  fieldData->AddArray(method);
 }
 
 //------------------------------------------------------------------------------
@@ -383,4 +390,8 @@ void vtkEffectPlan::PrintSelf(ostream& os, vtkIndent indent)
     os << indent << EffectNames[e] << ": " << modes[this->Modes[e]] << "; "
        << (this->Decided ? this->Reasons[e] : std::string("not decided")) << "\n";
   }
+  os << indent
+     << "SingleScatteringMethod: " << GetSingleScatteringMethodName(this->SingleScatteringMethod)
+     << "; chosen " << GetSingleScatteringMethodName(this->ChosenMethod) << " ("
+     << this->MethodReason << ")\n";
 }

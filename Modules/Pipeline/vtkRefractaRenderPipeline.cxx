@@ -5,9 +5,11 @@
 #include "vtkCommand.h"
 #include "vtkEffectPlan.h"
 #include "vtkImageData.h"
+#include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLatticeBoltzmannSolver.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkLightRaySingleScattering.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMediumValidator.h"
@@ -71,6 +73,8 @@ struct vtkRefractaRenderPipeline::Internals
   vtkNew<vtkSceneAnalysis> Analysis;
   vtkNew<vtkEffectPlan> Plan;
   vtkNew<vtkPhotonDiffusionSchedule> Schedule;
+  vtkNew<vtkLightRaySingleScattering> LightRays;       // straight light (vtkEffectPlan's choice)
+  vtkNew<vtkLatticeBoltzmannLighting> LightRayLattice; // multiple scattering from its output
   vtkNew<vtkRefractaViewPass> ViewPass;
 
   vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
@@ -340,6 +344,21 @@ vtkPhotonTracer* vtkRefractaRenderPipeline::GetPhotonTracer()
   return this->Internal->Schedule->GetPhotonTracer();
 }
 
+void vtkRefractaRenderPipeline::SetSingleScatteringMethod(int method)
+{
+  this->Internal->Plan->SetSingleScatteringMethod(method);
+}
+
+int vtkRefractaRenderPipeline::GetSingleScatteringMethod()
+{
+  return this->Internal->Plan->GetSingleScatteringMethod();
+}
+
+vtkLightRaySingleScattering* vtkRefractaRenderPipeline::GetLightRays()
+{
+  return this->Internal->LightRays;
+}
+
 vtkLatticeBoltzmannSolver* vtkRefractaRenderPipeline::GetLatticeSolver()
 {
   return this->Internal->Schedule->GetSolver();
@@ -367,6 +386,35 @@ void vtkRefractaRenderPipeline::SetContext(vtkOpenCLContext* context)
 vtkOpenCLContext* vtkRefractaRenderPipeline::GetContext()
 {
   return this->Internal->GetContext();
+}
+
+//------------------------------------------------------------------------------
+// Straight light: the light-ray pass (and the lattice on its output when multiple scattering is
+// on), with the photon tracer's light extents so that both methods see the same lights.
+vtkAlgorithm* vtkRefractaRenderPipeline::PrepareLightRays(vtkPhotonTracer* tracer, int method)
+{
+  Internals& in = *this->Internal;
+  vtkLightRaySingleScattering* rays = in.LightRays;
+  rays->SetContext(in.GetContext());
+  rays->SetMethod(method == vtkEffectPlan::INTERPOLATED ? vtkLightRaySingleScattering::INTERPOLATED
+                                                        : vtkLightRaySingleScattering::LIGHT_RAYS);
+  rays->SetLights(in.DataLights);
+  rays->SetSurfaces(in.Surfaces);
+  rays->SetMediumToWorld(in.PropMatrix);
+  rays->SetLightRadius(tracer->GetLightRadius());
+  rays->SetDirectionalLightAngularRadius(tracer->GetDirectionalLightAngularRadius());
+  rays->SetInputData(in.Planned);
+  if (!in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
+  {
+    return rays;
+  }
+  vtkLatticeBoltzmannLighting* lattice = in.LightRayLattice;
+  lattice->SetContext(in.GetContext());
+  lattice->SetTolerance(this->GetLatticeSolver()->GetTolerance());
+  lattice->SetBlockSize(this->GetLatticeSolver()->GetBlockSize());
+  lattice->SetInputData(in.Planned);
+  lattice->SetInputConnection(1, rays->GetOutputPort());
+  return lattice;
 }
 
 //------------------------------------------------------------------------------
@@ -811,11 +859,17 @@ bool vtkRefractaRenderPipeline::RunLighting()
     vtkImageData* output = nullptr;
     // With surfaces, multiple scattering is the photons' own (analog scattering): the lattice
     // knows no surfaces, so the light it carries would never light them (Physics.md, "Surfaces
-    // and multiple scattering").
+    // and multiple scattering"). Surfaces also make the plan choose photons for single
+    // scattering, so light rays and analog scattering never run together.
     const bool multiple = in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING);
     const bool analog = multiple && surfaces && CountSurfaces(in.Surfaces) > 0;
     tracer->SetAnalogScattering(analog);
-    if (multiple && !analog)
+    const int method = in.Plan->GetChosenSingleScatteringMethod();
+    if (!analog && (method == vtkEffectPlan::LIGHT_RAYS || method == vtkEffectPlan::INTERPOLATED))
+    {
+      pass = this->PrepareLightRays(tracer, method);
+    }
+    else if (multiple && !analog)
     {
       // Interleaving the lattice with the marching (Bernabei et al.) helps where the two
       // share a device with spare parallelism: measured up to 4% on an H200; on a CPU device

@@ -52,11 +52,13 @@
 #include <memory> // for std::unique_ptr
 #include <vector> // for std::vector
 
+class vtkAlgorithm;
 class vtkCamera;
 class vtkEffectPlan;
 class vtkImageData;
 class vtkLatticeBoltzmannSolver;
 class vtkLight;
+class vtkLightRaySingleScattering;
 class vtkLightCollection;
 class vtkMatrix4x4;
 class vtkOpenCLContext;
@@ -174,6 +176,21 @@ public:
   vtkSceneAnalysis* GetSceneAnalysis();
   vtkEffectPlan* GetEffectPlan();
   vtkPhotonTracer* GetPhotonTracer();
+
+  ///@{
+  /**
+   * Where single scattering comes from: vtkEffectPlan::SetSingleScatteringMethod
+   * (AUTOMATIC_METHOD (default), PHOTONS, LIGHT_RAYS, INTERPOLATED); the plan records the method
+   * it chose and why (vtkEffectPlan::GetChosenSingleScatteringMethod, field data
+   * `PlanSingleScatteringMethod`). LIGHT_RAYS and INTERPOLATED run GetLightRays()
+   * (vtkLightRaySingleScattering, with the photon tracer's LightRadius and
+   * DirectionalLightAngularRadius) and, with multiple scattering, vtkLatticeBoltzmannLighting on
+   * its output (with the lattice solver's Tolerance and BlockSize).
+   */
+  void SetSingleScatteringMethod(int method);
+  int GetSingleScatteringMethod();
+  vtkLightRaySingleScattering* GetLightRays();
+  ///@}
   vtkLatticeBoltzmannSolver* GetLatticeSolver();
   vtkRefractaViewPass* GetViewPass();
   ///@}
@@ -319,6 +336,7 @@ protected:
   bool RunStages(bool view, int width, int height, const float* depthLimit);
   bool RunPlan();
   bool RunLighting();
+  vtkAlgorithm* PrepareLightRays(vtkPhotonTracer* tracer, int method);
   bool RunView(int width, int height, const float* depthLimit);
   bool PlanIsStale();
   bool BackgroundIsNewerThan(vtkMTimeType time);

@@ -373,6 +373,17 @@ void vtkRefractiveVolumeMapper::SetQuality(int quality)
   this->Internal->Pipeline->SetQuality(quality);
 }
 
+void vtkRefractiveVolumeMapper::SetSingleScatteringMethod(int method)
+{
+  this->Internal->Pipeline->SetSingleScatteringMethod(method);
+  this->Modified();
+}
+
+int vtkRefractiveVolumeMapper::GetSingleScatteringMethod()
+{
+  return this->Internal->Pipeline->GetSingleScatteringMethod();
+}
+
 void vtkRefractiveVolumeMapper::ReleaseGraphicsResources(vtkWindow*)
 {
   // The image is drawn through the window's own pixel path; nothing of ours lives in GL.

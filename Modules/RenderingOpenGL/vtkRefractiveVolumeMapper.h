@@ -176,6 +176,15 @@ public:
 
   ///@{
   /**
+   * Where single scattering comes from: vtkRefractaRenderPipeline::SetSingleScatteringMethod
+   * (vtkEffectPlan::AUTOMATIC_METHOD (default), PHOTONS, LIGHT_RAYS, INTERPOLATED).
+   */
+  void SetSingleScatteringMethod(int method);
+  int GetSingleScatteringMethod();
+  ///@}
+
+  ///@{
+  /**
    * View-pass settings (see vtkRefractaViewPass): StepSize in voxels (default 1), RayMode
    * (default AUTO), TransmittanceCutoff (default 1e-4), EmptySpaceSkipping (default on; the
    * occupancy grid is rebuilt only with the medium or the light passes, and the image is the

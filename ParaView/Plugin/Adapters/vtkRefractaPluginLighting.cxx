@@ -139,6 +139,18 @@ bool vtkRefractaPluginLighting::GetMultipleScattering()
 }
 
 //------------------------------------------------------------------------------
+void vtkRefractaPluginLighting::SetSingleScatteringMethod(int method)
+{
+  this->Pipeline->SetSingleScatteringMethod(method);
+  this->Modified();
+}
+
+int vtkRefractaPluginLighting::GetSingleScatteringMethod()
+{
+  return this->Pipeline->GetSingleScatteringMethod();
+}
+
+//------------------------------------------------------------------------------
 vtkMTimeType vtkRefractaPluginLighting::GetMTime()
 {
   return std::max(this->Superclass::GetMTime(), this->Pipeline->GetInputsMTime());

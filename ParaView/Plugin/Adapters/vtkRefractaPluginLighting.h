@@ -83,6 +83,15 @@ public:
   bool GetMultipleScattering();
   ///@}
 
+  ///@{
+  /**
+   * Where single scattering comes from (vtkEffectPlan::SingleScatteringMethod: 0 auto (default),
+   * 1 photons, 2 light rays, 3 interpolated), the pipeline's one setting.
+   */
+  void SetSingleScatteringMethod(int method);
+  int GetSingleScatteringMethod();
+  ///@}
+
   /**
    * The pipeline this filter runs (its plan, passes and statistics).
    */

@@ -1,0 +1,380 @@
+// light_rays.cl: single scattering by straight light rays (vtkLightRaySingleScattering).
+// Needs refracta_common.cl and refracta_surfaces.cl before it.
+//
+// The unscattered light at a point x is found without noise: for every light, a straight ray from
+// x towards the light, its optical depth integrated voxel piece by voxel piece with sigma_t sampled
+// (trilinearly) at each piece's midpoint, as the photon pass walks its rays, and skipped through
+// macro cells where nothing attenuates (their largest sigma_t, grown by one voxel for the stencil),
+// and a shadow test against the surfaces' BVH. What comes out of one evaluation is
+//   phi  (RGB): the fluence of the unscattered beams, sum over lights of E_l T_l V_l;
+//   flux (xyz): sum over lights of (phi_l.r + phi_l.g + phi_l.b) w_l, w_l the light's travel
+//               direction: the weight of the mean direction the view pass's phase function needs.
+// The paper's source radiance (Ren et al. 2008, eq. 1) is phi / (4 pi) for isotropic scattering;
+// the lighting volume stores S1 = sigma_s phi like the photon pass.
+//
+// Lights: LR_LIGHT_FLOAT4S float4 per light, made by vtkLightRaySingleScattering on the host:
+//   [0] position (grid-local; unused for directional), w = 1 positional, 0 directional
+//   [1] axis: travel direction (directional) or spot axis (spot), w = cos of the cone (< -1.5: none)
+//   [2] colour x intensity (irradiance E for directional, intensity I for positional), w = exponent
+//   [3] x = extent (sphere radius, grid-local units; sin of the angular radius for directional),
+//       y = quadrature directions for an extended light (>= 1)
+#define LR_LIGHT_FLOAT4S 4
+#define LR_MACRO 8 /* voxels per macro-cell edge: empty-space skipping */
+#define LR_DEEP 40.0f /* optical depth past which a ray is dark (e^-40) */
+#define LR_GOLDEN_ANGLE 2.39996323f
+
+typedef struct
+{
+  __global const float* extinction; // RGB per voxel
+  __global const float* macro;      // largest sigma_t per macro cell
+  int4 dims, macroDims;
+  float4 spacing;
+  float3 lo, hi;
+  __global const float4* nodes; // surfaces (nodeCount 0: none)
+  __global const float4* triangles;
+  int nodeCount;
+  float4 frame0, frame1, frame2; // grid-local -> surface frame rows
+  float surfaceEpsilon;
+} lr_scene;
+
+// Optical depth (RGB) along o + t d, t in [0, tMax], d unit: voxel piece by voxel piece, whole
+// macro cells at a time where their largest sigma_t (over the cell grown by one voxel) is 0.
+inline float3 lr_optical_depth(const lr_scene* s, float3 o, float3 d, float tMax)
+{
+  float t0, t1;
+  float3 tau = (float3)(0.0f);
+  if (!refracta_intersect_box(o, d, s->lo, s->hi, &t0, &t1))
+  {
+    return tau;
+  }
+  t1 = fmin(t1, tMax);
+  const float h = fmin(fmin(s->spacing.x, s->spacing.y), s->spacing.z);
+  const float nudge = 1e-4f * h;
+  const float3 inv = (float3)(1.0f) / d;
+  const int3 dims = s->dims.xyz;
+  const int cap = 4 * (dims.x + dims.y + dims.z) + 16; // never a hang
+  float t = t0;
+  for (int step = 0; step < cap && t < t1; ++step)
+  {
+    const float3 u = (o + d * (t + nudge) - s->lo) / s->spacing.xyz;
+    const int3 v = clamp(convert_int3(floor(u)), (int3)(0), dims - 1);
+    const int3 mv = v / LR_MACRO;
+    const float m =
+      s->macro[mv.x + s->macroDims.x * (mv.y + s->macroDims.y * (size_t)mv.z)];
+    const int3 cellLo = m > 0.0f ? v : mv * LR_MACRO;
+    const int3 cellHi = m > 0.0f ? v + 1 : min((mv + 1) * LR_MACRO, dims);
+    const float3 bound = s->lo +
+      convert_float3(select(cellLo, cellHi, d > (float3)(0.0f))) * s->spacing.xyz;
+    const float3 te = select((bound - o) * inv, (float3)(INFINITY), d == (float3)(0.0f));
+    float exitT = fmin(fmin(te.x, te.y), te.z);
+    exitT = fmin(fmax(exitT, t + nudge), t1);
+    if (m > 0.0f)
+    {
+      // sigma_t at the piece's midpoint, trilinear: the photon pass's and view pass's medium.
+      const float3 mid = refracta_to_voxel(o + d * (0.5f * (t + exitT)), s->spacing);
+      tau += refracta_sample3(s->extinction, s->dims, mid) * (exitT - t);
+      if (fmax(fmax(tau.x, tau.y), tau.z) > LR_DEEP)
+      {
+        break;
+      }
+    }
+    t = exitT;
+  }
+  return tau;
+}
+
+// Whether a surface blocks o + t d, t in (eps, tMax), o and d grid-local.
+inline bool lr_shadowed(const lr_scene* s, float3 o, float3 d, float tMax)
+{
+  if (s->nodeCount <= 0)
+  {
+    return false;
+  }
+  const float3 so = (float3)(dot(s->frame0.xyz, o) + s->frame0.w,
+    dot(s->frame1.xyz, o) + s->frame1.w, dot(s->frame2.xyz, o) + s->frame2.w);
+  const float3 sd = (float3)(dot(s->frame0.xyz, d), dot(s->frame1.xyz, d), dot(s->frame2.xyz, d));
+  return refracta_bvh_occluded(
+    s->nodes, s->nodeCount, s->triangles, so, sd, s->surfaceEpsilon, tMax);
+}
+
+// Transmittance x visibility of one straight ray.
+inline float3 lr_transmittance(const lr_scene* s, float3 o, float3 d, float tMax)
+{
+  if (lr_shadowed(s, o, d, tMax))
+  {
+    return (float3)(0.0f);
+  }
+  return exp(-lr_optical_depth(s, o, d, tMax));
+}
+
+// Direction q of K equal-solid-angle directions (a Fibonacci spiral) in the cap of directions
+// within acos(cosMax) of axis a.
+inline float3 lr_cap_direction(float3 a, float cosMax, int q, int count)
+{
+  const float3 helper = fabs(a.x) < 0.9f ? (float3)(1.0f, 0.0f, 0.0f) : (float3)(0.0f, 1.0f, 0.0f);
+  const float3 b1 = normalize(cross(helper, a));
+  const float3 b2 = cross(a, b1);
+  const float c = 1.0f - ((float)q + 0.5f) / (float)count * (1.0f - cosMax);
+  const float sn = sqrt(fmax(0.0f, 1.0f - c * c));
+  const float phi = LR_GOLDEN_ANGLE * (float)q;
+  return c * a + sn * (cos(phi) * b1 + sin(phi) * b2);
+}
+
+// Distance from x along unit q to the sphere (centre p, radius r), x outside it.
+inline float lr_sphere_distance(float3 x, float3 q, float3 p, float r)
+{
+  const float3 w = p - x;
+  const float b = dot(w, q);
+  const float disc = b * b - (dot(w, w) - r * r);
+  return disc > 0.0f ? fmax(b - sqrt(disc), 0.0f) : fmax(b, 0.0f);
+}
+
+// Fluence (RGB) of one light at x and its travel direction there.
+inline float3 lr_light_fluence(
+  const lr_scene* s, __global const float4* light, float3 x, float minDistance, float3* travel)
+{
+  const float4 p0 = light[0], p1 = light[1], p2 = light[2], p3 = light[3];
+  const int count = max((int)p3.y, 1);
+  const float3 colour = p2.xyz;
+  if (p0.w < 0.5f)
+  {
+    // Directional: irradiance E on a plane facing it; a disc of angular radius delta has radiance
+    // E / (pi sin^2 delta) over a cap of 2 pi (1 - cos delta).
+    *travel = p1.xyz;
+    const float3 toLight = -p1.xyz;
+    if (!(p3.x > 0.0f) || count == 1)
+    {
+      return colour * lr_transmittance(s, x, toLight, INFINITY);
+    }
+    const float sinD = p3.x;
+    const float cosD = sqrt(fmax(0.0f, 1.0f - sinD * sinD));
+    const float weight = 2.0f * (1.0f - cosD) / (sinD * sinD) / (float)count;
+    float3 sum = (float3)(0.0f);
+    for (int q = 0; q < count; ++q)
+    {
+      sum += lr_transmittance(s, x, lr_cap_direction(toLight, cosD, q, count), INFINITY);
+    }
+    return colour * sum * weight;
+  }
+  const float3 w = p0.xyz - x;
+  const float d = fmax(length(w), minDistance);
+  const float3 toLight = length(w) > 0.0f ? w / length(w) : (float3)(0.0f, 0.0f, 1.0f);
+  *travel = -toLight;
+  float falloff = 1.0f;
+  if (p1.w > -1.5f)
+  {
+    const float c = dot(-toLight, p1.xyz);
+    falloff = c >= p1.w ? (p2.w > 0.0f ? pow(fmax(c, 0.0f), p2.w) : 1.0f) : 0.0f;
+  }
+  if (falloff <= 0.0f)
+  {
+    return (float3)(0.0f);
+  }
+  const float r = p3.x;
+  if (!(r > 0.0f) || count == 1 || d <= r)
+  {
+    // A delta light (or a point inside the sphere light, where the near field is taken as the
+    // delta light's): I / d^2.
+    return colour * (falloff / (d * d)) * lr_transmittance(s, x, toLight, length(w));
+  }
+  // A sphere of radius r with radiance I / (pi r^2) seen under a cap of 2 pi (1 - cos theta).
+  const float sinT = r / d;
+  const float cosT = sqrt(fmax(0.0f, 1.0f - sinT * sinT));
+  const float omega = 2.0f * REFRACTA_PI * (1.0f - cosT);
+  const float weight = falloff / (REFRACTA_PI * r * r) * omega / (float)count;
+  float3 sum = (float3)(0.0f);
+  for (int q = 0; q < count; ++q)
+  {
+    const float3 dir = lr_cap_direction(toLight, cosT, q, count);
+    sum += lr_transmittance(s, x, dir, lr_sphere_distance(x, dir, p0.xyz, r));
+  }
+  return colour * sum * weight;
+}
+
+// phi and flux (see the head of the file) of all lights at x.
+inline float3 lr_evaluate(const lr_scene* s, __global const float4* lights, int lightCount,
+  float3 x, float minDistance, float3* flux)
+{
+  float3 phi = (float3)(0.0f);
+  float3 f = (float3)(0.0f);
+  for (int l = 0; l < lightCount; ++l)
+  {
+    float3 travel;
+    const float3 e = lr_light_fluence(s, lights + LR_LIGHT_FLOAT4S * l, x, minDistance, &travel);
+    phi += e;
+    f += (e.x + e.y + e.z) * travel;
+  }
+  *flux = f;
+  return phi;
+}
+
+#define LR_SCENE_ARGS                                                                              \
+  __global const float *extinction, __global const float *macro, const int4 dims,                 \
+    const int4 macroDims, const float4 spacing, __global const float4 *nodes,                     \
+    __global const float4 *triangles, const int nodeCount, const float4 frame0,                   \
+    const float4 frame1, const float4 frame2, const float surfaceEpsilon
+
+inline lr_scene lr_make_scene(__global const float* extinction, __global const float* macro,
+  int4 dims, int4 macroDims, float4 spacing, __global const float4* nodes,
+  __global const float4* triangles, int nodeCount, float4 frame0, float4 frame1, float4 frame2,
+  float surfaceEpsilon)
+{
+  lr_scene s;
+  s.extinction = extinction;
+  s.macro = macro;
+  s.dims = dims;
+  s.macroDims = macroDims;
+  s.spacing = spacing;
+  refracta_domain(dims, spacing, &s.lo, &s.hi);
+  s.nodes = nodes;
+  s.triangles = triangles;
+  s.nodeCount = nodeCount;
+  s.frame0 = frame0;
+  s.frame1 = frame1;
+  s.frame2 = frame2;
+  s.surfaceEpsilon = surfaceEpsilon;
+  return s;
+}
+
+#define LR_MAKE_SCENE()                                                                            \
+  lr_make_scene(extinction, macro, dims, macroDims, spacing, nodes, triangles, nodeCount, frame0, \
+    frame1, frame2, surfaceEpsilon)
+
+// The lighting volume's arrays from phi and flux at one voxel: S1 = sigma_s phi, the unit mean
+// direction (zero where nothing scatters or no light arrives).
+inline void lr_store(__global const float* scattering, size_t v, float3 phi, float3 flux,
+  __global float* radiance, __global float* direction)
+{
+  const float3 s1 = vload3(v, scattering) * fmax(phi, (float3)(0.0f));
+  const float len = length(flux);
+  vstore3(s1, v, radiance);
+  vstore3(len > 0.0f && (s1.x + s1.y + s1.z) > 0.0f ? flux / len : (float3)(0.0f), v, direction);
+}
+
+// Per-voxel light rays: every voxel that scatters marches one ray per light (and quadrature
+// direction) to it.
+__kernel void light_rays_voxels(LR_SCENE_ARGS, __global const float* scattering,
+  __global const float4* lights, const int lightCount, const float minDistance,
+  __global float* radiance, __global float* direction, const ulong voxelCount)
+{
+  const size_t v = get_global_id(0);
+  if (v >= voxelCount)
+  {
+    return;
+  }
+  const float3 sc = vload3(v, scattering);
+  float3 phi = (float3)(0.0f), flux = (float3)(0.0f);
+  if (sc.x > 0.0f || sc.y > 0.0f || sc.z > 0.0f)
+  {
+    const lr_scene s = LR_MAKE_SCENE();
+    const int i = (int)(v % (size_t)dims.x);
+    const int j = (int)((v / (size_t)dims.x) % (size_t)dims.y);
+    const int k = (int)(v / ((size_t)dims.x * (size_t)dims.y));
+    const float3 x = (float3)((float)i, (float)j, (float)k) * spacing.xyz;
+    phi = lr_evaluate(&s, lights, lightCount, x, minDistance, &flux);
+  }
+  lr_store(scattering, v, phi, flux, radiance, direction);
+}
+
+// phi and flux at arbitrary grid-local points (the samples of the interpolation, the points of
+// their gradients and of their error metric).
+__kernel void light_rays_points(LR_SCENE_ARGS, __global const float4* points, const int pointCount,
+  __global const float4* lights, const int lightCount, const float minDistance,
+  __global float4* phiOut, __global float4* fluxOut)
+{
+  const int p = (int)get_global_id(0);
+  if (p >= pointCount)
+  {
+    return;
+  }
+  const lr_scene s = LR_MAKE_SCENE();
+  float3 flux;
+  const float3 phi = lr_evaluate(&s, lights, lightCount, points[p].xyz, minDistance, &flux);
+  phiOut[p] = (float4)(phi, 0.0f);
+  fluxOut[p] = (float4)(flux, 0.0f);
+}
+
+// Gradient-based interpolation (Ren et al. 2008, eq. 4) at every voxel that scatters:
+//   L(x) = sum_S W_j(x) (L_j + (x - x_j) . grad L_j) / sum_S W_j(x),
+//   S = { j : |x - x_j| < R_j },  W_j(x) = R_j / |x - x_j|,
+// for L = phi (RGB) and flux (xyz). The samples live on the vertices of the levels' regular grids
+// (level k: vertex (a, b, c) at origin + h_k (a, b, c), valid radius R_k); `vertexSample` maps each
+// level's vertices (offset levelOffset[k], sizes levelSize[k]) to a sample index or -1. Each voxel
+// sums over the vertices whose valid sphere holds it: the sum the paper's splats accumulate, read
+// here by the voxel (a gather) so that no float atomics are needed and the result is deterministic.
+// samples: 8 float4 per sample: phi, flux, dphi/dx, dphi/dy, dphi/dz, dflux/dx, dflux/dy, dflux/dz.
+// A voxel that no valid sphere covers is computed by its own light rays and counted (uncovered).
+__kernel void light_rays_interpolate(LR_SCENE_ARGS, __global const float* scattering,
+  __global const float4* lights, const int lightCount, const float minDistance,
+  __global const int* vertexSample, __global const int4* levelSize,
+  __global const int* levelOffset, __global const float4* levelGrid, const int levelCount,
+  __global const float4* samples, __global float* radiance, __global float* direction,
+  volatile __global int* uncovered, const ulong voxelCount)
+{
+  const size_t v = get_global_id(0);
+  if (v >= voxelCount)
+  {
+    return;
+  }
+  const float3 sc = vload3(v, scattering);
+  float3 phi = (float3)(0.0f), flux = (float3)(0.0f);
+  if (sc.x > 0.0f || sc.y > 0.0f || sc.z > 0.0f)
+  {
+    const int i = (int)(v % (size_t)dims.x);
+    const int j = (int)((v / (size_t)dims.x) % (size_t)dims.y);
+    const int k = (int)(v / ((size_t)dims.x * (size_t)dims.y));
+    const float3 x = (float3)((float)i, (float)j, (float)k) * spacing.xyz;
+    float weightSum = 0.0f;
+    for (int level = 0; level < levelCount; ++level)
+    {
+      const int4 size = levelSize[level];
+      const float4 grid = levelGrid[2 * level];     // origin.xyz, w = valid radius R
+      const float4 interval = levelGrid[2 * level + 1]; // h.xyz
+      const float radius = grid.w;
+      const float3 rel = (x - grid.xyz) / interval.xyz;
+      const float3 reach = radius / interval.xyz;
+      const int3 first = max(convert_int3(ceil(rel - reach)), (int3)(0));
+      const int3 last = min(convert_int3(floor(rel + reach)), size.xyz - 1);
+      for (int c = first.z; c <= last.z; ++c)
+      {
+        for (int b = first.y; b <= last.y; ++b)
+        {
+          for (int a = first.x; a <= last.x; ++a)
+          {
+            const int id =
+              vertexSample[levelOffset[level] + a + size.x * (b + size.y * c)];
+            if (id < 0)
+            {
+              continue;
+            }
+            const float3 xj = grid.xyz + (float3)((float)a, (float)b, (float)c) * interval.xyz;
+            const float3 dx = x - xj;
+            const float dist = length(dx);
+            if (dist >= radius)
+            {
+              continue;
+            }
+            // W = R / |x - x_j|, bounded where x sits on the sample (its own value then rules).
+            const float w = radius / fmax(dist, 1e-4f * radius);
+            __global const float4* sj = samples + 8 * (size_t)id;
+            phi += w * (sj[0].xyz + dx.x * sj[2].xyz + dx.y * sj[3].xyz + dx.z * sj[4].xyz);
+            flux += w * (sj[1].xyz + dx.x * sj[5].xyz + dx.y * sj[6].xyz + dx.z * sj[7].xyz);
+            weightSum += w;
+          }
+        }
+      }
+    }
+    if (weightSum > 0.0f)
+    {
+      phi /= weightSum;
+      flux /= weightSum;
+    }
+    else
+    {
+      const lr_scene s = LR_MAKE_SCENE();
+      phi = lr_evaluate(&s, lights, lightCount, x, minDistance, &flux);
+      atomic_inc(uncovered);
+    }
+  }
+  lr_store(scattering, v, phi, flux, radiance, direction);
+}
