@@ -7,6 +7,7 @@
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
 #include "vtkReferencePhotonMapper.h"
+#include "vtkSMPTools.h"
 #include "vtkTestErrorObserver.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -110,4 +112,203 @@ TEST(ReferencePhotonMapper, AgreesWithThePathTracerOnADenseCube)
     FieldValue(out, "RenderSeconds"), FieldValue(out, "StoredPhotons"));
   EXPECT_NEAR(sumA / sumB, 1.0, 0.03);
   EXPECT_LT(chi2 / (size * size), 3.0);
+}
+
+namespace
+{
+// Least-squares slope of log(y) against log(x).
+double LogLogSlope(const std::vector<double>& x, const std::vector<double>& y)
+{
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(x.size());
+  for (size_t i = 0; i < x.size(); ++i)
+  {
+    const double lx = std::log(x[i]), ly = std::log(y[i]);
+    sx += lx;
+    sy += ly;
+    sxx += lx * lx;
+    sxy += lx * ly;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+} // namespace
+
+// The error falls with the number of passes N as the theory says. With r_i^3 ~ i^(Alpha - 1) the
+// variance of a point estimate of pass i grows like 1 / r_i^3 ~ i^(1 - Alpha), so the mean of N
+// passes has variance ~ N^-Alpha: noise slope -Alpha / 2 = -1/3 in log-log. A pixel averages its
+// view points along the ray (64 a pass here), which smooths the kernel into a beam (variance ~
+// 1 / r_i^2, slope -(1 + 2 Alpha) / 6 = -0.39), and noise that does not depend on the radius
+// (the view paths' own) falls with slope -1/2; so the stream spread (noise alone) must fall with
+// a slope in [-0.5, -0.3]. The error against the converged path tracer (its variance taken out)
+// adds the kernel's bias, falling like N^(-2 (1 - Alpha) / 3) = N^(-2/9): its slope must lie in
+// [-0.6, -0.15] and the error must fall by at least 2x from 2 to 64 passes.
+TEST(ReferencePhotonMapper, ErrorFallsWithPassesAtTheTheoreticalRate)
+{
+  CubeScene scene;
+  const int size = 6;
+  vtkNew<vtkReferenceRenderer> pt;
+  scene.SetUp(pt, size);
+  pt->SetSamplesPerPixel(Spp(4096));
+  auto truth = Render(pt);
+  std::vector<double> passes, errors;
+  vtkSmartPointer<vtkImageData> last;
+  for (int n : { 2, 8, 32, 64 })
+  {
+    vtkNew<vtkReferencePhotonMapper> pm;
+    scene.SetUp(pm, size);
+    pm->SetPasses(n);
+    // Few photons and many view rays a pass: the kernel's counting noise (variance ~ 1 / r^3,
+    // the part the schedule trades against bias) dominates the view paths' own noise (variance
+    // independent of r, which alone would fall with slope -1/2).
+    pm->SetPhotonsPerPass(250);
+    pm->SetSamplesPerPixel(64);
+    pm->SetStreams(4);
+    pm->SetInitialRadius(2.0);
+    auto out = Render(pm);
+    double d2 = 0, var = 0, norm = 0;
+    for (int p = 0; p < size * size; ++p)
+    {
+      d2 += (Hdr(out, p) - Hdr(truth, p)) * (Hdr(out, p) - Hdr(truth, p));
+      var += Se(truth, p) * Se(truth, p);
+      norm += Hdr(truth, p) * Hdr(truth, p);
+    }
+    passes.push_back(n);
+    errors.push_back(std::sqrt(std::max(d2 - var, 1e-30) / norm));
+    std::printf("%2d passes: relative RMSE against the path tracer %.4f\n", n, errors.back());
+    last = out;
+  }
+  const double total = LogLogSlope(passes, errors);
+  vtkDataArray* cp = last->GetFieldData()->GetArray("CheckpointPasses");
+  vtkDataArray* ce = last->GetFieldData()->GetArray("CheckpointError");
+  ASSERT_NE(cp, nullptr);
+  ASSERT_NE(ce, nullptr);
+  std::vector<double> cpasses, cerrors;
+  for (vtkIdType i = 0; i < cp->GetNumberOfTuples(); ++i)
+  {
+    cpasses.push_back(cp->GetComponent(i, 0));
+    cerrors.push_back(ce->GetComponent(i, 0));
+    std::printf("checkpoint %3.0f passes: stream spread (relative) %.4f\n", cpasses.back(),
+      cerrors.back());
+  }
+  ASSERT_GE(cpasses.size(), 4u);
+  const double noise = LogLogSlope(cpasses, cerrors);
+  std::printf("log-log slopes: noise (stream spread) %.3f (theory: -Alpha/2 = -0.333 for a point, "
+              "-0.39 for a beam, -0.5 for radius-free noise); error vs the path tracer %.3f\n",
+    noise, total);
+  EXPECT_GE(noise, -0.5);
+  EXPECT_LE(noise, -0.3);
+  EXPECT_GE(total, -0.6);
+  EXPECT_LE(total, -0.15);
+  EXPECT_GT(errors.front() / errors.back(), 2.0);
+}
+
+// Emission is collected along the view ray exactly as by the path tracer: a uniform absorbing
+// (albedo 0), emitting slab of optical depth 1.5 seen face on shows eps / sigma (1 - e^-tau).
+// Every pixel must match within 4 standard errors of the stream estimate, and the normalised
+// squared deviations must average to about 1 (the error estimate is neither too small nor far
+// too large; the medium is grey, so the three channels of a pixel share their paths and only the
+// 16 pixels are independent).
+TEST(ReferencePhotonMapper, EmittingSlabMatchesTheAnalyticRadiance)
+{
+  const int dims[3] = { 4, 4, 8 };
+  // The box reaches half a voxel beyond the end points: 8 x 1/8 = 1 thick.
+  const double spacing[3] = { 1.0 / 4, 1.0 / 4, 1.0 / 8 }, origin[3] = { 0, 0, 0 };
+  Voxel v;
+  for (int c = 0; c < 3; ++c)
+  {
+    v.Sigma[c] = 1.5;
+    v.Emission[c] = 0.6 + 0.2 * c;
+  }
+  auto medium = Homogeneous(dims, spacing, origin, v);
+  const double focal[3] = { 0.5, 0.5, 0.5 }, dop[3] = { 0, 0, -1 }, up[3] = { 0, 1, 0 };
+  vtkNew<vtkReferencePhotonMapper> pm;
+  pm->SetInputData(medium);
+  pm->SetCamera(ParallelCamera(focal, dop, up, 0.4));
+  pm->SetImageSize(4, 4);
+  pm->SetPasses(256);
+  pm->SetPhotonsPerPass(1);
+  pm->SetStreams(16);
+  auto out = Render(pm);
+  double chi2 = 0, zsum = 0;
+  int n = 0;
+  for (int p = 0; p < 16; ++p)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double expected = v.Emission[c] / 1.5 * (1 - std::exp(-1.5));
+      const double z = (Hdr(out, p, c) - expected) / Se(out, p, c);
+      EXPECT_LT(std::abs(z), 4.0) << "pixel " << p << " channel " << c;
+      chi2 += z * z;
+      zsum += z;
+      ++n;
+    }
+  }
+  std::printf("emitting slab: mean squared normalised deviation %.2f, mean %.2f, over %d values\n",
+    chi2 / n, zsum / n, n);
+  EXPECT_GT(chi2 / n, 0.3);
+  EXPECT_LT(chi2 / n, 3.0);
+}
+
+// Same seed, same image, whatever the number of threads; another seed, another image.
+TEST(ReferencePhotonMapper, DeterministicForASeed)
+{
+  CubeScene scene;
+  auto render = [&](unsigned int seed)
+  {
+    vtkNew<vtkReferencePhotonMapper> pm;
+    scene.SetUp(pm, 6);
+    pm->SetPasses(3);
+    pm->SetPhotonsPerPass(9000); // more than two blocks of photons
+    pm->SetSeed(seed);
+    return Render(pm);
+  };
+  vtkSMPTools::Initialize(1);
+  auto a = render(5);
+  vtkSMPTools::Initialize(2);
+  auto b = render(5);
+  auto c = render(6);
+  int same = 0, differ = 0;
+  for (int p = 0; p < 36; ++p)
+  {
+    same += Hdr(a, p) == Hdr(b, p) ? 1 : 0;
+    differ += Hdr(a, p) != Hdr(c, p) ? 1 : 0;
+  }
+  EXPECT_EQ(same, 36);
+  EXPECT_GT(differ, 30);
+  EXPECT_EQ(FieldValue(a, "StoredPhotons"), FieldValue(b, "StoredPhotons"));
+}
+
+// Settings out of range: a clear error and an empty output.
+TEST(ReferencePhotonMapper, BadSettingsGiveClearErrorsAndEmptyOutput)
+{
+  CubeScene scene;
+  auto run = [&](const std::function<void(vtkReferencePhotonMapper*)>& set, const char* expect)
+  {
+    vtkNew<vtkReferencePhotonMapper> pm;
+    scene.SetUp(pm, 4);
+    pm->SetPasses(1);
+    pm->SetPhotonsPerPass(100);
+    set(pm);
+    vtkNew<vtkTest::ErrorObserver> obs, execObs;
+    pm->AddObserver(vtkCommand::ErrorEvent, obs);
+    pm->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, execObs);
+    pm->Update();
+    EXPECT_TRUE(obs->GetError()) << expect;
+    EXPECT_NE(obs->GetErrorMessage().find(expect), std::string::npos)
+      << "message: " << obs->GetErrorMessage();
+    EXPECT_EQ(pm->GetOutput()->GetNumberOfPoints(), 0);
+  };
+  run([](vtkReferencePhotonMapper* pm) { pm->SetAlpha(0.4); }, "Alpha is 0.4");
+  run([](vtkReferencePhotonMapper* pm) { pm->SetAlpha(1.0); }, "[0.5, 1)");
+  run([](vtkReferencePhotonMapper* pm) { pm->SetAlpha(std::nan("")); }, "Alpha");
+  run([](vtkReferencePhotonMapper* pm) { pm->SetPasses(0); }, "Passes is 0");
+  run([](vtkReferencePhotonMapper* pm) { pm->SetPhotonsPerPass(-3); }, "PhotonsPerPass is -3");
+  run([](vtkReferencePhotonMapper* pm) { pm->SetStreams(0); }, "Streams is 0");
+  run([](vtkReferencePhotonMapper* pm) { pm->SetInitialRadius(0); }, "InitialRadius is 0");
+  run([](vtkReferencePhotonMapper* pm) { pm->SetInitialRadius(-1); }, "InitialRadius is -1");
+  run([](vtkReferencePhotonMapper* pm) { pm->SetCamera(nullptr); }, "SetCamera");
+  // The radius schedule itself.
+  EXPECT_DOUBLE_EQ(vtkReferencePhotonMapper::PassRadius(2.0, 0.75, 1), 2.0);
+  EXPECT_NEAR(std::pow(vtkReferencePhotonMapper::PassRadius(2.0, 0.75, 3), 3),
+    8.0 * (1.75 / 2) * (2.75 / 3), 1e-12);
 }
