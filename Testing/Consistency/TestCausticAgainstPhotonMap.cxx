@@ -240,7 +240,8 @@ TEST(CausticAgainstPhotonMap, DraftPipelineMatchesTheStoredTruth)
       continue;
     }
     const double d = fresh.Value[v] - stored.Value[v];
-    const double se = std::sqrt(fresh.Error[v] * fresh.Error[v] + stored.Error[v] * stored.Error[v]);
+    const double se =
+      std::sqrt(fresh.Error[v] * fresh.Error[v] + stored.Error[v] * stored.Error[v]);
     failed += std::abs(d) > 4 * se + CheckBias * rms ? 1 : 0;
     ++values;
     d2 += d * d;
