@@ -3,8 +3,9 @@
 // beam onto a scattering slab in faint fog, where the unbiased vtkReferenceRenderer does not
 // converge (issue #19). The truth, Testing/Baselines/CausticBallLensSlab.vti (48 x 48, float `HDR`
 // and its `StandardError`), was computed once by vtkReferencePhotonMapper (stochastic progressive
-// photon mapping: TruthPasses passes of TruthPhotons photons); regenerate it by running this test
-// with REFRACTA_WRITE_CAUSTIC_TRUTH=<file.vti>.
+// photon mapping: TruthPasses = 128 passes of 50 000 photons and 16 view rays per pixel, seed 1;
+// 1218 s on the loaded 2-core machine; relative noise 1.65% over the image, 1.17% in the
+// caustic); regenerate it by running this test with REFRACTA_WRITE_CAUSTIC_TRUTH=<file.vti>.
 //
 // Checks:
 // 1. the stored truth still matches the code: a 16 x 16 image of the same camera (its pixel
@@ -56,8 +57,12 @@ constexpr int TruthSize = 48, CheckSize = 16, Grid = 24;
 constexpr int TruthPasses = 128, TruthPhotons = 50000, TruthViews = 16;
 constexpr int CheckPasses = 4;
 // Set from the measured errors (see the printed numbers and Documentation/Benchmarks.md).
-constexpr double CheckBias = 0.08, CheckRmse = 0.12;
-constexpr double DraftTolerance = 0.35, DraftRegionTolerance = 0.45;
+// Measured (pocl CPU device): recheck 0 of 600 values outside 4 SE + 0.05 RMS, relative RMSE 0
+// after the variances are taken out; draft pipeline 16.5% over the image, 14.6% in the caustic
+// (the truth's own noise: 1.65% and 1.17%). The draft bounds leave a third on top for other
+// devices' photon streams and rounding.
+constexpr double CheckBias = 0.05, CheckRmse = 0.05;
+constexpr double DraftTolerance = 0.22, DraftRegionTolerance = 0.20;
 
 // The scene: a 24^3 grid over the unit cube; glass ball (n = 1.5, radius 0.2, centre
 // (0.5, 0.55, 0.5), tanh edge 1.5 voxels wide, clear) whose paraxial focus n R / (2 (n - 1)) = 0.3
