@@ -16,15 +16,6 @@ double Largest(const Vec3& v, int ch, bool grey)
   return grey ? std::max(v.x, std::max(v.y, v.z)) : v[ch];
 }
 
-// Cosine-weighted direction about the unit normal n (pdf cos / pi).
-Vec3 SampleCosine(const Vec3& n, double u1, double u2)
-{
-  const double r = std::sqrt(u1), phi = 2 * Pi * u2;
-  Vec3 t, b;
-  Basis(n, t, b);
-  return Normalized(
-    (r * std::cos(phi)) * t + (r * std::sin(phi)) * b + std::sqrt(std::max(0.0, 1 - u1)) * n);
-}
 } // namespace
 
 Vec3 Scene::BackgroundRadiance(const Vec3& dLocal) const

@@ -17,6 +17,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkReferencePathTracer.h"
+#include "vtkReferenceView.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -46,6 +47,7 @@ using refracta::reference::Scene;
 using refracta::reference::ToVec3;
 using refracta::reference::Tracer;
 using refracta::reference::Vec3;
+using refracta::reference::View;
 
 inline unsigned char ToneMap(double v, double exposure)
 {
@@ -276,31 +278,21 @@ int vtkReferenceRenderer::RequestUpdateExtent(
   return 1;
 }
 
-int vtkReferenceRenderer::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+//------------------------------------------------------------------------------
+bool vtkReferenceRenderer::BuildScene(vtkImageData* medium, Scene& scene, View& view)
 {
-  const auto start = std::chrono::steady_clock::now();
-  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  vtkImageData* medium = vtkImageData::GetData(inputVector[0], 0);
-  if (!output)
-  {
-    vtkErrorMacro("No output image.");
-    return 0;
-  }
-  output->Initialize();
-
   vtkNew<vtkMediumValidator> validator;
   if (!medium || !validator->Validate(medium))
   {
     vtkErrorMacro("Input 0 is not a valid Refracta medium (a vtkImageData with the point arrays of "
                   "vtkRefractaMedium): "
       << (medium ? validator->GetErrorMessage() : "no input"));
-    return 0;
+    return false;
   }
   if (!this->Camera)
   {
     vtkErrorMacro("No camera: call SetCamera(vtkCamera*) before rendering.");
-    return 0;
+    return false;
   }
   for (int c = 0; c < 3; ++c)
   {
@@ -308,11 +300,10 @@ int vtkReferenceRenderer::RequestData(
     {
       vtkErrorMacro("BackgroundColor component " << c << " is " << this->BackgroundColor[c]
                                                  << "; it must be finite and >= 0.");
-      return 0;
+      return false;
     }
   }
 
-  Scene scene;
   scene.M.Load(medium);
   const Medium& m = scene.M;
 
@@ -331,7 +322,7 @@ int vtkReferenceRenderer::RequestData(
                     "or 4 components (RGB or RGBA); got dimensions "
         << dims[0] << " x " << dims[1] << " x " << dims[2] << " and "
         << (s ? s->GetNumberOfComponents() : 0) << "-component scalars.");
-      return 0;
+      return false;
     }
     const double scale = s->GetDataType() == VTK_UNSIGNED_CHAR ? 1.0 / 255.0 : 1.0;
     scene.Env.W = dims[0];
@@ -346,7 +337,7 @@ int vtkReferenceRenderer::RequestData(
         {
           vtkErrorMacro("EnvironmentMap pixel " << i << " component " << c << " is " << v
                                                 << "; radiance must be finite and >= 0.");
-          return 0;
+          return false;
         }
         scene.Env.Rgb[3 * i + c] = v;
       }
@@ -361,7 +352,7 @@ int vtkReferenceRenderer::RequestData(
   if (!surfaceError.empty())
   {
     vtkErrorMacro("Surfaces: " << surfaceError << ".");
-    return 0;
+    return false;
   }
   // LightRadius = 0 is a delta light, as in every pass. This estimator reaches a point or spot
   // light only by tracing a (possibly curved) ray that hits its sphere, which a point cannot be:
@@ -373,14 +364,14 @@ int vtkReferenceRenderer::RequestData(
                   "connects paths to point and spot lights by hitting their sphere and cannot "
                   "estimate a delta light; set LightRadius > 0 (world units; e.g. "
       << 0.01 * m.Diagonal << ", 1% of this medium's diagonal).");
-    return 0;
+    return false;
   }
   const std::string lightError = BuildLights(
     m, this->Lights, this->Camera, this->DirectionalLightAngularRadius, radius, scene.Lights);
   if (!lightError.empty())
   {
     vtkErrorMacro(<< lightError);
-    return 0;
+    return false;
   }
   scene.MaxDepth = this->MaximumScatteringDepth;
   scene.RouletteDepth = this->RouletteDepth;
@@ -405,16 +396,45 @@ int vtkReferenceRenderer::RequestData(
   if (glm::length(vup) < 1e-12)
   {
     vtkErrorMacro("The camera's view up is parallel to its direction of projection.");
-    return 0;
+    return false;
   }
   vup = Normalized(vup);
-  const Vec3 right = glm::cross(fwd, vup);
-  const int W = this->ImageSize[0], H = this->ImageSize[1];
-  const double aspect = static_cast<double>(W) / H;
-  const bool parallel = cam->GetParallelProjection() != 0;
-  const double halfH = parallel ? cam->GetParallelScale()
-                                : std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2);
+  view.Eye = eye;
+  view.Forward = fwd;
+  view.Up = vup;
+  view.Right = glm::cross(fwd, vup);
+  view.Width = this->ImageSize[0];
+  view.Height = this->ImageSize[1];
+  view.Aspect = static_cast<double>(view.Width) / view.Height;
+  view.Parallel = cam->GetParallelProjection() != 0;
+  view.HalfHeight = view.Parallel ? cam->GetParallelScale()
+                                  : std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2);
+  return true;
+}
 
+//------------------------------------------------------------------------------
+int vtkReferenceRenderer::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  vtkImageData* medium = vtkImageData::GetData(inputVector[0], 0);
+  if (!output)
+  {
+    vtkErrorMacro("No output image.");
+    return 0;
+  }
+  output->Initialize();
+
+  Scene scene;
+  View view;
+  if (!this->BuildScene(medium, scene, view))
+  {
+    return 0;
+  }
+  const Medium& m = scene.M;
+  const int W = view.Width, H = view.Height;
+  const double radius = this->LightRadius;
   const int spp = this->SamplesPerPixel;
   const bool grey = m.Grey;
   const bool jitter = this->PixelJitter;
@@ -434,19 +454,8 @@ int vtkReferenceRenderer::RequestData(
       for (int s = 0; s < spp; ++s)
       {
         const double jx = jitter ? rng.Uniform() : 0.5, jy = jitter ? rng.Uniform() : 0.5;
-        const double sx = (2 * (i + jx) / W - 1) * aspect * halfH;
-        const double sy = (2 * (j + jy) / H - 1) * halfH;
         Vec3 o, d;
-        if (parallel)
-        {
-          o = eye + sx * right + sy * vup;
-          d = fwd;
-        }
-        else
-        {
-          o = eye;
-          d = Normalized(fwd + sx * right + sy * vup);
-        }
+        view.Ray(i, j, jx, jy, o, d);
         Vec3 val(0.0);
         bool trunc = false;
         if (grey)
@@ -503,7 +512,26 @@ int vtkReferenceRenderer::RequestData(
     this->UpdateProgress(static_cast<double>(b + 1) / blocks);
   }
 
-  // Output.
+  this->WriteImage(output, W, H, mean, stderrs);
+
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  auto addField = [output](const char* name, double value, bool integer)
+  { vtkReferenceRenderer::AddFieldValue(output, name, value, integer); };
+  addField("SamplesPerPixel", spp, true);
+  addField("RenderSeconds", seconds, false);
+  addField("Seed", static_cast<double>(this->Seed), false);
+  addField("TruncatedPaths", static_cast<double>(truncated.load()), false);
+  addField("NonFiniteSamples", static_cast<double>(nonFinite.load()), false);
+  addField("LightRadius", radius, false);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkReferenceRenderer::WriteImage(vtkImageData* output, int W, int H,
+  const std::vector<double>& mean, const std::vector<double>& stderrs)
+{
+  const int64_t numPixels = static_cast<int64_t>(W) * H;
   output->SetExtent(0, W - 1, 0, H - 1, 0, 0);
   output->SetSpacing(1, 1, 1);
   output->SetOrigin(0, 0, 0);
@@ -532,33 +560,25 @@ int vtkReferenceRenderer::RequestData(
   output->GetPointData()->AddArray(hdr);
   output->GetPointData()->AddArray(se);
   output->GetPointData()->SetScalars(rgb);
+}
 
-  const double seconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  auto addField = [output](const char* name, double value, bool integer)
+void vtkReferenceRenderer::AddFieldValue(
+  vtkImageData* output, const char* name, double value, bool integer)
+{
+  if (integer)
   {
-    if (integer)
-    {
-      vtkNew<vtkIntArray> a;
-      a->SetName(name);
-      a->InsertNextValue(static_cast<int>(value));
-      output->GetFieldData()->AddArray(a);
-    }
-    else
-    {
-      vtkNew<vtkDoubleArray> a;
-      a->SetName(name);
-      a->InsertNextValue(value);
-      output->GetFieldData()->AddArray(a);
-    }
-  };
-  addField("SamplesPerPixel", spp, true);
-  addField("RenderSeconds", seconds, false);
-  addField("Seed", static_cast<double>(this->Seed), false);
-  addField("TruncatedPaths", static_cast<double>(truncated.load()), false);
-  addField("NonFiniteSamples", static_cast<double>(nonFinite.load()), false);
-  addField("LightRadius", radius, false);
-  return 1;
+    vtkNew<vtkIntArray> a;
+    a->SetName(name);
+    a->InsertNextValue(static_cast<int>(value));
+    output->GetFieldData()->AddArray(a);
+  }
+  else
+  {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->InsertNextValue(value);
+    output->GetFieldData()->AddArray(a);
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -117,6 +117,19 @@
 #include "vtkImageAlgorithm.h"
 #include "vtkSmartPointer.h" // for members
 
+#include <vector> // for WriteImage
+
+#ifndef __VTK_WRAP__
+namespace refracta
+{
+namespace reference
+{
+struct Scene;
+struct View;
+}
+}
+#endif
+
 class vtkCamera;
 class vtkLight;
 class vtkLightCollection;
@@ -337,6 +350,29 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   vtkMTimeType GetMTime() override;
+
+#ifndef __VTK_WRAP__
+  /**
+   * Validates the medium and this renderer's settings and builds what every estimator of the
+   * module shares: the medium, lights, surfaces and background in the grid-local frame, the
+   * tracers with the integrator settings, and the camera. False (after vtkErrorMacro naming the
+   * bad input) when something is invalid.
+   */
+  bool BuildScene(
+    vtkImageData* medium, refracta::reference::Scene& scene, refracta::reference::View& view);
+#endif
+
+  /**
+   * Writes the W x H output arrays `HDR`, `StandardError` and `RGB` (the active scalars) from
+   * per-pixel RGB means and standard errors (3 values a pixel).
+   */
+  void WriteImage(vtkImageData* output, int W, int H, const std::vector<double>& mean,
+    const std::vector<double>& stderrs);
+
+  /**
+   * Adds a one-value field data array (vtkIntArray when integer, else vtkDoubleArray).
+   */
+  static void AddFieldValue(vtkImageData* output, const char* name, double value, bool integer);
 
   vtkSmartPointer<vtkCamera> Camera;
   vtkSmartPointer<vtkLightCollection> Lights;

@@ -90,6 +90,15 @@ inline Vec3 SampleCone(const Vec3& axis, double omcMax, double u1, double u2)
   Basis(axis, t, b);
   return Normalized((sinT * std::cos(phi)) * t + (sinT * std::sin(phi)) * b + cosT * axis);
 }
+/// Cosine-weighted direction about the unit normal n (pdf cos / pi).
+inline Vec3 SampleCosine(const Vec3& n, double u1, double u2)
+{
+  const double r = std::sqrt(u1), phi = 2 * Pi * u2;
+  Vec3 t, b;
+  Basis(n, t, b);
+  return Normalized(
+    (r * std::cos(phi)) * t + (r * std::sin(phi)) * b + std::sqrt(std::max(0.0, 1 - u1)) * n);
+}
 } // namespace reference
 } // namespace refracta
 

@@ -8,16 +8,22 @@
 // resolution. Each image gets two errors (relative RMSE over the pixels that see the medium, where
 // the reference has noise: background pixels are exact in both renderers, and over the scene's
 // region of interest, e.g. the caustic):
-// - against a converged vtkReferenceRenderer image of the same scene with the same extended
-//   lights (at the finest resolution of the sweep), with the reference's own Monte Carlo noise
-//   taken out (the expected squared difference is the true squared error plus the reference's
-//   variance, which its StandardError image gives). This is the ground truth where the reference
-//   converged within its time budget (relative noise <= 1% over the image and 2% in the region);
+// - against a converged reference image of the same scene with the same extended lights (at the
+//   finest resolution of the sweep), with the reference's own Monte Carlo noise taken out (the
+//   expected squared difference is the true squared error plus the reference's variance, which
+//   its StandardError image gives). The reference is vtkReferenceRenderer (unbiased path tracing)
+//   where it converges, and vtkReferencePhotonMapper (stochastic progressive photon mapping, a
+//   consistent estimator) on the scenes where light is refracted before it scatters (the glass
+//   sphere in fog, the GRIN lens), where the path tracer does not converge (issue #19). This is
+//   the ground truth where the reference converged within its time budget (relative noise <= 2%
+//   over the image and 3% in the region);
 // - against the pipeline's own most accurate setting (every knob at its most accurate value):
 //   how far a knob's value is from what the pipeline converges to. Where refracted light makes
 //   the unbiased reference too noisy to converge (caustics), this is the error that is shown.
-// The reference renderer's own curve (error against time as its samples per pixel grow, another
-// seed) gives how much faster the pipeline reaches 5% and 2% error than unbiased Monte Carlo.
+// The reference's own curve (error against time as its samples per pixel or passes grow, another
+// seed) gives how much faster the pipeline reaches 5% and 2% error than the reference; on the
+// photon-mapped scenes the unbiased renderer's time to those errors is extrapolated from its
+// noise after a short run (noise ~ time^-1/2), for the speed-up against unbiased Monte Carlo.
 //
 // Outputs in --out: accuracy_time.csv (every pipeline run), reference_curve.csv, presets.csv,
 // pareto.csv, speed_up.csv, accuracy_<scene>.png (log-log error against time: one curve per knob,
@@ -30,7 +36,7 @@
 //
 //   BenchmarkAccuracyTime [--out DIR] [--image W] [--base-size N] [--reference-seconds S]
 //     [--reference-spp MAX] [--reference-curve-max S] [--runs R] [--scenes a,b,...]
-//     [--knobs a,b,...] [--cache DIR] [--smoke]
+//     [--knobs a,b,...] [--cache DIR] [--photons-per-pass N] [--unbiased-seconds S] [--smoke]
 #include "RefractaBenchmark.h"
 #include "RefractaPipeline.h"
 #include "RefractaReferenceImages.h"
@@ -47,6 +53,7 @@
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
+#include "vtkReferencePhotonMapper.h"
 #include "vtkReferenceRenderer.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
@@ -71,6 +78,7 @@ using refracta::bench::NoiseLevel;
 using refracta::bench::PipelineKnobs;
 using refracta::bench::ReadImage;
 using refracta::bench::RelativeError;
+using refracta::bench::RenderPhotonReference;
 using refracta::bench::RenderReference;
 using refracta::bench::Table;
 using refracta::scenes::Scene;
@@ -84,6 +92,9 @@ struct Settings
   int ReferenceSpp = 65536;      // at most; the time budget decides
   double ReferenceSeconds = 150; // budget of the converged reference per scene
   int ReferenceCurveMax = 256;
+  int PhotonsPerPass = 50000;  // the photon mapper's, on the photon-mapped scenes
+  int ViewSamples = 16;        // its view rays per pixel and pass
+  double UnbiasedSeconds = 20; // the short path tracer run whose noise is extrapolated
   int Runs = 3;
   std::vector<std::string> Scenes;
   std::vector<std::string> KnobNames; // empty: every knob
@@ -230,13 +241,30 @@ double WhiteScale(const Image& reference)
   return p99 > 0 ? 1.0 / p99 : 1.0;
 }
 
+// The scenes whose ground truth is the photon mapper: light refracted before it scatters, which
+// the unbiased path tracer does not converge on (Documentation/Benchmarks.md).
+bool UsesPhotonMapper(const std::string& scene)
+{
+  return scene == "glass-sphere-in-fog" || scene == "grin-lens";
+}
+
+// The photon mapper's image of `scene` after `passes` passes.
+Image PhotonReference(
+  const Scene& scene, int passes, unsigned int seed, const Settings& settings, vtkImageData* out)
+{
+  return RenderPhotonReference(
+    scene, settings.Image, passes, settings.PhotonsPerPass, settings.ViewSamples, seed, out);
+}
+
 // The converged reference, read from the cache directory when an earlier run left it there.
 Image ConvergedReference(const Scene& scene, int resolution, const Settings& settings)
 {
+  const bool photonMap = UsesPhotonMapper(scene.Name);
   std::ostringstream name;
   name << settings.Cache << "/" << scene.Name << "_" << resolution << "_" << settings.Image << "_"
        << settings.ReferenceSeconds << "s_r" << scene.LightRadius << "_a"
-       << scene.LightAngularRadius << ".vti";
+       << scene.LightAngularRadius
+       << (photonMap ? "_sppm" + std::to_string(settings.PhotonsPerPass) : std::string()) << ".vti";
   struct stat info;
   if (!settings.Cache.empty() && stat(name.str().c_str(), &info) == 0)
   {
@@ -249,6 +277,28 @@ Image ConvergedReference(const Scene& scene, int resolution, const Settings& set
       std::cout << "  reference read from " << name.str() << "\n";
       return image;
     }
+  }
+  if (photonMap)
+  {
+    // Passes: the largest power of two (>= 8) that fits the time budget, timed on 4.
+    const double t4 = PhotonReference(scene, 4, 3, settings, nullptr).Seconds;
+    int passes = 8;
+    while (t4 * (2 * passes) / 4 <= settings.ReferenceSeconds)
+    {
+      passes *= 2;
+    }
+    vtkNew<vtkImageData> output;
+    const Image image = PhotonReference(scene, passes, 1, settings, output);
+    if (!settings.Cache.empty())
+    {
+      vtkNew<vtkXMLImageDataWriter> writer;
+      writer->SetInputData(output);
+      writer->SetFileName(name.str().c_str());
+      writer->Write();
+    }
+    std::cout << "  converged reference (photon mapper): " << passes << " passes of "
+              << settings.PhotonsPerPass << " photons in " << image.Seconds << " s\n";
+    return image;
   }
   // Samples per pixel: the largest power of two that fits the time budget, timed on 16.
   const double t16 = RenderReference(scene, settings.Image, 16, 3).Seconds;
@@ -307,6 +357,11 @@ struct SceneResult
   double ImageNoise = 0;
   double RegionNoise = 0;
   bool Converged = false;
+  bool PhotonMapped = false; // the truth is the photon mapper's
+  // The unbiased path tracer on photon-mapped scenes: its noise after a short run of that many
+  // seconds (for its extrapolated time to an error).
+  double UnbiasedNoise = 0;
+  double UnbiasedSeconds = 0;
   std::vector<Point> Points;          // pipeline runs (sweeps)
   std::vector<Point> ReferencePoints; // the reference renderer's own curve
   std::vector<Point> Presets;
@@ -333,9 +388,10 @@ std::vector<Point> ParetoFront(std::vector<Point> points, const SceneResult& res
 
 // Time at which a curve of (seconds, error) first reaches `target`, interpolated log-log between
 // its points; < 0 when it never does. `extrapolate` continues a Monte Carlo curve past its last
-// point with the error ~ time^(-1/2) law.
+// point with the error ~ time^(-exponent) law (1/2 for unbiased Monte Carlo; Alpha / 2 = 1/3,
+// the noise rate of the photon mapper's schedule, for progressive photon mapping).
 double TimeToError(const std::vector<std::pair<double, double>>& curve, double target,
-  bool extrapolate, bool* extrapolated)
+  bool extrapolate, bool* extrapolated, double exponent = 0.5)
 {
   *extrapolated = false;
   for (size_t i = 0; i < curve.size(); ++i)
@@ -357,7 +413,7 @@ double TimeToError(const std::vector<std::pair<double, double>>& curve, double t
   {
     *extrapolated = true;
     const double ratio = curve.back().second / target;
-    return curve.back().first * ratio * ratio;
+    return curve.back().first * std::pow(ratio, 1.0 / exponent);
   }
   return -1.0;
 }
@@ -386,6 +442,9 @@ bool ParseArguments(int argc, char* argv[], Settings& settings)
       settings.ReferenceSpp = 16;
       settings.ReferenceSeconds = 1;
       settings.ReferenceCurveMax = 4;
+      settings.PhotonsPerPass = 2000;
+      settings.ViewSamples = 1;
+      settings.UnbiasedSeconds = 0.5;
       settings.Runs = 1;
       continue;
     }
@@ -409,6 +468,12 @@ bool ParseArguments(int argc, char* argv[], Settings& settings)
       settings.ReferenceSeconds = std::atof(value.c_str());
     else if (key == "--reference-curve-max")
       settings.ReferenceCurveMax = std::atoi(value.c_str());
+    else if (key == "--photons-per-pass")
+      settings.PhotonsPerPass = std::atoi(value.c_str());
+    else if (key == "--view-samples")
+      settings.ViewSamples = std::atoi(value.c_str());
+    else if (key == "--unbiased-seconds")
+      settings.UnbiasedSeconds = std::atof(value.c_str());
     else if (key == "--runs")
       settings.Runs = std::atoi(value.c_str());
     else if (key == "--scenes")
@@ -419,15 +484,17 @@ bool ParseArguments(int argc, char* argv[], Settings& settings)
     {
       std::cerr << "unknown option " << key
                 << "; valid: --out --cache --image --base-size --reference-spp "
-                   "--reference-seconds --reference-curve-max --runs --scenes --knobs --smoke\n";
+                   "--reference-seconds --reference-curve-max --photons-per-pass --view-samples "
+                   "--unbiased-seconds --runs --scenes --knobs --smoke\n";
       return false;
     }
   }
   if (settings.Image < 4 || settings.BaseSize < 4 || settings.ReferenceSpp < 1 ||
-    settings.ReferenceCurveMax < 1 || settings.Runs < 1)
+    settings.ReferenceCurveMax < 1 || settings.Runs < 1 || settings.PhotonsPerPass < 1 ||
+    settings.ViewSamples < 1)
   {
-    std::cerr << "--image and --base-size must be >= 4, --reference-spp, --reference-curve-max "
-                 "and --runs >= 1\n";
+    std::cerr << "--image and --base-size must be >= 4, --reference-spp, --reference-curve-max, "
+                 "--photons-per-pass, --view-samples and --runs >= 1\n";
     return false;
   }
   return true;
@@ -479,7 +546,8 @@ private:
   std::map<std::string, SceneResult> Results;
   Table Runs{ { "scene", "knob", "value", "seconds", "error vs reference", "region vs reference",
     "error vs finest", "knob error", "knob region error" } };
-  Table ReferenceRuns{ { "scene", "samples per pixel", "seconds", "error", "region error" } };
+  Table ReferenceRuns{ { "scene", "estimator", "samples per pixel or passes", "seconds", "error",
+    "region error" } };
   Table Presets{ { "preset", "target", "photons", "photon min step", "octree eps",
     "lattice tolerance", "lattice block", "view step", "resolution", "scene", "seconds",
     "error vs reference", "region vs reference", "error vs finest", "region vs finest" } };
@@ -604,6 +672,34 @@ void Benchmark::ReferenceCurve(const std::string& name)
   SceneResult& result = this->Results[name];
   const Scene& scene = this->SceneAt(name, this->Most.Size);
   const std::vector<bool>& all = result.Seen;
+  if (result.PhotonMapped)
+  {
+    // The photon mapper's own curve (another seed) against the converged photon-mapped truth,
+    // and the unbiased path tracer's noise after a short run.
+    for (int passes = 2; passes <= this->Config.ReferenceCurveMax; passes *= 2)
+    {
+      const Image image = PhotonReference(scene, passes, 2, this->Config, nullptr);
+      Point point;
+      point.Knob = "reference";
+      point.Value = passes;
+      point.Seconds = image.Seconds;
+      point.ReferenceError = RelativeError(image, result.Reference, all);
+      point.ReferenceRegionError = RelativeError(image, result.Reference, result.Region);
+      result.ReferencePoints.push_back(point);
+      this->ReferenceRuns.AddRow(
+        { name, "photon mapper", std::to_string(passes), Table::Format(point.Seconds),
+          Table::Format(point.ReferenceError), Table::Format(point.ReferenceRegionError) });
+    }
+    const double t16 = RenderReference(scene, this->Config.Image, 16, 3).Seconds;
+    const int spp = std::max(
+      16, static_cast<int>(16 * this->Config.UnbiasedSeconds / std::max(t16, 1e-3)) / 16 * 16);
+    const Image unbiased = RenderReference(scene, this->Config.Image, spp, 4);
+    result.UnbiasedNoise = NoiseLevel(unbiased, all);
+    result.UnbiasedSeconds = unbiased.Seconds;
+    std::cout << "  unbiased path tracer: " << spp << " samples per pixel in " << unbiased.Seconds
+              << " s, noise " << result.UnbiasedNoise << "\n";
+    return;
+  }
   for (int spp = 1; spp <= this->Config.ReferenceCurveMax; spp *= 2)
   {
     const Image image = RenderReference(scene, this->Config.Image, spp, 2);
@@ -614,8 +710,9 @@ void Benchmark::ReferenceCurve(const std::string& name)
     point.ReferenceError = RelativeError(image, result.Reference, all);
     point.ReferenceRegionError = RelativeError(image, result.Reference, result.Region);
     result.ReferencePoints.push_back(point);
-    this->ReferenceRuns.AddRow({ name, std::to_string(spp), Table::Format(point.Seconds),
-      Table::Format(point.ReferenceError), Table::Format(point.ReferenceRegionError) });
+    this->ReferenceRuns.AddRow(
+      { name, "path tracer", std::to_string(spp), Table::Format(point.Seconds),
+        Table::Format(point.ReferenceError), Table::Format(point.ReferenceRegionError) });
   }
 }
 
@@ -713,7 +810,9 @@ void Benchmark::Plot(const std::string& name)
   refracta::bench::WritePlot(this->Config.Out + "/knobs_" + name + ".png",
     name + ": each knob's own error (vs its most accurate value)", "seconds", "relative RMSE",
     knobs);
-  refracta::bench::Series reference{ "reference Monte Carlo", {}, {} };
+  refracta::bench::Series reference{
+    result.PhotonMapped ? "reference photon mapper" : "reference Monte Carlo", {}, {}
+  };
   for (const Point& p : result.ReferencePoints)
   {
     reference.X.push_back(p.Seconds);
@@ -747,9 +846,10 @@ void Benchmark::Plot(const std::string& name)
 void Benchmark::Report(const std::vector<std::string>& names)
 {
   Table front({ "scene", "knob", "value", "seconds", "error", "region error" });
-  Table speedUp({ "scene", "reference noise (image / region)", "pipeline best error",
-    "pipeline s to 5%", "reference s to 5%", "speed-up at 5%", "pipeline s to 2%",
-    "reference s to 2%", "speed-up at 2%" });
+  Table speedUp({ "scene", "truth", "reference noise (image / region)", "pipeline best error",
+    "pipeline s to 5%", "reference s to 5%", "speed-up at 5%", "unbiased s to 5%",
+    "speed-up vs unbiased at 5%", "pipeline s to 2%", "reference s to 2%", "speed-up at 2%",
+    "unbiased s to 2%", "speed-up vs unbiased at 2%" });
   for (const std::string& name : names)
   {
     const SceneResult& result = this->Results[name];
@@ -768,7 +868,7 @@ void Benchmark::Report(const std::vector<std::string>& names)
     {
       referenceCurve.emplace_back(p.Seconds, p.ReferenceError);
     }
-    std::vector<std::string> row = { name,
+    std::vector<std::string> row = { name, result.PhotonMapped ? "photon mapper" : "path tracer",
       Table::Format(result.ImageNoise) + " / " + Table::Format(result.RegionNoise),
       result.Converged ? Table::Format(pareto.back().ReferenceError) : "not measurable" };
     for (double target : { 0.05, 0.02 })
@@ -777,31 +877,42 @@ void Benchmark::Report(const std::vector<std::string>& names)
       const double tPipeline = TimeToError(frontCurve, target, false, &unused);
       if (!result.Converged)
       {
-        // The reference's own noise after its budget, extrapolated with noise ~ time^(-1/2),
+        // The reference's own noise after its budget, extrapolated with noise ~ time^(-1/2)
+        // (time^(-1/3) for the photon mapper),
         // says how long unbiased Monte Carlo would need; the pipeline's error against it cannot
         // be measured.
-        const double tReference =
-          result.Reference.Seconds * std::pow(result.ImageNoise / target, 2.0);
+        const double tReference = result.Reference.Seconds *
+          std::pow(result.ImageNoise / target, result.PhotonMapped ? 3.0 : 2.0);
         row.push_back("-");
         row.push_back(Table::Format(tReference) + "*");
         row.push_back("not measurable");
+        row.push_back("-");
+        row.push_back("-");
         continue;
       }
-      const double tReference = TimeToError(referenceCurve, target, true, &extrapolated);
+      const double tReference = TimeToError(
+        referenceCurve, target, true, &extrapolated, result.PhotonMapped ? 1.0 / 3.0 : 0.5);
       row.push_back(tPipeline < 0 ? "not reached" : Table::Format(tPipeline));
       row.push_back(Table::Format(tReference) + (extrapolated ? "*" : ""));
       row.push_back(tPipeline < 0 ? "-" : Table::Format(tReference / tPipeline));
+      // The unbiased path tracer: the reference itself, or on photon-mapped scenes its noise after
+      // a short run extrapolated with noise ~ time^(-1/2) (a lower bound: it has no bias).
+      const double tUnbiased = result.PhotonMapped
+        ? result.UnbiasedSeconds * std::pow(result.UnbiasedNoise / target, 2.0)
+        : tReference;
+      row.push_back(Table::Format(tUnbiased) + (result.PhotonMapped || extrapolated ? "*" : ""));
+      row.push_back(tPipeline < 0 ? "-" : Table::Format(tUnbiased / tPipeline));
     }
     speedUp.AddRow(row);
     this->Plot(name);
   }
   this->Runs.Print("Accuracy and time: one knob at a time from the base setting");
-  this->ReferenceRuns.Print(
-    "Reference renderer: error against time (seed 2 against the converged seed-1 image)");
+  this->ReferenceRuns.Print("Reference estimators: error against time (seed 2 against the "
+                            "converged seed-1 image of the same estimator)");
   this->Presets.Print("Quality presets chosen from the sweep, measured");
   front.Print("Pareto front per scene (error vs reference where it converged, else vs finest)");
-  speedUp.Print("Speed-up of the pipeline over the reference renderer at equal error (* "
-                "extrapolated with error ~ time^-1/2)");
+  speedUp.Print("Speed-up of the pipeline over the reference at equal error (* extrapolated: "
+                "error ~ time^-1/2 for the path tracer, time^-1/3 for the photon mapper)");
   this->Runs.WriteCsv(this->Config.Out + "/accuracy_time.csv");
   this->ReferenceRuns.WriteCsv(this->Config.Out + "/reference_curve.csv");
   this->Presets.WriteCsv(this->Config.Out + "/presets.csv");
@@ -836,6 +947,7 @@ int Benchmark::Run()
     std::cout << name << "\n";
     SceneResult& result = this->Results[name];
     const Scene& finest = this->SceneAt(name, this->Most.Size);
+    result.PhotonMapped = UsesPhotonMapper(name);
     result.Reference = ConvergedReference(finest, this->Most.Size, this->Config);
     result.Region = RegionMask(finest, this->Config.Image, this->Config.Image);
     result.Seen.assign(result.Region.size(), false);

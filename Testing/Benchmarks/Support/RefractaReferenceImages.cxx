@@ -7,6 +7,7 @@
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkReferencePhotonMapper.h"
 #include "vtkReferenceRenderer.h"
 
 #include <algorithm>
@@ -53,6 +54,35 @@ Image RenderReference(
   reference->SetLightRadius(scene.LightRadius);
   reference->SetDirectionalLightAngularRadius(scene.LightAngularRadius);
   reference->SetSamplesPerPixel(spp);
+  reference->SetSeed(seed);
+  const auto start = std::chrono::steady_clock::now();
+  reference->Update();
+  Image image = ReadImage(reference->GetOutput());
+  image.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (output)
+  {
+    output->ShallowCopy(reference->GetOutput());
+  }
+  return image;
+}
+
+Image RenderPhotonReference(const scenes::Scene& scene, int size, int passes, int photons,
+  int viewSamples, unsigned int seed, vtkImageData* output)
+{
+  vtkNew<vtkReferencePhotonMapper> reference;
+  reference->SetInputData(scene.Medium);
+  reference->SetCamera(scene.Camera);
+  for (const auto& light : scene.Lights)
+  {
+    reference->AddLight(light);
+  }
+  reference->SetImageSize(size, size);
+  reference->SetBackgroundColor(scene.Background[0], scene.Background[1], scene.Background[2]);
+  reference->SetLightRadius(scene.LightRadius);
+  reference->SetDirectionalLightAngularRadius(scene.LightAngularRadius);
+  reference->SetPasses(passes);
+  reference->SetPhotonsPerPass(photons);
+  reference->SetSamplesPerPixel(viewSamples);
   reference->SetSeed(seed);
   const auto start = std::chrono::steady_clock::now();
   reference->Update();

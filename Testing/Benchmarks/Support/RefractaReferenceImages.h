@@ -36,6 +36,16 @@ Image RenderReference(
   const scenes::Scene& scene, int size, int spp, unsigned int seed, vtkImageData* output = nullptr);
 
 /**
+ * Render `scene` like RenderReference, with the consistent estimator vtkReferencePhotonMapper
+ * (stochastic progressive photon mapping; for scenes where light is refracted before it scatters,
+ * which the unbiased renderer does not converge on): `passes` passes of `photons` photons and
+ * `viewSamples` view rays per pixel, radius and alpha at their defaults. Its `Error` is the stream
+ * estimate of the noise (not the kernel's bias, which falls with the passes).
+ */
+Image RenderPhotonReference(const scenes::Scene& scene, int size, int passes, int photons,
+  int viewSamples, unsigned int seed, vtkImageData* output = nullptr);
+
+/**
  * Relative RMSE of `image` against `reference` over the masked pixels with the reference's
  * variance taken out: E[(a - r)^2] = (a - truth)^2 + var(r) for an unbiased r independent of a,
  * so sqrt(max(0, sum (a - r)^2 - sum SE^2) / sum r^2).
