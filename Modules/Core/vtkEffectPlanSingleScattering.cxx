@@ -38,12 +38,14 @@ void vtkEffectPlan::DecideSingleScatteringMethod(vtkSceneAnalysis* analysis)
 {
   std::ostringstream why;
   const char* photonsOnly = nullptr;
+  // Surface lighting forced on in a scene without surfaces lights nothing: no reason for photons.
+  const bool litSurfaces = this->Enabled[SURFACE_LIGHTING] && analysis->GetNumberOfSurfaces() > 0;
   // Refraction forced on in a medium of uniform n (estimate 0) bends nothing: light rays still fit.
   if (this->Enabled[REFRACTION] && this->Estimates[REFRACTION] > 0.0)
   {
     photonsOnly = "refraction is on: light paths curve";
   }
-  else if (this->Enabled[SURFACE_LIGHTING])
+  else if (litSurfaces)
   {
     photonsOnly = "lit surfaces: their irradiance comes from photons";
   }
@@ -57,7 +59,7 @@ void vtkEffectPlan::DecideSingleScatteringMethod(vtkSceneAnalysis* analysis)
     this->MethodReason = "single scattering off (photons run only for lit surfaces)";
     return;
   }
-  const bool photonsNeeded = this->Enabled[SURFACE_LIGHTING] || analysis->GetEnvironmentLight();
+  const bool photonsNeeded = litSurfaces || analysis->GetEnvironmentLight();
   if (this->SingleScatteringMethod != AUTOMATIC_METHOD)
   {
     // A forced straight-ray method is honoured where it is an approximation (refraction on: the
