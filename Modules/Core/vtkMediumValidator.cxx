@@ -5,6 +5,7 @@
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
 #include "vtkMatrix3x3.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -255,4 +256,29 @@ void vtkMediumValidator::PrintSelf(ostream& os, vtkIndent indent)
   {
     os << indent.GetNextIndent() << e << "\n";
   }
+}
+
+//------------------------------------------------------------------------------
+bool vtkMediumValidator::CheckLight(vtkLight* light, int index, std::string& error)
+{
+  double pw[3], fw[3], colour[3];
+  light->GetTransformedPosition(pw);
+  light->GetTransformedFocalPoint(fw);
+  light->GetDiffuseColor(colour);
+  const double intensity = light->GetIntensity();
+  bool finite = std::isfinite(intensity);
+  for (int c = 0; c < 3; ++c)
+  {
+    finite = finite && std::isfinite(pw[c]) && std::isfinite(fw[c]) && std::isfinite(colour[c]);
+  }
+  if (!finite || intensity < 0 || colour[0] < 0 || colour[1] < 0 || colour[2] < 0)
+  {
+    std::ostringstream os;
+    os << "Light " << index
+       << " has a non-finite position, focal point, colour or intensity, or a negative intensity "
+          "or colour; all must be finite and >= 0.";
+    error = os.str();
+    return false;
+  }
+  return true;
 }

@@ -35,6 +35,7 @@
 
 class vtkDataArray;
 class vtkImageData;
+class vtkLight;
 
 class REFRACTACORE_EXPORT vtkMediumValidator : public vtkObject
 {
@@ -48,6 +49,13 @@ public:
    * problem found (at most one message per array). Does not modify the medium.
    */
   bool Validate(vtkImageData* medium);
+
+  /**
+   * Whether a switched-on light can emit: a finite position, focal point, colour and intensity,
+   * and no negative intensity or colour. When not, `error` says so, naming the light by `index`
+   * (its place in the caller's list). Every light pass checks its lights with this.
+   */
+  static bool CheckLight(vtkLight* light, int index, std::string& error);
 
   /**
    * All problems found by the last Validate(), one per line; empty when it passed.

@@ -277,23 +277,17 @@ bool vtkLightRaySingleScattering::SetUpLights(Internals& run)
     {
       continue;
     }
+    std::string lightError;
+    if (!vtkMediumValidator::CheckLight(light, index, lightError))
+    {
+      vtkErrorMacro(<< lightError);
+      return false;
+    }
     double pw[3], fw[3], colour[3];
     light->GetTransformedPosition(pw);
     light->GetTransformedFocalPoint(fw);
     light->GetDiffuseColor(colour);
     const double intensity = light->GetIntensity();
-    bool finite = std::isfinite(intensity);
-    for (int c = 0; c < 3; ++c)
-    {
-      finite = finite && std::isfinite(pw[c]) && std::isfinite(fw[c]) && std::isfinite(colour[c]);
-    }
-    if (!finite || intensity < 0 || colour[0] < 0 || colour[1] < 0 || colour[2] < 0)
-    {
-      vtkErrorMacro("Light " << index
-                             << " has a non-finite position, focal point, colour or intensity, or "
-                                "a negative intensity or colour; all must be finite and >= 0.");
-      return false;
-    }
     const bool positional = light->GetPositional();
     const bool spot = positional && light->GetConeAngle() < 90.0;
     double p[3], axisWorld[3] = { fw[0] - pw[0], fw[1] - pw[1], fw[2] - pw[2] }, axis[3];

@@ -229,23 +229,17 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
     {
       continue;
     }
+    std::string lightError;
+    if (!vtkMediumValidator::CheckLight(light, lightIndex, lightError))
+    {
+      vtkErrorMacro(<< lightError);
+      return false;
+    }
     double pw[3], fw[3], colour[3];
     light->GetTransformedPosition(pw);
     light->GetTransformedFocalPoint(fw);
     light->GetDiffuseColor(colour);
     const double intensity = light->GetIntensity();
-    bool finite = std::isfinite(intensity);
-    for (int c = 0; c < 3; ++c)
-    {
-      finite = finite && std::isfinite(pw[c]) && std::isfinite(fw[c]) && std::isfinite(colour[c]);
-    }
-    if (!finite || intensity < 0 || colour[0] < 0 || colour[1] < 0 || colour[2] < 0)
-    {
-      vtkErrorMacro("Light " << lightIndex
-                             << " has a non-finite position, focal point, colour or intensity, or "
-                                "a negative intensity or colour; all must be finite and >= 0.");
-      return false;
-    }
     LightSetup ls;
     ls.Positional = light->GetPositional();
     for (int c = 0; c < 3; ++c)

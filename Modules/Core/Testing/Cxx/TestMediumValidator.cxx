@@ -4,6 +4,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
 #include "vtkMediumValidator.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -270,4 +271,32 @@ TEST(MediumValidator, ReportsEveryBadArray)
   EXPECT_TRUE(Contains(validator->GetError(0), "'Albedo'"));
   EXPECT_TRUE(Contains(validator->GetError(1), "'Anisotropy'"));
   EXPECT_EQ(validator->GetError(2), nullptr);
+}
+
+// Every light pass checks its lights with CheckLight: a light that cannot emit is named, and an
+// ordinary one passes.
+TEST(MediumValidator, ChecksLights)
+{
+  vtkNew<vtkLight> light;
+  light->SetPosition(1, 2, 3);
+  light->SetIntensity(0.5);
+  std::string error;
+  EXPECT_TRUE(vtkMediumValidator::CheckLight(light, 0, error)) << error;
+  EXPECT_TRUE(error.empty());
+
+  light->SetPosition(std::nan(""), 2, 3);
+  EXPECT_FALSE(vtkMediumValidator::CheckLight(light, 4, error));
+  EXPECT_NE(error.find("Light 4"), std::string::npos) << error;
+  EXPECT_NE(error.find("non-finite"), std::string::npos) << error;
+
+  light->SetPosition(1, 2, 3);
+  light->SetIntensity(-1.0);
+  error.clear();
+  EXPECT_FALSE(vtkMediumValidator::CheckLight(light, 1, error));
+  EXPECT_NE(error.find(">= 0"), std::string::npos) << error;
+
+  light->SetIntensity(1.0);
+  light->SetDiffuseColor(1.0, -0.1, 1.0);
+  error.clear();
+  EXPECT_FALSE(vtkMediumValidator::CheckLight(light, 1, error));
 }
