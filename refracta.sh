@@ -29,7 +29,7 @@ packages=(
   libopenmpi-dev libutfcpp-dev libglew-dev liblz4-dev libdouble-conversion-dev libtiff-dev
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers clinfo
   libcgal-dev libgmp-dev libmpfr-dev libglm-dev
-  libosmesa6-dev xvfb xauth
+  libosmesa6-dev libx11-dev xvfb xauth
   libgtest-dev libbenchmark-dev
   nlohmann-json3-dev
   # Fuzzing (./refracta.sh fuzz): clang's libFuzzer.

@@ -1,8 +1,10 @@
 # Helpers for Refracta's tests.
 #
 # refracta_add_gtest(NAME <name> SOURCES <files...> LINK <targets...> [LABELS <labels...>]
-#                    [TIMEOUT <s>] [ENVIRONMENT <vars...>])
-# builds one GoogleTest executable and registers it as one ctest test. Every test gets a private
+#                    [TIMEOUT <s>] [ENVIRONMENT <vars...>] [NEEDS_RENDER_WINDOW])
+# builds one GoogleTest executable and registers it as one ctest test. NEEDS_RENDER_WINDOW: the
+# program skips its tests where no render window can be opened (MapperTestUtilities.h), and
+# ctest then reports it as skipped rather than passed. Every test gets a private
 # PoCL kernel cache and Refracta binary cache inside the build tree, so timings and results never
 # depend on a warm home directory.
 include(GoogleTest)
@@ -14,8 +16,15 @@ set(REFRACTA_TEST_ENVIRONMENT
   "REFRACTA_TEST_OUTPUT_DIR=${CMAKE_BINARY_DIR}/Testing/Temporary"
   "REFRACTA_BASELINE_DIR=${CMAKE_SOURCE_DIR}/Testing/Baselines")
 
+# refracta_test_needs_render_window(<test>): the test prints "no render window: <reason>" and
+# stops where vtkRefractaRenderWindowCheck::CanOpen() is false (no X server for an X11 VTK);
+# ctest then reports it as skipped, not failed and not passed.
+function (refracta_test_needs_render_window name)
+  set_tests_properties(${name} PROPERTIES SKIP_REGULAR_EXPRESSION "no render window: ")
+endfunction ()
+
 function (refracta_add_gtest)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "" "NAME;TIMEOUT" "SOURCES;LINK;LABELS;ENVIRONMENT")
+  cmake_parse_arguments(PARSE_ARGV 0 arg "NEEDS_RENDER_WINDOW" "NAME;TIMEOUT" "SOURCES;LINK;LABELS;ENVIRONMENT")
   add_executable(${arg_NAME} ${arg_SOURCES})
   target_link_libraries(${arg_NAME} PRIVATE ${arg_LINK} GTest::gtest GTest::gtest_main)
   add_test(NAME ${arg_NAME} COMMAND ${arg_NAME} --gtest_color=no)
@@ -26,12 +35,16 @@ function (refracta_add_gtest)
     TIMEOUT ${arg_TIMEOUT}
     LABELS "${arg_LABELS}"
     ENVIRONMENT "${REFRACTA_TEST_ENVIRONMENT};${arg_ENVIRONMENT}")
+  if (arg_NEEDS_RENDER_WINDOW)
+    refracta_test_needs_render_window(${arg_NAME})
+  endif ()
 endfunction ()
 
-# refracta_add_python_test(NAME <name> SCRIPT <file> [LABELS ...] [ARGS ...])
-# runs a script with Debian's VTK Python and the build tree's refracta package on PYTHONPATH.
+# refracta_add_python_test(NAME <name> SCRIPT <file> [LABELS ...] [ARGS ...] [NEEDS_RENDER_WINDOW])
+# runs a script with the system Python (ParaView's VTK) and the build tree's refracta package on
+# PYTHONPATH.
 function (refracta_add_python_test)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "" "NAME;SCRIPT;TIMEOUT" "LABELS;ARGS")
+  cmake_parse_arguments(PARSE_ARGV 0 arg "NEEDS_RENDER_WINDOW" "NAME;SCRIPT;TIMEOUT" "LABELS;ARGS")
   if (NOT REFRACTA_WRAP_PYTHON)
     return ()
   endif ()
@@ -43,4 +56,7 @@ function (refracta_add_python_test)
     TIMEOUT ${arg_TIMEOUT}
     LABELS "python;${arg_LABELS}"
     ENVIRONMENT "${REFRACTA_TEST_ENVIRONMENT};PYTHONPATH=${CMAKE_BINARY_DIR}/${REFRACTA_PYTHON_SITE}")
+  if (arg_NEEDS_RENDER_WINDOW)
+    refracta_test_needs_render_window(${arg_NAME})
+  endif ()
 endfunction ()

@@ -9,6 +9,7 @@ medium through the volume property, lit by the headlight (read in VTK light unit
 automatically. As a smoke test it checks that the volume shows against the black background.
 """
 import argparse
+import sys
 
 import refracta
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL render window)
@@ -21,6 +22,8 @@ from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderer, 
 parser = argparse.ArgumentParser()
 parser.add_argument("--out", default="mapper.png")
 args = parser.parse_args()
+if not refracta.vtkRefractaRenderWindowCheck.CanOpen():      # an X11 VTK would abort instead
+    sys.exit("no render window: " + refracta.vtkRefractaRenderWindowCheck.GetReason())
 
 wavelet = vtkRTAnalyticSource()                      # any scalar vtkImageData (extent -10..10)
 opacity = vtkPiecewiseFunction(); opacity.AddPoint(37, 0.0); opacity.AddPoint(277, 0.3)

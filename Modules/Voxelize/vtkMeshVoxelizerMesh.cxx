@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -42,9 +43,42 @@ std::string PointText(const double* p)
 
 struct PreparedMesh::Internals
 {
-  Mesh Surface;
+  Mesh Surface; // in the classifier's frame: world coordinates times Scale
   std::unique_ptr<SideOf> Side;
+  // A power of two (so the scaling is exact) that brings every coordinate within +-1. CGAL's
+  // classifier casts rays from the query point through point + a unit vector; beyond about 1e15
+  // that sum rounds back to the point, every ray is degenerate and CGAL retries forever (a hang
+  // found by FuzzMeshVoxelizer, corpus input huge_coordinates_classifier_hang).
+  double Scale = 1.0;
 };
+
+namespace
+{
+// The power of two that brings the largest |coordinate| below 1 (1 when it already is), or 0
+// when that would push a non-zero coordinate below the normal doubles (the scaling would then
+// round it: the mesh spans too many orders of magnitude for an exact test).
+double ClassifierScale(const std::vector<double>& points)
+{
+  double largest = 0.0, smallest = std::numeric_limits<double>::infinity();
+  for (double x : points)
+  {
+    const double a = std::abs(x);
+    largest = std::max(largest, a);
+    if (a > 0.0)
+    {
+      smallest = std::min(smallest, a);
+    }
+  }
+  if (largest <= 1.0)
+  {
+    return 1.0;
+  }
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  const double scale = std::ldexp(1.0, -exponent);
+  return smallest * scale >= std::numeric_limits<double>::min() ? scale : 0.0;
+}
+}
 
 PreparedMesh::PreparedMesh() = default;
 PreparedMesh::~PreparedMesh() = default;
@@ -398,11 +432,19 @@ bool PreparedMesh::Prepare(vtkPolyData* input, int connection, bool checkSelfInt
   this->Volume = volume;
 
   // CGAL surface: vertex-manifoldness, self-intersections, and the robust point classifier.
+  const double scale = ClassifierScale(this->Points);
+  if (scale == 0.0)
+  {
+    return fail("the coordinates span more than 308 orders of magnitude (a non-zero "
+                "|coordinate| below 2.2e-308 times the largest): the inside test scales the "
+                "mesh into +-1 exactly and would round the smallest; snap tiny coordinates to 0");
+  }
   std::vector<Point3> cgalPoints;
   cgalPoints.reserve(this->Points.size() / 3);
   for (size_t v = 0; v < this->Points.size() / 3; ++v)
   {
-    cgalPoints.push_back(P(static_cast<vtkIdType>(v)));
+    const double* x = &this->Points[3 * v];
+    cgalPoints.emplace_back(x[0] * scale, x[1] * scale, x[2] * scale);
   }
   std::vector<std::array<std::size_t, 3>> polygons;
   polygons.reserve(this->Triangles.size());
@@ -417,6 +459,7 @@ bool PreparedMesh::Prepare(vtkPolyData* input, int connection, bool checkSelfInt
                 "point); separate them so every vertex has a single fan of faces");
   }
   this->Impl.reset(new Internals);
+  this->Impl->Scale = scale;
   PMP::polygon_soup_to_polygon_mesh(cgalPoints, polygons, this->Impl->Surface);
   if (checkSelfIntersections && PMP::does_self_intersect(this->Impl->Surface))
   {
@@ -560,7 +603,8 @@ int PreparedMesh::SideAlongX(vtkIdType tri, const double p[3]) const
 //------------------------------------------------------------------------------
 double PreparedMesh::Classify(const double p[3]) const
 {
-  switch ((*this->Impl->Side)(Point3(p[0], p[1], p[2])))
+  const double s = this->Impl->Scale;
+  switch ((*this->Impl->Side)(Point3(p[0] * s, p[1] * s, p[2] * s)))
   {
     case CGAL::ON_BOUNDED_SIDE:
       return 1.0;

@@ -42,6 +42,7 @@ assert hdr[48, 48, 3] > 0.5 and hdr[2, 2, 3] == 0.0, "the sphere is opaque-ish, 
 assert rt.matches_baseline(picture, "ParaViewRenderImage"), "matches Testing/Baselines"
 
 # --- 2. The Refracta representation in a render view ---
+rt.stop_without_render_window("Refracta Render Image against its baseline")
 view = simple.CreateRenderView()
 view.ViewSize = [240, 240]
 view.OrientationAxesVisibility = 0

@@ -38,6 +38,7 @@ lit = servermanager.Fetch(lighting)
 assert lit.GetPointData().GetArray("Radiance") is not None
 assert lit.GetFieldData().GetAbstractArray("PlanSummary") is not None
 
+rt.stop_without_render_window("loading the state and its Refracta images")
 view = simple.GetActiveViewOrCreate("RenderView")
 shot_file = os.path.join(rt.OUTPUT, "paraview_state.png")
 simple.SaveScreenshot(shot_file, view, ImageResolution=[160, 160])

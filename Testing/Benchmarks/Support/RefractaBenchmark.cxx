@@ -11,6 +11,7 @@
 #include "vtkPen.h"
 #include "vtkPlot.h"
 #include "vtkPlotPoints.h"
+#include "vtkRefractaRenderWindowCheck.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkTable.h"
@@ -152,9 +153,10 @@ bool Table::WriteCsv(const std::string& path) const
 bool WritePlot(const std::string& path, const std::string& title, const std::string& xLabel,
   const std::string& yLabel, const std::vector<Series>& series, bool logX, bool logY)
 {
-  if (!std::getenv("DISPLAY"))
+  if (!vtkRefractaRenderWindowCheck::CanOpen())
   {
-    std::cerr << "no X display: skipping plot " << path << " (run under xvfb-run -a)\n";
+    std::cerr << "skipping plot " << path << ": " << vtkRefractaRenderWindowCheck::GetReason()
+              << "\n";
     return false;
   }
   vtkNew<vtkContextView> view;

@@ -2,6 +2,7 @@
 // server) write a non-empty PNG plot.
 #include "RefractaBenchmark.h"
 #include "RefractaScenes.h"
+#include "vtkRefractaRenderWindowCheck.h"
 
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -72,7 +73,7 @@ int main(int argc, char* argv[])
     }
   }
 
-  if (std::getenv("DISPLAY"))
+  if (vtkRefractaRenderWindowCheck::CanOpen())
   {
     const std::string png = dir + "/benchmark-support.png";
     std::remove(png.c_str());

@@ -274,13 +274,17 @@ TEST(MeshVoxelizer, FacesThroughVoxelCentresShowNoSpeckle)
   }
 }
 
-TEST(MeshVoxelizer, FacesThroughVoxelCentresFarFromTheOrigin)
+namespace
 {
-  // The same box moved to (1e5, -3e4, 2e5) (exactly representable): still no speckle.
-  const double shift[3] = { 1e5, -3e4, 2e5 };
+// The box of FacesThroughVoxelCentresShowNoSpeckle scaled by `size` and moved to `shift` (both
+// exactly representable, also in float): its faces pass through voxel centres, so some lines
+// through edges need CGAL's classifier; still no speckle and the exact volume.
+void ExpectBoxFacesThroughVoxelCentres(const double shift[3], double size)
+{
+  const double h = 0.5625 * size;
   vtkNew<vtkTessellatedBoxSource> box;
-  box->SetBounds(shift[0] - 0.5625, shift[0] + 0.5625, shift[1] - 0.5625, shift[1] + 0.5625,
-    shift[2] - 0.5625, shift[2] + 0.5625);
+  box->SetBounds(
+    shift[0] - h, shift[0] + h, shift[1] - h, shift[1] + h, shift[2] - h, shift[2] + h);
   box->SetLevel(8);
   box->QuadsOff();
   box->DuplicateSharedPointsOff();
@@ -289,8 +293,8 @@ TEST(MeshVoxelizer, FacesThroughVoxelCentresFarFromTheOrigin)
   {
     vtkNew<vtkMeshVoxelizer> vox;
     vox->AddInputData(box->GetOutput());
-    vox->SetBounds(
-      shift[0] - 1, shift[0] + 1, shift[1] - 1, shift[1] + 1, shift[2] - 1, shift[2] + 1);
+    vox->SetBounds(shift[0] - size, shift[0] + size, shift[1] - size, shift[1] + size,
+      shift[2] - size, shift[2] + size);
     vox->SetDimensions(16, 16, 16);
     vox->SetSupersampling(S);
     vox->Update();
@@ -306,8 +310,25 @@ TEST(MeshVoxelizer, FacesThroughVoxelCentresFarFromTheOrigin)
       }
     // S = 4: the exact volume. S = 1: 8^3 inner voxels, faces, edges and corners all at 1/2.
     const double voxels = S == 4 ? 729.0 : 512 + 0.5 * (6 * 64 + 12 * 8 + 8);
-    EXPECT_NEAR(SumOccupancy(vox->GetOutput()), voxels / 512.0, 1e-9) << "S=" << S;
+    EXPECT_NEAR(SumOccupancy(vox->GetOutput()) / (size * size * size), voxels / 512.0, 1e-9)
+      << "S=" << S;
   }
+}
+}
+
+TEST(MeshVoxelizer, FacesThroughVoxelCentresFarFromTheOrigin)
+{
+  const double shift[3] = { 1e5, -3e4, 2e5 };
+  ExpectBoxFacesThroughVoxelCentres(shift, 1.0);
+}
+
+// Beyond 2^53 a unit vector added to a coordinate rounds away: CGAL's classifier, cast from such
+// a point, retried degenerate rays forever (found by FuzzMeshVoxelizer). The mesh is scaled by a
+// power of two for it; this box at 2^62 with edges of 2^60 hung before.
+TEST(MeshVoxelizer, FacesThroughVoxelCentresAtHugeCoordinates)
+{
+  const double shift[3] = { std::ldexp(3.0, 62), -std::ldexp(1.0, 61), std::ldexp(1.0, 62) };
+  ExpectBoxFacesThroughVoxelCentres(shift, std::ldexp(1.0, 60));
 }
 
 TEST(MeshVoxelizer, IndexInsideAndGradientAlongTheNormal)
@@ -649,6 +670,12 @@ TEST(MeshVoxelizer, InvalidMeshesGiveTheirMessages)
   doublePoints->SetPoint(1, 1e300, 0, 0);
   huge->SetPoints(doublePoints);
   ExpectError(huge, "too large coordinates (first: point 1");
+  // A tetrahedron of edge 1e90 with one corner moved by 1e-300: beyond exact scaling.
+  doublePoints->SetPoint(0, 1e-300, 0, 0);
+  doublePoints->SetPoint(1, 1e90, 0, 0);
+  doublePoints->SetPoint(2, 0, 1e90, 0);
+  doublePoints->SetPoint(3, 0, 0, 1e90);
+  ExpectError(huge, "the coordinates span more than 308 orders of magnitude");
   {
     vtkNew<vtkMeshVoxelizer> vox;
     vtkNew<vtkTest::ErrorObserver> observer;
