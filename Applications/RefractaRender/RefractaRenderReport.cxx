@@ -6,6 +6,8 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkLatticeBoltzmannSolver.h"
+#include "vtkOpenCLContext.h"
+#include "vtkOpenCLKernelProfile.h"
 #include "vtkOpenCLMemoryPlan.h"
 #include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
@@ -14,6 +16,7 @@
 #include "vtkRefractaViewPass.h"
 #include "vtkSceneAnalysis.h"
 
+#include <algorithm>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -322,5 +325,35 @@ void PrintSummary(const json& report)
   std::cout << "  memory    view pass: " << view["memory_plan"].get<std::string>() << " planned, "
             << view["buffer_tiles"].get<int>() << " buffer tile(s)\n";
   std::cout << "  total     " << seconds["total"].get<double>() << " s\n";
+  if (report.contains("kernels"))
+  {
+    for (const json& k : report["kernels"])
+    {
+      std::cout << "  kernel    " << k["label"].get<std::string>() << ": "
+                << k["launches"].get<int>() << " launches, " << k["device_seconds"].get<double>()
+                << " s on the device\n";
+    }
+  }
+}
+
+json KernelProfileReport(vtkOpenCLContext* context)
+{
+  vtkOpenCLKernelProfile* profile = context->GetKernelProfile();
+  std::vector<int> order(profile->GetNumberOfKernels());
+  for (size_t i = 0; i < order.size(); ++i)
+  {
+    order[i] = static_cast<int>(i);
+  }
+  std::stable_sort(order.begin(), order.end(),
+    [profile](int a, int b)
+    { return profile->GetDeviceSeconds(a) > profile->GetDeviceSeconds(b); });
+  json kernels = json::array();
+  for (int i : order)
+  {
+    kernels.push_back(
+      { { "label", profile->GetKernelLabel(i) }, { "launches", profile->GetNumberOfLaunches(i) },
+        { "device_seconds", profile->GetDeviceSeconds(i) } });
+  }
+  return kernels;
 }
 }

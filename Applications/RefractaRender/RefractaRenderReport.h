@@ -13,6 +13,7 @@
 #include <vector>
 
 class vtkFieldData;
+class vtkOpenCLContext;
 class vtkRefractaImageRenderer;
 class vtkRefractaRenderPipeline;
 
@@ -68,7 +69,12 @@ json LightPassReport(vtkRefractaRenderPipeline* pipeline, int lightCount);
 /// The report's "view_pass": rays, steps and empty-space skipping.
 json ViewPassReport(vtkRefractaImageRenderer* renderer);
 
-/// Prints the short summary of a finished render from its report.
+/// The report's "kernels" (with --profile-kernels): per kernel label, the launches and device
+/// seconds from the context's OpenCL profiling events, longest first.
+json KernelProfileReport(vtkOpenCLContext* context);
+
+/// Prints the short summary of a finished render from its report (and the kernel table when the
+/// report has one).
 void PrintSummary(const json& report);
 }
 

@@ -34,8 +34,8 @@ struct Scene
 };
 
 /// Reads `scene` (file names relative to `base`) and configures `renderer` with it: settings,
-/// surfaces, medium as its input, lights, camera, background. Prints the medium stage unless `quiet`.
-/// Throws SceneError for a bad scene, std::runtime_error where building the medium fails.
+/// surfaces, medium as its input, lights, camera, background. Prints the medium stage unless
+/// `quiet`. Throws SceneError for a bad scene, std::runtime_error where building the medium fails.
 Scene ReadScene(
   const json& scene, const std::string& base, vtkRefractaImageRenderer* renderer, bool quiet);
 }

@@ -127,6 +127,7 @@ struct Options
   std::string Report;
   bool Preview = false;
   bool Quiet = false;
+  bool ProfileKernels = false;
 };
 
 // Renders a scene; throws SceneError for bad scenes, std::runtime_error for failed stages.
@@ -185,6 +186,10 @@ int Render(const json& scene, const std::string& base, const Options& options)
   report["light_pass"] = LightPassReport(pipeline, lightCount);
   report["view_pass"] = ViewPassReport(renderer);
   report["seconds"] = seconds;
+  if (context->GetProfileKernels())
+  {
+    report["kernels"] = KernelProfileReport(context);
+  }
   report["scene"] = scene;
   PrintSummary(report);
   if (!options.Report.empty())
@@ -198,13 +203,16 @@ void PrintUsage(std::ostream& os)
 {
   os << "usage: refracta-render [--scene FILE.json] [--output FILE.png] [--hdr FILE.vti]\n"
         "                       [--radiance FILE.vti] [--report FILE.json] [--preview] [--quiet]\n"
+        "                       [--profile-kernels]\n"
         "       refracta-render --print-default-scene | --list-devices | --device-check | --help\n"
         "  Without --scene, renders the embedded default scene (a glass sphere in fog over a\n"
         "  checkered floor, lit by a spot light) to refracta.png. The scene format is documented\n"
         "  in the README. --preview: half the image size and grid resolution, a quarter of the\n"
         "  photons. Each stage is printed as it starts and ends, with a progress bar on a "
         "terminal;\n"
-        "  --quiet prints the final report only. The OpenCL device is chosen by\n"
+        "  --quiet prints the final report only. --profile-kernels adds each OpenCL kernel's\n"
+        "  launches and device time to the report (also REFRACTA_PROFILE_KERNELS=1).\n"
+        "  The OpenCL device is chosen by\n"
         "  REFRACTA_OPENCL_DEVICE.\n";
 }
 
@@ -216,7 +224,8 @@ int ParseOptions(int argc, char* argv[], Options& options)
     { "--output", &Options::Output }, { "-o", &Options::Output }, { "--hdr", &Options::Hdr },
     { "--radiance", &Options::Radiance }, { "--report", &Options::Report } };
   const std::map<std::string, bool Options::*> flags = { { "--preview", &Options::Preview },
-    { "--quiet", &Options::Quiet }, { "-q", &Options::Quiet } };
+    { "--quiet", &Options::Quiet }, { "-q", &Options::Quiet },
+    { "--profile-kernels", &Options::ProfileKernels } };
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -312,6 +321,10 @@ int main(int argc, char* argv[])
     MakePreview(scene);
   }
   vtkOpenCLContext* context = vtkOpenCLContext::GetDefault();
+  if (options.ProfileKernels)
+  {
+    context->ProfileKernelsOn();
+  }
   if (!context->Initialize())
   {
     std::cerr << "refracta-render: " << context->GetLastErrorMessage() << "\n";

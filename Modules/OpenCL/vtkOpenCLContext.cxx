@@ -54,7 +54,10 @@ vtkSmartPointer<vtkOpenCLContext>& DefaultContext()
 //------------------------------------------------------------------------------
 vtkOpenCLContext::vtkOpenCLContext()
   : DiskCache(vtkSmartPointer<vtkOpenCLBinaryCache>::New())
+  , KernelProfile(vtkSmartPointer<vtkOpenCLKernelProfile>::New())
 {
+  const char* profile = std::getenv("REFRACTA_PROFILE_KERNELS");
+  this->ProfileKernels = profile && std::string(profile) == "1";
 }
 
 //------------------------------------------------------------------------------
@@ -69,6 +72,7 @@ vtkOpenCLContext::~vtkOpenCLContext()
   {
     clFinish(this->Queue);
   }
+  this->KernelProfile->Reset(); // its events belong to this context
   for (auto& entry : this->Programs)
   {
     clReleaseProgram(entry.second);
@@ -530,11 +534,34 @@ bool vtkOpenCLContext::RunKernel(cl_kernel kernel, cl_uint dimensions, const siz
     }
   }
   const std::string call = std::string("clEnqueueNDRangeKernel(") + label + ")";
+  cl_event event = nullptr;
   return this->CheckLaunch(kernel, localSize, dimensions, label, reporter) &&
     !this->InjectedFault(call.c_str(), reporter) &&
     this->Check(clEnqueueNDRangeKernel(this->Queue, kernel, dimensions, globalOffset, global,
-                  localSize, 0, nullptr, nullptr),
-      call.c_str(), reporter);
+                  localSize, 0, nullptr, this->ProfileKernels ? &event : nullptr),
+      call.c_str(), reporter) &&
+    this->RecordLaunch(label, event);
+}
+
+//------------------------------------------------------------------------------
+bool vtkOpenCLContext::RecordLaunch(const char* label, cl_event event)
+{
+  if (event)
+  {
+    this->KernelProfile->Record(label, vtkOpenCLEvent(event));
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkOpenCLKernelProfile* vtkOpenCLContext::GetKernelProfile()
+{
+  if (this->Queue)
+  {
+    clFinish(this->Queue);
+  }
+  this->KernelProfile->Collect();
+  return this->KernelProfile;
 }
 
 //------------------------------------------------------------------------------
@@ -557,6 +584,7 @@ void vtkOpenCLContext::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GlobalMemoryMiB: " << this->GetGlobalMemoryMiB() << "\n";
   os << indent << "BinaryCacheDirectory: " << this->ResolveCacheDirectory()
      << (this->UseBinaryCache ? "" : " (disabled)") << "\n";
+  os << indent << "ProfileKernels: " << (this->ProfileKernels ? "on" : "off") << "\n";
   os << indent << "NumberOfSourceBuilds: " << this->NumberOfSourceBuilds << "\n";
   os << indent << "NumberOfBinaryLoads: " << this->NumberOfBinaryLoads << "\n";
   os << indent << "NumberOfMemoryCacheHits: " << this->NumberOfMemoryCacheHits << "\n";

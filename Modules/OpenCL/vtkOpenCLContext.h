@@ -29,6 +29,9 @@
  * memory against the device's. Memory limits (GetMaximumAllocationBytes(),
  * GetGlobalMemoryBytes(), GetHostMemoryBytes()) feed each pass's vtkOpenCLMemoryPlan.
  *
+ * Profiling: with ProfileKernels on (or REFRACTA_PROFILE_KERNELS=1 in the environment), every
+ * launch's device time is summed per kernel in GetKernelProfile() (vtkOpenCLKernelProfile).
+ *
  * Test hooks (all off by default): SetSimulated*() pretend the device or the host is smaller than
  * it is (allocation size, global, local and host memory, work-group size, missing extensions),
  * and SetFailingEnqueue(n) makes the n-th enqueue from then on fail as a driver error would, so
@@ -56,10 +59,13 @@
 #include <vector> // for std::vector
 
 #ifndef __VTK_WRAP__
-#include "vtkOpenCLBinaryCache.h" // for the disk cache
-#include "vtkOpenCLHandle.h"      // for vtkOpenCLKernel, vtkOpenCLBuffer
-#include "vtkSmartPointer.h"      // for the disk cache
+#include "vtkOpenCLBinaryCache.h"   // for the disk cache
+#include "vtkOpenCLHandle.h"        // for vtkOpenCLKernel, vtkOpenCLBuffer
+#include "vtkOpenCLKernelProfile.h" // for the kernel profile
+#include "vtkSmartPointer.h"        // for the disk cache
 #endif
+
+class vtkOpenCLKernelProfile;
 
 class REFRACTAOPENCL_EXPORT vtkOpenCLContext : public vtkObject
 {
@@ -201,6 +207,19 @@ public:
   vtkGetMacro(NumberOfRejectedBinaries, int);
   ///@}
 
+  ///@{
+  /**
+   * Kernel profiling (default off, or on when the environment variable REFRACTA_PROFILE_KERNELS
+   * is 1 when the context is created): every RunKernel() launch keeps its event and
+   * GetKernelProfile() sums the device time per launch label. GetKernelProfile() waits for the
+   * queue and collects first, so its totals are complete.
+   */
+  vtkSetMacro(ProfileKernels, bool);
+  vtkGetMacro(ProfileKernels, bool);
+  vtkBooleanMacro(ProfileKernels, bool);
+  vtkOpenCLKernelProfile* GetKernelProfile();
+  ///@}
+
   /**
    * The path of the disk-cache entry of a program (as GetProgram() would build it), or empty
    * when the disk cache is off. For tests and diagnostics.
@@ -303,6 +322,7 @@ protected:
   char* DeviceSelection = nullptr;
   char* BinaryCacheDirectory = nullptr;
   bool UseBinaryCache = true;
+  bool ProfileKernels = false;
   bool Initialized = false;
   bool Ready = false;
   int NumberOfSourceBuilds = 0;
@@ -344,7 +364,9 @@ protected:
   void SaveBinary(cl_program program, const std::string& key);
   bool CheckLaunch(cl_kernel kernel, const size_t* localSize, cl_uint dimensions, const char* label,
     vtkObject* reporter);
+  bool RecordLaunch(const char* label, cl_event event);
   vtkSmartPointer<vtkOpenCLBinaryCache> DiskCache;
+  vtkSmartPointer<vtkOpenCLKernelProfile> KernelProfile;
   bool WarnedAboutDiskCache = false;
   std::map<std::string, cl_program> Programs;
   std::mutex ProgramsMutex;

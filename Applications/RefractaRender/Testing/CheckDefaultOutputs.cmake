@@ -6,7 +6,7 @@ foreach (file refracta.png refracta_hdr.vti refracta_radiance.vti refracta_repor
 endforeach ()
 file(READ "${OUT}/refracta_report.json" report)
 foreach (key EnergyEmitted EnergyAbsorbed EnergyEscaped EnergyScattered EnergyRemaining
-    TotalSteps view_pass light_pass seconds quality total_steps)
+    TotalSteps view_pass light_pass seconds quality total_steps kernels device_seconds)
   string(FIND "${report}" "\"${key}\"" at)
   if (at EQUAL -1)
     message(FATAL_ERROR "the report lacks \"${key}\"")

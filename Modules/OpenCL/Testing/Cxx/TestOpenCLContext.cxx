@@ -6,6 +6,7 @@
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
 #include "vtkOpenCLKernelLibrary.h"
+#include "vtkOpenCLKernelProfile.h"
 #include "vtkTestErrorObserver.h"
 
 #include <vtksys/Directory.hxx>
@@ -221,4 +222,53 @@ TEST(OpenCLContext, FixedPointScale)
   EXPECT_LE(1000.0 * vtkOpenCLContext::ChooseFixedPointScale(1000.0), std::ldexp(1.0, 62));
   EXPECT_EQ(vtkOpenCLContext::ChooseFixedPointScale(0.0), std::ldexp(1.0, 32));
   EXPECT_EQ(vtkOpenCLContext::ChooseFixedPointScale(-5.0), std::ldexp(1.0, 32));
+}
+
+// Kernel profiling: off, launches leave nothing; on, every launch is counted under its label
+// (also past the fold threshold of 256 pending events) with a positive device time, the labels
+// keep their first-launch order and the total is their sum; Reset() forgets them.
+TEST(OpenCLContext, KernelProfileCountsLaunchesAndDeviceTime)
+{
+  vtkNew<vtkOpenCLContext> context;
+  ASSERT_TRUE(context->Initialize()) << context->GetLastErrorMessage();
+  cl_program program = context->GetProgram({ "refracta_atomics.cl", "selftest.cl" }, "");
+  ASSERT_NE(program, nullptr);
+  vtkOpenCLKernel kernel = context->CreateKernel(program, "refracta_saxpy");
+  const unsigned int n = 4096;
+  std::vector<float> x(n, 1.0f);
+  vtkOpenCLBuffer xBuffer =
+    context->CreateBuffer(CL_MEM_READ_ONLY, n * sizeof(float), x.data(), "x");
+  vtkOpenCLBuffer yBuffer =
+    context->CreateBuffer(CL_MEM_READ_WRITE, n * sizeof(float), x.data(), "y");
+  ASSERT_EQ(
+    vtkOpenCLSetKernelArgs(kernel.Get(), 1.0f, xBuffer.Get(), yBuffer.Get(), n), CL_SUCCESS);
+  const size_t global = n, local = 64;
+
+  context->ProfileKernelsOff();
+  ASSERT_TRUE(context->RunKernel(kernel.Get(), 1, &global, &local, "unprofiled"));
+  EXPECT_EQ(context->GetKernelProfile()->GetNumberOfKernels(), 0);
+
+  context->ProfileKernelsOn();
+  for (int i = 0; i < 300; ++i)
+  {
+    ASSERT_TRUE(context->RunKernel(kernel.Get(), 1, &global, &local, "saxpy a"));
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    ASSERT_TRUE(context->RunKernel(kernel.Get(), 1, &global, &local, "saxpy b"));
+  }
+  vtkOpenCLKernelProfile* profile = context->GetKernelProfile();
+  ASSERT_EQ(profile->GetNumberOfKernels(), 2);
+  EXPECT_STREQ(profile->GetKernelLabel(0), "saxpy a");
+  EXPECT_EQ(profile->GetNumberOfLaunches(0), 300);
+  EXPECT_EQ(profile->GetNumberOfLaunches(1), 3);
+  EXPECT_GT(profile->GetDeviceSeconds(0), 0.0);
+  EXPECT_GT(profile->GetDeviceSeconds(1), 0.0);
+  EXPECT_DOUBLE_EQ(
+    profile->GetTotalDeviceSeconds(), profile->GetDeviceSeconds(0) + profile->GetDeviceSeconds(1));
+  EXPECT_TRUE(Contains(profile->GetTable(), "| saxpy a | 300 |"));
+  std::cout << profile->GetTable();
+  profile->Reset();
+  EXPECT_EQ(profile->GetNumberOfKernels(), 0);
+  EXPECT_EQ(profile->GetTotalDeviceSeconds(), 0.0);
 }

@@ -1,0 +1,93 @@
+/**
+ * @class   vtkOpenCLKernelProfile
+ * @brief   Device time per kernel, from OpenCL's profiling events: where a pass spends its time.
+ *
+ * vtkOpenCLContext keeps one (GetKernelProfile()). While the context's ProfileKernels is on (off
+ * by default; the environment variable REFRACTA_PROFILE_KERNELS=1 turns it on for a whole
+ * process, e.g. `refracta-render` or a benchmark), every launch through
+ * vtkOpenCLContext::RunKernel() hands its event here, and the profile sums, per launch label, the
+ * launches and the device time from CL_PROFILING_COMMAND_START to CL_PROFILING_COMMAND_END
+ * (seconds). Events of finished launches are folded in as they accumulate, so a long run holds at
+ * most a few hundred events. Transfers and host work are not counted: compare
+ * GetTotalDeviceSeconds() with the wall time to see how much of it is the device's.
+ *
+ * Collect() waits for the pending launches and folds them in; the getters report what was
+ * collected. The cost is one event per launch (microseconds); off, nothing is recorded.
+ */
+#ifndef vtkOpenCLKernelProfile_h
+#define vtkOpenCLKernelProfile_h
+
+#include "RefractaOpenCLModule.h" // for export macro
+#include "vtkObject.h"
+
+#include <memory> // for std::unique_ptr
+#include <string> // for std::string
+#include <vector> // for std::vector
+
+#ifndef __VTK_WRAP__
+#include "vtkOpenCLHandle.h" // for vtkOpenCLEvent
+#endif
+
+class REFRACTAOPENCL_EXPORT vtkOpenCLKernelProfile : public vtkObject
+{
+public:
+  static vtkOpenCLKernelProfile* New();
+  vtkTypeMacro(vtkOpenCLKernelProfile, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Waits for every recorded launch and adds its device time to its label's total.
+   */
+  void Collect();
+
+  /**
+   * Forgets every total and pending launch.
+   */
+  void Reset();
+
+  ///@{
+  /**
+   * The collected totals: one entry per label, in the order of their first launch.
+   */
+  int GetNumberOfKernels() const;
+  const char* GetKernelLabel(int i) const;
+  int GetNumberOfLaunches(int i) const;
+  double GetDeviceSeconds(int i) const;
+  double GetTotalDeviceSeconds() const;
+  ///@}
+
+  /**
+   * The totals as a Markdown table, longest first: label, launches, device seconds, share.
+   */
+  std::string GetTable() const;
+
+#ifndef __VTK_WRAP__
+  /**
+   * Keeps `event` (a finished or pending launch of `label`) until Collect() or until it has
+   * finished and enough events are pending to fold the finished ones in.
+   */
+  void Record(const char* label, vtkOpenCLEvent event);
+#endif
+
+protected:
+  vtkOpenCLKernelProfile();
+  ~vtkOpenCLKernelProfile() override;
+
+private:
+  vtkOpenCLKernelProfile(const vtkOpenCLKernelProfile&) = delete;
+  void operator=(const vtkOpenCLKernelProfile&) = delete;
+
+  struct Total
+  {
+    std::string Label;
+    int Launches = 0;
+    double Seconds = 0.0;
+  };
+  struct Pending;
+  Total& TotalOf(const std::string& label);
+  void Fold(bool wait);
+  std::vector<Total> Totals;
+  std::unique_ptr<std::vector<Pending>> PendingLaunches;
+};
+
+#endif
