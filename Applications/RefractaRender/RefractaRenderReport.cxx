@@ -172,7 +172,12 @@ json LightPassReport(vtkRefractaRenderPipeline* pipeline, int lightCount)
   report["device_memory_used_bytes"] = tracer->GetPeakDeviceMemoryBytes();
   report["host_memory_planned_bytes"] = tracer->GetPlannedHostMemoryBytes();
   report["photon_seconds"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING);
-  if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
+  if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING) && tracer->GetUsedAnalogScattering())
+  {
+    report["multiple_scattering"] = { { "method", "analog photon scattering" },
+      { "reason", "the scene has surfaces, which the lattice does not reach: photons scatter" } };
+  }
+  else if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
   {
     const json solve = { { "iterations", report.value("LatticeBoltzmannIterations", 0.0) },
       { "residual", report.value("LatticeBoltzmannResidual", 0.0) },
@@ -241,7 +246,12 @@ void PrintLightPass(const json& light)
             << " used; host "
             << vtkOpenCLMemoryPlan::FormatBytes(light.value("host_memory_planned_bytes", 0.0))
             << " planned\n";
-  if (light["multiple_scattering"].is_object())
+  if (light["multiple_scattering"].contains("method"))
+  {
+    std::cout << "  multiple  " << light["multiple_scattering"]["method"].get<std::string>() << " ("
+              << light["multiple_scattering"]["reason"].get<std::string>() << ")\n";
+  }
+  else if (light["multiple_scattering"].is_object())
   {
     const json& ms = light["multiple_scattering"];
     std::cout << "  multiple  Lattice-Boltzmann " << ms["iterations"].get<double>()
