@@ -8,6 +8,10 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkLightRaySingleScattering.h"
+#include "vtkLatticeBoltzmannSolver.h"
+#include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
@@ -140,4 +144,98 @@ TEST(PipelineSingleScattering, LightRaysAgreeWithPhotons)
     ref += std::pow(a->GetValue(i), 2);
   }
   EXPECT_LT(std::sqrt(diff / ref), 0.04);
+}
+
+namespace
+{
+vtkSmartPointer<vtkImageData> DenseBall()
+{
+  const int n = 20;
+  const double h = 1.0 / n;
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, n);
+  image->SetSpacing(h, h, h);
+  image->SetOrigin(0.5 * h, 0.5 * h, 0.5 * h);
+  vtkNew<vtkFloatArray> ext, alb;
+  ext->SetName("Extinction");
+  ext->SetNumberOfComponents(3);
+  alb->SetName("Albedo");
+  alb->SetNumberOfComponents(3);
+  for (vtkIdType id = 0; id < image->GetNumberOfPoints(); ++id)
+  {
+    double p[3];
+    image->GetPoint(id, p);
+    const double r = std::sqrt((p[0] - 0.5) * (p[0] - 0.5) + (p[1] - 0.5) * (p[1] - 0.5) +
+      (p[2] - 0.5) * (p[2] - 0.5));
+    for (int c = 0; c < 3; ++c)
+    {
+      ext->InsertNextValue(r < 0.35 ? 8.0f : 0.0f);
+      alb->InsertNextValue(0.9f);
+    }
+  }
+  image->GetPointData()->AddArray(ext);
+  image->GetPointData()->AddArray(alb);
+  return image;
+}
+
+double Sum(vtkRefractaRenderPipeline* p, const char* name)
+{
+  vtkDataArray* a = p->GetLighting()->GetPointData()->GetArray(name);
+  double s = 0;
+  for (vtkIdType i = 0; a && i < a->GetNumberOfValues(); ++i)
+  {
+    s += a->GetVariantValue(i).ToDouble();
+  }
+  return s;
+}
+}
+
+TEST(PipelineSingleScattering, Measure)
+{
+  auto ball = DenseBall();
+  for (int variant = 0; variant < 4; ++variant)
+  {
+    double s[2], m[2], img[2];
+    std::vector<float> ims[2];
+    for (int k = 0; k < 2; ++k)
+    {
+      auto p = Pipeline(ball, k == 0 ? vtkEffectPlan::LIGHT_RAYS : vtkEffectPlan::PHOTONS);
+      vtkLight* sun = vtkLight::SafeDownCast(p->GetLights()->GetItemAsObject(0));
+      sun->SetPosition(0.5, 3.0, 0.8);
+      vtkCamera* cam = p->GetCamera();
+      cam->SetPosition(0.5, 0.5, 3.0);
+      cam->SetViewAngle(25);
+      p->SetMultipleScattering(true);
+      p->GetPhotonTracer()->SetNumberOfPhotons(variant == 0 ? 1 << 15 : 1 << 18);
+      p->GetPhotonTracer()->SetSeed(3);
+      p->GetLightRays()->SetVoxelAverage(getenv("AVG") != nullptr);
+      p->GetPhotonTracer()->SetSmoothing(variant != 2);
+      if (variant == 3)
+        p->SetQuality(vtkEffectPlan::DRAFT);
+      ASSERT_TRUE(p->Render(32, 32));
+      s[k] = Sum(p, vtkRefractaLightingVolume::RadianceName());
+      m[k] = Sum(p, vtkRefractaLightingVolume::MultipleScatteringName());
+      img[k] = 0;
+      ims[k] = p->GetImage();
+      for (size_t q = 0; q < ims[k].size(); ++q)
+        img[k] += q % 4 == 3 ? 0.0 : ims[k][q];
+      vtkDataArray* it = p->GetLighting()->GetFieldData()->GetArray("LatticeBoltzmannIterations");
+      std::cout << " averaged " << p->GetLightRays()->GetNumberOfAveragedVoxels() << " in "
+                << p->GetLightRays()->GetAveragingSeconds() << " s of "
+                << p->GetLightRays()->GetTotalSeconds() << " s; evaluated "
+                << p->GetLightRays()->GetNumberOfEvaluatedPoints();
+      std::cout << " iterations " << (it ? it->GetTuple1(0) : -1) << " tol "
+                << p->GetLatticeSolver()->GetTolerance() << std::endl;
+    }
+    double d = 0, n = 0;
+    for (size_t q = 0; q < ims[0].size(); ++q)
+      if (q % 4 != 3)
+      {
+        d += (ims[0][q] - ims[1][q]) * (ims[0][q] - ims[1][q]);
+        n += ims[1][q] * ims[1][q];
+      }
+    std::cout << "variant " << variant << " S1 " << s[0] << " " << s[1] << " MS " << m[0] << " "
+              << m[1] << " img " << img[0] << " " << img[1] << " relL2 " << std::sqrt(d / n)
+              << std::endl;
+  }
 }
