@@ -56,16 +56,6 @@ public:
   ///@}
 
   /**
-   * Name of an optional point array (3 components, RGB, >= 0): S1 averaged over each voxel's box,
-   * the power per unit volume scattered in the voxel. `Radiance` holds point values that the view
-   * pass interpolates trilinearly; a finite-volume consumer (the lattice, whose source is per
-   * voxel) needs the box mean instead, which differs at sharp density edges. The photon pass's
-   * deposits are box means already and it does not write this array; vtkLightRaySingleScattering
-   * (VoxelAverage) does, and vtkLatticeBoltzmannLighting takes it as its source when present.
-   */
-  static const char* RadianceVoxelMeanName() { return "RadianceVoxelMean"; }
-
-  /**
    * Name of the field-data array with the surfaces' irradiance (see the class description).
    */
   static const char* SurfaceIrradianceName() { return "SurfaceIrradiance"; }

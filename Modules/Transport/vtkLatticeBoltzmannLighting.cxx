@@ -132,26 +132,15 @@ int vtkLatticeBoltzmannLighting::RequestData(
       << (radiance ? "one with the wrong shape" : "none") << ".");
     return 0;
   }
-  // The source: the box means of S1 when the light pass gave them (the lattice's source is per
-  // voxel; vtkRefractaLightingVolume::RadianceVoxelMeanName()), else Radiance.
-  vtkDataArray* source =
-    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceVoxelMeanName());
-  if (source && (source->GetNumberOfComponents() != 3 || source->GetNumberOfTuples() != n))
-  {
-    vtkErrorMacro("Input 1: `" << vtkRefractaLightingVolume::RadianceVoxelMeanName()
-                               << "` must have 3 components and " << n << " tuples.");
-    return 0;
-  }
-  source = source ? source : radiance;
   for (vtkIdType t = 0; t < n; ++t)
   {
     for (int c = 0; c < 3; ++c)
     {
-      const double value = source->GetComponent(t, c);
+      const double value = radiance->GetComponent(t, c);
       if (!std::isfinite(value) || value < 0)
       {
-        vtkErrorMacro("Input 1: `" << source->GetName() << "` must be finite and >= 0; tuple "
-                                   << t << " component " << c << " is " << value << ".");
+        vtkErrorMacro("Input 1: `Radiance` must be finite and >= 0; tuple "
+          << t << " component " << c << " is " << value << ".");
         return 0;
       }
     }
@@ -193,7 +182,7 @@ int vtkLatticeBoltzmannLighting::RequestData(
   const std::vector<float> anisotropy =
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
   const std::vector<float> s1 =
-    vtkRefractaMedium::ReadArray(lighting, source->GetName(), 3, 0.0f);
+    vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0.0f);
   const std::vector<float> dir = vtkRefractaMedium::ReadArray(
     lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0.0f);
   if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()) ||

@@ -7,11 +7,7 @@
  * coefficients are already the voxel's effective ones). Port 1 the lighting volume on the same
  * grid, as the photon pass produces it (Documentation/Physics.md): `Radiance` (RGB, required),
  * S1 = sigma_s phi1, the power per unit volume scattered out of the direct beam, and
- * `RadianceDirection` (3, optional), its mean travel direction. When the lighting volume also has
- * `RadianceVoxelMean` (vtkRefractaLightingVolume::RadianceVoxelMeanName(); 3, optional: S1
- * averaged over each voxel's box, which vtkLightRaySingleScattering writes because its `Radiance`
- * holds voxel-centre values), that is the lattice's source: the lattice's source is per voxel, and
- * the box mean keeps the scattered power a sharp density edge puts in its voxels.
+ * `RadianceDirection` (3, optional), its mean travel direction.
  *
  * S1 is the source of the diffuse field: it is injected into the lattice as scattered light
  * (isotropically, or by the Henyey-Greenstein phase function around `RadianceDirection`, see
@@ -31,8 +27,8 @@
  * Tolerance (default 1e-4), CheckInterval (steps, default 8), ProbeSpacing (voxels, default 8),
  * MaximumIterations (default 5000).
  *
- * Bad input (an invalid medium, a missing or mismatched lighting volume, a `Radiance` or
- * `RadianceVoxelMean` of the wrong shape, a source that is negative or not finite) is reported with vtkErrorMacro and leaves the output empty.
+ * Bad input (an invalid medium, a missing or mismatched lighting volume, a `Radiance` that is
+ * negative or not finite) is reported with vtkErrorMacro and leaves the output empty.
  *
  * Progress and abort: ProgressEvent rises monotonically to 1; the solve covers 0.02 to 0.98 with
  * vtkLatticeBoltzmannSolver::Solve()'s estimate (iterations done or the log-scale way from the

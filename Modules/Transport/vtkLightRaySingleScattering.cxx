@@ -158,8 +158,6 @@ int vtkLightRaySingleScattering::RequestData(
   this->TotalSeconds = this->SamplingSeconds = this->VoxelSeconds = 0;
   this->NumberOfSamples = this->NumberOfUncoveredVoxels = 0;
   this->NumberOfEvaluatedPoints = 0;
-  this->NumberOfAveragedVoxels = 0;
-  this->AveragingSeconds = 0;
   this->LastRunAborted = false;
   this->SamplesPerLevel.clear();
   this->SamplePositions->SetNumberOfTuples(0);
@@ -187,7 +185,7 @@ int vtkLightRaySingleScattering::RequestData(
                                             : "Nothing in the medium scatters (sigma_s = 0)")
                     << ": the single-scattering source is zero everywhere.");
     const size_t values = 3 * run.M.Voxels;
-    for (vtkFloatArray* a : { run.Radiance.Get(), run.Direction.Get(), run.VoxelMean.Get() })
+    for (vtkFloatArray* a : { run.Radiance.Get(), run.Direction.Get() })
     {
       a->SetNumberOfComponents(3);
       a->SetNumberOfTuples(static_cast<vtkIdType>(run.M.Voxels));
@@ -195,8 +193,7 @@ int vtkLightRaySingleScattering::RequestData(
     }
   }
   else if (!this->Upload(run) ||
-    !(this->Method == INTERPOLATED ? this->RunInterpolation(run) : this->RunLightRays(run)) ||
-    (!run.Aborted && !this->AverageEdgeVoxels(run)))
+    !(this->Method == INTERPOLATED ? this->RunInterpolation(run) : this->RunLightRays(run)))
   {
     return 0;
   }
@@ -452,7 +449,7 @@ bool vtkLightRaySingleScattering::Upload(Internals& run)
     run.Triangles =
       ctx->CreateBuffer(CL_MEM_READ_ONLY, 16, nullptr, "surface triangles (none)", this);
   }
-  for (vtkFloatArray* a : { run.Radiance.Get(), run.Direction.Get(), run.VoxelMean.Get() })
+  for (vtkFloatArray* a : { run.Radiance.Get(), run.Direction.Get() })
   {
     a->SetNumberOfComponents(3);
     a->SetNumberOfTuples(static_cast<vtkIdType>(m.Voxels));
@@ -580,11 +577,6 @@ void vtkLightRaySingleScattering::WriteOutput(Internals& run, vtkImageData* outp
   output->GetPointData()->AddArray(run.Radiance);
   output->GetPointData()->SetScalars(run.Radiance);
   output->GetPointData()->AddArray(run.Direction);
-  if (this->VoxelAverage)
-  {
-    run.VoxelMean->SetName(vtkRefractaLightingVolume::RadianceVoxelMeanName());
-    output->GetPointData()->AddArray(run.VoxelMean);
-  }
   vtkFieldData* fd = output->GetFieldData();
   vtkNew<vtkStringArray> method;
   method->SetName("SingleScatteringMethod");
@@ -615,10 +607,7 @@ void vtkLightRaySingleScattering::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
   os << indent << "CoarsestGridResolution: " << this->CoarsestGridResolution << "\n";
   os << indent << "MaximumGridResolution: " << this->MaximumGridResolution << "\n";
-  os << indent << "VoxelAverage: " << this->VoxelAverage << "\n";
-  os << indent << "EdgeTolerance: " << this->EdgeTolerance << "\n";
   os << indent << "LastRunAborted: " << this->LastRunAborted << "\n";
-  os << indent << "NumberOfAveragedVoxels: " << this->NumberOfAveragedVoxels << "\n";
   os << indent << "UseViewPoint: " << this->UseViewPoint << " (" << this->ViewPoint[0] << ", "
      << this->ViewPoint[1] << ", " << this->ViewPoint[2] << ")\n";
   os << indent << "TotalSeconds: " << this->TotalSeconds << "\n";

@@ -151,26 +151,6 @@ public:
 
   ///@{
   /**
-   * Voxel average on edge voxels (default on). Light rays give S1 at the voxel centre,
-   * sigma_s(x_c) phi(x_c); the photon pass deposits the voxel average of sigma_s phi over the
-   * voxel's box, and so does the reference's continuous (trilinear) medium. The two differ where
-   * sigma_s bends sharply within a voxel (a density edge: on a ball of sigma_t 8 per unit length
-   * on 20^3 voxels the centre values miss 4% of the scattered power, and voxels just outside the
-   * edge, whose centre does not scatter, get none). With VoxelAverage on, every voxel whose exact
-   * box mean of the trilinear sigma_s differs from its centre value by more than EdgeTolerance
-   * (relative to the larger, any channel; default 0.05) gets the midpoint rule over its 8
-   * octants, (1/8) sum_q sigma_s(x_q) phi(x_q), x_q at +-1/4 voxel on each axis: 8 more points
-   * of light rays per edge voxel, none elsewhere. Applies to both methods.
-   */
-  vtkSetMacro(VoxelAverage, bool);
-  vtkGetMacro(VoxelAverage, bool);
-  vtkBooleanMacro(VoxelAverage, bool);
-  vtkSetClampMacro(EdgeTolerance, double, 0.0, 1.0);
-  vtkGetMacro(EdgeTolerance, double);
-  ///@}
-
-  ///@{
-  /**
    * Viewer position for eq. 6's transmittance to the viewer (world units, the medium's data
    * frame). Off by default: tau = 1, samples placed for every view.
    */
@@ -185,8 +165,7 @@ public:
   /**
    * The last run: seconds (total, of which dynamic sampling and the final per-voxel stage), the
    * samples of the interpolation (total and per grid level), the points at which light rays were
-   * marched, voxels no valid sphere covered (computed by their own rays; expected 0), and the
-   * edge voxels given their voxel average (VoxelAverage) with the seconds that took.
+   * marched, and voxels no valid sphere covered (computed by their own rays; expected 0).
    */
   vtkGetMacro(TotalSeconds, double);
   vtkGetMacro(SamplingSeconds, double);
@@ -194,8 +173,6 @@ public:
   vtkGetMacro(NumberOfSamples, int);
   vtkGetMacro(NumberOfEvaluatedPoints, long long);
   vtkGetMacro(NumberOfUncoveredVoxels, int);
-  vtkGetMacro(NumberOfAveragedVoxels, long long);
-  vtkGetMacro(AveragingSeconds, double);
   const std::vector<int>& GetSamplesPerLevel() const { return this->SamplesPerLevel; }
   ///@}
 
@@ -235,9 +212,6 @@ protected:
   // `last` and stopping (run.Aborted) when AbortExecute is set.
   bool RunChunked(Internals& run, _cl_kernel* kernel, size_t count, const char* label, double first,
     double last);
-  // Edge voxels (see VoxelAverage) and their voxel average (vtkLightRayVoxelAverage.cxx).
-  std::vector<size_t> FindEdgeVoxels(Internals& run) const;
-  bool AverageEdgeVoxels(Internals& run);
 
   int Method = LIGHT_RAYS;
   vtkSmartPointer<vtkLightCollection> Lights;
@@ -252,8 +226,6 @@ protected:
   int MaximumGridResolution = 64;
   double ViewPoint[3] = { 0, 0, 0 };
   bool UseViewPoint = false;
-  bool VoxelAverage = true;
-  double EdgeTolerance = 0.05;
 
   double TotalSeconds = 0;
   double SamplingSeconds = 0;
@@ -261,8 +233,6 @@ protected:
   int NumberOfSamples = 0;
   long long NumberOfEvaluatedPoints = 0;
   int NumberOfUncoveredVoxels = 0;
-  long long NumberOfAveragedVoxels = 0;
-  double AveragingSeconds = 0;
   bool LastRunAborted = false;
   std::vector<int> SamplesPerLevel;
   vtkSmartPointer<vtkDoubleArray> SamplePositions;

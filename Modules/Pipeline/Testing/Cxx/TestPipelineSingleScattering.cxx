@@ -9,20 +9,21 @@
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
-#include "vtkLightRaySingleScattering.h"
-#include "vtkLatticeBoltzmannSolver.h"
 #include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
 #include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaMedium.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkSmartPointer.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -148,6 +149,8 @@ TEST(PipelineSingleScattering, LightRaysAgreeWithPhotons)
 
 namespace
 {
+// The scene of Refracta.EffectPlanHonesty's multiple-scattering case: a ball of radius 0.35 with
+// a sharp edge (sigma_t 8 inside, 0 outside, albedo 0.9) on 20^3 voxels, lit obliquely by the sun.
 vtkSmartPointer<vtkImageData> DenseBall()
 {
   const int n = 20;
@@ -157,9 +160,9 @@ vtkSmartPointer<vtkImageData> DenseBall()
   image->SetSpacing(h, h, h);
   image->SetOrigin(0.5 * h, 0.5 * h, 0.5 * h);
   vtkNew<vtkFloatArray> ext, alb;
-  ext->SetName("Extinction");
+  ext->SetName(vtkRefractaMedium::ExtinctionName());
   ext->SetNumberOfComponents(3);
-  alb->SetName("Albedo");
+  alb->SetName(vtkRefractaMedium::AlbedoName());
   alb->SetNumberOfComponents(3);
   for (vtkIdType id = 0; id < image->GetNumberOfPoints(); ++id)
   {
@@ -178,64 +181,122 @@ vtkSmartPointer<vtkImageData> DenseBall()
   return image;
 }
 
-double Sum(vtkRefractaRenderPipeline* p, const char* name)
+struct Lit
 {
+  std::vector<double> S1, Multiple, Image; // Radiance, MultipleScattering, image RGB
+};
+
+std::vector<double> Values(vtkRefractaRenderPipeline* p, const char* name)
+{
+  std::vector<double> out;
   vtkDataArray* a = p->GetLighting()->GetPointData()->GetArray(name);
-  double s = 0;
   for (vtkIdType i = 0; a && i < a->GetNumberOfValues(); ++i)
   {
-    s += a->GetVariantValue(i).ToDouble();
+    out.push_back(a->GetVariantValue(i).ToDouble());
   }
-  return s;
+  return out;
+}
+
+// The ball lit with multiple scattering on: S1 from `method` (light rays: the lattice on their
+// output; photons: the photon/diffusion schedule), 32 x 32 pixels.
+Lit RenderBall(vtkImageData* ball, int method, bool smoothing)
+{
+  auto p = Pipeline(ball, method);
+  vtkLight* sun = vtkLight::SafeDownCast(p->GetLights()->GetItemAsObject(0));
+  sun->SetPosition(0.5, 3.0, 0.8);
+  p->GetCamera()->SetPosition(0.5, 0.5, 3.0);
+  p->GetCamera()->SetViewAngle(25);
+  p->SetMultipleScattering(true);
+  p->GetPhotonTracer()->SetNumberOfPhotons(1 << 18);
+  p->GetPhotonTracer()->SetSeed(3);
+  p->GetPhotonTracer()->SetSmoothing(smoothing);
+  Lit lit;
+  if (!p->Render(32, 32))
+  {
+    ADD_FAILURE() << "render failed";
+    return lit;
+  }
+  EXPECT_EQ(Ran(p), method == vtkEffectPlan::PHOTONS ? "photons" : "light_rays");
+  lit.S1 = Values(p, vtkRefractaLightingVolume::RadianceName());
+  lit.Multiple = Values(p, vtkRefractaLightingVolume::MultipleScatteringName());
+  const std::vector<float>& image = p->GetImage();
+  for (size_t q = 0; q < image.size(); ++q)
+  {
+    if (q % 4 != 3)
+    {
+      lit.Image.push_back(image[q]);
+    }
+  }
+  return lit;
+}
+
+double Total(const std::vector<double>& v)
+{
+  double sum = 0;
+  for (double x : v)
+  {
+    sum += x;
+  }
+  return sum;
+}
+
+// sqrt(sum (a - b)^2 / sum b^2), a scaled by `scale`.
+double RelativeL2(const std::vector<double>& a, const std::vector<double>& b, double scale = 1.0)
+{
+  double d = 0, n = 0;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i)
+  {
+    d += (scale * a[i] - b[i]) * (scale * a[i] - b[i]);
+    n += b[i] * b[i];
+  }
+  return n > 0 ? std::sqrt(d / n) : 0.0;
 }
 }
 
-TEST(PipelineSingleScattering, Measure)
+// Light rays + the lattice (vtkLatticeBoltzmannLighting) against photons + the photon/diffusion
+// schedule on the same scene, multiple scattering on: the scene where the two were found to differ
+// by 15% (relative L2 of the image). Measured (2^18 photons, PoCL on the CPU):
+//   photons smoothed (the default): image 15.2%, MultipleScattering total +2.1%, S1 total -3.8%;
+//   photons unsmoothed:             image  6.6%, MultipleScattering total -0.5% (per voxel 2.2%
+//                                   relative L2), S1 total -3.8%
+// (light rays against photons). The lattice is not the cause: both paths run the same solver
+// settings (104 iterations each, tolerance 1e-4, block 4) and, given the same source, the same
+// result. The causes are the S1 each gives the lattice and the view pass:
+// - the photon pass's 3x3x3 smoothing spreads S1 one voxel across the ball's sharp edge into
+//   voxels that do not scatter (the view pass then shows a glow around the ball, and the
+//   lattice, whose medium is piecewise constant, loses the source put there): against the
+//   reference restricted to one scattering event (Refracta.SingleScatteringAgainstReference,
+//   DenseBall) the smoothed photons are +6.7% biased with region errors up to 42%, unsmoothed
+//   +1.4% and 12%;
+// - S1 at voxel centres (light rays) against voxel means (photons): 3.8% less scattered power in
+//   the edge voxels (Documentation/Physics.md, "Voxel centre or voxel mean").
+// Bounds (against the unsmoothed photons, 1.5 to 4 times the measured): MultipleScattering totals
+// within 2% and per voxel within 4% relative L2, S1 totals within 6%, image within 10%. A lattice source
+// normalised differently in one path (the suspected cause) fails: the light rays' MultipleScattering
+// x 1.1 must break the 2% bound.
+TEST(PipelineSingleScattering, MultipleScatteringAgreesWithPhotons)
 {
   auto ball = DenseBall();
-  for (int variant = 0; variant < 4; ++variant)
-  {
-    double s[2], m[2], img[2];
-    std::vector<float> ims[2];
-    for (int k = 0; k < 2; ++k)
-    {
-      auto p = Pipeline(ball, k == 0 ? vtkEffectPlan::LIGHT_RAYS : vtkEffectPlan::PHOTONS);
-      vtkLight* sun = vtkLight::SafeDownCast(p->GetLights()->GetItemAsObject(0));
-      sun->SetPosition(0.5, 3.0, 0.8);
-      vtkCamera* cam = p->GetCamera();
-      cam->SetPosition(0.5, 0.5, 3.0);
-      cam->SetViewAngle(25);
-      p->SetMultipleScattering(true);
-      p->GetPhotonTracer()->SetNumberOfPhotons(variant == 0 ? 1 << 15 : 1 << 18);
-      p->GetPhotonTracer()->SetSeed(3);
-      p->GetLightRays()->SetVoxelAverage(getenv("AVG") != nullptr);
-      p->GetPhotonTracer()->SetSmoothing(variant != 2);
-      if (variant == 3)
-        p->SetQuality(vtkEffectPlan::DRAFT);
-      ASSERT_TRUE(p->Render(32, 32));
-      s[k] = Sum(p, vtkRefractaLightingVolume::RadianceName());
-      m[k] = Sum(p, vtkRefractaLightingVolume::MultipleScatteringName());
-      img[k] = 0;
-      ims[k] = p->GetImage();
-      for (size_t q = 0; q < ims[k].size(); ++q)
-        img[k] += q % 4 == 3 ? 0.0 : ims[k][q];
-      vtkDataArray* it = p->GetLighting()->GetFieldData()->GetArray("LatticeBoltzmannIterations");
-      std::cout << " averaged " << p->GetLightRays()->GetNumberOfAveragedVoxels() << " in "
-                << p->GetLightRays()->GetAveragingSeconds() << " s of "
-                << p->GetLightRays()->GetTotalSeconds() << " s; evaluated "
-                << p->GetLightRays()->GetNumberOfEvaluatedPoints();
-      std::cout << " iterations " << (it ? it->GetTuple1(0) : -1) << " tol "
-                << p->GetLatticeSolver()->GetTolerance() << std::endl;
-    }
-    double d = 0, n = 0;
-    for (size_t q = 0; q < ims[0].size(); ++q)
-      if (q % 4 != 3)
-      {
-        d += (ims[0][q] - ims[1][q]) * (ims[0][q] - ims[1][q]);
-        n += ims[1][q] * ims[1][q];
-      }
-    std::cout << "variant " << variant << " S1 " << s[0] << " " << s[1] << " MS " << m[0] << " "
-              << m[1] << " img " << img[0] << " " << img[1] << " relL2 " << std::sqrt(d / n)
-              << std::endl;
-  }
+  const Lit rays = RenderBall(ball, vtkEffectPlan::LIGHT_RAYS, false);
+  const Lit photons = RenderBall(ball, vtkEffectPlan::PHOTONS, false);
+  const Lit smoothed = RenderBall(ball, vtkEffectPlan::PHOTONS, true);
+  ASSERT_FALSE(rays.Multiple.empty());
+  ASSERT_EQ(rays.Multiple.size(), photons.Multiple.size());
+  ASSERT_EQ(rays.Image.size(), photons.Image.size());
+  const double msTotal = Total(rays.Multiple) / Total(photons.Multiple) - 1;
+  const double s1Total = Total(rays.S1) / Total(photons.S1) - 1;
+  const double msL2 = RelativeL2(rays.Multiple, photons.Multiple);
+  const double image = RelativeL2(rays.Image, photons.Image);
+  std::cout << "light rays against unsmoothed photons: MultipleScattering total " << 100 * msTotal
+            << "%, relative L2 " << 100 * msL2 << "%; S1 total " << 100 * s1Total
+            << "%; image relative L2 " << 100 * image << "%\n"
+            << "against smoothed photons: MultipleScattering total "
+            << 100 * (Total(rays.Multiple) / Total(smoothed.Multiple) - 1) << "%, image "
+            << 100 * RelativeL2(rays.Image, smoothed.Image) << "%" << std::endl;
+  EXPECT_LT(std::abs(msTotal), 0.02);
+  EXPECT_LT(msL2, 0.04);
+  EXPECT_LT(std::abs(s1Total), 0.06);
+  EXPECT_LT(image, 0.10);
+  EXPECT_GT(std::abs(1.1 * Total(rays.Multiple) / Total(photons.Multiple) - 1), 0.02)
+    << "a 10% error in the lattice's source passes: the test cannot see it";
 }
