@@ -485,7 +485,7 @@ bool vtkLightRaySingleScattering::RunLightRays(Internals& run)
     return true;
   }
   if (!ctx->ReadBuffer(
-      radiance.Get(), 3 * voxels * sizeof(float), run.Radiance->GetPointer(0), this) ||
+        radiance.Get(), 3 * voxels * sizeof(float), run.Radiance->GetPointer(0), this) ||
     !ctx->ReadBuffer(
       direction.Get(), 3 * voxels * sizeof(float), run.Direction->GetPointer(0), this))
   {

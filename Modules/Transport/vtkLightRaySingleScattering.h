@@ -210,8 +210,8 @@ protected:
   void WriteOutput(Internals& run, vtkImageData* output);
   // Runs the 1D `kernel` over `count` work-items in chunks, reporting progress from `first` to
   // `last` and stopping (run.Aborted) when AbortExecute is set.
-  bool RunChunked(Internals& run, _cl_kernel* kernel, size_t count, const char* label, double first,
-    double last);
+  bool RunChunked(
+    Internals& run, _cl_kernel* kernel, size_t count, const char* label, double first, double last);
 
   int Method = LIGHT_RAYS;
   vtkSmartPointer<vtkLightCollection> Lights;

@@ -3,13 +3,13 @@
 // method runs; the light rays and the photons agree on the same scene.
 #include "vtkAbstractArray.h"
 #include "vtkCamera.h"
+#include "vtkDataArray.h"
 #include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
-#include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
@@ -168,8 +168,8 @@ vtkSmartPointer<vtkImageData> DenseBall()
   {
     double p[3];
     image->GetPoint(id, p);
-    const double r = std::sqrt((p[0] - 0.5) * (p[0] - 0.5) + (p[1] - 0.5) * (p[1] - 0.5) +
-      (p[2] - 0.5) * (p[2] - 0.5));
+    const double r = std::sqrt(
+      (p[0] - 0.5) * (p[0] - 0.5) + (p[1] - 0.5) * (p[1] - 0.5) + (p[2] - 0.5) * (p[2] - 0.5));
     for (int c = 0; c < 3; ++c)
     {
       ext->InsertNextValue(r < 0.35 ? 8.0f : 0.0f);
@@ -271,9 +271,9 @@ double RelativeL2(const std::vector<double>& a, const std::vector<double>& b, do
 // - S1 at voxel centres (light rays) against voxel means (photons): 3.8% less scattered power in
 //   the edge voxels (Documentation/Physics.md, "Voxel centre or voxel mean").
 // Bounds (against the unsmoothed photons, 1.5 to 4 times the measured): MultipleScattering totals
-// within 2% and per voxel within 4% relative L2, S1 totals within 6%, image within 10%. A lattice source
-// normalised differently in one path (the suspected cause) fails: the light rays' MultipleScattering
-// x 1.1 must break the 2% bound.
+// within 2% and per voxel within 4% relative L2, S1 totals within 6%, image within 10%. A lattice
+// source normalised differently in one path (the suspected cause) fails: the light rays'
+// MultipleScattering x 1.1 must break the 2% bound.
 TEST(PipelineSingleScattering, MultipleScatteringAgreesWithPhotons)
 {
   auto ball = DenseBall();

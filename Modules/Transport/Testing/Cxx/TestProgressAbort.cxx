@@ -259,7 +259,8 @@ TEST(LightRayProgress, ProgressAndAbort)
   // A cloud on 48^3 voxels lit by 4 directional lights: about 0.5 s a run on the 2-core CPU.
   const int n = 48;
   const double c = 0.5 * (n - 1);
-  vtkSmartPointer<vtkImageData> medium = photontest::MakeMedium(n, n, n, 1.0,
+  vtkSmartPointer<vtkImageData> medium = photontest::MakeMedium(
+    n, n, n, 1.0,
     [=](double x, double y, double z)
     {
       photontest::Voxel v;
@@ -270,8 +271,8 @@ TEST(LightRayProgress, ProgressAndAbort)
       return v;
     },
     false);
-  for (int method : { vtkLightRaySingleScattering::LIGHT_RAYS,
-         vtkLightRaySingleScattering::INTERPOLATED })
+  for (int method :
+    { vtkLightRaySingleScattering::LIGHT_RAYS, vtkLightRaySingleScattering::INTERPOLATED })
   {
     const char* name = vtkLightRaySingleScattering::GetMethodName(method);
     vtkNew<vtkLightRaySingleScattering> rays;
@@ -295,8 +296,8 @@ TEST(LightRayProgress, ProgressAndAbort)
     log->Reset(2.0);
     const auto start = Clock::now();
     rays->Update();
-    std::printf("%s: full run %.2f s\n", name,
-      std::chrono::duration<double>(Clock::now() - start).count());
+    std::printf(
+      "%s: full run %.2f s\n", name, std::chrono::duration<double>(Clock::now() - start).count());
     EXPECT_FALSE(rays->GetLastRunAborted()) << name;
     ExpectGoodProgress(log->Values, name);
     vtkImageData* out = rays->GetOutput();
