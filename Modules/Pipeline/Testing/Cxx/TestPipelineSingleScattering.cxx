@@ -2,7 +2,9 @@
 // gets light rays (or the interpolation) and says why; refraction keeps the photons; a forced
 // method runs; the light rays and the photons agree on the same scene.
 #include "vtkAbstractArray.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
@@ -10,6 +12,7 @@
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkLightRaySingleScattering.h"
 #include "vtkNew.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
@@ -299,4 +302,69 @@ TEST(PipelineSingleScattering, MultipleScatteringAgreesWithPhotons)
   EXPECT_LT(image, 0.10);
   EXPECT_GT(std::abs(1.1 * Total(rays.Multiple) / Total(photons.Multiple) - 1), 0.02)
     << "a 10% error in the lattice's source passes: the test cannot see it";
+}
+
+// The light rays and the lattice on their output report the pipeline's lighting progress (half
+// each, monotone) and honour AbortRender(): an abort while the light rays run stops the render
+// without an error, and the next render gives the image of a pipeline never aborted.
+TEST(PipelineSingleScattering, LightRaysReportProgressAndAbort)
+{
+  auto straight = Haze(false);
+  auto reference = Pipeline(straight, vtkEffectPlan::LIGHT_RAYS);
+  reference->SetMultipleScattering(true);
+  ASSERT_TRUE(reference->Render(24, 24));
+
+  auto pipeline = Pipeline(straight, vtkEffectPlan::LIGHT_RAYS);
+  pipeline->SetMultipleScattering(true);
+  struct Log
+  {
+    vtkRefractaRenderPipeline* Pipeline = nullptr;
+    std::vector<double> Progress;
+    double AbortAbove = 2.0;
+    int Errors = 0;
+  } log;
+  log.Pipeline = pipeline;
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&log);
+  onProgress->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void* call)
+    {
+      auto* l = static_cast<Log*>(client);
+      const double p = *static_cast<double*>(call);
+      l->Progress.push_back(p);
+      if (p > l->AbortAbove)
+      {
+        l->AbortAbove = 2.0;
+        l->Pipeline->AbortRender();
+      }
+    });
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&log);
+  onError->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void*) { ++static_cast<Log*>(client)->Errors; });
+  vtkNew<vtkObject> owner;
+  owner->AddObserver(vtkCommand::ErrorEvent, onError);
+  pipeline->SetEventOwner(owner);
+  pipeline->AddObserver(vtkCommand::ProgressEvent, onProgress);
+
+  // The lighting stage starts after the plan's small share: abort a little into it.
+  log.AbortAbove = 0.05;
+  EXPECT_FALSE(pipeline->Render(24, 24));
+  EXPECT_TRUE(pipeline->GetLastRenderAborted());
+  EXPECT_TRUE(pipeline->GetLightRays()->GetLastRunAborted())
+    << "the abort did not reach the light rays";
+  EXPECT_EQ(pipeline->GetNumberOfViewPassRuns(), 0);
+  EXPECT_EQ(log.Errors, 0) << "an abort is not an error";
+
+  log.Progress.clear();
+  ASSERT_TRUE(pipeline->Render(24, 24));
+  EXPECT_FALSE(pipeline->GetLastRenderAborted());
+  EXPECT_EQ(log.Errors, 0);
+  EXPECT_EQ(pipeline->GetImage(), reference->GetImage()) << "same scene: same image";
+  ASSERT_GE(log.Progress.size(), 8u) << "the light passes report progress";
+  for (size_t i = 1; i < log.Progress.size(); ++i)
+  {
+    EXPECT_GE(log.Progress[i], log.Progress[i - 1]) << "at event " << i;
+  }
+  EXPECT_DOUBLE_EQ(log.Progress.back(), 1.0);
 }
