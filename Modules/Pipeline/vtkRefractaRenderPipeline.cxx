@@ -113,6 +113,24 @@ struct vtkRefractaRenderPipeline::Internals
   std::string LastError;
   vtkSmartPointer<vtkCallbackCommand> EventForwarder;
 
+  // A light pass's progress as a fraction of the lighting stage: the light rays and the lattice
+  // on their output share it half and half when both run; every other pass has it whole.
+  double LightingFraction(vtkObject* caller, double fraction) const
+  {
+    if (this->Running == this->LightRayLattice.GetPointer())
+    {
+      if (caller == this->LightRays.GetPointer())
+      {
+        return 0.5 * fraction;
+      }
+      if (caller == this->LightRayLattice.GetPointer())
+      {
+        return 0.5 + 0.5 * fraction;
+      }
+    }
+    return fraction;
+  }
+
   vtkOpenCLContext* GetContext()
   {
     return this->Context ? this->Context.Get() : vtkOpenCLContext::GetDefault();
@@ -157,10 +175,12 @@ vtkRefractaRenderPipeline::vtkRefractaRenderPipeline()
       if (callData)
       {
         const int stage = vtkRefractaViewPass::SafeDownCast(caller) ? VIEW : LIGHTING;
-        self->ReportProgress(stage, *static_cast<double*>(callData));
+        self->ReportProgress(stage, in.LightingFraction(caller, *static_cast<double*>(callData)));
       }
     });
   this->Internal->Schedule->AddObserver(vtkCommand::ProgressEvent, forward);
+  this->Internal->LightRays->AddObserver(vtkCommand::ProgressEvent, forward);
+  this->Internal->LightRayLattice->AddObserver(vtkCommand::ProgressEvent, forward);
   static_cast<vtkObject*>(this->Internal->Schedule->GetPhotonTracer())
     ->AddObserver(vtkCommand::ProgressEvent, forward);
   this->Internal->ViewPass->AddObserver(vtkCommand::ProgressEvent, forward);
@@ -173,7 +193,7 @@ void vtkRefractaRenderPipeline::SetEventOwner(vtkObject* owner)
 {
   Internals& in = *this->Internal;
   vtkObject* sources[] = { this, in.Schedule, in.Schedule->GetPhotonTracer(),
-    in.Schedule->GetSolver(), in.ViewPass };
+    in.Schedule->GetSolver(), in.LightRays, in.LightRayLattice, in.ViewPass };
   for (vtkObject* source : sources)
   {
     source->RemoveObservers(vtkCommand::ErrorEvent, in.EventForwarder);
@@ -404,6 +424,9 @@ vtkAlgorithm* vtkRefractaRenderPipeline::PrepareLightRays(vtkPhotonTracer* trace
   rays->SetLightRadius(tracer->GetLightRadius());
   rays->SetDirectionalLightAngularRadius(tracer->GetDirectionalLightAngularRadius());
   rays->SetInputData(in.Planned);
+  // An abort reaches the light rays through their progress observer; a new render clears it
+  // (the lattice's, when the lattice runs, is cleared with the pass's after the abort).
+  rays->SetAbortExecute(0);
   if (!in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
   {
     return rays;

@@ -97,6 +97,13 @@ int vtkLatticeBoltzmannLighting::RequestData(
   vtkImageData* output = vtkImageData::GetData(outputVector);
   output->Initialize();
   this->LastRunAborted = false;
+  if (this->GetAbortExecute())
+  {
+    // Aborted before the solve began (e.g. while the pass upstream ran, which then left its
+    // output empty): an abort, not bad input.
+    this->LastRunAborted = true;
+    return 1;
+  }
 
   vtkNew<vtkMediumValidator> validator;
   if (!validator->Validate(medium))

@@ -33,7 +33,8 @@
  * Progress and abort: ProgressEvent rises monotonically to 1; the solve covers 0.02 to 0.98 with
  * vtkLatticeBoltzmannSolver::Solve()'s estimate (iterations done or the log-scale way from the
  * first residual to Tolerance, whichever is further), reported every CheckInterval steps.
- * AbortExecute is looked at after every progress report, i.e. between check intervals: the run
+ * AbortExecute is looked at when RequestData starts (set while the pass upstream ran) and after
+ * every progress report, i.e. between check intervals: the run
  * then stops, leaves the output empty, releases the device buffers, reports no error (RequestData
  * returns 1) and sets GetLastRunAborted(); after AbortExecuteOff() the next Update() solves from
  * the start.

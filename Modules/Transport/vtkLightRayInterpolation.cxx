@@ -195,6 +195,13 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
   this->SamplesPerLevel.assign(levels.size(), 0);
   for (size_t k = 0; k < levels.size() && !current.empty(); ++k)
   {
+    // Dynamic sampling takes the first half of the progress, a share per grid level.
+    this->UpdateProgress(0.5 * static_cast<double>(k) / levels.size());
+    if (this->GetAbortExecute())
+    {
+      run.Aborted = true;
+      return true;
+    }
     Level& level = levels[k];
     const double radius = level.H;
     // Every candidate's 7 points (x_j and x_j +- Delta e_a), then the error points x_j +- R e_a
@@ -446,9 +453,16 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
         minDistance, vertexBuffer.Get(), sizeBuffer.Get(), offsetBuffer.Get(), gridBuffer.Get(),
         levelCount, sampleBuffer.Get(), radiance.Get(), direction.Get(), uncovered.Get(), count),
       "clSetKernelArg(light_rays_interpolate)", this) ||
-    !Run1D(ctx, kernel.Get(), voxels, "light_rays_interpolate", this) ||
-    !ctx->ReadBuffer(
-      radiance.Get(), 3 * voxels * sizeof(float), run.Radiance->GetPointer(0), this) ||
+    !this->RunChunked(run, kernel.Get(), voxels, "light_rays_interpolate", 0.5, 0.9))
+  {
+    return false;
+  }
+  if (run.Aborted)
+  {
+    return true;
+  }
+  if (!ctx->ReadBuffer(
+        radiance.Get(), 3 * voxels * sizeof(float), run.Radiance->GetPointer(0), this) ||
     !ctx->ReadBuffer(
       direction.Get(), 3 * voxels * sizeof(float), run.Direction->GetPointer(0), this) ||
     !ctx->ReadBuffer(uncovered.Get(), sizeof(int), &uncoveredCount, this))

@@ -158,6 +158,7 @@ int vtkLightRaySingleScattering::RequestData(
   this->TotalSeconds = this->SamplingSeconds = this->VoxelSeconds = 0;
   this->NumberOfSamples = this->NumberOfUncoveredVoxels = 0;
   this->NumberOfEvaluatedPoints = 0;
+  this->LastRunAborted = false;
   this->SamplesPerLevel.clear();
   this->SamplePositions->SetNumberOfTuples(0);
   this->SampleLevels->SetNumberOfTuples(0);
@@ -196,7 +197,15 @@ int vtkLightRaySingleScattering::RequestData(
   {
     return 0;
   }
+  if (run.Aborted || this->GetAbortExecute())
+  {
+    // An abort is not an error: empty output, no message.
+    output->Initialize();
+    this->LastRunAborted = true;
+    return 1;
+  }
   this->WriteOutput(run, output);
+  this->UpdateProgress(1.0);
   this->TotalSeconds = Seconds(start);
   return 1;
 }
@@ -467,9 +476,16 @@ bool vtkLightRaySingleScattering::RunLightRays(Internals& run)
     !ctx->Check(run.SetArgs(kernel.Get(), run.ScatteringBuffer.Get(), run.LightBuffer.Get(),
                   run.LightCount, minDistance, radiance.Get(), direction.Get(), count),
       "clSetKernelArg(light_rays_voxels)", this) ||
-    !Run1D(ctx, kernel.Get(), voxels, "light_rays_voxels", this) ||
-    !ctx->ReadBuffer(
-      radiance.Get(), 3 * voxels * sizeof(float), run.Radiance->GetPointer(0), this) ||
+    !this->RunChunked(run, kernel.Get(), voxels, "light_rays_voxels", 0.0, 0.9))
+  {
+    return false;
+  }
+  if (run.Aborted)
+  {
+    return true;
+  }
+  if (!ctx->ReadBuffer(
+        radiance.Get(), 3 * voxels * sizeof(float), run.Radiance->GetPointer(0), this) ||
     !ctx->ReadBuffer(
       direction.Get(), 3 * voxels * sizeof(float), run.Direction->GetPointer(0), this))
   {
@@ -483,6 +499,33 @@ bool vtkLightRaySingleScattering::RunLightRays(Internals& run)
   }
   this->NumberOfEvaluatedPoints = marched;
   this->VoxelSeconds = Seconds(start);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// Chunks of about 1/32 of the work (at least 4096 work-items): the abort is then seen within a
+// chunk's time, and progress moves 32 times.
+bool vtkLightRaySingleScattering::RunChunked(
+  Internals& run, cl_kernel kernel, size_t count, const char* label, double first, double last)
+{
+  const size_t local = 64;
+  const size_t chunk = std::max<size_t>(4096, (count / 32 + local - 1) / local * local);
+  for (size_t offset = 0; offset < count; offset += chunk)
+  {
+    if (this->GetAbortExecute())
+    {
+      run.Aborted = true;
+      return true;
+    }
+    const size_t size = std::min(chunk, count - offset);
+    const size_t global = (size + local - 1) / local * local;
+    if (!run.Context->RunKernel(kernel, 1, &global, &local, label, this, &offset) ||
+      !run.Context->Finish(this))
+    {
+      return false;
+    }
+    this->UpdateProgress(first + (last - first) * static_cast<double>(offset + size) / count);
+  }
   return true;
 }
 
@@ -564,6 +607,7 @@ void vtkLightRaySingleScattering::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
   os << indent << "CoarsestGridResolution: " << this->CoarsestGridResolution << "\n";
   os << indent << "MaximumGridResolution: " << this->MaximumGridResolution << "\n";
+  os << indent << "LastRunAborted: " << this->LastRunAborted << "\n";
   os << indent << "UseViewPoint: " << this->UseViewPoint << " (" << this->ViewPoint[0] << ", "
      << this->ViewPoint[1] << ", " << this->ViewPoint[2] << ")\n";
   os << indent << "TotalSeconds: " << this->TotalSeconds << "\n";

@@ -59,6 +59,7 @@
 
 #include <vector> // for the sample positions
 
+struct _cl_kernel; // cl_kernel, for RunChunked
 class vtkDoubleArray;
 class vtkIntArray;
 class vtkLight;
@@ -176,6 +177,13 @@ public:
   ///@}
 
   /**
+   * Whether the last run was aborted (AbortExecute set, e.g. by a ProgressEvent observer): the
+   * output is then empty and no error is reported. Progress is reported per chunk of voxels (and
+   * per grid level of the interpolation); the abort is checked at the same points.
+   */
+  vtkGetMacro(LastRunAborted, bool);
+
+  /**
    * The last run's final samples: positions (grid-local, 3 components) and grid levels (0: G1).
    */
   vtkDoubleArray* GetSamplePositions();
@@ -200,6 +208,10 @@ protected:
   bool EvaluatePoints(Internals& run, const std::vector<float>& points, const void* lights,
     int lightCount, std::vector<float>& phi, std::vector<float>& flux);
   void WriteOutput(Internals& run, vtkImageData* output);
+  // Runs the 1D `kernel` over `count` work-items in chunks, reporting progress from `first` to
+  // `last` and stopping (run.Aborted) when AbortExecute is set.
+  bool RunChunked(
+    Internals& run, _cl_kernel* kernel, size_t count, const char* label, double first, double last);
 
   int Method = LIGHT_RAYS;
   vtkSmartPointer<vtkLightCollection> Lights;
@@ -221,6 +233,7 @@ protected:
   int NumberOfSamples = 0;
   long long NumberOfEvaluatedPoints = 0;
   int NumberOfUncoveredVoxels = 0;
+  bool LastRunAborted = false;
   std::vector<int> SamplesPerLevel;
   vtkSmartPointer<vtkDoubleArray> SamplePositions;
   vtkSmartPointer<vtkIntArray> SampleLevels;

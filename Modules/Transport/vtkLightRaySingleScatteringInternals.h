@@ -30,6 +30,7 @@ struct vtkLightRaySingleScattering::Internals
   cl_float4 Frame[3];
   float SurfaceEpsilon = 0;
   vtkNew<vtkFloatArray> Radiance, Direction;
+  bool Aborted = false; // AbortExecute was seen: stop, empty output, no error
 
   // Sets the scene arguments (LR_SCENE_ARGS of light_rays.cl) and then `rest`.
   template <typename... Rest>

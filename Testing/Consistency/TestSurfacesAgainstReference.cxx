@@ -26,6 +26,7 @@
 // scattering and never lighting the floor, the largest region error was 47% and 102 of 192
 // region values failed. The run prints these numbers.
 #include "RefractaReferenceImages.h"
+#include "RegionComparison.h"
 
 #include "vtkCamera.h"
 #include "vtkEffectPlan.h"
@@ -56,6 +57,8 @@ namespace
 {
 using refracta::bench::Image;
 using refracta::bench::ReadImage;
+using refracta_test::Regions;
+using refracta_test::Scaled;
 
 constexpr int SIZE = 32;
 constexpr int BLOCK = 4;
@@ -157,72 +160,14 @@ Image RenderPipeline(const Scene& s)
   return ReadImage(renderer->GetOutput());
 }
 
-struct Regions
-{
-  std::vector<double> Mean, Error; // per region and channel
-  double Rms = 0;
-};
-
 Regions Pool(const Image& image)
 {
-  const int nb = SIZE / BLOCK;
-  Regions r;
-  r.Mean.assign(3 * nb * nb, 0.0);
-  r.Error.assign(3 * nb * nb, 0.0);
-  for (int j = 0; j < SIZE; ++j)
-  {
-    for (int i = 0; i < SIZE; ++i)
-    {
-      const int region = i / BLOCK + nb * (j / BLOCK);
-      for (int c = 0; c < 3; ++c)
-      {
-        const size_t v = 3 * (static_cast<size_t>(j) * SIZE + i) + c;
-        r.Mean[3 * region + c] += image.Value[v] / (BLOCK * BLOCK);
-        const double se = image.Error.empty() ? 0.0 : std::max(0.0, image.Error[v]);
-        r.Error[3 * region + c] += se * se;
-      }
-    }
-  }
-  double sum2 = 0;
-  for (size_t k = 0; k < r.Mean.size(); ++k)
-  {
-    r.Error[k] = std::sqrt(r.Error[k]) / (BLOCK * BLOCK);
-    sum2 += r.Mean[k] * r.Mean[k];
-  }
-  r.Rms = std::sqrt(sum2 / r.Mean.size());
-  return r;
+  return refracta_test::Pool(image, SIZE, BLOCK);
 }
 
-// Number of failed region values of `image` against the reference regions; prints the largest
-// relative region error.
 int FailedRegions(const Image& image, const Regions& ref, const std::string& what)
 {
-  const Regions p = Pool(image);
-  int failed = 0;
-  double worst = 0, worstZ = 0, needed = 0;
-  for (size_t k = 0; k < ref.Mean.size(); ++k)
-  {
-    const double d = std::abs(p.Mean[k] - ref.Mean[k]);
-    const double scale = std::max(ref.Mean[k], ref.Rms);
-    worst = std::max(worst, d / scale);
-    worstZ = std::max(worstZ, ref.Error[k] > 0 ? d / ref.Error[k] : 0.0);
-    needed = std::max(needed, (d - K_SIGMA * ref.Error[k]) / scale);
-    failed += d > K_SIGMA * ref.Error[k] + B * scale ? 1 : 0;
-  }
-  std::cout << "  " << what << ": largest region error " << 100 * worst
-            << "% of max(R, RMS_R), largest |P - R| / SE " << worstZ << ", failed " << failed
-            << " of " << ref.Mean.size() << " region values; the smallest B with none failed is "
-            << 100 * needed << "%" << std::endl;
-  return failed;
-}
-
-Image Scaled(Image image, double f)
-{
-  for (double& v : image.Value)
-  {
-    v *= f;
-  }
-  return image;
+  return refracta_test::FailedRegions(Pool(image), ref, K_SIGMA, B, what);
 }
 } // namespace
 

@@ -2,23 +2,31 @@
 // gets light rays (or the interpolation) and says why; refraction keeps the photons; a forced
 // method runs; the light rays and the photons agree on the same scene.
 #include "vtkAbstractArray.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
 #include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkLightRaySingleScattering.h"
 #include "vtkNew.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
 #include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaMedium.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkSmartPointer.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -140,4 +148,223 @@ TEST(PipelineSingleScattering, LightRaysAgreeWithPhotons)
     ref += std::pow(a->GetValue(i), 2);
   }
   EXPECT_LT(std::sqrt(diff / ref), 0.04);
+}
+
+namespace
+{
+// The scene of Refracta.EffectPlanHonesty's multiple-scattering case: a ball of radius 0.35 with
+// a sharp edge (sigma_t 8 inside, 0 outside, albedo 0.9) on 20^3 voxels, lit obliquely by the sun.
+vtkSmartPointer<vtkImageData> DenseBall()
+{
+  const int n = 20;
+  const double h = 1.0 / n;
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, n);
+  image->SetSpacing(h, h, h);
+  image->SetOrigin(0.5 * h, 0.5 * h, 0.5 * h);
+  vtkNew<vtkFloatArray> ext, alb;
+  ext->SetName(vtkRefractaMedium::ExtinctionName());
+  ext->SetNumberOfComponents(3);
+  alb->SetName(vtkRefractaMedium::AlbedoName());
+  alb->SetNumberOfComponents(3);
+  for (vtkIdType id = 0; id < image->GetNumberOfPoints(); ++id)
+  {
+    double p[3];
+    image->GetPoint(id, p);
+    const double r = std::sqrt(
+      (p[0] - 0.5) * (p[0] - 0.5) + (p[1] - 0.5) * (p[1] - 0.5) + (p[2] - 0.5) * (p[2] - 0.5));
+    for (int c = 0; c < 3; ++c)
+    {
+      ext->InsertNextValue(r < 0.35 ? 8.0f : 0.0f);
+      alb->InsertNextValue(0.9f);
+    }
+  }
+  image->GetPointData()->AddArray(ext);
+  image->GetPointData()->AddArray(alb);
+  return image;
+}
+
+struct Lit
+{
+  std::vector<double> S1, Multiple, Image; // Radiance, MultipleScattering, image RGB
+};
+
+std::vector<double> Values(vtkRefractaRenderPipeline* p, const char* name)
+{
+  std::vector<double> out;
+  vtkDataArray* a = p->GetLighting()->GetPointData()->GetArray(name);
+  for (vtkIdType i = 0; a && i < a->GetNumberOfValues(); ++i)
+  {
+    out.push_back(a->GetVariantValue(i).ToDouble());
+  }
+  return out;
+}
+
+// The ball lit with multiple scattering on: S1 from `method` (light rays: the lattice on their
+// output; photons: the photon/diffusion schedule), 32 x 32 pixels.
+Lit RenderBall(vtkImageData* ball, int method, bool smoothing)
+{
+  auto p = Pipeline(ball, method);
+  vtkLight* sun = vtkLight::SafeDownCast(p->GetLights()->GetItemAsObject(0));
+  sun->SetPosition(0.5, 3.0, 0.8);
+  p->GetCamera()->SetPosition(0.5, 0.5, 3.0);
+  p->GetCamera()->SetViewAngle(25);
+  p->SetMultipleScattering(true);
+  p->GetPhotonTracer()->SetNumberOfPhotons(1 << 18);
+  p->GetPhotonTracer()->SetSeed(3);
+  p->GetPhotonTracer()->SetSmoothing(smoothing);
+  Lit lit;
+  if (!p->Render(32, 32))
+  {
+    ADD_FAILURE() << "render failed";
+    return lit;
+  }
+  EXPECT_EQ(Ran(p), method == vtkEffectPlan::PHOTONS ? "photons" : "light_rays");
+  lit.S1 = Values(p, vtkRefractaLightingVolume::RadianceName());
+  lit.Multiple = Values(p, vtkRefractaLightingVolume::MultipleScatteringName());
+  const std::vector<float>& image = p->GetImage();
+  for (size_t q = 0; q < image.size(); ++q)
+  {
+    if (q % 4 != 3)
+    {
+      lit.Image.push_back(image[q]);
+    }
+  }
+  return lit;
+}
+
+double Total(const std::vector<double>& v)
+{
+  double sum = 0;
+  for (double x : v)
+  {
+    sum += x;
+  }
+  return sum;
+}
+
+// sqrt(sum (a - b)^2 / sum b^2), a scaled by `scale`.
+double RelativeL2(const std::vector<double>& a, const std::vector<double>& b, double scale = 1.0)
+{
+  double d = 0, n = 0;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i)
+  {
+    d += (scale * a[i] - b[i]) * (scale * a[i] - b[i]);
+    n += b[i] * b[i];
+  }
+  return n > 0 ? std::sqrt(d / n) : 0.0;
+}
+}
+
+// Light rays + the lattice (vtkLatticeBoltzmannLighting) against photons + the photon/diffusion
+// schedule on the same scene, multiple scattering on: the scene where the two were found to differ
+// by 15% (relative L2 of the image). Measured (2^18 photons, PoCL on the CPU):
+//   photons smoothed (the default): image 15.2%, MultipleScattering total +2.1%, S1 total -3.8%;
+//   photons unsmoothed:             image  6.6%, MultipleScattering total -0.5% (per voxel 2.2%
+//                                   relative L2), S1 total -3.8%
+// (light rays against photons). The lattice is not the cause: both paths run the same solver
+// settings (104 iterations each, tolerance 1e-4, block 4) and, given the same source, the same
+// result. The causes are the S1 each gives the lattice and the view pass:
+// - the photon pass's 3x3x3 smoothing spreads S1 one voxel across the ball's sharp edge into
+//   voxels that do not scatter (the view pass then shows a glow around the ball, and the
+//   lattice, whose medium is piecewise constant, loses the source put there): against the
+//   reference restricted to one scattering event (Refracta.SingleScatteringAgainstReference,
+//   DenseBall) the smoothed photons are +6.7% biased with region errors up to 42%, unsmoothed
+//   +1.4% and 12%;
+// - S1 at voxel centres (light rays) against voxel means (photons): 3.8% less scattered power in
+//   the edge voxels (Documentation/Physics.md, "Voxel centre or voxel mean").
+// Bounds (against the unsmoothed photons, 1.5 to 4 times the measured): MultipleScattering totals
+// within 2% and per voxel within 4% relative L2, S1 totals within 6%, image within 10%. A lattice
+// source normalised differently in one path (the suspected cause) fails: the light rays'
+// MultipleScattering x 1.1 must break the 2% bound.
+TEST(PipelineSingleScattering, MultipleScatteringAgreesWithPhotons)
+{
+  auto ball = DenseBall();
+  const Lit rays = RenderBall(ball, vtkEffectPlan::LIGHT_RAYS, false);
+  const Lit photons = RenderBall(ball, vtkEffectPlan::PHOTONS, false);
+  const Lit smoothed = RenderBall(ball, vtkEffectPlan::PHOTONS, true);
+  ASSERT_FALSE(rays.Multiple.empty());
+  ASSERT_EQ(rays.Multiple.size(), photons.Multiple.size());
+  ASSERT_EQ(rays.Image.size(), photons.Image.size());
+  const double msTotal = Total(rays.Multiple) / Total(photons.Multiple) - 1;
+  const double s1Total = Total(rays.S1) / Total(photons.S1) - 1;
+  const double msL2 = RelativeL2(rays.Multiple, photons.Multiple);
+  const double image = RelativeL2(rays.Image, photons.Image);
+  std::cout << "light rays against unsmoothed photons: MultipleScattering total " << 100 * msTotal
+            << "%, relative L2 " << 100 * msL2 << "%; S1 total " << 100 * s1Total
+            << "%; image relative L2 " << 100 * image << "%\n"
+            << "against smoothed photons: MultipleScattering total "
+            << 100 * (Total(rays.Multiple) / Total(smoothed.Multiple) - 1) << "%, image "
+            << 100 * RelativeL2(rays.Image, smoothed.Image) << "%" << std::endl;
+  EXPECT_LT(std::abs(msTotal), 0.02);
+  EXPECT_LT(msL2, 0.04);
+  EXPECT_LT(std::abs(s1Total), 0.06);
+  EXPECT_LT(image, 0.10);
+  EXPECT_GT(std::abs(1.1 * Total(rays.Multiple) / Total(photons.Multiple) - 1), 0.02)
+    << "a 10% error in the lattice's source passes: the test cannot see it";
+}
+
+// The light rays and the lattice on their output report the pipeline's lighting progress (half
+// each, monotone) and honour AbortRender(): an abort while the light rays run stops the render
+// without an error, and the next render gives the image of a pipeline never aborted.
+TEST(PipelineSingleScattering, LightRaysReportProgressAndAbort)
+{
+  auto straight = Haze(false);
+  auto reference = Pipeline(straight, vtkEffectPlan::LIGHT_RAYS);
+  reference->SetMultipleScattering(true);
+  ASSERT_TRUE(reference->Render(24, 24));
+
+  auto pipeline = Pipeline(straight, vtkEffectPlan::LIGHT_RAYS);
+  pipeline->SetMultipleScattering(true);
+  struct Log
+  {
+    vtkRefractaRenderPipeline* Pipeline = nullptr;
+    std::vector<double> Progress;
+    double AbortAbove = 2.0;
+    int Errors = 0;
+  } log;
+  log.Pipeline = pipeline;
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&log);
+  onProgress->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void* call)
+    {
+      auto* l = static_cast<Log*>(client);
+      const double p = *static_cast<double*>(call);
+      l->Progress.push_back(p);
+      if (p > l->AbortAbove)
+      {
+        l->AbortAbove = 2.0;
+        l->Pipeline->AbortRender();
+      }
+    });
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&log);
+  onError->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void*) { ++static_cast<Log*>(client)->Errors; });
+  vtkNew<vtkObject> owner;
+  owner->AddObserver(vtkCommand::ErrorEvent, onError);
+  pipeline->SetEventOwner(owner);
+  pipeline->AddObserver(vtkCommand::ProgressEvent, onProgress);
+
+  // The lighting stage starts after the plan's small share: abort a little into it.
+  log.AbortAbove = 0.05;
+  EXPECT_FALSE(pipeline->Render(24, 24));
+  EXPECT_TRUE(pipeline->GetLastRenderAborted());
+  EXPECT_TRUE(pipeline->GetLightRays()->GetLastRunAborted())
+    << "the abort did not reach the light rays";
+  EXPECT_EQ(pipeline->GetNumberOfViewPassRuns(), 0);
+  EXPECT_EQ(log.Errors, 0) << "an abort is not an error";
+
+  log.Progress.clear();
+  ASSERT_TRUE(pipeline->Render(24, 24));
+  EXPECT_FALSE(pipeline->GetLastRenderAborted());
+  EXPECT_EQ(log.Errors, 0);
+  EXPECT_EQ(pipeline->GetImage(), reference->GetImage()) << "same scene: same image";
+  ASSERT_GE(log.Progress.size(), 8u) << "the light passes report progress";
+  for (size_t i = 1; i < log.Progress.size(); ++i)
+  {
+    EXPECT_GE(log.Progress[i], log.Progress[i - 1]) << "at event " << i;
+  }
+  EXPECT_DOUBLE_EQ(log.Progress.back(), 1.0);
 }

@@ -1,7 +1,8 @@
 // Progress and abort of the transport passes (issue 12): ProgressEvent values are monotone, many
 // and end at 1; an observer that calls AbortExecuteOn() at the first value above 0.2 makes
 // Update() return within 0.5 s with an empty output; after AbortExecuteOff() the next Update()
-// gives the full result. Photon batches and chunks do not change the photon pass's result.
+// gives the full result. Photon batches and chunks do not change the photon pass's result. The
+// light-ray pass (issue 15) does the same with both of its methods.
 #include "PhotonTestUtilities.h"
 #include "ProgressTestUtilities.h"
 
@@ -12,6 +13,7 @@
 #include "vtkImageData.h"
 #include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLatticeBoltzmannSolver.h"
+#include "vtkLightRaySingleScattering.h"
 #include "vtkNew.h"
 #include "vtkPhotonDiffusionSchedule.h"
 #include "vtkPhotonTracer.h"
@@ -247,4 +249,77 @@ TEST(PhotonDiffusionScheduleProgress, ProgressAndAbort)
   ASSERT_EQ(out->GetNumberOfPoints(), medium->GetNumberOfPoints());
   EXPECT_NE(out->GetPointData()->GetArray("MultipleScattering"), nullptr);
   EXPECT_EQ(photontest::Field(out, "NumberOfPhotons"), 1 << 14);
+}
+
+// Light rays and the interpolation: progress per chunk of voxels (and per grid level of the
+// dynamic sampling), abort within a chunk, an aborted run leaves an empty output and the next
+// run the full one, identical to a run that was never aborted.
+TEST(LightRayProgress, ProgressAndAbort)
+{
+  // A cloud on 48^3 voxels lit by 4 directional lights: about 0.5 s a run on the 2-core CPU.
+  const int n = 48;
+  const double c = 0.5 * (n - 1);
+  vtkSmartPointer<vtkImageData> medium = photontest::MakeMedium(
+    n, n, n, 1.0,
+    [=](double x, double y, double z)
+    {
+      photontest::Voxel v;
+      const double r2 = ((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c)) / (c * c);
+      const double s = r2 < 1 ? 0.2 * (1 - r2) * (1.2 + std::sin(0.3 * x) * std::cos(0.2 * z)) : 0;
+      v.Extinction = { s, s, s };
+      v.Albedo = { 0.9, 0.9, 0.9 };
+      return v;
+    },
+    false);
+  for (int method :
+    { vtkLightRaySingleScattering::LIGHT_RAYS, vtkLightRaySingleScattering::INTERPOLATED })
+  {
+    const char* name = vtkLightRaySingleScattering::GetMethodName(method);
+    vtkNew<vtkLightRaySingleScattering> rays;
+    rays->SetInputData(medium);
+    rays->SetMethod(method);
+    for (int l = 0; l < 4; ++l)
+    {
+      const double a = 1.57 * l;
+      rays->AddLight(photontest::Directional(
+        { 100 * std::cos(a), 60.0 - 10 * l, 100 * std::sin(a) }, { c, c, c }, 0.2));
+    }
+    vtkNew<ProgressLog> log;
+    rays->AddObserver(vtkCommand::ProgressEvent, log);
+    const double latency = AbortedRun(rays, log);
+    EXPECT_LT(latency, 0.5) << name;
+    EXPECT_TRUE(rays->GetLastRunAborted()) << name;
+    EXPECT_EQ(rays->GetOutput()->GetNumberOfPoints(), 0) << name;
+    EXPECT_EQ(rays->GetOutput()->GetPointData()->GetArray("Radiance"), nullptr) << name;
+
+    rays->AbortExecuteOff();
+    log->Reset(2.0);
+    const auto start = Clock::now();
+    rays->Update();
+    std::printf(
+      "%s: full run %.2f s\n", name, std::chrono::duration<double>(Clock::now() - start).count());
+    EXPECT_FALSE(rays->GetLastRunAborted()) << name;
+    ExpectGoodProgress(log->Values, name);
+    vtkImageData* out = rays->GetOutput();
+    ASSERT_EQ(out->GetNumberOfPoints(), medium->GetNumberOfPoints()) << name;
+    vtkDataArray* radiance = out->GetPointData()->GetArray("Radiance");
+    ASSERT_NE(radiance, nullptr) << name;
+
+    // The same as a fresh filter that was never aborted (chunking changes nothing).
+    vtkNew<vtkLightRaySingleScattering> fresh;
+    fresh->SetInputData(medium);
+    fresh->SetMethod(method);
+    fresh->SetLights(rays->GetLights());
+    fresh->Update();
+    vtkDataArray* expected = fresh->GetOutput()->GetPointData()->GetArray("Radiance");
+    ASSERT_NE(expected, nullptr) << name;
+    double lit = 0;
+    for (vtkIdType v = 0; v < radiance->GetNumberOfValues(); ++v)
+    {
+      ASSERT_EQ(radiance->GetVariantValue(v).ToFloat(), expected->GetVariantValue(v).ToFloat())
+        << name << " value " << v;
+      lit += radiance->GetVariantValue(v).ToDouble();
+    }
+    EXPECT_GT(lit, 0.0) << name;
+  }
 }
