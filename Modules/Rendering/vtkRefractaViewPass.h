@@ -193,6 +193,18 @@ public:
   vtkGetMacro(SurfaceFilter, int);
   ///@}
 
+  ///@{
+  /**
+   * Glass (dielectric surfaces, Documentation/Physics.md "Glass in the view pass"): at the first
+   * DielectricSplitDepth interfaces of a path both the Fresnel-reflected and the refracted leg are
+   * followed (weights R and 1 - R); deeper, only the likelier leg, with the path's whole weight.
+   * 0 follows one leg everywhere; each level doubles the legs at most. Default 2, chosen by
+   * measurement (the error table in Physics.md). Clamped to [0, 8].
+   */
+  vtkSetClampMacro(DielectricSplitDepth, int, 0, 8);
+  vtkGetMacro(DielectricSplitDepth, int);
+  ///@}
+
   /**
    * Number of times surface geometry (BVH, triangles, atlas) was uploaded to the device.
    */
@@ -358,6 +370,7 @@ protected:
   bool EmptySpaceSkipping = true;
   int MacroCellSize = 8;
   int SurfaceFilter = LINEAR_TEXEL;
+  int DielectricSplitDepth = 2;
   bool LastSkipping = false;
   double LastActiveCellFraction = 1.0;
   double OccupancySeconds = 0.0;
