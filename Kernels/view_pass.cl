@@ -30,7 +30,9 @@
 // REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length), REFRACTA_INDEX_WEIGHT (sources
 // weighted by 1 / n^2 with n sampled per step), REFRACTA_SOURCE_SCALE=<1 / n^2> (a uniform n != 1),
 // REFRACTA_SKIP (empty-space skipping, below), REFRACTA_HAS_SURFACES (opaque triangle surfaces,
-// below; view_surfaces.cl), REFRACTA_SURFACE_NEAREST (no irradiance interpolation).
+// below; view_surfaces.cl), REFRACTA_SURFACE_NEAREST (no irradiance interpolation),
+// REFRACTA_DIELECTRIC (glass triangles: paths split at them, see refracta_view_dielectric_split)
+// with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>.
 //
 // Surfaces (-DREFRACTA_HAS_SURFACES): the surface set's BVH (nodes, nodeCount, triangles) and atlas
 // (triInfo, surfaceAlbedo, surfaceIrradiance) in the surface frame (view_surfaces.cl). Surfaces
@@ -551,6 +553,13 @@ inline refracta_view_leg refracta_view_march(
   return leg;
 }
 
+// A leg still to follow: where it starts, its direction, its weight in the pixel.
+typedef struct
+{
+  float3 origin, d, weight;
+  int depth; // interfaces met before this leg
+} refracta_view_branch;
+
 #ifdef REFRACTA_DIELECTRIC
 // Dielectric interfaces (Documentation/Physics.md, "Glass in the view pass"): at a triangle of
 // kind REFRACTA_SURFACE_DIELECTRIC the path splits into the Fresnel-reflected and the refracted
@@ -568,12 +577,6 @@ inline refracta_view_leg refracta_view_march(
 #ifndef REFRACTA_MAX_INTERFACES
 #define REFRACTA_MAX_INTERFACES 16
 #endif
-
-typedef struct
-{
-  float3 origin, d, weight;
-  int depth; // interfaces met before this leg
-} refracta_view_branch;
 
 // Surface-frame vector -> grid-local normal: the map grid-local -> surface frame has linear part
 // M (rows m0..m2); normals transform with M^T.

@@ -22,6 +22,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaMedium.h"
 #include "vtkRefractaSurfaceMaterial.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkRefractaViewPass.h"
@@ -352,12 +353,19 @@ struct Scene
   vtkNew<vtkCamera> camera;
   int w = 80, h = 80;
 
-  // A clear medium far from the glass (the view pass needs one; straight rays).
-  void Prepare(double background)
+  // A clear medium far from the glass (the view pass needs one; straight rays), or `given`.
+  void Prepare(double background, vtkImageData* given = nullptr)
   {
     const double origin[3] = { 5, 5, 5 };
-    this->medium = refracta_test::MakeGrid(4, 4, 4, 0.1, origin);
-    refracta_test::AddConstant(this->medium, "Extinction", 3, 0, 0, 0);
+    this->medium = given;
+    if (!given)
+    {
+      this->medium = refracta_test::MakeGrid(4, 4, 4, 0.1, origin);
+    }
+    if (!given)
+    {
+      refracta_test::AddConstant(this->medium, "Extinction", 3, 0, 0, 0);
+    }
     this->reference.background = background;
     this->pass->SetBackgroundColor(background, background, background);
     ASSERT_TRUE(this->pass->SetMedium(this->medium));
@@ -446,7 +454,7 @@ Error Compare(const std::vector<float>& hdr, const std::vector<double>& ref)
   return e;
 }
 
-void BallOverFloor(Scene& s)
+void BallOverFloor(Scene& s, vtkImageData* medium = nullptr)
 {
   vtkNew<vtkSphereSource> sphere;
   sphere->SetRadius(0.5);
@@ -456,7 +464,7 @@ void BallOverFloor(Scene& s)
   s.set->AddSurface(sphere->GetOutput(), Glass(true));
   AddMesh(sphere->GetOutput(), true, 0, true, s.reference.tris);
   CheckerFloor(-1.0, s.set, s.reference.tris);
-  s.Prepare(0.4);
+  s.Prepare(0.4, medium);
 }
 }
 
@@ -497,6 +505,39 @@ TEST(ViewPassGlass, BallOverCheckerAgreesWithDoublePrecisionTrace)
     s.Render(8, &deepSeconds);
     std::printf("view %d: split depth 8: %.1f ms\n", view, 1e3 * deepSeconds);
   }
+}
+
+//------------------------------------------------------------------------------
+// Curved rays: the ball inside a medium grid whose index is that of the material owning each
+// voxel centre (1.5 in the ball, 1 outside) with grad n = 0 (the exact-interface field of
+// Physics.md): after each interface the march goes on in the medium on the new side, straight
+// since grad n = 0, and the image equals the trace's.
+TEST(ViewPassGlass, CurvedMarchContinuesOnTheNewSide)
+{
+  const double origin[3] = { -1.2, -1.2, -1.2 };
+  auto medium = refracta_test::MakeGrid(25, 25, 25, 0.1, origin);
+  refracta_test::AddConstant(medium, "Extinction", 3, 0, 0, 0);
+  vtkFloatArray* n =
+    refracta_test::AddConstant(medium, vtkRefractaMedium::RefractiveIndexName(), 1, 1.0);
+  refracta_test::AddConstant(medium, vtkRefractaMedium::RefractiveIndexGradientName(), 3, 0, 0, 0);
+  for (vtkIdType p = 0; p < medium->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    medium->GetPoint(p, x);
+    n->SetValue(p, vtkMath::Norm(x) < 0.5 ? 1.5f : 1.0f);
+  }
+  Scene s;
+  BallOverFloor(s, medium);
+  s.pass->SetRayMode(vtkRefractaViewPass::CURVED);
+  s.camera->SetPosition(0.05, 0.1, 3.0);
+  s.camera->SetFocalPoint(0, 0, -0.3);
+  s.camera->SetViewUp(0, 1, 0);
+  s.camera->SetViewAngle(40);
+  const Error e = Compare(s.Render(8), s.ReferenceImage());
+  std::printf("curved: mean %.2e max %.3f, %.2f%% of pixels off by > 0.02\n", e.mean, e.max,
+    100 * e.badFraction);
+  EXPECT_LT(e.mean, 2e-3);
+  EXPECT_LT(e.badFraction, 0.01);
 }
 
 //------------------------------------------------------------------------------
