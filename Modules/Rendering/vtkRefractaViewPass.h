@@ -51,6 +51,13 @@
  * the path, n the index at the hit (1 outside the medium's box). The pixel is then opaque (alpha
  * 1, transmittance 0). The set's BVH, triangles and atlas are uploaded once per Build() of the set
  * (GetNumberOfSurfaceUploads()); a camera move uploads nothing.
+ *
+ * Glass: triangles of a DIELECTRIC surface material are interfaces, not opaque. A ray meeting
+ * one splits into a Fresnel-reflected leg (weight R) and a refracted leg (weight 1 - R; none under
+ * total internal reflection), with the interpolated shading normal, each continuing as an
+ * ordinary march (DielectricSplitDepth; Documentation/Physics.md, "Glass in the view pass"). The
+ * pixel's transmittance output is then the summed weight of the legs that end in the background
+ * (or at the depth limit), its surface depth the distance to the first surface met.
  */
 #ifndef vtkRefractaViewPass_h
 #define vtkRefractaViewPass_h
