@@ -530,6 +530,12 @@ inline void photon_advance(float3 x, float3 v, __global const uchar* octree,
 {
   const float n0 = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
   const float3 dir = v / length(v);
+#if REFRACTA_INTERFACES
+  // Across a dielectric interface n jumps, and trilinear lookups blend the jump within a voxel of
+  // it while grad n (which never holds the jump) is 0 there: only v's direction carries
+  // information, so |v| is put back on the local n for the step control's test |v| = n.
+  v = dir * n0;
+#endif
   float h = photon_step(x, dir, octree, extinction, dims, spacing);
   const float3 g0 = refracta_sample3(gradient, dims, refracta_to_voxel(x, spacing));
   float3 v2;
@@ -619,12 +625,22 @@ typedef struct
   volatile __global long* irradiance;
   float4 row0, row1, row2;
   float epsilon; // offset of a reflected photon from the surface (grid-local units)
+  __global const float4* normals;    // corner normals (dielectric shading normals)
+  __global const float2* interfaces; // (index inside, index outside) per surface
+  volatile __global long* tallies;   // the interface books are added at each event
+  volatile __global long* counters;
 } photon_surfaces;
 
 inline void photon_set_surfaces(photon_surfaces* s, __global const float4* nodes, int nodeCount,
   __global const float4* triangles, __global const int4* info, __global const float* albedo,
-  volatile __global long* irradiance, float4 row0, float4 row1, float4 row2, float epsilon)
+  volatile __global long* irradiance, float4 row0, float4 row1, float4 row2, float epsilon,
+  __global const float4* normals, __global const float2* interfaces,
+  volatile __global long* tallies, volatile __global long* counters)
 {
+  s->normals = normals;
+  s->interfaces = interfaces;
+  s->tallies = tallies;
+  s->counters = counters;
   s->epsilon = epsilon;
   s->nodes = nodes;
   s->nodeCount = nodeCount;
@@ -661,6 +677,39 @@ inline bool photon_in_box(float3 x, float3 lo, float3 hi)
   return all(x >= lo) && all(x <= hi);
 }
 
+// The surface-frame vector n (a normal) in the grid-local frame (R^T n).
+inline float3 photon_from_surface_vector(const photon_surfaces* s, float3 n)
+{
+  return n.x * s->row0.xyz + n.y * s->row1.xyz + n.z * s->row2.xyz;
+}
+
+// The photon at *x travelling along unit d meets the dielectric triangle h: reflected with the
+// Fresnel probability R, else refracted (refracta_dielectric_sample). The probability is the
+// weight, so its power is unchanged and each event books the power once, as reflected or as
+// transmitted: per interface, reflected + transmitted = incident exactly. It leaves epsilon off
+// the surface on the side it now travels to; glass neither deposits nor resets the order.
+inline void photon_interface_interact(photon_state* ps, float3* x, float3* dir, float3 d,
+  refracta_hit h, const photon_surfaces* s)
+{
+  const int k = h.triangle;
+  const float2 eta = s->interfaces[s->triInfo[k].z];
+  const float3 ng = normalize(photon_from_surface_vector(s, refracta_triangle_normal(s->triangles, k)));
+  const float3 ns =
+    normalize(photon_from_surface_vector(s, refracta_shading_normal(s->normals, k, h.u, h.v)));
+  int transmitted;
+  float reflectance, etaFrom, etaTo;
+  *dir = refracta_dielectric_sample(d, ng, ns, eta.x, eta.y, refracta_rng_uniform(&ps->rng),
+    &transmitted, &reflectance, &etaFrom, &etaTo);
+  const int book = transmitted ? PHOTON_TALLY_INTERFACE_TRANSMITTED : PHOTON_TALLY_INTERFACE_REFLECTED;
+  refracta_atomic_add_fixed(s->tallies + 3 * book, ps->power.x);
+  refracta_atomic_add_fixed(s->tallies + 3 * book + 1, ps->power.y);
+  refracta_atomic_add_fixed(s->tallies + 3 * book + 2, ps->power.z);
+  atom_add(s->counters +
+      (transmitted ? PHOTON_COUNTER_INTERFACE_TRANSMISSIONS : PHOTON_COUNTER_INTERFACE_REFLECTIONS),
+    1L);
+  *x += s->epsilon * (dot(*dir, ng) > 0.0f ? ng : -ng);
+}
+
 // The photon at *x (on the surface) travelling along unit d meets triangle h: deposit, book,
 // roulette on the albedo, and diffuse reflection. Returns -1 (goes on from *x along *dir) or
 // PHOTON_COUNTER_SURFACE (absorbed).
@@ -668,6 +717,11 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
   refracta_hit h, const photon_surfaces* s)
 {
   const int4 info = s->triInfo[h.triangle];
+  if (info.w == REFRACTA_SURFACE_DIELECTRIC)
+  {
+    photon_interface_interact(ps, x, dir, d, h, s);
+    return -1;
+  }
   const int texel = info.x + refracta_texel_index(h.u, h.v, info.y);
   refracta_atomic_add_fixed(s->irradiance + 3 * texel, ps->power.x);
   refracta_atomic_add_fixed(s->irradiance + 3 * texel + 1, ps->power.y);
@@ -856,7 +910,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   __global const float4* surfaceTriangles, __global const int4* surfaceInfo,
   __global const float* surfaceAlbedo, volatile __global long* surfaceIrradiance,
   const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon,
-  __global const float* anisotropy, volatile __global long* multiple)
+  __global const float* anisotropy, volatile __global long* multiple,
+  __global const float4* surfaceNormals, __global const float2* surfaceInterfaces)
 {
   // Launched in chunks (for progress reports); the stream depends on the photon, not the chunk.
   const uint id = first + (uint)get_global_id(0);
@@ -892,7 +947,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
 #if REFRACTA_SURFACES
   photon_surfaces surf;
   photon_set_surfaces(&surf, surfaceNodes, surfaceNodeCount, surfaceTriangles, surfaceInfo,
-    surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon);
+    surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon, surfaceNormals,
+    surfaceInterfaces, tallies, counters);
   float3 v = photon_velocity(x, d0, lo, hi, refractiveIndex, dims, spacing);
   do
   {
@@ -951,7 +1007,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   __global const float4* surfaceTriangles, __global const int4* surfaceInfo,
   __global const float* surfaceAlbedo, volatile __global long* surfaceIrradiance,
   const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon,
-  __global const float* anisotropy, volatile __global long* multiple)
+  __global const float* anisotropy, volatile __global long* multiple,
+  __global const float4* surfaceNormals, __global const float2* surfaceInterfaces)
 {
   const uint id = first + (uint)get_global_id(0);
   if (id >= count)
@@ -1032,7 +1089,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
 #if REFRACTA_SURFACES
   photon_surfaces surf;
   photon_set_surfaces(&surf, surfaceNodes, surfaceNodeCount, surfaceTriangles, surfaceInfo,
-    surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon);
+    surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon, surfaceNormals,
+    surfaceInterfaces, tallies, counters);
   for (uint c = 0; c < chunkSteps && outcome < 0; ++c)
   {
     outcome = photon_surface_event(&ps, &x, &v, &steps, lo, hi, octree, extinction, albedo,

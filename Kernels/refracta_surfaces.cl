@@ -14,7 +14,12 @@
 //   nodes      float4[2 * N]: node k = (lo.xyz, as_float(a)), (hi.xyz, as_float(count)); count > 0:
 //              a leaf holding triangles [a, a + count); count == 0: an interior node whose first
 //              child is k + 1 (depth-first order) and second child is a. Node 0 is the root.
-//   triInfo    int4[T]: (first texel, subdivision n, surface index, 0).
+//   triInfo    int4[T]: (first texel, subdivision n, surface index, kind), kind
+//              REFRACTA_SURFACE_LAMBERTIAN (opaque) or REFRACTA_SURFACE_DIELECTRIC (interface).
+//   normals    float4[3 * T]: the unit corner normals of triangle t at 3t, 3t + 1, 3t + 2 (w 0):
+//              interpolated over the triangle for the dielectric optics (refracta_shading_normal).
+//   interfaces float2[S]: (index inside, index outside) of surface s ((1, 1) if Lambertian);
+//              inside is against the winding normal (v1 - v0) x (v2 - v0), outside along it.
 //   albedo     float[3 * texels]: RGB albedo in [0, 1] of each texel.
 //   texel area float[texels] (world units^2), for irradiance = flux / area on the host.
 //
@@ -33,6 +38,11 @@
 #define REFRACTA_TRIANGLE_INFO_TEXEL 0
 #define REFRACTA_TRIANGLE_INFO_SUBDIVISION 1
 #define REFRACTA_TRIANGLE_INFO_SURFACE 2
+#define REFRACTA_TRIANGLE_INFO_KIND 3
+#define REFRACTA_SURFACE_LAMBERTIAN 0 /* opaque two-sided Lambertian reflector */
+#define REFRACTA_SURFACE_DIELECTRIC 1 /* transparent interface between two indices */
+#define REFRACTA_TRIANGLE_NORMAL_FLOATS 12 /* floats per triangle in normals (3 float4) */
+#define REFRACTA_SURFACE_INTERFACE_FLOATS 2 /* floats per surface in interfaces */
 #define REFRACTA_BVH_STACK_SIZE 64 /* traversal stack; the build never exceeds this depth */
 #define REFRACTA_BVH_MAX_DEPTH 60
 
@@ -319,6 +329,97 @@ inline int refracta_texel_index(float u, float v, int n)
   const float s = a + b;
   const int inverted = (i + j <= n - 2 && s > (float)(i + j + 1)) ? 1 : 0;
   return j * (2 * n - j) + 2 * i + inverted;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Dielectric interfaces (Documentation/Physics.md, "Dielectric interfaces"): the optics every pass
+// shares. vtkRefractaDielectric is the host's twin, step for step in double.
+
+// Unpolarised Fresnel reflectance of light going from index etaI into etaT at cos(incidence)
+// cosI (clamped to [0, 1]): (Rs + Rp) / 2 with Rs = ((etaI cI - etaT cT) / (etaI cI + etaT cT))^2
+// and Rp = ((etaI cT - etaT cI) / (etaI cT + etaT cI))^2; exactly 1 from the critical angle on
+// (total internal reflection).
+inline float refracta_fresnel_reflectance(float cosI, float etaI, float etaT)
+{
+  const float c = clamp(cosI, 0.0f, 1.0f);
+  const float eta = etaI / etaT;
+  const float sin2T = eta * eta * fmax(0.0f, 1.0f - c * c);
+  if (sin2T >= 1.0f)
+  {
+    return 1.0f;
+  }
+  const float cosT = sqrt(1.0f - sin2T);
+  const float rs = (etaI * c - etaT * cosT) / (etaI * c + etaT * cosT);
+  const float rp = (etaI * cosT - etaT * c) / (etaI * cosT + etaT * c);
+  return 0.5f * (rs * rs + rp * rp);
+}
+
+// Mirror direction of d about the unit normal n (either side).
+inline float3 refracta_reflect(float3 d, float3 n)
+{
+  return d - 2.0f * dot(d, n) * n;
+}
+
+// Snell's law: unit d meets the unit normal nf that faces it (dot(d, nf) < 0), eta = etaI / etaT.
+// False (and *t untouched) under total internal reflection, else *t the unit refracted direction.
+inline bool refracta_refract(float3 d, float3 nf, float eta, float3* t)
+{
+  const float cosI = -dot(d, nf);
+  const float sin2T = eta * eta * fmax(0.0f, 1.0f - cosI * cosI);
+  if (sin2T >= 1.0f)
+  {
+    return false;
+  }
+  const float cosT = sqrt(1.0f - sin2T);
+  *t = normalize(eta * d + (eta * cosI - cosT) * nf);
+  return true;
+}
+
+// The shading normal of triangle k at barycentric (u, v) of v1, v2: its corner normals
+// interpolated and normalised (on the side of the winding normal).
+inline float3 refracta_shading_normal(__global const float4* normals, int k, float u, float v)
+{
+  return normalize((1.0f - u - v) * normals[3 * k].xyz + u * normals[3 * k + 1].xyz +
+    v * normals[3 * k + 2].xyz);
+}
+
+// One choice at a dielectric interface, for a unit direction d meeting a triangle with unit
+// winding (outward) normal ng and shading normal ns, between nInside and nOutside, with xi uniform
+// in [0, 1): reflected with probability R (Fresnel with the shading normal; 1 under total internal
+// reflection), else refracted. Returns the new unit direction; *transmitted says which branch,
+// *reflectance is the R used, *etaFrom and *etaTo the indices of the incident and the other side.
+// When the shading normal would send the ray to the wrong side of the triangle's plane (reflected
+// through it or refracted back), the choice is made again, with the same xi, about the geometric
+// normal: a ray never tunnels, and the branch's probability is still its weight.
+inline float3 refracta_dielectric_sample(float3 d, float3 ng, float3 ns, float nInside,
+  float nOutside, float xi, int* transmitted, float* reflectance, float* etaFrom, float* etaTo)
+{
+  const bool entering = dot(d, ng) < 0.0f;
+  const float etaI = entering ? nOutside : nInside;
+  const float etaT = entering ? nInside : nOutside;
+  *etaFrom = etaI;
+  *etaTo = etaT;
+  const float3 fg = entering ? ng : -ng; // the geometric normal on the incident side
+  const float3 fs = entering ? ns : -ns;
+  float3 nf = dot(d, fs) < 0.0f ? fs : fg;
+  float3 out = d;
+  for (int attempt = 0; attempt < 2; ++attempt)
+  {
+    const float r = refracta_fresnel_reflectance(-dot(d, nf), etaI, etaT);
+    *reflectance = r;
+    *transmitted = (xi < r || !refracta_refract(d, nf, etaI / etaT, &out)) ? 0 : 1;
+    if (!*transmitted)
+    {
+      out = refracta_reflect(d, nf);
+    }
+    const float side = dot(out, fg);
+    if ((*transmitted ? side < 0.0f : side > 0.0f) || attempt == 1)
+    {
+      break;
+    }
+    nf = fg;
+  }
+  return out;
 }
 
 #endif // __OPENCL_VERSION__

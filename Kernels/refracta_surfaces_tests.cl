@@ -32,3 +32,24 @@ __kernel void refracta_test_texel(__global const float* uv, __global const int* 
     out[i] = refracta_texel_index(uv[2 * i], uv[2 * i + 1], subdivision[i]);
   }
 }
+
+// One dielectric choice per work-item: in[3 i] = (d, nInside), in[3 i + 1] = (ng, nOutside),
+// in[3 i + 2] = (ns, xi); out[i] = (direction, reflectance), transmitted[i] = the branch.
+__kernel void refracta_test_dielectric(__global const float4* in, __global float4* out,
+  __global int* transmitted, const uint n)
+{
+  const size_t i = get_global_id(0);
+  if (i >= n)
+  {
+    return;
+  }
+  const float4 a = in[3 * i];
+  const float4 b = in[3 * i + 1];
+  const float4 c = in[3 * i + 2];
+  int t;
+  float r, etaFrom, etaTo;
+  const float3 dir =
+    refracta_dielectric_sample(a.xyz, b.xyz, c.xyz, a.w, b.w, c.w, &t, &r, &etaFrom, &etaTo);
+  out[i] = (float4)(dir, r);
+  transmitted[i] = t;
+}

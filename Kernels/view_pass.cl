@@ -30,7 +30,9 @@
 // REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length), REFRACTA_INDEX_WEIGHT (sources
 // weighted by 1 / n^2 with n sampled per step), REFRACTA_SOURCE_SCALE=<1 / n^2> (a uniform n != 1),
 // REFRACTA_SKIP (empty-space skipping, below), REFRACTA_HAS_SURFACES (opaque triangle surfaces,
-// below; view_surfaces.cl), REFRACTA_SURFACE_NEAREST (no irradiance interpolation).
+// below; view_surfaces.cl), REFRACTA_SURFACE_NEAREST (no irradiance interpolation),
+// REFRACTA_DIELECTRIC (glass triangles: paths split at them, see refracta_view_dielectric_split)
+// with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>.
 //
 // Surfaces (-DREFRACTA_HAS_SURFACES): the surface set's BVH (nodes, nodeCount, triangles) and atlas
 // (triInfo, surfaceAlbedo, surfaceIrradiance) in the surface frame (view_surfaces.cl). Surfaces
@@ -261,45 +263,46 @@ inline float refracta_empty_run(float3 x, float3 d, float3 lo, float3 hi, float3
 }
 #endif
 
-__kernel void refracta_view_pass(const int4 dims, const float4 spacing,
-  __global const float* extinction, __global const float* emission,
-  __global const float* anisotropy, __global const float* refractiveIndex,
-  __global const float* gradient, __global const float* radiance,
-  __global const float* radianceDirection, __global const float* multiple, const float4 eye,
-  const float4 camU, const float4 camV, const float4 camW, const int width, const int height,
-  const float stepLength, const int maxSteps, const float cutoff, const float4 background,
-  __global const float* environment, const int2 envSize, const float4 envRight,
-  const float4 envUp, const float4 envFront, __global const float* depthLimit,
-  __global const uchar* occupancy, const int4 cellDims, const int4 activeLo, const int4 activeHi,
-  const uint skipMask, __global const float4* nodes, const int nodeCount,
-  __global const float4* triangles, __global const int* triInfo,
-  __global const float* surfaceAlbedo, __global const float* surfaceIrradiance,
-  const float4 toSurface0, const float4 toSurface1, const float4 toSurface2, __global float* hdr,
-  __global uint* steps, __global float* transmittanceOut, __global float* surfaceDepthOut)
-{
-  const int pi = (int)get_global_id(0);
-  const int pj = (int)get_global_id(1);
-  if (pi >= width || pj >= height)
-  {
-    return;
-  }
-  const size_t pixel = (size_t)pi + (size_t)width * (size_t)pj;
-  const float sx = 2.0f * ((float)pi + 0.5f) / (float)width - 1.0f;
-  const float sy = 2.0f * ((float)pj + 0.5f) / (float)height - 1.0f;
-#ifdef REFRACTA_PARALLEL
-  const float3 origin = eye.xyz + sx * camU.xyz + sy * camV.xyz;
-  float3 d = normalize(camW.xyz);
-#else
-  const float3 origin = eye.xyz;
-  float3 d = normalize(camW.xyz + sx * camU.xyz + sy * camV.xyz);
-#endif
-#ifdef REFRACTA_HAS_DEPTH_LIMIT
-  float limit = depthLimit[pixel];
-#else
-  float limit = INFINITY;
-#endif
+// The surfaces' arguments, passed on to the helpers below.
 #ifdef REFRACTA_HAS_SURFACES
 #define REFRACTA_VIEW_SURFACES nodes, nodeCount, triangles, toSurface0, toSurface1, toSurface2
+#endif
+#define REFRACTA_VIEW_LEG_PARAMS                                                                  \
+  const int4 dims, const float4 spacing, __global const float *extinction,                       \
+    __global const float *emission, __global const float *anisotropy,                            \
+    __global const float *refractiveIndex, __global const float *gradient,                       \
+    __global const float *radiance, __global const float *radianceDirection,                     \
+    __global const float *multiple, const float stepLength, const int maxSteps,                  \
+    const float cutoff, __global const uchar *occupancy, const int4 cellDims,                    \
+    const int4 activeLo, const int4 activeHi, const uint skipMask,                               \
+    __global const float4 *nodes, const int nodeCount, __global const float4 *triangles,         \
+    const float4 toSurface0, const float4 toSurface1, const float4 toSurface2
+#define REFRACTA_VIEW_LEG_ARGS                                                                    \
+  dims, spacing, extinction, emission, anisotropy, refractiveIndex, gradient, radiance,          \
+    radianceDirection, multiple, stepLength, maxSteps, cutoff, occupancy, cellDims, activeLo,    \
+    activeHi, skipMask, nodes, nodeCount, triangles, toSurface0, toSurface1, toSurface2
+
+// One leg of a view path: from `origin` in unit direction d (grid-local) until the ray meets a
+// surface, leaves the box (then it sees the background, or a surface outside the box), reaches
+// `limit`, falls below the cutoff or runs out of steps. The primary ray is one leg; at a
+// dielectric surface the kernel starts new legs on both sides (below).
+typedef struct
+{
+  float3 radiance;      // basic radiance gathered along the leg (sources, not the end)
+  float3 transmittance; // along the leg
+  float3 d;             // the direction at the end (at a surface hit: the incident direction)
+  float3 surfacePoint;  // the hit, grid-local
+  float surfaceU, surfaceV, surfaceDepth; // the hit's barycentrics, path length to it
+  int surfaceTri;                         // the triangle met (BVH order) or -1
+  uint count;                             // steps marched
+  bool seesBackground;                    // left the box (or missed it) into the background
+  bool stoppedEarly;                      // the cutoff or the step cap ended it
+} refracta_view_leg;
+
+inline refracta_view_leg refracta_view_march(
+  REFRACTA_VIEW_LEG_PARAMS, const float3 origin, float3 d, float limit)
+{
+#ifdef REFRACTA_HAS_SURFACES
   // The surface the ray meets (-1: none yet), where, and the path length to it.
   int surfaceTri = -1;
   float surfaceU = 0.0f, surfaceV = 0.0f, surfaceDepth = INFINITY;
@@ -317,8 +320,8 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   }
 #endif
 #endif
-  bool stoppedEarly = false; // the cutoff or the step cap ended the ray before its end
 
+  bool stoppedEarly = false; // the cutoff or the step cap ended the ray before its end
   float3 lo, hi;
   refracta_domain(dims, spacing, &lo, &hi);
   float3 radianceSum = (float3)(0.0f);
@@ -459,6 +462,7 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
         len *= th;
         surfaceDepth = travelled + len;
         surfacePoint = x + len * chord;
+        d = chord; // the direction in which the ray meets the surface
         blocked = true;
       }
 #endif
@@ -527,37 +531,255 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   {
     seesBackground = false; // the ray meets opaque geometry before the medium
   }
-  bool onSurface = false;
+  refracta_view_leg leg;
+  leg.radiance = radianceSum;
+  leg.transmittance = transmittance;
+  leg.d = d;
+  leg.count = count;
+  leg.seesBackground = seesBackground;
+  leg.stoppedEarly = stoppedEarly;
 #ifdef REFRACTA_HAS_SURFACES
-  onSurface = surfaceTri >= 0 && !stoppedEarly;
-  if (onSurface)
-  {
-    float3 ls = refracta_view_surface_radiance(
-      triInfo, surfaceAlbedo, surfaceIrradiance, surfaceTri, surfaceU, surfaceV);
-    // Basic radiance: a surface inside the medium is seen divided by n^2 (1 outside the box).
-    const bool inBox = all(surfacePoint >= lo) && all(surfacePoint <= hi);
-#ifdef REFRACTA_INDEX_WEIGHT
-    if (inBox)
-    {
-      const float nHit =
-        refracta_sample1(refractiveIndex, dims, refracta_to_voxel(surfacePoint, spacing));
-      ls *= 1.0f / (nHit * nHit);
-    }
-#elif defined(REFRACTA_SOURCE_SCALE)
-    ls *= inBox ? REFRACTA_SOURCE_SCALE : 1.0f;
-#endif
-    radianceSum += transmittance * ls;
-    transmittance = (float3)(0.0f); // opaque: nothing behind the surface shows through
-  }
-  surfaceDepthOut[pixel] = onSurface ? surfaceDepth : INFINITY;
+  leg.surfaceTri = surfaceTri;
+  leg.surfaceU = surfaceU;
+  leg.surfaceV = surfaceV;
+  leg.surfaceDepth = surfaceDepth;
+  leg.surfacePoint = surfacePoint;
 #else
-  surfaceDepthOut[pixel] = INFINITY;
+  leg.surfaceTri = -1;
+  leg.surfaceU = leg.surfaceV = 0.0f;
+  leg.surfaceDepth = INFINITY;
+  leg.surfacePoint = origin;
 #endif
-  if (seesBackground && !onSurface)
+  return leg;
+}
+
+// A leg still to follow: where it starts, its direction, its weight in the pixel.
+typedef struct
+{
+  float3 origin, d, weight;
+  int depth; // interfaces met before this leg
+} refracta_view_branch;
+
+#ifdef REFRACTA_DIELECTRIC
+// Dielectric interfaces (Documentation/Physics.md, "Glass in the view pass"): at a triangle of
+// kind REFRACTA_SURFACE_DIELECTRIC the path splits into the Fresnel-reflected and the refracted
+// leg (Snell's law and the unpolarised Fresnel reflectance with the shading normal; total
+// internal reflection gives R = 1 and no refracted leg). Basic radiance L / n^2 is conserved
+// through a refraction, so the legs carry the weights R and 1 - R. Up to REFRACTA_SPLIT_DEPTH
+// interfaces both legs are followed (a depth-first stack); deeper, only the leg of larger weight,
+// carrying the path's whole weight (the other's weight is given to it): this keeps the image
+// deterministic and noise-free, and its error was measured against deep splitting
+// (Documentation/Physics.md). A path that meets more than REFRACTA_MAX_INTERFACES interfaces is
+// dropped (adds nothing), like a ray trapped by the step cap.
+#ifndef REFRACTA_SPLIT_DEPTH
+#define REFRACTA_SPLIT_DEPTH 1
+#endif
+#ifndef REFRACTA_MAX_INTERFACES
+#define REFRACTA_MAX_INTERFACES 16
+#endif
+
+// Surface-frame vector -> grid-local normal: the map grid-local -> surface frame has linear part
+// M (rows m0..m2); normals transform with M^T.
+inline float3 refracta_view_normal_to_local(float3 n, float4 m0, float4 m1, float4 m2)
+{
+  return normalize(n.x * m0.xyz + n.y * m1.xyz + n.z * m2.xyz);
+}
+
+// Both legs at a dielectric hit: the incident unit direction d meets triangle tri at (u, v). Out:
+// the reflected and (when *refracts) the refracted unit directions, the reflectance R, and the
+// geometric normal on the incident side (for offsetting the new origins). As in
+// refracta_dielectric_sample, the shading normal is used unless it would send a leg to the wrong
+// side of the triangle's plane (or faces away from d): then both legs use the geometric normal.
+inline float refracta_view_dielectric_split(float3 d, int tri, float u, float v,
+  __global const float4* triangles, __global const int* triInfo,
+  __global const float4* triNormals, __global const float2* interfaces, float4 m0, float4 m1,
+  float4 m2, float3* reflected, float3* refracted, bool* refracts, float3* incidentSide)
+{
+  const float3 ng =
+    refracta_view_normal_to_local(refracta_triangle_normal(triangles, tri), m0, m1, m2);
+  const float3 ns =
+    refracta_view_normal_to_local(refracta_shading_normal(triNormals, tri, u, v), m0, m1, m2);
+  const float2 indices =
+    interfaces[triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_SURFACE]];
+  const bool entering = dot(d, ng) < 0.0f;
+  const float etaI = entering ? indices.y : indices.x;
+  const float etaT = entering ? indices.x : indices.y;
+  const float3 fg = entering ? ng : -ng;
+  const float3 fs = entering ? ns : -ns;
+  *incidentSide = fg;
+  float3 nf = dot(d, fs) < 0.0f ? fs : fg;
+  float r = 1.0f;
+  for (int attempt = 0; attempt < 2; ++attempt)
   {
-    radianceSum += transmittance *
-      refracta_background(d, background, environment, envSize, envRight, envUp, envFront);
+    r = refracta_fresnel_reflectance(-dot(d, nf), etaI, etaT);
+    *reflected = refracta_reflect(d, nf);
+    *refracts = refracta_refract(d, nf, etaI / etaT, refracted);
+    if (!*refracts)
+    {
+      r = 1.0f;
+    }
+    const bool good = dot(*reflected, fg) > 0.0f && (!*refracts || dot(*refracted, fg) < 0.0f);
+    if (good || attempt == 1)
+    {
+      break;
+    }
+    nf = fg;
   }
+  return r;
+}
+#endif
+
+__kernel void refracta_view_pass(const int4 dims, const float4 spacing,
+  __global const float* extinction, __global const float* emission,
+  __global const float* anisotropy, __global const float* refractiveIndex,
+  __global const float* gradient, __global const float* radiance,
+  __global const float* radianceDirection, __global const float* multiple, const float4 eye,
+  const float4 camU, const float4 camV, const float4 camW, const int width, const int height,
+  const float stepLength, const int maxSteps, const float cutoff, const float4 background,
+  __global const float* environment, const int2 envSize, const float4 envRight,
+  const float4 envUp, const float4 envFront, __global const float* depthLimit,
+  __global const uchar* occupancy, const int4 cellDims, const int4 activeLo, const int4 activeHi,
+  const uint skipMask, __global const float4* nodes, const int nodeCount,
+  __global const float4* triangles, __global const int* triInfo,
+  __global const float* surfaceAlbedo, __global const float* surfaceIrradiance,
+  __global const float4* triNormals, __global const float2* interfaces,
+  const float4 toSurface0, const float4 toSurface1, const float4 toSurface2, __global float* hdr,
+  __global uint* steps, __global float* transmittanceOut, __global float* surfaceDepthOut)
+{
+  const int pi = (int)get_global_id(0);
+  const int pj = (int)get_global_id(1);
+  if (pi >= width || pj >= height)
+  {
+    return;
+  }
+  const size_t pixel = (size_t)pi + (size_t)width * (size_t)pj;
+  const float sx = 2.0f * ((float)pi + 0.5f) / (float)width - 1.0f;
+  const float sy = 2.0f * ((float)pj + 0.5f) / (float)height - 1.0f;
+#ifdef REFRACTA_PARALLEL
+  const float3 origin = eye.xyz + sx * camU.xyz + sy * camV.xyz;
+  const float3 d = normalize(camW.xyz);
+#else
+  const float3 origin = eye.xyz;
+  const float3 d = normalize(camW.xyz + sx * camU.xyz + sy * camV.xyz);
+#endif
+#ifdef REFRACTA_HAS_DEPTH_LIMIT
+  const float limit = depthLimit[pixel];
+#else
+  const float limit = INFINITY;
+#endif
+  float3 lo, hi;
+  refracta_domain(dims, spacing, &lo, &hi);
+  float3 radianceSum = (float3)(0.0f);
+  float3 transmittance = (float3)(0.0f); // of the legs that end in the background
+  float firstDepth = INFINITY;            // path length to the first surface met
+  uint count = 0;
+  // The depth-first stack of legs still to follow; the primary ray first. The depth limit (opaque
+  // geometry of a render window, along the primary ray) applies to the primary leg only.
+  refracta_view_branch current;
+  current.origin = origin;
+  current.d = d;
+  current.weight = (float3)(1.0f);
+  current.depth = 0;
+#ifdef REFRACTA_DIELECTRIC
+  refracta_view_branch stack[REFRACTA_SPLIT_DEPTH + 1];
+  int stackSize = 0;
+  const float offset = 1e-3f * fmin(spacing.x, fmin(spacing.y, spacing.z));
+#endif
+  bool primary = true;
+  for (;;)
+  {
+    const refracta_view_leg leg = refracta_view_march(
+      REFRACTA_VIEW_LEG_ARGS, current.origin, current.d, primary ? limit : INFINITY);
+    count += leg.count;
+    radianceSum += current.weight * leg.radiance;
+    const float3 w = current.weight * leg.transmittance;
+    if (primary && leg.surfaceTri >= 0 && !leg.stoppedEarly)
+    {
+      firstDepth = leg.surfaceDepth;
+    }
+    primary = false;
+    bool next = false; // whether `current` holds a new leg
+#ifdef REFRACTA_HAS_SURFACES
+    if (leg.surfaceTri >= 0 && !leg.stoppedEarly)
+    {
+#ifdef REFRACTA_DIELECTRIC
+      const int kind =
+        triInfo[REFRACTA_TRIANGLE_INFO_INTS * leg.surfaceTri + REFRACTA_TRIANGLE_INFO_KIND];
+      if (kind == REFRACTA_SURFACE_DIELECTRIC)
+      {
+        if (current.depth < REFRACTA_MAX_INTERFACES)
+        {
+          float3 reflected, refracted, fg;
+          bool refracts;
+          const float r = refracta_view_dielectric_split(leg.d, leg.surfaceTri, leg.surfaceU,
+            leg.surfaceV, triangles, triInfo, triNormals, interfaces, toSurface0, toSurface1,
+            toSurface2, &reflected, &refracted, &refracts, &fg);
+          refracta_view_branch a, b; // a: reflected, b: refracted
+          a.origin = leg.surfacePoint + offset * fg;
+          a.d = reflected;
+          a.depth = current.depth + 1;
+          b.origin = leg.surfacePoint - offset * fg;
+          b.d = refracted;
+          b.depth = current.depth + 1;
+          if (refracts && current.depth < REFRACTA_SPLIT_DEPTH)
+          {
+            a.weight = r * w;
+            b.weight = (1.0f - r) * w;
+            stack[stackSize++] = a;
+            current = b;
+          }
+          else
+          {
+            // One leg with the path's whole weight: the likelier one.
+            current = (!refracts || r > 0.5f) ? a : b;
+            current.weight = w;
+          }
+          next = true;
+        }
+      }
+      else
+#endif
+      {
+        float3 ls = refracta_view_surface_radiance(
+          triInfo, surfaceAlbedo, surfaceIrradiance, leg.surfaceTri, leg.surfaceU, leg.surfaceV);
+        // Basic radiance: a surface inside the medium is seen divided by n^2 (1 outside the box).
+        const bool inBox = all(leg.surfacePoint >= lo) && all(leg.surfacePoint <= hi);
+#ifdef REFRACTA_INDEX_WEIGHT
+        if (inBox)
+        {
+          const float nHit = refracta_sample1(
+            refractiveIndex, dims, refracta_to_voxel(leg.surfacePoint, spacing));
+          ls *= 1.0f / (nHit * nHit);
+        }
+#elif defined(REFRACTA_SOURCE_SCALE)
+        ls *= inBox ? REFRACTA_SOURCE_SCALE : 1.0f;
+#endif
+        radianceSum += w * ls; // opaque: nothing behind the surface shows through
+      }
+    }
+    else
+#endif
+    {
+      if (leg.seesBackground)
+      {
+        radianceSum += w *
+          refracta_background(leg.d, background, environment, envSize, envRight, envUp, envFront);
+      }
+      transmittance += w; // what shows through: the background, or geometry behind the limit
+    }
+    if (!next)
+    {
+#ifdef REFRACTA_DIELECTRIC
+      if (stackSize > 0)
+      {
+        current = stack[--stackSize];
+        continue;
+      }
+#endif
+      break;
+    }
+  }
+  surfaceDepthOut[pixel] = firstDepth;
   const float alpha = 1.0f - (transmittance.x + transmittance.y + transmittance.z) / 3.0f;
   vstore4((float4)(radianceSum, alpha), pixel, hdr);
   steps[pixel] = count;

@@ -78,6 +78,10 @@ void vtkRefractaSurfaceMaterial::DeepCopy(vtkRefractaSurfaceMaterial* other)
   this->SetCheckerColor1(other->CheckerColor1);
   this->SetCheckerColor2(other->CheckerColor2);
   this->SetUseScalarColors(other->UseScalarColors);
+  this->SetKind(other->Kind);
+  this->SetIndexInside(other->IndexInside);
+  this->SetIndexOutside(other->IndexOutside);
+  this->SetSmoothNormals(other->SmoothNormals);
 }
 
 //------------------------------------------------------------------------------
@@ -94,4 +98,8 @@ void vtkRefractaSurfaceMaterial::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CheckerColor2: (" << this->CheckerColor2[0] << ", " << this->CheckerColor2[1]
      << ", " << this->CheckerColor2[2] << ")\n";
   os << indent << "UseScalarColors: " << this->UseScalarColors << "\n";
+  os << indent << "Kind: " << (this->Kind == DIELECTRIC ? "DIELECTRIC" : "LAMBERTIAN") << "\n";
+  os << indent << "IndexInside: " << this->IndexInside << "\n";
+  os << indent << "IndexOutside: " << this->IndexOutside << "\n";
+  os << indent << "SmoothNormals: " << this->SmoothNormals << "\n";
 }

@@ -1,6 +1,7 @@
 /**
  * @class   vtkRefractaSurfaceMaterial
- * @brief   The Lambertian appearance of an opaque Refracta surface.
+ * @brief   The appearance of a Refracta surface: an opaque Lambertian reflector or a dielectric
+ *          interface.
  *
  * Surfaces are two-sided Lambertian reflectors: a photon that meets one deposits its flux and is
  * reflected diffusely with probability equal to the albedo (per RGB channel, as a weight), the
@@ -21,6 +22,13 @@
  * All colours are linear RGB, clamped to [0, 1] by the setters (an albedo above 1 would create
  * energy). vtkRefractaSurfaceSet bakes the chosen source into one albedo per texel, so every
  * pass sees one colour path.
+ *
+ * Kind DIELECTRIC (default LAMBERTIAN) makes the surface a transparent interface between two
+ * refractive indices instead (Documentation/Physics.md, "Dielectric interfaces"): IndexInside on
+ * the side opposite the triangles' winding normal (v1 - v0) x (v2 - v0), IndexOutside on the side
+ * it points to. Light meeting it is reflected (Fresnel, unpolarised) or refracted (Snell); the
+ * colour settings are then unused. SmoothNormals (default on) interpolates corner normals over
+ * each triangle where the mesh is smooth.
  */
 #ifndef vtkRefractaSurfaceMaterial_h
 #define vtkRefractaSurfaceMaterial_h
@@ -84,6 +92,45 @@ public:
   vtkBooleanMacro(UseScalarColors, bool);
   ///@}
 
+  enum Kinds
+  {
+    LAMBERTIAN = 0, ///< opaque, two-sided Lambertian reflector (the colour settings apply)
+    DIELECTRIC = 1  ///< transparent interface between IndexInside and IndexOutside
+  };
+
+  ///@{
+  /**
+   * LAMBERTIAN (default) or DIELECTRIC (see the class description).
+   */
+  vtkSetClampMacro(Kind, int, LAMBERTIAN, DIELECTRIC);
+  vtkGetMacro(Kind, int);
+  void SetKindToLambertian() { this->SetKind(LAMBERTIAN); }
+  void SetKindToDielectric() { this->SetKind(DIELECTRIC); }
+  ///@}
+
+  ///@{
+  /**
+   * Refractive index on the inner side (against the winding normal) and the outer side (along
+   * it) of a DIELECTRIC surface, each clamped to [1, 100] as vtkMediumMaterial's. Defaults 1.5
+   * and 1.
+   */
+  vtkSetClampMacro(IndexInside, double, 1.0, 100.0);
+  vtkGetMacro(IndexInside, double);
+  vtkSetClampMacro(IndexOutside, double, 1.0, 100.0);
+  vtkGetMacro(IndexOutside, double);
+  ///@}
+
+  ///@{
+  /**
+   * Interpolate the normal of a DIELECTRIC surface from corner normals (the mesh's point normals
+   * when it has them, else the area-weighted mean of the faces at the point, each kept only
+   * within 30 degrees of the face's own normal). Off: the flat face normal. Default on.
+   */
+  vtkSetMacro(SmoothNormals, bool);
+  vtkGetMacro(SmoothNormals, bool);
+  vtkBooleanMacro(SmoothNormals, bool);
+  ///@}
+
   /**
    * The checker colour at texture coordinates (u, v) (whatever UseChecker says).
    */
@@ -104,6 +151,10 @@ protected:
   double CheckerColor1[3] = { 0.9, 0.9, 0.9 };
   double CheckerColor2[3] = { 0.1, 0.1, 0.1 };
   bool UseScalarColors = false;
+  int Kind = LAMBERTIAN;
+  double IndexInside = 1.5;
+  double IndexOutside = 1.0;
+  bool SmoothNormals = true;
 
 private:
   vtkRefractaSurfaceMaterial(const vtkRefractaSurfaceMaterial&) = delete;

@@ -31,6 +31,9 @@ namespace
 constexpr double AutomaticTexelsPerDiagonal = 128.0;
 // A triangle is degenerate when |e1 x e2| <= this x (longest edge)^2.
 constexpr double DegenerateRatio = 1e-12;
+// A smoothed corner normal is kept only within this angle of its face's normal (cos 30 degrees):
+// a cube's edges stay sharp, a tessellated sphere is smooth.
+constexpr double SmoothNormalCosine = 0.86602540378443865;
 
 // Where a world triangle came from: its surface, cell and the mesh's point ids.
 struct SourceTriangle
@@ -78,13 +81,33 @@ double LongestEdge(const double* v)
   return std::max({ Length(v, v + 3), Length(v + 3, v + 6), Length(v + 6, v) });
 }
 
-double DoubledArea(const double* v)
+// (v1 - v0) x (v2 - v0) of the triangle v (9 doubles): the winding normal, |c| = doubled area.
+void Cross(const double* v, double c[3])
 {
   const double e1[3] = { v[3] - v[0], v[4] - v[1], v[5] - v[2] };
   const double e2[3] = { v[6] - v[0], v[7] - v[1], v[8] - v[2] };
-  const double c[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-    e1[0] * e2[1] - e1[1] * e2[0] };
+  c[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  c[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  c[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
+double DoubledArea(const double* v)
+{
+  double c[3];
+  Cross(v, c);
   return std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+}
+
+// Scales c to unit length (left as it is when zero).
+void Normalize(double c[3])
+{
+  const double l = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  if (l > 0)
+  {
+    c[0] /= l;
+    c[1] /= l;
+    c[2] /= l;
+  }
 }
 }
 
@@ -473,11 +496,15 @@ bool vtkRefractaSurfaceSet::Build()
     this->TriangleInfo.clear();
     this->TexelAlbedo.clear();
     this->TexelAreas.clear();
+    this->TriangleNormals.clear();
+    this->SurfaceInterfaces.clear();
+    this->DielectricTriangles = 0;
     return false;
   }
   impl.BVH->Build(impl.World.data(), triangles);
   this->LayOutAtlas();
   this->BakeAlbedo();
+  this->DescribeInterfaces();
   impl.World.clear();
   impl.World.shrink_to_fit();
   this->Built = true;
@@ -507,10 +534,13 @@ void vtkRefractaSurfaceSet::LayOutAtlas()
   }
   const vtkIdType budget = std::max<vtkIdType>(
     triangles, std::min<vtkIdType>(this->MaximumNumberOfTexels, std::numeric_limits<int>::max()));
+  const std::vector<vtkIdType>& order = bvh->GetTriangleOrder();
+  // A dielectric triangle receives no deposits: longest edge 0 gives it one texel.
   std::vector<double> longest(triangles);
   for (vtkIdType k = 0; k < triangles; ++k)
   {
-    longest[k] = LongestEdge(&tri[9 * k]);
+    longest[k] =
+      this->IsDielectric(this->Impl->Sources[order[k]].Surface) ? 0.0 : LongestEdge(&tri[9 * k]);
   }
   std::vector<int> subdivision(triangles, 1);
   for (int attempt = 0; attempt < 200; ++attempt)
@@ -534,7 +564,6 @@ void vtkRefractaSurfaceSet::LayOutAtlas()
   this->EffectiveTexelSize = size;
   this->TriangleInfo.assign(REFRACTA_TRIANGLE_INFO_INTS * triangles, 0);
   this->TexelAreas.clear();
-  const std::vector<vtkIdType>& order = bvh->GetTriangleOrder();
   vtkIdType offset = 0;
   for (vtkIdType k = 0; k < triangles; ++k)
   {
@@ -687,6 +716,124 @@ void vtkRefractaSurfaceSet::BakeAlbedo()
 }
 
 //------------------------------------------------------------------------------
+bool vtkRefractaSurfaceSet::IsDielectric(int surface) const
+{
+  vtkRefractaSurfaceMaterial* m = this->GetMaterial(surface);
+  return m && m->GetKind() == vtkRefractaSurfaceMaterial::DIELECTRIC;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaSurfaceSet::DescribeInterfaces()
+{
+  const int surfaces = this->GetNumberOfSurfaces();
+  this->SurfaceInterfaces.assign(REFRACTA_SURFACE_INTERFACE_FLOATS * size_t(surfaces), 1.0f);
+  std::vector<bool> smooth(surfaces, false);
+  for (int s = 0; s < surfaces; ++s)
+  {
+    if (this->IsDielectric(s))
+    {
+      vtkRefractaSurfaceMaterial* m = this->GetMaterial(s);
+      this->SurfaceInterfaces[REFRACTA_SURFACE_INTERFACE_FLOATS * s] =
+        static_cast<float>(m->GetIndexInside());
+      this->SurfaceInterfaces[REFRACTA_SURFACE_INTERFACE_FLOATS * s + 1] =
+        static_cast<float>(m->GetIndexOutside());
+      smooth[s] = m->GetSmoothNormals();
+    }
+  }
+  const vtkRefractaBVH* bvh = this->Impl->BVH;
+  const vtkIdType triangles = bvh->GetNumberOfTriangles();
+  const std::vector<double>& tri = bvh->GetTriangles();
+  const std::vector<vtkIdType>& order = bvh->GetTriangleOrder();
+  // The triangles at each mesh point of the smooth surfaces (CSR: offsets per point, then ids).
+  std::vector<std::vector<vtkIdType>> offsets(surfaces), adjacent(surfaces);
+  for (int s = 0; s < surfaces; ++s)
+  {
+    if (smooth[s])
+    {
+      offsets[s].assign(size_t(this->GetSurface(s)->GetNumberOfPoints()) + 1, 0);
+    }
+  }
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    std::vector<std::vector<vtkIdType>> fill(surfaces);
+    for (int s = 0; s < surfaces && pass == 1; ++s)
+    {
+      for (size_t p = 1; p < offsets[s].size(); ++p)
+      {
+        offsets[s][p] += offsets[s][p - 1];
+      }
+      adjacent[s].resize(offsets[s].empty() ? 0 : size_t(offsets[s].back()));
+      fill[s].assign(offsets[s].begin(), offsets[s].end());
+    }
+    for (vtkIdType k = 0; k < triangles; ++k)
+    {
+      const SourceTriangle& source = this->Impl->Sources[order[k]];
+      for (vtkIdType p : source.Points)
+      {
+        if (smooth[source.Surface] && pass == 0)
+        {
+          ++offsets[source.Surface][p + 1];
+        }
+        else if (smooth[source.Surface])
+        {
+          adjacent[source.Surface][fill[source.Surface][p]++] = k;
+        }
+      }
+    }
+  }
+  // Unit face normals and doubled areas in BVH order.
+  std::vector<double> faces(3 * size_t(triangles)), areas(triangles);
+  for (vtkIdType k = 0; k < triangles; ++k)
+  {
+    Cross(&tri[9 * k], &faces[3 * k]);
+    areas[k] = DoubledArea(&tri[9 * k]);
+    Normalize(&faces[3 * k]);
+  }
+  this->DielectricTriangles = 0;
+  this->TriangleNormals.assign(REFRACTA_TRIANGLE_NORMAL_FLOATS * size_t(triangles), 0.0f);
+  for (vtkIdType k = 0; k < triangles; ++k)
+  {
+    const SourceTriangle& source = this->Impl->Sources[order[k]];
+    const bool dielectric = this->IsDielectric(source.Surface);
+    this->TriangleInfo[REFRACTA_TRIANGLE_INFO_INTS * k + REFRACTA_TRIANGLE_INFO_KIND] =
+      dielectric ? REFRACTA_SURFACE_DIELECTRIC : REFRACTA_SURFACE_LAMBERTIAN;
+    this->DielectricTriangles += dielectric ? 1 : 0;
+    const double* face = &faces[3 * k];
+    for (int corner = 0; corner < 3; ++corner)
+    {
+      double n[3] = { face[0], face[1], face[2] };
+      if (smooth[source.Surface])
+      {
+        // The area-weighted mean over the point's faces within the feature angle of this face:
+        // a 45-degree edge of a prism stays sharp on both sides.
+        const vtkIdType p = source.Points[corner];
+        const auto& o = offsets[source.Surface];
+        double mean[3] = { 0, 0, 0 };
+        for (vtkIdType i = o[p]; i < o[p + 1]; ++i)
+        {
+          const vtkIdType j = adjacent[source.Surface][i];
+          const double* f = &faces[3 * j];
+          if (f[0] * face[0] + f[1] * face[1] + f[2] * face[2] >= SmoothNormalCosine)
+          {
+            for (int a = 0; a < 3; ++a)
+            {
+              mean[a] += areas[j] * f[a];
+            }
+          }
+        }
+        Normalize(mean);
+        std::copy(mean, mean + 3, n);
+      }
+      float* out = &this->TriangleNormals[REFRACTA_TRIANGLE_NORMAL_FLOATS * k + 4 * corner];
+      for (int a = 0; a < 3; ++a)
+      {
+        out[a] = static_cast<float>(n[a]);
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkRefractaSurfaceSet::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -698,6 +845,7 @@ void vtkRefractaSurfaceSet::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfTexels: " << this->GetNumberOfTexels() << "\n";
   os << indent << "EffectiveTexelSize: " << this->EffectiveTexelSize << "\n";
   os << indent << "NumberOfDroppedTriangles: " << this->DroppedTriangles << "\n";
+  os << indent << "NumberOfDielectricTriangles: " << this->DielectricTriangles << "\n";
   os << indent << "NumberOfRejectedSurfaces: " << this->RejectedSurfaces << "\n";
   os << indent << "NumberOfBuilds: " << this->NumberOfBuilds << "\n";
 }

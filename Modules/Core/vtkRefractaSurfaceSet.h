@@ -27,6 +27,14 @@
  *    the colour at four points of the texel (its centroid and the centroids of its three corner
  *    sub-triangles), so a checker edge that cuts a texel gives the area-weighted blend.
  *
+ * 6. for dielectric surfaces (vtkRefractaSurfaceMaterial::DIELECTRIC, transparent interfaces
+ *    between two indices, see Documentation/Physics.md "Dielectric interfaces"): one texel per
+ *    triangle (they receive no deposits, so they take nothing from the texel budget), the kind in
+ *    the triangle info, the corner normals (GetTriangleNormals(): with SmoothNormals the
+ *    area-weighted mean of the world normals of the surface's faces sharing the mesh point, kept
+ *    where within 30 degrees of the face normal, else the face normal) and the surface's
+ *    (IndexInside, IndexOutside) (GetSurfaceInterfaces()).
+ *
  * A pass deposits photon flux per texel; irradiance (W / m^2, per RGB channel) = flux / texel
  * area (GetTexelAreas()). The flattened arrays follow Kernels/refracta_surfaces.cl.
  */
@@ -126,6 +134,7 @@ public:
   vtkIdType GetNumberOfTriangles() const;
   vtkIdType GetNumberOfTexels() const { return static_cast<vtkIdType>(this->TexelAreas.size()); }
   vtkIdType GetNumberOfDroppedTriangles() const { return this->DroppedTriangles; }
+  vtkIdType GetNumberOfDielectricTriangles() const { return this->DielectricTriangles; }
   int GetNumberOfRejectedSurfaces() const { return this->RejectedSurfaces; }
   double GetEffectiveTexelSize() const { return this->EffectiveTexelSize; }
   int GetNumberOfBuilds() const { return this->NumberOfBuilds; }
@@ -137,7 +146,7 @@ public:
 #ifndef __VTK_WRAP__
   /**
    * Per triangle (BVH order): REFRACTA_TRIANGLE_INFO_INTS ints, (first texel, subdivision n,
-   * surface index, 0).
+   * surface index, kind: REFRACTA_SURFACE_LAMBERTIAN or REFRACTA_SURFACE_DIELECTRIC).
    */
   const std::vector<int>& GetTriangleInfo() const
   {
@@ -150,6 +159,25 @@ public:
   const std::vector<float>& GetTexelAlbedo() const
   {
     return this->TexelAlbedo;
+  }
+
+  /**
+   * Per triangle (BVH order): its three corner unit normals, REFRACTA_TRIANGLE_NORMAL_FLOATS
+   * floats (x, y, z, 0 per corner). The flat winding normal for Lambertian triangles and for
+   * dielectric surfaces without SmoothNormals.
+   */
+  const std::vector<float>& GetTriangleNormals() const
+  {
+    return this->TriangleNormals;
+  }
+
+  /**
+   * Per surface: REFRACTA_SURFACE_INTERFACE_FLOATS floats, (IndexInside, IndexOutside) of a
+   * dielectric surface, (1, 1) for a Lambertian one.
+   */
+  const std::vector<float>& GetSurfaceInterfaces() const
+  {
+    return this->SurfaceInterfaces;
   }
 
   /**
@@ -183,6 +211,7 @@ protected:
   vtkIdType MaximumNumberOfTexels = 1 << 20;
 
   vtkIdType DroppedTriangles = 0;
+  vtkIdType DielectricTriangles = 0;
   int RejectedSurfaces = 0;
   double EffectiveTexelSize = 0.0;
   int NumberOfBuilds = 0;
@@ -192,6 +221,8 @@ protected:
   std::vector<int> TriangleInfo;
   std::vector<float> TexelAlbedo;
   std::vector<double> TexelAreas;
+  std::vector<float> TriangleNormals;
+  std::vector<float> SurfaceInterfaces;
 
 private:
   vtkRefractaSurfaceSet(const vtkRefractaSurfaceSet&) = delete;
@@ -201,6 +232,9 @@ private:
   // Build() steps 4 and 5 (see the class description), on the triangles in BVH order.
   void LayOutAtlas();
   void BakeAlbedo();
+  // Build() step 6: kinds, corner normals and the interface table.
+  void DescribeInterfaces();
+  bool IsDielectric(int surface) const;
 };
 
 #endif

@@ -252,9 +252,29 @@ Vec3 Scene::Trace(Vec3 origin, Vec3 dir, int channel, Rng& rng, bool& truncated)
   {
     T.Start(ray, x, d);
   }
-  // A surface hit at x (arriving along d): next-event estimation, then a cosine-weighted bounce.
+  int interfaces = 0; // dielectric interfaces met
+  // A surface hit at x (arriving along d): at glass one Fresnel choice (reflected with
+  // probability R, else refracted: the probability is the weight, so beta is unchanged, and the
+  // path stays "unscattered", depth 0, so the background it reaches counts); at an opaque
+  // surface next-event estimation, then a cosine-weighted bounce.
   auto reflect = [&](const SurfaceHit& hit) -> bool
   {
+    if (Surf.IsDielectric(hit))
+    {
+      if (++interfaces > MaxInterfaces)
+      {
+        truncated = true;
+        return false;
+      }
+      d = Surf.Interface(hit, d, rng.Uniform(), x);
+      inBox = M.Inside(x, 0);
+      mayEnter = true;
+      if (inBox)
+      {
+        T.Start(ray, x, d);
+      }
+      return true;
+    }
     Vec3 n = Surf.Normal(hit);
     if (glm::dot(n, d) > 0)
     {

@@ -34,6 +34,9 @@ struct Scene
   int MaxDepth = -1;
   int RouletteDepth = 8;
   int MaxVertices = 100000;
+  // Dielectric interfaces one path may meet before it is dropped (and counted as truncated): a
+  // ray trapped by total internal reflection in a closed glass body ends here.
+  int MaxInterfaces = 1000;
   Tracer T;      // view rays (surfaces tested, no light spheres)
   Tracer TLight; // connection rays (light spheres and surfaces tested)
 

@@ -178,9 +178,27 @@ void PhotonScene::Trace(Vec3 x, Vec3 d, const Vec3& power, int ch, bool grey, Rn
   {
     T.Start(ray, x, d);
   }
+  int interfaces = 0; // dielectric interfaces met
   // Diffuse reflection at a surface hit (x, arriving along d): albedo, roulette, cosine bounce.
   auto reflect = [&](const SurfaceHit& hit) -> bool
   {
+    if (S->Surf.IsDielectric(hit))
+    {
+      // Glass: one Fresnel choice, its probability its weight (Surfaces::Interface).
+      if (++interfaces > S->MaxInterfaces)
+      {
+        truncated = true;
+        return false;
+      }
+      d = S->Surf.Interface(hit, d, rng.Uniform(), x);
+      inBox = m.Inside(x, 0);
+      mayEnter = true;
+      if (inBox)
+      {
+        T.Start(ray, x, d);
+      }
+      return true;
+    }
     Vec3 n = S->Surf.Normal(hit);
     if (glm::dot(n, d) > 0)
     {
@@ -299,9 +317,27 @@ Vec3 PhotonScene::ViewSample(Vec3 origin, Vec3 dir, int channel, const PhotonGri
   {
     T.Start(ray, x, d);
   }
+  int interfaces = 0; // dielectric interfaces met
   // A surface hit: the path tracer's next-event estimation, then a cosine-weighted bounce.
   auto reflect = [&](const SurfaceHit& hit) -> bool
   {
+    if (S->Surf.IsDielectric(hit))
+    {
+      // Glass: one Fresnel choice, its probability its weight (Surfaces::Interface).
+      if (++interfaces > S->MaxInterfaces)
+      {
+        truncated = true;
+        return false;
+      }
+      d = S->Surf.Interface(hit, d, rng.Uniform(), x);
+      inBox = m.Inside(x, 0);
+      mayEnter = true;
+      if (inBox)
+      {
+        T.Start(ray, x, d);
+      }
+      return true;
+    }
     Vec3 n = S->Surf.Normal(hit);
     if (glm::dot(n, d) > 0)
     {

@@ -2,11 +2,13 @@
 
 #include "vtkReferenceMedium.h"
 #include "vtkRefractaBVH.h"
+#include "vtkRefractaDielectric.h"
 #include "vtkRefractaSurfaceSet.h"
 
 #include "refracta_surfaces.cl"
 
 #include <algorithm>
+
 #include <cmath>
 
 namespace refracta
@@ -108,6 +110,42 @@ Vec3 Surfaces::Albedo(const SurfaceHit& hit) const
     vtkRefractaSurfaceSet::TexelIndex(static_cast<float>(hit.U), static_cast<float>(hit.V), n);
   const float* a = &Set->GetTexelAlbedo()[3 * texel];
   return Vec3(a[0], a[1], a[2]);
+}
+bool Surfaces::IsDielectric(const SurfaceHit& hit) const
+{
+  return Set->GetTriangleInfo()[REFRACTA_TRIANGLE_INFO_INTS * static_cast<size_t>(hit.Triangle) +
+           REFRACTA_TRIANGLE_INFO_KIND] == REFRACTA_SURFACE_DIELECTRIC;
+}
+
+Vec3 Surfaces::ShadingNormal(const SurfaceHit& hit) const
+{
+  const float* c = &Set->GetTriangleNormals()[12 * static_cast<size_t>(hit.Triangle)];
+  const double w[3] = { 1 - hit.U - hit.V, hit.U, hit.V };
+  Vec3 nb(0.0);
+  for (int k = 0; k < 3; ++k)
+  {
+    nb += w[k] * Vec3(c[4 * k], c[4 * k + 1], c[4 * k + 2]);
+  }
+  // Corner normals are world vectors; world -> grid-local is the transpose of the rotation.
+  const double* R = Rotation;
+  return Normalized(Vec3(R[0] * nb.x + R[3] * nb.y + R[6] * nb.z,
+    R[1] * nb.x + R[4] * nb.y + R[7] * nb.z, R[2] * nb.x + R[5] * nb.y + R[8] * nb.z));
+}
+
+Vec3 Surfaces::Interface(const SurfaceHit& hit, const Vec3& d, double xi, Vec3& x) const
+{
+  const int surface =
+    Set->GetTriangleInfo()[REFRACTA_TRIANGLE_INFO_INTS * static_cast<size_t>(hit.Triangle) +
+      REFRACTA_TRIANGLE_INFO_SURFACE];
+  const float* indices =
+    &Set->GetSurfaceInterfaces()[REFRACTA_SURFACE_INTERFACE_FLOATS * static_cast<size_t>(surface)];
+  const Vec3 ng = Normal(hit), ns = ShadingNormal(hit);
+  const double dd[3] = { d.x, d.y, d.z }, g[3] = { ng.x, ng.y, ng.z }, s[3] = { ns.x, ns.y, ns.z };
+  const vtkRefractaDielectric::Event e =
+    vtkRefractaDielectric::Sample(dd, g, s, indices[0], indices[1], xi);
+  const Vec3 out(e.Direction[0], e.Direction[1], e.Direction[2]);
+  x = Leave(x, ng, out);
+  return out;
 }
 } // namespace reference
 } // namespace refracta

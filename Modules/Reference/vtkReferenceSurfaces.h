@@ -64,6 +64,18 @@ struct Surfaces
   // RGB albedo of the texel holding the hit.
   Vec3 Albedo(const SurfaceHit& hit) const;
 
+  // Whether the hit's triangle is a dielectric interface (glass) rather than an opaque surface.
+  bool IsDielectric(const SurfaceHit& hit) const;
+
+  // Unit shading normal of a hit (the triangle's corner normals interpolated at its
+  // barycentrics, grid-local, on the side of the winding normal Normal() returns).
+  Vec3 ShadingNormal(const SurfaceHit& hit) const;
+
+  // A path arriving along unit d at a dielectric hit at x: one Fresnel choice
+  // (vtkRefractaDielectric::Sample with xi, the same optics as the OpenCL passes, in double).
+  // Returns the new unit direction; x is moved off the surface onto the side it leaves to.
+  Vec3 Interface(const SurfaceHit& hit, const Vec3& d, double xi, Vec3& x) const;
+
   // Where a ray leaving the surface point x in direction w starts: x moved by Offset along the
   // normal n, towards the side w points to.
   Vec3 Leave(const Vec3& x, const Vec3& n, const Vec3& w) const

@@ -321,6 +321,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.Skip = skipping;
   variant.Surfaces = surf.Active();
   variant.NearestTexel = this->SurfaceFilter == NEAREST_TEXEL;
+  variant.Dielectric = surf.HasDielectric();
+  variant.SplitDepth = this->DielectricSplitDepth;
   cl_program program = context->GetProgram(
     { "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl", "view_pass.cl" },
     KernelOptions(variant), this);
@@ -438,8 +440,9 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       env ? in.EnvironmentBuffer.Get() : in.Dummy.Get(), envSize, envRight, envUp, envFront,
       buf(depthBuffer), skipping ? in.Occupancy.Get() : in.Dummy.Get(), cellDims, activeLo,
       activeHi, skipMask, buf(surf.Nodes), nodeCount, buf(surf.Triangles), buf(surf.TriangleInfo),
-      buf(surf.Albedo), buf(surf.Irradiance), toSurface[0], toSurface[1], toSurface[2],
-      hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(), surfaceDepthBuffer.Get());
+      buf(surf.Albedo), buf(surf.Irradiance), buf(surf.Normals), buf(surf.Interfaces), toSurface[0],
+      toSurface[1], toSurface[2], hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(),
+      surfaceDepthBuffer.Get());
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
       !this->RunTiles(context, kernel.Get(), width, rows, row0, height, rowsPerTile))
     {
@@ -598,6 +601,7 @@ void vtkRefractaViewPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
   os << indent << "MacroCellSize: " << this->MacroCellSize << " voxels\n";
   os << indent << "Surfaces: " << this->Internal->SurfaceSet.Get() << "\n";
+  os << indent << "DielectricSplitDepth: " << this->DielectricSplitDepth << "\n";
   os << indent << "SurfaceFilter: "
      << (this->SurfaceFilter == NEAREST_TEXEL ? "NEAREST_TEXEL" : "LINEAR_TEXEL") << "\n";
   os << indent << "NumberOfSurfaceUploads: " << this->Internal->Surfaces.GetNumberOfUploads()

@@ -51,6 +51,13 @@
  * the path, n the index at the hit (1 outside the medium's box). The pixel is then opaque (alpha
  * 1, transmittance 0). The set's BVH, triangles and atlas are uploaded once per Build() of the set
  * (GetNumberOfSurfaceUploads()); a camera move uploads nothing.
+ *
+ * Glass: triangles of a DIELECTRIC surface material are interfaces, not opaque. A ray meeting
+ * one splits into a Fresnel-reflected leg (weight R) and a refracted leg (weight 1 - R; none under
+ * total internal reflection), with the interpolated shading normal, each continuing as an
+ * ordinary march (DielectricSplitDepth; Documentation/Physics.md, "Glass in the view pass"). The
+ * pixel's transmittance output is then the summed weight of the legs that end in the background
+ * (or at the depth limit), its surface depth the distance to the first surface met.
  */
 #ifndef vtkRefractaViewPass_h
 #define vtkRefractaViewPass_h
@@ -191,6 +198,18 @@ public:
    */
   vtkSetClampMacro(SurfaceFilter, int, NEAREST_TEXEL, LINEAR_TEXEL);
   vtkGetMacro(SurfaceFilter, int);
+  ///@}
+
+  ///@{
+  /**
+   * Glass (dielectric surfaces, Documentation/Physics.md "Glass in the view pass"): at the first
+   * DielectricSplitDepth interfaces of a path both the Fresnel-reflected and the refracted leg are
+   * followed (weights R and 1 - R); deeper, only the likelier leg, with the path's whole weight.
+   * 0 follows one leg everywhere; each level doubles the legs at most. Default 2, chosen by
+   * measurement (the error table in Physics.md). Clamped to [0, 8].
+   */
+  vtkSetClampMacro(DielectricSplitDepth, int, 0, 8);
+  vtkGetMacro(DielectricSplitDepth, int);
   ///@}
 
   /**
@@ -358,6 +377,7 @@ protected:
   bool EmptySpaceSkipping = true;
   int MacroCellSize = 8;
   int SurfaceFilter = LINEAR_TEXEL;
+  int DielectricSplitDepth = 2;
   bool LastSkipping = false;
   double LastActiveCellFraction = 1.0;
   double OccupancySeconds = 0.0;

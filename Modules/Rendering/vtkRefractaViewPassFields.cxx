@@ -181,6 +181,11 @@ std::string KernelOptions(const KernelVariant& v)
   flag(v.Skip, "REFRACTA_SKIP");
   flag(v.Surfaces, "REFRACTA_HAS_SURFACES");
   flag(v.Surfaces && v.NearestTexel, "REFRACTA_SURFACE_NEAREST");
+  flag(v.Surfaces && v.Dielectric, "REFRACTA_DIELECTRIC");
+  if (v.Surfaces && v.Dielectric)
+  {
+    options += " -DREFRACTA_SPLIT_DEPTH=" + std::to_string(v.SplitDepth);
+  }
   return options;
 }
 

@@ -9,8 +9,8 @@
 
 #include "vtkOpenCLContext.h" // for cl_kernel
 
-#include <string>     // for the error message and the options
-#include <vector>     // for the values
+#include <string> // for the error message and the options
+#include <vector> // for the values
 
 class vtkDataArray;
 class vtkObject;
@@ -56,6 +56,8 @@ struct KernelVariant
   bool Skip = false;         // REFRACTA_SKIP
   bool Surfaces = false;     // REFRACTA_HAS_SURFACES
   bool NearestTexel = false; // REFRACTA_SURFACE_NEAREST
+  bool Dielectric = false;   // REFRACTA_DIELECTRIC (glass triangles)
+  int SplitDepth = 1;        // REFRACTA_SPLIT_DEPTH (interfaces where both legs are followed)
 };
 
 // The build options of a kernel variant.

@@ -41,6 +41,9 @@ bool SurfaceBuffers::Update(vtkRefractaSurfaceSet* set, vtkOpenCLContext* contex
     this->TriangleInfo.Reset();
     this->Albedo.Reset();
     this->Irradiance.Reset();
+    this->Normals.Reset();
+    this->Interfaces.Reset();
+    this->Dielectric = false;
     return true;
   }
   if (!set->Build())
@@ -80,7 +83,21 @@ bool SurfaceBuffers::Update(vtkRefractaSurfaceSet* set, vtkOpenCLContext* contex
     flags, info.size() * sizeof(int), info.data(), "surface triangle texels", owner);
   this->Albedo = context->CreateBuffer(
     flags, albedo.size() * sizeof(float), albedo.data(), "surface albedo", owner);
-  if (!this->Nodes || !this->Triangles || !this->TriangleInfo || !this->Albedo)
+  // Glass: the corner normals and the index pairs, only where there are dielectric triangles.
+  this->Dielectric = set->GetNumberOfDielectricTriangles() > 0;
+  this->Normals.Reset();
+  this->Interfaces.Reset();
+  if (this->Dielectric)
+  {
+    const std::vector<float>& normals = set->GetTriangleNormals();
+    const std::vector<float>& interfaces = set->GetSurfaceInterfaces();
+    this->Normals = context->CreateBuffer(
+      flags, normals.size() * sizeof(float), normals.data(), "surface corner normals", owner);
+    this->Interfaces = context->CreateBuffer(flags, interfaces.size() * sizeof(float),
+      interfaces.data(), "surface interface indices", owner);
+  }
+  if (!this->Nodes || !this->Triangles || !this->TriangleInfo || !this->Albedo ||
+    (this->Dielectric && (!this->Normals || !this->Interfaces)))
   {
     this->NodeCount = 0;
     this->UploadedBuild = -1;

@@ -45,14 +45,19 @@ public:
   void ComputeLocalToSurface(const double worldToLocal[4][4], cl_float4 rows[3]) const;
 
   int GetNodeCount() const { return this->NodeCount; }
+  // Whether the set has dielectric (glass) triangles: the kernel then splits paths at them.
+  bool HasDielectric() const { return this->NodeCount > 0 && this->Dielectric; }
   int GetNumberOfUploads() const { return this->NumberOfUploads; }
 
   vtkOpenCLBuffer Nodes, Triangles, TriangleInfo, Albedo, Irradiance;
+  // Corner normals (float4 per corner) and (IndexInside, IndexOutside) per surface.
+  vtkOpenCLBuffer Normals, Interfaces;
 
 private:
   vtkSmartPointer<vtkRefractaSurfaceSet> Set;
   int UploadedBuild = -1; // the set's GetNumberOfBuilds() at the last upload
   int NodeCount = 0;
+  bool Dielectric = false;
   vtkIdType Texels = 0;
   double FrameOrigin[3] = { 0, 0, 0 };
   int NumberOfUploads = 0;

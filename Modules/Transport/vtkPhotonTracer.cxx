@@ -339,7 +339,8 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DREFRACTA_MAX_TURN=" << FloatLiteral(this->MaximumTurn)
           << " -DREFRACTA_STEP_TOLERANCE=" << FloatLiteral(this->StepTolerance)
           << " -DREFRACTA_MAX_HALVINGS=" << (this->StepTolerance > 0 ? MaximumHalvings : 0);
-  options << " -DREFRACTA_SURFACES=" << (run.Surfaces ? 1 : 0);
+  options << " -DREFRACTA_SURFACES=" << (run.Surfaces ? 1 : 0) << " -DREFRACTA_INTERFACES="
+          << (run.Surfaces && run.Surfaces->GetNumberOfDielectricTriangles() > 0 ? 1 : 0);
   run.Analog = this->AnalogScattering && run.Surfaces && m.Scatters;
   options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0);
   run.Trace =
@@ -711,6 +712,8 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
   addCount("TotalVoxelPieces", count[PHOTON_COUNTER_PIECES]);
   addCount("TerminatedSurface", count[PHOTON_COUNTER_SURFACE]);
   addCount("SurfaceHits", count[PHOTON_COUNTER_SURFACE_HITS]);
+  addCount("InterfaceReflections", count[PHOTON_COUNTER_INTERFACE_REFLECTIONS]);
+  addCount("InterfaceTransmissions", count[PHOTON_COUNTER_INTERFACE_TRANSMISSIONS]);
   auto energy = [&](int t, int c) { return static_cast<double>(tally[3 * t + c]) / scale; };
   auto addEnergy = [&](const char* name, const std::array<double, 3>& v)
   {
@@ -720,8 +723,8 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
     a->InsertNextTuple(v.data());
     fd->AddArray(a);
   };
-  std::array<double, 3> e[PHOTON_TALLY_BOOKS], remaining;
-  for (int t = 0; t < PHOTON_TALLY_BOOKS; ++t)
+  std::array<double, 3> e[PHOTON_TALLY_ALL_BOOKS], remaining;
+  for (int t = 0; t < PHOTON_TALLY_ALL_BOOKS; ++t)
   {
     for (int c = 0; c < 3; ++c)
     {
@@ -741,6 +744,8 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
   addEnergy("EnergyRouletteKilled", e[PHOTON_TALLY_KILLED]);
   addEnergy("EnergyRouletteGained", e[PHOTON_TALLY_GAINED]);
   addEnergy("EnergySurface", e[PHOTON_TALLY_SURFACE]);
+  addEnergy("EnergyInterfaceReflected", e[PHOTON_TALLY_INTERFACE_REFLECTED]);
+  addEnergy("EnergyInterfaceTransmitted", e[PHOTON_TALLY_INTERFACE_TRANSMITTED]);
   this->WriteSurfaceOutput(run, output);
 }
 

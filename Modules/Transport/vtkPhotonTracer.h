@@ -38,6 +38,12 @@
  * Scattered + Remaining. The set's device arrays (BVH, triangles, texel albedo) are uploaded once
  * per build of the set and kept between runs, like the medium's; moving a surface rebuilds the set
  * and re-runs this pass, never the medium's octree (see GetLastRunReusedSurfaces()).
+ * Dielectric surfaces (vtkRefractaSurfaceMaterial::DIELECTRIC) are exact interfaces: a photon is
+ * reflected with the Fresnel probability or refracted by Snell's law, keeping its power, and
+ * deposits nothing; `EnergyInterfaceReflected` and `EnergyInterfaceTransmitted` (RGB) book the
+ * power of every such event (their sum is the power that met interfaces),
+ * `InterfaceReflections` and `InterfaceTransmissions` count them (Documentation/Physics.md,
+ * "Dielectric interfaces").
  *
  * Environment light (BackgroundIlluminates, default off): the background (EnvironmentMap, an
  * equirectangular vtkImageData oriented by EnvironmentUp / EnvironmentRight as

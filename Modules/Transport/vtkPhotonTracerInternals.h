@@ -187,6 +187,7 @@ struct vtkPhotonTracer::Internals
   // the rows of the grid-local -> surface-frame map, the offset of reflected photons.
   vtkRefractaSurfaceSet* Surfaces = nullptr;
   vtkOpenCLBuffer SurfNodes, SurfTriangles, SurfInfo, SurfAlbedo, SurfIrradiance;
+  vtkOpenCLBuffer SurfNormals, SurfInterfaces; // dielectric corner normals and index pairs
   cl_float4 Frame[3];
   double SurfaceEpsilon = 0;
   vtkNew<vtkFloatArray> Irradiance;
@@ -236,7 +237,7 @@ struct vtkPhotonTracer::SurfaceCache
   vtkWeakPointer<vtkRefractaSurfaceSet> Set;
   int Builds = -1;
   vtkOpenCLContext* Context = nullptr;
-  vtkOpenCLBuffer Nodes, Triangles, Info, Albedo;
+  vtkOpenCLBuffer Nodes, Triangles, Info, Albedo, Normals, Interfaces;
   double Bytes = 0;
 };
 

@@ -143,13 +143,15 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
     run.SurfInfo = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "surface texels (none)");
     run.SurfAlbedo = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "surface albedo (none)");
     run.SurfIrradiance = alloc.Make(CL_MEM_READ_WRITE, 16, nullptr, "surface irradiance (none)");
+    run.SurfNormals = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "surface normals (none)");
+    run.SurfInterfaces = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "surface interfaces (none)");
     for (auto& row : run.Frame)
     {
       row = Float4(0, 0, 0, 0);
     }
     this->KeptSurfaces.reset();
     return run.SurfNodes && run.SurfTriangles && run.SurfInfo && run.SurfAlbedo &&
-      run.SurfIrradiance;
+      run.SurfIrradiance && run.SurfNormals && run.SurfInterfaces;
   }
   vtkRefractaSurfaceSet* set = run.Surfaces;
   SurfaceCache* kept = this->KeptSurfaces.get();
@@ -159,6 +161,8 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
     run.SurfTriangles = std::move(kept->Triangles);
     run.SurfInfo = std::move(kept->Info);
     run.SurfAlbedo = std::move(kept->Albedo);
+    run.SurfNormals = std::move(kept->Normals);
+    run.SurfInterfaces = std::move(kept->Interfaces);
     alloc.Bytes += kept->Bytes;
     this->LastRunReusedSurfaces = true;
   }
@@ -176,13 +180,19 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
     run.SurfInfo = alloc.Make(in, info.size() * sizeof(int), info.data(), "surface texel table");
     run.SurfAlbedo =
       alloc.Make(in, albedo.size() * sizeof(float), albedo.data(), "surface texel albedo");
+    const auto& normals = set->GetTriangleNormals();
+    const auto& interfaces = set->GetSurfaceInterfaces();
+    run.SurfNormals =
+      alloc.Make(in, normals.size() * sizeof(float), normals.data(), "surface corner normals");
+    run.SurfInterfaces = alloc.Make(
+      in, interfaces.size() * sizeof(float), interfaces.data(), "surface interface indices");
   }
   this->KeptSurfaces.reset();
   const size_t accumulators = 3 * static_cast<size_t>(set->GetNumberOfTexels());
   run.SurfIrradiance = alloc.Make(
     CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "surface irradiance accumulator");
   return run.SurfNodes && run.SurfTriangles && run.SurfInfo && run.SurfAlbedo &&
-    run.SurfIrradiance &&
+    run.SurfIrradiance && run.SurfNormals && run.SurfInterfaces &&
     ctx->ZeroBuffer(run.SurfIrradiance.Get(), accumulators * sizeof(cl_long), this);
 }
 
@@ -218,6 +228,9 @@ bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_u
   const cl_mem anisotropy = run.AnisotropyBuffer.Get(), multiple = run.MultipleFixed.Get();
   set(sizeof(cl_mem), &anisotropy);
   set(sizeof(cl_mem), &multiple);
+  const cl_mem normals = run.SurfNormals.Get(), interfaces = run.SurfInterfaces.Get();
+  set(sizeof(cl_mem), &normals);
+  set(sizeof(cl_mem), &interfaces);
   return run.Context->Check(status, "clSetKernelArg(surfaces)", this);
 }
 
@@ -281,10 +294,14 @@ void vtkPhotonTracer::KeepSurfaces(Internals& run)
   kept->Bytes = rounded(run.Surfaces->GetBVH()->GetNodes().size() * 4) +
     rounded(run.Surfaces->GetBVH()->GetFloatTriangles().size() * 4) +
     rounded(run.Surfaces->GetTriangleInfo().size() * 4) +
-    rounded(run.Surfaces->GetTexelAlbedo().size() * 4);
+    rounded(run.Surfaces->GetTexelAlbedo().size() * 4) +
+    rounded(run.Surfaces->GetTriangleNormals().size() * 4) +
+    rounded(run.Surfaces->GetSurfaceInterfaces().size() * 4);
   kept->Nodes = std::move(run.SurfNodes);
   kept->Triangles = std::move(run.SurfTriangles);
   kept->Info = std::move(run.SurfInfo);
   kept->Albedo = std::move(run.SurfAlbedo);
+  kept->Normals = std::move(run.SurfNormals);
+  kept->Interfaces = std::move(run.SurfInterfaces);
   this->KeptSurfaces = std::move(kept);
 }

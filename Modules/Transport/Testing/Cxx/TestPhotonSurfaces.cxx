@@ -5,6 +5,7 @@
 // (medium, surfaces, escaped, remaining, roulette) close; the device arrays are kept between
 // runs and a moved surface re-runs the pass without reloading the medium.
 #include "PhotonTestUtilities.h"
+#include "SharpSphereTrace.h"
 
 #include "vtkCubeSource.h"
 #include "vtkDiskSource.h"
@@ -207,60 +208,6 @@ TEST(PhotonSurfaces, SlabShadowBeerLambert)
             << transmittance << ")\n";
 }
 
-namespace
-{
-// Exact trace of a ray parallel to -z at height rho through the sharp sphere (radius R, index n,
-// centre 0): its distance from the axis where it crosses the plane z = -D.
-double SharpSphereRadiusAt(double rho, double radius, double n, double D)
-{
-  // Entry point and normal; refraction by Snell's law in vector form.
-  auto refract = [](const double d[3], const double nn[3], double eta, double out[3])
-  {
-    const double c = -(d[0] * nn[0] + d[1] * nn[1] + d[2] * nn[2]);
-    const double k = 1 - eta * eta * (1 - c * c);
-    for (int a = 0; a < 3; ++a)
-    {
-      out[a] = eta * d[a] + (eta * c - std::sqrt(k)) * nn[a];
-    }
-  };
-  const double p[3] = { rho, 0, std::sqrt(radius * radius - rho * rho) };
-  const double d0[3] = { 0, 0, -1 };
-  const double n1[3] = { p[0] / radius, 0, p[2] / radius };
-  double d1[3];
-  refract(d0, n1, 1.0 / n, d1);
-  // Second intersection: p + t d1 on the sphere, t = -2 p.d1.
-  const double t = -2 * (p[0] * d1[0] + p[2] * d1[2]);
-  const double q[3] = { p[0] + t * d1[0], 0, p[2] + t * d1[2] };
-  const double n2[3] = { -q[0] / radius, 0, -q[2] / radius }; // inward normal at the exit
-  double d2[3];
-  refract(d1, n2, n, d2);
-  const double s = (-D - q[2]) / d2[2];
-  return std::fabs(q[0] + s * d2[0]);
-}
-
-// RMS spot radius on the plane z = -D of a uniform beam of radius a through the sharp sphere.
-double SharpSphereRms(double a, double radius, double n, double D)
-{
-  double sum = 0, weight = 0;
-  for (int i = 0; i < 2000; ++i)
-  {
-    const double rho = a * (i + 0.5) / 2000;
-    const double r = SharpSphereRadiusAt(rho, radius, n, D);
-    sum += r * r * rho;
-    weight += rho;
-  }
-  return std::sqrt(sum / weight);
-}
-
-// Vertex of the parabola through three points (x, y).
-double ParabolaVertex(const double x[3], const double y[3])
-{
-  const double d1 = (y[1] - y[0]) / (x[1] - x[0]), d2 = (y[2] - y[1]) / (x[2] - x[1]);
-  const double c = (d2 - d1) / (x[2] - x[0]);
-  return 0.5 * (x[0] + x[1]) - d1 / (2 * c);
-}
-}
-
 TEST(PhotonSurfaces, BallLensFocus)
 {
   // A ball lens (n = 1.5, R = 1, index smoothed over +-1.5 voxels of 0.05) under a directional
@@ -330,12 +277,12 @@ TEST(PhotonSurfaces, BallLensFocus)
   ASSERT_LT(best, rms.size() - 1) << "nor at the farthest";
   const double x[3] = { distances[best - 1], distances[best], distances[best + 1] };
   const double y[3] = { rms[best - 1], rms[best], rms[best + 1] };
-  const double measured = ParabolaVertex(x, y);
+  const double measured = photontest::ParabolaVertex(x, y);
   // The sharp sphere's best focus for this aperture (exact Snell trace), and the paraxial one.
   double sharpBest = 1.0, sharpRms = 1e300;
   for (double D = 1.0; D < 2.5; D += 0.001)
   {
-    const double r = SharpSphereRms(aperture, radius, index, D);
+    const double r = photontest::SharpSphereRms(aperture, radius, index, D);
     if (r < sharpRms)
     {
       sharpRms = r;

@@ -1,0 +1,300 @@
+// Photon pass with dielectric interfaces (vtkRefractaSurfaceMaterial::DIELECTRIC, issue 20): a
+// glass slab reflects the Fresnel fraction per interface event and the books close (reflected +
+// transmitted = incident at every interface, emitted = escaped); a right-angle prism reflects
+// totally at its hypotenuse (nothing below it) and sends T / (1 + R) of the beam out of its leg;
+// a sharp ball lens focuses a parallel beam where an independent Snell trace puts the focus.
+#include "PhotonTestUtilities.h"
+#include "SharpSphereTrace.h"
+
+#include "vtkCellArray.h"
+#include "vtkCubeSource.h"
+#include "vtkDiskSource.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPlaneSource.h"
+#include "vtkPoints.h"
+#include "vtkRefractaBVH.h"
+#include "vtkRefractaSurfaceMaterial.h"
+#include "vtkRefractaSurfaceSet.h"
+#include "vtkSphereSource.h"
+
+#include "refracta_surfaces.cl" // the triangle info layout
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+namespace
+{
+vtkSmartPointer<vtkRefractaSurfaceMaterial> Glass(double n)
+{
+  auto m = vtkSmartPointer<vtkRefractaSurfaceMaterial>::New();
+  m->SetKindToDielectric();
+  m->SetIndexInside(n);
+  m->SetIndexOutside(1.0);
+  return m;
+}
+
+vtkSmartPointer<vtkRefractaSurfaceMaterial> Black()
+{
+  auto m = vtkSmartPointer<vtkRefractaSurfaceMaterial>::New();
+  m->SetAlbedo(0, 0, 0);
+  return m;
+}
+
+// A rectangle from `origin` spanned by the edges p1 - origin and p2 - origin.
+vtkSmartPointer<vtkPolyData> Rectangle(
+  std::array<double, 3> origin, std::array<double, 3> p1, std::array<double, 3> p2)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(origin.data());
+  plane->SetPoint1(p1.data());
+  plane->SetPoint2(p2.data());
+  plane->Update();
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->DeepCopy(plane->GetOutput());
+  return out;
+}
+
+vtkSmartPointer<vtkImageData> Vacuum()
+{
+  auto medium = photontest::MakeMedium(
+    8, 8, 8, 0.5, [](double, double, double) { return photontest::Voxel{}; });
+  medium->SetOrigin(-2, -2, -2);
+  return medium;
+}
+
+// Flux (first channel) deposited on the triangles of surface `surface`.
+double SurfaceFlux(vtkRefractaSurfaceSet* set, vtkImageData* out, int surface)
+{
+  vtkDataArray* e =
+    out->GetFieldData()->GetArray(vtkRefractaLightingVolume::SurfaceIrradianceName());
+  double flux = 0;
+  const auto& info = set->GetTriangleInfo();
+  for (vtkIdType k = 0; k < set->GetNumberOfTriangles(); ++k)
+  {
+    if (info[4 * k + REFRACTA_TRIANGLE_INFO_SURFACE] != surface)
+    {
+      continue;
+    }
+    const int first = info[4 * k], n = info[4 * k + 1];
+    for (int i = 0; i < n * n; ++i)
+    {
+      flux += e->GetComponent(first + i, 0) * set->GetTexelAreas()[first + i];
+    }
+  }
+  return flux;
+}
+
+// Every book closes to 1e-6 of the emitted power, and reflected + transmitted are the interface
+// events' power.
+void ExpectExactBooks(vtkImageData* out)
+{
+  using photontest::Energy;
+  const auto emitted = Energy(out, "EnergyEmitted");
+  const auto surface = Energy(out, "EnergySurface");
+  const auto escaped = Energy(out, "EnergyEscaped");
+  const auto absorbed = Energy(out, "EnergyAbsorbed");
+  const auto remaining = Energy(out, "EnergyRemaining");
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(
+      surface[c] + escaped[c] + absorbed[c] + remaining[c], emitted[c], 1e-6 * emitted[c]);
+  }
+}
+}
+
+TEST(PhotonInterfaces, SlabReflectsFresnelPerEvent)
+{
+  // A glass slab (n = 1.5) under a vertical beam: every event is at normal incidence, so the
+  // power reflected per event is R = ((n - 1) / (n + 1))^2 = 0.04 of the power meeting the
+  // interfaces, and nothing is lost.
+  vtkNew<vtkCubeSource> slab;
+  slab->SetBounds(-1, 1, -1, 1, -0.25, 0.25);
+  slab->Update();
+  vtkNew<vtkRefractaSurfaceSet> set;
+  set->AddSurface(slab->GetOutput(), Glass(1.5));
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->SetInputData(Vacuum());
+  tracer->SetSurfaces(set);
+  tracer->AddLight(photontest::Directional({ 0, 0, 10 }, { 0, 0, 0 }, 1.0));
+  tracer->SetNumberOfPhotons(1 << 18);
+  tracer->Update();
+  vtkImageData* out = tracer->GetOutput();
+  ExpectExactBooks(out);
+  const double reflected = photontest::Field(out, "EnergyInterfaceReflected");
+  const double transmitted = photontest::Field(out, "EnergyInterfaceTransmitted");
+  const double events = photontest::Field(out, "InterfaceReflections") +
+    photontest::Field(out, "InterfaceTransmissions");
+  ASSERT_GT(events, 1e5);
+  const double r = reflected / (reflected + transmitted);
+  const double se = std::sqrt(0.04 * 0.96 / events);
+  std::cout << "slab: reflected fraction per event " << r << " (Fresnel 0.04, SE " << se << "), "
+            << events << " events\n";
+  EXPECT_NEAR(r, 0.04, 4 * se);
+  // The glass deposits nothing and absorbs nothing.
+  EXPECT_EQ(photontest::Field(out, "EnergySurface"), 0.0);
+  EXPECT_EQ(photontest::Field(out, "SurfaceHits"), 0.0);
+}
+
+TEST(PhotonInterfaces, PrismReflectsTotally)
+{
+  // A right-angle prism (n = 1.5), cross-section (x, z) A = (0, 1), B = (1, 1), C = (0, 0),
+  // extruded over y in [-1, 1]. A vertical beam enters the top AB at normal incidence, meets the
+  // hypotenuse BC at 45 degrees (critical angle 41.8): total internal reflection towards -x, out
+  // through the leg AC. A black plane below the hypotenuse sees nothing; a black plane left of
+  // the leg receives T / (1 + R) of what enters the top (the series of internal reflections).
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  const double p[6][3] = { { 0, -1, 1 }, { 1, -1, 1 }, { 0, -1, 0 }, { 0, 1, 1 }, { 1, 1, 1 },
+    { 0, 1, 0 } };
+  for (const auto& q : p)
+  {
+    points->InsertNextPoint(q);
+  }
+  // Outward winding: caps, top, leg, hypotenuse.
+  const vtkIdType faces[8][3] = { { 0, 2, 1 }, { 3, 4, 5 }, { 0, 1, 4 }, { 0, 4, 3 }, { 0, 3, 5 },
+    { 0, 5, 2 }, { 1, 2, 5 }, { 1, 5, 4 } };
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  for (const auto& f : faces)
+  {
+    cells->InsertNextCell(3, f);
+  }
+  auto prism = vtkSmartPointer<vtkPolyData>::New();
+  prism->SetPoints(points);
+  prism->SetPolys(cells);
+  vtkNew<vtkRefractaSurfaceSet> set;
+  set->SetTexelSize(0.1);
+  set->AddSurface(prism, Glass(1.5));
+  // Surface 1: under the hypotenuse (inside the prism's footprint only, so the direct beam
+  // cannot reach it); 2: left of the leg; 3: a reference plane in the open beam.
+  set->AddSurface(
+    Rectangle({ 0.05, -0.9, -0.5 }, { 0.9, -0.9, -0.5 }, { 0.05, 0.9, -0.5 }), Black());
+  set->AddSurface(
+    Rectangle({ -0.3, -1.2, -0.2 }, { -0.3, 1.2, -0.2 }, { -0.3, -1.2, 1.2 }), Black());
+  set->AddSurface(Rectangle({ 1.2, -1, 1 }, { 1.8, -1, 1 }, { 1.2, 1, 1 }), Black());
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->SetInputData(Vacuum());
+  tracer->SetSurfaces(set);
+  tracer->AddLight(photontest::Directional({ 0, 0, 10 }, { 0, 0, 0 }, 1.0));
+  tracer->SetNumberOfPhotons(1 << 20);
+  tracer->Update();
+  vtkImageData* out = tracer->GetOutput();
+  ExpectExactBooks(out);
+  const double below = SurfaceFlux(set, out, 1);
+  const double left = SurfaceFlux(set, out, 2);
+  const double e0 = SurfaceFlux(set, out, 3) / (0.6 * 2.0); // the beam's irradiance
+  const double entering = e0 * 2.0;                         // top face: 1 x 2
+  const double r = 0.04;
+  std::cout << "prism: below the hypotenuse " << below << ", left of the leg " << left / entering
+            << " of the beam on the top (T / (1 + R) = " << (1 - r) / (1 + r) << ")\n";
+  // Nothing crosses the hypotenuse; only photons that enter within the surface offset of the
+  // edge B could pass beside it (none reach this plane, which ends 0.1 before B).
+  EXPECT_EQ(below, 0.0);
+  EXPECT_NEAR(left / entering, (1 - r) / (1 + r), 0.01);
+}
+
+TEST(PhotonInterfaces, SharpBallLensFocus)
+{
+  // The ball lens of PhotonSurfaces.BallLensFocus (n = 1.5, R = 1, annular aperture of inner
+  // radius 0.3), now an exact interface (256 x 128 sphere, smooth normals) in vacuum: the best
+  // focus must be the independent Snell trace's within 0.02 R.
+  const double radius = 1.0, index = 1.5, aperture = 0.3;
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(radius);
+  sphere->SetThetaResolution(256);
+  sphere->SetPhiResolution(128);
+  sphere->Update();
+  vtkNew<vtkDiskSource> disk;
+  disk->SetInnerRadius(aperture);
+  disk->SetOuterRadius(1.25);
+  disk->SetCircumferentialResolution(96);
+  disk->SetCenter(0, 0, 1.3);
+  disk->Update();
+  vtkNew<vtkRefractaSurfaceSet> set;
+  set->SetTexelSize(0.01);
+  vtkNew<vtkMatrix4x4> move;
+  set->AddSurface(sphere->GetOutput(), Glass(index));
+  set->AddSurface(disk->GetOutput(), Black());
+  set->AddSurface(Rectangle({ -0.5, -0.5, 0 }, { 0.5, -0.5, 0 }, { -0.5, 0.5, 0 }), Black(), move);
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->SetInputData(Vacuum());
+  tracer->AddLight(photontest::Directional({ 0, 0, 10 }, { 0, 0, 0 }, 1.0));
+  tracer->SetNumberOfPhotons(1 << 19);
+  tracer->SetSurfaces(set);
+  std::vector<double> distances = { 1.3, 1.4, 1.5, 1.6, 1.7 };
+  std::vector<double> rms;
+  for (double D : distances)
+  {
+    move->SetElement(2, 3, -D);
+    tracer->Update();
+    vtkImageData* out = tracer->GetOutput();
+    ExpectExactBooks(out);
+    vtkDataArray* e =
+      out->GetFieldData()->GetArray(vtkRefractaLightingVolume::SurfaceIrradianceName());
+    const auto& info = set->GetTriangleInfo();
+    vtkRefractaBVH* bvh = set->GetBVH();
+    double m2 = 0, m0 = 0;
+    for (vtkIdType k = 0; k < set->GetNumberOfTriangles(); ++k)
+    {
+      if (info[4 * k + REFRACTA_TRIANGLE_INFO_SURFACE] != 2)
+      {
+        continue;
+      }
+      const double* t = &bvh->GetTriangles()[9 * k];
+      const int first = info[4 * k], n = info[4 * k + 1];
+      for (int i = 0; i < n * n; ++i)
+      {
+        double c[6];
+        vtkRefractaSurfaceSet::GetTexelCorners(i, n, c);
+        const double u = (c[0] + c[2] + c[4]) / 3, v = (c[1] + c[3] + c[5]) / 3;
+        double x[2];
+        for (int a = 0; a < 2; ++a)
+        {
+          x[a] = (1 - u - v) * t[a] + u * t[3 + a] + v * t[6 + a] + bvh->GetFrameOrigin()[a];
+        }
+        const double flux = e->GetComponent(first + i, 0) * set->GetTexelAreas()[first + i];
+        m2 += flux * (x[0] * x[0] + x[1] * x[1]);
+        m0 += flux;
+      }
+    }
+    ASSERT_GT(m0, 0);
+    rms.push_back(std::sqrt(m2 / m0));
+  }
+  size_t best = 0;
+  for (size_t i = 1; i < rms.size(); ++i)
+  {
+    best = rms[i] < rms[best] ? i : best;
+  }
+  ASSERT_GT(best, 0u);
+  ASSERT_LT(best, rms.size() - 1);
+  const double x[3] = { distances[best - 1], distances[best], distances[best + 1] };
+  const double y[3] = { rms[best - 1], rms[best], rms[best + 1] };
+  const double measured = photontest::ParabolaVertex(x, y);
+  double sharpBest = 1.0, sharpRms = 1e300;
+  for (double D = 1.0; D < 2.5; D += 0.001)
+  {
+    const double r = photontest::SharpSphereRms(aperture, radius, index, D);
+    if (r < sharpRms)
+    {
+      sharpRms = r;
+      sharpBest = D;
+    }
+  }
+  std::cout << "sharp ball lens: RMS spot radius by plane distance:";
+  for (size_t i = 0; i < rms.size(); ++i)
+  {
+    std::cout << " " << distances[i] << ": " << rms[i];
+  }
+  std::cout << "\nmeasured focus " << measured << ", exact trace " << sharpBest << " (RMS "
+            << sharpRms << ")\n";
+  EXPECT_NEAR(measured, sharpBest, 0.02 * radius);
+  // Away from the focus, where the spot is many texels wide, its size is the trace's.
+  for (size_t i : { size_t(0), rms.size() - 1 })
+  {
+    const double traced = photontest::SharpSphereRms(aperture, radius, index, distances[i]);
+    std::cout << "D = " << distances[i] << ": RMS " << rms[i] << ", traced " << traced << "\n";
+    EXPECT_NEAR(rms[i], traced, 0.1 * traced);
+  }
+}
