@@ -64,6 +64,20 @@ public:
   static const char* AnisotropyName() { return "Anisotropy"; }
   static const char* EmissionName() { return "Emission"; }
   static const char* OccupancyName() { return "Occupancy"; }
+
+  ///@}
+
+  ///@{
+  /**
+   * Field-data arrays of a medium voxelized with exact dielectric interfaces
+   * (vtkMeshVoxelizer::EXACT_INTERFACES; read by vtkRefractaSurfaceSet::AddMediumInterfaces):
+   * InterfacePoints (double, 3 components, the medium's data coordinates), InterfaceTriangles
+   * (vtkIdType, 3 point ids per triangle, wound with the normal outwards) and InterfaceIndices
+   * (double, 2 components per triangle: refractive index inside, outside).
+   */
+  static const char* InterfacePointsName() { return "InterfacePoints"; }
+  static const char* InterfaceTrianglesName() { return "InterfaceTriangles"; }
+  static const char* InterfaceIndicesName() { return "InterfaceIndices"; }
   ///@}
 
   /**

@@ -47,6 +47,7 @@
 
 #include <vector> // for the flattened arrays
 
+class vtkDataObject;
 class vtkMatrix4x4;
 class vtkPolyData;
 class vtkRefractaBVH;
@@ -65,6 +66,16 @@ public:
    */
   int AddSurface(vtkPolyData* mesh, vtkRefractaSurfaceMaterial* material = nullptr,
     vtkMatrix4x4* matrix = nullptr);
+
+  /**
+   * Adds the exact dielectric interfaces a medium carries in its field data
+   * (vtkMeshVoxelizer::EXACT_INTERFACES, the arrays named by vtkRefractaMedium): one DIELECTRIC
+   * surface (smooth normals) per distinct (index inside, index outside) pair, placed by `matrix`
+   * (the medium's data coordinates to world; nullptr: identity). Returns the number of surfaces
+   * added: 0 for a medium without interface arrays (volumetric data, SMOOTHED_INDEX) or a null
+   * one; -1 with an error when the arrays are inconsistent (wrong components, ids out of range).
+   */
+  int AddMediumInterfaces(vtkDataObject* medium, vtkMatrix4x4* matrix = nullptr);
 
   /**
    * Removes every surface.

@@ -7,7 +7,10 @@
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -331,6 +334,62 @@ int vtkMeshVoxelizer::RequestUpdateExtent(
   return 1;
 }
 
+namespace
+{
+// The material outside mesh m (materials: 0 the surroundings, k + 1 mesh k): the innermost
+// other mesh (smallest enclosed volume) that contains m's first vertex, else the surroundings.
+size_t OuterMaterial(const std::vector<std::unique_ptr<PreparedMesh>>& meshes, size_t m)
+{
+  const double* p = meshes[m]->Points.data();
+  size_t outer = 0;
+  double volume = VTK_DOUBLE_MAX;
+  for (size_t k = 0; k < meshes.size(); ++k)
+  {
+    if (k != m && meshes[k]->Volume >= meshes[m]->Volume && meshes[k]->Volume < volume &&
+      meshes[k]->Classify(p) > 0.5)
+    {
+      outer = k + 1;
+      volume = meshes[k]->Volume;
+    }
+  }
+  return outer;
+}
+
+// The meshes as exact interfaces in the output's field data (vtkRefractaMedium's names).
+void WriteInterfaces(const std::vector<std::unique_ptr<PreparedMesh>>& meshes,
+  const std::vector<vtkMediumMaterial*>& materials, vtkImageData* output)
+{
+  vtkNew<vtkDoubleArray> points, indices;
+  vtkNew<vtkIdTypeArray> triangles;
+  points->SetName(vtkRefractaMedium::InterfacePointsName());
+  points->SetNumberOfComponents(3);
+  triangles->SetName(vtkRefractaMedium::InterfaceTrianglesName());
+  triangles->SetNumberOfComponents(3);
+  indices->SetName(vtkRefractaMedium::InterfaceIndicesName());
+  indices->SetNumberOfComponents(2);
+  for (size_t m = 0; m < meshes.size(); ++m)
+  {
+    const vtkIdType first = points->GetNumberOfTuples();
+    const auto& mesh = *meshes[m];
+    for (size_t p = 0; p < mesh.Points.size() / 3; ++p)
+    {
+      points->InsertNextTuple(&mesh.Points[3 * p]);
+    }
+    const double pair[2] = { materials[m + 1]->GetRefractiveIndex(),
+      materials[OuterMaterial(meshes, m)]->GetRefractiveIndex() };
+    for (const auto& t : mesh.Triangles)
+    {
+      const vtkIdType ids[3] = { first + t[0], first + t[1], first + t[2] };
+      triangles->InsertNextTypedTuple(ids);
+      indices->InsertNextTuple(pair);
+    }
+  }
+  output->GetFieldData()->AddArray(points);
+  output->GetFieldData()->AddArray(triangles);
+  output->GetFieldData()->AddArray(indices);
+}
+}
+
 //------------------------------------------------------------------------------
 int vtkMeshVoxelizer::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -484,6 +543,30 @@ int vtkMeshVoxelizer::RequestData(
   this->NumberOfFallbackLines = raster.Fallbacks;
   this->StageTimes[STAGE_SUPERSAMPLING] = Seconds(t0, Clock::now());
 
+  // Exact interfaces: the voxels a surface touches, where grad n must not see the jump.
+  bool densityIndex = false;
+  for (const vtkMediumMaterial* m : materials)
+  {
+    densityIndex =
+      densityIndex || const_cast<vtkMediumMaterial*>(m)->GetDensityScalesRefractiveIndex();
+  }
+  this->WroteInterfaces = this->InterfaceMode == EXACT_INTERFACES && !densityIndex;
+  if (this->InterfaceMode == EXACT_INTERFACES && densityIndex)
+  {
+    vtkWarningMacro("EXACT_INTERFACES needs one refractive index per material, but a material "
+                    "scales its index by a density field (DensityScalesRefractiveIndex): this "
+                    "grid is voxelized with SMOOTHED_INDEX instead.");
+  }
+  std::vector<std::uint8_t> cut;
+  if (this->WroteInterfaces)
+  {
+    cut.resize(raster.Labels.size());
+    for (size_t v = 0; v < cut.size(); ++v)
+    {
+      cut[v] = raster.Labels[v] == SurfaceLabel ? 1 : 0;
+    }
+  }
+
   // ---- Materials of the voxels wholly inside one mesh or outside all. ----
   t0 = Clock::now();
   raster.MixInteriorVoxels(mixer);
@@ -493,14 +576,19 @@ int vtkMeshVoxelizer::RequestData(
   // ---- Gaussian smoothing of n (separable), and its gradient. ----
   t0 = Clock::now();
   const int window = this->SmoothingWindow | 1; // odd
-  if (window > 1)
+  if (window > 1 && !this->WroteInterfaces)
   {
     SmoothIndex(nArray->GetPointer(0), g, window, this->SmoothingSigma);
   }
   this->StageTimes[STAGE_SMOOTHING] = Seconds(t0, Clock::now());
   this->UpdateProgress(0.9);
   t0 = Clock::now();
-  IndexGradient(nArray->GetPointer(0), gradArray->GetPointer(0), g);
+  IndexGradient(nArray->GetPointer(0), gradArray->GetPointer(0), g,
+    this->WroteInterfaces ? cut.data() : nullptr);
+  if (this->WroteInterfaces)
+  {
+    WriteInterfaces(meshes, materials, output);
+  }
   this->StageTimes[STAGE_GRADIENT] = Seconds(t0, Clock::now());
 
   vtkPointData* pd = output->GetPointData();
@@ -540,6 +628,8 @@ void vtkMeshVoxelizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SupersampleSurfaceOnly: " << this->SupersampleSurfaceOnly << "\n";
   os << indent << "SmoothingWindow: " << this->SmoothingWindow << "\n";
   os << indent << "SmoothingSigma: " << this->SmoothingSigma << "\n";
+  os << indent << "InterfaceMode: "
+     << (this->InterfaceMode == EXACT_INTERFACES ? "EXACT_INTERFACES" : "SMOOTHED_INDEX") << "\n";
   os << indent << "CheckSelfIntersections: " << this->CheckSelfIntersections << "\n";
   for (int s = 0; s < NUMBER_OF_STAGES; ++s)
   {

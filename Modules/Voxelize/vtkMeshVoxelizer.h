@@ -50,6 +50,18 @@
  * RefractiveIndexGradient its central differences in world units (one-sided at the grid's
  * faces). The other arrays are not smoothed.
  *
+ * **Exact interfaces.** InterfaceMode EXACT_INTERFACES (default SMOOTHED_INDEX, the paper's
+ * smoothing above) leaves n unsmoothed and sets its gradient to 0 along an axis wherever the
+ * central-difference stencil touches a voxel that a triangle touches, so that grad n never holds
+ * the jump at a surface; the jump is carried by the meshes themselves, written to the output's
+ * field data (vtkRefractaMedium::InterfacePointsName(), InterfaceTrianglesName(),
+ * InterfaceIndicesName(): world points, outward-wound triangles and per triangle the index inside
+ * and outside, outside being the innermost other mesh whose volume contains the mesh's first
+ * vertex, or the surroundings) for vtkRefractaSurfaceSet::AddMediumInterfaces. A material whose
+ * index follows a density field (DensityScalesRefractiveIndex) has no single index at its surface:
+ * then the grid is SMOOTHED_INDEX, with a warning. Documentation/Physics.md, "Dielectric
+ * interfaces".
+ *
  * **Validation.** Each mesh is checked before voxelizing (CGAL and exact predicates); errors
  * (no output): null or empty mesh, cells that refer to missing points (ids out of range), NaN,
  * infinite or too large coordinates (beyond +-1e100), degenerate (collinear) faces,
@@ -199,6 +211,28 @@ public:
   vtkBooleanMacro(CheckSelfIntersections, bool);
   ///@}
 
+  enum InterfaceModes
+  {
+    SMOOTHED_INDEX = 0,  ///< n smoothed across the meshes' surfaces (the paper; the default)
+    EXACT_INTERFACES = 1 ///< the meshes are exact dielectric interfaces (see the class doc)
+  };
+
+  ///@{
+  /**
+   * SMOOTHED_INDEX (default) or EXACT_INTERFACES (see the class description).
+   */
+  vtkSetClampMacro(InterfaceMode, int, SMOOTHED_INDEX, EXACT_INTERFACES);
+  vtkGetMacro(InterfaceMode, int);
+  void SetInterfaceModeToSmoothedIndex() { this->SetInterfaceMode(SMOOTHED_INDEX); }
+  void SetInterfaceModeToExactInterfaces() { this->SetInterfaceMode(EXACT_INTERFACES); }
+  ///@}
+
+  /**
+   * Whether the last execution wrote exact interfaces (EXACT_INTERFACES and no density-scaled
+   * index).
+   */
+  vtkGetMacro(WroteInterfaces, bool);
+
   enum Stages
   {
     STAGE_VALIDATION = 0, ///< mesh checks and repairs (CGAL)
@@ -268,6 +302,8 @@ protected:
   int SmoothingWindow = 9;
   double SmoothingSigma = 0.0;
   bool CheckSelfIntersections = true;
+  int InterfaceMode = SMOOTHED_INDEX;
+  bool WroteInterfaces = false;
   double StageTimes[NUMBER_OF_STAGES] = {};
   vtkIdType NumberOfSupersampledVoxels = 0;
   vtkIdType NumberOfFallbackLines = 0;

@@ -489,7 +489,7 @@ void SmoothIndex(float* n, const Grid& g, int window, double sigma)
 }
 
 //------------------------------------------------------------------------------
-void IndexGradient(const float* n, float* grad, const Grid& g)
+void IndexGradient(const float* n, float* grad, const Grid& g, const std::uint8_t* cut)
 {
   const vtkIdType numVoxels = static_cast<vtkIdType>(g.N[0]) * g.N[1] * g.N[2];
   const vtkIdType stride[3] = { 1, g.N[0], static_cast<vtkIdType>(g.N[0]) * g.N[1] };
@@ -506,6 +506,12 @@ void IndexGradient(const float* n, float* grad, const Grid& g)
           if (g.N[a] > 1)
           {
             const int lo = std::max(0, idx[a] - 1), hi = std::min(g.N[a] - 1, idx[a] + 1);
+            if (cut &&
+              (cut[v] || cut[v + (hi - idx[a]) * stride[a]] || cut[v + (lo - idx[a]) * stride[a]]))
+            {
+              grad[3 * v + a] = 0.0f;
+              continue;
+            }
             d = (static_cast<double>(n[v + (hi - idx[a]) * stride[a]]) -
                   n[v + (lo - idx[a]) * stride[a]]) /
               ((hi - lo) * g.S[a]);

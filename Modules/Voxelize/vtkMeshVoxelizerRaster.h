@@ -124,8 +124,11 @@ void AdviseHugePages(void* data, size_t bytes);
 // voxels replicated.
 void SmoothIndex(float* n, const Grid& g, int window, double sigma);
 
-// Gradient of n by central differences (one-sided on the grid's faces), 3 floats per voxel.
-void IndexGradient(const float* n, float* gradient, const Grid& g);
+// Gradient of n by central differences (one-sided on the grid's faces), 3 floats per voxel. With
+// `cut` (one flag per voxel, nullptr: none), the component along an axis is 0 wherever the
+// stencil along it holds a flagged voxel (exact interfaces: the jump is not a gradient).
+void IndexGradient(
+  const float* n, float* gradient, const Grid& g, const std::uint8_t* cut = nullptr);
 }
 
 #endif
