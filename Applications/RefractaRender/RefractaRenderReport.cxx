@@ -321,7 +321,11 @@ void PrintSummary(const json& report)
             << quality["view_step"].get<double>() << "\n";
   std::cout << "  medium    " << medium["dimensions"][0].get<int>() << " x "
             << medium["dimensions"][1].get<int>() << " x " << medium["dimensions"][2].get<int>()
-            << " (" << medium["source"].get<std::string>() << "), "
+            << " (" << medium["source"].get<std::string>()
+            << (medium.contains("interfaces")
+                   ? ", " + medium["interfaces"].get<std::string>() + " interfaces"
+                   : std::string())
+            << "), "
             << seconds["medium"].get<double>() << " s\n";
   PrintSurfaces(report["surfaces"], seconds.value("surfaces", 0.0));
   PrintLightPass(report["light_pass"]);

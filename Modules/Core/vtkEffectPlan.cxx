@@ -192,10 +192,19 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
   }
   std::ostringstream detail;
 
+  // Exact dielectric interfaces bend light where the index jumps, which the index field's
+  // gradient leaves out (it is zero across them by construction): they alone make refraction
+  // visible, and the index on both sides must be kept.
+  const int interfaces = analysis->GetNumberOfInterfaceSurfaces();
   detail << "bending " << analysis->GetMaximumBendingAngle() << " rad, displacement "
          << analysis->GetMaximumDisplacementInVoxels() << " voxels";
-  this->DecideEffect(
-    REFRACTION, std::min(analysis->GetMaximumDisplacementInVoxels(), 1.0), detail.str().c_str());
+  if (interfaces > 0)
+  {
+    detail << ", " << interfaces << " dielectric interface surface(s)";
+  }
+  this->DecideEffect(REFRACTION,
+    interfaces > 0 ? 1.0 : std::min(analysis->GetMaximumDisplacementInVoxels(), 1.0),
+    detail.str().c_str());
 
   const double tau = analysis->GetMaximumOpticalThickness();
   detail.str("");

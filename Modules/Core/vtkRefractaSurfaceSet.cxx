@@ -263,6 +263,33 @@ int vtkRefractaSurfaceSet::GetNumberOfNonEmptySurfaces() const
   return count;
 }
 
+int vtkRefractaSurfaceSet::GetNumberOfNonEmptyDielectricSurfaces() const
+{
+  int count = 0;
+  for (int s = 0; s < this->GetNumberOfSurfaces(); ++s)
+  {
+    vtkPolyData* mesh = this->Impl->Surfaces[s].Mesh;
+    const bool empty = mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() == 0;
+    count += (this->IsDielectric(s) && !empty) ? 1 : 0;
+  }
+  return count;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaSurfaceSet::CopySurfaces(vtkRefractaSurfaceSet* source)
+{
+  this->RemoveAllSurfaces();
+  vtkNew<vtkRefractaSurfaceSet> defaults;
+  vtkRefractaSurfaceSet* settings = source ? source : defaults.GetPointer();
+  this->SetTexelSize(settings->GetTexelSize());
+  this->SetMaximumTexelSubdivision(settings->GetMaximumTexelSubdivision());
+  this->SetMaximumNumberOfTexels(settings->GetMaximumNumberOfTexels());
+  for (int s = 0; source && s < source->GetNumberOfSurfaces(); ++s)
+  {
+    this->AddSurface(source->GetSurface(s), source->GetMaterial(s), source->GetMatrix(s));
+  }
+}
+
 vtkPolyData* vtkRefractaSurfaceSet::GetSurface(int index) const
 {
   return index >= 0 && index < this->GetNumberOfSurfaces() ? this->Impl->Surfaces[index].Mesh
@@ -595,9 +622,24 @@ void vtkRefractaSurfaceSet::LayOutAtlas()
   const vtkRefractaBVH* bvh = this->Impl->BVH;
   const vtkIdType triangles = bvh->GetNumberOfTriangles();
   const std::vector<double>& tri = bvh->GetTriangles();
-  double b[6];
-  bvh->GetBounds(b);
-  const double diagonal = triangles > 0
+  const std::vector<vtkIdType>& order = bvh->GetTriangleOrder();
+  // A dielectric triangle receives no deposits: longest edge 0 gives it one texel. The automatic
+  // size follows the bounds of the triangles that do receive them, so adding glass to a scene
+  // does not coarsen its floor's texels.
+  std::vector<double> longest(triangles);
+  double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
+    -VTK_DOUBLE_MAX };
+  for (vtkIdType k = 0; k < triangles; ++k)
+  {
+    const bool glass = this->IsDielectric(this->Impl->Sources[order[k]].Surface);
+    longest[k] = glass ? 0.0 : LongestEdge(&tri[9 * k]);
+    for (int c = 0; !glass && c < 9; ++c)
+    {
+      b[2 * (c % 3)] = std::min(b[2 * (c % 3)], tri[9 * k + c]);
+      b[2 * (c % 3) + 1] = std::max(b[2 * (c % 3) + 1], tri[9 * k + c]);
+    }
+  }
+  const double diagonal = b[1] >= b[0]
     ? std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
         (b[5] - b[4]) * (b[5] - b[4]))
     : 1.0;
@@ -608,14 +650,6 @@ void vtkRefractaSurfaceSet::LayOutAtlas()
   }
   const vtkIdType budget = std::max<vtkIdType>(
     triangles, std::min<vtkIdType>(this->MaximumNumberOfTexels, std::numeric_limits<int>::max()));
-  const std::vector<vtkIdType>& order = bvh->GetTriangleOrder();
-  // A dielectric triangle receives no deposits: longest edge 0 gives it one texel.
-  std::vector<double> longest(triangles);
-  for (vtkIdType k = 0; k < triangles; ++k)
-  {
-    longest[k] =
-      this->IsDielectric(this->Impl->Sources[order[k]].Surface) ? 0.0 : LongestEdge(&tri[9 * k]);
-  }
   std::vector<int> subdivision(triangles, 1);
   for (int attempt = 0; attempt < 200; ++attempt)
   {

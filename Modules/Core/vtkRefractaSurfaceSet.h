@@ -21,8 +21,8 @@
  * 4. lays out the irradiance atlas: triangle t is cut into n_t x n_t equal-area sub-triangles
  *    ("texels", see TexelIndex) with n_t = clamp(ceil(longest edge / texel size), 1,
  *    MaximumTexelSubdivision); the texel size is TexelSize, or when that is 0 (default) the
- *    diagonal of the surfaces' world bounds / 128; when the texels would exceed
- *    MaximumNumberOfTexels the size grows until they fit (never below one texel per triangle);
+ *    diagonal of the world bounds of the non-dielectric surfaces / 128; when the texels would
+ * exceed MaximumNumberOfTexels the size grows until they fit (never below one texel per triangle);
  * 5. bakes one albedo per texel from the material (see vtkRefractaSurfaceMaterial), the mean of
  *    the colour at four points of the texel (its centroid and the centroids of its three corner
  *    sub-triangles), so a checker edge that cuts a texel gives the area-weighted blend.
@@ -92,6 +92,19 @@ public:
    */
   int GetNumberOfNonEmptySurfaces() const;
 
+  /**
+   * Number of those non-empty surfaces whose material is DIELECTRIC (exact interfaces between
+   * two refractive indices; without building).
+   */
+  int GetNumberOfNonEmptyDielectricSurfaces() const;
+
+  /**
+   * Replaces this set's surfaces by those of `source` (meshes, materials and matrices by
+   * reference, as AddSurface keeps them) and copies its atlas settings (TexelSize,
+   * MaximumTexelSubdivision, MaximumNumberOfTexels). nullptr: no surfaces, default settings.
+   */
+  void CopySurfaces(vtkRefractaSurfaceSet* source);
+
   ///@{
   /**
    * The surfaces as added (nullptr for an index out of range).
@@ -104,7 +117,8 @@ public:
   ///@{
   /**
    * Edge length of a texel of the irradiance atlas (world units); 0 (default): automatic, the
-   * diagonal of the surfaces' world bounds / 128.
+   * diagonal of the world bounds of the non-dielectric surfaces (those that receive deposits) /
+   * 128.
    */
   vtkSetClampMacro(TexelSize, double, 0.0, 1e300);
   vtkGetMacro(TexelSize, double);

@@ -392,7 +392,7 @@ void vtkSceneAnalysis::Reset()
   this->HasScattering = this->HasEmission = false;
   this->MaximumEmission = this->OccupiedFraction = 0.0;
   this->NumberOfPoweredLights = 0;
-  this->NumberOfSurfaces = 0;
+  this->NumberOfSurfaces = this->NumberOfInterfaceSurfaces = 0;
 }
 
 //------------------------------------------------------------------------------
@@ -426,6 +426,8 @@ bool vtkSceneAnalysis::Analyze()
     }
   }
   this->NumberOfSurfaces = CountSurfaces(this->Surfaces);
+  this->NumberOfInterfaceSurfaces =
+    this->Surfaces ? this->Surfaces->GetNumberOfNonEmptyDielectricSurfaces() : 0;
   this->Modified();
   return true;
 }
@@ -590,6 +592,8 @@ void vtkSceneAnalysis::RecordInFieldData(vtkFieldData* fieldData) const
   add("AnalysisOccupiedFraction", { this->OccupiedFraction });
   add("AnalysisNumberOfPoweredLights", { static_cast<double>(this->NumberOfPoweredLights) });
   add("AnalysisNumberOfSurfaces", { static_cast<double>(this->NumberOfSurfaces) });
+  add(
+    "AnalysisNumberOfInterfaceSurfaces", { static_cast<double>(this->NumberOfInterfaceSurfaces) });
 }
 
 //------------------------------------------------------------------------------
@@ -603,6 +607,10 @@ std::string vtkSceneAnalysis::GetSummary() const
     << ", " << this->AlbedoRange[1] << "], emission " << (this->HasEmission ? "yes" : "no")
     << ", occupied " << 100.0 * this->OccupiedFraction << "%, " << this->NumberOfPoweredLights
     << " powered light(s), " << this->NumberOfSurfaces << " surface(s)";
+  if (this->NumberOfInterfaceSurfaces > 0)
+  {
+    s << " (" << this->NumberOfInterfaceSurfaces << " dielectric)";
+  }
   return s.str();
 }
 

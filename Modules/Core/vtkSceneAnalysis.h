@@ -62,8 +62,10 @@ public:
 
   ///@{
   /**
-   * The opaque surfaces of the scene (vtkRefractaSurfaceSet, world coordinates; default none).
-   * Only their presence is analysed: GetNumberOfSurfaces() counts those with polygons or strips.
+   * The surfaces of the scene (vtkRefractaSurfaceSet, world coordinates; default none): opaque
+   * ones and exact dielectric interfaces. Only their presence is analysed: GetNumberOfSurfaces()
+   * counts those with polygons or strips, GetNumberOfInterfaceSurfaces() the dielectric ones
+   * among them (they refract, whatever the index field's gradient says).
    */
   void SetSurfaces(vtkRefractaSurfaceSet* surfaces);
   vtkRefractaSurfaceSet* GetSurfaces();
@@ -166,6 +168,12 @@ public:
   vtkGetMacro(NumberOfSurfaces, int);
 
   /**
+   * Number of those surfaces that are exact dielectric interfaces
+   * (vtkRefractaSurfaceMaterial::DIELECTRIC).
+   */
+  vtkGetMacro(NumberOfInterfaceSurfaces, int);
+
+  /**
    * Write the facts as field-data arrays named "Analysis<Fact>".
    */
   void RecordInFieldData(vtkFieldData* fieldData) const;
@@ -205,6 +213,7 @@ protected:
   int NumberOfPoweredLights = 0;
   bool EnvironmentLight = false;
   int NumberOfSurfaces = 0;
+  int NumberOfInterfaceSurfaces = 0;
   vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
 
 private:

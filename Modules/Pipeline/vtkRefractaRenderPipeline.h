@@ -121,6 +121,17 @@ public:
   vtkRefractaSurfaceSet* GetSurfaces();
   ///@}
 
+  /**
+   * The surfaces the passes used in the last Render(): the set of SetSurfaces itself, or, when
+   * the medium carries exact dielectric interfaces (vtkMeshVoxelizer::EXACT_INTERFACES writes them
+   * into its field data, see vtkRefractaMedium), an internal set holding the same surfaces plus
+   * those interfaces (vtkRefractaSurfaceSet::AddMediumInterfaces), placed by the prop matrix.
+   * So every pass (photons, light rays, the scene analysis, the view) meets the medium's glass as
+   * exact Snell and Fresnel interfaces, whatever the front end. The interfaces are left out when
+   * the plan's REFRACTION effect is forced off (straight rays everywhere). nullptr: no surfaces.
+   */
+  vtkRefractaSurfaceSet* GetSceneSurfaces();
+
   ///@{
   /**
    * Whether the background (the view pass's EnvironmentMap, else its BackgroundColor, oriented by

@@ -44,14 +44,14 @@
  * with w_m = f_m * mean sigma_s,m (the mean cosine of the mixed phase function;
  * occupancy-weighted where nothing scatters); Emission = sum f_m eps_m.
  *
- * **Smoothing and gradient.** n is smoothed by a separable Gaussian of SmoothingWindow^3 voxels
+ * **Smoothing and gradient** (InterfaceMode SMOOTHED_INDEX). n is smoothed by a separable Gaussian of SmoothingWindow^3 voxels
  * (default 9, odd; 1 disables smoothing) with sigma = SmoothingSigma voxels (default 0, meaning
  * window / 6 as in the paper), edge voxels replicated. RefractiveIndex is the smoothed n;
  * RefractiveIndexGradient its central differences in world units (one-sided at the grid's
  * faces). The other arrays are not smoothed.
  *
- * **Exact interfaces.** InterfaceMode EXACT_INTERFACES (default SMOOTHED_INDEX, the paper's
- * smoothing above) leaves n unsmoothed and sets its gradient to 0 along an axis wherever the
+ * **Exact interfaces.** InterfaceMode EXACT_INTERFACES (the default; SMOOTHED_INDEX is the
+ * paper's smoothing above, for comparison and for meshes meant as graded blobs) leaves n unsmoothed and sets its gradient to 0 along an axis wherever the
  * central-difference stencil touches a voxel that a triangle touches, so that grad n never holds
  * the jump at a surface; the jump is carried by the meshes themselves, written to the output's
  * field data (vtkRefractaMedium::InterfacePointsName(), InterfaceTrianglesName(),
@@ -59,8 +59,9 @@
  * and outside, outside being the innermost other mesh whose volume contains the mesh's first
  * vertex, or the surroundings) for vtkRefractaSurfaceSet::AddMediumInterfaces. A material whose
  * index follows a density field (DensityScalesRefractiveIndex) has no single index at its surface:
- * then the grid is SMOOTHED_INDEX, with a warning. Documentation/Physics.md, "Dielectric
- * interfaces".
+ * then the grid is SMOOTHED_INDEX, with a warning. vtkRefractaRenderPipeline (so the mapper, the
+ * CLI and ParaView) adds the interfaces to the scene's surfaces by itself.
+ * Documentation/Physics.md, "Dielectric interfaces".
  *
  * **Validation.** Each mesh is checked before voxelizing (CGAL and exact predicates); errors
  * (no output): null or empty mesh, cells that refer to missing points (ids out of range), NaN,
@@ -213,13 +214,13 @@ public:
 
   enum InterfaceModes
   {
-    SMOOTHED_INDEX = 0,  ///< n smoothed across the meshes' surfaces (the paper; the default)
-    EXACT_INTERFACES = 1 ///< the meshes are exact dielectric interfaces (see the class doc)
+    SMOOTHED_INDEX = 0,  ///< n smoothed across the meshes' surfaces (the paper)
+    EXACT_INTERFACES = 1 ///< the meshes are exact dielectric interfaces (the default)
   };
 
   ///@{
   /**
-   * SMOOTHED_INDEX (default) or EXACT_INTERFACES (see the class description).
+   * EXACT_INTERFACES (default) or SMOOTHED_INDEX (see the class description).
    */
   vtkSetClampMacro(InterfaceMode, int, SMOOTHED_INDEX, EXACT_INTERFACES);
   vtkGetMacro(InterfaceMode, int);
@@ -302,7 +303,7 @@ protected:
   int SmoothingWindow = 9;
   double SmoothingSigma = 0.0;
   bool CheckSelfIntersections = true;
-  int InterfaceMode = SMOOTHED_INDEX;
+  int InterfaceMode = EXACT_INTERFACES;
   bool WroteInterfaces = false;
   double StageTimes[NUMBER_OF_STAGES] = {};
   vtkIdType NumberOfSupersampledVoxels = 0;

@@ -335,6 +335,7 @@ TEST(MeshVoxelizer, IndexInsideAndGradientAlongTheNormal)
 {
   const double R = 0.6;
   vtkNew<vtkMeshVoxelizer> vox;
+  vox->SetInterfaceModeToSmoothedIndex(); // the paper's smoothed index and its gradient
   vox->AddInputData(Sphere(R, 120));
   auto glass = Material(1.5);
   glass->SetExtinction(0.5, 1, 2);

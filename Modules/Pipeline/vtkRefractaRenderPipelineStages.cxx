@@ -1,0 +1,321 @@
+// What each stage of vtkRefractaRenderPipeline does: the plan (analysis, decisions, pruned
+// medium), the light passes, the view pass, and the surface set they all share.
+#include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaRenderPipelineInternals.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkLatticeBoltzmannSolver.h"
+#include "vtkMath.h"
+#include "vtkMediumValidator.h"
+#include "vtkPhotonTracer.h"
+#include "vtkRefractaMedium.h"
+
+#include <algorithm>
+
+namespace
+{
+// The light-independent decisions: while they stay the same, the pruned medium stays valid.
+constexpr int LightIndependentEffects[] = { vtkEffectPlan::REFRACTION, vtkEffectPlan::ABSORPTION,
+  vtkEffectPlan::EMISSION };
+}
+
+//------------------------------------------------------------------------------
+// Straight light: the light-ray pass (and the lattice on its output when multiple scattering is
+// on), with the photon tracer's light extents so that both methods see the same lights.
+vtkAlgorithm* vtkRefractaRenderPipeline::PrepareLightRays(vtkPhotonTracer* tracer, int method)
+{
+  Internals& in = *this->Internal;
+  vtkLightRaySingleScattering* rays = in.LightRays;
+  rays->SetContext(in.GetContext());
+  rays->SetMethod(method == vtkEffectPlan::INTERPOLATED ? vtkLightRaySingleScattering::INTERPOLATED
+                                                        : vtkLightRaySingleScattering::LIGHT_RAYS);
+  rays->SetLights(in.DataLights);
+  rays->SetSurfaces(in.SceneSurfaces);
+  rays->SetMediumToWorld(in.PropMatrix);
+  rays->SetLightRadius(tracer->GetLightRadius());
+  rays->SetDirectionalLightAngularRadius(tracer->GetDirectionalLightAngularRadius());
+  rays->SetInputData(in.Planned);
+  // An abort reaches the light rays through their progress observer; a new render clears it
+  // (the lattice's, when the lattice runs, is cleared with the pass's after the abort).
+  rays->SetAbortExecute(0);
+  if (!in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
+  {
+    return rays;
+  }
+  vtkLatticeBoltzmannLighting* lattice = in.LightRayLattice;
+  lattice->SetContext(in.GetContext());
+  lattice->SetTolerance(this->GetLatticeSolver()->GetTolerance());
+  lattice->SetBlockSize(this->GetLatticeSolver()->GetBlockSize());
+  lattice->SetInputData(in.Planned);
+  lattice->SetInputConnection(1, rays->GetOutputPort());
+  return lattice;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::RunPlan()
+{
+  Internals& in = *this->Internal;
+  in.PlanDone = in.LightDone = in.ViewDone = false;
+  vtkNew<vtkMediumValidator> validator;
+  if (!validator->Validate(in.Medium))
+  {
+    // Said once: a front end re-rendering the same bad medium does not repeat it.
+    const std::string message =
+      std::string("The medium is not a valid Refracta medium: ") + validator->GetErrorMessage();
+    if (message != in.LastError)
+    {
+      vtkErrorMacro(<< message);
+      in.LastError = message;
+    }
+    in.Planned = nullptr;
+    return false;
+  }
+
+  // The lights in the medium's data frame (the inverse of the placement).
+  vtkNew<vtkMatrix4x4> toData;
+  if (in.PropMatrix)
+  {
+    vtkMatrix4x4::Invert(in.PropMatrix, toData);
+  }
+  in.DataLights = vtkSmartPointer<vtkLightCollection>::New();
+  in.Analysis->SetMedium(in.Medium);
+  in.Analysis->SetSurfaces(in.SceneSurfaces);
+  in.Analysis->SetEnvironmentLight(this->BackgroundIlluminates);
+  in.Analysis->RemoveAllLights();
+  for (vtkLight* light : in.CurrentLightList())
+  {
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    vtkNew<vtkLight> copy;
+    copy->DeepCopy(light);
+    copy->SetLightTypeToSceneLight();
+    copy->SetTransformMatrix(nullptr);
+    double p[4] = { 0, 0, 0, 1 }, f[4] = { 0, 0, 0, 1 };
+    light->GetTransformedPosition(p);
+    light->GetTransformedFocalPoint(f);
+    toData->MultiplyPoint(p, p);
+    toData->MultiplyPoint(f, f);
+    copy->SetPosition(p[0] / p[3], p[1] / p[3], p[2] / p[3]);
+    copy->SetFocalPoint(f[0] / f[3], f[1] / f[3], f[2] / f[3]);
+    if (this->LightUnits == VTK_LIGHT_UNITS)
+    {
+      double scale = vtkMath::Pi();
+      if (light->GetPositional())
+      {
+        double bounds[6], centre[3], position[3];
+        in.Medium->GetBounds(bounds);
+        copy->GetPosition(position);
+        for (int a = 0; a < 3; ++a)
+        {
+          centre[a] = 0.5 * (bounds[2 * a] + bounds[2 * a + 1]);
+        }
+        scale *= std::max(vtkMath::Distance2BetweenPoints(position, centre), 1e-300);
+      }
+      copy->SetIntensity(light->GetIntensity() * scale);
+    }
+    in.DataLights->AddItem(copy);
+    in.Analysis->AddLight(copy);
+  }
+
+  // MultipleScattering off overrides the plan's decision without changing its mode.
+  const int userMode = in.Plan->GetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING);
+  if (!this->MultipleScattering)
+  {
+    in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, vtkEffectPlan::FORCE_OFF);
+  }
+  const bool decided = in.Analysis->Analyze() && in.Plan->Decide(in.Analysis);
+  in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, userMode);
+  if (!decided)
+  {
+    vtkErrorMacro("The scene analysis failed (see the error above).");
+    return false;
+  }
+
+  // Prune the medium only when it or a light-independent decision changed, so that a light
+  // move keeps the medium the view pass and the photon pass already hold.
+  bool prune = !in.Planned || in.Medium != in.PlannedFrom ||
+    in.Medium->GetMTime() > in.PlanTime.GetMTime() || in.Plan->GetMTime() > in.PlanTime.GetMTime();
+  for (int effect : LightIndependentEffects)
+  {
+    prune = prune || in.Plan->IsEnabled(effect) != in.Decisions[effect];
+  }
+  if (prune)
+  {
+    auto planned = vtkSmartPointer<vtkImageData>::New();
+    in.Plan->ApplyToMedium(in.Medium, planned);
+    in.Planned = planned;
+    if (!in.ViewPass->SetMedium(in.Planned))
+    {
+      in.Planned = nullptr;
+      return false;
+    }
+    ++this->NumberOfMediumUpdates;
+  }
+  for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
+  {
+    in.Decisions[e] = in.Plan->IsEnabled(e);
+  }
+  in.PlannedFrom = in.Medium;
+  in.PlannedSurfaces = Internals::CountSurfaces(in.SceneSurfaces);
+  in.LightList = in.CurrentLightList();
+  in.LastError.clear();
+  in.PlanDone = true;
+  in.PlanTime.Modified();
+  ++this->NumberOfPlanRuns;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::RunLighting()
+{
+  Internals& in = *this->Internal;
+  in.LightDone = in.ViewDone = false;
+  in.Lighting = nullptr;
+  // Surfaces need the photon pass even where nothing in the medium scatters (a caustic of a
+  // clear glass ball on a floor).
+  const bool surfaces = in.Plan->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING);
+  const bool lit = (in.Plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING) || surfaces) &&
+    (in.Analysis->GetNumberOfPoweredLights() > 0 || this->BackgroundIlluminates);
+  if (in.LightingData)
+  {
+    in.Lighting = in.LightingData;
+  }
+  else if (lit)
+  {
+    vtkPhotonTracer* tracer = in.Schedule->GetPhotonTracer();
+    tracer->SetLights(in.DataLights);
+    tracer->SetSurfaces(surfaces ? in.SceneSurfaces : nullptr);
+    tracer->SetMediumToWorld(in.PropMatrix);
+    // The background the view pass shows is the one that lights the scene.
+    tracer->SetBackgroundIlluminates(this->BackgroundIlluminates);
+    tracer->SetBackgroundColor(in.ViewPass->GetBackgroundColor());
+    tracer->SetEnvironmentMap(in.ViewPass->GetEnvironmentMap());
+    tracer->SetEnvironmentUp(in.ViewPass->GetEnvironmentUp());
+    tracer->SetEnvironmentRight(in.ViewPass->GetEnvironmentRight());
+    vtkAlgorithm* pass = tracer;
+    vtkImageData* output = nullptr;
+    // With surfaces, multiple scattering is the photons' own (analog scattering): the lattice
+    // knows no surfaces, so the light it carries would never light them (Physics.md, "Surfaces
+    // and multiple scattering"). Surfaces also make the plan choose photons for single
+    // scattering, so light rays and analog scattering never run together.
+    const bool multiple = in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING);
+    const bool analog = multiple && surfaces && Internals::CountSurfaces(in.SceneSurfaces) > 0;
+    tracer->SetAnalogScattering(analog);
+    const int method = in.Plan->GetChosenSingleScatteringMethod();
+    if (!analog && (method == vtkEffectPlan::LIGHT_RAYS || method == vtkEffectPlan::INTERPOLATED))
+    {
+      pass = this->PrepareLightRays(tracer, method);
+    }
+    else if (multiple && !analog)
+    {
+      // Interleaving the lattice with the marching (Bernabei et al.) helps where the two
+      // share a device with spare parallelism: measured up to 4% on an H200; on a CPU device
+      // both compete for the same cores, so sequential there.
+      const bool interleaved = this->MultipleScatteringSchedule == INTERLEAVED_SCHEDULE ||
+        (this->MultipleScatteringSchedule == AUTOMATIC_SCHEDULE && in.GetContext()->GetIsGPU());
+      in.Schedule->SetMode(interleaved ? vtkPhotonDiffusionSchedule::INTERLEAVED
+                                       : vtkPhotonDiffusionSchedule::SEQUENTIAL);
+      this->LastScheduleInterleaved = interleaved;
+      in.Schedule->SetInputData(in.Planned);
+      pass = in.Schedule;
+    }
+    else
+    {
+      tracer->SetInputData(in.Planned);
+    }
+    in.Running = pass;
+    if (in.Abort)
+    {
+      pass->SetAbortExecute(1);
+    }
+    pass->Update();
+    in.Running = nullptr;
+    output = vtkImageData::SafeDownCast(pass->GetOutputDataObject(0));
+    if (in.Abort || pass->GetAbortExecute())
+    {
+      pass->SetAbortExecute(0);
+      this->LastRenderAborted = true;
+      return false;
+    }
+    if (!output || output->GetNumberOfPoints() == 0)
+    {
+      vtkErrorMacro(
+        "The light passes (" << pass->GetClassName() << ") failed; see the error above.");
+      return false;
+    }
+    in.Lighting = vtkSmartPointer<vtkImageData>::New();
+    in.Lighting->ShallowCopy(output);
+    ++this->NumberOfLightPassRuns;
+  }
+  if (!in.ViewPass->SetLighting(in.Lighting))
+  {
+    in.Lighting = nullptr;
+    return false;
+  }
+  in.LightDone = true;
+  in.LightTime.Modified();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::RunView(int width, int height, const float* depthLimit)
+{
+  Internals& in = *this->Internal;
+  in.ViewDone = false;
+  in.ViewPass->SetSurfaces(in.SceneSurfaces);
+  if (!in.ViewPass->Render(
+        in.Camera, width, height, in.PropMatrix, depthLimit, in.Image, &in.Transmittance))
+  {
+    this->LastRenderAborted = in.ViewPass->GetLastRenderAborted();
+    return false;
+  }
+  const size_t pixels = static_cast<size_t>(width) * height;
+  in.ViewDepth.assign(
+    depthLimit ? depthLimit : nullptr, depthLimit ? depthLimit + pixels : nullptr);
+  in.ViewCamera = in.Camera;
+  in.ViewSize[0] = width;
+  in.ViewSize[1] = height;
+  in.ViewDone = true;
+  in.ViewTime.Modified();
+  ++this->NumberOfViewPassRuns;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::Internals::UpdateSceneSurfaces(bool withInterfaces)
+{
+  vtkFieldData* fd = this->Medium ? this->Medium->GetFieldData() : nullptr;
+  const bool interfaces =
+    withInterfaces && fd && fd->GetArray(vtkRefractaMedium::InterfaceTrianglesName());
+  if (!interfaces)
+  {
+    this->SceneSurfaces = this->Surfaces;
+    return true;
+  }
+  // The composed set holds the caller's meshes, materials and matrices and the placement by
+  // reference, so their later changes reach it through its MTime; recompose only when the
+  // medium or the caller's set itself changed.
+  const vtkMTimeType t = this->ComposeTime.GetMTime();
+  if (this->ComposedMedium != this->Medium || this->Medium->GetMTime() > t ||
+    this->ComposedFrom != this->Surfaces || (this->Surfaces && this->Surfaces->GetMTime() > t) ||
+    this->ComposedMatrix != this->PropMatrix || this->SceneSurfaces != this->ComposedSurfaces)
+  {
+    this->ComposedSurfaces->CopySurfaces(this->Surfaces);
+    const int added = this->ComposedSurfaces->AddMediumInterfaces(this->Medium, this->PropMatrix);
+    this->ComposedMedium = this->Medium;
+    this->ComposedFrom = this->Surfaces;
+    this->ComposedMatrix = this->PropMatrix;
+    this->ComposeTime.Modified();
+    if (added < 0)
+    {
+      this->ComposedMedium = nullptr; // try again (and say it again) on the next render
+      this->SceneSurfaces = nullptr;
+      return false;
+    }
+  }
+  this->SceneSurfaces = this->ComposedSurfaces;
+  return true;
+}
