@@ -276,6 +276,12 @@ void PrintLightPass(const json& light)
 // "surfaces" line: how many of each kind, the triangles; nothing without surfaces.
 void PrintSurfaces(const json& surfaces, double seconds)
 {
+  const int interfaces = surfaces.is_object() ? surfaces.value("interface_surfaces", 0) : 0;
+  if (interfaces > 0)
+  {
+    std::cout << "  glass     " << interfaces << " exact interface(s) from the medium's meshes, "
+              << surfaces.value("interface_triangles", 0LL) << " triangles\n";
+  }
   if (!surfaces.is_object() || surfaces.value("count", 0) == 0)
   {
     return;

@@ -254,6 +254,9 @@ json SurfacesReport(const std::vector<SceneSurface>& surfaces, vtkRefractaSurfac
     report["texel_size"] = set->GetEffectiveTexelSize();
     report["dropped_triangles"] = set->GetNumberOfDroppedTriangles();
     report["build_seconds"] = set->GetBuildSeconds();
+    // The medium's exact interfaces, which the pipeline added to the scene's surfaces.
+    report["interface_surfaces"] = set->GetNumberOfNonEmptyDielectricSurfaces();
+    report["interface_triangles"] = set->GetNumberOfDielectricTriangles();
   }
   return report;
 }

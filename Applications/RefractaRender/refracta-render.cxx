@@ -182,7 +182,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
   report["image"] = ImageReport(settings);
   report["quality"] = QualityReport(settings);
   report["medium"] = medium.Report;
-  report["surfaces"] = SurfacesReport(read.Surfaces, read.SurfaceSet);
+  report["surfaces"] = SurfacesReport(read.Surfaces, pipeline->GetSceneSurfaces());
   report["light_pass"] = LightPassReport(pipeline, lightCount);
   report["view_pass"] = ViewPassReport(renderer);
   report["seconds"] = seconds;
