@@ -1,4 +1,5 @@
 #include "vtkReferencePathTracer.h"
+#include "vtkReferenceWalk.h"
 
 #include <algorithm>
 #include <cmath>
@@ -245,143 +246,75 @@ Vec3 Scene::Trace(Vec3 origin, Vec3 dir, int channel, Rng& rng, bool& truncated)
   const Vec3 mask = grey ? Vec3(1, 1, 1) : Vec3(channel == 0, channel == 1, channel == 2);
   Vec3 beta(1.0);
   int depth = 0;
-  Vec3 x = origin, d = dir;
-  bool inBox = M.Inside(x, 0), mayEnter = true;
-  RayState ray;
-  if (inBox)
-  {
-    T.Start(ray, x, d);
-  }
-  int interfaces = 0; // dielectric interfaces met
-  // A surface hit at x (arriving along d): at glass one Fresnel choice (reflected with
-  // probability R, else refracted: the probability is the weight, so beta is unchanged, and the
-  // path stays "unscattered", depth 0, so the background it reaches counts); at an opaque
-  // surface next-event estimation, then a cosine-weighted bounce.
-  auto reflect = [&](const SurfaceHit& hit) -> bool
-  {
-    if (Surf.IsDielectric(hit))
-    {
-      if (++interfaces > MaxInterfaces)
-      {
-        truncated = true;
-        return false;
-      }
-      d = Surf.Interface(hit, d, rng.Uniform(), x);
-      inBox = M.Inside(x, 0);
-      mayEnter = true;
-      if (inBox)
-      {
-        T.Start(ray, x, d);
-      }
-      return true;
-    }
-    Vec3 n = Surf.Normal(hit);
-    if (glm::dot(n, d) > 0)
-    {
-      n = -n; // two-sided: the side the path arrives on
-    }
-    if (!Scatter(depth, beta, Surf.Albedo(hit), ch, grey, rng, truncated))
-    {
-      return false;
-    }
-    result += beta * (mask * SurfaceDirect(x, n, ch, rng, truncated));
-    if (MaxDepth >= 0 && depth + 1 > MaxDepth)
-    {
-      return false;
-    }
-    d = SampleCosine(n, rng.Uniform(), rng.Uniform());
-    x = Surf.Leave(x, n, d);
-    inBox = M.Inside(x, 0);
-    mayEnter = true;
-    if (inBox)
-    {
-      T.Start(ray, x, d);
-    }
-    return true;
-  };
+  // Glass is crossed inside the walk (one Fresnel choice, its probability its weight: beta
+  // unchanged, and the path stays "unscattered", depth 0, so the background it reaches counts).
+  Walk walk(*this, T, origin, dir);
   for (;;)
   {
-    if (!inBox)
+    switch (walk.Next(ch, rng, truncated))
     {
-      int light;
-      SurfaceHit hit;
-      const Outside o = FlyOutside(x, d, mayEnter, false, light, hit);
-      if (o == Outside::Escaped)
-      {
+      case Walk::Stop::Ended:
+        return result;
+      case Walk::Stop::Escaped:
         if (depth == 0)
         {
-          result += beta * (mask * BackgroundRadiance(d));
+          result += beta * (mask * BackgroundRadiance(walk.D));
         }
         return result;
-      }
-      if (o == Outside::Entered)
+      case Walk::Stop::Surface:
       {
-        inBox = true;
-        T.Start(ray, x, d);
-        continue;
+        // Next-event estimation, then a cosine-weighted bounce.
+        Vec3 n = Surf.Normal(walk.Hit);
+        if (glm::dot(n, walk.D) > 0)
+        {
+          n = -n; // two-sided: the side the path arrives on
+        }
+        if (!Scatter(depth, beta, Surf.Albedo(walk.Hit), ch, grey, rng, truncated))
+        {
+          return result;
+        }
+        result += beta * (mask * SurfaceDirect(walk.X, n, ch, rng, truncated));
+        if (MaxDepth >= 0 && depth + 1 > MaxDepth)
+        {
+          return result;
+        }
+        walk.LeaveSurface(n, SampleCosine(n, rng.Uniform(), rng.Uniform()));
+        break;
       }
-      if (!reflect(hit))
+      case Walk::Stop::Collision:
       {
-        return result;
+        // Tentative collision.
+        const RayState& ray = walk.Ray;
+        Medium::Stencil st;
+        M.MakeStencil(ray.X, st);
+        const Vec3 sigma = M.Sample3(M.Sigma, st);
+        if (depth == 0 && M.HasEmission)
+        {
+          // Emission is physical radiance per length; the camera (in n = 1) sees the basic
+          // radiance L / n^2, which is what the paths carry.
+          const double n = M.Sample1(M.Index, st);
+          result += (beta / (walk.Majorant * n * n)) * (mask * M.Sample3(M.Emission, st));
+        }
+        if (rng.Uniform() * walk.Majorant >= sigma[ch])
+        {
+          break; // null collision
+        }
+        // Real collision: the scattered part carries on with weight albedo.
+        if (!Scatter(depth, beta, M.Sample3(M.Albedo, st), ch, grey, rng, truncated))
+        {
+          return result;
+        }
+        const double g = M.Sample1(M.G, st);
+        result += beta * (mask * MediumDirect(ray.X, ray.Dir, g, ch, rng, truncated));
+        if (MaxDepth >= 0 && depth + 1 > MaxDepth)
+        {
+          return result;
+        }
+        // Continue the path in an HG direction (weight HG / HG = 1).
+        walk.ScatterInto(SampleHG(g, ray.Dir, rng.Uniform(), rng.Uniform()));
+        break;
       }
-      continue;
     }
-    double majorant;
-    int hit;
-    // The path's own rays never test light spheres: lights are not seen by view rays, and
-    // scattered light reaching a light unscattered is the connections' business.
-    const Event ev = AdvanceOptical(T, ray, -std::log(1 - rng.Uniform()), ch, hit, majorant);
-    if (ev == Event::Stuck)
-    {
-      truncated = true;
-      return result;
-    }
-    if (ev == Event::Exited)
-    {
-      inBox = false;
-      mayEnter = false; // a convex box is not entered again by a straight ray
-      x = ray.X;
-      d = ray.Dir;
-      continue;
-    }
-    if (ev == Event::HitSurface)
-    {
-      x = ray.X;
-      d = ray.Dir;
-      if (!reflect(ray.Surface))
-      {
-        return result;
-      }
-      continue;
-    }
-    // Tentative collision.
-    Medium::Stencil st;
-    M.MakeStencil(ray.X, st);
-    const Vec3 sigma = M.Sample3(M.Sigma, st);
-    if (depth == 0 && M.HasEmission)
-    {
-      // Emission is physical radiance per length; the camera (in n = 1) sees the basic
-      // radiance L / n^2, which is what the paths carry.
-      const double n = M.Sample1(M.Index, st);
-      result += (beta / (majorant * n * n)) * (mask * M.Sample3(M.Emission, st));
-    }
-    if (rng.Uniform() * majorant >= sigma[ch])
-    {
-      continue; // null collision
-    }
-    // Real collision: the scattered part carries on with weight albedo.
-    if (!Scatter(depth, beta, M.Sample3(M.Albedo, st), ch, grey, rng, truncated))
-    {
-      return result;
-    }
-    const double g = M.Sample1(M.G, st);
-    result += beta * (mask * MediumDirect(ray.X, ray.Dir, g, ch, rng, truncated));
-    if (MaxDepth >= 0 && depth + 1 > MaxDepth)
-    {
-      return result;
-    }
-    // Continue the path in an HG direction (weight HG / HG = 1).
-    T.Start(ray, ray.X, SampleHG(g, ray.Dir, rng.Uniform(), rng.Uniform()));
   }
 }
 } // namespace reference

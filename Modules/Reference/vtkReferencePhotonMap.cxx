@@ -1,4 +1,5 @@
 #include "vtkReferencePhotonMap.h"
+#include "vtkReferenceWalk.h"
 
 #include "vtkRefractaSurfaceSet.h"
 
@@ -169,132 +170,66 @@ void PhotonScene::Trace(Vec3 x, Vec3 d, const Vec3& power, int ch, bool grey, Rn
   std::vector<Photon>& out, bool& truncated) const
 {
   const Medium& m = S->M;
-  const Tracer& T = S->T;
   Vec3 beta(1.0);
   int depth = 0;
-  bool inBox = m.Inside(x, 0), mayEnter = true;
-  RayState ray;
-  if (inBox)
-  {
-    T.Start(ray, x, d);
-  }
-  int interfaces = 0; // dielectric interfaces met
-  // Diffuse reflection at a surface hit (x, arriving along d): albedo, roulette, cosine bounce.
-  auto reflect = [&](const SurfaceHit& hit) -> bool
-  {
-    if (S->Surf.IsDielectric(hit))
-    {
-      // Glass: one Fresnel choice, its probability its weight (Surfaces::Interface).
-      if (++interfaces > S->MaxInterfaces)
-      {
-        truncated = true;
-        return false;
-      }
-      d = S->Surf.Interface(hit, d, rng.Uniform(), x);
-      inBox = m.Inside(x, 0);
-      mayEnter = true;
-      if (inBox)
-      {
-        T.Start(ray, x, d);
-      }
-      return true;
-    }
-    Vec3 n = S->Surf.Normal(hit);
-    if (glm::dot(n, d) > 0)
-    {
-      n = -n;
-    }
-    if (!S->Scatter(depth, beta, S->Surf.Albedo(hit), ch, grey, rng, truncated))
-    {
-      return false;
-    }
-    d = SampleCosine(n, rng.Uniform(), rng.Uniform());
-    x = S->Surf.Leave(x, n, d);
-    inBox = m.Inside(x, 0);
-    mayEnter = true;
-    if (inBox)
-    {
-      T.Start(ray, x, d);
-    }
-    return true;
-  };
+  // Glass is crossed inside the walk (one Fresnel choice, its probability its weight).
+  Walk walk(*S, S->T, x, d);
   for (;;)
   {
-    if (!inBox)
+    switch (walk.Next(ch, rng, truncated))
     {
-      int light;
-      SurfaceHit hit;
-      const Scene::Outside o = S->FlyOutside(x, d, mayEnter, false, light, hit);
-      if (o == Scene::Outside::Escaped)
-      {
+      case Walk::Stop::Ended:
+      case Walk::Stop::Escaped:
         return;
-      }
-      if (o == Scene::Outside::Entered)
+      case Walk::Stop::Surface:
       {
-        inBox = true;
-        T.Start(ray, x, d);
-        continue;
+        // Diffuse reflection: albedo, roulette, cosine bounce.
+        Vec3 n = S->Surf.Normal(walk.Hit);
+        if (glm::dot(n, walk.D) > 0)
+        {
+          n = -n;
+        }
+        if (!S->Scatter(depth, beta, S->Surf.Albedo(walk.Hit), ch, grey, rng, truncated))
+        {
+          return;
+        }
+        walk.LeaveSurface(n, SampleCosine(n, rng.Uniform(), rng.Uniform()));
+        break;
       }
-      if (!reflect(hit))
+      case Walk::Stop::Collision:
       {
-        return;
+        const RayState& ray = walk.Ray;
+        Medium::Stencil st;
+        m.MakeStencil(ray.X, st);
+        const Vec3 sigma = m.Sample3(m.Sigma, st);
+        if (rng.Uniform() * walk.Majorant >= sigma[ch])
+        {
+          break; // null collision
+        }
+        // A real collision: the photon is stored (if a view vertex may still use it) ...
+        if (S->MaxDepth < 0 || depth + 1 <= S->MaxDepth)
+        {
+          Photon p;
+          p.X = ray.X;
+          p.Dir = ray.Dir;
+          p.Fluence = grey ? (1.0 / sigma[0]) * (beta * power) : Vec3(0.0);
+          if (!grey)
+          {
+            p.Fluence[ch] = beta[ch] * power[ch] / sigma[ch];
+          }
+          p.Depth = depth;
+          out.push_back(p);
+        }
+        // ... and scatters on with weight albedo.
+        if (!S->Scatter(depth, beta, m.Sample3(m.Albedo, st), ch, grey, rng, truncated))
+        {
+          return;
+        }
+        const double g = m.Sample1(m.G, st);
+        walk.ScatterInto(SampleHG(g, ray.Dir, rng.Uniform(), rng.Uniform()));
+        break;
       }
-      continue;
     }
-    double majorant;
-    int hit;
-    const Event ev = AdvanceOptical(T, ray, -std::log(1 - rng.Uniform()), ch, hit, majorant);
-    if (ev == Event::Stuck)
-    {
-      truncated = true;
-      return;
-    }
-    if (ev == Event::Exited)
-    {
-      inBox = false;
-      mayEnter = false; // a convex box is not entered again by a straight ray
-      x = ray.X;
-      d = ray.Dir;
-      continue;
-    }
-    if (ev == Event::HitSurface)
-    {
-      x = ray.X;
-      d = ray.Dir;
-      if (!reflect(ray.Surface))
-      {
-        return;
-      }
-      continue;
-    }
-    Medium::Stencil st;
-    m.MakeStencil(ray.X, st);
-    const Vec3 sigma = m.Sample3(m.Sigma, st);
-    if (rng.Uniform() * majorant >= sigma[ch])
-    {
-      continue; // null collision
-    }
-    // A real collision: the photon is stored (if a view vertex may still use it) ...
-    if (S->MaxDepth < 0 || depth + 1 <= S->MaxDepth)
-    {
-      Photon p;
-      p.X = ray.X;
-      p.Dir = ray.Dir;
-      p.Fluence = grey ? (1.0 / sigma[0]) * (beta * power) : Vec3(0.0);
-      if (!grey)
-      {
-        p.Fluence[ch] = beta[ch] * power[ch] / sigma[ch];
-      }
-      p.Depth = depth;
-      out.push_back(p);
-    }
-    // ... and scatters on with weight albedo.
-    if (!S->Scatter(depth, beta, m.Sample3(m.Albedo, st), ch, grey, rng, truncated))
-    {
-      return;
-    }
-    const double g = m.Sample1(m.G, st);
-    T.Start(ray, ray.X, SampleHG(g, ray.Dir, rng.Uniform(), rng.Uniform()));
   }
 }
 
@@ -303,152 +238,85 @@ Vec3 PhotonScene::ViewSample(Vec3 origin, Vec3 dir, int channel, const PhotonGri
   double radius, Rng& rng, bool& truncated) const
 {
   const Medium& m = S->M;
-  const Tracer& T = S->T;
   Vec3 result(0.0);
   const bool grey = channel < 0;
   const int ch = grey ? 0 : channel;
   const Vec3 mask = grey ? Vec3(1, 1, 1) : Vec3(channel == 0, channel == 1, channel == 2);
   Vec3 beta(1.0);
   int depth = 0;
-  Vec3 x = origin, d = dir;
-  bool inBox = m.Inside(x, 0), mayEnter = true;
-  RayState ray;
-  if (inBox)
-  {
-    T.Start(ray, x, d);
-  }
-  int interfaces = 0; // dielectric interfaces met
-  // A surface hit: the path tracer's next-event estimation, then a cosine-weighted bounce.
-  auto reflect = [&](const SurfaceHit& hit) -> bool
-  {
-    if (S->Surf.IsDielectric(hit))
-    {
-      // Glass: one Fresnel choice, its probability its weight (Surfaces::Interface).
-      if (++interfaces > S->MaxInterfaces)
-      {
-        truncated = true;
-        return false;
-      }
-      d = S->Surf.Interface(hit, d, rng.Uniform(), x);
-      inBox = m.Inside(x, 0);
-      mayEnter = true;
-      if (inBox)
-      {
-        T.Start(ray, x, d);
-      }
-      return true;
-    }
-    Vec3 n = S->Surf.Normal(hit);
-    if (glm::dot(n, d) > 0)
-    {
-      n = -n;
-    }
-    if (!S->Scatter(depth, beta, S->Surf.Albedo(hit), ch, grey, rng, truncated))
-    {
-      return false;
-    }
-    result += beta * (mask * S->SurfaceDirect(x, n, ch, rng, truncated));
-    if (S->MaxDepth >= 0 && depth + 1 > S->MaxDepth)
-    {
-      return false;
-    }
-    d = SampleCosine(n, rng.Uniform(), rng.Uniform());
-    x = S->Surf.Leave(x, n, d);
-    inBox = m.Inside(x, 0);
-    mayEnter = true;
-    if (inBox)
-    {
-      T.Start(ray, x, d);
-    }
-    return true;
-  };
+  Walk walk(*S, S->T, origin, dir);
   for (;;)
   {
-    if (!inBox)
+    switch (walk.Next(ch, rng, truncated))
     {
-      int light;
-      SurfaceHit hit;
-      const Scene::Outside o = S->FlyOutside(x, d, mayEnter, false, light, hit);
-      if (o == Scene::Outside::Escaped)
-      {
+      case Walk::Stop::Ended:
+        return result;
+      case Walk::Stop::Escaped:
         if (depth == 0)
         {
-          result += beta * (mask * S->BackgroundRadiance(d));
+          result += beta * (mask * S->BackgroundRadiance(walk.D));
         }
         return result;
-      }
-      if (o == Scene::Outside::Entered)
+      case Walk::Stop::Surface:
       {
-        inBox = true;
-        T.Start(ray, x, d);
-        continue;
-      }
-      if (!reflect(hit))
-      {
-        return result;
-      }
-      continue;
-    }
-    double majorant;
-    int hit;
-    const Event ev = AdvanceOptical(T, ray, -std::log(1 - rng.Uniform()), ch, hit, majorant);
-    if (ev == Event::Stuck)
-    {
-      truncated = true;
-      return result;
-    }
-    if (ev == Event::Exited)
-    {
-      inBox = false;
-      mayEnter = false;
-      x = ray.X;
-      d = ray.Dir;
-      continue;
-    }
-    if (ev == Event::HitSurface)
-    {
-      x = ray.X;
-      d = ray.Dir;
-      if (!reflect(ray.Surface))
-      {
-        return result;
-      }
-      continue;
-    }
-    Medium::Stencil st;
-    m.MakeStencil(ray.X, st);
-    const Vec3 sigma = m.Sample3(m.Sigma, st);
-    const double n = m.Sample1(m.Index, st);
-    if (depth == 0 && m.HasEmission)
-    {
-      result += (beta / (majorant * n * n)) * (mask * m.Sample3(m.Emission, st));
-    }
-    if (rng.Uniform() * majorant >= sigma[ch])
-    {
-      continue;
-    }
-    // The first real collision: the scattering source there, sigma_s (1/n^2) int f L dw, over
-    // sigma_t (the pdf of the collision), from the photons within the radius (each carrying its
-    // power / sigma_t at its own collision: fluence x volume). 1/n^2 turns the photons' physical
-    // radiance into the basic radiance L/n^2 that is conserved along the view ray.
-    if (S->MaxDepth >= 0 && depth + 1 > S->MaxDepth)
-    {
-      return result;
-    }
-    const double g = m.Sample1(m.G, st);
-    const double volume = KernelVolume(ray.X, radius);
-    const Vec3 toCamera = -ray.Dir;
-    Vec3 sum(0.0);
-    grid.ForEachWithin(ray.X,
-      [&](const Photon& p)
-      {
-        if (S->MaxDepth < 0 || p.Depth + depth + 1 <= S->MaxDepth)
+        // The path tracer's next-event estimation, then a cosine-weighted bounce.
+        Vec3 n = S->Surf.Normal(walk.Hit);
+        if (glm::dot(n, walk.D) > 0)
         {
-          sum += HGPhase(g, OneMinusCos(p.Dir, toCamera)) * p.Fluence;
+          n = -n;
         }
-      });
-    result += (1.0 / (volume * n * n)) * (beta * m.Sample3(m.Albedo, st) * (mask * sum));
-    return result;
+        if (!S->Scatter(depth, beta, S->Surf.Albedo(walk.Hit), ch, grey, rng, truncated))
+        {
+          return result;
+        }
+        result += beta * (mask * S->SurfaceDirect(walk.X, n, ch, rng, truncated));
+        if (S->MaxDepth >= 0 && depth + 1 > S->MaxDepth)
+        {
+          return result;
+        }
+        walk.LeaveSurface(n, SampleCosine(n, rng.Uniform(), rng.Uniform()));
+        break;
+      }
+      case Walk::Stop::Collision:
+      {
+        const RayState& ray = walk.Ray;
+        Medium::Stencil st;
+        m.MakeStencil(ray.X, st);
+        const Vec3 sigma = m.Sample3(m.Sigma, st);
+        const double n = m.Sample1(m.Index, st);
+        if (depth == 0 && m.HasEmission)
+        {
+          result += (beta / (walk.Majorant * n * n)) * (mask * m.Sample3(m.Emission, st));
+        }
+        if (rng.Uniform() * walk.Majorant >= sigma[ch])
+        {
+          break; // null collision
+        }
+        // The first real collision: the scattering source there, sigma_s (1/n^2) int f L dw,
+        // over sigma_t (the pdf of the collision), from the photons within the radius (each
+        // carrying its power / sigma_t at its own collision: fluence x volume). 1/n^2 turns the
+        // photons' physical radiance into the basic radiance L/n^2 that is conserved along the
+        // view ray.
+        if (S->MaxDepth >= 0 && depth + 1 > S->MaxDepth)
+        {
+          return result;
+        }
+        const double g = m.Sample1(m.G, st);
+        const double volume = KernelVolume(ray.X, radius);
+        const Vec3 toCamera = -ray.Dir;
+        Vec3 sum(0.0);
+        grid.ForEachWithin(ray.X,
+          [&](const Photon& p)
+          {
+            if (S->MaxDepth < 0 || p.Depth + depth + 1 <= S->MaxDepth)
+            {
+              sum += HGPhase(g, OneMinusCos(p.Dir, toCamera)) * p.Fluence;
+            }
+          });
+        result += (1.0 / (volume * n * n)) * (beta * m.Sample3(m.Albedo, st) * (mask * sum));
+        return result;
+      }
+    }
   }
 }
 } // namespace reference
