@@ -238,6 +238,25 @@ Vec3 Scene::MediumDirect(
   return (p / q) * Connect(x, w, ch, rng, truncated);
 }
 
+//------------------------------------------------------------------------------
+bool Scene::ViewSurfaceVertex(Walk& walk, int& depth, Vec3& beta, Vec3& result, const Vec3& mask,
+  int ch, bool grey, Rng& rng, bool& truncated) const
+{
+  const Vec3 n = walk.FacingNormal();
+  if (!Scatter(depth, beta, Surf.Albedo(walk.Hit), ch, grey, rng, truncated))
+  {
+    return false;
+  }
+  result += beta * (mask * SurfaceDirect(walk.X, n, ch, rng, truncated));
+  if (MaxDepth >= 0 && depth + 1 > MaxDepth)
+  {
+    return false;
+  }
+  walk.LeaveSurface(n, SampleCosine(n, rng.Uniform(), rng.Uniform()));
+  return true;
+}
+
+//------------------------------------------------------------------------------
 Vec3 Scene::Trace(Vec3 origin, Vec3 dir, int channel, Rng& rng, bool& truncated) const
 {
   Vec3 result(0.0);
@@ -262,25 +281,12 @@ Vec3 Scene::Trace(Vec3 origin, Vec3 dir, int channel, Rng& rng, bool& truncated)
         }
         return result;
       case Walk::Stop::Surface:
-      {
         // Next-event estimation, then a cosine-weighted bounce.
-        Vec3 n = Surf.Normal(walk.Hit);
-        if (glm::dot(n, walk.D) > 0)
-        {
-          n = -n; // two-sided: the side the path arrives on
-        }
-        if (!Scatter(depth, beta, Surf.Albedo(walk.Hit), ch, grey, rng, truncated))
+        if (!ViewSurfaceVertex(walk, depth, beta, result, mask, ch, grey, rng, truncated))
         {
           return result;
         }
-        result += beta * (mask * SurfaceDirect(walk.X, n, ch, rng, truncated));
-        if (MaxDepth >= 0 && depth + 1 > MaxDepth)
-        {
-          return result;
-        }
-        walk.LeaveSurface(n, SampleCosine(n, rng.Uniform(), rng.Uniform()));
         break;
-      }
       case Walk::Stop::Collision:
       {
         // Tentative collision.

@@ -23,6 +23,8 @@ namespace refracta
 {
 namespace reference
 {
+class Walk;
+
 // Everything a path needs.
 struct Scene
 {
@@ -90,6 +92,12 @@ struct Scene
   // 0.5 HG + 0.5 emitters.
   Vec3 MediumDirect(
     const Vec3& x, const Vec3& dir, double g, int ch, Rng& rng, bool& truncated) const;
+
+  // A view path's stop at an opaque surface (after Walk::Stop::Surface): the event counted
+  // (Scatter), the light reaching it by next-event estimation added to `result` (times beta and
+  // `mask`), then a cosine-weighted bounce. False when the path ends there.
+  bool ViewSurfaceVertex(Walk& walk, int& depth, Vec3& beta, Vec3& result, const Vec3& mask, int ch,
+    bool grey, Rng& rng, bool& truncated) const;
 
   // One path from a view ray. channel < 0: grey medium, RGB carried together; else only that
   // channel is estimated (returned in that component). `truncated` is set when the path hit a

@@ -184,11 +184,7 @@ void PhotonScene::Trace(Vec3 x, Vec3 d, const Vec3& power, int ch, bool grey, Rn
       case Walk::Stop::Surface:
       {
         // Diffuse reflection: albedo, roulette, cosine bounce.
-        Vec3 n = S->Surf.Normal(walk.Hit);
-        if (glm::dot(n, walk.D) > 0)
-        {
-          n = -n;
-        }
+        const Vec3 n = walk.FacingNormal();
         if (!S->Scatter(depth, beta, S->Surf.Albedo(walk.Hit), ch, grey, rng, truncated))
         {
           return;
@@ -258,25 +254,12 @@ Vec3 PhotonScene::ViewSample(Vec3 origin, Vec3 dir, int channel, const PhotonGri
         }
         return result;
       case Walk::Stop::Surface:
-      {
         // The path tracer's next-event estimation, then a cosine-weighted bounce.
-        Vec3 n = S->Surf.Normal(walk.Hit);
-        if (glm::dot(n, walk.D) > 0)
-        {
-          n = -n;
-        }
-        if (!S->Scatter(depth, beta, S->Surf.Albedo(walk.Hit), ch, grey, rng, truncated))
+        if (!S->ViewSurfaceVertex(walk, depth, beta, result, mask, ch, grey, rng, truncated))
         {
           return result;
         }
-        result += beta * (mask * S->SurfaceDirect(walk.X, n, ch, rng, truncated));
-        if (S->MaxDepth >= 0 && depth + 1 > S->MaxDepth)
-        {
-          return result;
-        }
-        walk.LeaveSurface(n, SampleCosine(n, rng.Uniform(), rng.Uniform()));
         break;
-      }
       case Walk::Stop::Collision:
       {
         const RayState& ray = walk.Ray;

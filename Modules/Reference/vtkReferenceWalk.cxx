@@ -41,6 +41,13 @@ bool Walk::CrossInterface(const SurfaceHit& hit, Rng& rng, bool& truncated)
 }
 
 //------------------------------------------------------------------------------
+Vec3 Walk::FacingNormal() const
+{
+  const Vec3 n = this->S.Surf.Normal(this->Hit);
+  return glm::dot(n, this->D) > 0 ? -n : n;
+}
+
+//------------------------------------------------------------------------------
 void Walk::LeaveSurface(const Vec3& n, const Vec3& dir)
 {
   this->D = dir;

@@ -35,6 +35,10 @@ public:
   // Flies on to the next stop; `ch` the channel whose extinction drives the delta tracking.
   Stop Next(int ch, Rng& rng, bool& truncated);
 
+  // After Surface: the hit's unit normal on the side the path arrives from (surfaces are
+  // two-sided).
+  Vec3 FacingNormal() const;
+
   // After Surface: leaves the surface (unit normal n on the side the path goes to) along the
   // unit direction `dir`.
   void LeaveSurface(const Vec3& n, const Vec3& dir);
