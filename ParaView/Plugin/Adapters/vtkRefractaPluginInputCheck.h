@@ -43,6 +43,21 @@ inline int EmptyInformation(vtkInformationVector* outputVector)
     vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
   return 1;
 }
+
+/**
+ * RequestUpdateExtent of a filter that works on its input's whole grid: asks input `port` for
+ * its whole extent (nothing for a wrong type, which has none). Returns 1.
+ */
+inline int RequestWholeExtent(vtkInformationVector** inputVector, int port)
+{
+  vtkInformation* inInfo = inputVector[port]->GetInformationObject(0);
+  if (inInfo && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
+  return 1;
+}
 }
 
 #endif

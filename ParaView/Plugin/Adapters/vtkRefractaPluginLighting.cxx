@@ -38,14 +38,13 @@ void ForwardProgress(vtkObject* caller, unsigned long, void* clientData, void* c
 vtkRefractaPluginLighting::vtkRefractaPluginLighting()
   : Pipeline(vtkSmartPointer<vtkRefractaRenderPipeline>::New())
   , Lights(vtkSmartPointer<vtkRefractaPluginLightList>::New())
-  , Quality(vtkEffectPlan::INTERACTIVE)
 {
   this->Pipeline->SetEventOwner(this);
   vtkNew<vtkCallbackCommand> progress;
   progress->SetCallback(ForwardProgress);
   progress->SetClientData(this);
   this->Pipeline->AddObserver(vtkCommand::ProgressEvent, progress);
-  this->ApplyQuality();
+  this->QualitySettings.ApplyTo(this->Pipeline);
 }
 
 //------------------------------------------------------------------------------
@@ -78,24 +77,10 @@ void vtkRefractaPluginLighting::RemoveAllLights()
 }
 
 //------------------------------------------------------------------------------
-void vtkRefractaPluginLighting::ApplyQuality()
-{
-  this->Pipeline->SetQuality(this->Quality);
-  if (this->NumberOfPhotons > 0)
-  {
-    this->Pipeline->GetPhotonTracer()->SetNumberOfPhotons(this->NumberOfPhotons);
-  }
-}
-
-//------------------------------------------------------------------------------
 void vtkRefractaPluginLighting::SetQuality(int quality)
 {
-  quality = std::min(std::max(quality, static_cast<int>(vtkEffectPlan::DRAFT)),
-    static_cast<int>(vtkEffectPlan::PRODUCTION));
-  if (quality != this->Quality)
+  if (this->QualitySettings.SetQuality(quality, this->Pipeline))
   {
-    this->Quality = quality;
-    this->ApplyQuality();
     this->Modified();
   }
 }
@@ -103,11 +88,8 @@ void vtkRefractaPluginLighting::SetQuality(int quality)
 //------------------------------------------------------------------------------
 void vtkRefractaPluginLighting::SetNumberOfPhotons(int photons)
 {
-  photons = std::max(photons, 0);
-  if (photons != this->NumberOfPhotons)
+  if (this->QualitySettings.SetNumberOfPhotons(photons, this->Pipeline))
   {
-    this->NumberOfPhotons = photons;
-    this->ApplyQuality();
     this->Modified();
   }
 }
@@ -185,13 +167,7 @@ int vtkRefractaPluginLighting::RequestInformation(
 int vtkRefractaPluginLighting::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())) // not for a wrong type
-  {
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
-  }
-  return 1;
+  return refracta_plugin::RequestWholeExtent(inputVector, 0); // the whole grid
 }
 
 //------------------------------------------------------------------------------
@@ -241,8 +217,8 @@ int vtkRefractaPluginLighting::RequestData(
 void vtkRefractaPluginLighting::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Quality: " << this->Quality << "\n";
-  os << indent << "NumberOfPhotons: " << this->NumberOfPhotons << "\n";
+  os << indent << "Quality: " << this->QualitySettings.Quality << "\n";
+  os << indent << "NumberOfPhotons: " << this->QualitySettings.NumberOfPhotons << "\n";
   os << indent << "Lights:\n";
   this->Lights->PrintSelf(os, indent.GetNextIndent());
 }

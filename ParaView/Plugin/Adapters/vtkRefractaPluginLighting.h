@@ -30,7 +30,8 @@
 
 #include "RefractaParaViewAdaptersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
-#include "vtkSmartPointer.h" // for members
+#include "vtkRefractaPluginQuality.h" // for PipelineQuality
+#include "vtkSmartPointer.h"          // for members
 
 class vtkRefractaPluginLightList;
 class vtkRefractaRenderPipeline;
@@ -56,7 +57,7 @@ public:
    * Quality preset (vtkEffectPlan::Quality); default INTERACTIVE.
    */
   void SetQuality(int quality);
-  vtkGetMacro(Quality, int);
+  int GetQuality() const { return this->QualitySettings.Quality; }
   ///@}
 
   ///@{
@@ -64,7 +65,7 @@ public:
    * Photons of the photon pass, >= 0; 0 (default) keeps the preset's count.
    */
   void SetNumberOfPhotons(int photons);
-  vtkGetMacro(NumberOfPhotons, int);
+  int GetNumberOfPhotons() const { return this->QualitySettings.NumberOfPhotons; }
   ///@}
 
   ///@{
@@ -108,15 +109,9 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  /**
-   * Quality preset, then the photon count over it (the order the preset rule needs).
-   */
-  void ApplyQuality();
-
   vtkSmartPointer<vtkRefractaRenderPipeline> Pipeline;
   vtkSmartPointer<vtkRefractaPluginLightList> Lights;
-  int Quality;
-  int NumberOfPhotons = 0;
+  refracta_plugin::PipelineQuality QualitySettings;
 
 private:
   vtkRefractaPluginLighting(const vtkRefractaPluginLighting&) = delete;

@@ -17,7 +17,6 @@ vtkStandardNewMacro(vtkRefractaPluginRenderImage);
 //------------------------------------------------------------------------------
 vtkRefractaPluginRenderImage::vtkRefractaPluginRenderImage()
   : Lights(vtkSmartPointer<vtkRefractaPluginLightList>::New())
-  , Quality(vtkEffectPlan::INTERACTIVE)
 {
   vtkNew<vtkCamera> camera;
   camera->SetPosition(0, 0, 1);
@@ -25,7 +24,7 @@ vtkRefractaPluginRenderImage::vtkRefractaPluginRenderImage()
   camera->SetViewUp(0, 1, 0);
   camera->SetViewAngle(30);
   this->SetCamera(camera);
-  this->ApplyQuality();
+  this->QualitySettings.ApplyTo(this->GetPipeline());
 }
 
 //------------------------------------------------------------------------------
@@ -72,24 +71,10 @@ void vtkRefractaPluginRenderImage::RemoveAllPluginLights()
 }
 
 //------------------------------------------------------------------------------
-void vtkRefractaPluginRenderImage::ApplyQuality()
-{
-  this->GetPipeline()->SetQuality(this->Quality);
-  if (this->NumberOfPhotons > 0)
-  {
-    this->GetPipeline()->GetPhotonTracer()->SetNumberOfPhotons(this->NumberOfPhotons);
-  }
-}
-
-//------------------------------------------------------------------------------
 void vtkRefractaPluginRenderImage::SetQuality(int quality)
 {
-  quality = std::min(std::max(quality, static_cast<int>(vtkEffectPlan::DRAFT)),
-    static_cast<int>(vtkEffectPlan::PRODUCTION));
-  if (quality != this->Quality)
+  if (this->QualitySettings.SetQuality(quality, this->GetPipeline()))
   {
-    this->Quality = quality;
-    this->ApplyQuality();
     this->Modified();
   }
 }
@@ -97,11 +82,8 @@ void vtkRefractaPluginRenderImage::SetQuality(int quality)
 //------------------------------------------------------------------------------
 void vtkRefractaPluginRenderImage::SetNumberOfPhotons(int photons)
 {
-  photons = std::max(photons, 0);
-  if (photons != this->NumberOfPhotons)
+  if (this->QualitySettings.SetNumberOfPhotons(photons, this->GetPipeline()))
   {
-    this->NumberOfPhotons = photons;
-    this->ApplyQuality();
     this->Modified();
   }
 }
@@ -172,8 +154,8 @@ int vtkRefractaPluginRenderImage::RequestData(
 void vtkRefractaPluginRenderImage::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Quality: " << this->Quality << "\n";
-  os << indent << "NumberOfPhotons: " << this->NumberOfPhotons << "\n";
+  os << indent << "Quality: " << this->QualitySettings.Quality << "\n";
+  os << indent << "NumberOfPhotons: " << this->QualitySettings.NumberOfPhotons << "\n";
   os << indent << "Lights:\n";
   this->Lights->PrintSelf(os, indent.GetNextIndent());
 }

@@ -18,7 +18,8 @@
 
 #include "RefractaParaViewAdaptersModule.h" // for export macro
 #include "vtkRefractaImageRenderer.h"
-#include "vtkSmartPointer.h" // for members
+#include "vtkRefractaPluginQuality.h" // for PipelineQuality
+#include "vtkSmartPointer.h"          // for members
 
 class vtkRefractaPluginLightList;
 
@@ -53,7 +54,7 @@ public:
    * Quality preset (vtkEffectPlan::Quality); default INTERACTIVE.
    */
   void SetQuality(int quality);
-  vtkGetMacro(Quality, int);
+  int GetQuality() const { return this->QualitySettings.Quality; }
   ///@}
 
   ///@{
@@ -61,7 +62,7 @@ public:
    * Photons of the photon pass, >= 0; 0 (default) keeps the preset's count.
    */
   void SetNumberOfPhotons(int photons);
-  vtkGetMacro(NumberOfPhotons, int);
+  int GetNumberOfPhotons() const { return this->QualitySettings.NumberOfPhotons; }
   ///@}
 
   ///@{
@@ -80,11 +81,8 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  void ApplyQuality();
-
   vtkSmartPointer<vtkRefractaPluginLightList> Lights;
-  int Quality;
-  int NumberOfPhotons = 0;
+  refracta_plugin::PipelineQuality QualitySettings;
 
 private:
   vtkRefractaPluginRenderImage(const vtkRefractaPluginRenderImage&) = delete;

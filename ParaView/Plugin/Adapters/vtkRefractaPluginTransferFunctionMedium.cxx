@@ -168,14 +168,7 @@ int vtkRefractaPluginTransferFunctionMedium::RequestInformation(
 int vtkRefractaPluginTransferFunctionMedium::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
-  // The whole input: the medium is made on the input's whole grid.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())) // not for a wrong type
-  {
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
-  }
-  return 1;
+  return refracta_plugin::RequestWholeExtent(inputVector, 0); // the whole grid
 }
 
 //------------------------------------------------------------------------------
