@@ -92,6 +92,9 @@
 #ifndef REFRACTA_MAX_STEPS
 #define REFRACTA_MAX_STEPS 10000
 #endif
+#ifndef REFRACTA_MAX_INTERFACES
+#define REFRACTA_MAX_INTERFACES 64
+#endif
 #ifndef REFRACTA_EXT_STEP_LIMIT
 #define REFRACTA_EXT_STEP_LIMIT 0.0f
 #endif
@@ -218,6 +221,7 @@ typedef struct
   uint rng;
   uint pieces;
   uint hits; // surface hits
+  uint interfaces; // dielectric interface events (REFRACTA_MAX_INTERFACES ends a trapped photon)
   int dead;
   int order;                               // scatterings since the light or the last surface
   int collided;                            // analog: scattered in the last piece
@@ -719,6 +723,14 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
   const int4 info = s->triInfo[h.triangle];
   if (info.w == REFRACTA_SURFACE_DIELECTRIC)
   {
+    // A photon circling inside glass by total internal reflection (scattered there, see
+    // Physics.md "Trapped light in glass") would otherwise run to the step cap: it ends here,
+    // its power booked as remaining, like the step cap's.
+    if (++ps->interfaces > REFRACTA_MAX_INTERFACES)
+    {
+      *dir = d;
+      return PHOTON_COUNTER_STEP_CAP;
+    }
     photon_interface_interact(ps, x, dir, d, h, s);
     return -1;
   }
@@ -933,6 +945,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   ps.rng = refracta_rng_seed(seed, id);
   ps.pieces = 0;
   ps.hits = 0;
+  ps.interfaces = 0;
   ps.dead = 0;
   photon_init_analog(&ps, anisotropy, multiple, 0);
   const float3 emitted = ps.power;
@@ -1042,6 +1055,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.rng = refracta_rng_seed(seed, id);
     ps.pieces = 0;
     ps.hits = 0;
+    ps.interfaces = 0;
     photon_init_analog(&ps, anisotropy, multiple, 0);
     emitted = ps.power;
     x = photonPos[id].xyz;
@@ -1079,6 +1093,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     emitted = s[7].xyz;
     ps.surface = s[8].xyz;
     ps.hits = as_uint(s[8].w);
+    ps.interfaces = as_uint(s[3].w);
     ps.rng = st.z;
     ps.pieces = st.w;
     photon_init_analog(&ps, anisotropy, multiple, as_int(s[4].w));
@@ -1140,7 +1155,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     s[0] = (float4)(x, 0.0f);
     s[1] = (float4)(v, 0.0f);
     s[2] = (float4)(ps.power, ps.threshold);
-    s[3] = (float4)(ps.absorbed, 0.0f);
+    s[3] = (float4)(ps.absorbed, as_float(ps.interfaces));
     s[4] = (float4)(ps.scattered, as_float(ps.order));
     s[5] = (float4)(ps.killed, 0.0f);
     s[6] = (float4)(ps.gained, 0.0f);

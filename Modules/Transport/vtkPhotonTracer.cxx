@@ -334,6 +334,7 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << FloatLiteral(std::min(this->SecondaryStepLimit, this->MaximumStep) * voxelUnit)
           << " -DREFRACTA_FIXED_STEP=" << FloatLiteral(this->FixedStep * voxelUnit)
           << " -DREFRACTA_MAX_STEPS=" << this->MaximumNumberOfSteps
+          << " -DREFRACTA_MAX_INTERFACES=" << this->MaximumNumberOfInterfaceEvents
           << " -DREFRACTA_EXT_STEP_LIMIT=" << FloatLiteral(this->ExtinctionStepLimit)
           << " -DREFRACTA_ROULETTE=" << FloatLiteral(this->RouletteThreshold)
           << " -DREFRACTA_MAX_TURN=" << FloatLiteral(this->MaximumTurn)
@@ -826,6 +827,8 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ExtinctionStepLimit: " << this->ExtinctionStepLimit << "\n";
   os << indent << "RouletteThreshold: " << this->RouletteThreshold << "\n";
   os << indent << "MaximumNumberOfSteps: " << this->MaximumNumberOfSteps << "\n";
+  os << indent << "MaximumNumberOfInterfaceEvents: " << this->MaximumNumberOfInterfaceEvents
+     << "\n";
   os << indent << "MaximumTurn: " << this->MaximumTurn << "\n";
   os << indent << "StepTolerance: " << this->StepTolerance << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";

@@ -292,6 +292,17 @@ public:
 
   ///@{
   /**
+   * Dielectric interface events per photon (default 64): a photon meeting more ends there, its
+   * power counted in EnergyRemaining and TerminatedStepCap. Light scattered inside a glass body
+   * past the critical angle circles by total internal reflection (exactly so in a sphere) and
+   * would otherwise run to MaximumNumberOfSteps; a photon crossing ordinary glass meets a few.
+   */
+  vtkSetClampMacro(MaximumNumberOfInterfaceEvents, int, 1, 100000000);
+  vtkGetMacro(MaximumNumberOfInterfaceEvents, int);
+  ///@}
+
+  ///@{
+  /**
    * Largest change of v = n dx/ds in one step, as a fraction of n (default 0.5): a steep index
    * step turns a ray over a few steps instead of throwing it out of the grid.
    */
@@ -492,6 +503,7 @@ protected:
   double ExtinctionStepLimit = 0.0;
   double RouletteThreshold = 0.001;
   int MaximumNumberOfSteps = 10000;
+  int MaximumNumberOfInterfaceEvents = 64;
   double MaximumTurn = 0.5;
   double StepTolerance = 0.02;
   bool Smoothing = true;

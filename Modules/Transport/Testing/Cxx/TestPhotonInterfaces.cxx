@@ -298,3 +298,56 @@ TEST(PhotonInterfaces, SharpBallLensFocus)
     EXPECT_NEAR(rms[i], traced, 0.1 * traced);
   }
 }
+
+TEST(PhotonInterfaces, TrappedLightEndsAtTheInterfaceCap)
+{
+  // A point light inside a glass ball (n = 1.5, R = 1), 0.9 R from its centre: a ray leaving it
+  // at angle theta to the outward radius keeps meeting the sphere at sin(i) = 0.9 sin(theta), so
+  // where 0.9 sin(theta) > 1 / n it circles by total internal reflection for ever. That is a
+  // share cos(asin(1 / (0.9 n))) = 0.672 of the isotropic light. With
+  // MaximumNumberOfInterfaceEvents = 50 those photons end after 50 events, booked as remaining
+  // (step cap), so the pass costs about as many steps as events; without the cap they run to
+  // MaximumNumberOfSteps.
+  const double index = 1.5, r0 = 0.9;
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(1.0);
+  sphere->SetThetaResolution(192);
+  sphere->SetPhiResolution(96);
+  sphere->Update();
+  vtkNew<vtkRefractaSurfaceSet> set;
+  set->AddSurface(sphere->GetOutput(), Glass(index));
+  auto trace = [&](int cap)
+  {
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->SetInputData(Vacuum());
+    tracer->SetSurfaces(set);
+    tracer->AddLight(photontest::Positional({ r0, 0, 0 }, { 0, 0, 0 }, 180.0, 1.0, 1.0));
+    tracer->SetNumberOfPhotons(1 << 13);
+    tracer->SetMaximumNumberOfSteps(400);
+    tracer->SetMaximumNumberOfInterfaceEvents(cap);
+    tracer->Update();
+    auto out = vtkSmartPointer<vtkImageData>::New();
+    out->ShallowCopy(tracer->GetOutput());
+    return out;
+  };
+  vtkSmartPointer<vtkImageData> capped = trace(50);
+  ExpectExactBooks(capped);
+  const double photons = photontest::Field(capped, "PhotonsMarched");
+  const double trapped = photontest::Field(capped, "TerminatedStepCap") / photons;
+  const double expected = std::sqrt(1.0 - std::pow(1.0 / (r0 * index), 2));
+  const double se = std::sqrt(expected * (1 - expected) / photons);
+  const double steps = photontest::Field(capped, "TotalSteps");
+  std::cout << "trapped share " << trapped << " (expected " << expected << ", SE " << se << "), "
+            << steps / photons << " steps per photon\n";
+  // Light that is not trapped but starts near the critical angle reflects often (R near 1) and
+  // a few such photons also reach 50 events: the share may exceed the trapped one slightly.
+  EXPECT_GT(trapped, expected - 4 * se);
+  EXPECT_LT(trapped, expected + 0.03);
+  EXPECT_LT(steps / photons, 3.0 * 50);
+
+  vtkSmartPointer<vtkImageData> uncapped = trace(100000);
+  ExpectExactBooks(uncapped);
+  const double uncappedSteps = photontest::Field(uncapped, "TotalSteps");
+  std::cout << "without the cap " << uncappedSteps / photons << " steps per photon\n";
+  EXPECT_GT(uncappedSteps, 5.0 * steps);
+}
