@@ -133,6 +133,13 @@ inline float3 refracta_background(float3 d, float4 background, __global const fl
   float u = atan2(x, z) * (0.5f / REFRACTA_PI) + 0.5f;
   u = u >= 1.0f ? u - 1.0f : u;
   const float v = atan2(y, sqrt(x * x + z * z)) * (1.0f / REFRACTA_PI) + 0.5f;
+#ifdef REFRACTA_CHECKER_ENVIRONMENT
+  // Procedural checkerboard (vtkRefractaEnvironmentMap::EvaluateChecker): envSize holds the
+  // squares (nu, nv), `environment` colour 1 (odd squares) then colour 2; sharp at any size.
+  const int su = clamp((int)floor(u * (float)envSize.x), 0, envSize.x - 1);
+  const int sv = clamp((int)floor(v * (float)envSize.y), 0, envSize.y - 1);
+  return vload3(((su + sv) & 1) ? 0 : 1, environment);
+#endif
   // Bilinear between texel centres; wraps in u (longitude), clamps in v (latitude).
   const float px = u * (float)envSize.x - 0.5f;
   const float py = clamp(v * (float)envSize.y - 0.5f, 0.0f, (float)(envSize.y - 1));

@@ -9,6 +9,7 @@
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaImageRenderer.h"
 
 #include <algorithm>
@@ -18,30 +19,6 @@ namespace RefractaRender
 {
 namespace
 {
-// Equirectangular checkerboard (linear RGB floats).
-vtkSmartPointer<vtkImageData> Checker(
-  int nu, int nv, const std::vector<double>& c1, const std::vector<double>& c2)
-{
-  const int w = std::max(nu * 16, 64), h = std::max(nv * 16, 32);
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(w, h, 1);
-  vtkNew<vtkFloatArray> rgb;
-  rgb->SetName("checker");
-  rgb->SetNumberOfComponents(3);
-  rgb->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
-  for (int j = 0; j < h; ++j)
-  {
-    for (int i = 0; i < w; ++i)
-    {
-      const bool odd = ((i * nu / w) + (j * nv / h)) % 2;
-      const std::vector<double>& c = odd ? c1 : c2;
-      rgb->SetTuple3(i + w * j, c[0], c[1], c[2]);
-    }
-  }
-  image->GetPointData()->SetScalars(rgb);
-  return image;
-}
-
 vtkSmartPointer<vtkLight> ReadLight(const json& l, const std::string& p)
 {
   CheckKeys(
@@ -165,9 +142,11 @@ bool ReadBackground(const json& scene, const std::string& base, vtkRefractaImage
     const std::string p = "scene.background.checker";
     CheckKeys(c, p, { "squares", "color1", "color2" });
     auto squares = Vector(c, "squares", p, { 16, 8 }, 2, 1, 512);
-    renderer->SetEnvironmentMap(Checker(static_cast<int>(squares[0]), static_cast<int>(squares[1]),
-      Vector(c, "color1", p, { 0.9, 0.9, 0.9 }, 3, 0, 1e30),
-      Vector(c, "color2", p, { 0.1, 0.1, 0.1 }, 3, 0, 1e30)));
+    const auto color1 = Vector(c, "color1", p, { 0.9, 0.9, 0.9 }, 3, 0, 1e30);
+    const auto color2 = Vector(c, "color2", p, { 0.1, 0.1, 0.1 }, 3, 0, 1e30);
+    // Procedural: the passes evaluate the squares per ray (sharp edges at any resolution).
+    renderer->SetEnvironmentMap(vtkRefractaEnvironmentMap::MakeChecker(
+      static_cast<int>(squares[0]), static_cast<int>(squares[1]), color1.data(), color2.data()));
   }
   auto up = Vector(bg, "up", "scene.background", { 0, 1, 0 }, 3, -1e30, 1e30);
   auto right = Vector(bg, "right", "scene.background", { 1, 0, 0 }, 3, -1e30, 1e30);

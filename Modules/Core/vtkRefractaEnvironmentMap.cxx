@@ -1,7 +1,15 @@
 #include "vtkRefractaEnvironmentMap.h"
 
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkMath.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 
 #include <algorithm>
 #include <cmath>
@@ -100,6 +108,113 @@ int vtkRefractaEnvironmentMap::NearestTexel(int width, int height, double u, dou
   i = ((i % width) + width) % width;
   const int j = std::min(std::max(static_cast<int>(std::floor(v * height)), 0), height - 1);
   return static_cast<int>(i) + width * j;
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// Share of [a, b) (in units of squares along one axis) covered by odd-numbered squares.
+double OddShare(double a, double b)
+{
+  // The odd squares' measure of [0, x): floor(x / 2) whole pairs plus the odd part of the last.
+  auto odd = [](double x)
+  {
+    const double pairs = std::floor(x / 2.0);
+    return pairs + std::min(std::max(x - 2.0 * pairs - 1.0, 0.0), 1.0);
+  };
+  return b > a ? (odd(b) - odd(a)) / (b - a) : 0.0;
+}
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkImageData> vtkRefractaEnvironmentMap::MakeChecker(
+  int squaresU, int squaresV, const double color1[3], const double color2[3])
+{
+  const int nu = std::min(std::max(squaresU, 1), 4096);
+  const int nv = std::min(std::max(squaresV, 1), 4096);
+  // 16 texels per square where that fits, so that texels rarely straddle an edge.
+  const int w = std::min(std::max(nu * 16, 64), 4096);
+  const int h = std::min(std::max(nv * 16, 32), 2048);
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(w, h, 1);
+  vtkNew<vtkFloatArray> rgb;
+  rgb->SetName("Checker");
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
+  for (int j = 0; j < h; ++j)
+  {
+    // The parity is odd where exactly one of the two indices is odd: the texel's share of odd
+    // squares is pu (1 - pv) + (1 - pu) pv, from the odd shares along each axis.
+    const double pv = OddShare(double(j) * nv / h, double(j + 1) * nv / h);
+    for (int i = 0; i < w; ++i)
+    {
+      const double pu = OddShare(double(i) * nu / w, double(i + 1) * nu / w);
+      const double f1 = pu * (1.0 - pv) + (1.0 - pu) * pv;
+      for (int c = 0; c < 3; ++c)
+      {
+        rgb->SetComponent(i + static_cast<vtkIdType>(w) * j, c,
+          static_cast<float>(f1 * color1[c] + (1.0 - f1) * color2[c]));
+      }
+    }
+  }
+  image->GetPointData()->SetScalars(rgb);
+  vtkNew<vtkIntArray> squares;
+  squares->SetName(CheckerSquaresName());
+  squares->SetNumberOfComponents(2);
+  squares->InsertNextTuple2(nu, nv);
+  vtkNew<vtkDoubleArray> colors;
+  colors->SetName(CheckerColorsName());
+  colors->SetNumberOfComponents(6);
+  const double both[6] = { color1[0], color1[1], color1[2], color2[0], color2[1], color2[2] };
+  colors->InsertNextTuple(both);
+  image->GetFieldData()->AddArray(squares);
+  image->GetFieldData()->AddArray(colors);
+  return image;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaEnvironmentMap::GetChecker(
+  vtkImageData* map, int squares[2], double color1[3], double color2[3])
+{
+  vtkFieldData* fd = map ? map->GetFieldData() : nullptr;
+  vtkDataArray* s = fd ? fd->GetArray(CheckerSquaresName()) : nullptr;
+  vtkDataArray* c = fd ? fd->GetArray(CheckerColorsName()) : nullptr;
+  if (!s || !c || s->GetNumberOfComponents() != 2 || s->GetNumberOfTuples() < 1 ||
+    c->GetNumberOfComponents() != 6 || c->GetNumberOfTuples() < 1)
+  {
+    return false;
+  }
+  for (int a = 0; a < 2; ++a)
+  {
+    const double v = s->GetComponent(0, a);
+    if (!(v >= 1 && v <= 4096))
+    {
+      return false;
+    }
+    squares[a] = static_cast<int>(v);
+  }
+  for (int k = 0; k < 6; ++k)
+  {
+    const double v = c->GetComponent(0, k);
+    if (!std::isfinite(v))
+    {
+      return false;
+    }
+    (k < 3 ? color1 : color2)[k % 3] = std::max(v, 0.0);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaEnvironmentMap::EvaluateChecker(double u, double v, const int squares[2],
+  const double color1[3], const double color2[3], double rgb[3])
+{
+  const long long su = std::min<long long>(
+    std::max<long long>(static_cast<long long>(std::floor(u * squares[0])), 0), squares[0] - 1);
+  const long long sv = std::min<long long>(
+    std::max<long long>(static_cast<long long>(std::floor(v * squares[1])), 0), squares[1] - 1);
+  const double* c = ((su + sv) % 2) ? color1 : color2;
+  std::copy(c, c + 3, rgb);
 }
 
 //------------------------------------------------------------------------------

@@ -27,12 +27,24 @@
  * Texel (i, j) has its centre at ((i + 0.5) / W, (j + 0.5) / H); lookups are bilinear, wrapping
  * in u and clamping in v. The OpenCL view pass (Kernels/view_pass.cl, refracta_background)
  * computes the identical mapping from the same basis vectors, passed as kernel arguments.
+ *
+ * **Procedural checkerboard.** MakeChecker(nu, nv, color1, color2) describes a checkerboard of
+ * nu x nv squares over (u, v): square (floor(u nu), floor(v nv)) takes color1 when the sum of its
+ * indices is odd, else color2 (EvaluateChecker). The image it returns carries the description in
+ * its field data (CheckerSquaresName(), CheckerColorsName(); read back by GetChecker) so that the
+ * view pass and the reference renderer evaluate the pattern exactly per ray (sharp square edges
+ * at any resolution), and its texels (at most 4096 x 2048) are the exact area means of the
+ * pattern over each texel, for whatever samples the image itself (the photon pass's emission from
+ * the background, the mapper).
  */
 #ifndef vtkRefractaEnvironmentMap_h
 #define vtkRefractaEnvironmentMap_h
 
 #include "RefractaCoreModule.h" // for export macro
 #include "vtkObject.h"
+#include "vtkSmartPointer.h" // for MakeChecker
+
+class vtkImageData;
 
 class REFRACTACORE_EXPORT vtkRefractaEnvironmentMap : public vtkObject
 {
@@ -75,6 +87,36 @@ public:
    * Index i + W j of the texel whose centre is nearest to (u, v) (wrapping in u, clamping in v).
    */
   static int NearestTexel(int width, int height, double u, double v);
+
+  /**
+   * An environment image describing the procedural checkerboard of `squaresU` x `squaresV`
+   * squares (each clamped to [1, 4096]) of linear RGB colours `color1` and `color2` (see the class
+   * description): RGB float texels, the exact area means of the pattern, and the description in
+   * the field data.
+   */
+  static vtkSmartPointer<vtkImageData> MakeChecker(
+    int squaresU, int squaresV, const double color1[3], const double color2[3]);
+
+  /**
+   * Whether `map` describes a procedural checkerboard (made by MakeChecker, with a valid
+   * description: squares >= 1, six finite colours); then its squares and colours.
+   */
+  static bool GetChecker(vtkImageData* map, int squares[2], double color1[3], double color2[3]);
+
+  /**
+   * The checkerboard's colour at (u, v) (u in [0, 1), v in [0, 1]; v = 1 is in the last row).
+   */
+  static void EvaluateChecker(double u, double v, const int squares[2], const double color1[3],
+    const double color2[3], double rgb[3]);
+
+  ///@{
+  /**
+   * Field-data names of the checkerboard's description: squares (2 components) and colours (6:
+   * color1 RGB, color2 RGB).
+   */
+  static const char* CheckerSquaresName() { return "CheckerSquares"; }
+  static const char* CheckerColorsName() { return "CheckerColors"; }
+  ///@}
 
 protected:
   vtkRefractaEnvironmentMap() = default;

@@ -43,7 +43,15 @@ Vec3 Environment::Radiance(const Vec3& dWorld) const
   const double d[3] = { dWorld.x, dWorld.y, dWorld.z };
   double uv[2], rgb[3];
   vtkRefractaEnvironmentMap::DirectionToTexture(d, Up, Right, uv);
-  vtkRefractaEnvironmentMap::Sample(Rgb.data(), W, H, uv[0], uv[1], rgb);
+  if (CheckerSquares[0] > 0)
+  {
+    vtkRefractaEnvironmentMap::EvaluateChecker(
+      uv[0], uv[1], CheckerSquares, Checker1, Checker2, rgb);
+  }
+  else
+  {
+    vtkRefractaEnvironmentMap::Sample(Rgb.data(), W, H, uv[0], uv[1], rgb);
+  }
   return ToVec3(rgb);
 }
 

@@ -32,6 +32,10 @@ struct Environment
   std::vector<double> Rgb;
   int W = 0, H = 0;
   double Up[3] = { 0, 1, 0 }, Right[3] = { 1, 0, 0 }; // world vectors orienting the map
+  // A procedural checkerboard (vtkRefractaEnvironmentMap::MakeChecker): Radiance evaluates it
+  // exactly; the map (its texels' area means) still drives the sampling. Squares 0: none.
+  int CheckerSquares[2] = { 0, 0 };
+  double Checker1[3] = { 0, 0, 0 }, Checker2[3] = { 0, 0, 0 };
 
   // Radiance arriving from the world direction d (any length > 0).
   Vec3 Radiance(const Vec3& dWorld) const;

@@ -18,6 +18,7 @@
 #include "vtkPointData.h"
 #include "vtkReferencePathTracer.h"
 #include "vtkReferenceView.h"
+#include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -341,6 +342,11 @@ bool vtkReferenceRenderer::BuildScene(vtkImageData* medium, Scene& scene, View& 
         }
         scene.Env.Rgb[3 * i + c] = v;
       }
+    }
+    if (!vtkRefractaEnvironmentMap::GetChecker(
+          env, scene.Env.CheckerSquares, scene.Env.Checker1, scene.Env.Checker2))
+    {
+      scene.Env.CheckerSquares[0] = scene.Env.CheckerSquares[1] = 0;
     }
   }
   scene.Env.Colour = ToVec3(this->BackgroundColor);

@@ -265,7 +265,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   {
     std::vector<float> rgb;
     std::string error;
-    if (!EnvironmentToRGB(env, rgb, in.EnvironmentSize, error))
+    if (!EnvironmentToRGB(env, rgb, in.EnvironmentSize, in.EnvironmentIsChecker, error))
     {
       vtkErrorMacro(<< error);
       return false;
@@ -317,6 +317,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.Multiple = in.HasMultiple;
   variant.Emission = in.HasEmission;
   variant.Environment = env != nullptr;
+  variant.Checker = env != nullptr && in.EnvironmentIsChecker;
   variant.DepthLimit = depthLimit != nullptr;
   variant.Skip = skipping;
   variant.Surfaces = surf.Active();

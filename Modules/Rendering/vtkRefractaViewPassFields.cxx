@@ -87,8 +87,17 @@ std::vector<float> CentralDifferenceGradient(
 }
 
 //------------------------------------------------------------------------------
-bool EnvironmentToRGB(vtkImageData* image, std::vector<float>& rgb, int size[2], std::string& error)
+bool EnvironmentToRGB(
+  vtkImageData* image, std::vector<float>& rgb, int size[2], bool& checker, std::string& error)
 {
+  double color1[3], color2[3];
+  checker = vtkRefractaEnvironmentMap::GetChecker(image, size, color1, color2);
+  if (checker)
+  {
+    rgb.assign(color1, color1 + 3);
+    rgb.insert(rgb.end(), color2, color2 + 3);
+    return true;
+  }
   int ed[3];
   image->GetDimensions(ed);
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
@@ -177,6 +186,7 @@ std::string KernelOptions(const KernelVariant& v)
   flag(v.Multiple, "REFRACTA_HAS_MULTIPLE");
   flag(v.Emission, "REFRACTA_HAS_EMISSION");
   flag(v.Environment, "REFRACTA_HAS_ENVIRONMENT");
+  flag(v.Environment && v.Checker, "REFRACTA_CHECKER_ENVIRONMENT");
   flag(v.DepthLimit, "REFRACTA_HAS_DEPTH_LIMIT");
   flag(v.Skip, "REFRACTA_SKIP");
   flag(v.Surfaces, "REFRACTA_HAS_SURFACES");

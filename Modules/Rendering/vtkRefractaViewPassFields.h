@@ -30,11 +30,13 @@ void RotateToLocal(const vtkRefractaGridFrame* grid, std::vector<float>& vectors
 std::vector<float> CentralDifferenceGradient(
   const std::vector<float>& index, const int dims[3], const double spacing[3]);
 
-// The environment image as linear RGB floats (unsigned char divided by 255; non-finite or
-// negative values as 0) and its size. False with `error` set when it is not a W x H x 1 image
-// with 3- or 4-component point scalars.
+// The environment map for the device: an image map as linear RGB floats (unsigned char divided
+// by 255; non-finite or negative values as 0) and its size (W, H); a procedural checkerboard
+// (vtkRefractaEnvironmentMap::GetChecker) as its two colours (6 floats) and squares (nu, nv),
+// with `checker` true (how the kernel's REFRACTA_CHECKER_ENVIRONMENT reads them). False with
+// `error` set for an image that is not W x H x 1 with 3- or 4-component point scalars.
 bool EnvironmentToRGB(
-  vtkImageData* image, std::vector<float>& rgb, int size[2], std::string& error);
+  vtkImageData* image, std::vector<float>& rgb, int size[2], bool& checker, std::string& error);
 
 // Whether a lighting point array has 3 components, `tuples` tuples and finite (and, when asked,
 // non-negative) values; else false with `error` naming the array and what is wrong.
@@ -52,6 +54,7 @@ struct KernelVariant
   bool Multiple = false;     // REFRACTA_HAS_MULTIPLE
   bool Emission = false;     // REFRACTA_HAS_EMISSION
   bool Environment = false;  // REFRACTA_HAS_ENVIRONMENT
+  bool Checker = false;      // REFRACTA_CHECKER_ENVIRONMENT (with Environment)
   bool DepthLimit = false;   // REFRACTA_HAS_DEPTH_LIMIT
   bool Skip = false;         // REFRACTA_SKIP
   bool Surfaces = false;     // REFRACTA_HAS_SURFACES

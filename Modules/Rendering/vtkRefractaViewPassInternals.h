@@ -46,7 +46,8 @@ struct vtkRefractaViewPass::Internals
   // Environment on the device.
   vtkSmartPointer<vtkImageData> EnvironmentUploaded;
   vtkMTimeType EnvironmentTime = 0;
-  int EnvironmentSize[2] = { 0, 0 };
+  int EnvironmentSize[2] = { 0, 0 }; // texels, or a checkerboard's squares
+  bool EnvironmentIsChecker = false; // procedural (vtkRefractaEnvironmentMap::MakeChecker)
   vtkOpenCLBuffer EnvironmentBuffer;
 
   // Empty space: per-voxel flags of the medium and of the lighting volume (SourceFlag,

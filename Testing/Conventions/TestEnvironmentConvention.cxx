@@ -180,3 +180,102 @@ TEST(EnvironmentConvention, ReferenceAndViewPassPickTheSameTexel)
             << ", reference " << worstReference << "\n";
   EXPECT_GT(compared, 6 * Width * Height / 2);
 }
+
+// The procedural checkerboard (vtkRefractaEnvironmentMap::MakeChecker): both renderers evaluate
+// it per ray, so every pixel takes exactly the colour of the square its direction falls in (a
+// square edge is sharp: the neighbouring pixels across it take the two colours, nothing between),
+// and the texels the image carries for its other users are the pattern's exact area means.
+TEST(EnvironmentConvention, ProceduralCheckerIsExactInBothRenderers)
+{
+  const int squares[2] = { 24, 12 };
+  const double color1[3] = { 0.9, 0.85, 0.75 }, color2[3] = { 0.08, 0.12, 0.3 };
+  auto env = vtkRefractaEnvironmentMap::MakeChecker(squares[0], squares[1], color1, color2);
+  int got[2];
+  double c1[3], c2[3];
+  ASSERT_TRUE(vtkRefractaEnvironmentMap::GetChecker(env, got, c1, c2));
+  EXPECT_EQ(got[0], squares[0]);
+  EXPECT_EQ(got[1], squares[1]);
+  // An even number of squares along u: every row of texels averages to the mean colour.
+  vtkDataArray* texels = env->GetPointData()->GetScalars();
+  double mean = 0;
+  for (vtkIdType t = 0; t < texels->GetNumberOfTuples(); ++t)
+  {
+    mean += texels->GetComponent(t, 0) / texels->GetNumberOfTuples();
+  }
+  EXPECT_NEAR(mean, 0.5 * (color1[0] + color2[0]), 1e-6);
+  // A texel across a square edge holds the blend of the two colours by area.
+  auto coarse = vtkRefractaEnvironmentMap::MakeChecker(3, 1, color1, color2);
+  int dims[3];
+  coarse->GetDimensions(dims);
+  ASSERT_EQ(dims[0], 64); // 3 squares over 64 texels: texel 21 straddles u = 1 / 3
+  const double f = 1.0 - (64.0 / 3.0 - 21.0); // its share of square 1 (odd: colour 1)
+  EXPECT_NEAR(coarse->GetPointData()->GetScalars()->GetComponent(21, 0),
+    (1 - f) * color2[0] + f * color1[0], 1e-6);
+
+  auto medium = EmptyMedium();
+  vtkNew<vtkCamera> camera;
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetPosition(0.2, 0.1, 0.5);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetViewAngle(ViewAngle);
+  vtkNew<vtkRefractaImageRenderer> pass;
+  pass->SetInputData(medium);
+  pass->SetCamera(camera);
+  pass->SetImageSize(Width, Height);
+  pass->SetEnvironmentMap(env);
+  pass->Update();
+  vtkNew<vtkReferenceRenderer> reference;
+  reference->SetInputData(medium);
+  reference->SetCamera(camera);
+  reference->SetImageSize(Width, Height);
+  reference->SetSamplesPerPixel(1);
+  reference->SetEnvironmentMap(env);
+  reference->Update();
+  vtkDataArray* hdr[2] = { pass->GetOutput()->GetPointData()->GetArray("HDR"),
+    reference->GetOutput()->GetPointData()->GetArray("HDR") };
+  ASSERT_NE(hdr[0], nullptr);
+  ASSERT_NE(hdr[1], nullptr);
+  const double up[3] = { 0, 1, 0 }, right[3] = { 1, 0, 0 };
+  int judged = 0, edges = 0;
+  for (int j = 0; j < Height; ++j)
+  {
+    for (int i = 0; i < Width; ++i)
+    {
+      double d[3], uv[2], want[3];
+      PixelDirection(camera, i, j, d);
+      vtkRefractaEnvironmentMap::DirectionToTexture(d, up, right, uv);
+      // Not within float rounding of a square edge.
+      const double fu = uv[0] * squares[0] - std::floor(uv[0] * squares[0]);
+      const double fv = uv[1] * squares[1] - std::floor(uv[1] * squares[1]);
+      if (std::min(fu, 1 - fu) < 1e-3 || std::min(fv, 1 - fv) < 1e-3)
+      {
+        continue;
+      }
+      vtkRefractaEnvironmentMap::EvaluateChecker(uv[0], uv[1], squares, color1, color2, want);
+      const vtkIdType p = i + static_cast<vtkIdType>(Width) * j;
+      for (int which = 0; which < 2; ++which)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          EXPECT_NEAR(hdr[which]->GetComponent(p, c), want[c], 1e-5)
+            << (which == 0 ? "view pass" : "reference") << " pixel " << i << "," << j;
+        }
+      }
+      ++judged;
+      // A pixel whose right neighbour lies in another square: the edge is one pixel wide.
+      if (i + 1 < Width)
+      {
+        double dn[3], uvn[2];
+        PixelDirection(camera, i + 1, j, dn);
+        vtkRefractaEnvironmentMap::DirectionToTexture(dn, up, right, uvn);
+        if (std::floor(uvn[0] * squares[0]) != std::floor(uv[0] * squares[0]))
+        {
+          ++edges;
+        }
+      }
+    }
+  }
+  std::cout << judged << " pixels judged, " << edges << " of them next to a square edge\n";
+  EXPECT_GT(judged, Width * Height * 9 / 10);
+  EXPECT_GT(edges, 20);
+}
