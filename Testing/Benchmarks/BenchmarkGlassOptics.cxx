@@ -1,0 +1,641 @@
+// BenchmarkGlassOptics: refracta-render's default scene (a glass ball, n = 1.5, radius 0.42, over
+// a floor under a spot light) against ideal geometric optics that this program computes itself
+// (issue 20), with the medium's meshes as exact interfaces and as the paper's smoothed index, in
+// one run: the figures of the issue's table and each render's time.
+//
+// The comparison scene is the default scene without its fog and with a uniform floor (albedo
+// 0.8), so that a floor pixel's radiance is E rho / pi and ratios of pixels are ratios of
+// irradiance E; ideal optics has no fog either. Ideal optics: the exact sphere, Snell's law and
+// unpolarised Fresnel at both surfaces (every branch followed to 6 interfaces, weights exact),
+// the spot light I(theta) = I0 cos(theta) within 12 degrees; direct light analytic (with the
+// ball's shadow), light through the ball traced from 4000 x 4000 stratified directions and
+// binned on the floor in 0.002 cells; each image pixel is the mean over 4 x 4 points of its
+// footprint on the floor (the render's pixel is its centre ray).
+//
+// Definitions (all in pixels of the 256 x 256 camera of the default scene):
+// - lit: mean E of the 3 x 3 pixels around the floor point (0.6, -0.8, 0), inside the spot and
+//   outside the ball's shadow;
+// - caustic peak: the largest E among pixels whose floor point is within 0.3 of the light's axis;
+//   FWHM x / y: the width of the run of pixels >= peak / 2 through the peak along the image row /
+//   column, ends interpolated linearly;
+// - shadow: mean E over floor points 0.40 to 0.48 from the axis (the dark ring: no direct light,
+//   no refracted light in ideal optics); under the ball: mean E over floor points within 0.55 of
+//   the axis (the ball's geometric shadow on the floor);
+// - apparent radius: half the width of the run of pixels on the row through the ball's centre
+//   that differ by more than 2% from the same render without the ball (ideal: the projected
+//   silhouette, computed exactly).
+//
+// Usage: BenchmarkGlassOptics [--quick] (128 x 128, 2^16 photons, half the grid: a smoke run).
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMediumMaterial.h"
+#include "vtkMeshVoxelizer.h"
+#include "vtkNew.h"
+#include "vtkPhotonTracer.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkRefractaEnvironmentMap.h"
+#include "vtkRefractaMedium.h"
+#include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaSurfaceMaterial.h"
+#include "vtkRefractaSurfaceSet.h"
+#include "vtkRefractaViewPass.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace
+{
+using V3 = std::array<double, 3>;
+const V3 BallCentre = { 0.0, 0.05, 0.0 };
+const double BallRadius = 0.42, Index = 1.5, FloorY = -0.8;
+const V3 LightPosition = { 0.0, 3.0, 0.0 };
+const double ConeDegrees = 12.0;
+
+V3 Add(const V3& a, const V3& b, double s = 1.0)
+{
+  return { a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2] };
+}
+double Dot(const V3& a, const V3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+V3 Unit(V3 a)
+{
+  const double l = std::sqrt(Dot(a, a));
+  return { a[0] / l, a[1] / l, a[2] / l };
+}
+
+struct Settings
+{
+  int Size = 256;
+  int Photons = 1 << 18;
+  int Grid[3] = { 80, 76, 80 };
+  int Rays = 4000;
+};
+
+//------------------------------------------------------------------------------
+// The scene through the render pipeline.
+vtkSmartPointer<vtkImageData> Medium(const Settings& s, bool ball, bool exact, bool fog)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(BallCentre.data());
+  sphere->SetRadius(BallRadius);
+  sphere->SetThetaResolution(96);
+  sphere->SetPhiResolution(48);
+  vtkNew<vtkMeshVoxelizer> voxelizer;
+  voxelizer->AddInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkMediumMaterial> glass;
+  glass->SetRefractiveIndex(ball ? Index : 1.0);
+  glass->SetExtinction(ball ? 0.02 : 0.0, ball ? 0.02 : 0.0, ball ? 0.02 : 0.0);
+  voxelizer->SetMaterial(0, glass);
+  vtkNew<vtkMediumMaterial> surrounding;
+  if (fog)
+  {
+    surrounding->SetExtinction(0.35, 0.35, 0.35);
+    surrounding->SetAlbedo(0.9, 0.9, 0.9);
+    surrounding->SetAnisotropy(0.3);
+  }
+  voxelizer->SetSurroundingMaterial(surrounding);
+  voxelizer->SetDimensions(s.Grid[0], s.Grid[1], s.Grid[2]);
+  voxelizer->SetBounds(-1, 1, -0.9, 1, -1, 1);
+  voxelizer->SetInterfaceMode(
+    exact ? vtkMeshVoxelizer::EXACT_INTERFACES : vtkMeshVoxelizer::SMOOTHED_INDEX);
+  voxelizer->Update();
+  auto medium = vtkSmartPointer<vtkImageData>::New();
+  medium->ShallowCopy(voxelizer->GetOutput());
+  return medium;
+}
+
+void SetCamera(vtkCamera* camera)
+{
+  camera->SetPosition(0.0, 0.55, 3.2);
+  camera->SetFocalPoint(0.0, -0.1, 0.0);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetViewAngle(34);
+}
+
+struct Render
+{
+  std::vector<float> Image; // RGBA, row 0 at the bottom
+  double Seconds = 0;
+};
+
+Render RenderScene(const Settings& s, bool ball, bool exact, bool fog)
+{
+  vtkNew<vtkRefractaRenderPipeline> pipeline;
+  pipeline->SetMedium(Medium(s, ball, exact, fog));
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-1.2, FloorY, -1.2);
+  plane->SetPoint1(1.2, FloorY, -1.2);
+  plane->SetPoint2(-1.2, FloorY, 1.2);
+  plane->Update();
+  vtkNew<vtkRefractaSurfaceMaterial> floor;
+  floor->SetAlbedo(0.8, 0.8, 0.8);
+  vtkNew<vtkRefractaSurfaceSet> surfaces;
+  surfaces->AddSurface(plane->GetOutput(), floor);
+  pipeline->SetSurfaces(surfaces);
+  vtkNew<vtkLight> spot;
+  spot->SetLightTypeToSceneLight();
+  spot->SetPositional(true);
+  spot->SetPosition(LightPosition.data());
+  spot->SetFocalPoint(0, 0, 0);
+  spot->SetConeAngle(ConeDegrees);
+  spot->SetExponent(1);
+  spot->SetIntensity(60);
+  pipeline->AddLight(spot);
+  vtkNew<vtkCamera> camera;
+  SetCamera(camera);
+  pipeline->SetCamera(camera);
+  pipeline->GetPhotonTracer()->SetNumberOfPhotons(s.Photons);
+  // The default scene's checkerboard behind (seen, not lighting): it makes the ball visible
+  // against the render without it.
+  const double color1[3] = { 0.9, 0.85, 0.75 }, color2[3] = { 0.08, 0.12, 0.3 };
+  pipeline->GetViewPass()->SetEnvironmentMap(
+    vtkRefractaEnvironmentMap::MakeChecker(24, 12, color1, color2));
+  const auto t0 = std::chrono::steady_clock::now();
+  Render r;
+  if (pipeline->Render(s.Size, s.Size))
+  {
+    r.Image = pipeline->GetImage();
+  }
+  r.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+//------------------------------------------------------------------------------
+// The camera's rays and the floor, in pixel coordinates (x, y in [0, size), pixel i covering
+// [i, i + 1), row 0 at the bottom).
+struct View
+{
+  V3 Eye, Forward, Right, Up;
+  double Tan;
+  int Size;
+
+  explicit View(int size)
+    : Size(size)
+  {
+    vtkNew<vtkCamera> c;
+    SetCamera(c);
+    double p[3], f[3], u[3];
+    c->GetPosition(p);
+    c->GetFocalPoint(f);
+    c->GetViewUp(u);
+    Eye = { p[0], p[1], p[2] };
+    Forward = Unit(Add({ f[0], f[1], f[2] }, Eye, -1.0));
+    V3 up = { u[0], u[1], u[2] };
+    Right = Unit({ Forward[1] * up[2] - Forward[2] * up[1], Forward[2] * up[0] - Forward[0] * up[2],
+      Forward[0] * up[1] - Forward[1] * up[0] });
+    Up = { Right[1] * Forward[2] - Right[2] * Forward[1],
+      Right[2] * Forward[0] - Right[0] * Forward[2],
+      Right[0] * Forward[1] - Right[1] * Forward[0] };
+    Tan = std::tan(vtkMath::RadiansFromDegrees(34.0) / 2);
+  }
+
+  V3 Ray(double x, double y) const
+  {
+    const double sx = (2.0 * x / Size - 1.0) * Tan, sy = (2.0 * y / Size - 1.0) * Tan;
+    return Unit(Add(Add(Forward, Right, sx), Up, sy));
+  }
+
+  // Floor point seen along the ray through (x, y); false when the ray misses the floor.
+  bool Floor(double x, double y, V3& hit) const
+  {
+    const V3 d = Ray(x, y);
+    if (d[1] >= 0)
+    {
+      return false;
+    }
+    hit = Add(Eye, d, (FloorY - Eye[1]) / d[1]);
+    return std::abs(hit[0]) <= 1.2 && std::abs(hit[2]) <= 1.2;
+  }
+
+  // Pixel coordinates of a world point.
+  void Project(const V3& p, double& x, double& y) const
+  {
+    const V3 v = Add(p, Eye, -1.0);
+    const double z = Dot(v, Forward);
+    x = (Dot(v, Right) / (z * Tan) + 1.0) * 0.5 * Size;
+    y = (Dot(v, Up) / (z * Tan) + 1.0) * 0.5 * Size;
+  }
+
+  // Whether the pixel's centre ray meets the ball.
+  bool SeesBall(int i, int j) const
+  {
+    const V3 d = Ray(i + 0.5, j + 0.5);
+    const V3 oc = Add(Eye, BallCentre, -1.0);
+    const double b = Dot(oc, d), c = Dot(oc, oc) - BallRadius * BallRadius;
+    return b * b - c > 0 && -b > 0;
+  }
+};
+
+//------------------------------------------------------------------------------
+// Ideal geometric optics on the floor.
+double Fresnel(double cosI, double etaI, double etaT)
+{
+  const double sinT = etaI / etaT * std::sqrt(std::max(0.0, 1.0 - cosI * cosI));
+  if (sinT >= 1.0)
+  {
+    return 1.0;
+  }
+  const double cosT = std::sqrt(1.0 - sinT * sinT);
+  const double rs = (etaI * cosI - etaT * cosT) / (etaI * cosI + etaT * cosT);
+  const double rp = (etaI * cosT - etaT * cosI) / (etaI * cosT + etaT * cosI);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+// Distance along the unit d from o to the sphere (the far side when inside); < 0: none.
+double HitBall(const V3& o, const V3& d, bool inside)
+{
+  const V3 oc = Add(o, BallCentre, -1.0);
+  const double b = Dot(oc, d), c = Dot(oc, oc) - BallRadius * BallRadius;
+  const double disc = b * b - c;
+  if (disc <= 0)
+  {
+    return -1;
+  }
+  const double t = inside ? -b + std::sqrt(disc) : -b - std::sqrt(disc);
+  return t > 1e-9 ? t : -1;
+}
+
+struct IdealFloor
+{
+  double Cell = 0.002;
+  int N = 0;
+  std::vector<double> Flux; // power through the ball landing in each floor cell (x, z)
+
+  IdealFloor()
+  {
+    N = static_cast<int>(std::ceil(2.4 / Cell));
+    Flux.assign(static_cast<size_t>(N) * N, 0.0);
+  }
+
+  // Spot intensity (I0 = 1) at angle theta from the axis (straight down).
+  static double Intensity(const V3& d)
+  {
+    return -d[1] >= std::cos(vtkMath::RadiansFromDegrees(ConeDegrees)) ? -d[1] : 0.0;
+  }
+
+  // Follows a ray of power w through the ball (both Fresnel branches, up to `depth` interfaces)
+  // and bins what lands on the floor.
+  void Follow(V3 o, V3 d, double w, bool inside, int depth)
+  {
+    const double t = HitBall(o, d, inside);
+    if (t < 0 || depth == 0)
+    {
+      if (!inside && d[1] < 0)
+      {
+        const V3 p = Add(o, d, (FloorY - o[1]) / d[1]);
+        const int i = static_cast<int>(std::floor((p[0] + 1.2) / Cell));
+        const int k = static_cast<int>(std::floor((p[2] + 1.2) / Cell));
+        if (i >= 0 && i < N && k >= 0 && k < N)
+        {
+          Flux[i + static_cast<size_t>(N) * k] += w;
+        }
+      }
+      return;
+    }
+    const V3 p = Add(o, d, t);
+    V3 n = Unit(Add(p, BallCentre, -1.0));
+    if (inside)
+    {
+      n = { -n[0], -n[1], -n[2] };
+    }
+    const double etaI = inside ? Index : 1.0, etaT = inside ? 1.0 : Index;
+    const double cosI = -Dot(d, n);
+    const double r = Fresnel(cosI, etaI, etaT);
+    const V3 reflected = Add(d, n, 2 * cosI);
+    Follow(p, reflected, w * r, inside, depth - 1);
+    if (r < 1)
+    {
+      const double eta = etaI / etaT;
+      const double k = 1 - eta * eta * (1 - cosI * cosI);
+      const V3 refracted =
+        Unit(Add(V3{ eta * d[0], eta * d[1], eta * d[2] }, n, eta * cosI - std::sqrt(k)));
+      Follow(p, refracted, w * (1 - r), !inside, depth - 1);
+    }
+  }
+
+  // Traces the light's rays that meet the ball: stratified over the cone (uniform in the cosine
+  // and the azimuth, so each ray carries I(theta) d omega).
+  void Trace(int rays)
+  {
+    const double cosCone = std::cos(vtkMath::RadiansFromDegrees(ConeDegrees));
+    const double domega = 2 * vtkMath::Pi() * (1 - cosCone) / (double(rays) * rays);
+    for (int a = 0; a < rays; ++a)
+    {
+      const double c = 1 - (a + 0.5) / rays * (1 - cosCone);
+      const double sn = std::sqrt(1 - c * c);
+      for (int b = 0; b < rays; ++b)
+      {
+        const double phi = 2 * vtkMath::Pi() * (b + 0.5) / rays;
+        const V3 d = { sn * std::cos(phi), -c, sn * std::sin(phi) };
+        if (HitBall(LightPosition, d, false) > 0)
+        {
+          Follow(LightPosition, d, Intensity(d) * domega, false, 6);
+        }
+      }
+    }
+  }
+
+  // Irradiance at a floor point: the direct light (analytic, zero in the ball's shadow) plus the
+  // binned light through the ball.
+  double E(const V3& p) const
+  {
+    const V3 toP = Add(p, LightPosition, -1.0);
+    const double r2 = Dot(toP, toP);
+    const V3 d = Unit(toP);
+    double e = 0;
+    if (HitBall(LightPosition, d, false) < 0)
+    {
+      e = Intensity(d) * (-d[1]) / r2; // floor normal (0, 1, 0)
+    }
+    const int i = static_cast<int>(std::floor((p[0] + 1.2) / Cell));
+    const int k = static_cast<int>(std::floor((p[2] + 1.2) / Cell));
+    if (i >= 0 && i < N && k >= 0 && k < N)
+    {
+      e += Flux[i + static_cast<size_t>(N) * k] / (Cell * Cell);
+    }
+    return e;
+  }
+};
+
+//------------------------------------------------------------------------------
+// Per-pixel floor irradiance images (-1 where the pixel does not see the floor directly).
+std::vector<double> IdealImage(const View& view, const IdealFloor& floor)
+{
+  const int n = view.Size;
+  std::vector<double> image(static_cast<size_t>(n) * n, -1.0);
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      if (view.SeesBall(i, j))
+      {
+        continue;
+      }
+      double sum = 0;
+      int count = 0;
+      for (int sy = 0; sy < 4; ++sy)
+      {
+        for (int sx = 0; sx < 4; ++sx)
+        {
+          V3 p;
+          if (view.Floor(i + (sx + 0.5) / 4, j + (sy + 0.5) / 4, p))
+          {
+            sum += floor.E(p);
+            ++count;
+          }
+        }
+      }
+      if (count == 16)
+      {
+        image[i + static_cast<size_t>(n) * j] = sum / 16;
+      }
+    }
+  }
+  return image;
+}
+
+std::vector<double> RenderedImage(const View& view, const Render& r)
+{
+  const int n = view.Size;
+  std::vector<double> image(static_cast<size_t>(n) * n, -1.0);
+  for (int j = 0; j < n && !r.Image.empty(); ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      V3 p;
+      if (!view.SeesBall(i, j) && view.Floor(i + 0.5, j + 0.5, p))
+      {
+        image[i + static_cast<size_t>(n) * j] = r.Image[4 * (i + static_cast<size_t>(n) * j)];
+      }
+    }
+  }
+  return image;
+}
+
+//------------------------------------------------------------------------------
+struct Figures
+{
+  double FwhmX = 0, FwhmY = 0, PeakOverLit = 0, ShadowOverLit = 0, UnderOverLit = 0;
+  double Radius = 0;
+};
+
+// Mean over the pixels whose floor point (centre ray) is between r0 and r1 from the axis.
+double RingMean(const View& view, const std::vector<double>& image, double r0, double r1)
+{
+  double sum = 0;
+  int count = 0;
+  for (int j = 0; j < view.Size; ++j)
+  {
+    for (int i = 0; i < view.Size; ++i)
+    {
+      V3 p;
+      const double e = image[i + static_cast<size_t>(view.Size) * j];
+      if (e >= 0 && view.Floor(i + 0.5, j + 0.5, p))
+      {
+        const double r = std::hypot(p[0], p[2]);
+        if (r >= r0 && r < r1)
+        {
+          sum += e;
+          ++count;
+        }
+      }
+    }
+  }
+  return count ? sum / count : 0.0;
+}
+
+// Width of the run of values >= half around index `peak` of the line `values` (ends linear).
+double Fwhm(const std::vector<double>& values, int peak)
+{
+  const double half = 0.5 * values[peak];
+  auto edge = [&](int step)
+  {
+    int k = peak;
+    while (k + step >= 0 && k + step < static_cast<int>(values.size()) && values[k + step] >= half)
+    {
+      k += step;
+    }
+    const int out = k + step;
+    if (out < 0 || out >= static_cast<int>(values.size()) || values[out] < 0)
+    {
+      return double(k) + 0.5 * step;
+    }
+    // Linear between the last pixel above and the first below.
+    const double f = (values[k] - half) / (values[k] - values[out]);
+    return k + step * f;
+  };
+  return edge(1) - edge(-1);
+}
+
+Figures Measure(const View& view, const std::vector<double>& image)
+{
+  Figures f;
+  const int n = view.Size;
+  auto at = [&](int i, int j) { return image[i + static_cast<size_t>(n) * j]; };
+  double lx, ly;
+  view.Project({ 0.6, FloorY, 0.0 }, lx, ly);
+  double lit = 0;
+  for (int dj = -1; dj <= 1; ++dj)
+  {
+    for (int di = -1; di <= 1; ++di)
+    {
+      lit += at(static_cast<int>(lx) + di, static_cast<int>(ly) + dj) / 9;
+    }
+  }
+  int pi = -1, pj = -1;
+  double peak = -1;
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      V3 p;
+      if (at(i, j) > peak && view.Floor(i + 0.5, j + 0.5, p) && std::hypot(p[0], p[2]) < 0.3)
+      {
+        peak = at(i, j);
+        pi = i;
+        pj = j;
+      }
+    }
+  }
+  if (pi < 0 || !(lit > 0))
+  {
+    return f;
+  }
+  std::vector<double> row(n), column(n);
+  for (int k = 0; k < n; ++k)
+  {
+    row[k] = at(k, pj);
+    column[k] = at(pi, k);
+  }
+  f.FwhmX = Fwhm(row, pi);
+  f.FwhmY = Fwhm(column, pj);
+  f.PeakOverLit = peak / lit;
+  f.ShadowOverLit = RingMean(view, image, 0.40, 0.48) / lit;
+  f.UnderOverLit = RingMean(view, image, 0.0, 0.55) / lit;
+  return f;
+}
+
+// Apparent radius: half the run of pixels on the ball's centre row that differ by > 2% from
+// the render without the ball.
+double ApparentRadius(const View& view, const Render& with, const Render& without)
+{
+  double cx, cy;
+  view.Project(BallCentre, cx, cy);
+  const int j = static_cast<int>(cy), n = view.Size;
+  int first = -1, last = -1;
+  for (int i = 0; i < n && !with.Image.empty() && !without.Image.empty(); ++i)
+  {
+    const size_t p = 4 * (i + static_cast<size_t>(n) * j);
+    double diff = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double a = with.Image[p + c], b = without.Image[p + c];
+      diff = std::max(diff, std::abs(a - b) / std::max(b, 1e-3));
+    }
+    if (diff > 0.02)
+    {
+      first = first < 0 ? i : first;
+      last = i;
+    }
+  }
+  return first < 0 ? 0.0 : 0.5 * (last - first + 1);
+}
+
+// The exact silhouette radius (pixels) of the ball seen by the view.
+double IdealRadius(const View& view)
+{
+  const V3 toC = Add(BallCentre, view.Eye, -1.0);
+  const double dist = std::sqrt(Dot(toC, toC));
+  const double half = std::asin(BallRadius / dist);
+  // The silhouette cone's half angle about the centre direction; measured along the image row
+  // through the centre projection (the cone's edge rays in the plane of Right).
+  const V3 c = Unit(toC);
+  const V3 side = Unit({ view.Right[0] - Dot(view.Right, c) * c[0],
+    view.Right[1] - Dot(view.Right, c) * c[1], view.Right[2] - Dot(view.Right, c) * c[2] });
+  double x0, x1, y;
+  const V3 a = Add(view.Eye,
+    Add(V3{ c[0] * std::cos(half), c[1] * std::cos(half), c[2] * std::cos(half) }, side,
+      std::sin(half)));
+  const V3 b = Add(view.Eye,
+    Add(V3{ c[0] * std::cos(half), c[1] * std::cos(half), c[2] * std::cos(half) }, side,
+      -std::sin(half)));
+  view.Project(a, x1, y);
+  view.Project(b, x0, y);
+  return 0.5 * (x1 - x0);
+}
+
+void PrintRow(const char* name, const Figures& f, double seconds)
+{
+  std::printf("| %-22s | %5.1f x %-5.1f | %7.1f | %6.3f | %6.3f | %6.1f | %s |\n", name, f.FwhmX,
+    f.FwhmY, f.PeakOverLit, f.ShadowOverLit, f.UnderOverLit, f.Radius,
+    seconds > 0 ? (std::to_string(seconds).substr(0, 5) + " s").c_str() : "-");
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Settings s;
+  for (int a = 1; a < argc; ++a)
+  {
+    if (std::strcmp(argv[a], "--quick") == 0)
+    {
+      s.Size = 128;
+      s.Photons = 1 << 16;
+      s.Grid[0] = 40;
+      s.Grid[1] = 38;
+      s.Grid[2] = 40;
+      s.Rays = 1000;
+    }
+    else
+    {
+      std::fprintf(stderr, "usage: BenchmarkGlassOptics [--quick]\n");
+      return 2;
+    }
+  }
+  const View view(s.Size);
+  IdealFloor floor;
+  floor.Trace(s.Rays);
+  Figures ideal = Measure(view, IdealImage(view, floor));
+  ideal.Radius = IdealRadius(view);
+
+  std::printf("Default scene without fog, uniform floor; %d x %d pixels, %d photons\n\n", s.Size,
+    s.Size, s.Photons);
+  std::printf(
+    "| interfaces | caustic FWHM x / y (px) | caustic peak / lit | shadow / lit | under the "
+    "ball / lit | apparent radius (px) | render time |\n|---|---|---|---|---|---|---|\n");
+  PrintRow("ideal optics", ideal, 0);
+  const Render without = RenderScene(s, false, true, false);
+  bool ok = !without.Image.empty();
+  for (bool exact : { false, true })
+  {
+    const Render r = RenderScene(s, true, exact, false);
+    ok = ok && !r.Image.empty();
+    Figures f = Measure(view, RenderedImage(view, r));
+    f.Radius = ApparentRadius(view, r, without);
+    PrintRow(exact ? "exact (default)" : "smoothed (paper)", f, r.Seconds);
+  }
+  // The real default scene (with its fog): time only, both modes, in the same run.
+  std::printf("\nDefault scene with its fog (time of the full pipeline, same run):\n");
+  for (bool exact : { false, true })
+  {
+    const Render r = RenderScene(s, true, exact, true);
+    ok = ok && !r.Image.empty();
+    std::printf("  %-16s %.2f s\n", exact ? "exact" : "smoothed", r.Seconds);
+  }
+  return ok ? 0 : 1;
+}
