@@ -96,6 +96,26 @@ std::vector<double> Vector(const json& object, const std::string& key, const std
   return out;
 }
 
+std::vector<int> IntegerVector(const json& object, const std::string& key, const std::string& path,
+  std::vector<int> fallback, size_t size, int lo, int hi)
+{
+  const auto values = Vector(object, key, path, {}, size, lo, hi);
+  if (values.empty())
+  {
+    return fallback;
+  }
+  std::vector<int> out;
+  for (size_t i = 0; i < size; ++i)
+  {
+    if (!object[key][i].is_number_integer())
+    {
+      Fail(path + "." + key + "[" + std::to_string(i) + "]", "must be an integer");
+    }
+    out.push_back(static_cast<int>(values[i]));
+  }
+  return out;
+}
+
 std::vector<double> Bounds(const json& object, const std::string& key, const std::string& path)
 {
   auto bounds = Vector(object, key, path, {}, 6, -1e30, 1e30);

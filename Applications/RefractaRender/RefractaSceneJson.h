@@ -39,6 +39,11 @@ int Integer(const json& object, const std::string& key, const std::string& path,
 std::vector<double> Vector(const json& object, const std::string& key, const std::string& path,
   std::vector<double> fallback, size_t size, double lo, double hi);
 
+/// object[key] as an array of `size` integers in [lo, hi], or `fallback` where the key is absent
+/// (a fractional entry is an error, not truncated).
+std::vector<int> IntegerVector(const json& object, const std::string& key, const std::string& path,
+  std::vector<int> fallback, size_t size, int lo, int hi);
+
 /// object[key] as bounds (xmin, xmax, ymin, ymax, zmin, zmax), every min below its max; empty
 /// where the key is absent.
 std::vector<double> Bounds(const json& object, const std::string& key, const std::string& path);

@@ -141,12 +141,12 @@ bool ReadBackground(const json& scene, const std::string& base, vtkRefractaImage
     const json& c = bg["checker"];
     const std::string p = "scene.background.checker";
     CheckKeys(c, p, { "squares", "color1", "color2" });
-    auto squares = Vector(c, "squares", p, { 16, 8 }, 2, 1, 512);
+    const auto squares = IntegerVector(c, "squares", p, { 16, 8 }, 2, 1, 512);
     const auto color1 = Vector(c, "color1", p, { 0.9, 0.9, 0.9 }, 3, 0, 1e30);
     const auto color2 = Vector(c, "color2", p, { 0.1, 0.1, 0.1 }, 3, 0, 1e30);
     // Procedural: the passes evaluate the squares per ray (sharp edges at any resolution).
-    renderer->SetEnvironmentMap(vtkRefractaEnvironmentMap::MakeChecker(
-      static_cast<int>(squares[0]), static_cast<int>(squares[1]), color1.data(), color2.data()));
+    renderer->SetEnvironmentMap(
+      vtkRefractaEnvironmentMap::MakeChecker(squares[0], squares[1], color1.data(), color2.data()));
   }
   auto up = Vector(bg, "up", "scene.background", { 0, 1, 0 }, 3, -1e30, 1e30);
   auto right = Vector(bg, "right", "scene.background", { 1, 0, 0 }, 3, -1e30, 1e30);

@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -278,4 +279,83 @@ TEST(EnvironmentConvention, ProceduralCheckerIsExactInBothRenderers)
   std::cout << judged << " pixels judged, " << edges << " of them next to a square edge\n";
   EXPECT_GT(judged, Width * Height * 9 / 10);
   EXPECT_GT(edges, 20);
+}
+
+namespace
+{
+// The share of texel [u0, u1] x [v0, v1] (in square units) covered by odd squares (colour 1):
+// the overlap areas of the squares it touches, summed directly.
+double OddShareOfTexel(double u0, double u1, double v0, double v1)
+{
+  double odd = 0;
+  for (int a = static_cast<int>(std::floor(u0)); a < u1; ++a)
+  {
+    for (int b = static_cast<int>(std::floor(v0)); b < v1; ++b)
+    {
+      const double du = std::min(u1, a + 1.0) - std::max(u0, double(a));
+      const double dv = std::min(v1, b + 1.0) - std::max(v0, double(b));
+      odd += ((a + b) % 2) ? du * dv : 0.0;
+    }
+  }
+  return odd / ((u1 - u0) * (v1 - v0));
+}
+}
+
+// The checker image's texels are the exact area means of the pattern (each against the direct
+// overlap sum above; texels sampled at their centres miss by up to half the colour difference),
+// and, weighted by their solid angles, integrate to the pattern's exact mean radiance over the
+// sphere (what the photon pass emits from the background), computed band by band. Odd square
+// counts: texels straddle u edges; with 301 bands the image holds 2048 rows, so texels straddle
+// v edges too.
+TEST(EnvironmentConvention, CheckerTexelsAreExactAreaMeans)
+{
+  const double color1[3] = { 1.0, 0.5, 0.25 }, color2[3] = { 0.0, 0.125, 2.0 };
+  const int cases[3][2] = { { 3, 5 }, { 7, 3 }, { 5, 301 } };
+  for (const auto& squares : cases)
+  {
+    // Band k (latitudes from k/nv to (k+1)/nv of the way up) has solid-angle share
+    // (sin lat1 - sin lat0) / 2, and its odd squares take their count / nu of it.
+    double oddShare = 0;
+    for (int k = 0; k < squares[1]; ++k)
+    {
+      const double lat0 = (double(k) / squares[1] - 0.5) * vtkMath::Pi();
+      const double lat1 = (double(k + 1) / squares[1] - 0.5) * vtkMath::Pi();
+      int odd = 0;
+      for (int i = 0; i < squares[0]; ++i)
+      {
+        odd += (i + k) % 2;
+      }
+      oddShare += 0.5 * (std::sin(lat1) - std::sin(lat0)) * odd / squares[0];
+    }
+    auto env = vtkRefractaEnvironmentMap::MakeChecker(squares[0], squares[1], color1, color2);
+    int dims[3];
+    env->GetDimensions(dims);
+    vtkDataArray* texels = env->GetPointData()->GetScalars();
+    double mean[3] = { 0, 0, 0 }, worst = 0;
+    for (int j = 0; j < dims[1]; ++j)
+    {
+      const double lat0 = (double(j) / dims[1] - 0.5) * vtkMath::Pi();
+      const double lat1 = (double(j + 1) / dims[1] - 0.5) * vtkMath::Pi();
+      const double omega = 0.5 * (std::sin(lat1) - std::sin(lat0)) / dims[0];
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        const double f1 =
+          OddShareOfTexel(double(i) * squares[0] / dims[0], double(i + 1) * squares[0] / dims[0],
+            double(j) * squares[1] / dims[1], double(j + 1) * squares[1] / dims[1]);
+        for (int c = 0; c < 3; ++c)
+        {
+          const double texel = texels->GetComponent(i + static_cast<vtkIdType>(dims[0]) * j, c);
+          worst = std::max(worst, std::abs(texel - (f1 * color1[c] + (1 - f1) * color2[c])));
+          mean[c] += omega * texel;
+        }
+      }
+    }
+    EXPECT_LT(worst, 1e-6) << squares[0] << " x " << squares[1];
+    for (int c = 0; c < 3; ++c)
+    {
+      const double exact = oddShare * color1[c] + (1 - oddShare) * color2[c];
+      EXPECT_NEAR(mean[c], exact, 1e-6) << squares[0] << " x " << squares[1] << ", channel " << c
+                                        << " (" << dims[0] << " x " << dims[1] << " texels)";
+    }
+  }
 }

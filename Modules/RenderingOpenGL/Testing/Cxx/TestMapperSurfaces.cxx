@@ -46,6 +46,7 @@
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRefractaActorSurfaces.h"
+#include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaRendererBackground.h"
@@ -56,6 +57,7 @@
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
 #include "vtkSphereSource.h"
+#include "vtkTexture.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkVolume.h"
 
@@ -465,4 +467,35 @@ TEST(MapperSurfaces, BackgroundIlluminatesLightsTheActors)
   scene.Renderer->SetBackground(0.25, 0.25, 0.25);
   scene.Window->Render();
   EXPECT_EQ(scene.Mapper->GetNumberOfLightPassRuns(), runs + 2) << "a new sky re-lights";
+}
+
+// The renderer's equirectangular environment texture reaches the view pass as the very image the
+// user gave (no copy, no resampling: full resolution), so a procedural checkerboard
+// (vtkRefractaEnvironmentMap::MakeChecker) stays procedural behind the mapper too, and so does a
+// large image environment.
+TEST(MapperSurfaces, EnvironmentTextureReachesTheViewPassUnchanged)
+{
+  const double color1[3] = { 0.9, 0.9, 0.9 }, color2[3] = { 0.1, 0.1, 0.1 };
+  vtkSmartPointer<vtkImageData> checker =
+    vtkRefractaEnvironmentMap::MakeChecker(24, 12, color1, color2);
+  vtkNew<vtkImageData> large;
+  large->SetDimensions(4096, 2048, 1);
+  large->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  for (vtkImageData* image : { checker.Get(), static_cast<vtkImageData*>(large) })
+  {
+    vtkNew<vtkTexture> texture;
+    texture->SetInputData(image);
+    vtkNew<vtkRenderer> renderer;
+    renderer->UseImageBasedLightingOn();
+    renderer->SetEnvironmentTexture(texture);
+    vtkNew<vtkCamera> camera;
+    vtkNew<vtkRefractaViewPass> pass;
+    vtkNew<vtkRefractaRendererBackground> background;
+    background->Apply(renderer, camera, pass);
+    EXPECT_EQ(background->GetLastSource(), vtkRefractaRendererBackground::ENVIRONMENT_TEXTURE);
+    EXPECT_EQ(pass->GetEnvironmentMap(), image);
+  }
+  int squares[2];
+  double c1[3], c2[3];
+  EXPECT_TRUE(vtkRefractaEnvironmentMap::GetChecker(checker, squares, c1, c2));
 }
