@@ -61,6 +61,16 @@ public:
   static const char* SurfaceIrradianceName() { return "SurfaceIrradiance"; }
 
   /**
+   * Name of the field-data array with the surfaces' caustic irradiance (vtkPhotonTracer's
+   * CausticSubdivision c > 1 and dielectric surfaces only): 3 components and c^2 tuples per texel
+   * of the atlas, the texels of the atlas cut again c x c (fine texel f lies in atlas texel
+   * f / c^2, in the texel order of subdivision n c), the irradiance that caustic photons (an LS+D
+   * path) brought, in power per unit area. The surfaces' irradiance is the sum of both arrays;
+   * c follows from the tuple counts.
+   */
+  static const char* SurfaceCausticIrradianceName() { return "SurfaceCausticIrradiance"; }
+
+  /**
    * Name of the array with the given id, or nullptr for an id out of range.
    */
   static const char* GetArrayName(int id);
