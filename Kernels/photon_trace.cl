@@ -724,23 +724,24 @@ inline void photon_deposit_texel(volatile __global long* irradiance, long texel,
   refracta_atomic_add_fixed(irradiance + 3 * texel + 2, power.z);
 }
 
-// The accumulator texel of a photon meeting Lambertian triangle info at barycentric (u, v):
-// the coarse atlas texel, or for a caustic photon (Physics.md "Caustic atlas") the texel of the
-// fine atlas, where every coarse texel is cut again c x c (c = REFRACTA_CAUSTIC_SUBDIVISION):
-// the same texel order with subdivision n c, fine first texel = coarse first texel c^2, stored
-// after the REFRACTA_CAUSTIC_OFFSET coarse texels.
-inline long photon_deposit_index(const photon_state* ps, int4 info, float u, float v)
-{
 #if REFRACTA_CAUSTIC_SUBDIVISION > 1
+// A caustic photon (Physics.md "Caustic atlas") meeting Lambertian triangle info at barycentric
+// (u, v) also deposits into the fine atlas, where every coarse texel is cut again c x c
+// (c = REFRACTA_CAUSTIC_SUBDIVISION): the same texel order with subdivision n c, fine first
+// texel = coarse first texel c^2, stored after the REFRACTA_CAUSTIC_OFFSET coarse texels. The
+// coarse deposit stays the surface's whole flux; the fine one resolves its caustic part.
+inline void photon_deposit_caustic(const photon_surfaces* s, const photon_state* ps, int4 info,
+  float u, float v)
+{
   if (ps->caustic)
   {
     const int c = REFRACTA_CAUSTIC_SUBDIVISION;
-    return (long)REFRACTA_CAUSTIC_OFFSET + (long)info.x * (c * c) +
-      refracta_texel_index(u, v, info.y * c);
+    photon_deposit_texel(s->irradiance,
+      (long)REFRACTA_CAUSTIC_OFFSET + (long)info.x * (c * c) + refracta_texel_index(u, v, info.y * c),
+      ps->power);
   }
-#endif
-  return (long)info.x + refracta_texel_index(u, v, info.y);
 }
+#endif
 
 // The photon at *x (on the surface) travelling along unit d meets triangle h: deposit, book,
 // roulette on the albedo, and diffuse reflection. Returns -1 (goes on from *x along *dir) or
@@ -762,8 +763,11 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
     photon_interface_interact(ps, x, dir, d, h, s);
     return -1;
   }
-  photon_deposit_texel(s->irradiance, photon_deposit_index(ps, info, h.u, h.v), ps->power);
   const int texel = info.x + refracta_texel_index(h.u, h.v, info.y);
+  photon_deposit_texel(s->irradiance, texel, ps->power);
+#if REFRACTA_CAUSTIC_SUBDIVISION > 1
+  photon_deposit_caustic(s, ps, info, h.u, h.v);
+#endif
   ps->hits++;
   const float3 a = clamp(vload3(texel, s->albedo), 0.0f, 1.0f);
   const float3 reflected = ps->power * a;

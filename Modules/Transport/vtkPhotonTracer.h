@@ -306,12 +306,12 @@ public:
    * Caustic atlas subdivision c (default 4, 1 turns the caustic atlas off; at most 16). A photon
    * whose path since the light or its last diffuse event (Lambertian bounce, volume scattering)
    * met a dielectric interface (an LS+D path, a caustic photon) deposits on a Lambertian
-   * triangle into a finer atlas, every texel of the surface set's atlas cut again c x c
+   * triangle also into a finer atlas, every texel of the surface set's atlas cut again c x c
    * (Documentation/Physics.md "Caustic atlas"); the output then holds the field-data array
    * vtkRefractaLightingVolume::SurfaceCausticIrradianceName() beside SurfaceIrradianceName(),
-   * and the surfaces' flux is the sum of both. Scenes without dielectric surfaces have no caustic
-   * photons: nothing is allocated and the output is unchanged. Memory: 24 c^2 bytes per atlas
-   * texel on the device while tracing, 12 c^2 in the output.
+   * which keeps the whole flux (the fine array resolves its caustic part). Scenes without
+   * dielectric surfaces have no caustic photons: nothing is allocated and the output is unchanged.
+   * Memory: 24 c^2 bytes per atlas texel on the device while tracing, 12 c^2 in the output.
    */
   vtkSetClampMacro(CausticSubdivision, int, 1, 16);
   vtkGetMacro(CausticSubdivision, int);

@@ -132,10 +132,9 @@ bool vtkPhotonTracer::PrepareSurfaces(Internals& run)
 namespace
 {
 // Irradiance of `count` texels from their fixed-point accumulators (3 per texel, at `scale`);
-// texel t has the area of coarse texel t / perCoarse over perCoarse.
-void ResolveTexels(double scale, const cl_long* fixed, vtkIdType count,
-  vtkIdType perCoarse, const std::vector<double>& coarseAreas, vtkFloatArray* out,
-  const char* name)
+// texel t has the area of coarse texel t / perCoarse over perCoarse (same triangle, same area).
+void ResolveTexels(double scale, const cl_long* fixed, vtkIdType count, vtkIdType perCoarse,
+  const std::vector<double>& coarseAreas, vtkFloatArray* out, const char* name)
 {
   out->SetName(name);
   out->SetNumberOfComponents(3);
@@ -283,8 +282,8 @@ bool vtkPhotonTracer::ResolveSurfaces(Internals& run)
     vtkRefractaLightingVolume::SurfaceIrradianceName());
   if (fine > 0)
   {
-    // Fine texel f lies in coarse texel f / c^2 (fine first texel = coarse first texel c^2, and
-    // the n^2 c^2 fine texels of a triangle cut each coarse one into c^2 of equal area).
+    // A triangle's texels all have one area, and its fine texels (from its first texel c^2 on,
+    // subdivision n c) 1 / c^2 of it: fine texel f has the area of coarse texel f / c^2 over c^2.
     ResolveTexels(run.Scale, fixed.data() + 3 * texels, fine, c2, areas, run.CausticIrradiance,
       vtkRefractaLightingVolume::SurfaceCausticIrradianceName());
   }
