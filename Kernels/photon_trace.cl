@@ -222,6 +222,7 @@ typedef struct
   uint pieces;
   uint hits; // surface hits
   uint interfaces; // dielectric interface events (REFRACTA_MAX_INTERFACES ends a trapped photon)
+  int caustic;     // met a dielectric interface since the light or its last diffuse event
   int dead;
   int order;                               // scatterings since the light or the last surface
   int collided;                            // analog: scattered in the last piece
@@ -712,7 +713,35 @@ inline void photon_interface_interact(photon_state* ps, float3* x, float3* dir, 
       (transmitted ? PHOTON_COUNTER_INTERFACE_TRANSMISSIONS : PHOTON_COUNTER_INTERFACE_REFLECTIONS),
     1L);
   *x += s->epsilon * (dot(*dir, ng) > 0.0f ? ng : -ng);
+  ps->caustic = 1; // an LS+D path from here on, reflected or refracted
 }
+
+// Deposits the photon's power into the fixed-point accumulators of `texel` (3 per texel).
+inline void photon_deposit_texel(volatile __global long* irradiance, long texel, float3 power)
+{
+  refracta_atomic_add_fixed(irradiance + 3 * texel, power.x);
+  refracta_atomic_add_fixed(irradiance + 3 * texel + 1, power.y);
+  refracta_atomic_add_fixed(irradiance + 3 * texel + 2, power.z);
+}
+
+#if REFRACTA_CAUSTIC_SUBDIVISION > 1
+// A caustic photon (Physics.md "Caustic atlas") meeting Lambertian triangle info at barycentric
+// (u, v) also deposits into the fine atlas, where every coarse texel is cut again c x c
+// (c = REFRACTA_CAUSTIC_SUBDIVISION): the same texel order with subdivision n c, fine first
+// texel = coarse first texel c^2, stored after the REFRACTA_CAUSTIC_OFFSET coarse texels. The
+// coarse deposit stays the surface's whole flux; the fine one resolves its caustic part.
+inline void photon_deposit_caustic(const photon_surfaces* s, const photon_state* ps, int4 info,
+  float u, float v)
+{
+  if (ps->caustic)
+  {
+    const int c = REFRACTA_CAUSTIC_SUBDIVISION;
+    photon_deposit_texel(s->irradiance,
+      (long)REFRACTA_CAUSTIC_OFFSET + (long)info.x * (c * c) + refracta_texel_index(u, v, info.y * c),
+      ps->power);
+  }
+}
+#endif
 
 // The photon at *x (on the surface) travelling along unit d meets triangle h: deposit, book,
 // roulette on the albedo, and diffuse reflection. Returns -1 (goes on from *x along *dir) or
@@ -735,9 +764,10 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
     return -1;
   }
   const int texel = info.x + refracta_texel_index(h.u, h.v, info.y);
-  refracta_atomic_add_fixed(s->irradiance + 3 * texel, ps->power.x);
-  refracta_atomic_add_fixed(s->irradiance + 3 * texel + 1, ps->power.y);
-  refracta_atomic_add_fixed(s->irradiance + 3 * texel + 2, ps->power.z);
+  photon_deposit_texel(s->irradiance, texel, ps->power);
+#if REFRACTA_CAUSTIC_SUBDIVISION > 1
+  photon_deposit_caustic(s, ps, info, h.u, h.v);
+#endif
   ps->hits++;
   const float3 a = clamp(vload3(texel, s->albedo), 0.0f, 1.0f);
   const float3 reflected = ps->power * a;
@@ -754,6 +784,7 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
   ps->gained += boosted - ps->power;
   ps->power = boosted;
   ps->order = 0; // a new beam: its first scattering is S1 again
+  ps->caustic = 0;
   // The normal in the grid-local frame (R^T n), turned towards the side the photon came from.
   const float3 ns = refracta_triangle_normal(s->triangles, h.triangle);
   float3 n = normalize(ns.x * s->row0.xyz + ns.y * s->row1.xyz + ns.z * s->row2.xyz);
@@ -796,6 +827,7 @@ inline void photon_scatter(photon_state* ps, float3* x, float3* v, float3 d, flo
   *v = photon_velocity(*x, dir, lo, hi, refractiveIndex, dims, spacing);
   ps->collided = 0;
   ps->order++;
+  ps->caustic = 0; // scattered in the volume: a diffuse event
 }
 #endif
 
@@ -946,6 +978,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   ps.pieces = 0;
   ps.hits = 0;
   ps.interfaces = 0;
+  ps.caustic = 0;
   ps.dead = 0;
   photon_init_analog(&ps, anisotropy, multiple, 0);
   const float3 emitted = ps.power;
@@ -1056,6 +1089,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.pieces = 0;
     ps.hits = 0;
     ps.interfaces = 0;
+    ps.caustic = 0;
     photon_init_analog(&ps, anisotropy, multiple, 0);
     emitted = ps.power;
     x = photonPos[id].xyz;
@@ -1094,6 +1128,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.surface = s[8].xyz;
     ps.hits = as_uint(s[8].w);
     ps.interfaces = as_uint(s[3].w);
+    ps.caustic = as_int(s[5].w);
     ps.rng = st.z;
     ps.pieces = st.w;
     photon_init_analog(&ps, anisotropy, multiple, as_int(s[4].w));
@@ -1157,7 +1192,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     s[2] = (float4)(ps.power, ps.threshold);
     s[3] = (float4)(ps.absorbed, as_float(ps.interfaces));
     s[4] = (float4)(ps.scattered, as_float(ps.order));
-    s[5] = (float4)(ps.killed, 0.0f);
+    s[5] = (float4)(ps.killed, as_float(ps.caustic));
     s[6] = (float4)(ps.gained, 0.0f);
     s[7] = (float4)(emitted, 0.0f);
     s[8] = (float4)(ps.surface, as_float(ps.hits));

@@ -61,6 +61,19 @@ public:
   static const char* SurfaceIrradianceName() { return "SurfaceIrradiance"; }
 
   /**
+   * Name of the field-data array with the surfaces' caustic irradiance (vtkPhotonTracer's
+   * CausticSubdivision c > 1 and dielectric surfaces only): 3 components and c^2 tuples per texel
+   * of the atlas, every triangle's texels cut again c x c (a triangle of subdivision n and first
+   * texel t has the fine texels c^2 t onwards in the texel order of subdivision n c, each inside
+   * one of its atlas texels, with 1 / c^2 of its area), the irradiance that caustic photons (an
+   * LS+D path) brought, in power per unit area. SurfaceIrradianceName() still holds all the light
+   * (caustic included), so a reader that ignores this array sees the surfaces as before; the
+   * fine texels of an atlas texel sum (flux) to its caustic part. c follows from the tuple
+   * counts.
+   */
+  static const char* SurfaceCausticIrradianceName() { return "SurfaceCausticIrradiance"; }
+
+  /**
    * Name of the array with the given id, or nullptr for an id out of range.
    */
   static const char* GetArrayName(int id);

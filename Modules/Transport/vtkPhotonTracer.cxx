@@ -340,8 +340,12 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DREFRACTA_MAX_TURN=" << FloatLiteral(this->MaximumTurn)
           << " -DREFRACTA_STEP_TOLERANCE=" << FloatLiteral(this->StepTolerance)
           << " -DREFRACTA_MAX_HALVINGS=" << (this->StepTolerance > 0 ? MaximumHalvings : 0);
-  options << " -DREFRACTA_SURFACES=" << (run.Surfaces ? 1 : 0) << " -DREFRACTA_INTERFACES="
-          << (run.Surfaces && run.Surfaces->GetNumberOfDielectricTriangles() > 0 ? 1 : 0);
+  const bool interfaces = run.Surfaces && run.Surfaces->GetNumberOfDielectricTriangles() > 0;
+  options << " -DREFRACTA_SURFACES=" << (run.Surfaces ? 1 : 0)
+          << " -DREFRACTA_INTERFACES=" << (interfaces ? 1 : 0);
+  run.Caustic = interfaces ? this->CausticSubdivision : 1;
+  options << " -DREFRACTA_CAUSTIC_SUBDIVISION=" << run.Caustic << " -DREFRACTA_CAUSTIC_OFFSET="
+          << (run.Caustic > 1 ? run.Surfaces->GetNumberOfTexels() : 0);
   run.Analog = this->AnalogScattering && run.Surfaces && m.Scatters;
   options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0);
   run.Trace =
@@ -829,6 +833,7 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNumberOfSteps: " << this->MaximumNumberOfSteps << "\n";
   os << indent << "MaximumNumberOfInterfaceEvents: " << this->MaximumNumberOfInterfaceEvents
      << "\n";
+  os << indent << "CausticSubdivision: " << this->CausticSubdivision << "\n";
   os << indent << "MaximumTurn: " << this->MaximumTurn << "\n";
   os << indent << "StepTolerance: " << this->StepTolerance << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";

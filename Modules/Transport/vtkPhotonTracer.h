@@ -303,6 +303,22 @@ public:
 
   ///@{
   /**
+   * Caustic atlas subdivision c (default 4, 1 turns the caustic atlas off; at most 16). A photon
+   * whose path since the light or its last diffuse event (Lambertian bounce, volume scattering)
+   * met a dielectric interface (an LS+D path, a caustic photon) deposits on a Lambertian
+   * triangle also into a finer atlas, every texel of the surface set's atlas cut again c x c
+   * (Documentation/Physics.md "Caustic atlas"); the output then holds the field-data array
+   * vtkRefractaLightingVolume::SurfaceCausticIrradianceName() beside SurfaceIrradianceName(),
+   * which keeps the whole flux (the fine array resolves its caustic part). Scenes without
+   * dielectric surfaces have no caustic photons: nothing is allocated and the output is unchanged.
+   * Memory: 24 c^2 bytes per atlas texel on the device while tracing, 12 c^2 in the output.
+   */
+  vtkSetClampMacro(CausticSubdivision, int, 1, 16);
+  vtkGetMacro(CausticSubdivision, int);
+  ///@}
+
+  ///@{
+  /**
    * Largest change of v = n dx/ds in one step, as a fraction of n (default 0.5): a steep index
    * step turns a ray over a few steps instead of throwing it out of the grid.
    */
@@ -504,6 +520,7 @@ protected:
   double RouletteThreshold = 0.001;
   int MaximumNumberOfSteps = 10000;
   int MaximumNumberOfInterfaceEvents = 64;
+  int CausticSubdivision = 4;
   double MaximumTurn = 0.5;
   double StepTolerance = 0.02;
   bool Smoothing = true;

@@ -191,6 +191,10 @@ struct vtkPhotonTracer::Internals
   cl_float4 Frame[3];
   double SurfaceEpsilon = 0;
   vtkNew<vtkFloatArray> Irradiance;
+  // Caustic atlas (vtkPhotonTracer::CausticSubdivision): c of this run, 1 when off (no
+  // dielectric surfaces); its accumulators follow the coarse ones in SurfIrradiance.
+  int Caustic = 1;
+  vtkNew<vtkFloatArray> CausticIrradiance;
   // Analog scattering (vtkPhotonTracer::AnalogScattering): whether this run uses it, g per voxel
   // on the device, the S_ms accumulators (fixed point, 3 per voxel) and the resolved S_ms.
   bool Analog = false;

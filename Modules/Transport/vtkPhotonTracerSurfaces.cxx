@@ -129,6 +129,30 @@ bool vtkPhotonTracer::PrepareSurfaces(Internals& run)
   return true;
 }
 
+namespace
+{
+// Irradiance of `count` texels from their fixed-point accumulators (3 per texel, at `scale`);
+// texel t has the area of coarse texel t / perCoarse over perCoarse (same triangle, same area).
+void ResolveTexels(double scale, const cl_long* fixed, vtkIdType count, vtkIdType perCoarse,
+  const std::vector<double>& coarseAreas, vtkFloatArray* out, const char* name)
+{
+  out->SetName(name);
+  out->SetNumberOfComponents(3);
+  out->SetNumberOfTuples(count);
+  for (vtkIdType t = 0; t < count; ++t)
+  {
+    const double area = coarseAreas[t / perCoarse] / static_cast<double>(perCoarse);
+    for (int c = 0; c < 3; ++c)
+    {
+      // Deposited flux / texel area; rounding of the fixed point can leave a tiny negative.
+      const double flux = static_cast<double>(fixed[3 * t + c]) / scale;
+      out->SetTypedComponent(t, c, static_cast<float>(std::max(flux, 0.0) / area));
+    }
+  }
+}
+
+}
+
 //------------------------------------------------------------------------------
 bool vtkPhotonTracer::UploadSurfaces(Internals& run)
 {
@@ -188,7 +212,10 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
       in, interfaces.size() * sizeof(float), interfaces.data(), "surface interface indices");
   }
   this->KeptSurfaces.reset();
-  const size_t accumulators = 3 * static_cast<size_t>(set->GetNumberOfTexels());
+  // The caustic atlas's c^2 fine texels per coarse texel follow the coarse ones.
+  const size_t c2 = static_cast<size_t>(run.Caustic) * run.Caustic;
+  const size_t accumulators =
+    3 * static_cast<size_t>(set->GetNumberOfTexels()) * (run.Caustic > 1 ? 1 + c2 : 1);
   run.SurfIrradiance = alloc.Make(
     CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "surface irradiance accumulator");
   return run.SurfNodes && run.SurfTriangles && run.SurfInfo && run.SurfAlbedo &&
@@ -242,25 +269,23 @@ bool vtkPhotonTracer::ResolveSurfaces(Internals& run)
     return true;
   }
   const vtkIdType texels = run.Surfaces->GetNumberOfTexels();
-  std::vector<cl_long> fixed(3 * static_cast<size_t>(texels));
+  const vtkIdType c2 = static_cast<vtkIdType>(run.Caustic) * run.Caustic;
+  const vtkIdType fine = run.Caustic > 1 ? texels * c2 : 0;
+  std::vector<cl_long> fixed(3 * static_cast<size_t>(texels + fine));
   if (!run.Context->ReadBuffer(
         run.SurfIrradiance.Get(), fixed.size() * sizeof(cl_long), fixed.data(), this))
   {
     return false;
   }
   const std::vector<double>& areas = run.Surfaces->GetTexelAreas();
-  vtkFloatArray* irradiance = run.Irradiance;
-  irradiance->SetName(vtkRefractaLightingVolume::SurfaceIrradianceName());
-  irradiance->SetNumberOfComponents(3);
-  irradiance->SetNumberOfTuples(texels);
-  for (vtkIdType t = 0; t < texels; ++t)
+  ResolveTexels(run.Scale, fixed.data(), texels, 1, areas, run.Irradiance,
+    vtkRefractaLightingVolume::SurfaceIrradianceName());
+  if (fine > 0)
   {
-    for (int c = 0; c < 3; ++c)
-    {
-      // Deposited flux / texel area; rounding of the fixed point can leave a tiny negative.
-      const double flux = static_cast<double>(fixed[3 * t + c]) / run.Scale;
-      irradiance->SetTypedComponent(t, c, static_cast<float>(std::max(flux, 0.0) / areas[t]));
-    }
+    // A triangle's texels all have one area, and its fine texels (from its first texel c^2 on,
+    // subdivision n c) 1 / c^2 of it: fine texel f has the area of coarse texel f / c^2 over c^2.
+    ResolveTexels(run.Scale, fixed.data() + 3 * texels, fine, c2, areas, run.CausticIrradiance,
+      vtkRefractaLightingVolume::SurfaceCausticIrradianceName());
   }
   return true;
 }
@@ -271,6 +296,10 @@ void vtkPhotonTracer::WriteSurfaceOutput(Internals& run, vtkImageData* output)
   if (run.Surfaces)
   {
     output->GetFieldData()->AddArray(run.Irradiance);
+    if (run.Caustic > 1)
+    {
+      output->GetFieldData()->AddArray(run.CausticIrradiance);
+    }
   }
   if (run.Analog)
   {

@@ -22,6 +22,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <vector>
@@ -350,4 +351,154 @@ TEST(PhotonInterfaces, TrappedLightEndsAtTheInterfaceCap)
   const double uncappedSteps = photontest::Field(uncapped, "TotalSteps");
   std::cout << "without the cap " << uncappedSteps / photons << " steps per photon\n";
   EXPECT_GT(uncappedSteps, 5.0 * steps);
+}
+
+namespace
+{
+// RMS radius about the z axis and flux (first channel) of the irradiance array `e` on the
+// triangles of surface `surface`, its texels those of subdivision n c (c = 1: the atlas).
+std::array<double, 3> SpotRms(
+  vtkRefractaSurfaceSet* set, vtkDataArray* e, int surface, int c, double rEnc)
+{
+  double enclosed = 0;
+  const auto& info = set->GetTriangleInfo();
+  vtkRefractaBVH* bvh = set->GetBVH();
+  double m2 = 0, m0 = 0;
+  for (vtkIdType k = 0; k < set->GetNumberOfTriangles(); ++k)
+  {
+    if (info[4 * k + REFRACTA_TRIANGLE_INFO_SURFACE] != surface)
+    {
+      continue;
+    }
+    const double* t = &bvh->GetTriangles()[9 * k];
+    const int first = info[4 * k] * c * c, n = info[4 * k + 1] * c;
+    const double area = set->GetTexelAreas()[info[4 * k]] / (c * c);
+    for (int i = 0; i < n * n; ++i)
+    {
+      double corners[6];
+      vtkRefractaSurfaceSet::GetTexelCorners(i, n, corners);
+      const double u = (corners[0] + corners[2] + corners[4]) / 3;
+      const double v = (corners[1] + corners[3] + corners[5]) / 3;
+      double x[2];
+      for (int a = 0; a < 2; ++a)
+      {
+        x[a] = (1 - u - v) * t[a] + u * t[3 + a] + v * t[6 + a] + bvh->GetFrameOrigin()[a];
+      }
+      const double flux = e->GetComponent(first + i, 0) * area;
+      const double r2 = x[0] * x[0] + x[1] * x[1];
+      m2 += flux * r2;
+      m0 += flux;
+      enclosed += r2 < rEnc * rEnc ? flux : 0.0;
+    }
+  }
+  return { m0 > 0 ? std::sqrt(m2 / m0) : 0.0, m0, m0 > 0 ? enclosed / m0 : 0.0 };
+}
+}
+
+TEST(PhotonInterfaces, CausticAtlasResolvesTheFocus)
+{
+  // The ball lens of SharpBallLensFocus with its black screen near the best focus: all the light
+  // on the screen crossed the glass (caustic photons), so the caustic atlas (c = 4) holds the
+  // screen's whole flux, texel by texel within the coarse atlas; its spot is measured at a quarter
+  // of the atlas texel and must be the exact trace's; a glass-free scene gets no caustic array.
+  const double radius = 1.0, index = 1.5, aperture = 0.3, D = 1.2;
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(radius);
+  sphere->SetThetaResolution(256);
+  sphere->SetPhiResolution(128);
+  sphere->Update();
+  vtkNew<vtkDiskSource> disk;
+  disk->SetInnerRadius(aperture);
+  disk->SetOuterRadius(1.25);
+  disk->SetCircumferentialResolution(96);
+  disk->SetCenter(0, 0, 1.3);
+  disk->Update();
+  vtkNew<vtkRefractaSurfaceSet> set;
+  set->SetTexelSize(0.02);
+  set->AddSurface(sphere->GetOutput(), Glass(index));
+  set->AddSurface(disk->GetOutput(), Black());
+  set->AddSurface(Rectangle({ -0.5, -0.5, -D }, { 0.5, -0.5, -D }, { -0.5, 0.5, -D }), Black());
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->SetInputData(Vacuum());
+  tracer->AddLight(photontest::Directional({ 0, 0, 10 }, { 0, 0, 0 }, 1.0));
+  tracer->SetNumberOfPhotons(1 << 19);
+  tracer->SetSurfaces(set);
+  EXPECT_EQ(tracer->GetCausticSubdivision(), 4);
+  tracer->Update();
+  vtkImageData* out = tracer->GetOutput();
+  ExpectExactBooks(out);
+  vtkDataArray* coarse =
+    out->GetFieldData()->GetArray(vtkRefractaLightingVolume::SurfaceIrradianceName());
+  vtkDataArray* fine =
+    out->GetFieldData()->GetArray(vtkRefractaLightingVolume::SurfaceCausticIrradianceName());
+  ASSERT_NE(fine, nullptr);
+  const vtkIdType texels = set->GetNumberOfTexels();
+  ASSERT_EQ(fine->GetNumberOfTuples(), 16 * texels);
+  // Books: every fine texel's flux lies in its coarse texel, and on the screen all of it.
+  const auto& info = set->GetTriangleInfo();
+  double worst = 0, screen = 0;
+  for (vtkIdType k = 0; k < set->GetNumberOfTriangles(); ++k)
+  {
+    if (info[4 * k + REFRACTA_TRIANGLE_INFO_SURFACE] != 2)
+    {
+      continue;
+    }
+    // The fine texels of a triangle (subdivision 4 n) cut each coarse texel into 16: each one's
+    // centroid finds its coarse texel.
+    const int first = info[4 * k], n = info[4 * k + 1];
+    std::vector<double> sum(n * n, 0.0);
+    for (int f = 0; f < 16 * n * n; ++f)
+    {
+      double corners[6];
+      vtkRefractaSurfaceSet::GetTexelCorners(f, 4 * n, corners);
+      const float u = static_cast<float>((corners[0] + corners[2] + corners[4]) / 3);
+      const float v = static_cast<float>((corners[1] + corners[3] + corners[5]) / 3);
+      sum[vtkRefractaSurfaceSet::TexelIndex(u, v, n)] += fine->GetComponent(16 * first + f, 0) / 16;
+    }
+    for (int i = 0; i < n * n; ++i)
+    {
+      const double e = coarse->GetComponent(first + i, 0);
+      worst = std::max(worst, std::fabs(sum[i] - e));
+      screen = std::max(screen, e);
+    }
+  }
+  EXPECT_LT(worst, 1e-4 * screen);
+  // The share of the spot's flux within rEnc of the axis, from the exact trace (a uniform beam
+  // of radius `aperture`; Fresnel transmission varies by < 1% over it).
+  const double rEnc = 0.03;
+  double inside = 0, all = 0;
+  for (int i = 0; i < 20000; ++i)
+  {
+    const double rho = aperture * (i + 0.5) / 20000;
+    inside += photontest::SharpSphereRadiusAt(rho, radius, index, D) < rEnc ? rho : 0.0;
+    all += rho;
+  }
+  const double tracedShare = inside / all;
+  const auto coarseSpot = SpotRms(set, coarse, 2, 1, rEnc);
+  const auto fineSpot = SpotRms(set, fine, 2, 4, rEnc);
+  EXPECT_NEAR(fineSpot[1], coarseSpot[1], 1e-5 * coarseSpot[1]);
+  const double traced = photontest::SharpSphereRms(aperture, radius, index, D);
+  std::cout << "caustic atlas: screen flux " << coarseSpot[1] << ", RMS spot radius coarse "
+            << coarseSpot[0] << ", fine " << fineSpot[0] << ", traced " << traced
+            << "; flux share within " << rEnc << ": coarse " << coarseSpot[2] << ", fine "
+            << fineSpot[2] << ", traced " << tracedShare << "; worst coarse - sum(fine) " << worst
+            << " of peak " << screen << "\n";
+  EXPECT_NEAR(fineSpot[0], traced, 0.02 * traced);
+  EXPECT_NEAR(fineSpot[2], tracedShare, 0.03);
+
+  // Without glass: no caustic photons, no caustic array.
+  vtkNew<vtkRefractaSurfaceSet> plain;
+  plain->AddSurface(Rectangle({ -0.5, -0.5, -D }, { 0.5, -0.5, -D }, { -0.5, 0.5, -D }), Black());
+  tracer->SetSurfaces(plain);
+  tracer->Update();
+  EXPECT_EQ(tracer->GetOutput()->GetFieldData()->GetArray(
+              vtkRefractaLightingVolume::SurfaceCausticIrradianceName()),
+    nullptr);
+  // c = 1 turns the caustic atlas off.
+  tracer->SetSurfaces(set);
+  tracer->SetCausticSubdivision(1);
+  tracer->Update();
+  EXPECT_EQ(tracer->GetOutput()->GetFieldData()->GetArray(
+              vtkRefractaLightingVolume::SurfaceCausticIrradianceName()),
+    nullptr);
 }
