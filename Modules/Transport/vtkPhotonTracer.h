@@ -303,7 +303,8 @@ public:
 
   ///@{
   /**
-   * Caustic atlas subdivision c (default 4, 1 turns the caustic atlas off; at most 16). A photon
+   * Caustic atlas subdivision c (default 1: off, until the view pass reads the atlas; at most
+   * 16; 4 is the value measured in the tests). A photon
    * whose path since the light or its last diffuse event (Lambertian bounce, volume scattering)
    * met a dielectric interface (an LS+D path, a caustic photon) deposits on a Lambertian
    * triangle also into a finer atlas, every texel of the surface set's atlas cut again c x c
@@ -520,7 +521,7 @@ protected:
   double RouletteThreshold = 0.001;
   int MaximumNumberOfSteps = 10000;
   int MaximumNumberOfInterfaceEvents = 64;
-  int CausticSubdivision = 4;
+  int CausticSubdivision = 1;
   double MaximumTurn = 0.5;
   double StepTolerance = 0.02;
   bool Smoothing = true;
