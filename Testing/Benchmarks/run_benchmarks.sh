@@ -4,7 +4,7 @@
 # Needs bash, awk and coreutils' timeout only (no Python), so it also runs on a lent GPU machine.
 #
 # Usage: run_benchmarks.sh [--quick] [--device SEL] [--out DIR] [--bin DIR] [--only a,b,...]
-#                          [--accuracy] [--timeout S]
+#                          [--accuracy] [--timeout S] [--launcher CMD]
 #   --quick     the ctest smoke sizes (seconds); without it each program's own default sizes.
 #   --device    OpenCL device selection, exported as REFRACTA_OPENCL_DEVICE (what
 #               vtkOpenCLContext reads): 'gpu', 'cpu', 'P:D' or part of a device name.
@@ -13,10 +13,13 @@
 #   --only      comma-separated subset of the program keys listed in PROGRAMS below.
 #   --accuracy  also run the long accuracy programs (glass optics, accuracy/time, reference).
 #   --timeout   seconds each program may run (default 60 with --quick, 3600 without).
+#   --launcher  command each program is run through, e.g. /tmp/b/gpu-env.sh on a lent GPU
+#               machine (shared/tools/gpu/README.md); its device choice applies unless --device.
+# The header's commit is `git rev-parse` of this checkout, or $REFRACTA_COMMIT where git is absent.
 # A program that fails or times out gets a FAILED row in the table; the script goes on.
 set -u
 
-quick=0 accuracy=0 device="" out="benchmark-results" bin="" only="" limit=""
+quick=0 accuracy=0 device="" out="benchmark-results" bin="" only="" limit="" launcher=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
@@ -26,8 +29,9 @@ while [ $# -gt 0 ]; do
     --bin) bin="$2"; shift ;;
     --only) only="$2"; shift ;;
     --timeout) limit="$2"; shift ;;
+    --launcher) launcher="$2"; shift ;;
     *) echo "run_benchmarks.sh: unknown option '$1' (valid: --quick --device SEL --out DIR" \
-         "--bin DIR --only a,b --accuracy --timeout S)" >&2; exit 2 ;;
+         "--bin DIR --only a,b --accuracy --timeout S --launcher CMD)" >&2; exit 2 ;;
   esac
   shift
 done
@@ -131,7 +135,7 @@ while IFS='|' read -r key exe qargs fargs; do
   echo "== $key: $exe $args"
   t0=$(date +%s.%N)
   # shellcheck disable=SC2086 # the argument lists above are word lists on purpose
-  timeout "$limit" "$bin/$exe" $args > "$log" 2>&1
+  timeout "$limit" $launcher "$bin/$exe" $args > "$log" 2>&1
   rc=$?
   t1=$(date +%s.%N)
   wall=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')
@@ -148,13 +152,15 @@ while IFS='|' read -r key exe qargs fargs; do
   echo "   $wall s"
 done <<< "$PROGRAMS"
 
-devname=$(grep -h -m1 -i '^device: ' "$out"/*.log 2>/dev/null | head -n1 | sed 's/^[Dd]evice: //')
-commit=$(git -C "$(dirname "$0")" rev-parse --short HEAD 2>/dev/null || echo unknown)
+devname=$(grep -h -m1 -i '^device: ' "$out/lattice.log" "$out"/*.log 2>/dev/null | head -n1 | sed 's/^[Dd]evice: //')
+commit=$(git -C "$(dirname "$0")" rev-parse --short HEAD 2>/dev/null || echo "${REFRACTA_COMMIT:-unknown}")
+selection="${REFRACTA_OPENCL_DEVICE:-default}"
+[ -z "${REFRACTA_OPENCL_DEVICE:-}" ] && [ -n "$launcher" ] && selection="the launcher's ($launcher)"
 sizes="program defaults"; [ "$quick" = 1 ] && sizes="--quick (smoke sizes, not a speed claim)"
 {
   echo "# Refracta benchmarks"
   echo
-  echo "- device: ${devname:-unknown} (selection: ${REFRACTA_OPENCL_DEVICE:-default})"
+  echo "- device: ${devname:-unknown} (selection: $selection)"
   echo "- date: $started; commit: $commit; sizes: $sizes"
   echo
   echo "| program | quantity | value | unit |"
