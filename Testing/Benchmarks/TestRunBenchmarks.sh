@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # ctest smoke test of run_benchmarks.sh: a --quick run writes summary.md with a row for every
 # program that ran, and a failing program becomes a FAILED row instead of aborting the run.
-# Usage: TestRunBenchmarks.sh SCRIPT BINDIR TMPDIR [--only LIST]
+# Usage: TestRunBenchmarks.sh SCRIPT BINDIR TMPDIR [run_benchmarks.sh options, e.g. --only LIST]
 set -u
-script="$1" bin="$2" tmp="$3/run_benchmarks_smoke"
+script="$1" bin="$2" tmp="$3"
 shift 3
 fail() { echo "TestRunBenchmarks: $*" >&2; exit 1; }
 rm -rf "$tmp" && mkdir -p "$tmp" || fail "cannot create $tmp"
@@ -25,15 +25,15 @@ if grep -q 'FAILED' "$summary"; then fail "a benchmark failed: $(grep FAILED "$s
 bad=$(awk -F'|' 'NR > 7 && $4 !~ /^ *(n\/a.*|[-+0-9.eE]+) *$/' "$summary")
 [ -z "$bad" ] || fail "non-numeric headline: $bad"
 
-# 2. A program that fails: a stand-in BenchmarkVoxelize that exits 3 next to a real program.
+# 2. A program that fails: a stand-in BenchmarkPhotonTracer that exits 3, before a real program.
 mkdir -p "$tmp/bin"
-ln -sf "$bin/BenchmarkSurfaces" "$tmp/bin/BenchmarkSurfaces"
-printf '#!/bin/sh\necho "deliberate failure" >&2\nexit 3\n' > "$tmp/bin/BenchmarkVoxelize"
-chmod +x "$tmp/bin/BenchmarkVoxelize"
-bash "$script" --quick --bin "$tmp/bin" --out "$tmp/fail" --only voxelize,surfaces \
+ln -sf "$bin/BenchmarkVoxelize" "$tmp/bin/BenchmarkVoxelize"
+printf '#!/bin/sh\necho "deliberate failure" >&2\nexit 3\n' > "$tmp/bin/BenchmarkPhotonTracer"
+chmod +x "$tmp/bin/BenchmarkPhotonTracer"
+bash "$script" --quick --bin "$tmp/bin" --out "$tmp/fail" --only photon,voxelize \
   > "$tmp/fail.log" 2>&1 || fail "run_benchmarks.sh aborted on a failing program"
-grep -q '^| BenchmarkVoxelize | FAILED (exit 3)' "$tmp/fail/summary.md" ||
+grep -q '^| BenchmarkPhotonTracer | FAILED (exit 3)' "$tmp/fail/summary.md" ||
   fail "the failing program has no FAILED row"
-grep -q '^| BenchmarkSurfaces | BVH rays' "$tmp/fail/summary.md" ||
+grep -q '^| BenchmarkVoxelize | voxelize total' "$tmp/fail/summary.md" ||
   fail "the program after the failure did not run"
 echo "TestRunBenchmarks: $ran programs summarised; failure reported in the table"
