@@ -22,6 +22,10 @@ set -u
 quick=0 accuracy=0 device="" out="benchmark-results" bin="" only="" limit="" launcher=""
 while [ $# -gt 0 ]; do
   case "$1" in
+    --device | --out | --bin | --only | --timeout | --launcher)
+      [ $# -ge 2 ] || { echo "run_benchmarks.sh: $1 needs a value" >&2; exit 2; } ;;
+  esac
+  case "$1" in
     --quick) quick=1 ;;
     --accuracy) accuracy=1 ;;
     --device) device="$2"; shift ;;
@@ -43,6 +47,7 @@ if [ -z "$bin" ] || [ ! -d "$bin" ]; then
   echo "run_benchmarks.sh: no benchmark directory; pass --bin DIR (the build's bin/)" >&2
   exit 2
 fi
+bin="$(cd "$bin" && pwd)" # absolute: a launcher such as gpu-env.sh changes directory
 [ -n "$device" ] && export REFRACTA_OPENCL_DEVICE="$device"
 mkdir -p "$out" || exit 2
 out="$(cd "$out" && pwd)"
@@ -65,6 +70,14 @@ accuracytime|BenchmarkAccuracyTime|--smoke --scenes glass-sphere-in-fog,grin-len
 reference|RefractaReferenceBenchmark|--smoke --csv @CSV@|--csv @CSV@"
 [ "$accuracy" = 1 ] && PROGRAMS="$PROGRAMS
 $ACCURACY"
+
+for key in ${only//,/ }; do
+  printf '%s\n' "$PROGRAMS" | grep -q "^$key|" || {
+    echo "run_benchmarks.sh: --only: unknown program '$key' (valid:" \
+      $(printf '%s\n' "$PROGRAMS" | cut -d'|' -f1) ")" >&2
+    exit 2
+  }
+done
 
 row() { printf '| %s | %s | %s | %s |\n' "$1" "$2" "$3" "$4" >> "$rows"; }
 
