@@ -21,6 +21,7 @@
 #include "vtkPhotonTracer.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
+#include "vtkRefractaDielectric.h"
 #include "vtkRefractaMedium.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaSurfaceMaterial.h"
@@ -181,20 +182,6 @@ TEST(PipelineInterfaces, MediumInterfacesReachEveryPass)
   EXPECT_GT(difference, 0.05);
 }
 
-// Unpolarised Fresnel reflectance from index a onto index b at cos(incidence) c.
-double Fresnel(double c, double a, double b)
-{
-  const double s = a / b * std::sqrt(std::max(0.0, 1.0 - c * c));
-  if (s >= 1.0)
-  {
-    return 1.0;
-  }
-  const double t = std::sqrt(1.0 - s * s);
-  const double rs = (a * c - b * t) / (a * c + b * t);
-  const double rp = (a * t - b * c) / (a * t + b * c);
-  return 0.5 * (rs * rs + rp * rp);
-}
-
 // A collimated beam from above on the ball in a clear medium over a black floor: the power the
 // photons book as reflected and as transmitted at the interface, over all their events, against
 // the Fresnel series of a sphere the test integrates itself: a ray of impact parameter b meets
@@ -217,7 +204,7 @@ TEST(PipelineInterfaces, PhotonsMeetTheBallWithFresnelWeights)
   for (int k = 0; k < rings; ++k)
   {
     const double b = (k + 0.5) / rings, weight = 2.0 * b / rings; // uniform over the disk
-    const double r = Fresnel(std::sqrt(1.0 - b * b), 1.0, 1.5);
+    const double r = vtkRefractaDielectric::FresnelReflectance(std::sqrt(1.0 - b * b), 1.0, 1.5);
     expectedReflected += weight * r;
     double inside = weight * (1.0 - r);
     expectedTransmitted += inside;

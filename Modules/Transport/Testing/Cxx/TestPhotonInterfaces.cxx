@@ -89,6 +89,26 @@ double SurfaceFlux(vtkRefractaSurfaceSet* set, vtkImageData* out, int surface)
   return flux;
 }
 
+// A sharp glass ball of `radius` (256 x 128 sphere, index `index`) at the origin under a black
+// disk at z = 1.3 with a hole of radius `aperture`: a beam from +z reaches the ball through the
+// hole only, away from its axis.
+void AddBallLens(vtkRefractaSurfaceSet* set, double radius, double index, double aperture)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(radius);
+  sphere->SetThetaResolution(256);
+  sphere->SetPhiResolution(128);
+  sphere->Update();
+  vtkNew<vtkDiskSource> disk;
+  disk->SetInnerRadius(aperture);
+  disk->SetOuterRadius(1.25);
+  disk->SetCircumferentialResolution(96);
+  disk->SetCenter(0, 0, 1.3);
+  disk->Update();
+  set->AddSurface(sphere->GetOutput(), Glass(index));
+  set->AddSurface(disk->GetOutput(), Black());
+}
+
 // Every book closes to 1e-6 of the emitted power, and reflected + transmitted are the interface
 // events' power.
 void ExpectExactBooks(vtkImageData* out)
@@ -202,22 +222,10 @@ TEST(PhotonInterfaces, SharpBallLensFocus)
   // radius 0.3), now an exact interface (256 x 128 sphere, smooth normals) in vacuum: the best
   // focus must be the independent Snell trace's within 0.02 R.
   const double radius = 1.0, index = 1.5, aperture = 0.3;
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetRadius(radius);
-  sphere->SetThetaResolution(256);
-  sphere->SetPhiResolution(128);
-  sphere->Update();
-  vtkNew<vtkDiskSource> disk;
-  disk->SetInnerRadius(aperture);
-  disk->SetOuterRadius(1.25);
-  disk->SetCircumferentialResolution(96);
-  disk->SetCenter(0, 0, 1.3);
-  disk->Update();
   vtkNew<vtkRefractaSurfaceSet> set;
   set->SetTexelSize(0.01);
   vtkNew<vtkMatrix4x4> move;
-  set->AddSurface(sphere->GetOutput(), Glass(index));
-  set->AddSurface(disk->GetOutput(), Black());
+  AddBallLens(set, radius, index, aperture);
   set->AddSurface(Rectangle({ -0.5, -0.5, 0 }, { 0.5, -0.5, 0 }, { -0.5, 0.5, 0 }), Black(), move);
   vtkNew<vtkPhotonTracer> tracer;
   tracer->SetInputData(Vacuum());
@@ -402,21 +410,9 @@ TEST(PhotonInterfaces, CausticAtlasResolvesTheFocus)
   // screen's whole flux, texel by texel within the coarse atlas; its spot is measured at a quarter
   // of the atlas texel and must be the exact trace's; a glass-free scene gets no caustic array.
   const double radius = 1.0, index = 1.5, aperture = 0.3, D = 1.2;
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetRadius(radius);
-  sphere->SetThetaResolution(256);
-  sphere->SetPhiResolution(128);
-  sphere->Update();
-  vtkNew<vtkDiskSource> disk;
-  disk->SetInnerRadius(aperture);
-  disk->SetOuterRadius(1.25);
-  disk->SetCircumferentialResolution(96);
-  disk->SetCenter(0, 0, 1.3);
-  disk->Update();
   vtkNew<vtkRefractaSurfaceSet> set;
   set->SetTexelSize(0.02);
-  set->AddSurface(sphere->GetOutput(), Glass(index));
-  set->AddSurface(disk->GetOutput(), Black());
+  AddBallLens(set, radius, index, aperture);
   set->AddSurface(Rectangle({ -0.5, -0.5, -D }, { 0.5, -0.5, -D }, { -0.5, 0.5, -D }), Black());
   vtkNew<vtkPhotonTracer> tracer;
   tracer->SetInputData(Vacuum());
