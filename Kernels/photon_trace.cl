@@ -726,19 +726,23 @@ inline void photon_deposit_texel(volatile __global long* irradiance, long texel,
 
 #if REFRACTA_CAUSTIC_SUBDIVISION > 1
 // A caustic photon (Physics.md "Caustic atlas") meeting Lambertian triangle info at barycentric
-// (u, v) also deposits into the fine atlas, where every coarse texel is cut again c x c
-// (c = REFRACTA_CAUSTIC_SUBDIVISION): the same texel order with subdivision n c, fine first
-// texel = coarse first texel c^2, stored after the REFRACTA_CAUSTIC_OFFSET coarse texels. The
-// coarse deposit stays the surface's whole flux; the fine one resolves its caustic part.
-inline void photon_deposit_caustic(const photon_surfaces* s, const photon_state* ps, int4 info,
-  float u, float v)
+// (u, v) (its atlas texel `texel`) also deposits into the fine atlas, where every coarse texel is
+// cut again c x c (c = REFRACTA_CAUSTIC_SUBDIVISION): the same texel order with subdivision n c,
+// fine first texel = coarse first texel c^2, stored after the REFRACTA_CAUSTIC_OFFSET coarse
+// texels, and counts itself in the atlas texel's caustic photon count (one long per coarse texel
+// after the fine accumulators), which tells the view pass where the fine texels are worth
+// reading. The coarse deposit stays the surface's whole flux; the fine one resolves its caustic
+// part.
+inline void photon_deposit_caustic(
+  const photon_surfaces* s, const photon_state* ps, int4 info, int texel, float u, float v)
 {
   if (ps->caustic)
   {
     const int c = REFRACTA_CAUSTIC_SUBDIVISION;
+    const long coarse = (long)REFRACTA_CAUSTIC_OFFSET;
     photon_deposit_texel(s->irradiance,
-      (long)REFRACTA_CAUSTIC_OFFSET + (long)info.x * (c * c) + refracta_texel_index(u, v, info.y * c),
-      ps->power);
+      coarse + (long)info.x * (c * c) + refracta_texel_index(u, v, info.y * c), ps->power);
+    atom_add(s->irradiance + 3 * coarse * (1 + c * c) + texel, 1L);
   }
 }
 #endif
@@ -766,7 +770,7 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
   const int texel = info.x + refracta_texel_index(h.u, h.v, info.y);
   photon_deposit_texel(s->irradiance, texel, ps->power);
 #if REFRACTA_CAUSTIC_SUBDIVISION > 1
-  photon_deposit_caustic(s, ps, info, h.u, h.v);
+  photon_deposit_caustic(s, ps, info, texel, h.u, h.v);
 #endif
   ps->hits++;
   const float3 a = clamp(vload3(texel, s->albedo), 0.0f, 1.0f);

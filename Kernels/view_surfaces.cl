@@ -69,12 +69,11 @@ inline float3 refracta_view_vertex_irradiance(
   return count > 0 ? sum / (float)count : sum;
 }
 
-// Irradiance at barycentric (u, v) of triangle `tri` (see the file comment).
-inline float3 refracta_view_surface_irradiance(
-  __global const int* triInfo, __global const float* irradiance, int tri, float u, float v)
+// Irradiance at barycentric (u, v) of a triangle's texels (first texel `first`, subdivision n;
+// see the file comment).
+inline float3 refracta_view_atlas_irradiance(
+  __global const float* irradiance, int first, int n, float u, float v)
 {
-  const int first = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_TEXEL];
-  const int n = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_SUBDIVISION];
 #ifdef REFRACTA_SURFACE_NEAREST
   return vload3(first + refracta_texel_index(u, v, n), irradiance);
 #else
@@ -108,6 +107,26 @@ inline float3 refracta_view_surface_irradiance(
   return wa * refracta_view_vertex_irradiance(irradiance, first, n, i, j + 1) +
     wb * refracta_view_vertex_irradiance(irradiance, first, n, i + 1, j) +
     (1.0f - wa - wb) * refracta_view_vertex_irradiance(irradiance, first, n, i + 1, j + 1);
+#endif
+}
+
+// Irradiance at barycentric (u, v) of triangle `tri`: the atlas, plus with the caustic atlas
+// (REFRACTA_CAUSTIC_SUBDIVISION c > 1, Physics.md "Caustic atlas") the caustic light of the
+// texels that the host chose to show fine, reconstructed the same way at subdivision n c (fine
+// first texel REFRACTA_CAUSTIC_OFFSET + c^2 first; the host took that light out of the atlas).
+inline float3 refracta_view_surface_irradiance(
+  __global const int* triInfo, __global const float* irradiance, int tri, float u, float v)
+{
+  const int first = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_TEXEL];
+  const int n = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_SUBDIVISION];
+  const float3 e = refracta_view_atlas_irradiance(irradiance, first, n, u, v);
+#if defined(REFRACTA_CAUSTIC_SUBDIVISION) && REFRACTA_CAUSTIC_SUBDIVISION > 1
+  const int c = REFRACTA_CAUSTIC_SUBDIVISION;
+  return e +
+    refracta_view_atlas_irradiance(irradiance + 3 * (long)REFRACTA_CAUSTIC_OFFSET, c * c * first,
+      c * n, u, v);
+#else
+  return e;
 #endif
 }
 

@@ -74,6 +74,15 @@ public:
   static const char* SurfaceCausticIrradianceName() { return "SurfaceCausticIrradiance"; }
 
   /**
+   * Name of the field-data array with the number of caustic photons that landed in each atlas
+   * texel (1 component, integer, one tuple per texel of the atlas; present with
+   * SurfaceCausticIrradianceName()). The view pass reads a texel's caustic light from its fine
+   * texels only where enough caustic photons landed there (vtkRefractaViewPass::
+   * CausticPhotonsPerFineTexel), so that broad, dim refracted light stays as smooth as the atlas.
+   */
+  static const char* SurfaceCausticPhotonsName() { return "SurfaceCausticPhotons"; }
+
+  /**
    * Name of the array with the given id, or nullptr for an id out of range.
    */
   static const char* GetArrayName(int id);

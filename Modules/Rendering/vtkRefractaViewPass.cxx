@@ -283,7 +283,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   // Surfaces: built and uploaded when the set's build is new, the irradiance when it changed.
   SurfaceBuffers& surf = in.Surfaces;
   if (!surf.Update(in.SurfaceSet, context, this) ||
-    (surf.Active() && !surf.PrepareIrradiance(context, this)))
+    (surf.Active() && !surf.PrepareIrradiance(context, this->CausticPhotonsPerFineTexel, this)))
   {
     return false;
   }
@@ -324,6 +324,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.NearestTexel = this->SurfaceFilter == NEAREST_TEXEL;
   variant.Dielectric = surf.HasDielectric();
   variant.SplitDepth = this->DielectricSplitDepth;
+  variant.Caustic = surf.GetCausticSubdivision();
+  variant.CausticOffset = surf.GetNumberOfTexels();
   cl_program program = context->GetProgram(
     { "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl", "view_pass.cl" },
     KernelOptions(variant), this);
@@ -605,6 +607,7 @@ void vtkRefractaViewPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DielectricSplitDepth: " << this->DielectricSplitDepth << "\n";
   os << indent << "SurfaceFilter: "
      << (this->SurfaceFilter == NEAREST_TEXEL ? "NEAREST_TEXEL" : "LINEAR_TEXEL") << "\n";
+  os << indent << "CausticPhotonsPerFineTexel: " << this->CausticPhotonsPerFineTexel << "\n";
   os << indent << "NumberOfSurfaceUploads: " << this->Internal->Surfaces.GetNumberOfUploads()
      << "\n";
   os << indent << "LastSkipping: " << (this->LastSkipping ? "yes" : "no") << "\n";

@@ -196,6 +196,11 @@ std::string KernelOptions(const KernelVariant& v)
   {
     options += " -DREFRACTA_SPLIT_DEPTH=" + std::to_string(v.SplitDepth);
   }
+  if (v.Surfaces && v.Caustic > 1)
+  {
+    options += " -DREFRACTA_CAUSTIC_SUBDIVISION=" + std::to_string(v.Caustic) +
+      " -DREFRACTA_CAUSTIC_OFFSET=" + std::to_string(v.CausticOffset);
+  }
   return options;
 }
 

@@ -46,21 +46,23 @@ bool CheckLightingArray(
 // What a view-pass kernel is compiled for (each flag one -D option of Kernels/view_pass.cl).
 struct KernelVariant
 {
-  bool Curved = false;       // REFRACTA_CURVED
-  bool Parallel = false;     // REFRACTA_PARALLEL
-  bool IndexVaries = false;  // REFRACTA_INDEX_WEIGHT (sources / n^2 per step)
-  double UniformIndex = 1;   // else REFRACTA_SOURCE_SCALE = 1 / n^2 when n != 1
-  bool Single = false;       // REFRACTA_HAS_SINGLE
-  bool Multiple = false;     // REFRACTA_HAS_MULTIPLE
-  bool Emission = false;     // REFRACTA_HAS_EMISSION
-  bool Environment = false;  // REFRACTA_HAS_ENVIRONMENT
-  bool Checker = false;      // REFRACTA_CHECKER_ENVIRONMENT (with Environment)
-  bool DepthLimit = false;   // REFRACTA_HAS_DEPTH_LIMIT
-  bool Skip = false;         // REFRACTA_SKIP
-  bool Surfaces = false;     // REFRACTA_HAS_SURFACES
-  bool NearestTexel = false; // REFRACTA_SURFACE_NEAREST
-  bool Dielectric = false;   // REFRACTA_DIELECTRIC (glass triangles)
-  int SplitDepth = 1;        // REFRACTA_SPLIT_DEPTH (interfaces where both legs are followed)
+  bool Curved = false;         // REFRACTA_CURVED
+  bool Parallel = false;       // REFRACTA_PARALLEL
+  bool IndexVaries = false;    // REFRACTA_INDEX_WEIGHT (sources / n^2 per step)
+  double UniformIndex = 1;     // else REFRACTA_SOURCE_SCALE = 1 / n^2 when n != 1
+  bool Single = false;         // REFRACTA_HAS_SINGLE
+  bool Multiple = false;       // REFRACTA_HAS_MULTIPLE
+  bool Emission = false;       // REFRACTA_HAS_EMISSION
+  bool Environment = false;    // REFRACTA_HAS_ENVIRONMENT
+  bool Checker = false;        // REFRACTA_CHECKER_ENVIRONMENT (with Environment)
+  bool DepthLimit = false;     // REFRACTA_HAS_DEPTH_LIMIT
+  bool Skip = false;           // REFRACTA_SKIP
+  bool Surfaces = false;       // REFRACTA_HAS_SURFACES
+  bool NearestTexel = false;   // REFRACTA_SURFACE_NEAREST
+  bool Dielectric = false;     // REFRACTA_DIELECTRIC (glass triangles)
+  int SplitDepth = 1;          // REFRACTA_SPLIT_DEPTH (interfaces where both legs are followed)
+  int Caustic = 1;             // REFRACTA_CAUSTIC_SUBDIVISION (c > 1: the caustic atlas is read)
+  long long CausticOffset = 0; // REFRACTA_CAUSTIC_OFFSET (atlas texels before the fine ones)
 };
 
 // The build options of a kernel variant.

@@ -10,6 +10,9 @@
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaSurfaceSet.h"
 
+#include "refracta_surfaces.cl" // REFRACTA_TRIANGLE_INFO_*
+
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -21,6 +24,37 @@ namespace
 void ReportError(vtkObject* owner, const std::string& message)
 {
   vtkErrorWithObjectMacro(owner, << message);
+}
+
+// Checks a lighting field array: `components` components, every value finite and >= 0.
+bool CheckArray(
+  vtkDataArray* array, int components, const char* name, const char* meaning, vtkObject* owner)
+{
+  if (array->GetNumberOfComponents() != components)
+  {
+    std::ostringstream msg;
+    msg << "The lighting volume's field array '" << name << "' has "
+        << array->GetNumberOfComponents() << " components; it needs " << components << " ("
+        << meaning << ").";
+    ReportError(owner, msg.str());
+    return false;
+  }
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < components; ++c)
+    {
+      const double v = array->GetComponent(i, c);
+      if (!std::isfinite(v) || v < 0)
+      {
+        std::ostringstream msg;
+        msg << "The lighting volume's field array '" << name << "' has the invalid value " << v
+            << " at tuple " << i << " component " << c << "; values must be finite and >= 0.";
+        ReportError(owner, msg.str());
+        return false;
+      }
+    }
+  }
+  return true;
 }
 }
 
@@ -110,68 +144,63 @@ bool SurfaceBuffers::Update(vtkRefractaSurfaceSet* set, vtkOpenCLContext* contex
 //------------------------------------------------------------------------------
 bool SurfaceBuffers::SetLighting(vtkImageData* lighting, vtkObject* owner)
 {
-  vtkDataArray* array = lighting
-    ? lighting->GetFieldData()->GetArray(vtkRefractaLightingVolume::SurfaceIrradianceName())
-    : nullptr;
-  if (array == this->IrradianceArray && (!array || array->GetMTime() == this->IrradianceTime))
+  vtkFieldData* fd = lighting ? lighting->GetFieldData() : nullptr;
+  auto get = [fd](const char* name) { return fd ? fd->GetArray(name) : nullptr; };
+  LightingArrays arrays;
+  arrays.Irradiance = get(vtkRefractaLightingVolume::SurfaceIrradianceName());
+  arrays.Caustic = get(vtkRefractaLightingVolume::SurfaceCausticIrradianceName());
+  arrays.CausticPhotons = get(vtkRefractaLightingVolume::SurfaceCausticPhotonsName());
+  if (arrays.SameAs(this->Lighting))
   {
     return true;
   }
   this->IrradianceDirty = true;
-  this->IrradianceArray = nullptr;
-  if (!array)
+  this->Lighting = LightingArrays();
+  if (!arrays.Irradiance)
   {
-    return true;
+    return true; // unlit surfaces (the caustic arrays mean nothing without the atlas)
   }
-  const char* name = vtkRefractaLightingVolume::SurfaceIrradianceName();
-  if (array->GetNumberOfComponents() != 3)
+  if (arrays.Caustic && !arrays.CausticPhotons)
   {
-    std::ostringstream msg;
-    msg << "The lighting volume's field array '" << name << "' has "
-        << array->GetNumberOfComponents()
-        << " components; it needs 3 (RGB irradiance, one tuple per surface texel).";
-    ReportError(owner, msg.str());
+    ReportError(owner,
+      std::string("The lighting volume has the field array '") +
+        vtkRefractaLightingVolume::SurfaceCausticIrradianceName() + "' but not '" +
+        vtkRefractaLightingVolume::SurfaceCausticPhotonsName() +
+        "', the caustic photons per atlas texel that say where it may be read.");
     return false;
   }
-  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  if (!CheckArray(arrays.Irradiance, 3, vtkRefractaLightingVolume::SurfaceIrradianceName(),
+        "RGB irradiance, one tuple per surface texel", owner) ||
+    (arrays.Caustic &&
+      (!CheckArray(arrays.Caustic, 3, vtkRefractaLightingVolume::SurfaceCausticIrradianceName(),
+         "RGB irradiance, c^2 tuples per surface texel", owner) ||
+        !CheckArray(arrays.CausticPhotons, 1,
+          vtkRefractaLightingVolume::SurfaceCausticPhotonsName(),
+          "a photon count, one tuple per surface texel", owner))))
   {
-    for (int c = 0; c < 3; ++c)
-    {
-      const double v = array->GetComponent(i, c);
-      if (!std::isfinite(v) || v < 0)
-      {
-        std::ostringstream msg;
-        msg << "The lighting volume's field array '" << name << "' has the invalid value " << v
-            << " at tuple " << i << " component " << c << "; values must be finite and >= 0.";
-        ReportError(owner, msg.str());
-        return false;
-      }
-    }
+    return false;
   }
-  this->IrradianceArray = array;
-  this->IrradianceTime = array->GetMTime();
+  arrays.Stamp();
+  this->Lighting = arrays;
   return true;
 }
 
 //------------------------------------------------------------------------------
-bool SurfaceBuffers::PrepareIrradiance(vtkOpenCLContext* context, vtkObject* owner)
+bool SurfaceBuffers::PrepareIrradiance(
+  vtkOpenCLContext* context, double photonsPerFineTexel, vtkObject* owner)
 {
-  if (!this->IrradianceDirty && this->Irradiance)
+  if (!this->IrradianceDirty && this->Irradiance &&
+    photonsPerFineTexel == this->PhotonsPerFineTexel)
   {
     return true;
   }
+  this->Caustic = 1;
   std::vector<float> values(static_cast<size_t>(this->Texels) * 3, 0.0f);
-  if (vtkDataArray* array = this->IrradianceArray)
+  if (vtkDataArray* array = this->Lighting.Irradiance)
   {
-    if (array->GetNumberOfTuples() != this->Texels)
+    if (!this->CheckTuples(
+          array, this->Texels, vtkRefractaLightingVolume::SurfaceIrradianceName(), owner))
     {
-      std::ostringstream msg;
-      msg << "The lighting volume's field array '"
-          << vtkRefractaLightingVolume::SurfaceIrradianceName() << "' has "
-          << array->GetNumberOfTuples() << " tuples but the surface set has " << this->Texels
-          << " texels; compute the lighting with the same surface set (the photon pass's "
-             "SetSurfaces) after its last change.";
-      ReportError(owner, msg.str());
       return false;
     }
     for (vtkIdType i = 0; i < this->Texels; ++i)
@@ -181,6 +210,10 @@ bool SurfaceBuffers::PrepareIrradiance(vtkOpenCLContext* context, vtkObject* own
         values[3 * i + c] = static_cast<float>(array->GetComponent(i, c));
       }
     }
+    if (this->Lighting.Caustic && !this->SplitCaustic(values, photonsPerFineTexel, owner))
+    {
+      return false;
+    }
   }
   this->Irradiance = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
     values.size() * sizeof(float), values.data(), "surface irradiance", owner);
@@ -189,7 +222,115 @@ bool SurfaceBuffers::PrepareIrradiance(vtkOpenCLContext* context, vtkObject* own
     return false;
   }
   this->IrradianceDirty = false;
+  this->PhotonsPerFineTexel = photonsPerFineTexel;
   return true;
+}
+
+//------------------------------------------------------------------------------
+bool SurfaceBuffers::SplitCaustic(
+  std::vector<float>& values, double photonsPerFineTexel, vtkObject* owner)
+{
+  vtkDataArray* caustic = this->Lighting.Caustic;
+  vtkDataArray* photons = this->Lighting.CausticPhotons;
+  const vtkIdType texels = this->Texels;
+  const vtkIdType fine = caustic->GetNumberOfTuples();
+  const int c = texels > 0 ? static_cast<int>(std::lround(std::sqrt(double(fine) / texels))) : 0;
+  if (texels == 0 || c < 2 || static_cast<vtkIdType>(c) * c * texels != fine)
+  {
+    std::ostringstream msg;
+    msg << "The lighting volume's field array '"
+        << vtkRefractaLightingVolume::SurfaceCausticIrradianceName() << "' has " << fine
+        << " tuples; it needs c^2 x " << texels
+        << " (c >= 2, the caustic atlas's subdivision of the surface set's " << texels
+        << " texels).";
+    ReportError(owner, msg.str());
+    return false;
+  }
+  if (!this->CheckTuples(
+        photons, texels, vtkRefractaLightingVolume::SurfaceCausticPhotonsName(), owner))
+  {
+    return false;
+  }
+  // The atlas keeps all of a texel's light; where the fine texels are read, their sum (the
+  // caustic part) leaves the atlas value, so each photon is shown once.
+  const vtkIdType c2 = static_cast<vtkIdType>(c) * c;
+  const double needed = photonsPerFineTexel * static_cast<double>(c2);
+  std::vector<float> fineValues(static_cast<size_t>(fine) * 3, 0.0f);
+  const std::vector<int>& info = this->Set->GetTriangleInfo();
+  std::vector<int> coarseOf; // fine texel (in the triangle) -> its atlas texel
+  int tableN = -1;
+  for (size_t k = 0; k + REFRACTA_TRIANGLE_INFO_INTS <= info.size();
+       k += REFRACTA_TRIANGLE_INFO_INTS)
+  {
+    const int first = info[k + REFRACTA_TRIANGLE_INFO_TEXEL];
+    const int n = info[k + REFRACTA_TRIANGLE_INFO_SUBDIVISION];
+    if (n != tableN)
+    {
+      FineToCoarseTexels(n, c, coarseOf);
+      tableN = n;
+    }
+    std::vector<double> removed(3 * static_cast<size_t>(n) * n, 0.0);
+    for (size_t f = 0; f < coarseOf.size(); ++f)
+    {
+      const vtkIdType coarse = first + coarseOf[f];
+      if (photons->GetComponent(coarse, 0) < needed)
+      {
+        continue;
+      }
+      const vtkIdType index = c2 * first + static_cast<vtkIdType>(f);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        const double e = caustic->GetComponent(index, ch);
+        fineValues[3 * index + ch] = static_cast<float>(e);
+        removed[3 * coarseOf[f] + ch] += e / static_cast<double>(c2);
+      }
+    }
+    for (int t = 0; t < n * n; ++t)
+    {
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        float& e = values[3 * static_cast<size_t>(first + t) + ch];
+        e = static_cast<float>(std::max(0.0, e - removed[3 * t + ch]));
+      }
+    }
+  }
+  values.insert(values.end(), fineValues.begin(), fineValues.end());
+  this->Caustic = c;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void SurfaceBuffers::FineToCoarseTexels(int n, int c, std::vector<int>& coarseOf)
+{
+  // Each fine texel lies inside one atlas texel (the grid lines of n are among those of n c):
+  // its centroid finds it.
+  const int fine = n * c * n * c;
+  coarseOf.resize(fine);
+  for (int f = 0; f < fine; ++f)
+  {
+    double corners[6];
+    vtkRefractaSurfaceSet::GetTexelCorners(f, n * c, corners);
+    const float u = static_cast<float>((corners[0] + corners[2] + corners[4]) / 3);
+    const float v = static_cast<float>((corners[1] + corners[3] + corners[5]) / 3);
+    coarseOf[f] = vtkRefractaSurfaceSet::TexelIndex(u, v, n);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool SurfaceBuffers::CheckTuples(
+  vtkDataArray* array, vtkIdType expected, const char* name, vtkObject* owner) const
+{
+  if (array->GetNumberOfTuples() == expected)
+  {
+    return true;
+  }
+  std::ostringstream msg;
+  msg << "The lighting volume's field array '" << name << "' has " << array->GetNumberOfTuples()
+      << " tuples but the surface set has " << expected
+      << " texels; compute the lighting with the same surface set (the photon pass's "
+         "SetSurfaces) after its last change.";
+  ReportError(owner, msg.str());
+  return false;
 }
 
 //------------------------------------------------------------------------------

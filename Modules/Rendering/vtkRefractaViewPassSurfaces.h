@@ -7,14 +7,15 @@
 #ifndef vtkRefractaViewPassSurfaces_h
 #define vtkRefractaViewPassSurfaces_h
 
+#include "vtkDataArray.h"     // for LightingArrays
 #include "vtkOpenCLContext.h" // for vtkOpenCLBuffer, cl_float4
 #include "vtkSmartPointer.h"  // for members
 #include "vtkType.h"          // for vtkMTimeType, vtkIdType
 
-#include <string> // for messages
-#include <vector> // for the irradiance copy
+#include <algorithm> // for std::equal
+#include <string>    // for messages
+#include <vector>    // for the irradiance copy
 
-class vtkDataArray;
 class vtkImageData;
 class vtkObject;
 class vtkRefractaSurfaceSet;
@@ -33,9 +34,12 @@ public:
   // error naming the problem. The upload happens in PrepareIrradiance().
   bool SetLighting(vtkImageData* lighting, vtkObject* owner);
 
-  // Uploads the irradiance for the current build (zeros when the lighting has none). False, with
-  // an error, when its tuples do not match the set's texels.
-  bool PrepareIrradiance(vtkOpenCLContext* context, vtkObject* owner);
+  // Uploads the irradiance for the current build (zeros when the lighting has none). With the
+  // caustic atlas, the buffer holds the atlas less the caustic light shown by the fine texels,
+  // then the fine texels of the atlas texels where at least photonsPerFineTexel c^2 caustic
+  // photons landed (zeros elsewhere). False, with an error, when the tuples do not match the
+  // set's texels.
+  bool PrepareIrradiance(vtkOpenCLContext* context, double photonsPerFineTexel, vtkObject* owner);
 
   // Whether there is anything to hit.
   bool Active() const { return this->NodeCount > 0; }
@@ -48,6 +52,10 @@ public:
   // Whether the set has dielectric (glass) triangles: the kernel then splits paths at them.
   bool HasDielectric() const { return this->NodeCount > 0 && this->Dielectric; }
   int GetNumberOfUploads() const { return this->NumberOfUploads; }
+  // The caustic atlas's subdivision c in the uploaded irradiance (1: none), and the number of
+  // atlas texels before its fine texels in that buffer.
+  int GetCausticSubdivision() const { return this->Caustic; }
+  vtkIdType GetNumberOfTexels() const { return this->Texels; }
 
   vtkOpenCLBuffer Nodes, Triangles, TriangleInfo, Albedo, Irradiance;
   // Corner normals (float4 per corner) and (IndexInside, IndexOutside) per surface.
@@ -62,9 +70,39 @@ private:
   double FrameOrigin[3] = { 0, 0, 0 };
   int NumberOfUploads = 0;
 
-  vtkSmartPointer<vtkDataArray> IrradianceArray; // from the lighting volume, or nullptr
-  vtkMTimeType IrradianceTime = 0;
+  // The lighting volume's surface arrays (each may be nullptr) and their MTimes at SetLighting.
+  struct LightingArrays
+  {
+    vtkSmartPointer<vtkDataArray> Irradiance, Caustic, CausticPhotons;
+    vtkMTimeType Times[3] = { 0, 0, 0 };
+    void Stamp()
+    {
+      vtkDataArray* arrays[3] = { this->Irradiance, this->Caustic, this->CausticPhotons };
+      for (int i = 0; i < 3; ++i)
+      {
+        this->Times[i] = arrays[i] ? arrays[i]->GetMTime() : 0;
+      }
+    }
+    bool SameAs(const LightingArrays& o) const
+    {
+      LightingArrays now = *this;
+      now.Stamp();
+      return now.Irradiance == o.Irradiance && now.Caustic == o.Caustic &&
+        now.CausticPhotons == o.CausticPhotons && std::equal(now.Times, now.Times + 3, o.Times);
+    }
+  };
+  // Moves the caustic light of the texels read fine from `values` (the atlas) into the fine
+  // texels appended to it; sets Caustic.
+  bool SplitCaustic(std::vector<float>& values, double photonsPerFineTexel, vtkObject* owner);
+  // For subdivision n and caustic subdivision c: the atlas texel of each fine texel.
+  static void FineToCoarseTexels(int n, int c, std::vector<int>& coarseOf);
+  bool CheckTuples(
+    vtkDataArray* array, vtkIdType expected, const char* name, vtkObject* owner) const;
+
+  LightingArrays Lighting;
   bool IrradianceDirty = true;
+  double PhotonsPerFineTexel = -1;
+  int Caustic = 1;
 };
 }
 

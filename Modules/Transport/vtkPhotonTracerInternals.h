@@ -5,6 +5,7 @@
 #define vtkPhotonTracerInternals_h
 
 #include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPhotonTracer.h"
@@ -195,6 +196,7 @@ struct vtkPhotonTracer::Internals
   // dielectric surfaces); its accumulators follow the coarse ones in SurfIrradiance.
   int Caustic = 1;
   vtkNew<vtkFloatArray> CausticIrradiance;
+  vtkNew<vtkIdTypeArray> CausticPhotons; // caustic photons per atlas texel
   // Analog scattering (vtkPhotonTracer::AnalogScattering): whether this run uses it, g per voxel
   // on the device, the S_ms accumulators (fixed point, 3 per voxel) and the resolved S_ms.
   bool Analog = false;

@@ -212,10 +212,11 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
       in, interfaces.size() * sizeof(float), interfaces.data(), "surface interface indices");
   }
   this->KeptSurfaces.reset();
-  // The caustic atlas's c^2 fine texels per coarse texel follow the coarse ones.
+  // The caustic atlas's c^2 fine texels per coarse texel follow the coarse ones, then one
+  // caustic photon count per coarse texel.
   const size_t c2 = static_cast<size_t>(run.Caustic) * run.Caustic;
-  const size_t accumulators =
-    3 * static_cast<size_t>(set->GetNumberOfTexels()) * (run.Caustic > 1 ? 1 + c2 : 1);
+  const size_t texels = static_cast<size_t>(set->GetNumberOfTexels());
+  const size_t accumulators = run.Caustic > 1 ? texels * (3 + 3 * c2 + 1) : 3 * texels;
   run.SurfIrradiance = alloc.Make(
     CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "surface irradiance accumulator");
   return run.SurfNodes && run.SurfTriangles && run.SurfInfo && run.SurfAlbedo &&
@@ -271,7 +272,8 @@ bool vtkPhotonTracer::ResolveSurfaces(Internals& run)
   const vtkIdType texels = run.Surfaces->GetNumberOfTexels();
   const vtkIdType c2 = static_cast<vtkIdType>(run.Caustic) * run.Caustic;
   const vtkIdType fine = run.Caustic > 1 ? texels * c2 : 0;
-  std::vector<cl_long> fixed(3 * static_cast<size_t>(texels + fine));
+  const vtkIdType counts = run.Caustic > 1 ? texels : 0;
+  std::vector<cl_long> fixed(3 * static_cast<size_t>(texels + fine) + counts);
   if (!run.Context->ReadBuffer(
         run.SurfIrradiance.Get(), fixed.size() * sizeof(cl_long), fixed.data(), this))
   {
@@ -286,6 +288,11 @@ bool vtkPhotonTracer::ResolveSurfaces(Internals& run)
     // subdivision n c) 1 / c^2 of it: fine texel f has the area of coarse texel f / c^2 over c^2.
     ResolveTexels(run.Scale, fixed.data() + 3 * texels, fine, c2, areas, run.CausticIrradiance,
       vtkRefractaLightingVolume::SurfaceCausticIrradianceName());
+    vtkIdTypeArray* photons = run.CausticPhotons;
+    photons->SetName(vtkRefractaLightingVolume::SurfaceCausticPhotonsName());
+    photons->SetNumberOfTuples(texels);
+    const cl_long* count = fixed.data() + 3 * (texels + fine);
+    std::copy(count, count + texels, photons->GetPointer(0));
   }
   return true;
 }
@@ -299,6 +306,7 @@ void vtkPhotonTracer::WriteSurfaceOutput(Internals& run, vtkImageData* output)
     if (run.Caustic > 1)
     {
       output->GetFieldData()->AddArray(run.CausticIrradiance);
+      output->GetFieldData()->AddArray(run.CausticPhotons);
     }
   }
   if (run.Analog)

@@ -419,7 +419,6 @@ TEST(PhotonInterfaces, CausticAtlasResolvesTheFocus)
   tracer->AddLight(photontest::Directional({ 0, 0, 10 }, { 0, 0, 0 }, 1.0));
   tracer->SetNumberOfPhotons(1 << 19);
   tracer->SetSurfaces(set);
-  EXPECT_EQ(tracer->GetCausticSubdivision(), 1); // off by default until the view pass reads it
   tracer->SetCausticSubdivision(4);
   tracer->Update();
   vtkImageData* out = tracer->GetOutput();
@@ -460,6 +459,35 @@ TEST(PhotonInterfaces, CausticAtlasResolvesTheFocus)
     }
   }
   EXPECT_LT(worst, 1e-4 * screen);
+  // Every photon on the black screen came through the glass (Fresnel's choice by roulette keeps
+  // its power) and ended there, so each screen texel's flux is its caustic photon count times the
+  // one photon power (the black aperture above the lens counts the light the ball reflects).
+  vtkDataArray* counts =
+    out->GetFieldData()->GetArray(vtkRefractaLightingVolume::SurfaceCausticPhotonsName());
+  ASSERT_NE(counts, nullptr);
+  ASSERT_EQ(counts->GetNumberOfTuples(), texels);
+  const std::vector<double>& areas = set->GetTexelAreas();
+  double landed = 0, lowest = 1e300, highest = 0, uncounted = 0;
+  for (vtkIdType k = 0; k < set->GetNumberOfTriangles(); ++k)
+  {
+    const int first = info[4 * k], n = info[4 * k + 1];
+    const bool onScreen = info[4 * k + REFRACTA_TRIANGLE_INFO_SURFACE] == 2;
+    for (int t = first; t < first + n * n; ++t)
+    {
+      const double count = counts->GetComponent(t, 0), flux = coarse->GetComponent(t, 0) * areas[t];
+      landed += count;
+      if (!onScreen || count == 0)
+      {
+        uncounted += onScreen ? flux : 0.0;
+        continue;
+      }
+      lowest = std::min(lowest, flux / count);
+      highest = std::max(highest, flux / count);
+    }
+  }
+  EXPECT_GT(landed, 5000);
+  EXPECT_EQ(uncounted, 0.0);
+  EXPECT_LT(highest, lowest * (1 + 1e-4));
   // The share of the spot's flux within rEnc of the axis, from the exact trace (a uniform beam
   // of radius `aperture`; Fresnel transmission varies by < 1% over it).
   const double rEnc = 0.03;
