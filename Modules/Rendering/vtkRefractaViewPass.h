@@ -207,8 +207,10 @@ public:
    * light focused by glass, c x c finer than the atlas), an atlas texel where at least
    * CausticPhotonsPerFineTexel x c^2 caustic photons landed shows its caustic light from the fine
    * texels, the rest of its light from the atlas; other texels show the atlas alone, so broad,
-   * dim refracted light keeps the atlas's lower noise. Default 8 (photons per fine texel on
-   * average), chosen by measurement (Documentation/Benchmarks.md "Glass against ideal optics").
+   * dim refracted light keeps the atlas's lower noise. Default 64 photons per fine texel on
+   * average (a fine texel's photon noise then about 1 / 8, less after the LINEAR_TEXEL filter
+   * averages up to 6), chosen by measurement (Documentation/Benchmarks.md "Glass against ideal
+   * optics").
    * 0 reads every caustic texel fine; a very large value never does.
    */
   vtkSetClampMacro(CausticPhotonsPerFineTexel, double, 0.0, 1e30);
@@ -392,7 +394,7 @@ protected:
   bool EmptySpaceSkipping = true;
   int MacroCellSize = 8;
   int SurfaceFilter = LINEAR_TEXEL;
-  double CausticPhotonsPerFineTexel = 8;
+  double CausticPhotonsPerFineTexel = 64;
   int DielectricSplitDepth = 2;
   bool LastSkipping = false;
   double LastActiveCellFraction = 1.0;

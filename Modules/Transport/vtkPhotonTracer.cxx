@@ -344,6 +344,13 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   options << " -DREFRACTA_SURFACES=" << (run.Surfaces ? 1 : 0)
           << " -DREFRACTA_INTERFACES=" << (interfaces ? 1 : 0);
   run.Caustic = interfaces ? this->CausticSubdivision : 1;
+  while (run.Caustic > 1 &&
+    run.Surfaces->GetNumberOfTexels() * run.Caustic * run.Caustic >
+      this->MaximumNumberOfCausticTexels)
+  {
+    --run.Caustic; // the fine texels must fit their budget
+  }
+  this->LastCausticSubdivision = run.Caustic;
   options << " -DREFRACTA_CAUSTIC_SUBDIVISION=" << run.Caustic << " -DREFRACTA_CAUSTIC_OFFSET="
           << (run.Caustic > 1 ? run.Surfaces->GetNumberOfTexels() : 0);
   run.Analog = this->AnalogScattering && run.Surfaces && m.Scatters;
@@ -834,6 +841,8 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNumberOfInterfaceEvents: " << this->MaximumNumberOfInterfaceEvents
      << "\n";
   os << indent << "CausticSubdivision: " << this->CausticSubdivision << "\n";
+  os << indent << "MaximumNumberOfCausticTexels: " << this->MaximumNumberOfCausticTexels << "\n";
+  os << indent << "LastCausticSubdivision: " << this->LastCausticSubdivision << "\n";
   os << indent << "MaximumTurn: " << this->MaximumTurn << "\n";
   os << indent << "StepTolerance: " << this->StepTolerance << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";

@@ -303,20 +303,38 @@ public:
 
   ///@{
   /**
-   * Caustic atlas subdivision c (default 1: off, until the view pass reads the atlas; at most
-   * 16; 4 is the value measured in the tests). A photon
+   * Caustic atlas subdivision c (default 4, chosen by measurement: Documentation/Benchmarks.md
+   * "Glass against ideal optics"; 1 turns it off; at most 16). A photon
    * whose path since the light or its last diffuse event (Lambertian bounce, volume scattering)
    * met a dielectric interface (an LS+D path, a caustic photon) deposits on a Lambertian
-   * triangle also into a finer atlas, every texel of the surface set's atlas cut again c x c
-   * (Documentation/Physics.md "Caustic atlas"); the output then holds the field-data array
-   * vtkRefractaLightingVolume::SurfaceCausticIrradianceName() beside SurfaceIrradianceName(),
-   * which keeps the whole flux (the fine array resolves its caustic part). Scenes without
-   * dielectric surfaces have no caustic photons: nothing is allocated and the output is unchanged.
-   * Memory: 24 c^2 bytes per atlas texel on the device while tracing, 12 c^2 in the output.
+   * triangle also into a finer atlas, every texel of the surface set's atlas cut again c x c,
+   * and is counted in its atlas texel (Documentation/Physics.md "Caustic atlas"); the output then
+   * holds the field-data arrays vtkRefractaLightingVolume::SurfaceCausticIrradianceName() and
+   * SurfaceCausticPhotonsName() beside SurfaceIrradianceName(), which keeps the whole flux (the
+   * fine array resolves its caustic part; the view pass reads it where enough photons landed).
+   * Scenes without dielectric surfaces have no caustic photons: nothing is allocated and the
+   * output is unchanged. Memory: 24 c^2 + 8 bytes per atlas texel on the device while tracing,
+   * 12 c^2 + 8 in the output; c is lowered for a run until the fine texels fit in
+   * MaximumNumberOfCausticTexels (GetLastCausticSubdivision()).
    */
   vtkSetClampMacro(CausticSubdivision, int, 1, 16);
   vtkGetMacro(CausticSubdivision, int);
   ///@}
+
+  ///@{
+  /**
+   * Most fine texels of the caustic atlas (default 2^22: 100 MB on the device while tracing).
+   * A run whose atlas has T texels uses the largest c' <= CausticSubdivision with T c'^2 within
+   * it (no caustic atlas if that is 1).
+   */
+  vtkSetClampMacro(MaximumNumberOfCausticTexels, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(MaximumNumberOfCausticTexels, vtkIdType);
+  ///@}
+
+  /**
+   * The caustic atlas's subdivision in the last run (1: none; see CausticSubdivision).
+   */
+  vtkGetMacro(LastCausticSubdivision, int);
 
   ///@{
   /**
@@ -521,7 +539,9 @@ protected:
   double RouletteThreshold = 0.001;
   int MaximumNumberOfSteps = 10000;
   int MaximumNumberOfInterfaceEvents = 64;
-  int CausticSubdivision = 1;
+  int CausticSubdivision = 4;
+  vtkIdType MaximumNumberOfCausticTexels = vtkIdType(1) << 22;
+  int LastCausticSubdivision = 1;
   double MaximumTurn = 0.5;
   double StepTolerance = 0.02;
   bool Smoothing = true;

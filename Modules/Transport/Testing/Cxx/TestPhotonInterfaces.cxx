@@ -419,8 +419,11 @@ TEST(PhotonInterfaces, CausticAtlasResolvesTheFocus)
   tracer->AddLight(photontest::Directional({ 0, 0, 10 }, { 0, 0, 0 }, 1.0));
   tracer->SetNumberOfPhotons(1 << 19);
   tracer->SetSurfaces(set);
-  tracer->SetCausticSubdivision(4);
+  EXPECT_EQ(tracer->GetCausticSubdivision(), 4); // the default
+  // This atlas (517k texels of 0.02) needs 8.3M fine texels at c = 4: above the default budget.
+  tracer->SetMaximumNumberOfCausticTexels(vtkIdType(1) << 24);
   tracer->Update();
+  EXPECT_EQ(tracer->GetLastCausticSubdivision(), 4);
   vtkImageData* out = tracer->GetOutput();
   ExpectExactBooks(out);
   vtkDataArray* coarse =
@@ -519,6 +522,17 @@ TEST(PhotonInterfaces, CausticAtlasResolvesTheFocus)
   EXPECT_EQ(tracer->GetOutput()->GetFieldData()->GetArray(
               vtkRefractaLightingVolume::SurfaceCausticIrradianceName()),
     nullptr);
+  // The fine texels' budget lowers c for the run: 9.5 per atlas texel allows c = 3.
+  tracer->SetSurfaces(set);
+  tracer->SetMaximumNumberOfCausticTexels(texels * 19 / 2);
+  tracer->Update();
+  EXPECT_EQ(tracer->GetLastCausticSubdivision(), 3);
+  EXPECT_EQ(tracer->GetOutput()
+              ->GetFieldData()
+              ->GetArray(vtkRefractaLightingVolume::SurfaceCausticIrradianceName())
+              ->GetNumberOfTuples(),
+    9 * texels);
+  tracer->SetMaximumNumberOfCausticTexels(vtkIdType(1) << 24);
   // c = 1 turns the caustic atlas off.
   tracer->SetSurfaces(set);
   tracer->SetCausticSubdivision(1);
