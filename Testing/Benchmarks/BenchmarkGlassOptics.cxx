@@ -50,6 +50,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 
+#include "RefractaIdealGlass.h"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -61,25 +63,7 @@
 
 namespace
 {
-using V3 = std::array<double, 3>;
-const V3 BallCentre = { 0.0, 0.05, 0.0 };
-const double BallRadius = 0.42, Index = 1.5, FloorY = -0.8;
-const V3 LightPosition = { 0.0, 3.0, 0.0 };
-const double ConeDegrees = 12.0;
-
-V3 Add(const V3& a, const V3& b, double s = 1.0)
-{
-  return { a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2] };
-}
-double Dot(const V3& a, const V3& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-V3 Unit(V3 a)
-{
-  const double l = std::sqrt(Dot(a, a));
-  return { a[0] / l, a[1] / l, a[2] / l };
-}
+using namespace RefractaIdealGlass;
 
 struct Settings
 {
@@ -181,15 +165,11 @@ Render RenderScene(const Settings& s, bool ball, bool exact, bool fog)
 //------------------------------------------------------------------------------
 // The camera's rays and the floor, in pixel coordinates (x, y in [0, size), pixel i covering
 // [i, i + 1), row 0 at the bottom).
-struct View
+struct View : Pinhole
 {
-  V3 Eye, Forward, Right, Up;
-  double Tan;
-  int Size;
-
   explicit View(int size)
-    : Size(size)
   {
+    Size = size;
     vtkNew<vtkCamera> c;
     SetCamera(c);
     double p[3], f[3], u[3];
@@ -204,13 +184,7 @@ struct View
     Up = { Right[1] * Forward[2] - Right[2] * Forward[1],
       Right[2] * Forward[0] - Right[0] * Forward[2],
       Right[0] * Forward[1] - Right[1] * Forward[0] };
-    Tan = std::tan(vtkMath::RadiansFromDegrees(34.0) / 2);
-  }
-
-  V3 Ray(double x, double y) const
-  {
-    const double sx = (2.0 * x / Size - 1.0) * Tan, sy = (2.0 * y / Size - 1.0) * Tan;
-    return Unit(Add(Add(Forward, Right, sx), Up, sy));
+    Tan = std::tan(vtkMath::RadiansFromDegrees(c->GetViewAngle()) / 2);
   }
 
   // Floor point seen along the ray through (x, y); false when the ray misses the floor.
@@ -225,15 +199,6 @@ struct View
     return std::abs(hit[0]) <= 1.2 && std::abs(hit[2]) <= 1.2;
   }
 
-  // Pixel coordinates of a world point.
-  void Project(const V3& p, double& x, double& y) const
-  {
-    const V3 v = Add(p, Eye, -1.0);
-    const double z = Dot(v, Forward);
-    x = (Dot(v, Right) / (z * Tan) + 1.0) * 0.5 * Size;
-    y = (Dot(v, Up) / (z * Tan) + 1.0) * 0.5 * Size;
-  }
-
   // Whether the pixel's centre ray meets the ball.
   bool SeesBall(int i, int j) const
   {
@@ -246,33 +211,6 @@ struct View
 
 //------------------------------------------------------------------------------
 // Ideal geometric optics on the floor.
-double Fresnel(double cosI, double etaI, double etaT)
-{
-  const double sinT = etaI / etaT * std::sqrt(std::max(0.0, 1.0 - cosI * cosI));
-  if (sinT >= 1.0)
-  {
-    return 1.0;
-  }
-  const double cosT = std::sqrt(1.0 - sinT * sinT);
-  const double rs = (etaI * cosI - etaT * cosT) / (etaI * cosI + etaT * cosT);
-  const double rp = (etaI * cosT - etaT * cosI) / (etaI * cosT + etaT * cosI);
-  return 0.5 * (rs * rs + rp * rp);
-}
-
-// Distance along the unit d from o to the sphere (the far side when inside); < 0: none.
-double HitBall(const V3& o, const V3& d, bool inside)
-{
-  const V3 oc = Add(o, BallCentre, -1.0);
-  const double b = Dot(oc, d), c = Dot(oc, oc) - BallRadius * BallRadius;
-  const double disc = b * b - c;
-  if (disc <= 0)
-  {
-    return -1;
-  }
-  const double t = inside ? -b + std::sqrt(disc) : -b - std::sqrt(disc);
-  return t > 1e-9 ? t : -1;
-}
-
 struct IdealFloor
 {
   double Cell = 0.002;
@@ -285,72 +223,25 @@ struct IdealFloor
     Flux.assign(static_cast<size_t>(N) * N, 0.0);
   }
 
-  // Spot intensity (I0 = 1) at angle theta from the axis (straight down).
-  static double Intensity(const V3& d)
+  // Bins the light through the ball (every branch to 6 interfaces, no fog) where it meets the
+  // floor.
+  void Trace(int rays)
   {
-    return -d[1] >= std::cos(vtkMath::RadiansFromDegrees(ConeDegrees)) ? -d[1] : 0.0;
-  }
-
-  // Follows a ray of power w through the ball (both Fresnel branches, up to `depth` interfaces)
-  // and bins what lands on the floor.
-  void Follow(V3 o, V3 d, double w, bool inside, int depth)
-  {
-    const double t = HitBall(o, d, inside);
-    if (t < 0 || depth == 0)
-    {
-      if (!inside && d[1] < 0)
+    TraceThroughBall(rays, 6, 0.0,
+      [this](const Beam& beam)
       {
-        const V3 p = Add(o, d, (FloorY - o[1]) / d[1]);
+        if (beam.Direction[1] >= 0)
+        {
+          return;
+        }
+        const V3 p = Add(beam.Origin, beam.Direction, (FloorY - beam.Origin[1]) / beam.Direction[1]);
         const int i = static_cast<int>(std::floor((p[0] + 1.2) / Cell));
         const int k = static_cast<int>(std::floor((p[2] + 1.2) / Cell));
         if (i >= 0 && i < N && k >= 0 && k < N)
         {
-          Flux[i + static_cast<size_t>(N) * k] += w;
+          Flux[i + static_cast<size_t>(N) * k] += beam.Power;
         }
-      }
-      return;
-    }
-    const V3 p = Add(o, d, t);
-    V3 n = Unit(Add(p, BallCentre, -1.0));
-    if (inside)
-    {
-      n = { -n[0], -n[1], -n[2] };
-    }
-    const double etaI = inside ? Index : 1.0, etaT = inside ? 1.0 : Index;
-    const double cosI = -Dot(d, n);
-    const double r = Fresnel(cosI, etaI, etaT);
-    const V3 reflected = Add(d, n, 2 * cosI);
-    Follow(p, reflected, w * r, inside, depth - 1);
-    if (r < 1)
-    {
-      const double eta = etaI / etaT;
-      const double k = 1 - eta * eta * (1 - cosI * cosI);
-      const V3 refracted =
-        Unit(Add(V3{ eta * d[0], eta * d[1], eta * d[2] }, n, eta * cosI - std::sqrt(k)));
-      Follow(p, refracted, w * (1 - r), !inside, depth - 1);
-    }
-  }
-
-  // Traces the light's rays that meet the ball: stratified over the cone (uniform in the cosine
-  // and the azimuth, so each ray carries I(theta) d omega).
-  void Trace(int rays)
-  {
-    const double cosCone = std::cos(vtkMath::RadiansFromDegrees(ConeDegrees));
-    const double domega = 2 * vtkMath::Pi() * (1 - cosCone) / (double(rays) * rays);
-    for (int a = 0; a < rays; ++a)
-    {
-      const double c = 1 - (a + 0.5) / rays * (1 - cosCone);
-      const double sn = std::sqrt(1 - c * c);
-      for (int b = 0; b < rays; ++b)
-      {
-        const double phi = 2 * vtkMath::Pi() * (b + 0.5) / rays;
-        const V3 d = { sn * std::cos(phi), -c, sn * std::sin(phi) };
-        if (HitBall(LightPosition, d, false) > 0)
-        {
-          Follow(LightPosition, d, Intensity(d) * domega, false, 6);
-        }
-      }
-    }
+      });
   }
 
   // Irradiance at a floor point: the direct light (analytic, zero in the ball's shadow) plus the
@@ -363,7 +254,7 @@ struct IdealFloor
     double e = 0;
     if (HitBall(LightPosition, d, false) < 0)
     {
-      e = Intensity(d) * (-d[1]) / r2; // floor normal (0, 1, 0)
+      e = SpotIntensity(d) * (-d[1]) / r2; // floor normal (0, 1, 0)
     }
     const int i = static_cast<int>(std::floor((p[0] + 1.2) / Cell));
     const int k = static_cast<int>(std::floor((p[2] + 1.2) / Cell));
