@@ -197,16 +197,20 @@ IdealShaft::IdealShaft(const Pinhole& camera, const Fog& fog, const std::vector<
   this->Planes.assign(heights.size(), std::vector<double>(static_cast<size_t>(this->Nx) * this->Nz));
 }
 
-void IdealShaft::AddBeam(const Beam& beam)
+double IdealShaft::Length(const Beam& beam)
+{
+  // The origin lies on the ball, inside the box.
+  const double length = LengthInBox(beam.Origin, beam.Direction, 1e9);
+  return beam.Direction[1] < 0
+    ? std::min(length, (FloorY - beam.Origin[1]) / beam.Direction[1])
+    : length;
+}
+
+void IdealShaft::AddToPlanes(const Beam& beam)
 {
   const V3& o = beam.Origin;
   const V3& d = beam.Direction;
-  double length = LengthInBox(o, d, 1e9); // the origin lies on the ball, inside the box
-  if (d[1] < 0)
-  {
-    length = std::min(length, (FloorY - o[1]) / d[1]);
-  }
-  const double sigmaT = this->Medium.Extinction;
+  const double length = Length(beam);
   for (size_t k = 0; k < this->Heights.size(); ++k)
   {
     const double s = d[1] != 0 ? (this->Heights[k] - o[1]) / d[1] : -1.0;
@@ -217,15 +221,19 @@ void IdealShaft::AddBeam(const Beam& beam)
       if (i >= 0 && i < this->Nx && m >= 0 && m < this->Nz)
       {
         this->Planes[k][i + static_cast<size_t>(this->Nx) * m] +=
-          beam.Power * std::exp(-sigmaT * s) / std::abs(d[1]);
+          beam.Power * std::exp(-this->Medium.Extinction * s) / std::abs(d[1]);
       }
     }
   }
-  // The image: only the piece below the ball's centre (rows below the ball see nothing higher
-  // inside the box).
-  if (d[1] > 0)
+}
+
+void IdealShaft::AddToImage(const Beam& beam)
+{
+  // Only below the ball's centre: rows below the ball see nothing higher inside the box.
+  double length = Length(beam);
+  if (beam.Direction[1] > 0)
   {
-    length = std::min(length, (BallCentre[1] - o[1]) / d[1]);
+    length = std::min(length, (BallCentre[1] - beam.Origin[1]) / beam.Direction[1]);
   }
   if (length > 0)
   {

@@ -112,7 +112,8 @@ class IdealShaft
 public:
   IdealShaft(const Pinhole& camera, const Fog& fog, const std::vector<double>& heights,
     double cell, double halfWidth, double halfDepth);
-  void AddBeam(const Beam& beam);
+  void AddToPlanes(const Beam& beam);
+  void AddToImage(const Beam& beam);
   /// Divides the image by the pixels' solid angles and the planes by the cells' areas; call once.
   void Finish();
 
@@ -129,6 +130,7 @@ private:
   Pinhole Camera;
   Fog Medium;
   void Splat(const Beam& beam, double length);
+  static double Length(const Beam& beam); ///< to the floor or out of the box
 };
 }
 
