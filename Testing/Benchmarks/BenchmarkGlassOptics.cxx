@@ -67,6 +67,9 @@ namespace
 {
 using namespace RefractaIdealGlass;
 
+// The spot light's intensity on its axis (the ideal optics uses 1).
+const double LightIntensity = 60;
+
 struct Settings
 {
   int Size = 256;
@@ -201,7 +204,7 @@ Render RenderScene(const Settings& s, const Scene& scene)
   spot->SetFocalPoint(0, 0, 0);
   spot->SetConeAngle(ConeDegrees);
   spot->SetExponent(1);
-  spot->SetIntensity(60);
+  spot->SetIntensity(LightIntensity);
   pipeline->AddLight(spot);
   vtkNew<vtkCamera> camera;
   SetCamera(camera);
@@ -579,16 +582,15 @@ int PlaneAt(double y)
 // samples of the middle; negative values (noise of a difference) count as 0.
 double ProfileFwhm(std::vector<double> values, double h, int reach)
 {
+  for (double& v : values)
+  {
+    v = std::max(v, 0.0);
+  }
   int peak = -1;
   const int middle = static_cast<int>(values.size()) / 2;
   for (int i = std::max(0, middle - reach); i < std::min<int>(values.size(), middle + reach); ++i)
   {
-    values[i] = std::max(values[i], 0.0);
     peak = (peak < 0 || values[i] > values[peak]) ? i : peak;
-  }
-  for (double& v : values)
-  {
-    v = std::max(v, 0.0);
   }
   return peak < 0 || !(values[peak] > 0) ? 0.0 : Fwhm(values, peak) * h;
 }
@@ -664,6 +666,57 @@ std::vector<double> LatticeProfile(const Render& r, const Render& reference, dou
   return line;
 }
 
+// The radius about the axis within which the layer y of S1(r) - S1(reference) (linear in y)
+// holds half its integral over the lattice points within 0.44 of the axis, each point's value
+// spread over its voxel's h x h square (8 x 8 sub-points binned in rings of 0.001).
+double LatticeHalfRadius(const Render& r, const Render& reference, double y)
+{
+  if (r.S1.empty() || r.S1.size() != reference.S1.size())
+  {
+    return 0;
+  }
+  const int* n = r.Dimensions;
+  const double fy = (y - r.Origin[1]) / r.Spacing[1];
+  const int j = static_cast<int>(fy);
+  const double wy = fy - j, ring = 0.001;
+  std::vector<double> rings(static_cast<size_t>(0.5 / ring), 0.0);
+  double total = 0;
+  for (int k = 0; k < n[2]; ++k)
+  {
+    for (int i = 0; i < n[0]; ++i)
+    {
+      const double x = r.Origin[0] + i * r.Spacing[0], z = r.Origin[2] + k * r.Spacing[2];
+      if (std::hypot(x, z) >= 0.44)
+      {
+        continue;
+      }
+      double v = 0;
+      for (int dj = 0; dj < 2; ++dj)
+      {
+        const size_t p = i + static_cast<size_t>(n[0]) * (j + dj + static_cast<size_t>(n[1]) * k);
+        v += (dj ? wy : 1 - wy) * (static_cast<double>(r.S1[p]) - reference.S1[p]);
+      }
+      total += v;
+      for (int a = 0; a < 64; ++a)
+      {
+        const double sx = x + ((a % 8 + 0.5) / 8 - 0.5) * r.Spacing[0];
+        const double sz = z + ((a / 8 + 0.5) / 8 - 0.5) * r.Spacing[2];
+        rings[std::min(rings.size() - 1, static_cast<size_t>(std::hypot(sx, sz) / ring))] += v / 64;
+      }
+    }
+  }
+  double sum = 0;
+  for (size_t k = 0; k < rings.size() && total > 0; ++k)
+  {
+    if (sum + rings[k] >= 0.5 * total && rings[k] > 0)
+    {
+      return (k + (0.5 * total - sum) / rings[k]) * ring;
+    }
+    sum += rings[k];
+  }
+  return 0;
+}
+
 // The image row through the axis point (0, y, 0) and its pixels per world unit there; -1 when
 // the ball hides that point.
 int AxisRow(const View& view, double y, double& pixelsPerUnit)
@@ -726,49 +779,67 @@ bool MeasureShaft(const Settings& s, const View& view)
               "+ %.0f s. Ideal: %d^2 light rays (fluence, 0.002 cells), %d^2 (image).\n\n",
     opaque.Seconds, exact.Seconds, smoothed.Seconds, s.ShaftRays, s.ShaftImageRays);
   std::printf("Image rows through the axis point (0, y, 0): FWHM across the row, pixels (world "
-              "units at the axis)\n\n| y | row | ideal | exact | smoothed |\n|---|---|---|---|---|\n");
+              "units at the axis); the row's sum over its middle half, rendered / %g over ideal\n\n"
+              "| y | row | ideal | exact | smoothed | sum exact / ideal | sum smoothed / ideal "
+              "|\n|---|---|---|---|---|---|---|\n",
+    LightIntensity);
   for (double y : TableHeights)
   {
     double ppu;
     const int row = AxisRow(view, y, ppu);
     if (row < 0)
     {
-      std::printf("| %.2f | behind the ball | | | |\n", y);
+      std::printf("| %.2f | behind the ball | | | | | |\n", y);
       continue;
     }
     std::printf("| %.2f | %d |", y, row);
-    for (const auto& image : images)
+    double sums[3] = { 0, 0, 0 };
+    for (int m = 0; m < 3; ++m)
     {
-      const double w = ProfileFwhm(ImageRow(image, view.Size, row), 1.0, view.Size / 4);
+      const std::vector<double> line = ImageRow(images[m], view.Size, row);
+      const double w = ProfileFwhm(line, 1.0, view.Size / 4);
       std::printf(" %.1f (%.3f) |", w, w / ppu);
+      for (int i = view.Size / 4; i < 3 * view.Size / 4; ++i)
+      {
+        sums[m] += line[i] / (m ? LightIntensity : 1.0);
+      }
     }
-    std::printf("\n");
+    std::printf(" %.2f | %.2f |\n", sums[1] / sums[0], sums[2] / sums[0]);
   }
-  std::printf("\nFluence (lighting grid S1 = sigma_s phi) along x at (y, z = 0): FWHM in world "
-              "units. Ideal on a lattice of spacing h: voxel means, (1, 2, 1) smoothing.\n\n"
-              "| y | ideal (0.002) | ideal, h = %.4f | h / 2 | h / 4 | exact (grid h) | smoothed "
-              "(grid h) |\n|---|---|---|---|---|---|---|\n",
+  std::printf("\nFluence below the ball (S1 = sigma_s phi of the lighting grid, spacing h = %.4f): "
+              "r50 = radius holding half of phi's integral over the plane y within 0.44 of the "
+              "axis; FWHM of phi along x at z = 0 (ideal: on a lattice of spacing h, h / 2, h / 4, "
+              "voxel means and (1, 2, 1) smoothing)\n\n| y | r50 ideal | r50 exact | r50 smoothed "
+              "| FWHM ideal, h | h / 2 | h / 4 | FWHM exact | FWHM smoothed |\n"
+              "|---|---|---|---|---|---|---|---|---|\n",
     h);
+  double narrowest[3] = { 1e9, 1e9, 1e9 }, at[3] = { 0, 0, 0 };
   for (int k = 0; k < static_cast<int>(heights.size()); ++k)
   {
     const double y = heights[k];
-    std::vector<double> fine(ideal.Nx);
-    for (int i = 0; i < ideal.Nx; ++i)
+    const double r50[3] = { ideal.EncircledRadius(k, 0.5), LatticeHalfRadius(exact, opaque, y),
+      LatticeHalfRadius(smoothed, opaque, y) };
+    for (int m = 0; m < 3; ++m)
     {
-      fine[i] = ideal.Phi(k, i, ideal.Nz / 2);
+      if (r50[m] < narrowest[m])
+      {
+        narrowest[m] = r50[m];
+        at[m] = y;
+      }
     }
-    const bool tabled = std::abs(y - std::lround(y * 20) / 20.0) < 1e-6 || k == 0;
-    if (!tabled)
+    if (k == 0 || k % 5 == 2)
     {
-      continue;
+      std::printf("| %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f |\n", y, r50[0],
+        r50[1], r50[2], ProfileFwhm(GridProfile(ideal, k, h), h, 100),
+        ProfileFwhm(GridProfile(ideal, k, h / 2), h / 2, 200),
+        ProfileFwhm(GridProfile(ideal, k, h / 4), h / 4, 400),
+        ProfileFwhm(LatticeProfile(exact, opaque, y), h, 100),
+        ProfileFwhm(LatticeProfile(smoothed, opaque, y), h, 100));
     }
-    std::printf("| %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f |\n", y,
-      ProfileFwhm(fine, ideal.Cell, ideal.Nx / 2), ProfileFwhm(GridProfile(ideal, k, h), h, 100),
-      ProfileFwhm(GridProfile(ideal, k, h / 2), h / 2, 200),
-      ProfileFwhm(GridProfile(ideal, k, h / 4), h / 4, 400),
-      ProfileFwhm(LatticeProfile(exact, opaque, y), h, 100),
-      ProfileFwhm(LatticeProfile(smoothed, opaque, y), h, 100));
   }
+  std::printf("\nNarrowest r50 (planes every 0.01): ideal %.4f at y = %.2f, exact %.4f at %.2f, "
+              "smoothed %.4f at %.2f\n",
+    narrowest[0], at[0], narrowest[1], at[1], narrowest[2], at[2]);
   return true;
 }
 } // namespace

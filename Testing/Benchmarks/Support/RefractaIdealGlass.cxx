@@ -195,6 +195,8 @@ IdealShaft::IdealShaft(const Pinhole& camera, const Fog& fog, const std::vector<
   , Medium(fog)
 {
   this->Planes.assign(heights.size(), std::vector<double>(static_cast<size_t>(this->Nx) * this->Nz));
+  this->Rings.assign(
+    heights.size(), std::vector<double>(static_cast<size_t>(std::ceil(halfWidth / RingWidth))));
 }
 
 double IdealShaft::Length(const Beam& beam)
@@ -216,12 +218,18 @@ void IdealShaft::AddToPlanes(const Beam& beam)
     const double s = d[1] != 0 ? (this->Heights[k] - o[1]) / d[1] : -1.0;
     if (s >= 0 && s <= length)
     {
-      const int i = static_cast<int>(std::lround((o[0] + s * d[0]) / this->Cell)) + this->Nx / 2;
-      const int m = static_cast<int>(std::lround((o[2] + s * d[2]) / this->Cell)) + this->Nz / 2;
+      const double x = o[0] + s * d[0], z = o[2] + s * d[2];
+      const double phiArea = beam.Power * std::exp(-this->Medium.Extinction * s) / std::abs(d[1]);
+      const int i = static_cast<int>(std::lround(x / this->Cell)) + this->Nx / 2;
+      const int m = static_cast<int>(std::lround(z / this->Cell)) + this->Nz / 2;
       if (i >= 0 && i < this->Nx && m >= 0 && m < this->Nz)
       {
-        this->Planes[k][i + static_cast<size_t>(this->Nx) * m] +=
-          beam.Power * std::exp(-this->Medium.Extinction * s) / std::abs(d[1]);
+        this->Planes[k][i + static_cast<size_t>(this->Nx) * m] += phiArea;
+      }
+      const size_t ring = static_cast<size_t>(std::hypot(x, z) / this->RingWidth);
+      if (ring < this->Rings[k].size())
+      {
+        this->Rings[k][ring] += phiArea;
       }
     }
   }
@@ -287,5 +295,28 @@ void IdealShaft::Finish()
       phi /= this->Cell * this->Cell;
     }
   }
+}
+}
+
+namespace RefractaIdealGlass
+{
+double IdealShaft::EncircledRadius(int plane, double fraction) const
+{
+  const std::vector<double>& rings = this->Rings[plane];
+  double total = 0;
+  for (double r : rings)
+  {
+    total += r;
+  }
+  double sum = 0;
+  for (size_t k = 0; k < rings.size(); ++k)
+  {
+    if (sum + rings[k] >= fraction * total && rings[k] > 0)
+    {
+      return (k + (fraction * total - sum) / rings[k]) * this->RingWidth;
+    }
+    sum += rings[k];
+  }
+  return rings.size() * this->RingWidth;
 }
 }

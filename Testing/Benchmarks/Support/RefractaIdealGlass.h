@@ -105,7 +105,8 @@ struct Pinhole
  *   direction to the eye). Pixels whose view rays meet the ball are not special-cased.
  * - Planes: the fluence phi(x, z) on horizontal planes y = Heights[k], phi = sum w T / |d_y| / c^2
  *   over the pieces crossing a cell c x c (cells centred on multiples of c), in the band
- *   |x| <= HalfWidth, |z| <= HalfDepth.
+ *   |x| <= HalfWidth, |z| <= HalfDepth; and per plane the fluence integrated over rings of width
+ *   RingWidth about the axis (sum w T / |d_y|, out to HalfWidth), for EncircledRadius().
  */
 class IdealShaft
 {
@@ -120,11 +121,17 @@ public:
   std::vector<double> Image;
   std::vector<double> Heights;
   std::vector<std::vector<double>> Planes; ///< per height: cell (i, k) at i + Nx * k
+  std::vector<std::vector<double>> Rings;  ///< per height: integral of phi over each ring
+  double RingWidth = 0.001;
   double Cell;
   int Nx, Nz; ///< cells along x and z (odd: the middle one is centred on the axis)
 
   /// Fluence at cell (i, k) of plane `plane` (after Finish()).
   double Phi(int plane, int i, int k) const { return this->Planes[plane][i + this->Nx * k]; }
+
+  /// The radius about the axis within which plane `plane` holds `fraction` of the integral of phi
+  /// out to HalfWidth (linear within a ring).
+  double EncircledRadius(int plane, double fraction) const;
 
 private:
   Pinhole Camera;
