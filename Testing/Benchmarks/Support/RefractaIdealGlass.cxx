@@ -320,3 +320,44 @@ double IdealShaft::EncircledRadius(int plane, double fraction) const
   return rings.size() * this->RingWidth;
 }
 }
+
+namespace RefractaIdealGlass
+{
+std::vector<double> IdealShaft::ProfileOnLattice(int plane, double h) const
+{
+  auto boxMean = [&](double x, double z)
+  {
+    double sum = 0;
+    int count = 0;
+    for (int m = 0; m < this->Nz; ++m)
+    {
+      const double zc = (m - this->Nz / 2) * this->Cell;
+      for (int i = 0; i < this->Nx && std::abs(zc - z) < 0.5 * h; ++i)
+      {
+        const double xc = (i - this->Nx / 2) * this->Cell;
+        if (std::abs(xc - x) < 0.5 * h)
+        {
+          sum += this->Phi(plane, i, m);
+          ++count;
+        }
+      }
+    }
+    return count ? sum / count : 0.0;
+  };
+  const int half = static_cast<int>((this->Nx / 2) * this->Cell / h) - 1;
+  std::vector<double> line;
+  for (int i = -half; i < half; ++i)
+  {
+    const double x = (i + 0.5) * h;
+    line.push_back((boxMean(x, -1.5 * h) + 3 * boxMean(x, -0.5 * h) + 3 * boxMean(x, 0.5 * h) +
+                     boxMean(x, 1.5 * h)) /
+      8);
+  }
+  std::vector<double> smoothed(line.size(), 0.0);
+  for (size_t i = 1; i + 1 < line.size(); ++i)
+  {
+    smoothed[i] = 0.25 * line[i - 1] + 0.5 * line[i] + 0.25 * line[i + 1];
+  }
+  return smoothed;
+}
+}

@@ -133,6 +133,13 @@ public:
   /// out to HalfWidth (linear within a ring).
   double EncircledRadius(int plane, double fraction) const;
 
+  /// phi along x at z = 0 on plane `plane` as a lattice of spacing h with points at (i + 1/2) h
+  /// (symmetric about the axis, as the render's) would hold it: the mean over each voxel's h x h
+  /// square (the photons' deposit), the photon pass's (1, 2, 1) / 4 smoothing along x and z, and
+  /// linear interpolation to z = 0 (the mean of z = +-h/2); not averaged along y. Needs
+  /// HalfDepth >= 2 h.
+  std::vector<double> ProfileOnLattice(int plane, double h) const;
+
 private:
   Pinhole Camera;
   Fog Medium;
