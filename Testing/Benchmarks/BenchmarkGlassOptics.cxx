@@ -25,10 +25,29 @@
 //   that differ by more than 2% from the same render without the ball (ideal: the projected
 //   silhouette, computed exactly).
 //
-// Usage: BenchmarkGlassOptics [--quick] [--check]. --quick: 128 x 128, 2^16 photons, half the
-// grid. --check: after the table, exit 1 unless the exact interfaces meet the targets
-// (caustic width within 1.5x of ideal, peak / lit within 30%, shadow within 0.1, apparent radius
-// within 2%) and the smoothed index misses one (so the check can fail); no timing renders.
+// The light shaft below the ball (after the timing renders, or alone with --shaft-only): the
+// default scene WITH its fog (sigma_t 0.35, albedo 0.9, g 0.3) and a black floor, rendered with
+// the glass ball and with a black opaque ball in its place (single scattering by photons in
+// both); their difference is the light through the glass (the direct light cancels; the black
+// floor keeps the floor behind the shaft, lit through the ball in one render only, out of it).
+// Ideal optics (Support/RefractaIdealGlass): the same traced rays as beams from the ball to the
+// floor, attenuated by the fog, giving the fluence phi on planes every 0.01 from y = -0.38 to
+// -0.79 and the single-scattered image (the integral of T sigma_s p(g, cos) phi along the view
+// rays, the fog's g and the real view directions, each pixel's mean). Measured per height y:
+// - image: the FWHM across the image row through the axis point (0, y, 0) (pixels and world
+//   units there) and the row's sum (middle half) against ideal;
+// - fluence: r50, the radius about the axis holding half of phi's integral over the plane (the
+//   render: S1 of the lighting grid, each voxel spread over its square); the FWHM of phi along x
+//   at z = 0, the ideal as lattices of spacing h, h / 2, h / 4 would hold it (voxel means and the
+//   photons' (1, 2, 1) smoothing: what a finer grid would resolve).
+//
+// Usage: BenchmarkGlassOptics [--quick] [--check] [--shaft-only] [--single] [--grid N]
+// [--photons N]. --quick: 128 x 128, 2^16 photons, half the grid. --check: after the table, exit
+// 1 unless the exact interfaces meet the targets (caustic width within 1.5x of ideal,
+// peak / lit within 30%, shadow within 0.1, apparent radius within 2%) and the smoothed index
+// misses one (so the check can fail); no timing renders, no shaft. --shaft-only: only the shaft;
+// --single: its renders without multiple scattering; --grid N: an N x 0.95 N x N grid, --photons
+// N: photons (both after --quick).
 #include "vtkCamera.h"
 #include "vtkEffectPlan.h"
 #include "vtkFloatArray.h"
@@ -79,8 +98,8 @@ struct Settings
   int Photons = 1 << 18;
   int Grid[3] = { 80, 76, 80 };
   int Rays = 4000;
-  int ShaftRays = 3000;      // light rays for the shaft's fluence planes (per cone axis)
-  int ShaftImageRays = 1500; // light rays for the shaft's ideal image
+  int ShaftRays = 3000;                // light rays for the shaft's fluence planes (per cone axis)
+  int ShaftImageRays = 1500;           // light rays for the shaft's ideal image
   bool ShaftMultipleScattering = true; // false: the shaft's renders without the lattice
 };
 
@@ -301,7 +320,8 @@ struct IdealFloor
         {
           return;
         }
-        const V3 p = Add(beam.Origin, beam.Direction, (FloorY - beam.Origin[1]) / beam.Direction[1]);
+        const V3 p =
+          Add(beam.Origin, beam.Direction, (FloorY - beam.Origin[1]) / beam.Direction[1]);
         const int i = static_cast<int>(std::floor((p[0] + 1.2) / Cell));
         const int k = static_cast<int>(std::floor((p[2] + 1.2) / Cell));
         if (i >= 0 && i < N && k >= 0 && k < N)
@@ -653,7 +673,8 @@ bool MeasureShaft(const Settings& s, const View& view)
   for (int k = 0; k < static_cast<int>(heights.size()); ++k)
   {
     const double y = heights[k];
-    const double r50[3] = { ideal.EncircledRadius(k, 0.5), LatticeHalfRadius(exact.Lighting, opaque.Lighting, y),
+    const double r50[3] = { ideal.EncircledRadius(k, 0.5),
+      LatticeHalfRadius(exact.Lighting, opaque.Lighting, y),
       LatticeHalfRadius(smoothed.Lighting, opaque.Lighting, y) };
     for (int m = 0; m < 3; ++m)
     {
@@ -724,8 +745,9 @@ int main(int argc, char* argv[])
     }
     else
     {
-      std::fprintf(stderr, "usage: BenchmarkGlassOptics [--quick] [--check] [--shaft-only] [--single] "
-                           "[--grid N] [--photons N]\n");
+      std::fprintf(stderr,
+        "usage: BenchmarkGlassOptics [--quick] [--check] [--shaft-only] [--single] "
+        "[--grid N] [--photons N]\n");
       return 2;
     }
   }

@@ -194,7 +194,8 @@ IdealShaft::IdealShaft(const Pinhole& camera, const Fog& fog, const std::vector<
   , Camera(camera)
   , Medium(fog)
 {
-  this->Planes.assign(heights.size(), std::vector<double>(static_cast<size_t>(this->Nx) * this->Nz));
+  this->Planes.assign(
+    heights.size(), std::vector<double>(static_cast<size_t>(this->Nx) * this->Nz));
   this->Rings.assign(
     heights.size(), std::vector<double>(static_cast<size_t>(std::ceil(halfWidth / RingWidth))));
 }
@@ -203,9 +204,8 @@ double IdealShaft::Length(const Beam& beam)
 {
   // The origin lies on the ball, inside the box.
   const double length = LengthInBox(beam.Origin, beam.Direction, 1e9);
-  return beam.Direction[1] < 0
-    ? std::min(length, (FloorY - beam.Origin[1]) / beam.Direction[1])
-    : length;
+  return beam.Direction[1] < 0 ? std::min(length, (FloorY - beam.Origin[1]) / beam.Direction[1])
+                               : length;
 }
 
 void IdealShaft::AddToPlanes(const Beam& beam)

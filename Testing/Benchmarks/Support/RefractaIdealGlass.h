@@ -21,11 +21,11 @@ namespace RefractaIdealGlass
 using V3 = std::array<double, 3>;
 
 /// The default scene's ball, floor, light and fog.
-extern const V3 BallCentre;     ///< (0, 0.05, 0)
-extern const double BallRadius; ///< 0.42
-extern const double Index;      ///< 1.5
-extern const double FloorY;     ///< -0.8 (the floor plane y = -0.8)
-extern const V3 LightPosition;  ///< (0, 3, 0), pointing straight down
+extern const V3 BallCentre;      ///< (0, 0.05, 0)
+extern const double BallRadius;  ///< 0.42
+extern const double Index;       ///< 1.5
+extern const double FloorY;      ///< -0.8 (the floor plane y = -0.8)
+extern const V3 LightPosition;   ///< (0, 3, 0), pointing straight down
 extern const double ConeDegrees; ///< 12
 /// The medium's box (the voxelizer's bounds): fog exists only inside it.
 extern const double BoxMin[3], BoxMax[3];
@@ -67,8 +67,8 @@ struct Beam
  * the box's top to the ball; the glass's own extinction is neglected (0.02 / unit, 1.7% through
  * the ball's centre).
  */
-void TraceThroughBall(int rays, int depth, double fogExtinction,
-  const std::function<void(const Beam&)>& visit);
+void TraceThroughBall(
+  int rays, int depth, double fogExtinction, const std::function<void(const Beam&)>& visit);
 
 /// The default scene's fog (inside the box, outside the ball).
 struct Fog
@@ -111,8 +111,8 @@ struct Pinhole
 class IdealShaft
 {
 public:
-  IdealShaft(const Pinhole& camera, const Fog& fog, const std::vector<double>& heights,
-    double cell, double halfWidth, double halfDepth);
+  IdealShaft(const Pinhole& camera, const Fog& fog, const std::vector<double>& heights, double cell,
+    double halfWidth, double halfDepth);
   void AddToPlanes(const Beam& beam);
   void AddToImage(const Beam& beam);
   /// Divides the image by the pixels' solid angles and the planes by the cells' areas; call once.

@@ -43,9 +43,8 @@ double ProfileFwhm(std::vector<double> values, double h, int reach)
   return peak < 0 || !(values[peak] > 0) ? 0.0 : Fwhm(values, peak) * h;
 }
 
-
-
-std::vector<double> LatticeProfile(const ScatteringLattice& r, const ScatteringLattice& reference, double y)
+std::vector<double> LatticeProfile(
+  const ScatteringLattice& r, const ScatteringLattice& reference, double y)
 {
   std::vector<double> line;
   if (r.S1.empty() || r.S1.size() != reference.S1.size())
@@ -71,10 +70,6 @@ std::vector<double> LatticeProfile(const ScatteringLattice& r, const ScatteringL
   }
   return line;
 }
-
-
-
-
 
 double LatticeHalfRadius(const ScatteringLattice& r, const ScatteringLattice& reference, double y)
 {
@@ -123,10 +118,6 @@ double LatticeHalfRadius(const ScatteringLattice& r, const ScatteringLattice& re
   }
   return 0;
 }
-
-
-
-
 
 double DirectLightResidual(const ScatteringLattice& r, const ScatteringLattice& reference)
 {
