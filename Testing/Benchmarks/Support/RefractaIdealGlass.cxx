@@ -331,8 +331,11 @@ std::vector<double> IdealShaft::ProfileOnLattice(int plane, double h) const
     int count = 0;
     for (int m = 0; m < this->Nz; ++m)
     {
-      const double zc = (m - this->Nz / 2) * this->Cell;
-      for (int i = 0; i < this->Nx && std::abs(zc - z) < 0.5 * h; ++i)
+      if (std::abs((m - this->Nz / 2) * this->Cell - z) >= 0.5 * h)
+      {
+        continue;
+      }
+      for (int i = 0; i < this->Nx; ++i)
       {
         const double xc = (i - this->Nx / 2) * this->Cell;
         if (std::abs(xc - x) < 0.5 * h)
