@@ -644,6 +644,7 @@ bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2])
               "| y | row | ideal | exact | smoothed | sum exact / ideal | sum smoothed / ideal "
               "|\n|---|---|---|---|---|---|---|\n",
     LightIntensity);
+  int rowsChecked = 0;
   for (double y : TableHeights)
   {
     double ppu;
@@ -666,11 +667,14 @@ bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2])
       }
     }
     std::printf(" %.2f | %.2f |\n", sums[1] / sums[0], sums[2] / sums[0]);
+    rowsChecked += y < -0.44;
     for (int m = 0; m < 2 && y < -0.44; ++m)
     {
       lightMet[m] = lightMet[m] && std::abs(sums[m + 1] / sums[0] - 1.0) <= 0.2;
     }
   }
+  lightMet[0] = lightMet[0] && rowsChecked > 0;
+  lightMet[1] = lightMet[1] && rowsChecked > 0;
   std::printf("\nFluence below the ball (S1 = sigma_s phi of the lighting grid, spacing h = %.4f): "
               "r50 = radius holding half of phi's integral over the plane y within 0.44 of the "
               "axis; FWHM of phi along x at z = 0 (ideal: on a lattice of spacing h, h / 2, h / 4, "
