@@ -587,28 +587,6 @@ int AxisRow(const View& view, double y, double& pixelsPerUnit)
   return view.SeesBall(view.Size / 2, row) ? -1 : row;
 }
 
-std::vector<double> ImageRow(const std::vector<double>& image, int size, int row)
-{
-  return std::vector<double>(image.begin() + static_cast<size_t>(size) * row,
-    image.begin() + static_cast<size_t>(size) * (row + 1));
-}
-
-// The rendered shaft: red channel of `glass` minus `opaque`.
-std::vector<double> Difference(const Render& glass, const Render& opaque)
-{
-  std::vector<double> d(glass.Image.size() / 4, 0.0);
-  for (size_t p = 0; p < d.size() && glass.Image.size() == opaque.Image.size(); ++p)
-  {
-    d[p] = glass.Image[4 * p] - opaque.Image[4 * p];
-  }
-  return d;
-}
-
-struct ShaftWidths
-{
-  std::vector<double> Image, Grid; // world units, per TableHeights; 0: not measured
-};
-
 // Measures and prints the shaft; returns whether every render ran. `lightMet[m]` (m = 0 exact,
 // 1 smoothed): whether the render's shaft holds the ideal single-scattered light, every visible
 // row from y = -0.45 down summing to within 20% of ideal (meaningful without multiple
@@ -632,8 +610,8 @@ bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2])
   {
     return false;
   }
-  const std::vector<double> images[3] = { ideal.Image, Difference(exact, opaque),
-    Difference(smoothed, opaque) };
+  const std::vector<double> images[3] = { ideal.Image, RedDifference(exact.Image, opaque.Image),
+    RedDifference(smoothed.Image, opaque.Image) };
   const double h = exact.Lighting.Spacing[0];
   std::printf("\nThe light shaft below the ball: the default scene with its fog and a black floor; "
               "rendered = glass ball - black opaque ball (S1 by photons in both), %.0f s + %.0f s "

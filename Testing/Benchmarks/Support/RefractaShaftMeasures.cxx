@@ -142,4 +142,19 @@ double DirectLightResidual(const ScatteringLattice& r, const ScatteringLattice& 
   }
   return count && peak > 0 ? sum / count / peak : 0.0;
 }
+std::vector<double> ImageRow(const std::vector<double>& image, int size, int row)
+{
+  return std::vector<double>(image.begin() + static_cast<size_t>(size) * row,
+    image.begin() + static_cast<size_t>(size) * (row + 1));
+}
+
+std::vector<double> RedDifference(const std::vector<float>& a, const std::vector<float>& b)
+{
+  std::vector<double> d(a.size() == b.size() ? a.size() / 4 : 0, 0.0);
+  for (size_t p = 0; p < d.size(); ++p)
+  {
+    d[p] = a[4 * p] - b[4 * p];
+  }
+  return d;
+}
 }

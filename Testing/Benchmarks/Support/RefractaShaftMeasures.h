@@ -19,6 +19,12 @@ double Fwhm(const std::vector<double>& values, int peak);
 /// samples of the middle; negative values (noise of a difference) count as 0. 0: no peak.
 double ProfileFwhm(std::vector<double> values, double h, int reach);
 
+/// Row `row` of a size x size image of doubles (row 0 first).
+std::vector<double> ImageRow(const std::vector<double>& image, int size, int row);
+
+/// The red channel of RGBA image `a` minus that of `b` (empty when their sizes differ).
+std::vector<double> RedDifference(const std::vector<float>& a, const std::vector<float>& b);
+
 /// One channel of a lighting volume's S1 (vtkRefractaLightingVolume::RadianceName()) on its
 /// lattice (point data: x fastest).
 struct ScatteringLattice
