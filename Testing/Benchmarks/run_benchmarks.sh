@@ -66,6 +66,7 @@ voxelize|BenchmarkVoxelize|--sizes 16 --runs 1 --theta 24 --phi 12 --csv @CSV@|-
 illumination|BenchmarkIlluminationNetwork|--sizes 256 --directions 16 --frames 2 --csv @CSV@|--csv @CSV@
 effectplan|BenchmarkEffectPlan|--size 12 --image 16 --photons 2048 --runs 1 --csv @CSV@|--csv @CSV@"
 ACCURACY="glassoptics|BenchmarkGlassOptics|--quick|
+glassshaft|BenchmarkGlassOptics|--quick --shaft|--shaft
 accuracytime|BenchmarkAccuracyTime|--smoke --scenes glass-sphere-in-fog,grin-lens --out @DIR@/accuracytime|--out @DIR@/accuracytime
 reference|RefractaReferenceBenchmark|--smoke --csv @CSV@|--csv @CSV@"
 [ "$accuracy" = 1 ] && PROGRAMS="$PROGRAMS
@@ -157,7 +158,7 @@ while IFS='|' read -r key exe qargs fargs; do
     [ "$rc" -eq 127 ] && why="not found in $bin"
     row "$exe" "FAILED ($why), see $key.log" "-" "-"
     echo "   FAILED ($why)"
-  elif [ -f "$csv" ] || [ "$key" = glassoptics ] || [ "$key" = accuracytime ]; then
+  elif [ -f "$csv" ] || [ "$key" = glassoptics ] || [ "$key" = glassshaft ] || [ "$key" = accuracytime ]; then
     summarise "$key" "$csv" "$exe"
   else
     row "$exe" "FAILED (no CSV written), see $key.log" "-" "-"
