@@ -190,6 +190,11 @@ int vtkRefractaSurfaceSet::AddMediumInterfaces(vtkDataObject* medium, vtkMatrix4
       << " (2 components, one tuple per triangle), all three present. Nothing was added.");
     return -1;
   }
+  vtkDataArray* bodies = fd->GetArray(vtkRefractaMedium::InterfaceMaterialsName());
+  if (bodies && !this->CheckInterfaceMaterials(bodies, triangles->GetNumberOfTuples()))
+  {
+    return -1;
+  }
   const vtkIdType numPoints = points->GetNumberOfTuples();
   vtkNew<vtkPoints> shared;
   shared->SetDataTypeToDouble();
@@ -198,8 +203,10 @@ int vtkRefractaSurfaceSet::AddMediumInterfaces(vtkDataObject* medium, vtkMatrix4
   {
     shared->SetPoint(p, points->GetTuple3(p));
   }
-  // One surface per (inside, outside) pair, sharing the points (unused ones are harmless).
-  std::map<std::pair<double, double>, vtkSmartPointer<vtkCellArray>> groups;
+  // One surface per (inside, outside) pair and inside medium, sharing the points (unused ones
+  // are harmless).
+  using Key = std::vector<double>;
+  std::map<Key, vtkSmartPointer<vtkCellArray>> groups;
   for (vtkIdType t = 0; t < triangles->GetNumberOfTuples(); ++t)
   {
     const double* ids = triangles->GetTuple3(t);
@@ -216,7 +223,13 @@ int vtkRefractaSurfaceSet::AddMediumInterfaces(vtkDataObject* medium, vtkMatrix4
       }
     }
     const double* pair = indices->GetTuple2(t);
-    auto& cells = groups[{ pair[0], pair[1] }];
+    Key key{ pair[0], pair[1] };
+    if (bodies)
+    {
+      const double* body = bodies->GetTuple(t);
+      key.insert(key.end(), body, body + vtkRefractaMedium::InterfaceMaterialComponents);
+    }
+    auto& cells = groups[key];
     if (!cells)
     {
       cells = vtkSmartPointer<vtkCellArray>::New();
@@ -230,11 +243,54 @@ int vtkRefractaSurfaceSet::AddMediumInterfaces(vtkDataObject* medium, vtkMatrix4
     mesh->SetPolys(group.second);
     vtkNew<vtkRefractaSurfaceMaterial> glass;
     glass->SetKindToDielectric();
-    glass->SetIndexInside(group.first.first);
-    glass->SetIndexOutside(group.first.second);
+    const Key& key = group.first;
+    glass->SetIndexInside(key[0]);
+    glass->SetIndexOutside(key[1]);
+    if (key.size() == 2 + vtkRefractaMedium::InterfaceMaterialComponents && key[12] > 0.5)
+    {
+      glass->SetUseInsideMedium(true);
+      glass->SetInsideExtinction(&key[2]);
+      glass->SetInsideAlbedo(&key[5]);
+      glass->SetInsideAnisotropy(key[8]);
+      glass->SetInsideEmission(&key[9]);
+    }
     this->AddSurface(mesh, glass, matrix);
   }
   return static_cast<int>(groups.size());
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaSurfaceSet::CheckInterfaceMaterials(vtkDataArray* bodies, vtkIdType triangles)
+{
+  const int nc = vtkRefractaMedium::InterfaceMaterialComponents;
+  if (bodies->GetNumberOfComponents() != nc || bodies->GetNumberOfTuples() != triangles)
+  {
+    vtkErrorMacro("AddMediumInterfaces: " << vtkRefractaMedium::InterfaceMaterialsName() << " has "
+      << bodies->GetNumberOfTuples() << " tuples of " << bodies->GetNumberOfComponents()
+      << " components; valid is one tuple per interface triangle (" << triangles << ") of " << nc
+      << " components. Nothing was added.");
+    return false;
+  }
+  for (vtkIdType t = 0; t < triangles; ++t)
+  {
+    const double* b = bodies->GetTuple(t);
+    bool valid = true;
+    for (int c = 0; c < nc; ++c)
+    {
+      valid = valid && std::isfinite(b[c]) && (c == 6 || b[c] >= 0.0);
+    }
+    valid = valid && b[3] <= 1.0 && b[4] <= 1.0 && b[5] <= 1.0 && std::fabs(b[6]) < 1.0 &&
+      (b[10] == 0.0 || b[10] == 1.0);
+    if (!valid)
+    {
+      vtkErrorMacro("AddMediumInterfaces: " << vtkRefractaMedium::InterfaceMaterialsName()
+        << " tuple " << t << " is invalid; valid are finite values: extinction >= 0, albedo in "
+           "[0, 1], anisotropy in (-1, 1), emission >= 0, and a last component of 0 or 1. "
+           "Nothing was added.");
+      return false;
+    }
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -599,6 +655,7 @@ bool vtkRefractaSurfaceSet::Build()
     this->TexelAreas.clear();
     this->TriangleNormals.clear();
     this->SurfaceInterfaces.clear();
+    this->SurfaceBodies.clear();
     this->DielectricTriangles = 0;
     return false;
   }
@@ -835,6 +892,7 @@ void vtkRefractaSurfaceSet::DescribeInterfaces()
 {
   const int surfaces = this->GetNumberOfSurfaces();
   this->SurfaceInterfaces.assign(REFRACTA_SURFACE_INTERFACE_FLOATS * size_t(surfaces), 1.0f);
+  this->SurfaceBodies.assign(REFRACTA_SURFACE_BODY_FLOATS * size_t(surfaces), 0.0f);
   std::vector<bool> smooth(surfaces, false);
   for (int s = 0; s < surfaces; ++s)
   {
@@ -846,6 +904,18 @@ void vtkRefractaSurfaceSet::DescribeInterfaces()
       this->SurfaceInterfaces[REFRACTA_SURFACE_INTERFACE_FLOATS * s + 1] =
         static_cast<float>(m->GetIndexOutside());
       smooth[s] = m->GetSmoothNormals();
+      if (m->GetUseInsideMedium())
+      {
+        float* body = &this->SurfaceBodies[REFRACTA_SURFACE_BODY_FLOATS * s];
+        for (int c = 0; c < 3; ++c)
+        {
+          body[c] = static_cast<float>(m->GetInsideExtinction()[c]);
+          body[4 + c] = static_cast<float>(m->GetInsideAlbedo()[c]);
+          body[8 + c] = static_cast<float>(m->GetInsideEmission()[c]);
+        }
+        body[3] = 1.0f;
+        body[7] = static_cast<float>(m->GetInsideAnisotropy());
+      }
     }
   }
   const vtkRefractaBVH* bvh = this->Impl->BVH;

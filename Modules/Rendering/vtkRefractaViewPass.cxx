@@ -324,6 +324,18 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.NearestTexel = this->SurfaceFilter == NEAREST_TEXEL;
   variant.Dielectric = surf.HasDielectric();
   variant.SplitDepth = this->DielectricSplitDepth;
+  // The glass bodies' inside media (a few floats per surface): uploaded per render.
+  vtkOpenCLBuffer bodies;
+  if (variant.Dielectric)
+  {
+    const std::vector<float>& table = in.SurfaceSet->GetSurfaceBodies();
+    bodies = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      table.size() * sizeof(float), table.data(), "glass body media", this);
+    if (!bodies)
+    {
+      return false;
+    }
+  }
   cl_program program = context->GetProgram(
     { "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl", "view_pass.cl" },
     KernelOptions(variant), this);
@@ -443,7 +455,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       activeHi, skipMask, buf(surf.Nodes), nodeCount, buf(surf.Triangles), buf(surf.TriangleInfo),
       buf(surf.Albedo), buf(surf.Irradiance), buf(surf.Normals), buf(surf.Interfaces), toSurface[0],
       toSurface[1], toSurface[2], hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(),
-      surfaceDepthBuffer.Get());
+      surfaceDepthBuffer.Get(), buf(bodies));
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
       !this->RunTiles(context, kernel.Get(), width, rows, row0, height, rowsPerTile))
     {
