@@ -145,6 +145,6 @@ void vtkRefractaSurfaceMaterial::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InsideAlbedo: (" << this->InsideAlbedo[0] << ", " << this->InsideAlbedo[1]
      << ", " << this->InsideAlbedo[2] << ")\n";
   os << indent << "InsideAnisotropy: " << this->InsideAnisotropy << "\n";
-  os << indent << "InsideEmission: (" << this->InsideEmission[0] << ", "
-     << this->InsideEmission[1] << ", " << this->InsideEmission[2] << ")\n";
+  os << indent << "InsideEmission: (" << this->InsideEmission[0] << ", " << this->InsideEmission[1]
+     << ", " << this->InsideEmission[2] << ")\n";
 }

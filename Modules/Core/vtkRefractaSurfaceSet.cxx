@@ -265,8 +265,9 @@ bool vtkRefractaSurfaceSet::CheckInterfaceMaterials(vtkDataArray* bodies, vtkIdT
   const int nc = vtkRefractaMedium::InterfaceMaterialComponents;
   if (bodies->GetNumberOfComponents() != nc || bodies->GetNumberOfTuples() != triangles)
   {
-    vtkErrorMacro("AddMediumInterfaces: " << vtkRefractaMedium::InterfaceMaterialsName() << " has "
-      << bodies->GetNumberOfTuples() << " tuples of " << bodies->GetNumberOfComponents()
+    vtkErrorMacro("AddMediumInterfaces: "
+      << vtkRefractaMedium::InterfaceMaterialsName() << " has " << bodies->GetNumberOfTuples()
+      << " tuples of " << bodies->GetNumberOfComponents()
       << " components; valid is one tuple per interface triangle (" << triangles << ") of " << nc
       << " components. Nothing was added.");
     return false;
@@ -283,8 +284,9 @@ bool vtkRefractaSurfaceSet::CheckInterfaceMaterials(vtkDataArray* bodies, vtkIdT
       (b[10] == 0.0 || b[10] == 1.0);
     if (!valid)
     {
-      vtkErrorMacro("AddMediumInterfaces: " << vtkRefractaMedium::InterfaceMaterialsName()
-        << " tuple " << t << " is invalid; valid are finite values: extinction >= 0, albedo in "
+      vtkErrorMacro("AddMediumInterfaces: "
+        << vtkRefractaMedium::InterfaceMaterialsName() << " tuple " << t
+        << " is invalid; valid are finite values: extinction >= 0, albedo in "
            "[0, 1], anisotropy in (-1, 1), emission >= 0, and a last component of 0 or 1. "
            "Nothing was added.");
       return false;

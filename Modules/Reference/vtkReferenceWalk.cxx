@@ -130,8 +130,9 @@ Walk::Stop Walk::Next(int ch, Rng& rng, bool& truncated)
       // scattered light reaching a light unscattered is the connections' business.
       int light;
       const double tau = -std::log(1 - rng.Uniform());
-      const Event ev = this->Body >= 0 ? this->AdvanceInBody(tau, ch, light)
-                                       : AdvanceOptical(this->T, this->Ray, tau, ch, light, this->Majorant);
+      const Event ev = this->Body >= 0
+        ? this->AdvanceInBody(tau, ch, light)
+        : AdvanceOptical(this->T, this->Ray, tau, ch, light, this->Majorant);
       if (ev == Event::Stuck)
       {
         truncated = true;

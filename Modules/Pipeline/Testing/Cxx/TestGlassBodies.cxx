@@ -55,8 +55,8 @@ vtkSmartPointer<vtkPolyData> Sphere(double radius, int resolution)
 
 // A ball of `material` (radius r at the origin) in `surrounding`, on n^3 voxels over [-h, h]^3,
 // voxelized with exact interfaces (the default).
-vtkSmartPointer<vtkImageData> Voxelize(vtkMediumMaterial* material,
-  vtkMediumMaterial* surrounding, double r, int n, double h, int resolution = 96)
+vtkSmartPointer<vtkImageData> Voxelize(vtkMediumMaterial* material, vtkMediumMaterial* surrounding,
+  double r, int n, double h, int resolution = 96)
 {
   vtkNew<vtkMeshVoxelizer> voxelizer;
   voxelizer->AddInputData(Sphere(r, resolution));
@@ -111,8 +111,8 @@ vtkSmartPointer<vtkLight> Sun(double intensity = 1.0)
   return light;
 }
 
-vtkSmartPointer<vtkImageData> Trace(vtkImageData* medium, vtkRefractaSurfaceSet* set,
-  vtkLight* light, int photons, bool analog)
+vtkSmartPointer<vtkImageData> Trace(
+  vtkImageData* medium, vtkRefractaSurfaceSet* set, vtkLight* light, int photons, bool analog)
 {
   vtkNew<vtkPhotonTracer> tracer;
   tracer->SetInputData(medium);
@@ -175,7 +175,9 @@ TEST(GlassBodies, VoxelizerRecordsTheInsideMedium)
   ASSERT_NE(bodies, nullptr);
   ASSERT_EQ(bodies->GetNumberOfComponents(), vtkRefractaMedium::InterfaceMaterialComponents);
   ASSERT_EQ(bodies->GetNumberOfTuples(),
-    medium->GetFieldData()->GetArray(vtkRefractaMedium::InterfaceTrianglesName())->GetNumberOfTuples());
+    medium->GetFieldData()
+      ->GetArray(vtkRefractaMedium::InterfaceTrianglesName())
+      ->GetNumberOfTuples());
   const double expected[11] = { 2, 2, 2, 0.7, 0.7, 0.7, 0.25, 0.1, 0.2, 0.3, 1 };
   for (int c = 0; c < 11; ++c)
   {
@@ -343,9 +345,9 @@ struct MilkyBall
   MilkyBall(double R, double h, double index, double sigma, double albedo)
   {
     this->Medium = Voxelize(Material(1.0, 0, 0), Material(1.0, 0, 0), 0.1, 24, h, 16);
-    for (const char* name : { vtkRefractaMedium::InterfacePointsName(),
-           vtkRefractaMedium::InterfaceTrianglesName(), vtkRefractaMedium::InterfaceIndicesName(),
-           vtkRefractaMedium::InterfaceMaterialsName() })
+    for (const char* name :
+      { vtkRefractaMedium::InterfacePointsName(), vtkRefractaMedium::InterfaceTrianglesName(),
+        vtkRefractaMedium::InterfaceIndicesName(), vtkRefractaMedium::InterfaceMaterialsName() })
     {
       this->Medium->GetFieldData()->RemoveArray(name);
     }
@@ -408,12 +410,10 @@ TEST(GlassBodies, PointLightInsideAGlassBodyStartsInIt)
   auto out = Trace(ball.Medium, ball.Set, bulb, 1 << 16, false);
   ExpectExactBooks(out);
   const double F = std::pow((index - 1) / (index + 1), 2);
-  const double escaped =
-    (1 - F) * std::exp(-sigma * R) / (1 - F * std::exp(-2 * sigma * R));
+  const double escaped = (1 - F) * std::exp(-sigma * R) / (1 - F * std::exp(-2 * sigma * R));
   const double emitted = Field(out, "EnergyEmitted");
   const double absorbed = Field(out, "EnergyAbsorbed") / emitted;
-  std::cout << "light at the centre: absorbed " << absorbed << ", expected " << 1 - escaped
-            << "\n";
+  std::cout << "light at the centre: absorbed " << absorbed << ", expected " << 1 - escaped << "\n";
   // The light sits 0.02 R off the centre: path lengths change by < 0.02 R at first order, which
   // averages out over the sphere; Fresnel sampling noise sqrt(F / N) on the 4% reflected.
   EXPECT_NEAR(absorbed, 1 - escaped, 0.004);

@@ -6,9 +6,9 @@
 // whose surface is an interface of index 1 on both sides (straight paths, no reflection). Along a
 // ray crossing the box over 2a + c (c the ball's chord) the radiance is analytic, as in
 // ViewPassGlassBodies: without an inside medium the grid's e / sigma (1 - e^{-sigma (2a + c)});
-// with a clear body only the outer runs, run (1 + e^{-sigma a}), run = e / sigma (1 - e^{-sigma a});
-// with an absorbing, emitting body (sigma_b, e_b) run + e^{-sigma a} e_b / sigma_b
-// (1 - e^{-sigma_b c}) + e^{-sigma a - sigma_b c} run.
+// with a clear body only the outer runs, run (1 + e^{-sigma a}), run = e / sigma (1 - e^{-sigma
+// a}); with an absorbing, emitting body (sigma_b, e_b) run + e^{-sigma a} e_b / sigma_b (1 -
+// e^{-sigma_b c}) + e^{-sigma a - sigma_b c} run.
 #include "ReferenceTestUtilities.h"
 
 #include "vtkRefractaSurfaceMaterial.h"
@@ -76,14 +76,15 @@ TEST(ReferenceGlassBodies, InsideMediumReplacesTheGridAlongTheRay)
     bool use;
     double sigma, emission, expected;
   };
-  const Case cases[] = { { "grid inside", false, 0, 0, E / Sigma * (1 - std::exp(-Sigma * (2 * a + c))) },
+  const Case cases[] = { { "grid inside", false, 0, 0,
+                           E / Sigma * (1 - std::exp(-Sigma * (2 * a + c))) },
     { "clear body", true, 0, 0, run * (1 + ta) },
     { "absorbing, emitting body", true, sb, eb, run + ta * eb / sb * (1 - tb) + ta * tb * run } };
   for (const Case& k : cases)
   {
     const Pooled p = Render(k.use, k.sigma, k.emission);
-    std::cout << k.what << ": " << p.Mean[0] << " +- " << p.Error[0] << " (expected "
-              << k.expected << ")\n";
+    std::cout << k.what << ": " << p.Mean[0] << " +- " << p.Error[0] << " (expected " << k.expected
+              << ")\n";
     // Collision estimates of the emission: 4 standard errors; the rays' offsets (within 0.003)
     // change the chord by < 2e-4 of the path.
     EXPECT_NEAR(p.Mean[0], k.expected, 4 * p.Error[0] + 2e-3 * k.expected) << k.what;

@@ -6,10 +6,10 @@
 // both sides (straight rays, no reflection). Along a ray that crosses the box over 2a + c, c the
 // ball's chord, the radiance (background black) is analytic:
 //   grid inside the ball (no inside medium): S (1 - e^{-sigma (2a + c)}) / sigma;
-//   clear glass body (sigma_b = 0): the two outer runs only, S/sigma (1 - e^{-sigma a}) (1 + e^{-sigma a});
-//   milky body (sigma_b, albedo > 0): the outer runs and S / sigma_b (1 - e^{-sigma_b c}) between
-//   them, attenuated by e^{-sigma a} and followed by e^{-sigma a - sigma_b c};
-//   an absorbing body (albedo 0): the outer runs, the second attenuated by e^{-sigma_b c}.
+//   clear glass body (sigma_b = 0): the two outer runs only, S/sigma (1 - e^{-sigma a}) (1 +
+//   e^{-sigma a}); milky body (sigma_b, albedo > 0): the outer runs and S / sigma_b (1 -
+//   e^{-sigma_b c}) between them, attenuated by e^{-sigma a} and followed by e^{-sigma a - sigma_b
+//   c}; an absorbing body (albedo 0): the outer runs, the second attenuated by e^{-sigma_b c}.
 #include "RenderingTestUtilities.h"
 
 #include "vtkCamera.h"
@@ -30,7 +30,7 @@ namespace
 {
 const double Pi = 3.14159265358979323846;
 const double R = 0.3, Sigma = 0.5, M = 4 * Pi * 2.0; // S = M / (4 pi) = 2
-const int Size = 31;                                     // odd: the centre pixel's ray is the axis
+const int Size = 31;                                 // odd: the centre pixel's ray is the axis
 
 struct Body
 {
@@ -45,7 +45,8 @@ double Render(const Body& body)
   auto medium = refracta_test::MakeGrid(21, 21, 21, 0.05, origin);
   refracta_test::AddConstant(medium, vtkRefractaMedium::ExtinctionName(), 3, Sigma, Sigma, Sigma);
   auto lighting = refracta_test::MakeGrid(21, 21, 21, 0.05, origin);
-  refracta_test::AddConstant(lighting, vtkRefractaLightingVolume::MultipleScatteringName(), 3, M, M, M);
+  refracta_test::AddConstant(
+    lighting, vtkRefractaLightingVolume::MultipleScatteringName(), 3, M, M, M);
   vtkNew<vtkSphereSource> sphere;
   sphere->SetRadius(R);
   sphere->SetThetaResolution(256);
