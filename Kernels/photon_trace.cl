@@ -751,9 +751,11 @@ inline int photon_start_body(const photon_surfaces* s, const photon_state* ps, f
   {
     return -1;
   }
-  const float3 ng = photon_from_surface_vector(s, refracta_triangle_normal(s->triangles, h.triangle));
-  return dot(d, ng) > 0.0f ? refracta_body_after_refraction(ps->bodies, s->triInfo[h.triangle].z, true)
-                           : -1;
+  const float3 ng =
+    photon_from_surface_vector(s, refracta_triangle_normal(s->triangles, h.triangle));
+  return dot(d, ng) > 0.0f
+    ? refracta_body_after_refraction(ps->bodies, s->triInfo[h.triangle].z, true)
+    : -1;
 }
 
 // Deposits the photon's power into the fixed-point accumulators of `texel` (3 per texel).
@@ -862,8 +864,9 @@ inline void photon_scatter(photon_state* ps, float3* x, float3* v, float3 d, flo
 {
   *x = clamp(ps->collisionPoint, lo, hi);
 #if REFRACTA_INTERFACES
-  const float gs = ps->body >= 0 ? ps->bodies[3 * ps->body + 1].w
-                                 : refracta_sample1(ps->anisotropy, dims, refracta_to_voxel(*x, spacing));
+  const float gs = ps->body >= 0
+    ? ps->bodies[3 * ps->body + 1].w
+    : refracta_sample1(ps->anisotropy, dims, refracta_to_voxel(*x, spacing));
   const float g = clamp(gs, -0.999f, 0.999f);
 #else
   const float g = clamp(

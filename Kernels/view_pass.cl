@@ -184,7 +184,8 @@ inline float3 refracta_view_body_medium(
   const float4 ext = bodies[3 * body];
   const float4 alb = bodies[3 * body + 1];
   *sigma = ext.xyz;
-  const float3 scatters = select((float3)(0.0f), (float3)(1.0f), isgreater(ext.xyz * alb.xyz, (float3)(0.0f)));
+  const float3 scatters =
+    select((float3)(0.0f), (float3)(1.0f), isgreater(ext.xyz * alb.xyz, (float3)(0.0f)));
   return (q - gridEmission) * scatters + bodies[3 * body + 2].xyz;
 }
 #endif
@@ -769,8 +770,9 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
           b.depth = current.depth + 1;
           a.body = current.body;
           // Entering when it leaves the triangle's outward side behind (fg is the incident side).
-          const float3 outward = refracta_view_normal_to_local(
-            refracta_triangle_normal(triangles, leg.surfaceTri), toSurface0, toSurface1, toSurface2);
+          const float3 outward =
+            refracta_view_normal_to_local(refracta_triangle_normal(triangles, leg.surfaceTri),
+              toSurface0, toSurface1, toSurface2);
           b.body = refracta_body_after_refraction(bodies,
             triInfo[REFRACTA_TRIANGLE_INFO_INTS * leg.surfaceTri + REFRACTA_TRIANGLE_INFO_SURFACE],
             dot(fg, outward) > 0.0f);
