@@ -33,7 +33,8 @@
  *    the triangle info, the corner normals (GetTriangleNormals(): with SmoothNormals the
  *    area-weighted mean of the world normals of the surface's faces sharing the mesh point, kept
  *    where within 30 degrees of the face normal, else the face normal) and the surface's
- *    (IndexInside, IndexOutside) (GetSurfaceInterfaces()).
+ *    (IndexInside, IndexOutside) (GetSurfaceInterfaces()), and its inside medium when it has one
+ *    (GetSurfaceBodies(); Documentation/Physics.md "Glass bodies").
  *
  * A pass deposits photon flux per texel; irradiance (W / m^2, per RGB channel) = flux / texel
  * area (GetTexelAreas()). The flattened arrays follow Kernels/refracta_surfaces.cl.
