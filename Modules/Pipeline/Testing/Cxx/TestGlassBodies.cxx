@@ -374,7 +374,7 @@ TEST(GlassBodies, MilkyBallAttenuatesWithItsOwnExtinction)
   for (double albedo : { 0.0, 1.0 })
   {
     MilkyBall ball(R, h, 1.0, sigma, albedo);
-    auto out = Trace(ball.Medium, ball.Set, Sun(), 1 << 18, false);
+    auto out = Trace(ball.Medium, ball.Set, Sun(), 1 << 17, false);
     ExpectExactBooks(out);
     const double lost = Field(out, "EnergyAbsorbed") + Field(out, "EnergyScattered");
     std::cout << "albedo " << albedo << ": lost " << lost << ", expected " << expected << "\n";
