@@ -60,6 +60,14 @@
 // books (killed / gained), so the books stay exact per photon and nothing goes to `scattered`.
 // A surface's reflection resets the order to 0 (a new beam, as without analog scattering).
 //
+// Glass bodies (REFRACTA_INTERFACES): a dielectric surface with an inside medium (the `bodies`
+// table of refracta_surfaces.cl) fills its inside with that homogeneous medium. A photon carries
+// the body it is in (`body`, -1: the grid): set when it is refracted into such a surface's inside,
+// cleared when refracted out, found at its start by its first hit along its direction (leaving a
+// body's surface from inside: in that body). Inside a body a piece's extinction and albedo, and the
+// analog scattering's anisotropy, are the body's, not the grid's trilinear samples (which blend
+// the materials of the voxels the surface cuts); deposits still go to the voxel the piece is in.
+//
 // Tallies (fixed point, REFRACTA_FIXED_SCALE): tallies[3 * T + c] for the books T =
 // PHOTON_TALLY_EMITTED ... PHOTON_TALLY_GAINED; counters: PHOTON_COUNTER_MARCHED ...
 // PHOTON_COUNTER_PIECES; the outcome of a photon is the index of its counter (escaped, roulette,
@@ -232,6 +240,8 @@ typedef struct
   float3 collisionPoint;                   // analog: where (grid-local)
   __global const float* anisotropy;        // analog: g per voxel
   volatile __global long* multiple;        // analog: S_ms accumulators (order >= 1)
+  int body;                                // the glass body it is in, or -1 (the grid)
+  __global const float4* bodies;           // the bodies' media (refracta_surfaces.cl)
 } photon_state;
 
 // Initial values of the fields added for analog scattering.
@@ -342,12 +352,23 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
   size_t voxel, __global const float* extinction, __global const float* albedo, int4 dims,
   volatile __global long* radiance, volatile __global long* directionSum)
 {
+#if REFRACTA_INTERFACES
+  const bool inBody = ps->body >= 0;
+  const float3 sigmaT =
+    inBody ? ps->bodies[3 * ps->body].xyz : refracta_sample3(extinction, dims, mid);
+#else
   const float3 sigmaT = refracta_sample3(extinction, dims, mid);
+#endif
   const float3 lost = ps->power * (-expm1(-sigmaT * length));
   ps->power = fmax(ps->power - lost, (float3)(0.0f));
   ps->pieces++;
 #if REFRACTA_DEPOSIT
+#if REFRACTA_INTERFACES
+  const float3 a = inBody ? ps->bodies[3 * ps->body + 1].xyz : refracta_sample3(albedo, dims, mid);
+  const float3 sc = lost * clamp(a, 0.0f, 1.0f);
+#else
   const float3 sc = lost * clamp(refracta_sample3(albedo, dims, mid), 0.0f, 1.0f);
+#endif
   ps->absorbed += lost - sc;
   const float w = sc.x + sc.y + sc.z;
 #if REFRACTA_ANALOG
@@ -716,6 +737,27 @@ inline void photon_interface_interact(photon_state* ps, float3* x, float3* dir, 
     1L);
   *x += s->epsilon * (dot(*dir, ng) > 0.0f ? ng : -ng);
   ps->caustic = 1; // an LS+D path from here on, reflected or refracted
+  if (transmitted)
+  {
+    ps->body = refracta_body_after_refraction(ps->bodies, s->triInfo[k].z, dot(d, ng) < 0.0f);
+  }
+}
+
+// The body a photon starting at x along unit d is in: the surface's it first meets, when that
+// is a dielectric surface with an inside medium met from inside; else -1. For closed meshes the
+// first hit decides (nested bodies: the innermost; outside all: a surface met from outside).
+inline int photon_start_body(const photon_surfaces* s, const photon_state* ps, float3 x, float3 d)
+{
+  const refracta_hit h = photon_trace_surfaces(s, x, d, INFINITY);
+  if (h.triangle < 0 || s->triInfo[h.triangle].w != REFRACTA_SURFACE_DIELECTRIC)
+  {
+    return -1;
+  }
+  const float3 ng =
+    photon_from_surface_vector(s, refracta_triangle_normal(s->triangles, h.triangle));
+  return dot(d, ng) > 0.0f
+    ? refracta_body_after_refraction(ps->bodies, s->triInfo[h.triangle].z, true)
+    : -1;
 }
 
 // Deposits the photon's power into the fixed-point accumulators of `texel` (3 per texel).
@@ -827,8 +869,15 @@ inline void photon_scatter(photon_state* ps, float3* x, float3* v, float3 d, flo
   __global const float* refractiveIndex, int4 dims, float4 spacing)
 {
   *x = clamp(ps->collisionPoint, lo, hi);
+#if REFRACTA_INTERFACES
+  const float gs = ps->body >= 0
+    ? ps->bodies[3 * ps->body + 1].w
+    : refracta_sample1(ps->anisotropy, dims, refracta_to_voxel(*x, spacing));
+  const float g = clamp(gs, -0.999f, 0.999f);
+#else
   const float g = clamp(
     refracta_sample1(ps->anisotropy, dims, refracta_to_voxel(*x, spacing)), -0.999f, 0.999f);
+#endif
   const float3 dir = photon_sample_hg(d, g, &ps->rng);
   *v = photon_velocity(*x, dir, lo, hi, refractiveIndex, dims, spacing);
   ps->collided = 0;
@@ -1014,7 +1063,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   __global const float* surfaceAlbedo, volatile __global long* surfaceIrradiance,
   const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon,
   __global const float* anisotropy, volatile __global long* multiple,
-  __global const float4* surfaceNormals, __global const float2* surfaceInterfaces)
+  __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
+  __global const float4* surfaceBodies)
 {
   // Launched in chunks (for progress reports); the stream depends on the photon, not the chunk.
   const uint id = first + (uint)get_global_id(0);
@@ -1041,6 +1091,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   ps.ahead = -1.0f;
   ps.dead = 0;
   photon_init_analog(&ps, anisotropy, multiple, 0);
+  ps.body = -1;
+  ps.bodies = surfaceBodies;
   const float3 emitted = ps.power;
   int steps = 0;
   int outcome = PHOTON_COUNTER_ESCAPED; // counter index: 2 escaped, 3 roulette, 4 step cap, 5 invalid
@@ -1055,6 +1107,9 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   photon_set_surfaces(&surf, surfaceNodes, surfaceNodeCount, surfaceTriangles, surfaceInfo,
     surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon, surfaceNormals,
     surfaceInterfaces, tallies, counters);
+#if REFRACTA_INTERFACES
+  ps.body = photon_start_body(&surf, &ps, x, d0);
+#endif
   float3 v = photon_velocity(x, d0, lo, hi, refractiveIndex, dims, spacing);
   do
   {
@@ -1114,7 +1169,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   __global const float* surfaceAlbedo, volatile __global long* surfaceIrradiance,
   const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon,
   __global const float* anisotropy, volatile __global long* multiple,
-  __global const float4* surfaceNormals, __global const float2* surfaceInterfaces)
+  __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
+  __global const float4* surfaceBodies)
 {
   const uint id = first + (uint)get_global_id(0);
   if (id >= count)
@@ -1132,7 +1188,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   float3 lo;
   float3 hi;
   refracta_domain(dims, spacing, &lo, &hi);
-  if (st.x == 0u)
+  const bool fresh = st.x == 0u; // a new photon: its start body is found below
+  if (fresh)
   {
     ps.power = photonPower[id].xyz;
     const float p0 = fmax(ps.power.x, fmax(ps.power.y, ps.power.z));
@@ -1152,6 +1209,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.caustic = 0;
     ps.ahead = -1.0f;
     photon_init_analog(&ps, anisotropy, multiple, 0);
+    ps.body = -1; // found below, once the surfaces are set (REFRACTA_INTERFACES)
     emitted = ps.power;
     x = photonPos[id].xyz;
     const float3 d0 = normalize(photonDir[id].xyz);
@@ -1194,7 +1252,9 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.rng = st.z;
     ps.pieces = st.w;
     photon_init_analog(&ps, anisotropy, multiple, as_int(s[4].w));
+    ps.body = as_int(s[6].w);
   }
+  ps.bodies = surfaceBodies;
   ps.dead = 0;
   int steps = (int)st.y;
   int outcome = -1; // -1 still marching; 2 escaped, 3 roulette, 4 step cap, 5 invalid, 8 surface
@@ -1203,6 +1263,12 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   photon_set_surfaces(&surf, surfaceNodes, surfaceNodeCount, surfaceTriangles, surfaceInfo,
     surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon, surfaceNormals,
     surfaceInterfaces, tallies, counters);
+#if REFRACTA_INTERFACES
+  if (fresh)
+  {
+    ps.body = photon_start_body(&surf, &ps, x, normalize(photonDir[id].xyz));
+  }
+#endif
   for (uint c = 0; c < chunkSteps && outcome < 0; ++c)
   {
     outcome = photon_surface_event(&ps, &x, &v, &steps, lo, hi, octree, extinction, albedo,
@@ -1255,7 +1321,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     s[3] = (float4)(ps.absorbed, as_float(ps.interfaces));
     s[4] = (float4)(ps.scattered, as_float(ps.order));
     s[5] = (float4)(ps.killed, as_float(ps.caustic));
-    s[6] = (float4)(ps.gained, 0.0f);
+    s[6] = (float4)(ps.gained, as_float(ps.body));
     s[7] = (float4)(emitted, 0.0f);
     s[8] = (float4)(ps.surface, as_float(ps.hits));
     status[id] = (uint4)(1u, (uint)steps, ps.rng, ps.pieces);

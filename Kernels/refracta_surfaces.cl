@@ -20,6 +20,10 @@
 //              interpolated over the triangle for the dielectric optics (refracta_shading_normal).
 //   interfaces float2[S]: (index inside, index outside) of surface s ((1, 1) if Lambertian);
 //              inside is against the winding normal (v1 - v0) x (v2 - v0), outside along it.
+//   bodies     float4[3 * S]: the homogeneous medium filling the inside of surface s
+//              (vtkRefractaSurfaceMaterial's InsideMedium; Physics.md "Glass bodies"): (extinction
+//              RGB, 1 when s has one else 0), (albedo RGB, anisotropy g), (emission RGB, 0). A
+//              surface without one (0) leaves the passes on the grid's medium inside it.
 //   albedo     float[3 * texels]: RGB albedo in [0, 1] of each texel.
 //   texel area float[texels] (world units^2), for irradiance = flux / area on the host.
 //
@@ -43,6 +47,7 @@
 #define REFRACTA_SURFACE_DIELECTRIC 1 /* transparent interface between two indices */
 #define REFRACTA_TRIANGLE_NORMAL_FLOATS 12 /* floats per triangle in normals (3 float4) */
 #define REFRACTA_SURFACE_INTERFACE_FLOATS 2 /* floats per surface in interfaces */
+#define REFRACTA_SURFACE_BODY_FLOATS 12 /* floats per surface in bodies (3 float4) */
 #define REFRACTA_BVH_STACK_SIZE 64 /* traversal stack; the build never exceeds this depth */
 #define REFRACTA_BVH_MAX_DEPTH 60
 
@@ -420,6 +425,14 @@ inline float3 refracta_dielectric_sample(float3 d, float3 ng, float3 ns, float n
     nf = fg;
   }
   return out;
+}
+
+// The body a path is in after it is refracted through surface `surface`: the surface's when the
+// path enters its inside (travels against the outward normal) and the surface has an inside
+// medium, else -1 (the grid's medium; between nested bodies too, see Physics.md "Glass bodies").
+inline int refracta_body_after_refraction(__global const float4* bodies, int surface, bool entering)
+{
+  return entering && bodies[3 * surface].w > 0.5f ? surface : -1;
 }
 
 #endif // __OPENCL_VERSION__

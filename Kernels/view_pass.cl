@@ -34,6 +34,15 @@
 // REFRACTA_DIELECTRIC (glass triangles: paths split at them, see refracta_view_dielectric_split)
 // with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>.
 //
+// Glass bodies (REFRACTA_DIELECTRIC; `bodies`, refracta_surfaces.cl): a leg refracted into the
+// inside of a dielectric surface that has an inside medium is in that body until it is refracted
+// out (reflected legs stay where they are); primary rays start in none (a camera inside glass
+// sees the grid's medium until its first interface). Inside a body the medium is the body's
+// homogeneous one, not the grid's trilinear samples (which blend the materials of the voxels the
+// surface cuts, Physics.md "Glass bodies"): sigma_t is the body's extinction, the emission its
+// emission, and the in-scattered light (S1, S_ms from the lighting volume) counts only in the
+// channels where the body scatters (sigma_t albedo > 0): clear glass adds none.
+//
 // Surfaces (-DREFRACTA_HAS_SURFACES): the surface set's BVH (nodes, nodeCount, triangles) and atlas
 // (triInfo, surfaceAlbedo, surfaceIrradiance) in the surface frame (view_surfaces.cl). Surfaces
 // may lie inside, behind, under or around the medium's box, so the whole path is tested: a
@@ -165,6 +174,22 @@ inline float3 refracta_background(float3 d, float4 background, __global const fl
 #endif
 }
 
+#ifdef REFRACTA_DIELECTRIC
+// The medium of glass body `body` (>= 0) at a step: its extinction, and the source q of the grid
+// kept only in its scattering channels plus its own emission (see the file comment). `gridEmission`
+// is the part of q that is the grid's emission.
+inline float3 refracta_view_body_medium(
+  __global const float4* bodies, int body, float3 q, float3 gridEmission, float3* sigma)
+{
+  const float4 ext = bodies[3 * body];
+  const float4 alb = bodies[3 * body + 1];
+  *sigma = ext.xyz;
+  const float3 scatters =
+    select((float3)(0.0f), (float3)(1.0f), isgreater(ext.xyz * alb.xyz, (float3)(0.0f)));
+  return (q - gridEmission) * scatters + bodies[3 * body + 2].xyz;
+}
+#endif
+
 // Source term Q at grid-local point x for a ray travelling in unit direction d.
 inline float3 refracta_view_source(const refracta_view_stencil* st, float3 d,
   __global const float* emission,
@@ -283,11 +308,12 @@ inline float refracta_empty_run(float3 x, float3 d, float3 lo, float3 hi, float3
     const float cutoff, __global const uchar *occupancy, const int4 cellDims,                    \
     const int4 activeLo, const int4 activeHi, const uint skipMask,                               \
     __global const float4 *nodes, const int nodeCount, __global const float4 *triangles,         \
-    const float4 toSurface0, const float4 toSurface1, const float4 toSurface2
+    const float4 toSurface0, const float4 toSurface1, const float4 toSurface2,                   \
+    __global const float4 *bodies
 #define REFRACTA_VIEW_LEG_ARGS                                                                    \
   dims, spacing, extinction, emission, anisotropy, refractiveIndex, gradient, radiance,          \
     radianceDirection, multiple, stepLength, maxSteps, cutoff, occupancy, cellDims, activeLo,    \
-    activeHi, skipMask, nodes, nodeCount, triangles, toSurface0, toSurface1, toSurface2
+    activeHi, skipMask, nodes, nodeCount, triangles, toSurface0, toSurface1, toSurface2, bodies
 
 // One leg of a view path: from `origin` in unit direction d (grid-local) until the ray meets a
 // surface, leaves the box (then it sees the background, or a surface outside the box), reaches
@@ -307,7 +333,7 @@ typedef struct
 } refracta_view_leg;
 
 inline refracta_view_leg refracta_view_march(
-  REFRACTA_VIEW_LEG_PARAMS, const float3 origin, float3 d, float limit)
+  REFRACTA_VIEW_LEG_PARAMS, const float3 origin, float3 d, float limit, const int body)
 {
 #ifdef REFRACTA_HAS_SURFACES
   // The surface the ray meets (-1: none yet), where, and the path length to it.
@@ -475,9 +501,20 @@ inline refracta_view_leg refracta_view_march(
 #endif
       const refracta_view_stencil st =
         refracta_view_make_stencil(dims, refracta_to_voxel(x + (0.5f * len) * chord, spacing));
-      const float3 sigma = refracta_view_sample3(extinction, &st);
+      float3 sigma = refracta_view_sample3(extinction, &st);
       float3 q = refracta_view_source(
         &st, chord, emission, anisotropy, radiance, radianceDirection, multiple);
+#ifdef REFRACTA_DIELECTRIC
+      if (body >= 0)
+      {
+#ifdef REFRACTA_HAS_EMISSION
+        const float3 gridEmission = refracta_view_sample3(emission, &st);
+#else
+        const float3 gridEmission = (float3)(0.0f);
+#endif
+        q = refracta_view_body_medium(bodies, body, q, gridEmission, &sigma);
+      }
+#endif
       // Sources are physical radiance per length; what reaches the camera (in n = 1) is the
       // basic radiance L / n^2, conserved along the ray: a source at index n counts 1 / n^2.
 #ifdef REFRACTA_INDEX_WEIGHT
@@ -565,6 +602,7 @@ typedef struct
 {
   float3 origin, d, weight;
   int depth; // interfaces met before this leg
+  int body;  // the glass body it travels in, or -1 (the grid's medium)
 } refracta_view_branch;
 
 #ifdef REFRACTA_DIELECTRIC
@@ -651,7 +689,8 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   __global const float* surfaceAlbedo, __global const float* surfaceIrradiance,
   __global const float4* triNormals, __global const float2* interfaces,
   const float4 toSurface0, const float4 toSurface1, const float4 toSurface2, __global float* hdr,
-  __global uint* steps, __global float* transmittanceOut, __global float* surfaceDepthOut)
+  __global uint* steps, __global float* transmittanceOut, __global float* surfaceDepthOut,
+  __global const float4* bodies)
 {
   const int pi = (int)get_global_id(0);
   const int pj = (int)get_global_id(1);
@@ -687,6 +726,7 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   current.d = d;
   current.weight = (float3)(1.0f);
   current.depth = 0;
+  current.body = -1;
 #ifdef REFRACTA_DIELECTRIC
   refracta_view_branch stack[REFRACTA_SPLIT_DEPTH + 1];
   int stackSize = 0;
@@ -696,7 +736,7 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   for (;;)
   {
     const refracta_view_leg leg = refracta_view_march(
-      REFRACTA_VIEW_LEG_ARGS, current.origin, current.d, primary ? limit : INFINITY);
+      REFRACTA_VIEW_LEG_ARGS, current.origin, current.d, primary ? limit : INFINITY, current.body);
     count += leg.count;
     radianceSum += current.weight * leg.radiance;
     const float3 w = current.weight * leg.transmittance;
@@ -728,6 +768,14 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
           b.origin = leg.surfacePoint - offset * fg;
           b.d = refracted;
           b.depth = current.depth + 1;
+          a.body = current.body;
+          // Entering when it leaves the triangle's outward side behind (fg is the incident side).
+          const float3 outward =
+            refracta_view_normal_to_local(refracta_triangle_normal(triangles, leg.surfaceTri),
+              toSurface0, toSurface1, toSurface2);
+          b.body = refracta_body_after_refraction(bodies,
+            triInfo[REFRACTA_TRIANGLE_INFO_INTS * leg.surfaceTri + REFRACTA_TRIANGLE_INFO_SURFACE],
+            dot(fg, outward) > 0.0f);
           if (refracts && current.depth < REFRACTA_SPLIT_DEPTH)
           {
             a.weight = r * w;

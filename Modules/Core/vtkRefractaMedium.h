@@ -73,11 +73,18 @@ public:
    * (vtkMeshVoxelizer::EXACT_INTERFACES; read by vtkRefractaSurfaceSet::AddMediumInterfaces):
    * InterfacePoints (double, 3 components, the medium's data coordinates), InterfaceTriangles
    * (vtkIdType, 3 point ids per triangle, wound with the normal outwards) and InterfaceIndices
-   * (double, 2 components per triangle: refractive index inside, outside).
+   * (double, 2 components per triangle: refractive index inside, outside). Optional,
+   * InterfaceMaterials (double, InterfaceMaterialComponents = 11 components per triangle: the
+   * homogeneous medium filling the mesh's inside, extinction RGB (1 / world unit, >= 0), albedo
+   * RGB ([0, 1]), anisotropy g ((-1, 1)), emission RGB (>= 0), then 1 when the inside is that
+   * homogeneous medium or 0 when the passes must use the grid inside (a material with a density
+   * field); see vtkRefractaSurfaceMaterial::UseInsideMedium and Physics.md "Glass bodies").
    */
   static const char* InterfacePointsName() { return "InterfacePoints"; }
   static const char* InterfaceTrianglesName() { return "InterfaceTriangles"; }
   static const char* InterfaceIndicesName() { return "InterfaceIndices"; }
+  static const char* InterfaceMaterialsName() { return "InterfaceMaterials"; }
+  static constexpr int InterfaceMaterialComponents = 11;
   ///@}
 
   /**

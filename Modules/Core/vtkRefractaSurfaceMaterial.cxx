@@ -26,6 +26,38 @@ void vtkRefractaSurfaceMaterial::SetColor(double target[3], double r, double g, 
 }
 
 //------------------------------------------------------------------------------
+void vtkRefractaSurfaceMaterial::SetNonNegative(double target[3], double r, double g, double b)
+{
+  const double in[3] = { r, g, b };
+  bool changed = false;
+  for (int c = 0; c < 3; ++c)
+  {
+    const double v = in[c] >= 0.0 && std::isfinite(in[c]) ? in[c] : 0.0; // NaN, Inf, < 0: 0
+    changed = changed || v != target[c];
+    target[c] = v;
+  }
+  if (changed)
+  {
+    this->Modified();
+  }
+}
+
+void vtkRefractaSurfaceMaterial::SetInsideExtinction(double r, double g, double b)
+{
+  this->SetNonNegative(this->InsideExtinction, r, g, b);
+}
+
+void vtkRefractaSurfaceMaterial::SetInsideAlbedo(double r, double g, double b)
+{
+  this->SetColor(this->InsideAlbedo, r, g, b);
+}
+
+void vtkRefractaSurfaceMaterial::SetInsideEmission(double r, double g, double b)
+{
+  this->SetNonNegative(this->InsideEmission, r, g, b);
+}
+
+//------------------------------------------------------------------------------
 void vtkRefractaSurfaceMaterial::SetAlbedo(double r, double g, double b)
 {
   this->SetColor(this->Albedo, r, g, b);
@@ -82,6 +114,11 @@ void vtkRefractaSurfaceMaterial::DeepCopy(vtkRefractaSurfaceMaterial* other)
   this->SetIndexInside(other->IndexInside);
   this->SetIndexOutside(other->IndexOutside);
   this->SetSmoothNormals(other->SmoothNormals);
+  this->SetUseInsideMedium(other->UseInsideMedium);
+  this->SetInsideExtinction(other->InsideExtinction);
+  this->SetInsideAlbedo(other->InsideAlbedo);
+  this->SetInsideAnisotropy(other->InsideAnisotropy);
+  this->SetInsideEmission(other->InsideEmission);
 }
 
 //------------------------------------------------------------------------------
@@ -102,4 +139,12 @@ void vtkRefractaSurfaceMaterial::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IndexInside: " << this->IndexInside << "\n";
   os << indent << "IndexOutside: " << this->IndexOutside << "\n";
   os << indent << "SmoothNormals: " << this->SmoothNormals << "\n";
+  os << indent << "UseInsideMedium: " << this->UseInsideMedium << "\n";
+  os << indent << "InsideExtinction: (" << this->InsideExtinction[0] << ", "
+     << this->InsideExtinction[1] << ", " << this->InsideExtinction[2] << ")\n";
+  os << indent << "InsideAlbedo: (" << this->InsideAlbedo[0] << ", " << this->InsideAlbedo[1]
+     << ", " << this->InsideAlbedo[2] << ")\n";
+  os << indent << "InsideAnisotropy: " << this->InsideAnisotropy << "\n";
+  os << indent << "InsideEmission: (" << this->InsideEmission[0] << ", " << this->InsideEmission[1]
+     << ", " << this->InsideEmission[2] << ")\n";
 }

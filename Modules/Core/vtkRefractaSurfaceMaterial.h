@@ -29,6 +29,13 @@
  * it points to. Light meeting it is reflected (Fresnel, unpolarised) or refracted (Snell); the
  * colour settings are then unused. SmoothNormals (default on) interpolates corner normals over
  * each triangle where the mesh is smooth.
+ *
+ * A DIELECTRIC surface that bounds a homogeneous body (a mesh voxelized with
+ * vtkMeshVoxelizer::EXACT_INTERFACES) can carry the medium filling its inside: UseInsideMedium
+ * with InsideExtinction, InsideAlbedo, InsideAnisotropy and InsideEmission. The passes then use
+ * these values, not the grid, while a path is inside (Documentation/Physics.md "Glass bodies"):
+ * the grid mixes the materials of the voxels the surface cuts, which would leak the outer
+ * medium's fog about a voxel into the glass.
  */
 #ifndef vtkRefractaSurfaceMaterial_h
 #define vtkRefractaSurfaceMaterial_h
@@ -131,6 +138,32 @@ public:
   vtkBooleanMacro(SmoothNormals, bool);
   ///@}
 
+  ///@{
+  /**
+   * The homogeneous medium inside a DIELECTRIC surface (see the class description). Off
+   * (default): the passes sample the grid inside it. Extinction in 1 / world unit (each clamped
+   * to >= 0, NaN to 0), albedo in [0, 1], anisotropy g in [-0.9999, 0.9999], emission in radiance
+   * per world unit (>= 0): vtkMediumMaterial's units. Defaults: 0, 0, 0 and 0 (clear glass).
+   */
+  vtkSetMacro(UseInsideMedium, bool);
+  vtkGetMacro(UseInsideMedium, bool);
+  vtkBooleanMacro(UseInsideMedium, bool);
+  void SetInsideExtinction(double r, double g, double b);
+  void SetInsideExtinction(const double rgb[3])
+  {
+    this->SetInsideExtinction(rgb[0], rgb[1], rgb[2]);
+  }
+  vtkGetVector3Macro(InsideExtinction, double);
+  void SetInsideAlbedo(double r, double g, double b);
+  void SetInsideAlbedo(const double rgb[3]) { this->SetInsideAlbedo(rgb[0], rgb[1], rgb[2]); }
+  vtkGetVector3Macro(InsideAlbedo, double);
+  vtkSetClampMacro(InsideAnisotropy, double, -0.9999, 0.9999);
+  vtkGetMacro(InsideAnisotropy, double);
+  void SetInsideEmission(double r, double g, double b);
+  void SetInsideEmission(const double rgb[3]) { this->SetInsideEmission(rgb[0], rgb[1], rgb[2]); }
+  vtkGetVector3Macro(InsideEmission, double);
+  ///@}
+
   /**
    * The checker colour at texture coordinates (u, v) (whatever UseChecker says).
    */
@@ -155,11 +188,17 @@ protected:
   double IndexInside = 1.5;
   double IndexOutside = 1.0;
   bool SmoothNormals = true;
+  bool UseInsideMedium = false;
+  double InsideExtinction[3] = { 0.0, 0.0, 0.0 };
+  double InsideAlbedo[3] = { 0.0, 0.0, 0.0 };
+  double InsideAnisotropy = 0.0;
+  double InsideEmission[3] = { 0.0, 0.0, 0.0 };
 
 private:
   vtkRefractaSurfaceMaterial(const vtkRefractaSurfaceMaterial&) = delete;
   void operator=(const vtkRefractaSurfaceMaterial&) = delete;
   void SetColor(double target[3], double r, double g, double b);
+  void SetNonNegative(double target[3], double r, double g, double b);
 };
 
 #endif

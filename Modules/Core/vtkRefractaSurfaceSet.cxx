@@ -3,8 +3,6 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
-#include "vtkDataObject.h"
-#include "vtkFieldData.h"
 #include "vtkIdList.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -14,7 +12,6 @@
 #include "vtkPolyData.h"
 #include "vtkPolygon.h"
 #include "vtkRefractaBVH.h"
-#include "vtkRefractaMedium.h"
 #include "vtkRefractaSurfaceMaterial.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -25,7 +22,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
 
 vtkStandardNewMacro(vtkRefractaSurfaceSet);
 
@@ -165,76 +161,6 @@ int vtkRefractaSurfaceSet::AddSurface(
   this->Impl->Surfaces.push_back(entry);
   this->Modified();
   return static_cast<int>(this->Impl->Surfaces.size()) - 1;
-}
-
-//------------------------------------------------------------------------------
-int vtkRefractaSurfaceSet::AddMediumInterfaces(vtkDataObject* medium, vtkMatrix4x4* matrix)
-{
-  vtkFieldData* fd = medium ? medium->GetFieldData() : nullptr;
-  vtkDataArray* points = fd ? fd->GetArray(vtkRefractaMedium::InterfacePointsName()) : nullptr;
-  vtkDataArray* triangles =
-    fd ? fd->GetArray(vtkRefractaMedium::InterfaceTrianglesName()) : nullptr;
-  vtkDataArray* indices = fd ? fd->GetArray(vtkRefractaMedium::InterfaceIndicesName()) : nullptr;
-  if (!points && !triangles && !indices)
-  {
-    return 0;
-  }
-  if (!points || !triangles || !indices || points->GetNumberOfComponents() != 3 ||
-    triangles->GetNumberOfComponents() != 3 || indices->GetNumberOfComponents() != 2 ||
-    indices->GetNumberOfTuples() != triangles->GetNumberOfTuples())
-  {
-    vtkErrorMacro("AddMediumInterfaces: the medium's interface arrays are inconsistent; valid are "
-      << vtkRefractaMedium::InterfacePointsName() << " (3 components), "
-      << vtkRefractaMedium::InterfaceTrianglesName() << " (3 point ids) and "
-      << vtkRefractaMedium::InterfaceIndicesName()
-      << " (2 components, one tuple per triangle), all three present. Nothing was added.");
-    return -1;
-  }
-  const vtkIdType numPoints = points->GetNumberOfTuples();
-  vtkNew<vtkPoints> shared;
-  shared->SetDataTypeToDouble();
-  shared->SetNumberOfPoints(numPoints);
-  for (vtkIdType p = 0; p < numPoints; ++p)
-  {
-    shared->SetPoint(p, points->GetTuple3(p));
-  }
-  // One surface per (inside, outside) pair, sharing the points (unused ones are harmless).
-  std::map<std::pair<double, double>, vtkSmartPointer<vtkCellArray>> groups;
-  for (vtkIdType t = 0; t < triangles->GetNumberOfTuples(); ++t)
-  {
-    const double* ids = triangles->GetTuple3(t);
-    vtkIdType cell[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      cell[c] = static_cast<vtkIdType>(ids[c]);
-      if (!(ids[c] >= 0 && ids[c] < numPoints))
-      {
-        vtkErrorMacro("AddMediumInterfaces: interface triangle "
-          << t << " refers to point " << ids[c] << "; valid ids are 0 to " << numPoints - 1
-          << ". Nothing was added.");
-        return -1;
-      }
-    }
-    const double* pair = indices->GetTuple2(t);
-    auto& cells = groups[{ pair[0], pair[1] }];
-    if (!cells)
-    {
-      cells = vtkSmartPointer<vtkCellArray>::New();
-    }
-    cells->InsertNextCell(3, cell);
-  }
-  for (const auto& group : groups)
-  {
-    vtkNew<vtkPolyData> mesh;
-    mesh->SetPoints(shared);
-    mesh->SetPolys(group.second);
-    vtkNew<vtkRefractaSurfaceMaterial> glass;
-    glass->SetKindToDielectric();
-    glass->SetIndexInside(group.first.first);
-    glass->SetIndexOutside(group.first.second);
-    this->AddSurface(mesh, glass, matrix);
-  }
-  return static_cast<int>(groups.size());
 }
 
 //------------------------------------------------------------------------------
@@ -599,6 +525,7 @@ bool vtkRefractaSurfaceSet::Build()
     this->TexelAreas.clear();
     this->TriangleNormals.clear();
     this->SurfaceInterfaces.clear();
+    this->SurfaceBodies.clear();
     this->DielectricTriangles = 0;
     return false;
   }
@@ -835,6 +762,7 @@ void vtkRefractaSurfaceSet::DescribeInterfaces()
 {
   const int surfaces = this->GetNumberOfSurfaces();
   this->SurfaceInterfaces.assign(REFRACTA_SURFACE_INTERFACE_FLOATS * size_t(surfaces), 1.0f);
+  this->SurfaceBodies.assign(REFRACTA_SURFACE_BODY_FLOATS * size_t(surfaces), 0.0f);
   std::vector<bool> smooth(surfaces, false);
   for (int s = 0; s < surfaces; ++s)
   {
@@ -846,6 +774,18 @@ void vtkRefractaSurfaceSet::DescribeInterfaces()
       this->SurfaceInterfaces[REFRACTA_SURFACE_INTERFACE_FLOATS * s + 1] =
         static_cast<float>(m->GetIndexOutside());
       smooth[s] = m->GetSmoothNormals();
+      if (m->GetUseInsideMedium())
+      {
+        float* body = &this->SurfaceBodies[REFRACTA_SURFACE_BODY_FLOATS * s];
+        for (int c = 0; c < 3; ++c)
+        {
+          body[c] = static_cast<float>(m->GetInsideExtinction()[c]);
+          body[4 + c] = static_cast<float>(m->GetInsideAlbedo()[c]);
+          body[8 + c] = static_cast<float>(m->GetInsideEmission()[c]);
+        }
+        body[3] = 1.0f;
+        body[7] = static_cast<float>(m->GetInsideAnisotropy());
+      }
     }
   }
   const vtkRefractaBVH* bvh = this->Impl->BVH;

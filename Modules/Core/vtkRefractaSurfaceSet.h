@@ -33,7 +33,8 @@
  *    the triangle info, the corner normals (GetTriangleNormals(): with SmoothNormals the
  *    area-weighted mean of the world normals of the surface's faces sharing the mesh point, kept
  *    where within 30 degrees of the face normal, else the face normal) and the surface's
- *    (IndexInside, IndexOutside) (GetSurfaceInterfaces()).
+ *    (IndexInside, IndexOutside) (GetSurfaceInterfaces()), and its inside medium when it has one
+ *    (GetSurfaceBodies(); Documentation/Physics.md "Glass bodies").
  *
  * A pass deposits photon flux per texel; irradiance (W / m^2, per RGB channel) = flux / texel
  * area (GetTexelAreas()). The flattened arrays follow Kernels/refracta_surfaces.cl.
@@ -47,6 +48,7 @@
 
 #include <vector> // for the flattened arrays
 
+class vtkDataArray;
 class vtkDataObject;
 class vtkMatrix4x4;
 class vtkPolyData;
@@ -71,9 +73,13 @@ public:
    * Adds the exact dielectric interfaces a medium carries in its field data
    * (vtkMeshVoxelizer::EXACT_INTERFACES, the arrays named by vtkRefractaMedium): one DIELECTRIC
    * surface (smooth normals) per distinct (index inside, index outside) pair, placed by `matrix`
-   * (the medium's data coordinates to world; nullptr: identity). Returns the number of surfaces
+   * (the medium's data coordinates to world; nullptr: identity). With the optional
+   * InterfaceMaterials array the surfaces are also split by it and carry the medium inside
+   * (vtkRefractaSurfaceMaterial::UseInsideMedium). Returns the number of surfaces
    * added: 0 for a medium without interface arrays (volumetric data, SMOOTHED_INDEX) or a null
-   * one; -1 with an error when the arrays are inconsistent (wrong components, ids out of range).
+   * one; -1 with an error when the arrays are inconsistent (wrong components, ids out of range,
+   * InterfaceMaterials with the wrong tuple count or components, non-finite or out-of-range
+   * values).
    */
   int AddMediumInterfaces(vtkDataObject* medium, vtkMatrix4x4* matrix = nullptr);
 
@@ -206,6 +212,16 @@ public:
   }
 
   /**
+   * Per surface: REFRACTA_SURFACE_BODY_FLOATS floats, the homogeneous medium inside a dielectric
+   * surface with UseInsideMedium (vtkRefractaSurfaceMaterial): extinction RGB, 1, albedo RGB,
+   * anisotropy, emission RGB, 0; all 0 for any other surface (the passes use the grid there).
+   */
+  const std::vector<float>& GetSurfaceBodies() const
+  {
+    return this->SurfaceBodies;
+  }
+
+  /**
    * Per texel: area in world units^2 (triangle area / n^2).
    */
   const std::vector<double>& GetTexelAreas() const
@@ -248,6 +264,7 @@ protected:
   std::vector<double> TexelAreas;
   std::vector<float> TriangleNormals;
   std::vector<float> SurfaceInterfaces;
+  std::vector<float> SurfaceBodies;
 
 private:
   vtkRefractaSurfaceSet(const vtkRefractaSurfaceSet&) = delete;
@@ -260,6 +277,8 @@ private:
   // Build() step 6: kinds, corner normals and the interface table.
   void DescribeInterfaces();
   bool IsDielectric(int surface) const;
+  // AddMediumInterfaces's checks of the optional InterfaceMaterials array (errors name it).
+  bool CheckInterfaceMaterials(vtkDataArray* bodies, vtkIdType triangles);
 };
 
 #endif

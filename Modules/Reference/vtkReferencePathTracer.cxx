@@ -291,26 +291,25 @@ Vec3 Scene::Trace(Vec3 origin, Vec3 dir, int channel, Rng& rng, bool& truncated)
       {
         // Tentative collision.
         const RayState& ray = walk.Ray;
-        Medium::Stencil st;
-        M.MakeStencil(ray.X, st);
-        const Vec3 sigma = M.Sample3(M.Sigma, st);
-        if (depth == 0 && M.HasEmission)
+        const Walk::Local here = walk.Here(); // the grid's medium, or a glass body's
+        const Vec3& sigma = here.Sigma;
+        if (depth == 0 && here.Emits)
         {
           // Emission is physical radiance per length; the camera (in n = 1) sees the basic
           // radiance L / n^2, which is what the paths carry.
-          const double n = M.Sample1(M.Index, st);
-          result += (beta / (walk.Majorant * n * n)) * (mask * M.Sample3(M.Emission, st));
+          const double n = here.N;
+          result += (beta / (walk.Majorant * n * n)) * (mask * here.Emission);
         }
         if (rng.Uniform() * walk.Majorant >= sigma[ch])
         {
           break; // null collision
         }
         // Real collision: the scattered part carries on with weight albedo.
-        if (!Scatter(depth, beta, M.Sample3(M.Albedo, st), ch, grey, rng, truncated))
+        if (!Scatter(depth, beta, here.Albedo, ch, grey, rng, truncated))
         {
           return result;
         }
-        const double g = M.Sample1(M.G, st);
+        const double g = here.G;
         result += beta * (mask * MediumDirect(ray.X, ray.Dir, g, ch, rng, truncated));
         if (MaxDepth >= 0 && depth + 1 > MaxDepth)
         {

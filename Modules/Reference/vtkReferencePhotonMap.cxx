@@ -169,7 +169,6 @@ void PhotonScene::EmitAndTrace(
 void PhotonScene::Trace(Vec3 x, Vec3 d, const Vec3& power, int ch, bool grey, Rng& rng,
   std::vector<Photon>& out, bool& truncated) const
 {
-  const Medium& m = S->M;
   Vec3 beta(1.0);
   int depth = 0;
   // Glass is crossed inside the walk (one Fresnel choice, its probability its weight).
@@ -195,9 +194,8 @@ void PhotonScene::Trace(Vec3 x, Vec3 d, const Vec3& power, int ch, bool grey, Rn
       case Walk::Stop::Collision:
       {
         const RayState& ray = walk.Ray;
-        Medium::Stencil st;
-        m.MakeStencil(ray.X, st);
-        const Vec3 sigma = m.Sample3(m.Sigma, st);
+        const Walk::Local here = walk.Here(); // the grid's medium, or a glass body's
+        const Vec3& sigma = here.Sigma;
         if (rng.Uniform() * walk.Majorant >= sigma[ch])
         {
           break; // null collision
@@ -217,11 +215,11 @@ void PhotonScene::Trace(Vec3 x, Vec3 d, const Vec3& power, int ch, bool grey, Rn
           out.push_back(p);
         }
         // ... and scatters on with weight albedo.
-        if (!S->Scatter(depth, beta, m.Sample3(m.Albedo, st), ch, grey, rng, truncated))
+        if (!S->Scatter(depth, beta, here.Albedo, ch, grey, rng, truncated))
         {
           return;
         }
-        const double g = m.Sample1(m.G, st);
+        const double g = here.G;
         walk.ScatterInto(SampleHG(g, ray.Dir, rng.Uniform(), rng.Uniform()));
         break;
       }
@@ -233,7 +231,6 @@ void PhotonScene::Trace(Vec3 x, Vec3 d, const Vec3& power, int ch, bool grey, Rn
 Vec3 PhotonScene::ViewSample(Vec3 origin, Vec3 dir, int channel, const PhotonGrid& grid,
   double radius, Rng& rng, bool& truncated) const
 {
-  const Medium& m = S->M;
   Vec3 result(0.0);
   const bool grey = channel < 0;
   const int ch = grey ? 0 : channel;
@@ -263,13 +260,12 @@ Vec3 PhotonScene::ViewSample(Vec3 origin, Vec3 dir, int channel, const PhotonGri
       case Walk::Stop::Collision:
       {
         const RayState& ray = walk.Ray;
-        Medium::Stencil st;
-        m.MakeStencil(ray.X, st);
-        const Vec3 sigma = m.Sample3(m.Sigma, st);
-        const double n = m.Sample1(m.Index, st);
-        if (depth == 0 && m.HasEmission)
+        const Walk::Local here = walk.Here(); // the grid's medium, or a glass body's
+        const Vec3& sigma = here.Sigma;
+        const double n = here.N;
+        if (depth == 0 && here.Emits)
         {
-          result += (beta / (walk.Majorant * n * n)) * (mask * m.Sample3(m.Emission, st));
+          result += (beta / (walk.Majorant * n * n)) * (mask * here.Emission);
         }
         if (rng.Uniform() * walk.Majorant >= sigma[ch])
         {
@@ -284,7 +280,7 @@ Vec3 PhotonScene::ViewSample(Vec3 origin, Vec3 dir, int channel, const PhotonGri
         {
           return result;
         }
-        const double g = m.Sample1(m.G, st);
+        const double g = here.G;
         const double volume = KernelVolume(ray.X, radius);
         const Vec3 toCamera = -ray.Dir;
         Vec3 sum(0.0);
@@ -296,7 +292,7 @@ Vec3 PhotonScene::ViewSample(Vec3 origin, Vec3 dir, int channel, const PhotonGri
               sum += HGPhase(g, OneMinusCos(p.Dir, toCamera)) * p.Fluence;
             }
           });
-        result += (1.0 / (volume * n * n)) * (beta * m.Sample3(m.Albedo, st) * (mask * sum));
+        result += (1.0 / (volume * n * n)) * (beta * here.Albedo * (mask * sum));
         return result;
       }
     }

@@ -132,6 +132,45 @@ Vec3 Surfaces::ShadingNormal(const SurfaceHit& hit) const
     R[1] * nb.x + R[4] * nb.y + R[7] * nb.z, R[2] * nb.x + R[5] * nb.y + R[8] * nb.z));
 }
 
+int Surfaces::StartBody(const Vec3& x, const Vec3& d) const
+{
+  SurfaceHit hit;
+  if (this->Empty() || !this->Closest(x, d, Inf, hit) || !this->IsDielectric(hit) ||
+    glm::dot(d, this->Normal(hit)) <= 0)
+  {
+    return -1;
+  }
+  return this->BodyAfter(hit, -d, -d, -1); // as if refracted into it from outside
+}
+
+int Surfaces::BodyAfter(const SurfaceHit& hit, const Vec3& dIn, const Vec3& dOut, int body) const
+{
+  const Vec3 ng = this->Normal(hit); // the winding normal: outwards
+  const double in = glm::dot(dIn, ng), out = glm::dot(dOut, ng);
+  if ((in < 0) != (out < 0))
+  {
+    return body; // reflected: on the same side
+  }
+  if (in >= 0)
+  {
+    return -1; // refracted out
+  }
+  const int surface =
+    Set->GetTriangleInfo()[REFRACTA_TRIANGLE_INFO_INTS * static_cast<size_t>(hit.Triangle) +
+      REFRACTA_TRIANGLE_INFO_SURFACE];
+  return this->BodyMedium(surface)[3] > 0.5f ? surface : -1;
+}
+
+const float* Surfaces::BodyMedium(int b) const
+{
+  return &Set->GetSurfaceBodies()[REFRACTA_SURFACE_BODY_FLOATS * static_cast<size_t>(b)];
+}
+
+double Surfaces::BodyIndex(int b) const
+{
+  return Set->GetSurfaceInterfaces()[REFRACTA_SURFACE_INTERFACE_FLOATS * static_cast<size_t>(b)];
+}
+
 Vec3 Surfaces::Interface(const SurfaceHit& hit, const Vec3& d, double xi, Vec3& x) const
 {
   const int surface =

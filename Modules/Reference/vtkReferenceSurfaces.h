@@ -76,6 +76,20 @@ struct Surfaces
   // Returns the new unit direction; x is moved off the surface onto the side it leaves to.
   Vec3 Interface(const SurfaceHit& hit, const Vec3& d, double xi, Vec3& x) const;
 
+  // Glass bodies (Documentation/Physics.md "Glass bodies"): the surface whose inside medium
+  // (vtkRefractaSurfaceSet::GetSurfaceBodies) a path is in, or -1 (the grid).
+  // The body a path at x along the unit d starts in: its first hit is a surface with an inside
+  // medium met from inside (closed meshes: the innermost body around x), else -1.
+  int StartBody(const Vec3& x, const Vec3& d) const;
+  // The body after a path arriving along dIn in `body` left a dielectric hit along dOut:
+  // refracted into a surface's inside: that surface (if it has a medium, else -1); refracted
+  // out: -1; reflected: `body`.
+  int BodyAfter(const SurfaceHit& hit, const Vec3& dIn, const Vec3& dOut, int body) const;
+  // The medium of body b >= 0: REFRACTA_SURFACE_BODY_FLOATS floats (extinction RGB, 1, albedo
+  // RGB, g, emission RGB, 0); and the refractive index inside it.
+  const float* BodyMedium(int b) const;
+  double BodyIndex(int b) const;
+
   // Where a ray leaving the surface point x in direction w starts: x moved by Offset along the
   // normal n, towards the side w points to.
   Vec3 Leave(const Vec3& x, const Vec3& n, const Vec3& w) const

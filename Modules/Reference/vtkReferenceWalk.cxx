@@ -13,6 +13,7 @@ Walk::Walk(const Scene& scene, const Tracer& tracer, const Vec3& x, const Vec3& 
   , S(scene)
   , T(tracer)
 {
+  this->Body = scene.Surf.StartBody(x, d);
   this->Restart();
 }
 
@@ -35,7 +36,9 @@ bool Walk::CrossInterface(const SurfaceHit& hit, Rng& rng, bool& truncated)
     truncated = true;
     return false;
   }
+  const Vec3 incoming = this->D;
   this->D = this->S.Surf.Interface(hit, this->D, rng.Uniform(), this->X);
+  this->Body = this->S.Surf.BodyAfter(hit, incoming, this->D, this->Body);
   this->Restart();
   return true;
 }
@@ -59,6 +62,44 @@ void Walk::LeaveSurface(const Vec3& n, const Vec3& dir)
 void Walk::ScatterInto(const Vec3& dir)
 {
   this->T.Start(this->Ray, this->Ray.X, dir);
+}
+
+//------------------------------------------------------------------------------
+Event Walk::AdvanceInBody(double tau, int ch, int& light)
+{
+  // A homogeneous medium: the free path is exponential in sigma_t itself (every collision real).
+  const double sigma = this->S.Surf.BodyMedium(this->Body)[ch];
+  this->Majorant = sigma;
+  double moved;
+  int64_t steps = 0;
+  return this->T.Advance(this->Ray, sigma > 0 ? tau / sigma : Inf, moved, light, steps);
+}
+
+//------------------------------------------------------------------------------
+Walk::Local Walk::Here() const
+{
+  Local l;
+  if (this->Body >= 0)
+  {
+    const float* b = this->S.Surf.BodyMedium(this->Body);
+    l.Sigma = Vec3(b[0], b[1], b[2]);
+    l.Albedo = Vec3(b[4], b[5], b[6]);
+    l.G = b[7];
+    l.Emission = Vec3(b[8], b[9], b[10]);
+    l.N = this->S.Surf.BodyIndex(this->Body);
+    l.Emits = true;
+    return l;
+  }
+  const Medium& m = this->S.M;
+  Medium::Stencil st;
+  m.MakeStencil(this->Ray.X, st);
+  l.Sigma = m.Sample3(m.Sigma, st);
+  l.Albedo = m.Sample3(m.Albedo, st);
+  l.G = m.Sample1(m.G, st);
+  l.N = m.Sample1(m.Index, st);
+  l.Emits = m.HasEmission;
+  l.Emission = m.HasEmission ? m.Sample3(m.Emission, st) : Vec3(0.0);
+  return l;
 }
 
 //------------------------------------------------------------------------------
@@ -88,8 +129,10 @@ Walk::Stop Walk::Next(int ch, Rng& rng, bool& truncated)
       // The path's own rays never test light spheres: lights are not seen by view rays, and
       // scattered light reaching a light unscattered is the connections' business.
       int light;
-      const Event ev =
-        AdvanceOptical(this->T, this->Ray, -std::log(1 - rng.Uniform()), ch, light, this->Majorant);
+      const double tau = -std::log(1 - rng.Uniform());
+      const Event ev = this->Body >= 0
+        ? this->AdvanceInBody(tau, ch, light)
+        : AdvanceOptical(this->T, this->Ray, tau, ch, light, this->Majorant);
       if (ev == Event::Stuck)
       {
         truncated = true;

@@ -5,7 +5,10 @@
  * straight outside the medium's box (meeting surfaces and the box), delta-tracked and curved
  * inside it (meeting surfaces), and through glass: at a dielectric surface one Fresnel choice
  * (Surfaces::Interface; the probability is the weight, so the path's throughput is unchanged and
- * nothing is returned to the owner). Next() stops at what the owner decides about: an opaque
+ * nothing is returned to the owner). Inside a glass body (a dielectric surface with an inside
+ * medium, Physics.md "Glass bodies") the path is tracked in the body's homogeneous medium, not
+ * the grid's (Body; Local() gives the owner the medium at a collision). Next() stops at what the
+ * owner decides about: an opaque
  * surface hit, a tentative collision in the medium, the path's escape, or its end at a safety
  * limit.
  */
@@ -46,14 +49,26 @@ public:
   // After Collision: goes on from the collision point along the unit direction `dir`.
   void ScatterInto(const Vec3& dir);
 
+  // The medium at the collision point: the body's inside a glass body, else the grid's.
+  struct Local
+  {
+    Vec3 Sigma, Albedo, Emission;
+    double G = 0, N = 1;
+    bool Emits = false; // whether Emission may be nonzero
+  };
+  Local Here() const;
+
   Vec3 X, D;         // the path's point and direction outside the integrator (see Stop)
   SurfaceHit Hit;    // after Surface
   RayState Ray;      // the integrator's state in the box (after Collision: its point)
   double Majorant{}; // after Collision
+  int Body = -1;     // the glass body the path is in (Surfaces::BodyMedium), or -1: the grid
 
 private:
   // Whether the path at X along D starts inside the box (then the integrator starts there).
   void Restart();
+  // Inside a glass body: moves the ray by an optical length tau of the body's sigma_t.
+  Event AdvanceInBody(double tau, int ch, int& light);
   // One Fresnel choice at the glass `hit` (X, D updated); false (truncated) past MaxInterfaces.
   bool CrossInterface(const SurfaceHit& hit, Rng& rng, bool& truncated);
 

@@ -445,7 +445,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       activeHi, skipMask, buf(surf.Nodes), nodeCount, buf(surf.Triangles), buf(surf.TriangleInfo),
       buf(surf.Albedo), buf(surf.Irradiance), buf(surf.Normals), buf(surf.Interfaces), toSurface[0],
       toSurface[1], toSurface[2], hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(),
-      surfaceDepthBuffer.Get());
+      surfaceDepthBuffer.Get(), buf(surf.Bodies));
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
       !this->RunTiles(context, kernel.Get(), width, rows, row0, height, rowsPerTile))
     {

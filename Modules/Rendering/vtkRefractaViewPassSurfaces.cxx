@@ -77,6 +77,7 @@ bool SurfaceBuffers::Update(vtkRefractaSurfaceSet* set, vtkOpenCLContext* contex
     this->Irradiance.Reset();
     this->Normals.Reset();
     this->Interfaces.Reset();
+    this->Bodies.Reset();
     this->Dielectric = false;
     return true;
   }
@@ -121,17 +122,21 @@ bool SurfaceBuffers::Update(vtkRefractaSurfaceSet* set, vtkOpenCLContext* contex
   this->Dielectric = set->GetNumberOfDielectricTriangles() > 0;
   this->Normals.Reset();
   this->Interfaces.Reset();
+  this->Bodies.Reset();
   if (this->Dielectric)
   {
     const std::vector<float>& normals = set->GetTriangleNormals();
     const std::vector<float>& interfaces = set->GetSurfaceInterfaces();
+    const std::vector<float>& bodies = set->GetSurfaceBodies();
     this->Normals = context->CreateBuffer(
       flags, normals.size() * sizeof(float), normals.data(), "surface corner normals", owner);
     this->Interfaces = context->CreateBuffer(flags, interfaces.size() * sizeof(float),
       interfaces.data(), "surface interface indices", owner);
+    this->Bodies = context->CreateBuffer(
+      flags, bodies.size() * sizeof(float), bodies.data(), "glass body media", owner);
   }
   if (!this->Nodes || !this->Triangles || !this->TriangleInfo || !this->Albedo ||
-    (this->Dielectric && (!this->Normals || !this->Interfaces)))
+    (this->Dielectric && (!this->Normals || !this->Interfaces || !this->Bodies)))
   {
     this->NodeCount = 0;
     this->UploadedBuild = -1;

@@ -58,8 +58,9 @@ public:
   vtkIdType GetNumberOfTexels() const { return this->Texels; }
 
   vtkOpenCLBuffer Nodes, Triangles, TriangleInfo, Albedo, Irradiance;
-  // Corner normals (float4 per corner) and (IndexInside, IndexOutside) per surface.
-  vtkOpenCLBuffer Normals, Interfaces;
+  // Corner normals (float4 per corner), (IndexInside, IndexOutside) per surface and the glass
+  // bodies' inside media (vtkRefractaSurfaceSet::GetSurfaceBodies()).
+  vtkOpenCLBuffer Normals, Interfaces, Bodies;
 
 private:
   vtkSmartPointer<vtkRefractaSurfaceSet> Set;

@@ -296,6 +296,9 @@ public:
    * power counted in EnergyRemaining and TerminatedStepCap. Light scattered inside a glass body
    * past the critical angle circles by total internal reflection (exactly so in a sphere) and
    * would otherwise run to MaximumNumberOfSteps; a photon crossing ordinary glass meets a few.
+   * Inside a dielectric surface with an inside medium (a glass body, see
+   * vtkRefractaSurfaceMaterial::UseInsideMedium) photons attenuate and scatter with that medium,
+   * not the grid's, so clear glass in fog no longer scatters (Physics.md "Glass bodies").
    */
   vtkSetClampMacro(MaximumNumberOfInterfaceEvents, int, 1, 100000000);
   vtkGetMacro(MaximumNumberOfInterfaceEvents, int);

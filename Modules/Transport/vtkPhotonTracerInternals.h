@@ -167,6 +167,10 @@ struct Allocator
 
 // Reads the medium's arrays (defaults for missing ones), the plan facts and the proxy box.
 void LoadMedium(vtkImageData* image, bool useProxy, Medium& m);
+// Whether the glass bodies of `set` (dielectric surfaces with an inside medium; nullptr: none)
+// attenuate (sigma_t > 0) and scatter (sigma_t albedo > 0): the kernel variant must include them
+// even where the grid does neither (vtkPhotonTracerSurfaces.cxx).
+void BodyMedia(vtkRefractaSurfaceSet* set, bool& attenuates, bool& scatters);
 
 bool Run1D(vtkOpenCLContext* ctx, cl_kernel kernel, size_t count, const char* label, vtkObject* r);
 
@@ -189,6 +193,7 @@ struct vtkPhotonTracer::Internals
   vtkRefractaSurfaceSet* Surfaces = nullptr;
   vtkOpenCLBuffer SurfNodes, SurfTriangles, SurfInfo, SurfAlbedo, SurfIrradiance;
   vtkOpenCLBuffer SurfNormals, SurfInterfaces; // dielectric corner normals and index pairs
+  vtkOpenCLBuffer SurfBodies;                  // the glass bodies' inside media
   cl_float4 Frame[3];
   double SurfaceEpsilon = 0;
   vtkNew<vtkFloatArray> Irradiance;
@@ -243,7 +248,7 @@ struct vtkPhotonTracer::SurfaceCache
   vtkWeakPointer<vtkRefractaSurfaceSet> Set;
   int Builds = -1;
   vtkOpenCLContext* Context = nullptr;
-  vtkOpenCLBuffer Nodes, Triangles, Info, Albedo, Normals, Interfaces;
+  vtkOpenCLBuffer Nodes, Triangles, Info, Albedo, Normals, Interfaces, Bodies;
   double Bytes = 0;
 };
 

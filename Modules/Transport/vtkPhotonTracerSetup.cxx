@@ -201,6 +201,10 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
   if (!run.ReusedMedium)
   {
     LoadMedium(input, this->UseProxyBounds, m);
+    bool bodyAttenuates, bodyScatters;
+    BodyMedia(this->Surfaces, bodyAttenuates, bodyScatters);
+    m.Attenuates = m.Attenuates || bodyAttenuates;
+    m.Scatters = m.Scatters || bodyScatters;
   }
   if (!this->PrepareSurfaces(run))
   {
@@ -389,7 +393,10 @@ bool vtkPhotonTracer::TakeCachedMedium(Internals& run)
     c->Context == this->GetContext() && c->PrimaryTolerance == this->PrimaryTolerance &&
     c->SecondaryTolerance == this->SecondaryTolerance &&
     c->AdaptiveStepping == this->AdaptiveStepping && c->UseProxyBounds == this->UseProxyBounds;
-  if (!same)
+  // Glass bodies that attenuate or scatter where the kept medium's variant does neither: reload.
+  bool bodyAttenuates, bodyScatters;
+  BodyMedia(this->Surfaces, bodyAttenuates, bodyScatters);
+  if (!same || (bodyAttenuates && !c->M.Attenuates) || (bodyScatters && !c->M.Scatters))
   {
     this->Cache.reset(); // releases the old medium's device buffers now
     return false;

@@ -11,6 +11,7 @@
 #include "vtkRefractaBVH.h"
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaSurfaceMaterial.h"
 #include "vtkRefractaSurfaceSet.h"
 
 #include "refracta_surfaces.cl" // the flattened surface layout, shared with the kernels
@@ -24,6 +25,25 @@ namespace
 constexpr double RelativeSurfaceEpsilon = 1e-5;
 // Margin around the surfaces' bounds in the box the lights aim at, relative to the scene's size.
 constexpr double RelativeEmitMargin = 1e-3;
+}
+
+//------------------------------------------------------------------------------
+void vtkPhotonTracerDetail::BodyMedia(vtkRefractaSurfaceSet* set, bool& attenuates, bool& scatters)
+{
+  attenuates = scatters = false;
+  for (int s = 0; set && s < set->GetNumberOfSurfaces(); ++s)
+  {
+    vtkRefractaSurfaceMaterial* m = set->GetMaterial(s);
+    if (m->GetKind() != vtkRefractaSurfaceMaterial::DIELECTRIC || !m->GetUseInsideMedium())
+    {
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      attenuates = attenuates || m->GetInsideExtinction()[c] > 0.0;
+      scatters = scatters || m->GetInsideExtinction()[c] * m->GetInsideAlbedo()[c] > 0.0;
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -169,13 +189,14 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
     run.SurfIrradiance = alloc.Make(CL_MEM_READ_WRITE, 16, nullptr, "surface irradiance (none)");
     run.SurfNormals = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "surface normals (none)");
     run.SurfInterfaces = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "surface interfaces (none)");
+    run.SurfBodies = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "surface bodies (none)");
     for (auto& row : run.Frame)
     {
       row = Float4(0, 0, 0, 0);
     }
     this->KeptSurfaces.reset();
     return run.SurfNodes && run.SurfTriangles && run.SurfInfo && run.SurfAlbedo &&
-      run.SurfIrradiance && run.SurfNormals && run.SurfInterfaces;
+      run.SurfIrradiance && run.SurfNormals && run.SurfInterfaces && run.SurfBodies;
   }
   vtkRefractaSurfaceSet* set = run.Surfaces;
   SurfaceCache* kept = this->KeptSurfaces.get();
@@ -187,6 +208,7 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
     run.SurfAlbedo = std::move(kept->Albedo);
     run.SurfNormals = std::move(kept->Normals);
     run.SurfInterfaces = std::move(kept->Interfaces);
+    run.SurfBodies = std::move(kept->Bodies);
     alloc.Bytes += kept->Bytes;
     this->LastRunReusedSurfaces = true;
   }
@@ -210,6 +232,9 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
       alloc.Make(in, normals.size() * sizeof(float), normals.data(), "surface corner normals");
     run.SurfInterfaces = alloc.Make(
       in, interfaces.size() * sizeof(float), interfaces.data(), "surface interface indices");
+    const auto& bodies = set->GetSurfaceBodies();
+    run.SurfBodies =
+      alloc.Make(in, bodies.size() * sizeof(float), bodies.data(), "surface body media");
   }
   this->KeptSurfaces.reset();
   // The caustic atlas's c^2 fine texels per coarse texel follow the coarse ones, then one
@@ -220,7 +245,7 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
   run.SurfIrradiance = alloc.Make(
     CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "surface irradiance accumulator");
   return run.SurfNodes && run.SurfTriangles && run.SurfInfo && run.SurfAlbedo &&
-    run.SurfIrradiance && run.SurfNormals && run.SurfInterfaces &&
+    run.SurfIrradiance && run.SurfNormals && run.SurfInterfaces && run.SurfBodies &&
     ctx->ZeroBuffer(run.SurfIrradiance.Get(), accumulators * sizeof(cl_long), this);
 }
 
@@ -259,6 +284,8 @@ bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_u
   const cl_mem normals = run.SurfNormals.Get(), interfaces = run.SurfInterfaces.Get();
   set(sizeof(cl_mem), &normals);
   set(sizeof(cl_mem), &interfaces);
+  const cl_mem bodies = run.SurfBodies.Get();
+  set(sizeof(cl_mem), &bodies);
   return run.Context->Check(status, "clSetKernelArg(surfaces)", this);
 }
 
@@ -333,12 +360,14 @@ void vtkPhotonTracer::KeepSurfaces(Internals& run)
     rounded(run.Surfaces->GetTriangleInfo().size() * 4) +
     rounded(run.Surfaces->GetTexelAlbedo().size() * 4) +
     rounded(run.Surfaces->GetTriangleNormals().size() * 4) +
-    rounded(run.Surfaces->GetSurfaceInterfaces().size() * 4);
+    rounded(run.Surfaces->GetSurfaceInterfaces().size() * 4) +
+    rounded(run.Surfaces->GetSurfaceBodies().size() * 4);
   kept->Nodes = std::move(run.SurfNodes);
   kept->Triangles = std::move(run.SurfTriangles);
   kept->Info = std::move(run.SurfInfo);
   kept->Albedo = std::move(run.SurfAlbedo);
   kept->Normals = std::move(run.SurfNormals);
   kept->Interfaces = std::move(run.SurfInterfaces);
+  kept->Bodies = std::move(run.SurfBodies);
   this->KeptSurfaces = std::move(kept);
 }

@@ -355,12 +355,25 @@ size_t OuterMaterial(const std::vector<std::unique_ptr<PreparedMesh>>& meshes, s
   return outer;
 }
 
+// One InterfaceMaterials tuple (vtkRefractaMedium): the medium filling a mesh, homogeneous
+// unless its material has a density field (then flagged 0: the passes use the grid inside).
+// The grid mixes a cut voxel's materials by occupancy; with this record the passes need not.
+void InsideMedium(vtkMediumMaterial* material, double body[])
+{
+  double n, g;
+  material->GetPropertiesAtDensity(1.0, n, body, body + 3, g, body + 7);
+  body[6] = g;
+  body[10] = material->IsHeterogeneous() ? 0.0 : 1.0;
+}
+
 // The meshes as exact interfaces in the output's field data (vtkRefractaMedium's names).
 void WriteInterfaces(const std::vector<std::unique_ptr<PreparedMesh>>& meshes,
   const std::vector<vtkMediumMaterial*>& materials, vtkImageData* output)
 {
-  vtkNew<vtkDoubleArray> points, indices;
+  vtkNew<vtkDoubleArray> points, indices, bodies;
   vtkNew<vtkIdTypeArray> triangles;
+  bodies->SetName(vtkRefractaMedium::InterfaceMaterialsName());
+  bodies->SetNumberOfComponents(vtkRefractaMedium::InterfaceMaterialComponents);
   points->SetName(vtkRefractaMedium::InterfacePointsName());
   points->SetNumberOfComponents(3);
   triangles->SetName(vtkRefractaMedium::InterfaceTrianglesName());
@@ -377,16 +390,20 @@ void WriteInterfaces(const std::vector<std::unique_ptr<PreparedMesh>>& meshes,
     }
     const double pair[2] = { materials[m + 1]->GetRefractiveIndex(),
       materials[OuterMaterial(meshes, m)]->GetRefractiveIndex() };
+    double body[vtkRefractaMedium::InterfaceMaterialComponents];
+    InsideMedium(materials[m + 1], body);
     for (const auto& t : mesh.Triangles)
     {
       const vtkIdType ids[3] = { first + t[0], first + t[1], first + t[2] };
       triangles->InsertNextTypedTuple(ids);
       indices->InsertNextTuple(pair);
+      bodies->InsertNextTuple(body);
     }
   }
   output->GetFieldData()->AddArray(points);
   output->GetFieldData()->AddArray(triangles);
   output->GetFieldData()->AddArray(indices);
+  output->GetFieldData()->AddArray(bodies);
 }
 }
 

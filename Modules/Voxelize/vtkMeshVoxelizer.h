@@ -44,24 +44,28 @@
  * with w_m = f_m * mean sigma_s,m (the mean cosine of the mixed phase function;
  * occupancy-weighted where nothing scatters); Emission = sum f_m eps_m.
  *
- * **Smoothing and gradient** (InterfaceMode SMOOTHED_INDEX). n is smoothed by a separable Gaussian of SmoothingWindow^3 voxels
- * (default 9, odd; 1 disables smoothing) with sigma = SmoothingSigma voxels (default 0, meaning
- * window / 6 as in the paper), edge voxels replicated. RefractiveIndex is the smoothed n;
- * RefractiveIndexGradient its central differences in world units (one-sided at the grid's
- * faces). The other arrays are not smoothed.
+ * **Smoothing and gradient** (InterfaceMode SMOOTHED_INDEX). n is smoothed by a separable Gaussian
+ * of SmoothingWindow^3 voxels (default 9, odd; 1 disables smoothing) with sigma = SmoothingSigma
+ * voxels (default 0, meaning window / 6 as in the paper), edge voxels replicated. RefractiveIndex
+ * is the smoothed n; RefractiveIndexGradient its central differences in world units (one-sided at
+ * the grid's faces). The other arrays are not smoothed.
  *
  * **Exact interfaces.** InterfaceMode EXACT_INTERFACES (the default; SMOOTHED_INDEX is the
- * paper's smoothing above, for comparison and for meshes meant as graded blobs) leaves n unsmoothed and sets its gradient to 0 along an axis wherever the
- * central-difference stencil touches a voxel that a triangle touches, so that grad n never holds
- * the jump at a surface; the jump is carried by the meshes themselves, written to the output's
- * field data (vtkRefractaMedium::InterfacePointsName(), InterfaceTrianglesName(),
- * InterfaceIndicesName(): world points, outward-wound triangles and per triangle the index inside
- * and outside, outside being the innermost other mesh whose volume contains the mesh's first
- * vertex, or the surroundings) for vtkRefractaSurfaceSet::AddMediumInterfaces. A material whose
- * index follows a density field (DensityScalesRefractiveIndex) has no single index at its surface:
- * then the grid is SMOOTHED_INDEX, with a warning. vtkRefractaRenderPipeline (so the mapper, the
- * CLI and ParaView) adds the interfaces to the scene's surfaces by itself.
- * Documentation/Physics.md, "Dielectric interfaces".
+ * paper's smoothing above, for comparison and for meshes meant as graded blobs) leaves n unsmoothed
+ * and sets its gradient to 0 along an axis wherever the central-difference stencil touches a voxel
+ * that a triangle touches, so that grad n never holds the jump at a surface; the jump is carried by
+ * the meshes themselves, written to the output's field data
+ * (vtkRefractaMedium::InterfacePointsName(), InterfaceTrianglesName(), InterfaceIndicesName():
+ * world points, outward-wound triangles and per triangle the index inside and outside, outside
+ * being the innermost other mesh whose volume contains the mesh's first vertex, or the
+ * surroundings) for vtkRefractaSurfaceSet::AddMediumInterfaces, and InterfaceMaterialsName(): per
+ * triangle the mesh's own medium (extinction, albedo, anisotropy, emission; flagged 0 for a
+ * material with a density field), which the passes use inside the mesh instead of the grid's
+ * occupancy mix (Physics.md "Glass bodies"). A material whose index follows a density field
+ * (DensityScalesRefractiveIndex) has no single index at its surface: then the grid is
+ * SMOOTHED_INDEX, with a warning. vtkRefractaRenderPipeline (so the mapper, the CLI and ParaView)
+ * adds the interfaces to the scene's surfaces by itself. Documentation/Physics.md, "Dielectric
+ * interfaces".
  *
  * **Validation.** Each mesh is checked before voxelizing (CGAL and exact predicates); errors
  * (no output): null or empty mesh, cells that refer to missing points (ids out of range), NaN,
