@@ -1,6 +1,7 @@
 // The host-side set-up stages of vtkPhotonTracer: reading the medium, converting the lights to
-// the grid-local frame, sharing out the photons, the octree (BuildOctree too), and the medium kept
-// between runs.
+// the grid-local frame, sharing out the photons, the memory plan, the octree (BuildOctree and
+// its stage), and the medium kept between runs.
+#include "vtkPhotonTracer.h"
 #include "vtkPhotonTracerInternals.h"
 
 #include "vtkCollection.h"
@@ -12,12 +13,15 @@
 #include "vtkMatrix3x3.h"
 #include "vtkMediumValidator.h"
 #include "vtkNew.h"
+#include "vtkOpenCLMemoryPlan.h"
 #include "vtkPointData.h"
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaMedium.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <array>
+#include <sstream>
+#include <string>
 
 namespace vtkPhotonTracerDetail
 {
@@ -489,4 +493,146 @@ bool vtkPhotonTracer::BuildOctree(vtkImageData* medium, vtkImageData* octreeOut)
   octreeOut->GetPointData()->AddArray(level);
   octreeOut->GetPointData()->AddArray(limited);
   return true;
+}
+
+using namespace vtkPhotonTracerDetail;
+
+namespace
+{
+// Progress at the end of the octree stage (vtkPhotonTracer.cxx has the other stages' shares).
+constexpr double ProgressOctree = 0.01;
+}
+
+//------------------------------------------------------------------------------
+// Before any allocation: the run's device buffers and host copies against the device's limits.
+bool vtkPhotonTracer::PlanMemory(Internals& run)
+{
+  const Medium& m = run.M;
+  const double v = static_cast<double>(m.Voxels);
+  const double p = static_cast<double>(run.Photons);
+  std::ostringstream gridText, photonText;
+  gridText << "grid " << m.Dims[0] << " x " << m.Dims[1] << " x " << m.Dims[2];
+  photonText << run.Photons << " photons";
+  const std::string grid = gridText.str(), photons = photonText.str();
+  const std::string gridSetting = "the grid size", photonSetting = "NumberOfPhotons";
+  vtkNew<vtkOpenCLMemoryPlan> plan;
+  plan->Reset("photon pass");
+  if (!run.ReusedMedium)
+  {
+    plan->AddDeviceBuffer(grid, "refractive index", (m.Curved ? v : 1) * 4, gridSetting);
+    plan->AddDeviceBuffer(grid, "index gradient", m.Curved ? v * 12 : 16, gridSetting);
+    if (m.Curved && this->AdaptiveStepping)
+    {
+      // The level array, and the min/max pyramid (8 bytes a node, 8/7 of the voxels in all).
+      plan->AddDeviceBuffer(grid, "octree", v, gridSetting);
+      plan->AddDeviceBuffer(grid, "octree pyramid", v * 8 * 8 / 7, gridSetting);
+    }
+    plan->AddDeviceBuffer(grid, "extinction", (m.Attenuates ? v : 1) * 12, gridSetting);
+    plan->AddDeviceBuffer(grid, "albedo", (m.Scatters ? v : 1) * 12, gridSetting);
+  }
+  for (const char* what : { "photon positions", "photon directions", "photon powers" })
+  {
+    plan->AddDeviceBuffer(photons, what, p * 16, photonSetting);
+  }
+  if (this->StepsPerChunk > 0)
+  {
+    plan->AddDeviceBuffer(photons, "photon state (chunked march)", p * 128, photonSetting);
+    plan->AddDeviceBuffer(photons, "photon status (chunked march)", p * 16, photonSetting);
+  }
+  const double accumulators = m.Scatters ? v * 3 * 8 : 8;
+  plan->AddDeviceBuffer(grid, "radiance accumulator", accumulators, gridSetting);
+  plan->AddDeviceBuffer(grid, "direction accumulator", accumulators, gridSetting);
+  if (m.Scatters)
+  {
+    const int fields = this->Smoothing ? 4 : 2; // radiance and direction, smoothed copies
+    for (int f = 0; f < fields; ++f)
+    {
+      plan->AddDeviceBuffer(
+        grid, f % 2 ? "direction field" : "radiance field", v * 12, gridSetting);
+    }
+  }
+  // Host: the medium's float copies (index, gradient, extinction, albedo) and the two outputs.
+  plan->AddHostMemory(
+    grid, "medium copies", v * 4 * (1 + 3 + 3 + (m.HasGradient ? 3 : 0)), gridSetting);
+  plan->AddHostMemory(grid, "Radiance and RadianceDirection", v * 12 * 2, gridSetting);
+  this->PlannedDeviceMemoryBytes =
+    plan->GetDeviceBytes() + (run.ReusedMedium ? run.Alloc.Bytes : 0);
+  this->PlannedHostMemoryBytes = plan->GetHostBytes();
+  if (!plan->Fits(run.Context))
+  {
+    vtkErrorMacro(<< plan->GetMessage());
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// Stage 1: upload of the refractive index, gradient (if needed) and octree.
+bool vtkPhotonTracer::BuildOctreeStage(Internals& run)
+{
+  Medium& m = run.M;
+  vtkOpenCLContext* ctx = run.Context;
+  Allocator& alloc = run.Alloc;
+  const size_t voxels = m.Voxels;
+  const cl_int4 dims = Int4(m.Dims);
+  const cl_float4 spacing = Float4(m.Spacing);
+  const cl_uint voxelCount = static_cast<cl_uint>(voxels);
+  vtkOpenCLBuffer& nBuffer = run.NBuffer;
+  vtkOpenCLBuffer& gradBuffer = run.GradBuffer;
+  vtkOpenCLBuffer& octree = run.Octree;
+  auto start = Clock::now();
+  if (run.ReusedMedium)
+  {
+    return this->ReportProgress(
+      run, ProgressOctree); // index, gradient and octree are on the device
+  }
+  nBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+    (m.Curved ? voxels : 1) * sizeof(float), m.N.data(), "RefractiveIndex");
+  if (!nBuffer)
+  {
+    return false;
+  }
+  if (m.Curved && m.HasGradient)
+  {
+    gradBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * 3 * sizeof(float),
+      m.Gradient.data(), "RefractiveIndexGradient");
+  }
+  else if (m.Curved)
+  {
+    cl_program program = ctx->GetProgram(
+      { "refracta_atomics.cl", "refracta_common.cl", "photon_octree.cl" }, "", this);
+    gradBuffer = alloc.Make(CL_MEM_READ_WRITE, voxels * 3 * sizeof(float), nullptr, "gradient");
+    vtkOpenCLKernel kernel =
+      program ? ctx->CreateKernel(program, "photon_gradient", this) : vtkOpenCLKernel();
+    if (!kernel || !gradBuffer ||
+      !ctx->Check(vtkOpenCLSetKernelArgs(
+                    kernel.Get(), nBuffer.Get(), dims, spacing, gradBuffer.Get(), voxelCount),
+        "clSetKernelArg(photon_gradient)", this) ||
+      !Run1D(ctx, kernel.Get(), voxels, "photon_gradient", this))
+    {
+      return false;
+    }
+  }
+  else
+  {
+    gradBuffer = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "gradient (unused)");
+  }
+  if (this->UsedOctree)
+  {
+    if (!RunOctree(ctx, this, alloc, nBuffer.Get(), m.Dims, this->PrimaryTolerance,
+          this->SecondaryTolerance, octree))
+    {
+      return false;
+    }
+  }
+  else
+  {
+    octree = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "octree (unused)");
+  }
+  if (!gradBuffer || !octree || !ctx->Finish(this))
+  {
+    return false;
+  }
+  this->OctreeSeconds = Seconds(start);
+  return this->ReportProgress(run, ProgressOctree);
 }
