@@ -38,7 +38,6 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   ps.hits = 0;
   ps.interfaces = 0;
   ps.caustic = 0;
-  ps.ahead = -1.0f;
   ps.dead = 0;
   photon_init_analog(&ps, anisotropy, multiple, 0);
   ps.body = -1;
@@ -157,7 +156,6 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.hits = 0;
     ps.interfaces = 0;
     ps.caustic = 0;
-    ps.ahead = -1.0f;
     photon_init_analog(&ps, anisotropy, multiple, 0);
     ps.body = -1; // found below, once the surfaces are set (REFRACTA_INTERFACES)
     emitted = ps.power;
@@ -198,7 +196,6 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.hits = as_uint(s[8].w);
     ps.interfaces = as_uint(s[3].w);
     ps.caustic = as_int(s[5].w);
-    ps.ahead = -1.0f; // not kept between chunks: the next step asks the BVH again
     ps.rng = st.z;
     ps.pieces = st.w;
     photon_init_analog(&ps, anisotropy, multiple, as_int(s[4].w));

@@ -252,57 +252,6 @@ inline void photon_scatter(photon_state* ps, float3* x, float3* v, float3 d, flo
 }
 #endif
 
-#if REFRACTA_REFRACT
-// The closest surface hit on the chord x -> x + tMax chord of a step that starts with velocity v
-// and ends with v1. Most steps are straight (a uniform index: v1 == v, as everywhere between
-// exact interfaces), and asking the BVH on each of them cost as much as the march itself in the
-// default scene. So on a straight step the BVH is asked once for the whole straight ray, and
-// `ahead` keeps the distance left to its first surface: while the photon goes on with the same
-// v, a step that ends short of it cannot meet a surface and asks nothing. The step that would
-// reach it (and every curved step) asks for its chord, so every hit is found by the same query
-// as without this. The caller invalidates `ahead` (< 0) whenever the photon leaves that ray.
-inline refracta_hit photon_trace_chord(
-  photon_state* ps, const photon_surfaces* s, float3 x, float3 v, float3 v1, float3 chord, float tMax)
-{
-  const float span = tMax * sqrt(dot(chord, chord));
-  const bool straight = all(v1 == v);
-  if (straight && ps->ahead >= 0.0f && all(v == ps->aheadV))
-  {
-    if (isinf(ps->ahead) || ps->ahead * (1.0f - 1e-4f) > span + s->epsilon)
-    {
-      ps->ahead -= span;
-      refracta_hit none;
-      none.triangle = -1;
-      none.t = tMax;
-      none.u = none.v = 0.0f;
-      return none;
-    }
-    return photon_trace_surfaces(s, x, chord, tMax);
-  }
-  if (!straight)
-  {
-    ps->ahead = -1.0f;
-    return photon_trace_surfaces(s, x, chord, tMax);
-  }
-  // The first step of a straight run: the whole ray.
-  const float3 d = chord / (span / tMax);
-  refracta_hit h = photon_trace_surfaces(s, x, d, INFINITY);
-  ps->aheadV = v;
-  ps->ahead = h.triangle >= 0 ? h.t : INFINITY;
-  if (h.triangle >= 0 && h.t <= span)
-  {
-    h.t = h.t / (span / tMax); // in units of the chord
-    return h;
-  }
-  ps->ahead -= span;
-  refracta_hit none;
-  none.triangle = -1;
-  none.t = tMax;
-  none.u = none.v = 0.0f;
-  return none;
-}
-#endif
-
 // One event of a photon with surfaces: a curved step inside a refracting medium's box, else a
 // straight flight (through the box when n is constant) to the next surface, to the box (curved
 // rays continue inside it) or out of the scene. -1: it goes on; else its outcome.
@@ -337,7 +286,7 @@ inline int photon_surface_event(photon_state* ps, float3* x, float3* v, int* ste
       float e1;
       tExit = refracta_intersect_box(*x, chord, lo, hi, &e0, &e1) ? clamp(e1, 0.0f, 1.0f) : 0.0f;
     }
-    h = photon_trace_chord(ps, s, *x, *v, v1, chord, tExit);
+    h = photon_trace_surfaces(s, *x, chord, tExit);
 #if REFRACTA_EXTINCTION
     photon_walk(ps, *x, x1, h.triangle >= 0 ? h.t : tExit, dims, spacing, extinction, albedo,
       radiance, directionSum);
@@ -349,7 +298,6 @@ inline int photon_surface_event(photon_state* ps, float3* x, float3* v, int* ste
     if (ps->collided)
     {
       photon_scatter(ps, x, v, normalize(chord), lo, hi, refractiveIndex, dims, spacing);
-      ps->ahead = -1.0f;
       return -1;
     }
 #endif
@@ -359,9 +307,8 @@ inline int photon_surface_event(photon_state* ps, float3* x, float3* v, int* ste
     {
       *x = x1;
       *v = v1;
-      return -1; // on along the same ray: the only way on that keeps `ahead`
+      return -1;
     }
-    ps->ahead = -1.0f;
     if (h.triangle < 0)
     {
       // Out of the box: on in a straight line from just outside it.

@@ -231,8 +231,6 @@ typedef struct
   uint hits; // surface hits
   uint interfaces; // dielectric interface events (REFRACTA_MAX_INTERFACES ends a trapped photon)
   int caustic;     // met a dielectric interface since the light or its last diffuse event
-  float ahead;     // surfaces: straight distance to the next surface along aheadV (< 0: unknown)
-  float3 aheadV;   // surfaces: the velocity for which `ahead` holds
   int dead;
   int order;                               // scatterings since the light or the last surface
   int collided;                            // analog: scattered in the last piece
