@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 namespace vtkRefractaViewPassDetail
@@ -262,17 +263,26 @@ bool SurfaceBuffers::SplitCaustic(
   const double needed = photonsPerFineTexel * static_cast<double>(c2);
   std::vector<float> fineValues(static_cast<size_t>(fine) * 3, 0.0f);
   const std::vector<int>& info = this->Set->GetTriangleInfo();
-  std::vector<int> coarseOf; // fine texel (in the triangle) -> its atlas texel
-  int tableN = -1;
+  // Fine texel (in the triangle) -> its atlas texel, one table per subdivision n.
+  std::map<int, std::vector<int>> tables;
   for (size_t k = 0; k + REFRACTA_TRIANGLE_INFO_INTS <= info.size();
        k += REFRACTA_TRIANGLE_INFO_INTS)
   {
     const int first = info[k + REFRACTA_TRIANGLE_INFO_TEXEL];
     const int n = info[k + REFRACTA_TRIANGLE_INFO_SUBDIVISION];
-    if (n != tableN)
+    bool any = false; // most triangles have no texel to read fine: no table needed
+    for (int t = 0; t < n * n && !any; ++t)
+    {
+      any = photons->GetComponent(first + t, 0) >= needed;
+    }
+    if (!any)
+    {
+      continue;
+    }
+    std::vector<int>& coarseOf = tables[n];
+    if (coarseOf.empty())
     {
       FineToCoarseTexels(n, c, coarseOf);
-      tableN = n;
     }
     std::vector<double> removed(3 * static_cast<size_t>(n) * n, 0.0);
     for (size_t f = 0; f < coarseOf.size(); ++f)
