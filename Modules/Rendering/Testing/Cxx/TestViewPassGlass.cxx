@@ -13,7 +13,7 @@
 //   critical 41.8 degrees): total internal reflection turns them onto a wall beside the prism;
 //   the bright floor under the prism leaks in nothing; pixel by pixel against the trace.
 // - No NaN or Inf anywhere.
-#include "RenderingTestUtilities.h"
+#include "SurfaceTestScene.h"
 
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
@@ -328,20 +328,8 @@ void CheckerFloor(double z0, vtkRefractaSurfaceSet* set, std::vector<Tri>& tris)
 // Surface irradiance pi on every texel: a Lambertian surface then shows its albedo.
 vtkSmartPointer<vtkImageData> UnitLighting(vtkImageData* medium, vtkRefractaSurfaceSet* set)
 {
-  auto light = vtkSmartPointer<vtkImageData>::New();
-  light->CopyStructure(medium);
-  refracta_test::AddConstant(light, vtkRefractaLightingVolume::MultipleScatteringName(), 3, 0);
-  EXPECT_TRUE(set->Build());
-  vtkNew<vtkFloatArray> e;
-  e->SetName(vtkRefractaLightingVolume::SurfaceIrradianceName());
-  e->SetNumberOfComponents(3);
-  e->SetNumberOfTuples(set->GetNumberOfTexels());
-  for (vtkIdType k = 0; k < set->GetNumberOfTexels(); ++k)
-  {
-    e->SetTuple3(k, vtkMath::Pi(), vtkMath::Pi(), vtkMath::Pi());
-  }
-  light->GetFieldData()->AddArray(e);
-  return light;
+  return refracta_test::Lighting(
+    medium, set, [](const double*, double e[3]) { e[0] = e[1] = e[2] = vtkMath::Pi(); });
 }
 
 struct Scene
