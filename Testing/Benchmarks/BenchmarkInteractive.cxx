@@ -13,8 +13,12 @@
 // goes.
 //
 //   BenchmarkInteractive [--size N] [--photons P] [--width W] [--height H] [--runs R]
-//                        [--csv FILE]
+//                        [--csv FILE] [--profile] [--persistent-only]
 // Defaults are the target configuration: 128^3, 2^20 photons, 640 x 480, 5 runs.
+// --profile times every kernel launch of the persistent frames from OpenCL events: the column
+// device_s (median kernel time per frame) against persistent_s says how much of a frame is host
+// work, and each interaction's kernels are printed, longest first. --persistent-only skips the
+// fresh pipelines (their columns read 0) where device time is scarce.
 #include "RefractaBenchmark.h"
 
 #include "vtkCamera.h"
@@ -25,6 +29,7 @@
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
+#include "vtkOpenCLKernelProfile.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -51,6 +56,8 @@ struct Options
   int Height = 480;
   int Runs = 5;
   std::string Csv;
+  bool Profile = false;
+  bool PersistentOnly = false;
 };
 
 double Seconds(const std::function<bool()>& work)
@@ -192,10 +199,14 @@ int main(int argc, char* argv[])
       o.Runs = std::stoi(next());
     else if (arg == "--csv")
       o.Csv = next();
+    else if (arg == "--profile")
+      o.Profile = true;
+    else if (arg == "--persistent-only")
+      o.PersistentOnly = true;
     else
     {
       std::cerr << "usage: BenchmarkInteractive [--size N] [--photons P] [--width W] "
-                   "[--height H] [--runs R] [--csv FILE]\n";
+                   "[--height H] [--runs R] [--csv FILE] [--profile] [--persistent-only]\n";
       return 2;
     }
   }
@@ -209,6 +220,8 @@ int main(int argc, char* argv[])
             << " x " << o.Height << ", " << o.Runs << " runs on " << context->GetDeviceName()
             << "\n";
 
+  context->SetProfileKernels(o.Profile);
+  vtkOpenCLKernelProfile* profile = context->GetKernelProfile();
   Scene scene(o.Size);
   auto persistent = MakePipeline(scene, o);
   Seconds([&] { return persistent->Render(o.Width, o.Height); }); // compile, upload, light
@@ -217,27 +230,40 @@ int main(int argc, char* argv[])
   using refracta::bench::Median;
   using refracta::bench::Table;
   Table table({ "interaction", "fresh_s", "persistent_s", "speedup", "plan_s", "lighting_s",
-    "view_s", "frames_per_s" });
+    "view_s", "frames_per_s", "device_s" });
   int frame = 0;
   for (const Interaction& interaction : Interactions())
   {
-    std::vector<double> fresh, kept, stage[vtkRefractaRenderPipeline::NUMBER_OF_STAGES];
+    std::vector<double> fresh, kept, device, stage[vtkRefractaRenderPipeline::NUMBER_OF_STAGES];
+    std::string kernels;
     for (int r = 0; r < o.Runs; ++r)
     {
       interaction.Change(scene, frame++);
       persistent->SetMedium(scene.Medium());
+      profile->Reset();
       kept.push_back(Seconds([&] { return persistent->Render(o.Width, o.Height); }));
+      profile->Collect();
+      device.push_back(profile->GetTotalDeviceSeconds());
+      kernels = profile->GetTable();
       for (int s = 0; s < vtkRefractaRenderPipeline::NUMBER_OF_STAGES; ++s)
       {
         stage[s].push_back(persistent->GetStageSeconds(s));
       }
-      auto before = MakePipeline(scene, o); // the state a front end without the pipeline had
-      fresh.push_back(Seconds([&] { return before->Render(o.Width, o.Height); }));
+      if (!o.PersistentOnly)
+      {
+        auto before = MakePipeline(scene, o); // the state a front end without the pipeline had
+        fresh.push_back(Seconds([&] { return before->Render(o.Width, o.Height); }));
+      }
     }
     const double f = Median(fresh), k = Median(kept);
     table.AddRow({ interaction.Name, Table::Format(f), Table::Format(k), Table::Format(f / k),
       Table::Format(Median(stage[0])), Table::Format(Median(stage[1])),
-      Table::Format(Median(stage[2])), Table::Format(1.0 / k) });
+      Table::Format(Median(stage[2])), Table::Format(1.0 / k), Table::Format(Median(device)) });
+    if (o.Profile)
+    {
+      std::cout << "Kernels of the last persistent '" << interaction.Name << "' frame:\n"
+                << kernels << "\n";
+    }
   }
   table.Print("Interactive re-rendering: fresh pipeline per frame vs one persistent pipeline "
               "(medians, seconds)");
