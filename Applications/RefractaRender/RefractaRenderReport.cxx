@@ -331,8 +331,7 @@ void PrintSummary(const json& report)
             << (medium.contains("interfaces")
                    ? ", " + medium["interfaces"].get<std::string>() + " interfaces"
                    : std::string())
-            << "), "
-            << seconds["medium"].get<double>() << " s\n";
+            << "), " << seconds["medium"].get<double>() << " s\n";
   PrintSurfaces(report["surfaces"], seconds.value("surfaces", 0.0));
   PrintLightPass(report["light_pass"]);
   std::cout << "  view      " << (view["curved_rays"].get<bool>() ? "curved" : "straight")
@@ -351,7 +350,8 @@ void PrintSummary(const json& report)
     {
       std::cout << "  kernel    " << k["label"].get<std::string>() << ": "
                 << k["launches"].get<int>() << " launches, " << k["device_seconds"].get<double>()
-                << " s on the device\n";
+                << " s on the device, " << k["host_seconds"].get<double>()
+                << " s of host time in the calls\n";
     }
   }
 }
@@ -372,7 +372,8 @@ json KernelProfileReport(vtkOpenCLContext* context)
   {
     kernels.push_back(
       { { "label", profile->GetKernelLabel(i) }, { "launches", profile->GetNumberOfLaunches(i) },
-        { "device_seconds", profile->GetDeviceSeconds(i) } });
+        { "device_seconds", profile->GetDeviceSeconds(i) },
+        { "host_seconds", profile->GetHostSeconds(i) } });
   }
   return kernels;
 }

@@ -13,6 +13,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <mutex>
 #include <sstream>
 
 vtkStandardNewMacro(vtkMediumValidator);
@@ -47,6 +49,50 @@ struct InvalidValueScan
     }
   }
 };
+
+// The arrays whose value scan passed, by address, modification time and medium role: a
+// render validates its medium in every pass, and rescanning 10^7 values each time costs more than
+// a light move on a GPU. A few entries cover every live medium; the oldest is dropped first.
+class PassedScans
+{
+public:
+  bool Contains(vtkDataArray* array, int id)
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    const Entry wanted{ array, array->GetMTime(), id };
+    return std::find(this->Entries.begin(), this->Entries.end(), wanted) != this->Entries.end();
+  }
+
+  void Add(vtkDataArray* array, int id)
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    this->Entries.push_back({ array, array->GetMTime(), id });
+    if (this->Entries.size() > 64)
+    {
+      this->Entries.pop_front();
+    }
+  }
+
+private:
+  struct Entry
+  {
+    const vtkDataArray* Array;
+    vtkMTimeType Time;
+    int Id;
+    bool operator==(const Entry& o) const
+    {
+      return this->Array == o.Array && this->Time == o.Time && this->Id == o.Id;
+    }
+  };
+  std::mutex Mutex;
+  std::deque<Entry> Entries;
+};
+
+PassedScans& ScanCache()
+{
+  static PassedScans cache;
+  return cache;
+}
 }
 
 //------------------------------------------------------------------------------
@@ -215,6 +261,10 @@ bool vtkMediumValidator::CheckArrayLayout(vtkImageData* medium, int id)
 //------------------------------------------------------------------------------
 void vtkMediumValidator::CheckArrayValues(vtkImageData* medium, vtkDataArray* array, int id)
 {
+  if (ScanCache().Contains(array, id))
+  {
+    return;
+  }
   InvalidValueScan scan;
   scan.ArrayId = id;
   if (!vtkArrayDispatch::Dispatch::Execute(array, scan))
@@ -223,6 +273,7 @@ void vtkMediumValidator::CheckArrayValues(vtkImageData* medium, vtkDataArray* ar
   }
   if (scan.NumberInvalid == 0)
   {
+    ScanCache().Add(array, id);
     return;
   }
   const int nc = array->GetNumberOfComponents();

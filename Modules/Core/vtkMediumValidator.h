@@ -15,6 +15,13 @@
  * A message names the array, the number of bad values, and the first bad voxel (i, j, k), its
  * component and value, and what would be valid.
  *
+ * Every pass validates its input, so one render validates the same medium several times. The
+ * value scan (the only part that reads every voxel) is remembered, process-wide, for arrays that
+ * passed: an array whose address and modification time (vtkObject::GetMTime(), which VTK bumps on
+ * every Modified() and which no other object shares) match a passed scan is not read again. This
+ * follows VTK's own convention (vtkDataArray::GetRange() caches the same way): code that writes
+ * into an array's memory must call Modified() on it.
+ *
  * @code
  * vtkNew<vtkMediumValidator> validator;
  * if (!validator->Validate(medium))

@@ -1,11 +1,13 @@
 #include "vtkRefractaMedium.h"
 
 #include "vtkDataArray.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -111,24 +113,40 @@ const char* vtkRefractaMedium::GetValidRangeDescription(int id)
 std::vector<float> vtkRefractaMedium::ReadArray(
   vtkImageData* image, const char* name, int components, float fallback)
 {
-  const vtkIdType n = image ? image->GetNumberOfPoints() : 0;
-  std::vector<float> values(static_cast<size_t>(n) * components, fallback);
-  vtkDataArray* array = image ? image->GetPointData()->GetArray(name) : nullptr;
-  if (array && array->GetNumberOfComponents() == components && array->GetNumberOfTuples() == n)
-  {
-    vtkSMPTools::For(0, n,
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType t = begin; t < end; ++t)
-        {
-          for (int c = 0; c < components; ++c)
-          {
-            values[t * components + c] = static_cast<float>(array->GetComponent(t, c));
-          }
-        }
-      });
-  }
+  std::vector<float> values;
+  ReadArray(image ? image->GetPointData()->GetArray(name) : nullptr,
+    image ? image->GetNumberOfPoints() : 0, components, fallback, values);
   return values;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaMedium::ReadArray(
+  vtkDataArray* array, vtkIdType tuples, int components, float fallback, std::vector<float>& out)
+{
+  const size_t count = static_cast<size_t>(tuples) * components;
+  if (!array || array->GetNumberOfComponents() != components ||
+    array->GetNumberOfTuples() != tuples)
+  {
+    out.assign(count, fallback);
+    return;
+  }
+  out.resize(count);
+  if (vtkFloatArray* floats = vtkFloatArray::FastDownCast(array))
+  {
+    std::copy_n(floats->GetPointer(0), count, out.begin());
+    return;
+  }
+  vtkSMPTools::For(0, tuples,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType t = begin; t < end; ++t)
+      {
+        for (int c = 0; c < components; ++c)
+        {
+          out[t * components + c] = static_cast<float>(array->GetComponent(t, c));
+        }
+      }
+    });
 }
 
 //------------------------------------------------------------------------------

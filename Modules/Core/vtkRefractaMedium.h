@@ -29,6 +29,7 @@
 
 #include <vector> // for std::vector
 
+class vtkDataArray;
 class vtkImageData;
 
 class REFRACTACORE_EXPORT vtkRefractaMedium : public vtkObject
@@ -138,6 +139,14 @@ public:
    * The same for medium array `id`, with its documented default as the fallback.
    */
   static std::vector<float> ReadArray(vtkImageData* image, int id);
+
+  /**
+   * `array` as `tuples` x `components` interleaved floats into `out` (resized), or every value
+   * `fallback` when the array is null or has another shape. Float arrays are copied as memory,
+   * others converted in parallel (vtkSMPTools).
+   */
+  static void ReadArray(
+    vtkDataArray* array, vtkIdType tuples, int components, float fallback, std::vector<float>& out);
 #endif
 
 protected:

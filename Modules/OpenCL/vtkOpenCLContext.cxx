@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -450,6 +451,7 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
   flags &= ~static_cast<cl_mem_flags>(CL_MEM_COPY_HOST_PTR | CL_MEM_USE_HOST_PTR);
   const size_t allocated = (std::max<size_t>(bytes, 1) + 15) / 16 * 16;
   cl_int error = CL_SUCCESS;
+  const double start = HostClock();
   cl_mem buffer = clCreateBuffer(this->Context, flags, allocated, nullptr, &error);
   std::ostringstream call;
   call << "clCreateBuffer(" << what << ", " << bytes << " bytes)";
@@ -457,6 +459,7 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
   {
     return vtkOpenCLBuffer();
   }
+  this->RecordLaunch("[create buffer]", nullptr, start);
   vtkOpenCLBuffer owned(buffer);
   if (hostData && !this->WriteBuffer(buffer, bytes, hostData, reporter))
   {
@@ -488,32 +491,51 @@ bool vtkOpenCLContext::InjectedFault(const char* call, vtkObject* reporter)
 bool vtkOpenCLContext::WriteBuffer(
   cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter)
 {
-  return bytes == 0 ||
-    (!this->InjectedFault("clEnqueueWriteBuffer", reporter) &&
-      this->Check(
-        clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
-        "clEnqueueWriteBuffer", reporter));
+  if (bytes == 0)
+  {
+    return true;
+  }
+  const double start = HostClock();
+  cl_event event = nullptr;
+  return !this->InjectedFault("clEnqueueWriteBuffer", reporter) &&
+    this->Check(clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr,
+                  this->ProfileKernels ? &event : nullptr),
+      "clEnqueueWriteBuffer", reporter) &&
+    this->RecordLaunch("[write]", event, start);
 }
 
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::ReadBuffer(cl_mem buffer, size_t bytes, void* data, vtkObject* reporter)
 {
-  return bytes == 0 ||
-    (!this->InjectedFault("clEnqueueReadBuffer", reporter) &&
-      this->Check(
-        clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr),
-        "clEnqueueReadBuffer", reporter));
+  if (bytes == 0)
+  {
+    return true;
+  }
+  const double start = HostClock();
+  cl_event event = nullptr;
+  return !this->InjectedFault("clEnqueueReadBuffer", reporter) &&
+    this->Check(clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr,
+                  this->ProfileKernels ? &event : nullptr),
+      "clEnqueueReadBuffer", reporter) &&
+    this->RecordLaunch("[read]", event, start);
 }
 
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::ZeroBuffer(cl_mem buffer, size_t bytes, vtkObject* reporter)
 {
+  if (bytes == 0)
+  {
+    return true;
+  }
   const cl_uint zero = 0;
-  return bytes == 0 ||
-    (!this->InjectedFault("clEnqueueFillBuffer", reporter) &&
-      this->Check(clEnqueueFillBuffer(this->Queue, buffer, &zero, sizeof(zero), 0,
-                    (bytes / sizeof(zero)) * sizeof(zero), 0, nullptr, nullptr),
-        "clEnqueueFillBuffer", reporter));
+  const double start = HostClock();
+  cl_event event = nullptr;
+  return !this->InjectedFault("clEnqueueFillBuffer", reporter) &&
+    this->Check(
+      clEnqueueFillBuffer(this->Queue, buffer, &zero, sizeof(zero), 0,
+        (bytes / sizeof(zero)) * sizeof(zero), 0, nullptr, this->ProfileKernels ? &event : nullptr),
+      "clEnqueueFillBuffer", reporter) &&
+    this->RecordLaunch("[fill]", event, start);
 }
 
 //------------------------------------------------------------------------------
@@ -534,21 +556,33 @@ bool vtkOpenCLContext::RunKernel(cl_kernel kernel, cl_uint dimensions, const siz
     }
   }
   const std::string call = std::string("clEnqueueNDRangeKernel(") + label + ")";
+  const double start = HostClock();
   cl_event event = nullptr;
   return this->CheckLaunch(kernel, localSize, dimensions, label, reporter) &&
     !this->InjectedFault(call.c_str(), reporter) &&
     this->Check(clEnqueueNDRangeKernel(this->Queue, kernel, dimensions, globalOffset, global,
                   localSize, 0, nullptr, this->ProfileKernels ? &event : nullptr),
       call.c_str(), reporter) &&
-    this->RecordLaunch(label, event);
+    this->RecordLaunch(label, event, start);
 }
 
 //------------------------------------------------------------------------------
-bool vtkOpenCLContext::RecordLaunch(const char* label, cl_event event)
+double vtkOpenCLContext::HostClock()
 {
-  if (event)
+  using Clock = std::chrono::steady_clock;
+  return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+}
+
+//------------------------------------------------------------------------------
+bool vtkOpenCLContext::RecordLaunch(const char* label, cl_event event, double hostStart)
+{
+  if (this->ProfileKernels)
   {
-    this->KernelProfile->Record(label, vtkOpenCLEvent(event));
+    this->KernelProfile->Record(label, vtkOpenCLEvent(event), HostClock() - hostStart);
+  }
+  else if (event)
+  {
+    clReleaseEvent(event);
   }
   return true;
 }
@@ -567,7 +601,9 @@ vtkOpenCLKernelProfile* vtkOpenCLContext::GetKernelProfile()
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::Finish(vtkObject* reporter)
 {
-  return this->Check(clFinish(this->Queue), "clFinish", reporter);
+  const double start = HostClock();
+  return this->Check(clFinish(this->Queue), "clFinish", reporter) &&
+    this->RecordLaunch("[finish]", nullptr, start);
 }
 
 //------------------------------------------------------------------------------

@@ -364,7 +364,10 @@ protected:
   void SaveBinary(cl_program program, const std::string& key);
   bool CheckLaunch(cl_kernel kernel, const size_t* localSize, cl_uint dimensions, const char* label,
     vtkObject* reporter);
-  bool RecordLaunch(const char* label, cl_event event);
+  // With ProfileKernels on, hands the call's event (or none) and the host's wall time since
+  // `hostStart` (HostClock()) to the profile; always returns true so it chains after Check().
+  bool RecordLaunch(const char* label, cl_event event, double hostStart);
+  static double HostClock();
   vtkSmartPointer<vtkOpenCLBinaryCache> DiskCache;
   vtkSmartPointer<vtkOpenCLKernelProfile> KernelProfile;
   bool WarnedAboutDiskCache = false;

@@ -28,13 +28,17 @@ vtkOpenCLKernelProfile::vtkOpenCLKernelProfile()
 
 vtkOpenCLKernelProfile::~vtkOpenCLKernelProfile() = default;
 
-void vtkOpenCLKernelProfile::Record(const char* label, vtkOpenCLEvent event)
+void vtkOpenCLKernelProfile::Record(const char* label, vtkOpenCLEvent event, double hostSeconds)
 {
+  const std::string name = label ? label : "(unnamed)";
+  this->TotalOf(name).HostSeconds += hostSeconds;
   if (!event)
   {
+    ++this->TotalOf(name).Launches;
+    this->Modified();
     return;
   }
-  this->PendingLaunches->push_back({ label ? label : "(unnamed)", std::move(event) });
+  this->PendingLaunches->push_back({ name, std::move(event) });
   if (this->PendingLaunches->size() >= FoldThreshold)
   {
     this->Fold(false);
@@ -51,7 +55,7 @@ vtkOpenCLKernelProfile::Total& vtkOpenCLKernelProfile::TotalOf(const std::string
       return t;
     }
   }
-  this->Totals.push_back({ label, 0, 0.0 });
+  this->Totals.push_back({ label, 0, 0.0, 0.0 });
   return this->Totals.back();
 }
 
@@ -131,6 +135,21 @@ double vtkOpenCLKernelProfile::GetTotalDeviceSeconds() const
   return sum;
 }
 
+double vtkOpenCLKernelProfile::GetHostSeconds(int i) const
+{
+  return i >= 0 && i < this->GetNumberOfKernels() ? this->Totals[i].HostSeconds : 0.0;
+}
+
+double vtkOpenCLKernelProfile::GetTotalHostSeconds() const
+{
+  double sum = 0.0;
+  for (const Total& t : this->Totals)
+  {
+    sum += t.HostSeconds;
+  }
+  return sum;
+}
+
 std::string vtkOpenCLKernelProfile::GetTable() const
 {
   std::vector<Total> sorted = this->Totals;
@@ -138,13 +157,15 @@ std::string vtkOpenCLKernelProfile::GetTable() const
     [](const Total& a, const Total& b) { return a.Seconds > b.Seconds; });
   const double all = this->GetTotalDeviceSeconds();
   std::ostringstream os;
-  os << "| kernel | launches | device s | share |\n|---|---|---|---|\n";
+  os << "| kernel | launches | device s | share | host s in call |\n|---|---|---|---|---|\n";
   for (const Total& t : sorted)
   {
     os << "| " << t.Label << " | " << t.Launches << " | " << std::setprecision(4) << t.Seconds
-       << " | " << std::setprecision(3) << (all > 0 ? 100.0 * t.Seconds / all : 0.0) << "% |\n";
+       << " | " << std::setprecision(3) << (all > 0 ? 100.0 * t.Seconds / all : 0.0) << "% | "
+       << std::setprecision(4) << t.HostSeconds << " |\n";
   }
-  os << "| total | | " << std::setprecision(4) << all << " | |\n";
+  os << "| total | | " << std::setprecision(4) << all << " | | " << this->GetTotalHostSeconds()
+     << " |\n";
   return os.str();
 }
 
@@ -154,4 +175,5 @@ void vtkOpenCLKernelProfile::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfKernels: " << this->GetNumberOfKernels() << "\n";
   os << indent << "PendingLaunches: " << this->PendingLaunches->size() << "\n";
   os << indent << "TotalDeviceSeconds: " << this->GetTotalDeviceSeconds() << "\n";
+  os << indent << "TotalHostSeconds: " << this->GetTotalHostSeconds() << "\n";
 }

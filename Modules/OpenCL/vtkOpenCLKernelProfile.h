@@ -8,8 +8,12 @@
  * vtkOpenCLContext::RunKernel() hands its event here, and the profile sums, per launch label, the
  * launches and the device time from CL_PROFILING_COMMAND_START to CL_PROFILING_COMMAND_END
  * (seconds). Events of finished launches are folded in as they accumulate, so a long run holds at
- * most a few hundred events. Transfers and host work are not counted: compare
- * GetTotalDeviceSeconds() with the wall time to see how much of it is the device's.
+ * most a few hundred events. The context's transfers are recorded the same way under bracketed
+ * labels ("[write]", "[read]", "[fill]"), and calls with no device work under theirs
+ * ("[create buffer]", "[finish]"). Every entry also sums the host's wall time inside the OpenCL
+ * call (the enqueue, or the whole wait of a blocking transfer or clFinish): a frame's wall time
+ * less GetTotalHostSeconds() is the host's own work, and GetTotalDeviceSeconds() is what the
+ * device did of it.
  *
  * Collect() waits for the pending launches and folds them in; the getters report what was
  * collected. The cost is one event per launch (microseconds); off, nothing is recorded.
@@ -54,6 +58,9 @@ public:
   int GetNumberOfLaunches(int i) const;
   double GetDeviceSeconds(int i) const;
   double GetTotalDeviceSeconds() const;
+  /** Host wall time inside the OpenCL calls of entry i (seconds). */
+  double GetHostSeconds(int i) const;
+  double GetTotalHostSeconds() const;
   ///@}
 
   /**
@@ -64,9 +71,11 @@ public:
 #ifndef __VTK_WRAP__
   /**
    * Keeps `event` (a finished or pending launch of `label`) until Collect() or until it has
-   * finished and enough events are pending to fold the finished ones in.
+   * finished and enough events are pending to fold the finished ones in, and adds `hostSeconds`
+   * (the host's wall time inside the call) to the label's host total. A null event counts the
+   * call and its host time only.
    */
-  void Record(const char* label, vtkOpenCLEvent event);
+  void Record(const char* label, vtkOpenCLEvent event, double hostSeconds = 0.0);
 #endif
 
 protected:
@@ -82,6 +91,7 @@ private:
     std::string Label;
     int Launches = 0;
     double Seconds = 0.0;
+    double HostSeconds = 0.0;
   };
   struct Pending;
   Total& TotalOf(const std::string& label);

@@ -1,4 +1,6 @@
 #include "vtkRefractaRenderPipeline.h"
+
+#include "vtkRefractaHostThreads.h"
 #include "vtkRefractaMedium.h"
 #include "vtkRefractaRenderPipelineInternals.h"
 
@@ -54,6 +56,7 @@ double SecondsSince(std::chrono::steady_clock::time_point start)
 vtkRefractaRenderPipeline::vtkRefractaRenderPipeline()
   : Internal(new Internals)
 {
+  vtkRefractaHostThreads::UseThreadedBackend();
   // Forward the passes' progress into this pipeline's, and pass an abort on to them.
   vtkNew<vtkCallbackCommand> forward;
   forward->SetClientData(this);

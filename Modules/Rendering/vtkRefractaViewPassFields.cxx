@@ -132,31 +132,43 @@ bool EnvironmentToRGB(
 bool CheckLightingArray(
   vtkDataArray* array, const char* name, vtkIdType tuples, bool nonNegative, std::string& error)
 {
-  std::ostringstream msg;
   if (array->GetNumberOfComponents() != 3 || array->GetNumberOfTuples() != tuples)
   {
+    std::ostringstream msg;
     msg << "The lighting volume's point array '" << name << "' has "
         << array->GetNumberOfComponents() << " components and " << array->GetNumberOfTuples()
         << " tuples; it needs 3 components and " << tuples << " tuples.";
     error = msg.str();
     return false;
   }
-  for (vtkIdType i = 0; i < tuples; ++i)
+  auto invalid = [nonNegative](double v) { return !std::isfinite(v) || (nonNegative && v < 0); };
+  const vtkIdType values = 3 * tuples;
+  vtkIdType first = -1;
+  if (vtkFloatArray* floats = vtkFloatArray::FastDownCast(array))
   {
-    for (int c = 0; c < 3; ++c)
+    // The passes' own output: read the memory directly (a virtual call per value costs more
+    // than the rest of a camera move at 128^3).
+    const float* p = floats->GetPointer(0);
+    first = std::find_if(p, p + values, invalid) - p;
+  }
+  else
+  {
+    first = 0;
+    while (first < values && !invalid(array->GetComponent(first / 3, first % 3)))
     {
-      const double v = array->GetComponent(i, c);
-      if (!std::isfinite(v) || (nonNegative && v < 0))
-      {
-        msg << "The lighting volume's point array '" << name << "' has the invalid value " << v
-            << " at tuple " << i << " component " << c << "; values must be finite"
-            << (nonNegative ? " and >= 0." : ".");
-        error = msg.str();
-        return false;
-      }
+      ++first;
     }
   }
-  return true;
+  if (first >= values)
+  {
+    return true;
+  }
+  std::ostringstream msg;
+  msg << "The lighting volume's point array '" << name << "' has the invalid value "
+      << array->GetComponent(first / 3, first % 3) << " at tuple " << first / 3 << " component "
+      << first % 3 << "; values must be finite" << (nonNegative ? " and >= 0." : ".");
+  error = msg.str();
+  return false;
 }
 
 //------------------------------------------------------------------------------

@@ -6,6 +6,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkOpenCLMemoryPlan.h"
+#include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <cmath>
@@ -470,15 +471,19 @@ bool vtkLatticeBoltzmannSolver::SetSource(const float* s1, const float* directio
     return false;
   }
   const size_t n = static_cast<size_t>(this->NumberOfVoxels);
-  std::vector<float> planar(6 * n, 0.0f);
-  for (size_t v = 0; v < n; ++v)
-  {
-    for (int c = 0; c < 3; ++c)
+  std::vector<float> planar(6 * n);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(n),
+    [&](vtkIdType first, vtkIdType last)
     {
-      planar[c * n + v] = s1 ? s1[v * 3 + c] : 0.0f;
-      planar[(3 + c) * n + v] = direction ? direction[v * 3 + c] : 0.0f;
-    }
-  }
+      for (size_t v = first; v < static_cast<size_t>(last); ++v)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          planar[c * n + v] = s1 ? s1[v * 3 + c] : 0.0f;
+          planar[(3 + c) * n + v] = direction ? direction[v * 3 + c] : 0.0f;
+        }
+      }
+    });
   return this->GetContext()->WriteBuffer(
            this->Source.Get(), planar.size() * sizeof(float), planar.data(), this) &&
     this->UpdateSourceProbes();

@@ -30,18 +30,7 @@ namespace
 void CopyArray(
   vtkDataArray* array, int comps, float fallback, size_t voxels, std::vector<float>& out)
 {
-  out.assign(voxels * comps, fallback);
-  if (!array)
-  {
-    return;
-  }
-  for (size_t v = 0; v < voxels; ++v)
-  {
-    for (int c = 0; c < comps; ++c)
-    {
-      out[v * comps + c] = static_cast<float>(array->GetComponent(static_cast<vtkIdType>(v), c));
-    }
-  }
+  vtkRefractaMedium::ReadArray(array, static_cast<vtkIdType>(voxels), comps, fallback, out);
 }
 }
 

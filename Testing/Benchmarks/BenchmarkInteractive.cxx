@@ -15,9 +15,10 @@
 //   BenchmarkInteractive [--size N] [--photons P] [--width W] [--height H] [--runs R]
 //                        [--csv FILE] [--profile] [--persistent-only]
 // Defaults are the target configuration: 128^3, 2^20 photons, 640 x 480, 5 runs.
-// --profile times every kernel launch of the persistent frames from OpenCL events: the column
-// device_s (median kernel time per frame) against persistent_s says how much of a frame is host
-// work, and each interaction's kernels are printed, longest first. --persistent-only skips the
+// --profile times every OpenCL call of the persistent frames (vtkOpenCLKernelProfile): device_s is
+// the median device time per frame (kernels and transfers), cl_host_s the host's wall time inside
+// OpenCL calls (enqueues and blocking waits); persistent_s less cl_host_s is the host's own work.
+// Each interaction's kernels and transfers are printed, longest first. --persistent-only skips the
 // fresh pipelines (their columns read 0) where device time is scarce.
 #include "RefractaBenchmark.h"
 
@@ -230,11 +231,12 @@ int main(int argc, char* argv[])
   using refracta::bench::Median;
   using refracta::bench::Table;
   Table table({ "interaction", "fresh_s", "persistent_s", "speedup", "plan_s", "lighting_s",
-    "view_s", "frames_per_s", "device_s" });
+    "view_s", "frames_per_s", "device_s", "cl_host_s" });
   int frame = 0;
   for (const Interaction& interaction : Interactions())
   {
-    std::vector<double> fresh, kept, device, stage[vtkRefractaRenderPipeline::NUMBER_OF_STAGES];
+    std::vector<double> fresh, kept, device, clHost,
+      stage[vtkRefractaRenderPipeline::NUMBER_OF_STAGES];
     std::string kernels;
     for (int r = 0; r < o.Runs; ++r)
     {
@@ -244,6 +246,7 @@ int main(int argc, char* argv[])
       kept.push_back(Seconds([&] { return persistent->Render(o.Width, o.Height); }));
       profile->Collect();
       device.push_back(profile->GetTotalDeviceSeconds());
+      clHost.push_back(profile->GetTotalHostSeconds());
       kernels = profile->GetTable();
       for (int s = 0; s < vtkRefractaRenderPipeline::NUMBER_OF_STAGES; ++s)
       {
@@ -258,7 +261,8 @@ int main(int argc, char* argv[])
     const double f = Median(fresh), k = Median(kept);
     table.AddRow({ interaction.Name, Table::Format(f), Table::Format(k), Table::Format(f / k),
       Table::Format(Median(stage[0])), Table::Format(Median(stage[1])),
-      Table::Format(Median(stage[2])), Table::Format(1.0 / k), Table::Format(Median(device)) });
+      Table::Format(Median(stage[2])), Table::Format(1.0 / k), Table::Format(Median(device)),
+      Table::Format(Median(clHost)) });
     if (o.Profile)
     {
       std::cout << "Kernels of the last persistent '" << interaction.Name << "' frame:\n"

@@ -67,7 +67,9 @@ vtkSmartPointer<vtkImageData> MakeMedium()
 
 void SetValue(vtkImageData* image, const char* name, vtkIdType point, int comp, double value)
 {
-  image->GetPointData()->GetArray(name)->SetComponent(point, comp, value);
+  vtkDataArray* array = image->GetPointData()->GetArray(name);
+  array->SetComponent(point, comp, value);
+  array->Modified(); // VTK's contract for writes that other objects must notice
 }
 
 std::string Validate(vtkImageData* image, bool expectValid = false)
@@ -144,6 +146,27 @@ TEST(MediumValidator, RejectsNaNAndInfinity)
   const std::string inf = Validate(image);
   EXPECT_TRUE(Contains(inf, "'RefractiveIndex'") && Contains(inf, "voxel (3, 4, 5)")) << inf;
   EXPECT_TRUE(Contains(inf, "inf")) << inf;
+}
+
+// A passed value scan is remembered by array and modification time: a second validation of the
+// same arrays passes, and a value written afterwards (with Modified(), as VTK requires) is caught,
+// also for a new validator, an array of another role and a replaced array.
+TEST(MediumValidator, RescansArraysChangedSinceTheyPassed)
+{
+  auto image = MakeMedium();
+  Validate(image, true);
+  Validate(image, true);
+  SetValue(image, "Albedo", PointId(2, 1, 0), 1, 1.5);
+  const std::string msg = Validate(image);
+  EXPECT_TRUE(Contains(msg, "'Albedo'") && Contains(msg, "voxel (2, 1, 0)")) << msg;
+
+  image = MakeMedium();
+  Validate(image, true);
+  vtkNew<vtkFloatArray> replaced;
+  replaced->DeepCopy(image->GetPointData()->GetArray("Extinction"));
+  replaced->SetValue(5, -1.0f);
+  image->GetPointData()->AddArray(replaced); // same name: replaces the one that passed
+  EXPECT_TRUE(Contains(Validate(image), "'Extinction'"));
 }
 
 TEST(MediumValidator, RejectsOutOfRangeValues)

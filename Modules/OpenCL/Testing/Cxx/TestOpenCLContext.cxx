@@ -269,6 +269,27 @@ TEST(OpenCLContext, KernelProfileCountsLaunchesAndDeviceTime)
   EXPECT_TRUE(Contains(profile->GetTable(), "| saxpy a | 300 |"));
   std::cout << profile->GetTable();
   profile->Reset();
+
+  // Transfers and waits: bracketed entries with the host's time inside each call.
+  std::vector<float> back(n);
+  ASSERT_TRUE(context->WriteBuffer(xBuffer.Get(), n * sizeof(float), x.data()));
+  ASSERT_TRUE(context->ReadBuffer(yBuffer.Get(), n * sizeof(float), back.data()));
+  ASSERT_TRUE(context->ReadBuffer(yBuffer.Get(), n * sizeof(float), back.data()));
+  ASSERT_TRUE(context->Finish());
+  profile = context->GetKernelProfile();
+  ASSERT_EQ(profile->GetNumberOfKernels(), 3);
+  EXPECT_STREQ(profile->GetKernelLabel(0), "[write]");
+  EXPECT_STREQ(profile->GetKernelLabel(1), "[read]");
+  EXPECT_EQ(profile->GetNumberOfLaunches(1), 2);
+  EXPECT_STREQ(profile->GetKernelLabel(2), "[finish]");
+  EXPECT_EQ(profile->GetDeviceSeconds(2), 0.0); // no device work of its own
+  for (int i = 0; i < 3; ++i)
+  {
+    EXPECT_GT(profile->GetHostSeconds(i), 0.0) << profile->GetKernelLabel(i);
+  }
+  EXPECT_DOUBLE_EQ(profile->GetTotalHostSeconds(),
+    profile->GetHostSeconds(0) + profile->GetHostSeconds(1) + profile->GetHostSeconds(2));
+  profile->Reset();
   EXPECT_EQ(profile->GetNumberOfKernels(), 0);
   EXPECT_EQ(profile->GetTotalDeviceSeconds(), 0.0);
 }
