@@ -12,9 +12,10 @@
  * is Sequential, (b) the user has not chosen one (the environment variable
  * VTK_SMP_BACKEND_IN_USE, which VTK reads, is unset) and (c) VTK was built with STDThread. The
  * backend is process-wide, so this also parallelises the user's other VTK filters; setting
- * VTK_SMP_BACKEND_IN_USE=Sequential keeps everything on one core. vtkRefractaRenderPipeline
- * calls it when it is created, so every front end (the mapper, the ParaView plugin,
- * refracta-render) gets it.
+ * VTK_SMP_BACKEND_IN_USE=Sequential keeps everything on one core. The classes with host work
+ * per render call it when they are created (vtkRefractaRenderPipeline, vtkPhotonTracer,
+ * vtkLatticeBoltzmannSolver, vtkRefractaViewPass), so every front end (the mapper, the ParaView
+ * plugin, refracta-render) and every pipeline of the bare filters gets it.
  *
  * Results do not depend on the backend: Refracta's parallel loops write disjoint outputs, and its
  * reductions combine integers, minima, maxima or flags, never float sums in thread order.

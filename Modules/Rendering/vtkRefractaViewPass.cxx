@@ -11,6 +11,7 @@
 #include "vtkOpenCLMemoryPlan.h"
 #include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaGridFrame.h"
+#include "vtkRefractaHostThreads.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkRefractaViewPassFields.h"
 #include "vtkRefractaViewPassInternals.h"
@@ -45,6 +46,7 @@ cl_float4 Float4(const double v[3], double w = 0.0)
 vtkRefractaViewPass::vtkRefractaViewPass()
   : Internal(new Internals)
 {
+  vtkRefractaHostThreads::UseThreadedBackend();
 }
 
 vtkRefractaViewPass::~vtkRefractaViewPass() = default;

@@ -7,6 +7,7 @@
 #include "vtkPointData.h"
 #include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaGridFrame.h"
+#include "vtkRefractaMedium.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,20 +18,7 @@ namespace vtkRefractaViewPassDetail
 //------------------------------------------------------------------------------
 void FetchFloats(vtkDataArray* array, int comps, std::vector<float>& out)
 {
-  const vtkIdType n = array->GetNumberOfTuples();
-  out.resize(static_cast<size_t>(n) * comps);
-  if (auto* floats = vtkFloatArray::SafeDownCast(array))
-  {
-    std::copy(floats->GetPointer(0), floats->GetPointer(0) + out.size(), out.begin());
-    return;
-  }
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    for (int c = 0; c < comps; ++c)
-    {
-      out[i * comps + c] = static_cast<float>(array->GetComponent(i, c));
-    }
-  }
+  vtkRefractaMedium::ReadArray(array, array->GetNumberOfTuples(), comps, 0.0f, out);
 }
 
 //------------------------------------------------------------------------------

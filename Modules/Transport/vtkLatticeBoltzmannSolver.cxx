@@ -6,9 +6,11 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
 #include "vtkOpenCLMemoryPlan.h"
+#include "vtkRefractaHostThreads.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -21,7 +23,10 @@ using refracta_lbm::Cz;
 using refracta_lbm::LocalRow;
 
 //------------------------------------------------------------------------------
-vtkLatticeBoltzmannSolver::vtkLatticeBoltzmannSolver() = default;
+vtkLatticeBoltzmannSolver::vtkLatticeBoltzmannSolver()
+{
+  vtkRefractaHostThreads::UseThreadedBackend();
+}
 vtkLatticeBoltzmannSolver::~vtkLatticeBoltzmannSolver() = default;
 
 //------------------------------------------------------------------------------
@@ -126,31 +131,38 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
   this->HostCoefficients.assign(planes * n, 0.0f);
   float* coef = this->HostCoefficients.data();
   const double meanEdge = std::cbrt(spacing[0] * spacing[1] * spacing[2]);
-  this->NumberOfThickVoxels = 0;
-  for (size_t v = 0; v < n; ++v)
-  {
-    for (int ch = 0; ch < 3; ++ch)
+  std::atomic<vtkIdType> thick(0);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(n),
+    [&](vtkIdType first, vtkIdType last)
     {
-      const double st = extinction ? std::max(0.0, double(extinction[v * 3 + ch])) : 0.0;
-      const double a = albedo ? std::min(1.0, std::max(0.0, double(albedo[v * 3 + ch]))) : 0.0;
-      const double g =
-        anisotropy ? std::min(0.9999, std::max(-0.9999, double(anisotropy[v]))) : 0.0;
-      for (int c = 0; c < nclass; ++c)
+      vtkIdType localThick = 0;
+      for (size_t v = first; v < static_cast<size_t>(last); ++v)
       {
-        const double p =
-          CollisionProbability(q, this->CollisionModel, st, a, g, this->ClassLengths[c], meanEdge);
-        if (this->CollisionModel == DIFFUSION_MATCHED && c == 0 && p >= 1.0 && st > 0)
+        for (int ch = 0; ch < 3; ++ch)
         {
-          ++this->NumberOfThickVoxels;
+          const double st = extinction ? std::max(0.0, double(extinction[v * 3 + ch])) : 0.0;
+          const double a = albedo ? std::min(1.0, std::max(0.0, double(albedo[v * 3 + ch]))) : 0.0;
+          const double g =
+            anisotropy ? std::min(0.9999, std::max(-0.9999, double(anisotropy[v]))) : 0.0;
+          for (int c = 0; c < nclass; ++c)
+          {
+            const double p = CollisionProbability(
+              q, this->CollisionModel, st, a, g, this->ClassLengths[c], meanEdge);
+            if (this->CollisionModel == DIFFUSION_MATCHED && c == 0 && p >= 1.0 && st > 0)
+            {
+              ++localThick;
+            }
+            // The kernels take the transmittance T = 1 - p.
+            coef[(c * 3 + ch) * n + v] = static_cast<float>(1.0 - p);
+          }
+          coef[(nclass * 3 + ch) * n + v] = static_cast<float>(a);
         }
-        // The kernels take the transmittance T = 1 - p.
-        coef[(c * 3 + ch) * n + v] = static_cast<float>(1.0 - p);
+        coef[(nclass * 3 + 3) * n + v] =
+          anisotropy ? std::min(0.9999f, std::max(-0.9999f, anisotropy[v])) : 0.0f;
       }
-      coef[(nclass * 3 + ch) * n + v] = static_cast<float>(a);
-    }
-    coef[(nclass * 3 + 3) * n + v] =
-      anisotropy ? std::min(0.9999f, std::max(-0.9999f, anisotropy[v])) : 0.0f;
-  }
+      thick += localThick;
+    });
+  this->NumberOfThickVoxels = thick;
   this->Coefficients = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
     planes * n * sizeof(float), coef, "LBL coefficients", this);
   this->Source =

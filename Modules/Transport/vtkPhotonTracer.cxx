@@ -18,6 +18,7 @@
 #include "vtkOpenCLContext.h"
 #include "vtkOpenCLMemoryPlan.h"
 #include "vtkPointData.h"
+#include "vtkRefractaHostThreads.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 #include "vtkRefractaSurfaceSet.h"
@@ -59,6 +60,7 @@ constexpr int MaximumHalvings = 6;
 //------------------------------------------------------------------------------
 vtkPhotonTracer::vtkPhotonTracer()
 {
+  vtkRefractaHostThreads::UseThreadedBackend();
   this->Lights = vtkSmartPointer<vtkLightCollection>::New();
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(1);
