@@ -389,10 +389,15 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   const auto start = std::chrono::steady_clock::now();
   // Rendered into local images, handed over at the end: an aborted render leaves the caller's
   // vectors untouched.
-  std::vector<float> image(pixels * 4);
-  std::vector<float> transmittanceImage(transmittance ? pixels * 4 : 0);
-  std::vector<float> surfaceDepthImage(surfaceDepth ? pixels : 0);
-  std::vector<cl_uint> steps(pixels);
+  // (every pixel of every buffer is written by the kernel, so reused memory need not be cleared)
+  std::vector<float>& image = in.ImageScratch;
+  std::vector<float>& transmittanceImage = in.TransmittanceScratch;
+  std::vector<float>& surfaceDepthImage = in.SurfaceDepthScratch;
+  std::vector<cl_uint>& steps = in.StepScratch;
+  image.resize(pixels * 4);
+  transmittanceImage.resize(transmittance ? pixels * 4 : 0);
+  surfaceDepthImage.resize(surfaceDepth ? pixels : 0);
+  steps.resize(pixels);
   int rowsPerTile = std::max(1, std::min(height, this->TilePixels / width));
   // Buffer tiles (PlanImageMemory): when the whole image's buffers exceed what one allocation
   // may hold, rows [row0, row0 + rows) are rendered as an image of their own, whose frame is

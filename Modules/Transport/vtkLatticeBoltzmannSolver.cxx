@@ -253,10 +253,11 @@ bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
   plan->AddDeviceBuffer(grid, "probes", probes * 3 * 4 * 2, "ProbeSpacing");
   plan->AddDeviceBuffer(grid, "multiple-scattering output", 3 * v * 4, gridSetting);
   // Host: the coefficients kept for the absorption sums, the state read back for the energy
-  // books, and the output.
+  // books, the output, and the source's staging (kept between solves).
   plan->AddHostMemory(grid, "coefficient copy", static_cast<double>(planes) * v * 4, gridSetting);
   plan->AddHostMemory(grid, "state read-back", this->Lattice * 3 * v * 4, stateSetting);
   plan->AddHostMemory(grid, "MultipleScattering", 3 * v * 4, gridSetting);
+  plan->AddHostMemory(grid, "source staging", 6 * v * 4, gridSetting);
   this->PlannedDeviceMemoryBytes = plan->GetDeviceBytes();
   this->PlannedHostMemoryBytes = plan->GetHostBytes();
   if (!plan->Fits(this->GetContext()))
@@ -303,9 +304,10 @@ bool vtkLatticeBoltzmannSolver::UpdateSourceProbes()
   // at once. The voxels with the strongest source are probes too; a source that is zero
   // everywhere is known to give a zero field.
   const size_t n = static_cast<size_t>(this->NumberOfVoxels);
-  std::vector<float> planes(3 * n);
+  std::vector<float>& planes = this->HostSource; // its first 3 n floats: S1 per channel
+  planes.resize(std::max(planes.size(), 3 * n));
   if (!this->GetContext()->ReadBuffer(
-        this->Source.Get(), planes.size() * sizeof(float), planes.data(), this))
+        this->Source.Get(), 3 * n * sizeof(float), planes.data(), this))
   {
     return false;
   }
@@ -483,7 +485,8 @@ bool vtkLatticeBoltzmannSolver::SetSource(const float* s1, const float* directio
     return false;
   }
   const size_t n = static_cast<size_t>(this->NumberOfVoxels);
-  std::vector<float> planar(6 * n);
+  std::vector<float>& planar = this->HostSource;
+  planar.resize(6 * n); // every value is written below
   vtkSMPTools::For(0, static_cast<vtkIdType>(n),
     [&](vtkIdType first, vtkIdType last)
     {

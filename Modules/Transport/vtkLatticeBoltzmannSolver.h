@@ -393,6 +393,9 @@ protected:
   std::vector<int> DirectionClass;
   std::vector<double> ClassLengths;
   std::vector<float> HostCoefficients; // planar, kept for the host-side absorption sum
+  // Host staging of the source (planar, 6 floats a voxel) and of its read-back for the probes,
+  // kept between solves: fresh vectors of this size cost more in page faults than their copy.
+  std::vector<float> HostSource;
   std::vector<float> PreviousProbes;
   size_t NumberOfProbes = 0;
   bool SourceIsZero = true;

@@ -67,6 +67,20 @@ void AddScalar(vtkFieldData* fd, const char* name, double value)
   a->InsertNextValue(value);
   fd->AddArray(a);
 }
+
+// The point array `name` of `image` as 3 floats per point: the array's own memory when it is a
+// float array of that shape (the tracer's output is), else a converted copy in `copy`.
+const float* ThreeFloats(vtkImageData* image, const char* name, std::vector<float>& copy)
+{
+  vtkFloatArray* floats = vtkFloatArray::FastDownCast(image->GetPointData()->GetArray(name));
+  if (floats && floats->GetNumberOfComponents() == 3 &&
+    floats->GetNumberOfTuples() == image->GetNumberOfPoints())
+  {
+    return floats->GetPointer(0);
+  }
+  copy = vtkRefractaMedium::ReadArray(image, name, 3, 0.0f);
+  return copy.data();
+}
 }
 
 //------------------------------------------------------------------------------
@@ -211,10 +225,10 @@ int vtkPhotonDiffusionSchedule::RequestData(
   // Final source: the tracer's S1 (smoothed as it outputs it); the lattice continues from its
   // state (interleaved) or from zero (sequential).
   const auto solveStart = std::chrono::steady_clock::now();
-  const std::vector<float> s1 =
-    vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0.0f);
-  const std::vector<float> d1 = vtkRefractaMedium::ReadArray(
-    lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0.0f);
+  std::vector<float> s1Copy, d1Copy;
+  const float* s1 = ThreeFloats(lighting, vtkRefractaLightingVolume::RadianceName(), s1Copy);
+  const float* d1 =
+    ThreeFloats(lighting, vtkRefractaLightingVolume::RadianceDirectionName(), d1Copy);
   if (!interleaved && !solver->ResetState())
   {
     return 0;
@@ -225,7 +239,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
   solverProgress->Last = 0.99;
   const unsigned long solverObserver =
     solver->AddObserver(vtkCommand::ProgressEvent, solverProgress);
-  const bool solved = solver->SetSource(s1.data(), d1.data()) && solver->Solve();
+  const bool solved = solver->SetSource(s1, d1) && solver->Solve();
   solver->RemoveObserver(solverObserver);
   if (!solved)
   {
