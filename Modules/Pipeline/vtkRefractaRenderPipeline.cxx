@@ -641,6 +641,7 @@ void vtkRefractaRenderPipeline::PrintSelf(ostream& os, vtkIndent indent)
      << (this->LightUnits == VTK_LIGHT_UNITS ? "VTK_LIGHT_UNITS" : "RADIOMETRIC_LIGHT_UNITS")
      << "\n";
   os << indent << "MultipleScatteringSchedule: " << this->MultipleScatteringSchedule << "\n";
+  os << indent << "LatticeWarmStart: " << this->LatticeWarmStart << "\n";
   os << indent << "BackgroundIlluminates: " << this->BackgroundIlluminates << "\n";
   os << indent << "NumberOfPlanRuns: " << this->NumberOfPlanRuns << "\n";
   os << indent << "NumberOfLightPassRuns: " << this->NumberOfLightPassRuns << "\n";

@@ -257,6 +257,19 @@ public:
 
   ///@{
   /**
+   * Relight from the last field: when only the lights changed, the lattice starts from the last
+   * render's multiple-scattering field instead of from zero (vtkPhotonDiffusionSchedule's
+   * WarmStart). Fewer lattice steps per light move, the same tolerance; the image then depends
+   * on the previous render within that tolerance. Default off (every render equals a fresh
+   * pipeline's).
+   */
+  vtkSetMacro(LatticeWarmStart, bool);
+  vtkGetMacro(LatticeWarmStart, bool);
+  vtkBooleanMacro(LatticeWarmStart, bool);
+  ///@}
+
+  ///@{
+  /**
    * OpenCL context of every pass. Default vtkOpenCLContext::GetDefault().
    */
   void SetContext(vtkOpenCLContext* context);
@@ -358,6 +371,7 @@ protected:
   bool MultipleScattering = true;
   int LightUnits = RADIOMETRIC_LIGHT_UNITS;
   int MultipleScatteringSchedule = AUTOMATIC_SCHEDULE;
+  bool LatticeWarmStart = false;
   bool BackgroundIlluminates = false;
   bool LastRenderAborted = false;
   bool LastScheduleInterleaved = false;

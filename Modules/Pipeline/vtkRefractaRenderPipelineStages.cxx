@@ -218,6 +218,7 @@ bool vtkRefractaRenderPipeline::RunLighting()
         (this->MultipleScatteringSchedule == AUTOMATIC_SCHEDULE && in.GetContext()->GetIsGPU());
       in.Schedule->SetMode(interleaved ? vtkPhotonDiffusionSchedule::INTERLEAVED
                                        : vtkPhotonDiffusionSchedule::SEQUENTIAL);
+      in.Schedule->SetWarmStart(this->LatticeWarmStart);
       this->LastScheduleInterleaved = interleaved;
       in.Schedule->SetInputData(in.Planned);
       pass = in.Schedule;
@@ -233,6 +234,12 @@ bool vtkRefractaRenderPipeline::RunLighting()
     }
     pass->Update();
     in.Running = nullptr;
+    if (pass == in.Schedule)
+    {
+      this->LastScheduleInterleaved =
+        in.Schedule->GetMode() == vtkPhotonDiffusionSchedule::INTERLEAVED &&
+        !in.Schedule->GetLastRunWarm();
+    }
     output = vtkImageData::SafeDownCast(pass->GetOutputDataObject(0));
     if (in.Abort || pass->GetAbortExecute())
     {

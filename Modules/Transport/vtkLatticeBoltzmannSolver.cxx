@@ -465,15 +465,23 @@ bool vtkLatticeBoltzmannSolver::ResetState()
 //------------------------------------------------------------------------------
 bool vtkLatticeBoltzmannSolver::Restart()
 {
+  return this->ClearSource() && this->ResetState();
+}
+
+//------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::ClearSource()
+{
   if (!this->Source)
   {
     vtkErrorMacro("Initialize() the solver with a grid first.");
     return false;
   }
   this->SourceIsZero = true;
+  this->Iterations = 0;
+  this->Residual = -1.0;
+  this->Converged = false;
   const size_t bytes = 6 * static_cast<size_t>(this->NumberOfVoxels) * sizeof(float);
-  return this->GetContext()->ZeroBuffer(this->Source.Get(), bytes, this) && this->SetProbes({}) &&
-    this->ResetState();
+  return this->GetContext()->ZeroBuffer(this->Source.Get(), bytes, this) && this->SetProbes({});
 }
 
 //------------------------------------------------------------------------------

@@ -264,6 +264,14 @@ public:
   bool Restart();
 
   /**
+   * Zero the source and drop the source probes, keep the lattice state: a new source then
+   * iterates on from the last field instead of from zero (a warm start; the fixed point does not
+   * depend on the start, only the number of steps to reach it does). The step count, residual
+   * and convergence flag start again. Restart() is ClearSource() followed by ResetState().
+   */
+  bool ClearSource();
+
+  /**
    * Run n lattice steps (rounded up to StepsPerExchange in blocked mode); enqueues and, when
    * `wait` is true, waits. Returns false after reporting an error.
    */

@@ -118,11 +118,14 @@ int vtkPhotonDiffusionSchedule::FillInputPortInformation(int, vtkInformation* in
 bool vtkPhotonDiffusionSchedule::PrepareSolver(vtkImageData* medium)
 {
   vtkLatticeBoltzmannSolver* solver = this->Solver;
+  this->LastRunWarm = false;
   if (medium && medium == this->TracerInputSource && medium->GetMTime() == this->SolverMediumTime &&
     solver->GetMTime() == this->SolverSettingsTime)
   {
-    return solver->Restart();
+    this->LastRunWarm = this->WarmStart && this->HasField;
+    return this->LastRunWarm ? solver->ClearSource() : solver->Restart();
   }
+  this->HasField = false;
   this->SolverMediumTime = 0;
   vtkNew<vtkMediumValidator> validator;
   if (!validator->Validate(medium))
@@ -176,7 +179,9 @@ int vtkPhotonDiffusionSchedule::RequestData(
     this->TracerInputTime = medium->GetMTime();
   }
   this->Tracer->SetInputData(this->TracerInput);
-  const bool interleaved = this->Mode == INTERLEAVED;
+  // A warm start marches without interleaving: the chunks' partial sources would first pull the
+  // kept field down towards their own, smaller, fixed points.
+  const bool interleaved = this->Mode == INTERLEAVED && !this->LastRunWarm;
   this->Tracer->SetStepsPerChunk(interleaved ? this->StepsPerChunk : 0);
   int diffusionSteps = 0;
   bool callbackFailed = false;
@@ -229,7 +234,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
   const float* s1 = ThreeFloats(lighting, vtkRefractaLightingVolume::RadianceName(), s1Copy);
   const float* d1 =
     ThreeFloats(lighting, vtkRefractaLightingVolume::RadianceDirectionName(), d1Copy);
-  if (!interleaved && !solver->ResetState())
+  if (!interleaved && !this->LastRunWarm && !solver->ResetState())
   {
     return 0;
   }
@@ -247,6 +252,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
     output->Initialize();
     return 0;
   }
+  this->HasField = true; // converged or stopped part way: either is a valid start
   if (solver->GetAborted() || this->GetAbortExecute())
   {
     output->Initialize();
@@ -289,7 +295,8 @@ int vtkPhotonDiffusionSchedule::RequestData(
   fd->AddArray(iterations);
   fd->AddArray(converged);
   AddScalar(fd, "LatticeBoltzmannResidual", solver->GetResidual());
-  AddScalar(fd, "ScheduleMode", this->Mode);
+  AddScalar(fd, "ScheduleMode", interleaved ? INTERLEAVED : SEQUENTIAL);
+  AddScalar(fd, "ScheduleWarmStart", this->LastRunWarm ? 1 : 0);
   AddScalar(fd, "ScheduleChunks", this->Tracer->GetNumberOfChunks());
   AddScalar(fd, "ScheduleDiffusionStepsDuringMarching", diffusionSteps);
   AddScalar(fd, "ScheduleMarchingSeconds", marching);
@@ -305,5 +312,7 @@ void vtkPhotonDiffusionSchedule::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Mode: " << (this->Mode == INTERLEAVED ? "interleaved" : "sequential") << "\n";
   os << indent << "StepsPerChunk: " << this->StepsPerChunk << "\n";
   os << indent << "DiffusionStepsPerChunk: " << this->DiffusionStepsPerChunk << "\n";
+  os << indent << "WarmStart: " << this->WarmStart << "\n";
+  os << indent << "LastRunWarm: " << this->LastRunWarm << "\n";
   os << indent << "LastRunAborted: " << this->LastRunAborted << "\n";
 }

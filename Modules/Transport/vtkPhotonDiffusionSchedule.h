@@ -15,6 +15,14 @@
  *   the lattice iterates on from its current state to convergence.
  * Both modes converge to the same steady state (the lattice's fixed point depends only on the
  * final source); the interleaved one starts the final solve from a warm state.
+ *
+ * WarmStart (default off) is for relighting: when the medium and the solver's settings are
+ * unchanged since the last run (a light moved), the photon pass runs without interleaving and the
+ * lattice iterates from the last run's field instead of from zero, to the same tolerance. The
+ * result differs from a cold start by what the tolerance allows (measured in
+ * PhotonDiffusionSchedule.WarmStartAgreesWithColdInFewerSteps), and now depends on the previous
+ * run; the first run, and any run after the medium or the solver changed, is cold. Field data
+ * `ScheduleWarmStart` says which it was.
  * On one in-order OpenCL queue the interleaving is of kernels (the paper's GPU ran the two
  * passes on different multiprocessors at once; on a CPU device both share the same cores).
  *
@@ -87,6 +95,21 @@ public:
 
   vtkMTimeType GetMTime() override;
 
+  ///@{
+  /**
+   * Start the lattice of a relight from the last run's field (see the class description).
+   * Default off: every run starts from zero and is bit-identical to a fresh schedule's.
+   */
+  vtkSetMacro(WarmStart, bool);
+  vtkGetMacro(WarmStart, bool);
+  vtkBooleanMacro(WarmStart, bool);
+  ///@}
+
+  /**
+   * Whether the last run started the lattice from the previous run's field.
+   */
+  vtkGetMacro(LastRunWarm, bool);
+
   /**
    * Whether the last RequestData stopped because AbortExecute was set (its output is empty).
    */
@@ -110,6 +133,9 @@ protected:
   int StepsPerChunk = 16;
   int DiffusionStepsPerChunk = 8;
   bool LastRunAborted = false;
+  bool WarmStart = false;
+  bool LastRunWarm = false;
+  bool HasField = false;    // the solver holds a field of the current medium to start from
   double PhotonShare = 0.5; // the photon pass's share of the progress
   vtkSmartPointer<vtkPhotonTracer> Tracer;
   vtkSmartPointer<vtkLatticeBoltzmannSolver> Solver;

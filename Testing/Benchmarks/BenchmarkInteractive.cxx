@@ -13,13 +13,15 @@
 // goes.
 //
 //   BenchmarkInteractive [--size N] [--photons P] [--width W] [--height H] [--runs R]
-//                        [--csv FILE] [--profile] [--persistent-only]
+//                        [--csv FILE] [--profile] [--persistent-only] [--warm-start]
 // Defaults are the target configuration: 128^3, 2^20 photons, 640 x 480, 5 runs.
 // --profile times every OpenCL call of the persistent frames (vtkOpenCLKernelProfile): device_s is
 // the median device time per frame (kernels and transfers), cl_host_s the host's wall time inside
 // OpenCL calls (enqueues and blocking waits); persistent_s less cl_host_s is the host's own work.
 // Each interaction's kernels and transfers are printed, longest first. --persistent-only skips the
-// fresh pipelines (their columns read 0) where device time is scarce.
+// fresh pipelines (their columns read 0) where device time is scarce. --warm-start turns on the
+// persistent pipeline's LatticeWarmStart (a light move iterates the lattice on from the last
+// field); lattice_steps is the median of its steps per frame.
 #include "RefractaBenchmark.h"
 
 #include "vtkCamera.h"
@@ -27,6 +29,7 @@
 #include "vtkEffectPlan.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLatticeBoltzmannSolver.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
@@ -59,6 +62,7 @@ struct Options
   std::string Csv;
   bool Profile = false;
   bool PersistentOnly = false;
+  bool WarmStart = false;
 };
 
 double Seconds(const std::function<bool()>& work)
@@ -204,10 +208,13 @@ int main(int argc, char* argv[])
       o.Profile = true;
     else if (arg == "--persistent-only")
       o.PersistentOnly = true;
+    else if (arg == "--warm-start")
+      o.WarmStart = true;
     else
     {
       std::cerr << "usage: BenchmarkInteractive [--size N] [--photons P] [--width W] "
-                   "[--height H] [--runs R] [--csv FILE] [--profile] [--persistent-only]\n";
+                   "[--height H] [--runs R] [--csv FILE] [--profile] [--persistent-only] "
+                   "[--warm-start]\n";
       return 2;
     }
   }
@@ -225,17 +232,18 @@ int main(int argc, char* argv[])
   vtkOpenCLKernelProfile* profile = context->GetKernelProfile();
   Scene scene(o.Size);
   auto persistent = MakePipeline(scene, o);
+  persistent->SetLatticeWarmStart(o.WarmStart);
   Seconds([&] { return persistent->Render(o.Width, o.Height); }); // compile, upload, light
   std::cout << "  plan: " << persistent->GetEffectPlan()->GetSummary() << "\n";
 
   using refracta::bench::Median;
   using refracta::bench::Table;
   Table table({ "interaction", "fresh_s", "persistent_s", "speedup", "plan_s", "lighting_s",
-    "view_s", "frames_per_s", "device_s", "cl_host_s" });
+    "view_s", "frames_per_s", "device_s", "cl_host_s", "lattice_steps" });
   int frame = 0;
   for (const Interaction& interaction : Interactions())
   {
-    std::vector<double> fresh, kept, device, clHost,
+    std::vector<double> fresh, kept, device, clHost, steps,
       stage[vtkRefractaRenderPipeline::NUMBER_OF_STAGES];
     std::string kernels;
     for (int r = 0; r < o.Runs; ++r)
@@ -247,6 +255,9 @@ int main(int argc, char* argv[])
       profile->Collect();
       device.push_back(profile->GetTotalDeviceSeconds());
       clHost.push_back(profile->GetTotalHostSeconds());
+      steps.push_back(persistent->GetStageRan(vtkRefractaRenderPipeline::LIGHTING)
+          ? persistent->GetLatticeSolver()->GetIterations()
+          : 0);
       kernels = profile->GetTable();
       for (int s = 0; s < vtkRefractaRenderPipeline::NUMBER_OF_STAGES; ++s)
       {
@@ -262,7 +273,7 @@ int main(int argc, char* argv[])
     table.AddRow({ interaction.Name, Table::Format(f), Table::Format(k), Table::Format(f / k),
       Table::Format(Median(stage[0])), Table::Format(Median(stage[1])),
       Table::Format(Median(stage[2])), Table::Format(1.0 / k), Table::Format(Median(device)),
-      Table::Format(Median(clHost)) });
+      Table::Format(Median(clHost)), Table::Format(Median(steps)) });
     if (o.Profile)
     {
       std::cout << "Kernels of the last persistent '" << interaction.Name << "' frame:\n"
