@@ -491,51 +491,49 @@ bool vtkOpenCLContext::InjectedFault(const char* call, vtkObject* reporter)
 bool vtkOpenCLContext::WriteBuffer(
   cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter)
 {
-  if (bytes == 0)
-  {
-    return true;
-  }
-  const double start = HostClock();
-  cl_event event = nullptr;
-  return !this->InjectedFault("clEnqueueWriteBuffer", reporter) &&
-    this->Check(clEnqueueWriteBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr,
-                  this->ProfileKernels ? &event : nullptr),
-      "clEnqueueWriteBuffer", reporter) &&
-    this->RecordLaunch("[write]", event, start);
+  return bytes == 0 ||
+    this->Enqueue("clEnqueueWriteBuffer", "[write]", reporter,
+      [&](cl_event* event) {
+        return clEnqueueWriteBuffer(
+          this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, event);
+      });
 }
 
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::ReadBuffer(cl_mem buffer, size_t bytes, void* data, vtkObject* reporter)
 {
-  if (bytes == 0)
-  {
-    return true;
-  }
-  const double start = HostClock();
-  cl_event event = nullptr;
-  return !this->InjectedFault("clEnqueueReadBuffer", reporter) &&
-    this->Check(clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr,
-                  this->ProfileKernels ? &event : nullptr),
-      "clEnqueueReadBuffer", reporter) &&
-    this->RecordLaunch("[read]", event, start);
+  return bytes == 0 ||
+    this->Enqueue("clEnqueueReadBuffer", "[read]", reporter,
+      [&](cl_event* event) {
+        return clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, event);
+      });
 }
 
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::ZeroBuffer(cl_mem buffer, size_t bytes, vtkObject* reporter)
 {
-  if (bytes == 0)
-  {
-    return true;
-  }
   const cl_uint zero = 0;
+  return bytes == 0 ||
+    this->Enqueue("clEnqueueFillBuffer", "[fill]", reporter,
+      [&](cl_event* event)
+      {
+        return clEnqueueFillBuffer(this->Queue, buffer, &zero, sizeof(zero), 0,
+          (bytes / sizeof(zero)) * sizeof(zero), 0, nullptr, event);
+      });
+}
+
+//------------------------------------------------------------------------------
+bool vtkOpenCLContext::Enqueue(const char* call, const char* label, vtkObject* reporter,
+  const std::function<cl_int(cl_event*)>& enqueue)
+{
+  if (this->InjectedFault(call, reporter))
+  {
+    return false;
+  }
   const double start = HostClock();
   cl_event event = nullptr;
-  return !this->InjectedFault("clEnqueueFillBuffer", reporter) &&
-    this->Check(
-      clEnqueueFillBuffer(this->Queue, buffer, &zero, sizeof(zero), 0,
-        (bytes / sizeof(zero)) * sizeof(zero), 0, nullptr, this->ProfileKernels ? &event : nullptr),
-      "clEnqueueFillBuffer", reporter) &&
-    this->RecordLaunch("[fill]", event, start);
+  return this->Check(enqueue(this->ProfileKernels ? &event : nullptr), call, reporter) &&
+    this->RecordLaunch(label, event, start);
 }
 
 //------------------------------------------------------------------------------

@@ -53,10 +53,11 @@
 #include "RefractaOpenCLModule.h" // for export macro
 #include "vtkObject.h"
 
-#include <map>    // for the program cache
-#include <mutex>  // for the program cache
-#include <string> // for std::string
-#include <vector> // for std::vector
+#include <functional> // for Enqueue
+#include <map>        // for the program cache
+#include <mutex>      // for the program cache
+#include <string>     // for std::string
+#include <vector>     // for std::vector
 
 #ifndef __VTK_WRAP__
 #include "vtkOpenCLBinaryCache.h"   // for the disk cache
@@ -367,6 +368,10 @@ protected:
   // With ProfileKernels on, hands the call's event (or none) and the host's wall time since
   // `hostStart` (HostClock()) to the profile; always returns true so it chains after Check().
   bool RecordLaunch(const char* label, cl_event event, double hostStart);
+  // One transfer or fill: the fault hook, the call (given the event to fill, or null when not
+  // profiling), its check, and its record under `label`.
+  bool Enqueue(const char* call, const char* label, vtkObject* reporter,
+    const std::function<cl_int(cl_event*)>& enqueue);
   static double HostClock();
   vtkSmartPointer<vtkOpenCLBinaryCache> DiskCache;
   vtkSmartPointer<vtkOpenCLKernelProfile> KernelProfile;

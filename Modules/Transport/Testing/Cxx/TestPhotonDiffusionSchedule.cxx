@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -42,6 +43,32 @@ vtkSmartPointer<vtkImageData> RunSchedule(vtkImageData* medium, int mode, int k)
   auto result = vtkSmartPointer<vtkImageData>::New();
   result->ShallowCopy(schedule->GetOutput());
   return result;
+}
+
+// A homogeneous scattering medium of nx x ny x nz half-unit voxels.
+vtkSmartPointer<vtkImageData> Fog(int nx, int ny, int nz, const std::array<double, 3>& albedo)
+{
+  return MakeMedium(nx, ny, nz, 0.5,
+    [&](double, double, double)
+    {
+      Voxel v;
+      v.Extinction = { 1.2, 1.0, 0.8 };
+      v.Albedo = albedo;
+      return v;
+    });
+}
+
+// One directional light from -x towards (0, aim, aim), its source at height lightY (moving it
+// slants the beam), `photons` photons, the lattice solved to `tolerance`.
+void AimLight(
+  vtkPhotonDiffusionSchedule* schedule, double lightY, double aim, int photons, double tolerance)
+{
+  vtkPhotonTracer* tracer = schedule->GetPhotonTracer();
+  tracer->RemoveAllLights();
+  tracer->AddLight(Directional({ -100, lightY, aim }, { 0, aim, aim }, 1.0, { 1.0, 0.8, 0.6 }));
+  tracer->SetNumberOfPhotons(photons);
+  schedule->GetSolver()->SetTolerance(tolerance);
+  schedule->GetSolver()->SetMaximumIterations(20000);
 }
 }
 
@@ -147,22 +174,9 @@ TEST(PhotonDiffusionSchedule, InterleavedMatchesSequential)
 // light; a modified medium is set up again.
 TEST(PhotonDiffusionSchedule, LightMoveReusesTheMediumOnTheDevice)
 {
-  vtkSmartPointer<vtkImageData> medium = MakeMedium(12, 10, 8, 0.5,
-    [](double, double, double)
-    {
-      Voxel v;
-      v.Extinction = { 1.2, 1.0, 0.8 };
-      v.Albedo = { 0.7, 0.75, 0.8 };
-      return v;
-    });
+  vtkSmartPointer<vtkImageData> medium = Fog(12, 10, 8, { 0.7, 0.75, 0.8 });
   auto configure = [](vtkPhotonDiffusionSchedule* schedule, double lightY)
-  {
-    vtkPhotonTracer* tracer = schedule->GetPhotonTracer();
-    tracer->RemoveAllLights();
-    tracer->AddLight(Directional({ -100, lightY, 2 }, { 0, 2, 2 }, 1.0, { 1.0, 0.8, 0.6 }));
-    tracer->SetNumberOfPhotons(2048);
-    schedule->GetSolver()->SetTolerance(1e-5);
-  };
+  { AimLight(schedule, lightY, 2.0, 2048, 1e-5); };
   vtkNew<vtkPhotonDiffusionSchedule> persistent;
   persistent->SetInputData(medium);
   configure(persistent, 2.0);
@@ -205,23 +219,9 @@ TEST(PhotonDiffusionSchedule, LightMoveReusesTheMediumOnTheDevice)
 // medium change are cold; the field data says which run was warm.
 TEST(PhotonDiffusionSchedule, WarmStartAgreesWithColdInFewerSteps)
 {
-  vtkSmartPointer<vtkImageData> medium = MakeMedium(16, 12, 12, 0.5,
-    [](double, double, double)
-    {
-      Voxel v;
-      v.Extinction = { 1.2, 1.0, 0.8 };
-      v.Albedo = { 0.9, 0.95, 0.99 };
-      return v;
-    });
+  vtkSmartPointer<vtkImageData> medium = Fog(16, 12, 12, { 0.9, 0.95, 0.99 });
   auto configure = [](vtkPhotonDiffusionSchedule* schedule, double lightY)
-  {
-    vtkPhotonTracer* tracer = schedule->GetPhotonTracer();
-    tracer->RemoveAllLights();
-    tracer->AddLight(Directional({ -100, lightY, 3 }, { 0, 3, 3 }, 1.0, { 1.0, 0.8, 0.6 }));
-    tracer->SetNumberOfPhotons(4096);
-    schedule->GetSolver()->SetTolerance(1e-6);
-    schedule->GetSolver()->SetMaximumIterations(20000);
-  };
+  { AimLight(schedule, lightY, 3.0, 4096, 1e-6); };
   vtkNew<vtkPhotonDiffusionSchedule> warm;
   warm->SetInputData(medium);
   warm->WarmStartOn();
