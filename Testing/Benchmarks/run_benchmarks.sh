@@ -15,7 +15,8 @@
 #   --timeout   seconds each program may run (default 60 with --quick, 3600 without).
 #   --launcher  command each program is run through, e.g. /tmp/b/gpu-env.sh on a lent GPU
 #               machine (shared/tools/gpu/README.md); its device choice applies unless --device.
-# The header's commit is `git rev-parse` of this checkout, or $REFRACTA_COMMIT where git is absent.
+# The header's commit is $REFRACTA_COMMIT when set (a copy's git may be stale or absent: the lent
+# GPU machine's is), else `git rev-parse` of this checkout.
 # A program that fails or times out gets a FAILED row in the table; the script goes on.
 set -u
 
@@ -167,7 +168,7 @@ while IFS='|' read -r key exe qargs fargs; do
 done <<< "$PROGRAMS"
 
 devname=$(grep -h -m1 -i '^device: ' "$out/lattice.log" "$out"/*.log 2>/dev/null | head -n1 | sed 's/^[Dd]evice: //')
-commit=$(git -C "$(dirname "$0")" rev-parse --short HEAD 2>/dev/null || echo "${REFRACTA_COMMIT:-unknown}")
+commit="${REFRACTA_COMMIT:-$(git -C "$(dirname "$0")" rev-parse --short HEAD 2>/dev/null || echo unknown)}"
 selection="${REFRACTA_OPENCL_DEVICE:-default}"
 [ -z "${REFRACTA_OPENCL_DEVICE:-}" ] && [ -n "$launcher" ] && selection="the launcher's ($launcher)"
 sizes="program defaults"; [ "$quick" = 1 ] && sizes="--quick (smoke sizes, not a speed claim)"
