@@ -206,6 +206,7 @@ json ViewPassReport(vtkRefractaImageRenderer* renderer)
     { "empty_space_skipping", view->GetLastSkipping() },
     { "active_cell_fraction", view->GetLastActiveCellFraction() },
     { "buffer_tiles", view->GetLastNumberOfBufferTiles() },
+    { "fine_caustic_texels", view->GetLastNumberOfFineCausticTexels() },
     { "device_memory_planned_bytes", view->GetPlannedDeviceMemoryBytes() },
     { "memory_plan", view->GetMemoryPlan()->GetSummary() } };
 }
@@ -341,6 +342,10 @@ void PrintSummary(const json& report)
                      "% of macro cells active), "
                                                          : std::string("no empty space skipped, "))
             << seconds["view_pass"].get<double>() << " s\n";
+  if (const long long fine = view.value("fine_caustic_texels", 0LL))
+  {
+    std::cout << "  caustic   " << fine << " atlas texel(s) read from their fine texels\n";
+  }
   std::cout << "  memory    view pass: " << view["memory_plan"].get<std::string>() << " planned, "
             << view["buffer_tiles"].get<int>() << " buffer tile(s)\n";
   std::cout << "  total     " << seconds["total"].get<double>() << " s\n";

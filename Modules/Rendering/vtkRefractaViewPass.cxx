@@ -589,6 +589,12 @@ bool vtkRefractaViewPass::RunTiles(vtkOpenCLContext* context, cl_kernel kernel, 
 }
 
 //------------------------------------------------------------------------------
+vtkIdType vtkRefractaViewPass::GetLastNumberOfFineCausticTexels() const
+{
+  return this->Internal->Surfaces.GetNumberOfFineCausticTexels();
+}
+
+//------------------------------------------------------------------------------
 void vtkRefractaViewPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

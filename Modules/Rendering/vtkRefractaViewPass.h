@@ -217,6 +217,12 @@ public:
   vtkGetMacro(CausticPhotonsPerFineTexel, double);
   ///@}
 
+  /**
+   * After a Render() with a caustic atlas: the atlas texels that showed their caustic light from
+   * their c x c fine texels (0 without a caustic atlas, or where none had enough photons).
+   */
+  vtkIdType GetLastNumberOfFineCausticTexels() const;
+
   ///@{
   /**
    * Glass (dielectric surfaces, Documentation/Physics.md "Glass in the view pass"): at the first

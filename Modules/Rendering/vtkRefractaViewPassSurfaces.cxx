@@ -201,6 +201,7 @@ bool SurfaceBuffers::PrepareIrradiance(
     return true;
   }
   this->Caustic = 1;
+  this->FineCausticTexels = 0;
   std::vector<float> values(static_cast<size_t>(this->Texels) * 3, 0.0f);
   if (vtkDataArray* array = this->Lighting.Irradiance)
   {
@@ -302,6 +303,7 @@ bool SurfaceBuffers::SplitCaustic(
     }
     for (int t = 0; t < n * n; ++t)
     {
+      this->FineCausticTexels += photons->GetComponent(first + t, 0) >= needed ? 1 : 0;
       for (int ch = 0; ch < 3; ++ch)
       {
         float& e = values[3 * static_cast<size_t>(first + t) + ch];

@@ -55,6 +55,8 @@ public:
   // The caustic atlas's subdivision c in the uploaded irradiance (1: none), and the number of
   // atlas texels before its fine texels in that buffer.
   int GetCausticSubdivision() const { return this->Caustic; }
+  // How many atlas texels show their caustic light from their fine texels.
+  vtkIdType GetNumberOfFineCausticTexels() const { return this->FineCausticTexels; }
   vtkIdType GetNumberOfTexels() const { return this->Texels; }
 
   vtkOpenCLBuffer Nodes, Triangles, TriangleInfo, Albedo, Irradiance;
@@ -104,6 +106,7 @@ private:
   bool IrradianceDirty = true;
   double PhotonsPerFineTexel = -1;
   int Caustic = 1;
+  vtkIdType FineCausticTexels = 0;
 };
 }
 

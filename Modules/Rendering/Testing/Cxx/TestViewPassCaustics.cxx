@@ -205,6 +205,7 @@ TEST(ViewPassCaustics, FineTexelsShowTheCausticWhereEnoughPhotonsLanded)
   const int w = 160, h = 160;
   std::vector<float> hdr;
   ASSERT_TRUE(pass->Render(camera, w, h, nullptr, nullptr, hdr));
+  EXPECT_EQ(pass->GetLastNumberOfFineCausticTexels(), 2) << "texels A and C, not B";
   vtkRefractaViewPass::RayFrame frame;
   ASSERT_TRUE(vtkRefractaViewPass::ComputeRayFrame(camera, scene.Medium, nullptr, w, h, frame));
 
@@ -272,10 +273,12 @@ TEST(ViewPassCaustics, BelowTheThresholdTheImageIsTheAtlasAlone)
   std::vector<float> withArrays, without, resolved;
   ASSERT_TRUE(pass->SetLighting(scene.Lighting));
   ASSERT_TRUE(pass->Render(camera, 64, 64, nullptr, nullptr, withArrays));
+  EXPECT_EQ(pass->GetLastNumberOfFineCausticTexels(), 0);
   // The threshold is read at each render: lowering it shows the fine texels.
   pass->SetCausticPhotonsPerFineTexel(PhotonsPerFine);
   ASSERT_TRUE(pass->Render(camera, 64, 64, nullptr, nullptr, resolved));
   EXPECT_NE(resolved, withArrays);
+  EXPECT_EQ(pass->GetLastNumberOfFineCausticTexels(), 2);
   auto plain = vtkSmartPointer<vtkImageData>::New();
   plain->ShallowCopy(scene.Lighting);
   vtkNew<vtkFieldData> fields;
