@@ -228,7 +228,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
   const double marching = Seconds(start);
 
   // Final source: the tracer's S1 (smoothed as it outputs it); the lattice continues from its
-  // state (interleaved) or from zero (sequential).
+  // state (interleaved), from the last run's field (warm start) or from zero (sequential).
   const auto solveStart = std::chrono::steady_clock::now();
   std::vector<float> s1Copy, d1Copy;
   const float* s1 = ThreeFloats(lighting, vtkRefractaLightingVolume::RadianceName(), s1Copy);
