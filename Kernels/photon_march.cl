@@ -2,6 +2,35 @@
 // launch; photon_march_chunk: resumable, a bounded number of steps per launch). Prepend
 // photon_trace.cl and photon_surfaces.cl; see photon_trace.cl's header for the march itself.
 
+// A new photon of emitted power `power`: its roulette threshold, zero tallies, its random stream
+// (by photon id, so the stream does not depend on launches or chunks) and the analog-scattering
+// state; its body is found once the surfaces are set. Returns false, counting the photon as
+// missed, when it carries no power.
+inline bool photon_start(photon_state* ps, const float3 power, const uint seed, const uint id,
+  __global const float* anisotropy, volatile __global long* multiple,
+  volatile __global long* counters)
+{
+  ps->power = power;
+  const float p0 = fmax(power.x, fmax(power.y, power.z));
+  if (!(p0 > 0.0f))
+  {
+    atom_add(counters + PHOTON_COUNTER_MISSED, 1L);
+    return false;
+  }
+  ps->threshold = REFRACTA_ROULETTE * p0;
+  ps->absorbed = ps->scattered = ps->killed = ps->gained = (float3)(0.0f);
+  ps->surface = (float3)(0.0f);
+  ps->rng = refracta_rng_seed(seed, id);
+  ps->pieces = 0;
+  ps->hits = 0;
+  ps->interfaces = 0;
+  ps->caustic = 0;
+  ps->dead = 0;
+  photon_init_analog(ps, anisotropy, multiple, 0);
+  ps->body = -1;
+  return true;
+}
+
 __kernel void photon_march(__global const float4* photonPos, __global const float4* photonDir,
   __global const float4* photonPower, const uint count, __global const float* refractiveIndex,
   __global const float* gradient, __global const float* extinction, __global const float* albedo,
@@ -23,24 +52,10 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
     return;
   }
   photon_state ps;
-  ps.power = photonPower[id].xyz;
-  const float p0 = fmax(ps.power.x, fmax(ps.power.y, ps.power.z));
-  if (!(p0 > 0.0f))
+  if (!photon_start(&ps, photonPower[id].xyz, seed, id, anisotropy, multiple, counters))
   {
-    atom_add(counters + PHOTON_COUNTER_MISSED, 1L);
     return;
   }
-  ps.threshold = REFRACTA_ROULETTE * p0;
-  ps.absorbed = ps.scattered = ps.killed = ps.gained = (float3)(0.0f);
-  ps.surface = (float3)(0.0f);
-  ps.rng = refracta_rng_seed(seed, id);
-  ps.pieces = 0;
-  ps.hits = 0;
-  ps.interfaces = 0;
-  ps.caustic = 0;
-  ps.dead = 0;
-  photon_init_analog(&ps, anisotropy, multiple, 0);
-  ps.body = -1;
   ps.bodies = surfaceBodies;
   const float3 emitted = ps.power;
   int steps = 0;
@@ -140,24 +155,11 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   const bool fresh = st.x == 0u; // a new photon: its start body is found below
   if (fresh)
   {
-    ps.power = photonPower[id].xyz;
-    const float p0 = fmax(ps.power.x, fmax(ps.power.y, ps.power.z));
-    if (!(p0 > 0.0f))
+    if (!photon_start(&ps, photonPower[id].xyz, seed, id, anisotropy, multiple, counters))
     {
-      atom_add(counters + PHOTON_COUNTER_MISSED, 1L);
       status[id] = (uint4)(2u, 0u, 0u, 0u);
       return;
     }
-    ps.threshold = REFRACTA_ROULETTE * p0;
-    ps.absorbed = ps.scattered = ps.killed = ps.gained = (float3)(0.0f);
-    ps.surface = (float3)(0.0f);
-    ps.rng = refracta_rng_seed(seed, id);
-    ps.pieces = 0;
-    ps.hits = 0;
-    ps.interfaces = 0;
-    ps.caustic = 0;
-    photon_init_analog(&ps, anisotropy, multiple, 0);
-    ps.body = -1; // found below, once the surfaces are set (REFRACTA_INTERFACES)
     emitted = ps.power;
     x = photonPos[id].xyz;
     const float3 d0 = normalize(photonDir[id].xyz);
