@@ -59,6 +59,13 @@
 // the photon's total power, and any per-channel difference (coloured media) goes to the roulette
 // books (killed / gained), so the books stay exact per photon and nothing goes to `scattered`.
 // A surface's reflection resets the order to 0 (a new beam, as without analog scattering).
+// The analog machinery also runs without surfaces (the kernels are built with REFRACTA_SURFACES
+// and an empty surface set) for the first-collision split (vtkPhotonTracer::ScatteringOrders k):
+// a photon scatters analogically while its order is below REFRACTA_ANALOG_ORDERS = k; at order k
+// it still deposits into `multiple`, but what it scatters is also handed to the lattice (books:
+// `scattered`; the accumulators after S_ms in `multiple`: 3 per voxel for the source, then 3 for
+// its direction sums) and it flies on with the unscattered part only, as without analog
+// scattering. The lattice then carries the orders above k from that smoother source.
 //
 // Glass bodies (REFRACTA_INTERFACES): a dielectric surface with an inside medium (the `bodies`
 // table of refracta_surfaces.cl) fills its inside with that homogeneous medium. A photon carries
@@ -114,6 +121,9 @@
 #endif
 #ifndef REFRACTA_SURFACES
 #define REFRACTA_SURFACES 0
+#endif
+#ifndef REFRACTA_ANALOG_ORDERS
+#define REFRACTA_ANALOG_ORDERS 0x7fffffff
 #endif
 #ifndef REFRACTA_ANALOG
 #define REFRACTA_ANALOG 0
@@ -319,6 +329,29 @@ inline void photon_choose_branch(photon_state* ps, float3 sc, float3 sigmaT, flo
   ps->power = after;
 }
 
+// The first-collision split at order REFRACTA_ANALOG_ORDERS: the scattered part `sc` (weight w
+// = its channel sum) of the piece in `voxel` becomes the lattice's source (after the S_ms
+// accumulators in `multiple`: the source, then its direction sums) and leaves the photon's books
+// as handed on; the photon goes on with the unscattered part.
+inline void photon_hand_to_lattice(
+  photon_state* ps, float3 sc, float w, float3 direction, size_t voxel, int4 dims)
+{
+  ps->scattered += sc;
+  if (!(w > 0.0f))
+  {
+    return;
+  }
+  const size_t voxels = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  volatile __global long* source = ps->multiple + 3 * voxels + 3 * voxel;
+  volatile __global long* sourceDirection = ps->multiple + 6 * voxels + 3 * voxel;
+  refracta_atomic_add_fixed(source, sc.x);
+  refracta_atomic_add_fixed(source + 1, sc.y);
+  refracta_atomic_add_fixed(source + 2, sc.z);
+  refracta_atomic_add_fixed(sourceDirection, w * direction.x);
+  refracta_atomic_add_fixed(sourceDirection + 1, w * direction.y);
+  refracta_atomic_add_fixed(sourceDirection + 2, w * direction.z);
+}
+
 // A direction drawn from the Henyey-Greenstein phase function about unit d.
 inline float3 photon_sample_hg(float3 d, float g, uint* rng)
 {
@@ -393,7 +426,14 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
     refracta_atomic_add_fixed(directionSum + 3 * voxel + 2, w * direction.z);
   }
 #if REFRACTA_ANALOG
-  photon_choose_branch(ps, sc, sigmaT, length);
+  if (ps->order >= REFRACTA_ANALOG_ORDERS)
+  {
+    photon_hand_to_lattice(ps, sc, w, direction, voxel, dims);
+  }
+  else
+  {
+    photon_choose_branch(ps, sc, sigmaT, length);
+  }
 #endif
 #else
   ps->absorbed += lost;

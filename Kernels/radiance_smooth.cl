@@ -1,8 +1,9 @@
 // radiance_smooth.cl: turns the photon pass's fixed-point accumulators into the Radiance and
 // RadianceDirection arrays, with the optional 3x3x3 smoothing of Sun et al. 2008, section 4.4.
 //
-// radiance_resolve: one work-item per voxel; fixed point -> float; Radiance divided by the voxel
-//   volume (Physics.md: power per unit volume), the direction sums kept unnormalised.
+// radiance_resolve: one work-item per voxel; fixed point -> float, 3 values per voxel from long
+//   `first` on, times `factor` (deposits: 1 / (scale x voxel volume), power per unit volume;
+//   direction sums: 1 / scale, kept unnormalised until after the smoothing).
 // radiance_smooth: one work-item per voxel, 3-component field. Kernel: the binomial (1, 2, 1) / 4
 //   per axis (a 3x3x3 approximation of a Gaussian), with a mirror boundary: a weight that falls
 //   outside the grid lands on the voxel mirrored back inside (the face voxel itself). Per axis the
@@ -13,9 +14,8 @@
 //   total, but a uniform field then reads 0.92 in the face layer and 1.08 in the next.)
 // radiance_normalize: one work-item per voxel; unit direction, or zero where nothing arrived.
 
-__kernel void radiance_resolve(__global const long* radianceFixed,
-  __global const long* directionFixed, const float radianceFactor, const float directionFactor,
-  __global float* radiance, __global float* direction, const uint count)
+__kernel void radiance_resolve(__global const long* fixedPoint, const ulong first,
+  const float factor, __global float* out, const uint count)
 {
   const size_t id = get_global_id(0);
   if (id >= count)
@@ -24,8 +24,7 @@ __kernel void radiance_resolve(__global const long* radianceFixed,
   }
   for (int c = 0; c < 3; ++c)
   {
-    radiance[3 * id + c] = (float)radianceFixed[3 * id + c] * radianceFactor;
-    direction[3 * id + c] = (float)directionFixed[3 * id + c] * directionFactor;
+    out[3 * id + c] = (float)fixedPoint[first + 3 * id + c] * factor;
   }
 }
 

@@ -5,13 +5,20 @@
  * A lighting volume is a vtkImageData on the medium's grid (vtkRefractaGridFrame::SameGrid)
  * whose point data carries what the light passes computed; the view pass reads it.
  *
- * | array               | comps | meaning / unit                                               |
- * |---------------------|-------|--------------------------------------------------------------|
- * | Radiance            | 3     | S1 = sigma_s phi1, power per unit volume scattered out of the
- * unscattered beam (RGB, >= 0; vtkPhotonTracer) | | RadianceDirection   | 3     | mean travel
- * direction of that light, unit vector in the grid-local frame (zero where none) | |
- * MultipleScattering  | 3     | S_ms = sigma_s phi_ms, power per unit volume scattered out of the
- * diffuse field, isotropic (RGB, >= 0; vtkLatticeBoltzmannLighting) |
+ * - `Radiance` (3 components): S1 = sigma_s phi1, power per unit volume scattered out of the
+ *   unscattered beam (RGB, >= 0; vtkPhotonTracer).
+ * - `RadianceDirection` (3): mean travel direction of that light, unit vector in the grid-local
+ *   frame (zero where none).
+ * - `MultipleScattering` (3): S_ms = sigma_s phi_ms, power per unit volume scattered out of the
+ *   diffuse field, isotropic (RGB, >= 0; vtkLatticeBoltzmannLighting, or the photons' analog
+ *   scattering).
+ * - `MultipleScatteringSource` (3, first-collision split only, vtkPhotonTracer::ScatteringOrders
+ *   k): power per unit volume scattered by light scattered k times, the lattice's source.
+ * - `MultipleScatteringSourceDirection` (3): mean travel direction of that light (unit, or zero).
+ *
+ * The lattice's source is `Radiance` (S1), or `MultipleScatteringSource` where the photon pass
+ * carried the first k orders itself (LatticeSourceName()); then the lattice's S_ms is added to
+ * the photons' `MultipleScattering` (orders up to k).
  *
  * Surfaces (vtkRefractaSurfaceSet) are lit in the same passes. Their irradiance is not a point
  * array but a field-data array of the lighting volume, SurfaceIrradianceName(): a vtkFloatArray
@@ -28,6 +35,9 @@
 #include "RefractaCoreModule.h" // for export macro
 #include "vtkObject.h"
 
+class vtkDataSet;
+class vtkFloatArray;
+
 class REFRACTACORE_EXPORT vtkRefractaLightingVolume : public vtkObject
 {
 public:
@@ -43,6 +53,8 @@ public:
     RADIANCE = 0,
     RADIANCE_DIRECTION,
     MULTIPLE_SCATTERING,
+    MULTIPLE_SCATTERING_SOURCE,
+    MULTIPLE_SCATTERING_SOURCE_DIRECTION,
     NUMBER_OF_ARRAYS
   };
 
@@ -53,7 +65,30 @@ public:
   static const char* RadianceName() { return "Radiance"; }
   static const char* RadianceDirectionName() { return "RadianceDirection"; }
   static const char* MultipleScatteringName() { return "MultipleScattering"; }
+  static const char* MultipleScatteringSourceName() { return "MultipleScatteringSource"; }
+  static const char* MultipleScatteringSourceDirectionName()
+  {
+    return "MultipleScatteringSourceDirection";
+  }
   ///@}
+
+  ///@{
+  /**
+   * The arrays of `lighting` a Lattice-Boltzmann solve takes as its source and source direction:
+   * MultipleScatteringSource(Direction) where the photon pass handed the orders above k on (the
+   * first-collision split), else Radiance(Direction). HasPhotonMultipleScattering() says whether
+   * `lighting` already holds the photons' own S_ms (orders 1..k) that the lattice's is added to.
+   */
+  static const char* LatticeSourceName(vtkDataSet* lighting);
+  static const char* LatticeSourceDirectionName(vtkDataSet* lighting);
+  static bool HasPhotonMultipleScattering(vtkDataSet* lighting);
+  ///@}
+
+  /**
+   * Adds the photons' `MultipleScattering` of `lighting` (when it has one with the shape of `ms`)
+   * to `ms`, a lattice's S_ms of the same grid: the split's two parts of S_ms made one.
+   */
+  static void AddPhotonMultipleScattering(vtkDataSet* lighting, vtkFloatArray* ms);
 
   /**
    * Name of the field-data array with the surfaces' irradiance (see the class description).

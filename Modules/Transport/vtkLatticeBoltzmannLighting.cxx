@@ -21,12 +21,39 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkLatticeBoltzmannLighting);
 
 namespace
 {
+// Why `array` is not `tuples` x 3 finite values >= 0 (power per unit volume), or "" if it is.
+std::string CheckPowerArray(vtkDataArray* array, vtkIdType tuples)
+{
+  if (!array)
+  {
+    return "it has none";
+  }
+  if (array->GetNumberOfComponents() != 3 || array->GetNumberOfTuples() != tuples)
+  {
+    return "it has one with " + std::to_string(array->GetNumberOfComponents()) +
+      " components and " + std::to_string(array->GetNumberOfTuples()) + " tuples";
+  }
+  for (vtkIdType t = 0; t < tuples; ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double value = array->GetComponent(t, c);
+      if (!std::isfinite(value) || value < 0)
+      {
+        return "tuple " + std::to_string(t) + " component " + std::to_string(c) + " is " +
+          std::to_string(value);
+      }
+    }
+  }
+  return "";
+}
 
 // Forwards the solver's progress to the filter (scaled into [First, Last]) and the filter's
 // AbortExecute to the solver.
@@ -129,35 +156,40 @@ int vtkLatticeBoltzmannLighting::RequestData(
   medium->GetDimensions(dims);
   medium->GetSpacing(spacing);
   const vtkIdType n = medium->GetNumberOfPoints();
-  vtkDataArray* radiance =
-    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
-  if (!radiance || radiance->GetNumberOfComponents() != 3 || radiance->GetNumberOfTuples() != n)
+  // The source: S1 (`Radiance`), or with the first-collision split the light the photons handed
+  // on (`MultipleScatteringSource`), whose S_ms (orders up to k) the lattice's is added to.
+  const bool split = vtkRefractaLightingVolume::HasPhotonMultipleScattering(lighting);
+  std::vector<const char*> required = { vtkRefractaLightingVolume::RadianceName() };
+  if (split)
   {
-    vtkErrorMacro("Input 1 (lighting volume) needs a point array `Radiance` with 3 components "
-                  "and "
-      << n << " tuples (S1, power per unit volume scattered out of the direct beam); it has "
-      << (radiance ? "one with the wrong shape" : "none") << ".");
-    return 0;
+    required.push_back(vtkRefractaLightingVolume::MultipleScatteringSourceName());
+    required.push_back(vtkRefractaLightingVolume::MultipleScatteringName());
   }
-  for (vtkIdType t = 0; t < n; ++t)
+  for (const char* name : required)
   {
-    for (int c = 0; c < 3; ++c)
+    const std::string problem = CheckPowerArray(lighting->GetPointData()->GetArray(name), n);
+    if (!problem.empty())
     {
-      const double value = radiance->GetComponent(t, c);
-      if (!std::isfinite(value) || value < 0)
-      {
-        vtkErrorMacro("Input 1: `Radiance` must be finite and >= 0; tuple "
-          << t << " component " << c << " is " << value << ".");
-        return 0;
-      }
+      vtkErrorMacro("Input 1 (lighting volume) needs a point array `"
+        << name << "` with 3 components and " << n
+        << " tuples of power per unit volume, finite and >= 0: " << problem << ".");
+      return 0;
     }
   }
+  vtkDataArray* radiance =
+    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
   vtkDataArray* direction =
     lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
-  if (direction && (direction->GetNumberOfComponents() != 3 || direction->GetNumberOfTuples() != n))
+  vtkDataArray* sourceDirection = lighting->GetPointData()->GetArray(
+    vtkRefractaLightingVolume::LatticeSourceDirectionName(lighting));
+  for (vtkDataArray* d : { direction, sourceDirection })
   {
-    vtkErrorMacro("Input 1: `RadianceDirection` must have 3 components and " << n << " tuples.");
-    return 0;
+    if (d && (d->GetNumberOfComponents() != 3 || d->GetNumberOfTuples() != n))
+    {
+      vtkErrorMacro(
+        "Input 1: `" << d->GetName() << "` must have 3 components and " << n << " tuples.");
+      return 0;
+    }
   }
 
   vtkNew<vtkLatticeBoltzmannSolver> solver;
@@ -188,12 +220,12 @@ int vtkLatticeBoltzmannLighting::RequestData(
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
   const std::vector<float> anisotropy =
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
-  const std::vector<float> s1 =
-    vtkRefractaMedium::ReadArray(lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0.0f);
+  const std::vector<float> source = vtkRefractaMedium::ReadArray(
+    lighting, vtkRefractaLightingVolume::LatticeSourceName(lighting), 3, 0.0f);
   const std::vector<float> dir = vtkRefractaMedium::ReadArray(
-    lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0.0f);
+    lighting, vtkRefractaLightingVolume::LatticeSourceDirectionName(lighting), 3, 0.0f);
   if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()) ||
-    !solver->SetSource(s1.data(), direction ? dir.data() : nullptr) || !solver->Solve())
+    !solver->SetSource(source.data(), sourceDirection ? dir.data() : nullptr) || !solver->Solve())
   {
     vtkErrorMacro("The Lattice-Boltzmann solver failed (see the previous message).");
     output->Initialize();
@@ -214,6 +246,10 @@ int vtkLatticeBoltzmannLighting::RequestData(
   {
     output->Initialize();
     return 0;
+  }
+  if (split)
+  {
+    vtkRefractaLightingVolume::AddPhotonMultipleScattering(lighting, ms);
   }
 
   output->CopyStructure(medium);

@@ -181,7 +181,10 @@ int vtkPhotonDiffusionSchedule::RequestData(
   this->Tracer->SetInputData(this->TracerInput);
   // A warm start marches without interleaving: the chunks' partial sources would first pull the
   // kept field down towards their own, smaller, fixed points.
-  const bool interleaved = this->Mode == INTERLEAVED && !this->LastRunWarm;
+  // The first-collision split hands the lattice its source only at the end of the march: the
+  // chunks' deposits are S1, not that source, so it runs sequentially.
+  const bool interleaved =
+    this->Mode == INTERLEAVED && !this->LastRunWarm && this->Tracer->GetScatteringOrders() == 0;
   this->Tracer->SetStepsPerChunk(interleaved ? this->StepsPerChunk : 0);
   int diffusionSteps = 0;
   bool callbackFailed = false;
@@ -227,13 +230,15 @@ int vtkPhotonDiffusionSchedule::RequestData(
   }
   const double marching = Seconds(start);
 
-  // Final source: the tracer's S1 (smoothed as it outputs it); the lattice continues from its
-  // state (interleaved), from the last run's field (warm start) or from zero (sequential).
+  // Final source: the tracer's S1 (smoothed as it outputs it), or with the first-collision split
+  // the light it handed on; the lattice continues from its state (interleaved), from the last
+  // run's field (warm start) or from zero (sequential).
   const auto solveStart = std::chrono::steady_clock::now();
   std::vector<float> s1Copy, d1Copy;
-  const float* s1 = ThreeFloats(lighting, vtkRefractaLightingVolume::RadianceName(), s1Copy);
+  const float* s1 =
+    ThreeFloats(lighting, vtkRefractaLightingVolume::LatticeSourceName(lighting), s1Copy);
   const float* d1 =
-    ThreeFloats(lighting, vtkRefractaLightingVolume::RadianceDirectionName(), d1Copy);
+    ThreeFloats(lighting, vtkRefractaLightingVolume::LatticeSourceDirectionName(lighting), d1Copy);
   if (!interleaved && !this->LastRunWarm && !solver->ResetState())
   {
     return 0;
@@ -269,6 +274,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
     output->Initialize();
     return 0;
   }
+  vtkRefractaLightingVolume::AddPhotonMultipleScattering(lighting, ms);
   const double finalSolve = Seconds(solveStart);
   if (marching + finalSolve > 0)
   {

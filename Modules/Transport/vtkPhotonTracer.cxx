@@ -208,7 +208,9 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DREFRACTA_STEP_TOLERANCE=" << FloatLiteral(this->StepTolerance)
           << " -DREFRACTA_MAX_HALVINGS=" << (this->StepTolerance > 0 ? MaximumHalvings : 0);
   const bool interfaces = run.Surfaces && run.Surfaces->GetNumberOfDielectricTriangles() > 0;
-  options << " -DREFRACTA_SURFACES=" << (run.Surfaces ? 1 : 0)
+  // The analog events (run.Analog, decided with the memory plan) live in the surfaces' event loop,
+  // which with an empty set (no BVH nodes) is the plain march with scattering added.
+  options << " -DREFRACTA_SURFACES=" << (run.Surfaces || run.Analog ? 1 : 0)
           << " -DREFRACTA_INTERFACES=" << (interfaces ? 1 : 0);
   run.Caustic = interfaces ? this->CausticSubdivision : 1;
   while (run.Caustic > 1 &&
@@ -220,8 +222,11 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   this->LastCausticSubdivision = run.Caustic;
   options << " -DREFRACTA_CAUSTIC_SUBDIVISION=" << run.Caustic << " -DREFRACTA_CAUSTIC_OFFSET="
           << (run.Caustic > 1 ? run.Surfaces->GetNumberOfTexels() : 0);
-  run.Analog = this->AnalogScattering && run.Surfaces && m.Scatters;
   options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0);
+  if (run.SplitOrders > 0)
+  {
+    options << " -DREFRACTA_ANALOG_ORDERS=" << run.SplitOrders;
+  }
   run.Trace = ctx->GetProgram(
     { "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl", "refracta_surfaces.cl",
       "photon_trace.cl", "photon_surfaces.cl", "photon_march.cl", "photon_environment.cl" },
@@ -474,92 +479,105 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
 // Stage 4: resolve, smooth, normalise.
 bool vtkPhotonTracer::ResolveRadiance(Internals& run)
 {
+  const auto start = Clock::now();
+  vtkFloatArray* radiance = run.Radiance;
+  vtkFloatArray* direction = run.Direction;
+  radiance->SetName(vtkRefractaLightingVolume::RadianceName());
+  direction->SetName(vtkRefractaLightingVolume::RadianceDirectionName());
+  if (!run.M.Scatters)
+  {
+    for (vtkFloatArray* a : { radiance, direction })
+    {
+      a->SetNumberOfComponents(3);
+      a->SetNumberOfTuples(static_cast<vtkIdType>(run.M.Voxels));
+      a->FillValue(0.0f);
+    }
+  }
+  else if (!this->ResolveDeposits(
+             run, run.RadFixed.Get(), 0, run.DirFixed.Get(), 0, radiance, direction))
+  {
+    return false;
+  }
+  this->SmoothingSeconds = Seconds(start);
+  this->PeakDeviceMemoryBytes = run.Alloc.Bytes;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offset,
+  cl_mem directionFixed, size_t directionOffset, vtkFloatArray* values, vtkFloatArray* directions)
+{
   Medium& m = run.M;
   vtkOpenCLContext* ctx = run.Context;
   Allocator& alloc = run.Alloc;
   const size_t voxels = m.Voxels;
+  const size_t bytes = voxels * 3 * sizeof(float);
   const cl_int4 dims = Int4(m.Dims);
   const cl_uint voxelCount = static_cast<cl_uint>(voxels);
-  const double scale = run.Scale;
-  vtkOpenCLBuffer& radFixed = run.RadFixed;
-  vtkOpenCLBuffer& dirFixed = run.DirFixed;
-  const auto start = Clock::now();
-  vtkFloatArray* radiance = run.Radiance;
-  radiance->SetName(vtkRefractaLightingVolume::RadianceName());
-  radiance->SetNumberOfComponents(3);
-  radiance->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
-  vtkFloatArray* direction = run.Direction;
-  direction->SetName(vtkRefractaLightingVolume::RadianceDirectionName());
-  direction->SetNumberOfComponents(3);
-  direction->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
-  if (!m.Scatters)
+  for (vtkFloatArray* a : { values, directions })
   {
-    radiance->FillValue(0.0f);
-    direction->FillValue(0.0f);
+    if (a)
+    {
+      a->SetNumberOfComponents(3);
+      a->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
+    }
   }
-  else
+  cl_program smooth = ctx->GetProgram({ "refracta_common.cl", "radiance_smooth.cl" }, "", this);
+  if (!smooth)
   {
-    cl_program smooth = ctx->GetProgram({ "refracta_common.cl", "radiance_smooth.cl" }, "", this);
-    vtkOpenCLBuffer radA =
-      alloc.Make(CL_MEM_READ_WRITE, voxels * 3 * sizeof(float), nullptr, "radiance");
-    vtkOpenCLBuffer dirA =
-      alloc.Make(CL_MEM_READ_WRITE, voxels * 3 * sizeof(float), nullptr, "direction");
-    vtkOpenCLBuffer radB, dirB;
+    return false;
+  }
+  vtkOpenCLKernel resolve = ctx->CreateKernel(smooth, "radiance_resolve", this);
+  vtkOpenCLKernel filter = ctx->CreateKernel(smooth, "radiance_smooth", this);
+  vtkOpenCLKernel normalize = ctx->CreateKernel(smooth, "radiance_normalize", this);
+  if (!resolve || !filter || !normalize)
+  {
+    return false;
+  }
+  // Deposits become power per unit volume (Physics.md); direction sums stay unnormalised until
+  // after the smoothing, which then averages them weighted by power.
+  const cl_float valueFactor =
+    static_cast<cl_float>(1.0 / (run.Scale * m.Spacing[0] * m.Spacing[1] * m.Spacing[2]));
+  const cl_float directionFactor = static_cast<cl_float>(1.0 / run.Scale);
+  // One field: resolve it from `source` at `at`, smooth it, and read it into `out`.
+  auto field = [&](cl_mem source, size_t at, cl_float factor, vtkFloatArray* out, bool unit)
+  {
+    vtkOpenCLBuffer a = alloc.Make(CL_MEM_READ_WRITE, bytes, nullptr, out->GetName());
+    vtkOpenCLBuffer b;
     if (this->Smoothing)
     {
-      radB = alloc.Make(CL_MEM_READ_WRITE, voxels * 3 * sizeof(float), nullptr, "radiance");
-      dirB = alloc.Make(CL_MEM_READ_WRITE, voxels * 3 * sizeof(float), nullptr, "direction");
+      b = alloc.Make(CL_MEM_READ_WRITE, bytes, nullptr, out->GetName());
     }
-    if (!smooth || !radA || !dirA || (this->Smoothing && (!radB || !dirB)))
-    {
-      return false;
-    }
-    vtkOpenCLKernel resolve = ctx->CreateKernel(smooth, "radiance_resolve", this);
-    vtkOpenCLKernel filter = ctx->CreateKernel(smooth, "radiance_smooth", this);
-    vtkOpenCLKernel normalize = ctx->CreateKernel(smooth, "radiance_normalize", this);
-    if (!resolve || !filter || !normalize)
-    {
-      return false;
-    }
-    const float radianceFactor =
-      static_cast<float>(1.0 / (scale * m.Spacing[0] * m.Spacing[1] * m.Spacing[2]));
-    const float directionFactor = static_cast<float>(1.0 / scale);
-    if (!ctx->Check(vtkOpenCLSetKernelArgs(resolve.Get(), radFixed.Get(), dirFixed.Get(),
-                      radianceFactor, directionFactor, radA.Get(), dirA.Get(), voxelCount),
-          "clSetKernelArg(radiance_resolve)", this) ||
+    const cl_ulong first = static_cast<cl_ulong>(at);
+    if (!a || (this->Smoothing && !b) ||
+      !ctx->Check(vtkOpenCLSetKernelArgs(resolve.Get(), source, first, factor, a.Get(), voxelCount),
+        "clSetKernelArg(radiance_resolve)", this) ||
       !Run1D(ctx, resolve.Get(), voxels, "radiance_resolve", this))
     {
       return false;
     }
-    cl_mem radOut = radA.Get();
-    cl_mem dirOut = dirA.Get();
+    cl_mem result = a.Get();
     if (this->Smoothing)
     {
-      if (!ctx->Check(
-            vtkOpenCLSetKernelArgs(filter.Get(), radA.Get(), dims, radB.Get(), voxelCount),
+      if (!ctx->Check(vtkOpenCLSetKernelArgs(filter.Get(), a.Get(), dims, b.Get(), voxelCount),
             "clSetKernelArg(radiance_smooth)", this) ||
-        !Run1D(ctx, filter.Get(), voxels, "radiance_smooth", this) ||
-        !ctx->Check(vtkOpenCLSetKernelArgs(filter.Get(), dirA.Get(), dims, dirB.Get(), voxelCount),
-          "clSetKernelArg(radiance_smooth)", this) ||
         !Run1D(ctx, filter.Get(), voxels, "radiance_smooth", this))
       {
         return false;
       }
-      radOut = radB.Get();
-      dirOut = dirB.Get();
+      result = b.Get();
     }
-    if (!ctx->Check(vtkOpenCLSetKernelArgs(normalize.Get(), dirOut, voxelCount),
-          "clSetKernelArg(radiance_normalize)", this) ||
-      !Run1D(ctx, normalize.Get(), voxels, "radiance_normalize", this) ||
-      !ctx->ReadBuffer(radOut, voxels * 3 * sizeof(float), radiance->GetPointer(0), this) ||
-      !ctx->ReadBuffer(dirOut, voxels * 3 * sizeof(float), direction->GetPointer(0), this))
+    if (unit &&
+      (!ctx->Check(vtkOpenCLSetKernelArgs(normalize.Get(), result, voxelCount),
+         "clSetKernelArg(radiance_normalize)", this) ||
+        !Run1D(ctx, normalize.Get(), voxels, "radiance_normalize", this)))
     {
       return false;
     }
-  }
-  this->SmoothingSeconds = Seconds(start);
-  this->PeakDeviceMemoryBytes = alloc.Bytes;
-  return true;
+    return ctx->ReadBuffer(result, bytes, out->GetPointer(0), this);
+  };
+  return field(fixed, offset, valueFactor, values, false) &&
+    (!directions || field(directionFixed, directionOffset, directionFactor, directions, true));
 }
 
 //------------------------------------------------------------------------------
@@ -647,6 +665,7 @@ int vtkPhotonTracer::RequestData(
   this->UsedOctree = this->ComputedGradient = false;
   this->UsedSurfaces = this->LastRunReusedSurfaces = this->UsedEnvironment = false;
   this->UsedAnalogScattering = false;
+  this->UsedScatteringOrders = 0;
   this->EnvironmentPhotons = 0;
   this->LastRunAborted = false;
   Internals run;
@@ -722,6 +741,8 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
      << ", reused " << this->LastRunReusedSurfaces << ")\n";
   os << indent << "AnalogScattering: " << this->AnalogScattering << " (used "
      << this->UsedAnalogScattering << ")\n";
+  os << indent << "ScatteringOrders: " << this->ScatteringOrders << " (used "
+     << this->UsedScatteringOrders << ")\n";
   os << indent << "Stage seconds (octree, generation, marching, smoothing): " << this->OctreeSeconds
      << ", " << this->GenerationSeconds << ", " << this->MarchingSeconds << ", "
      << this->SmoothingSeconds << "\n";

@@ -104,6 +104,7 @@
 #include <vector>            // for the environment's radiance table
 #endif
 
+class vtkFloatArray;
 class vtkImageData;
 class vtkLight;
 class vtkLightCollection;
@@ -193,6 +194,36 @@ public:
   vtkGetMacro(AnalogScattering, bool);
   vtkBooleanMacro(AnalogScattering, bool);
   vtkGetMacro(UsedAnalogScattering, bool);
+  ///@}
+
+  ///@{
+  /**
+   * First-collision split (issue 14; default 0: off). With k = ScatteringOrders > 0 and a medium
+   * that scatters, the photons carry the first k scattering orders themselves, with the analog
+   * scattering described above (also without surfaces), and hand the rest to the
+   * Lattice-Boltzmann solver: a photon that has scattered k times deposits as usual, and what it
+   * scatters (the power that becomes light scattered k + 1 times) goes to the point arrays
+   * vtkRefractaLightingVolume::MultipleScatteringSourceName() (power per unit volume, smoothed
+   * like Radiance) and MultipleScatteringSourceDirectionName() (its mean travel direction),
+   * booked as EnergyScattered; the photon flies on with the unscattered part only. The output's
+   * MultipleScattering then holds the orders the photons carried (light scattered 1 .. k times,
+   * scattered again), and vtkLatticeBoltzmannLighting and vtkPhotonDiffusionSchedule solve the
+   * lattice from the handed-on source and add its S_ms. The lattice's ray effects (its six or
+   * eighteen directions) come from concentrated sources; after k scatterings the source is spread
+   * out, so they fade (Documentation/Physics.md, "Ray effects of the grid multiple scattering").
+   * EVERY_ORDER (-1): the photons carry every order (analog scattering also without surfaces)
+   * and hand nothing on: MultipleScattering is complete and no lattice is needed. With surfaces
+   * and AnalogScattering on, the photons carry every order whatever this says.
+   * GetUsedScatteringOrders() says what the last run did: 0 (nothing scatters, or no split), k,
+   * or EVERY_ORDER.
+   */
+  enum
+  {
+    EVERY_ORDER = -1
+  };
+  vtkSetClampMacro(ScatteringOrders, int, EVERY_ORDER, 1000);
+  vtkGetMacro(ScatteringOrders, int);
+  vtkGetMacro(UsedScatteringOrders, int);
   ///@}
 
   /**
@@ -561,6 +592,8 @@ protected:
   bool LastRunReusedSurfaces = false;
   bool AnalogScattering = false;
   bool UsedAnalogScattering = false;
+  int ScatteringOrders = 0;
+  int UsedScatteringOrders = 0;
 #ifndef __VTK_WRAP__
   ChunkCallback Callback;
 #endif
@@ -595,10 +628,18 @@ private:
   bool SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint first);
 #endif
   bool ResolveSurfaces(Internals& run);
-  // Analog scattering (vtkPhotonTracerSurfaces.cxx): the anisotropy and S_ms accumulator buffers
-  // (placeholders when off), and S_ms resolved into run.Multiple.
+  // Analog scattering (vtkPhotonTracerAnalog.cxx): the anisotropy and S_ms accumulator buffers
+  // (placeholders when off), and S_ms (and the split's lattice source) resolved into run.Multiple
+  // (run.LatticeSource, run.LatticeSourceDirection).
   bool UploadAnalogScattering(Internals& run);
   bool ResolveMultipleScattering(Internals& run);
+#ifndef __VTK_WRAP__
+  // Fixed-point deposits (3 per voxel from `offset` longs into `fixed`) into power per unit
+  // volume in `values`, smoothed with Smoothing; with `directions`, the direction sums (from
+  // `directionOffset` into `directionFixed`) into unit mean directions, smoothed the same way.
+  bool ResolveDeposits(Internals& run, cl_mem fixed, size_t offset, cl_mem directionFixed,
+    size_t directionOffset, vtkFloatArray* values, vtkFloatArray* directions);
+#endif
   void WriteSurfaceOutput(Internals& run, vtkImageData* output);
   void KeepSurfaces(Internals& run);
   // The environment light (vtkPhotonTracerEnvironment.cxx): its radiance table, CDFs and emission

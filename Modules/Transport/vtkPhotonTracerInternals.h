@@ -202,11 +202,16 @@ struct vtkPhotonTracer::Internals
   int Caustic = 1;
   vtkNew<vtkFloatArray> CausticIrradiance;
   vtkNew<vtkIdTypeArray> CausticPhotons; // caustic photons per atlas texel
-  // Analog scattering (vtkPhotonTracer::AnalogScattering): whether this run uses it, g per voxel
-  // on the device, the S_ms accumulators (fixed point, 3 per voxel) and the resolved S_ms.
+  // Analog scattering (vtkPhotonTracer::AnalogScattering, ScatteringOrders): whether this run
+  // uses it, the split order k (0: every order), g per voxel on the device, the accumulators
+  // (fixed point: S_ms, 3 per voxel; with the split also the lattice's source and its direction
+  // sums, 3 + 3 per voxel) and the resolved arrays.
   bool Analog = false;
+  int SplitOrders = 0;
   vtkOpenCLBuffer AnisotropyBuffer, MultipleFixed;
   vtkNew<vtkFloatArray> Multiple;
+  vtkNew<vtkFloatArray> LatticeSource;
+  vtkNew<vtkFloatArray> LatticeSourceDirection;
   vtkPhotonTracerDetail::EnvironmentSetup Env;
   double TotalBound = 0; // sum of the lights' power bounds towards the box
   size_t Photons = 0;

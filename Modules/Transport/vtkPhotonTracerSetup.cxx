@@ -531,14 +531,29 @@ bool vtkPhotonTracer::PlanMemory(Internals& run)
   const double accumulators = m.Scatters ? v * 3 * 8 : 8;
   plan->AddDeviceBuffer(grid, "radiance accumulator", accumulators, gridSetting);
   plan->AddDeviceBuffer(grid, "direction accumulator", accumulators, gridSetting);
+  // Analog scattering: every order with surfaces (the lattice knows none), the first
+  // ScatteringOrders ones for the first-collision split (vtkPhotonTracer.h).
+  const bool everyOrder =
+    (this->AnalogScattering && run.Surfaces) || this->ScatteringOrders == EVERY_ORDER;
+  run.Analog = m.Scatters && (everyOrder || this->ScatteringOrders > 0);
+  run.SplitOrders = run.Analog && !everyOrder ? this->ScatteringOrders : 0;
+  if (run.Analog)
+  {
+    plan->AddDeviceBuffer(grid, "anisotropy", v * 4, gridSetting);
+    plan->AddDeviceBuffer(grid,
+      run.SplitOrders > 0 ? "S_ms and lattice source accumulators" : "S_ms accumulator",
+      v * (run.SplitOrders > 0 ? 9 : 3) * 8, gridSetting);
+    plan->AddHostMemory(
+      grid, "MultipleScattering", v * 12 * (run.SplitOrders > 0 ? 3 : 1), gridSetting);
+  }
   if (m.Scatters)
   {
-    const int fields = this->Smoothing ? 4 : 2; // radiance and direction, smoothed copies
-    for (int f = 0; f < fields; ++f)
-    {
-      plan->AddDeviceBuffer(
-        grid, f % 2 ? "direction field" : "radiance field", v * 12, gridSetting);
-    }
+    // Each resolved field (ResolveDeposits: Radiance, its direction, S_ms, the split's source
+    // and its direction) and its smoothed copy. They are made one field at a time, so this is an
+    // upper bound, like the allocator's count it is compared with.
+    const int fields = 2 + (run.Analog ? 1 : 0) + (run.SplitOrders > 0 ? 2 : 0);
+    plan->AddDeviceBuffer(
+      grid, "resolved fields", fields * (this->Smoothing ? 2 : 1) * v * 12, gridSetting);
   }
   // Host: the medium's float copies (index, gradient, extinction, albedo) and the two outputs.
   plan->AddHostMemory(

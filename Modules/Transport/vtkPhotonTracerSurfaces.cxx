@@ -340,6 +340,11 @@ void vtkPhotonTracer::WriteSurfaceOutput(Internals& run, vtkImageData* output)
   {
     output->GetPointData()->AddArray(run.Multiple);
   }
+  if (run.SplitOrders > 0)
+  {
+    output->GetPointData()->AddArray(run.LatticeSource);
+    output->GetPointData()->AddArray(run.LatticeSourceDirection);
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -2,11 +2,12 @@
 // homogeneous, isotropically scattering fog (albedo 0.95, sigma_t 2 per unit, grid 41^3 of
 // spacing 0.1: optical radius 4). Physically MultipleScattering depends on the distance from
 // the light alone; the test measures, at distance 1 (10 voxels), the mean over the 6 axis
-// directions against the mean over the 8 body diagonals (trilinear interpolation) for each
-// lattice, prints the ratios and checks that D3Q18 is closer to isotropic than D3Q6. The issue's
-// target (ratio within 3%) is printed; no method here reaches it yet (see
-// Documentation/Physics.md).
+// directions against the mean over the 8 body diagonals (trilinear interpolation) for the lattice
+// alone (D3Q6, D3Q18), the first-collision split (vtkPhotonTracer::ScatteringOrders) and the
+// photons carrying every order, prints the ratios and checks the issue's target (within 3%) for
+// the last two (Documentation/Physics.md, "Ray effects of the grid multiple scattering").
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLatticeBoltzmannLighting.h"
@@ -20,8 +21,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace
 {
@@ -83,11 +86,20 @@ double AxisOverDiagonal(vtkImageData* lighting, double voxels)
   }
   return (axis / 6) / (diagonal / 8);
 }
-}
 
-TEST(MultipleScatteringIsotropy, PointLightInFog)
+struct Result
 {
-  vtkSmartPointer<vtkImageData> fog = Fog();
+  double Ratio = 0;      // axis / diagonal at distance 1
+  double AtDistance = 0; // MultipleScattering along +x at distance 1
+  double Seconds = 0;
+  vtkSmartPointer<vtkImageData> Photons; // the photon pass's output
+};
+
+// The fog lit by a point light at its centre: photons carrying `orders` scattering orders
+// (vtkPhotonTracer::ScatteringOrders), then the lattice `lattice` unless they carried every order.
+Result Render(vtkImageData* fog, int orders, int lattice)
+{
+  const auto start = std::chrono::steady_clock::now();
   vtkNew<vtkLight> light;
   light->SetPositional(true);
   light->SetConeAngle(180);
@@ -98,21 +110,82 @@ TEST(MultipleScatteringIsotropy, PointLightInFog)
   vtkNew<vtkPhotonTracer> tracer;
   tracer->SetInputData(fog);
   tracer->AddLight(light);
-  tracer->SetNumberOfPhotons(1 << 19);
-  tracer->Update();
-  double ratio[2] = { 0, 0 };
-  const int lattices[2] = { vtkLatticeBoltzmannSolver::D3Q6, vtkLatticeBoltzmannSolver::D3Q18 };
-  for (int l = 0; l < 2; ++l)
+  tracer->SetNumberOfPhotons(1 << 18);
+  tracer->SetScatteringOrders(orders);
+  Result r;
+  vtkImageData* out = nullptr;
+  vtkNew<vtkLatticeBoltzmannLighting> lbl;
+  if (orders == vtkPhotonTracer::EVERY_ORDER)
   {
-    vtkNew<vtkLatticeBoltzmannLighting> lbl;
+    tracer->Update();
+    out = tracer->GetOutput();
+  }
+  else
+  {
     lbl->SetInputData(fog);
     lbl->SetLightingConnection(tracer->GetOutputPort());
-    lbl->SetLattice(lattices[l]);
+    lbl->SetLattice(lattice);
     lbl->Update();
-    ratio[l] = AxisOverDiagonal(lbl->GetOutput(), 10.0);
+    out = lbl->GetOutput();
   }
-  std::printf("MultipleScattering axis / diagonal at distance 1 (10 voxels): D3Q6 %.3f, D3Q18 "
-              "%.3f (target: within 3%% of 1)\n",
-    ratio[0], ratio[1]);
-  EXPECT_LT(std::fabs(ratio[1] - 1.0), std::fabs(ratio[0] - 1.0));
+  r.Photons = tracer->GetOutput();
+  r.Ratio = AxisOverDiagonal(out, 10.0);
+  const double c = (Size - 1) / 2.0;
+  r.AtDistance =
+    Sample(out->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName()),
+      c + 10, c, c);
+  r.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+double Energy(vtkImageData* image, const char* name)
+{
+  vtkDataArray* a = image->GetFieldData()->GetArray(name);
+  return a ? a->GetComponent(0, 0) : -1;
+}
+}
+
+// The lattice alone draws the "+" (D3Q6) or a weaker one (D3Q18); with the photons carrying the
+// first orders (the first-collision split) or every order, the field depends on the distance alone
+// within the issue's 3%, and the methods without ray effects agree on its value, which the lattice
+// alone misses by a factor of 1.2-2.6.
+TEST(MultipleScatteringIsotropy, PointLightInFog)
+{
+  vtkSmartPointer<vtkImageData> fog = Fog();
+  struct Case
+  {
+    const char* Name;
+    int Orders;
+    int Lattice;
+  };
+  const Case cases[] = { { "lattice D3Q6", 0, 6 }, { "lattice D3Q18", 0, 18 },
+    { "split k = 3, D3Q18", 3, 18 }, { "split k = 6, D3Q6", 6, 6 },
+    { "photons, every order", vtkPhotonTracer::EVERY_ORDER, 6 } };
+  std::vector<Result> results;
+  for (const Case& c : cases)
+  {
+    results.push_back(Render(fog, c.Orders, c.Lattice));
+    std::printf("%-22s axis / diagonal at distance 1: %.4f, MultipleScattering there %.4f "
+                "(%.1f s)\n",
+      c.Name, results.back().Ratio, results.back().AtDistance, results.back().Seconds);
+  }
+  EXPECT_GT(results[0].Ratio, 3.0) << "D3Q6 alone: the '+' of issue 14";
+  EXPECT_LT(std::fabs(results[1].Ratio - 1.0), std::fabs(results[0].Ratio - 1.0));
+  const double truth = results[4].AtDistance;
+  for (int i = 2; i < 5; ++i)
+  {
+    EXPECT_LT(std::fabs(results[i].Ratio - 1.0), 0.03) << cases[i].Name;
+    EXPECT_NEAR(results[i].AtDistance / truth, 1.0, 0.03) << cases[i].Name;
+  }
+  EXPECT_GT(results[1].AtDistance / truth, 1.15) << "the lattice alone overestimates it";
+
+  // The split's books: what the photons handed on is booked as scattered, and they close.
+  vtkImageData* split = results[2].Photons;
+  const double emitted = Energy(split, "EnergyEmitted");
+  const double handed = Energy(split, "EnergyScattered");
+  EXPECT_GT(handed, 0.1 * emitted);
+  EXPECT_NEAR(Energy(split, "EnergyAbsorbed") + Energy(split, "EnergyEscaped") + handed +
+      Energy(split, "EnergyRemaining"),
+    emitted, 1e-4 * emitted);
+  EXPECT_NEAR(Energy(results[4].Photons, "EnergyScattered"), 0.0, 1e-9 * emitted);
 }
