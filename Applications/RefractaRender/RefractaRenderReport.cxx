@@ -172,21 +172,26 @@ json LightPassReport(vtkRefractaRenderPipeline* pipeline, int lightCount)
   report["device_memory_used_bytes"] = tracer->GetPeakDeviceMemoryBytes();
   report["host_memory_planned_bytes"] = tracer->GetPlannedHostMemoryBytes();
   report["photon_seconds"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING);
-  if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING) && tracer->GetUsedAnalogScattering())
+  if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
   {
-    report["multiple_scattering"] = { { "method", "analog photon scattering" },
-      { "reason", "the scene has surfaces, which the lattice does not reach: photons scatter" } };
-  }
-  else if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
-  {
-    const json solve = { { "iterations", report.value("LatticeBoltzmannIterations", 0.0) },
-      { "residual", report.value("LatticeBoltzmannResidual", 0.0) },
-      { "converged", report.value("LatticeBoltzmannConverged", 0.0) != 0.0 },
-      { "schedule", pipeline->GetLastScheduleInterleaved() ? "interleaved" : "sequential" },
-      { "seconds", report.value("ScheduleFinalSolveSeconds", 0.0) },
-      { "device_memory_planned_bytes",
-        pipeline->GetLatticeSolver()->GetPlannedDeviceMemoryBytes() } };
-    report["multiple_scattering"] = solve;
+    // The plan's method, the orders the photons carried (0 none, k, -1 every order) and, where
+    // the lattice ran, its solve.
+    json ms = { { "method",
+                  vtkEffectPlan::GetMultipleScatteringMethodName(
+                    plan->GetChosenMultipleScatteringMethod()) },
+      { "reason", plan->GetMultipleScatteringMethodReason() },
+      { "photon_orders", tracer->GetUsedScatteringOrders() } };
+    if (tracer->GetUsedScatteringOrders() != vtkPhotonTracer::EVERY_ORDER)
+    {
+      ms["iterations"] = report.value("LatticeBoltzmannIterations", 0.0);
+      ms["residual"] = report.value("LatticeBoltzmannResidual", 0.0);
+      ms["converged"] = report.value("LatticeBoltzmannConverged", 0.0) != 0.0;
+      ms["schedule"] = pipeline->GetLastScheduleInterleaved() ? "interleaved" : "sequential";
+      ms["seconds"] = report.value("ScheduleFinalSolveSeconds", 0.0);
+      ms["device_memory_planned_bytes"] =
+        pipeline->GetLatticeSolver()->GetPlannedDeviceMemoryBytes();
+    }
+    report["multiple_scattering"] = ms;
   }
   else
   {
@@ -247,18 +252,19 @@ void PrintLightPass(const json& light)
             << " used; host "
             << vtkOpenCLMemoryPlan::FormatBytes(light.value("host_memory_planned_bytes", 0.0))
             << " planned\n";
-  if (light["multiple_scattering"].contains("method"))
-  {
-    std::cout << "  multiple  " << light["multiple_scattering"]["method"].get<std::string>() << " ("
-              << light["multiple_scattering"]["reason"].get<std::string>() << ")\n";
-  }
-  else if (light["multiple_scattering"].is_object())
+  if (light["multiple_scattering"].is_object())
   {
     const json& ms = light["multiple_scattering"];
-    std::cout << "  multiple  Lattice-Boltzmann " << ms["iterations"].get<double>()
-              << " iterations, residual " << ms["residual"].get<double>()
-              << (ms["converged"].get<bool>() ? " (converged), " : " (NOT converged), ")
-              << ms["seconds"].get<double>() << " s\n";
+    std::cout << "  multiple  " << ms["method"].get<std::string>() << " ("
+              << ms["reason"].get<std::string>() << ")";
+    if (ms.contains("iterations"))
+    {
+      std::cout << "; Lattice-Boltzmann " << ms["iterations"].get<double>()
+                << " iterations, residual " << ms["residual"].get<double>()
+                << (ms["converged"].get<bool>() ? " (converged), " : " (NOT converged), ")
+                << ms["seconds"].get<double>() << " s";
+    }
+    std::cout << "\n";
   }
   double emitted = 0, out = 0;
   if (Sum3(light, "EnergyEmitted", emitted) && Sum3(light, "EnergyScattered", out) &&

@@ -33,9 +33,20 @@ const ChoiceTable<int> SingleScatteringMethods = { { "auto", vtkEffectPlan::AUTO
 const ChoiceTable<int> EffectModes = { { "auto", vtkEffectPlan::AUTOMATIC },
   { "on", vtkEffectPlan::FORCE_ON }, { "off", vtkEffectPlan::FORCE_OFF } };
 
-// quality.multiple_scattering_method: the Lattice-Boltzmann lattice (vtkLatticeBoltzmannSolver).
-const ChoiceTable<int> MultipleScatteringMethods = {
-  { "lbl_d3q6", vtkLatticeBoltzmannSolver::D3Q6 }, { "lbl_d3q18", vtkLatticeBoltzmannSolver::D3Q18 }
+// quality.multiple_scattering_method: the plan's method (vtkEffectPlan::MultipleScatteringMethod)
+// and the Lattice-Boltzmann lattice (vtkLatticeBoltzmannSolver) it runs on.
+struct MultipleScatteringChoice
+{
+  int Method;
+  int Lattice;
+};
+const ChoiceTable<MultipleScatteringChoice> MultipleScatteringMethods = {
+  { "auto", { vtkEffectPlan::AUTOMATIC_MULTIPLE_METHOD, vtkLatticeBoltzmannSolver::D3Q6 } },
+  { "lbl_d3q6", { vtkEffectPlan::LATTICE_ONLY, vtkLatticeBoltzmannSolver::D3Q6 } },
+  { "lbl_d3q18", { vtkEffectPlan::LATTICE_ONLY, vtkLatticeBoltzmannSolver::D3Q18 } },
+  { "split_d3q6", { vtkEffectPlan::FIRST_COLLISION_SPLIT, vtkLatticeBoltzmannSolver::D3Q6 } },
+  { "split_d3q18", { vtkEffectPlan::FIRST_COLLISION_SPLIT, vtkLatticeBoltzmannSolver::D3Q18 } },
+  { "photons", { vtkEffectPlan::PHOTONS_EVERY_ORDER, vtkLatticeBoltzmannSolver::D3Q6 } }
 };
 
 // The keys of "scene.effects", in vtkEffectPlan's effect order.
@@ -63,7 +74,7 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
     { "preset", "photons", "seed", "view_step", "ray_mode", "transmittance_cutoff",
       "photon_min_step", "octree_tolerance", "photon_smoothing", "multiple_scattering",
       "multiple_scattering_tolerance", "multiple_scattering_block_size",
-      "multiple_scattering_method", "tolerance", "single_scattering_method" });
+      "multiple_scattering_method", "scattering_orders", "tolerance", "single_scattering_method" });
   int preset;
   std::tie(s.Preset, preset) = Choice(quality, "preset", q, "none", Presets);
   const bool hasPreset = preset != NoPreset;
@@ -89,8 +100,15 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
     hasPreset ? plan->GetRecommendedLatticeTolerance() : 1e-4, 1e-8, 1.0);
   s.LatticeBlockSize = Integer(quality, "multiple_scattering_block_size", q,
     hasPreset ? plan->GetRecommendedLatticeBlockSize() : 4, 0, 8);
-  std::tie(s.MultipleScatteringMethodName, s.Lattice) =
-    Choice(quality, "multiple_scattering_method", q, "lbl_d3q6", MultipleScatteringMethods);
+  // The lattice alone, the first-collision split (photons carry k orders) or photons alone
+  // (vtkEffectPlan::SetMultipleScatteringMethod; k 0: the plan's choice by the tolerance).
+  MultipleScatteringChoice multiple;
+  std::tie(s.MultipleScatteringMethodName, multiple) =
+    Choice(quality, "multiple_scattering_method", q, "auto", MultipleScatteringMethods);
+  s.Lattice = multiple.Lattice;
+  pipeline->SetMultipleScatteringMethod(multiple.Method);
+  s.ScatteringOrders = Integer(quality, "scattering_orders", q, 0, 0, 1000);
+  pipeline->SetScatteringOrders(s.ScatteringOrders);
   // Photons, light rays or the interpolation (vtkEffectPlan::SetSingleScatteringMethod).
   int method;
   std::tie(s.SingleScatteringMethodName, method) =
@@ -162,7 +180,8 @@ json QualityReport(const RenderSettings& s)
     { "single_scattering_method", s.SingleScatteringMethodName },
     { "multiple_scattering_tolerance", s.LatticeTolerance },
     { "multiple_scattering_block_size", s.LatticeBlockSize },
-    { "multiple_scattering_method", s.MultipleScatteringMethodName }, { "preset", s.Preset },
+    { "multiple_scattering_method", s.MultipleScatteringMethodName },
+    { "scattering_orders", s.ScatteringOrders }, { "preset", s.Preset },
     { "octree_tolerance", s.OctreeTolerance } };
 }
 }

@@ -35,8 +35,9 @@ struct RenderSettings
   bool MultipleScattering = true;
   double LatticeTolerance = 1e-4;
   int LatticeBlockSize = 4;
-  std::string MultipleScatteringMethodName = "lbl_d3q6"; // quality.multiple_scattering_method
-  int Lattice = 6;                                       // 6 (D3Q6) or 18 (D3Q18)
+  std::string MultipleScatteringMethodName = "auto"; // quality.multiple_scattering_method
+  int Lattice = 6;                                   // 6 (D3Q6) or 18 (D3Q18)
+  int ScatteringOrders = 0; // quality.scattering_orders: the split's k (0: the plan's choice)
 };
 
 /// Reads "scene.image", "scene.quality" and "scene.effects". A quality preset is set on the

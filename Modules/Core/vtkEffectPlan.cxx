@@ -260,6 +260,7 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
     this->Reasons[MULTIPLE_SCATTERING] = "off: no single scattering to spread";
   }
   this->DecideSingleScatteringMethod(analysis);
+  this->DecideMultipleScatteringMethod(analysis);
   // A decision is a result, not a setting: the MTime keeps tracking the settings (tolerance,
   // modes, quality) so that a pipeline can tell a changed plan from a re-decided one.
   this->Decided = true;
@@ -284,6 +285,14 @@ std::string vtkEffectPlan::GetSummary() const
   }
   s << "; tolerance " << this->Tolerance << "; single scattering by "
     << GetSingleScatteringMethodName(this->ChosenMethod);
+  if (this->Enabled[MULTIPLE_SCATTERING])
+  {
+    s << "; multiple scattering by " << GetMultipleScatteringMethodName(this->ChosenMultipleMethod);
+    if (this->ChosenMultipleMethod == FIRST_COLLISION_SPLIT)
+    {
+      s << " (k = " << this->ChosenOrders << ")";
+    }
+  }
   return s.str();
 }
 
@@ -378,6 +387,11 @@ void vtkEffectPlan::RecordInFieldData(vtkFieldData* fieldData) const
   method->InsertNextValue(GetSingleScatteringMethodName(this->ChosenMethod));
   method->InsertNextValue(this->MethodReason);
   fieldData->AddArray(method);
+  vtkNew<vtkStringArray> multiple;
+  multiple->SetName("PlanMultipleScatteringMethod");
+  multiple->InsertNextValue(GetMultipleScatteringMethodName(this->ChosenMultipleMethod));
+  multiple->InsertNextValue(this->MultipleReason);
+  fieldData->AddArray(multiple);
 }
 
 //------------------------------------------------------------------------------
@@ -403,4 +417,10 @@ void vtkEffectPlan::PrintSelf(ostream& os, vtkIndent indent)
      << "SingleScatteringMethod: " << GetSingleScatteringMethodName(this->SingleScatteringMethod)
      << "; chosen " << GetSingleScatteringMethodName(this->ChosenMethod) << " ("
      << this->MethodReason << ")\n";
+  os << indent << "MultipleScatteringMethod: "
+     << GetMultipleScatteringMethodName(this->MultipleScatteringMethod)
+     << ", ScatteringOrders: " << this->ScatteringOrders
+     << ", LatticeDirections: " << this->LatticeDirections << "; chosen "
+     << GetMultipleScatteringMethodName(this->ChosenMultipleMethod) << ", k " << this->ChosenOrders
+     << " (" << this->MultipleReason << ")\n";
 }

@@ -292,6 +292,33 @@ bool LightHasPower(vtkLight* light)
 }
 }
 
+namespace
+{
+// Whether `light` is positional and inside the box of `medium`'s cells (index -0.5 .. dims - 0.5
+// per axis from the first point, through the grid's frame: extent, spacing, direction).
+bool LightInsideBox(vtkImageData* medium, vtkLight* light)
+{
+  if (!light->GetPositional())
+  {
+    return false;
+  }
+  vtkNew<vtkRefractaGridFrame> frame;
+  frame->SetImage(medium);
+  double index[3]; // from the first point: 0 .. dims - 1
+  frame->WorldToIndexPoint(light->GetPosition(), index);
+  int dims[3];
+  medium->GetDimensions(dims);
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!(index[a] >= -0.5 && index[a] <= dims[a] - 0.5))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+}
+
 //------------------------------------------------------------------------------
 // The light-independent facts of one medium, and its extinction for the light probes.
 struct vtkSceneAnalysis::MediumCache
@@ -391,7 +418,7 @@ void vtkSceneAnalysis::Reset()
   this->AlbedoRange[0] = this->AlbedoRange[1] = 0.0;
   this->HasScattering = this->HasEmission = false;
   this->MaximumEmission = this->OccupiedFraction = 0.0;
-  this->NumberOfPoweredLights = 0;
+  this->NumberOfPoweredLights = this->NumberOfLightsInsideMedium = 0;
   this->NumberOfSurfaces = this->NumberOfInterfaceSurfaces = 0;
 }
 
@@ -423,6 +450,7 @@ bool vtkSceneAnalysis::Analyze()
       ++this->NumberOfPoweredLights;
       this->LightOpticalThickness[l] =
         ProbeTowardLight(cache.Fields, this->Medium, this->Lights[l]);
+      this->NumberOfLightsInsideMedium += LightInsideBox(this->Medium, this->Lights[l]) ? 1 : 0;
     }
   }
   this->NumberOfSurfaces = CountSurfaces(this->Surfaces);
@@ -591,6 +619,8 @@ void vtkSceneAnalysis::RecordInFieldData(vtkFieldData* fieldData) const
   add("AnalysisMaximumEmission", { this->MaximumEmission });
   add("AnalysisOccupiedFraction", { this->OccupiedFraction });
   add("AnalysisNumberOfPoweredLights", { static_cast<double>(this->NumberOfPoweredLights) });
+  add("AnalysisNumberOfLightsInsideMedium",
+    { static_cast<double>(this->NumberOfLightsInsideMedium) });
   add("AnalysisNumberOfSurfaces", { static_cast<double>(this->NumberOfSurfaces) });
   add(
     "AnalysisNumberOfInterfaceSurfaces", { static_cast<double>(this->NumberOfInterfaceSurfaces) });

@@ -153,6 +153,13 @@ public:
    */
   vtkGetMacro(NumberOfPoweredLights, int);
 
+  /**
+   * Number of powered positional lights inside the medium's box (the grid's cells, in its frame):
+   * concentrated sources in the medium, whose single scattering the lattice's few directions
+   * carry as ray effects (vtkEffectPlan's multiple-scattering method).
+   */
+  vtkGetMacro(NumberOfLightsInsideMedium, int);
+
   ///@{
   /**
    * Whether the background lights the scene too (vtkPhotonTracer::BackgroundIlluminates, set by
@@ -211,6 +218,7 @@ protected:
   double MaximumEmission = 0.0;
   double OccupiedFraction = 0.0;
   int NumberOfPoweredLights = 0;
+  int NumberOfLightsInsideMedium = 0;
   bool EnvironmentLight = false;
   int NumberOfSurfaces = 0;
   int NumberOfInterfaceSurfaces = 0;

@@ -283,6 +283,26 @@ int vtkRefractaRenderPipeline::GetSingleScatteringMethod()
   return this->Internal->Plan->GetSingleScatteringMethod();
 }
 
+void vtkRefractaRenderPipeline::SetMultipleScatteringMethod(int method)
+{
+  this->Internal->Plan->SetMultipleScatteringMethod(method);
+}
+
+int vtkRefractaRenderPipeline::GetMultipleScatteringMethod()
+{
+  return this->Internal->Plan->GetMultipleScatteringMethod();
+}
+
+void vtkRefractaRenderPipeline::SetScatteringOrders(int orders)
+{
+  this->Internal->Plan->SetScatteringOrders(orders);
+}
+
+int vtkRefractaRenderPipeline::GetScatteringOrders()
+{
+  return this->Internal->Plan->GetScatteringOrders();
+}
+
 vtkLightRaySingleScattering* vtkRefractaRenderPipeline::GetLightRays()
 {
   return this->Internal->LightRays;

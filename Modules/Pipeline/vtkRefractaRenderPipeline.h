@@ -202,6 +202,23 @@ public:
   int GetSingleScatteringMethod();
   vtkLightRaySingleScattering* GetLightRays();
   ///@}
+
+  ///@{
+  /**
+   * How multiple scattering is computed: vtkEffectPlan::SetMultipleScatteringMethod
+   * (AUTOMATIC_MULTIPLE_METHOD (default), LATTICE_ONLY, FIRST_COLLISION_SPLIT,
+   * PHOTONS_EVERY_ORDER) and vtkEffectPlan::SetScatteringOrders (the split's k; default 0: the
+   * plan's choice by the tolerance). The plan records what it chose and why (field data
+   * `PlanMultipleScatteringMethod`); the photon tracer then carries that many orders
+   * (vtkPhotonTracer::ScatteringOrders) and the lattice (GetLatticeSolver(), whose Lattice the plan
+   * is told) the rest. With light rays for single scattering the photons still run for the orders
+   * they carry (vtkLatticeBoltzmannLighting's port 2).
+   */
+  void SetMultipleScatteringMethod(int method);
+  int GetMultipleScatteringMethod();
+  void SetScatteringOrders(int orders);
+  int GetScatteringOrders();
+  ///@}
   vtkLatticeBoltzmannSolver* GetLatticeSolver();
   vtkRefractaViewPass* GetViewPass();
   ///@}

@@ -45,10 +45,19 @@ vtkAlgorithm* vtkRefractaRenderPipeline::PrepareLightRays(vtkPhotonTracer* trace
   }
   vtkLatticeBoltzmannLighting* lattice = in.LightRayLattice;
   lattice->SetContext(in.GetContext());
+  lattice->SetLattice(this->GetLatticeSolver()->GetLattice());
   lattice->SetTolerance(this->GetLatticeSolver()->GetTolerance());
   lattice->SetBlockSize(this->GetLatticeSolver()->GetBlockSize());
   lattice->SetInputData(in.Planned);
   lattice->SetInputConnection(1, rays->GetOutputPort());
+  // The orders the photons carry (the split, or every order) still come from photons; the light
+  // rays give single scattering without noise.
+  const bool photonOrders = tracer->GetScatteringOrders() != 0;
+  if (photonOrders)
+  {
+    tracer->SetInputData(in.Planned);
+  }
+  lattice->SetPhotonOrdersConnection(photonOrders ? tracer->GetOutputPort() : nullptr);
   return lattice;
 }
 
@@ -126,6 +135,7 @@ bool vtkRefractaRenderPipeline::RunPlan()
   {
     in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, vtkEffectPlan::FORCE_OFF);
   }
+  in.Plan->SetLatticeDirections(this->GetLatticeSolver()->GetLattice());
   const bool decided = in.Analysis->Analyze() && in.Plan->Decide(in.Analysis);
   in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, userMode);
   if (!decided)
@@ -200,16 +210,20 @@ bool vtkRefractaRenderPipeline::RunLighting()
     // With surfaces, multiple scattering is the photons' own (analog scattering): the lattice
     // knows no surfaces, so the light it carries would never light them (Physics.md, "Surfaces
     // and multiple scattering"). Surfaces also make the plan choose photons for single
-    // scattering, so light rays and analog scattering never run together.
+    // scattering, so light rays and analog scattering never run together. Otherwise the photons
+    // carry the orders the plan chose (the first-collision split, or every order) and the
+    // lattice the rest.
     const bool multiple = in.Plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING);
     const bool analog = multiple && surfaces && Internals::CountSurfaces(in.SceneSurfaces) > 0;
     tracer->SetAnalogScattering(analog);
+    tracer->SetScatteringOrders(multiple ? in.Plan->GetChosenScatteringOrders() : 0);
+    const bool everyOrder = analog || tracer->GetScatteringOrders() == vtkPhotonTracer::EVERY_ORDER;
     const int method = in.Plan->GetChosenSingleScatteringMethod();
     if (!analog && (method == vtkEffectPlan::LIGHT_RAYS || method == vtkEffectPlan::INTERPOLATED))
     {
       pass = this->PrepareLightRays(tracer, method);
     }
-    else if (multiple && !analog)
+    else if (multiple && !everyOrder)
     {
       // Interleaving the lattice with the marching (Bernabei et al.) helps where the two
       // share a device with spare parallelism: measured up to 4% on an H200; on a CPU device

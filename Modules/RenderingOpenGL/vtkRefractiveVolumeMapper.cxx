@@ -6,6 +6,7 @@
 #include "vtkEffectPlan.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLatticeBoltzmannSolver.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix4x4.h"
@@ -382,6 +383,39 @@ void vtkRefractiveVolumeMapper::SetSingleScatteringMethod(int method)
 int vtkRefractiveVolumeMapper::GetSingleScatteringMethod()
 {
   return this->Internal->Pipeline->GetSingleScatteringMethod();
+}
+
+void vtkRefractiveVolumeMapper::SetMultipleScatteringMethod(int method)
+{
+  this->Internal->Pipeline->SetMultipleScatteringMethod(method);
+  this->Modified();
+}
+
+int vtkRefractiveVolumeMapper::GetMultipleScatteringMethod()
+{
+  return this->Internal->Pipeline->GetMultipleScatteringMethod();
+}
+
+void vtkRefractiveVolumeMapper::SetScatteringOrders(int orders)
+{
+  this->Internal->Pipeline->SetScatteringOrders(orders);
+  this->Modified();
+}
+
+int vtkRefractiveVolumeMapper::GetScatteringOrders()
+{
+  return this->Internal->Pipeline->GetScatteringOrders();
+}
+
+void vtkRefractiveVolumeMapper::SetLattice(int directions)
+{
+  this->Internal->Pipeline->GetLatticeSolver()->SetLattice(directions);
+  this->Modified();
+}
+
+int vtkRefractiveVolumeMapper::GetLattice()
+{
+  return this->Internal->Pipeline->GetLatticeSolver()->GetLattice();
 }
 
 void vtkRefractiveVolumeMapper::ReleaseGraphicsResources(vtkWindow*)

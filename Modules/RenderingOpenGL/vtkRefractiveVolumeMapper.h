@@ -185,6 +185,21 @@ public:
 
   ///@{
   /**
+   * How multiple scattering is computed: vtkRefractaRenderPipeline::SetMultipleScatteringMethod
+   * (vtkEffectPlan::AUTOMATIC_MULTIPLE_METHOD (default), LATTICE_ONLY, FIRST_COLLISION_SPLIT,
+   * PHOTONS_EVERY_ORDER) and SetScatteringOrders (the split's k; default 0: the plan's choice).
+   * SetLattice chooses the Lattice-Boltzmann lattice (6 (default) or 18 directions).
+   */
+  void SetMultipleScatteringMethod(int method);
+  int GetMultipleScatteringMethod();
+  void SetScatteringOrders(int orders);
+  int GetScatteringOrders();
+  void SetLattice(int directions);
+  int GetLattice();
+  ///@}
+
+  ///@{
+  /**
    * View-pass settings (see vtkRefractaViewPass): StepSize in voxels (default 1), RayMode
    * (default AUTO), TransmittanceCutoff (default 1e-4), EmptySpaceSkipping (default on; the
    * occupancy grid is rebuilt only with the medium or the light passes, and the image is the

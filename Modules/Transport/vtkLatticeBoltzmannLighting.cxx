@@ -79,7 +79,7 @@ public:
 //------------------------------------------------------------------------------
 vtkLatticeBoltzmannLighting::vtkLatticeBoltzmannLighting()
 {
-  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfInputPorts(3);
 }
 vtkLatticeBoltzmannLighting::~vtkLatticeBoltzmannLighting() = default;
 
@@ -94,9 +94,13 @@ void vtkLatticeBoltzmannLighting::SetContext(vtkOpenCLContext* context)
 }
 
 //------------------------------------------------------------------------------
-int vtkLatticeBoltzmannLighting::FillInputPortInformation(int, vtkInformation* info)
+int vtkLatticeBoltzmannLighting::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  if (port == 2)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
   return 1;
 }
 
@@ -121,6 +125,9 @@ int vtkLatticeBoltzmannLighting::RequestData(
 {
   vtkImageData* medium = vtkImageData::GetData(inputVector[0]);
   vtkImageData* lighting = vtkImageData::GetData(inputVector[1]);
+  vtkImageData* orders = inputVector[2]->GetNumberOfInformationObjects() > 0
+    ? vtkImageData::GetData(inputVector[2])
+    : nullptr;
   vtkImageData* output = vtkImageData::GetData(outputVector);
   output->Initialize();
   this->LastRunAborted = false;
@@ -144,35 +151,55 @@ int vtkLatticeBoltzmannLighting::RequestData(
                   "missing: connect it with SetLightingConnection().");
     return 0;
   }
-  if (!vtkRefractaGridFrame::SameGrid(lighting, medium))
+  for (vtkImageData* image : { lighting, orders })
   {
-    vtkErrorMacro("Input 1 (lighting volume) has "
-      << vtkRefractaGridFrame::DescribeGrid(lighting) << "; it must be on the medium's grid ("
-      << vtkRefractaGridFrame::DescribeGrid(medium) << ").");
-    return 0;
+    if (image && !vtkRefractaGridFrame::SameGrid(image, medium))
+    {
+      vtkErrorMacro("Input " << (image == lighting ? 1 : 2) << " ("
+                             << (image == lighting ? "lighting volume" : "photon orders")
+                             << ") has " << vtkRefractaGridFrame::DescribeGrid(image)
+                             << "; it must be on the medium's grid ("
+                             << vtkRefractaGridFrame::DescribeGrid(medium) << ").");
+      return 0;
+    }
   }
-  int dims[3];
-  double spacing[3];
-  medium->GetDimensions(dims);
-  medium->GetSpacing(spacing);
   const vtkIdType n = medium->GetNumberOfPoints();
   // The source: S1 (`Radiance`), or with the first-collision split the light the photons handed
-  // on (`MultipleScatteringSource`), whose S_ms (orders up to k) the lattice's is added to.
-  const bool split = vtkRefractaLightingVolume::HasPhotonMultipleScattering(lighting);
-  std::vector<const char*> required = { vtkRefractaLightingVolume::RadianceName() };
+  // on (`MultipleScatteringSource`, of the lighting volume or of the photon orders on port 2),
+  // whose S_ms (orders up to k) the lattice's is added to. Photon orders without a source carried
+  // every order: their S_ms is the whole of it and the lattice has nothing to do.
+  // Photon orders with neither carried nothing (their medium did not scatter): ignored.
+  if (orders &&
+    !orders->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName()))
+  {
+    orders = nullptr;
+  }
+  vtkImageData* photons = orders ? orders : lighting;
+  const bool split = vtkRefractaLightingVolume::HasPhotonMultipleScattering(photons);
+  const bool everyOrder = orders && !split;
+  struct Required
+  {
+    vtkImageData* Image;
+    const char* Name;
+  };
+  std::vector<Required> required = { { lighting, vtkRefractaLightingVolume::RadianceName() } };
   if (split)
   {
-    required.push_back(vtkRefractaLightingVolume::MultipleScatteringSourceName());
-    required.push_back(vtkRefractaLightingVolume::MultipleScatteringName());
+    required.push_back({ photons, vtkRefractaLightingVolume::MultipleScatteringSourceName() });
   }
-  for (const char* name : required)
+  if (split || everyOrder)
   {
-    const std::string problem = CheckPowerArray(lighting->GetPointData()->GetArray(name), n);
+    required.push_back({ photons, vtkRefractaLightingVolume::MultipleScatteringName() });
+  }
+  for (const Required& r : required)
+  {
+    const std::string problem = CheckPowerArray(r.Image->GetPointData()->GetArray(r.Name), n);
     if (!problem.empty())
     {
-      vtkErrorMacro("Input 1 (lighting volume) needs a point array `"
-        << name << "` with 3 components and " << n
-        << " tuples of power per unit volume, finite and >= 0: " << problem << ".");
+      vtkErrorMacro(
+        "Input " << (r.Image == lighting ? "1 (lighting volume)" : "2 (photon orders)")
+                 << " needs a point array `" << r.Name << "` with 3 components and " << n
+                 << " tuples of power per unit volume, finite and >= 0: " << problem << ".");
       return 0;
     }
   }
@@ -180,19 +207,69 @@ int vtkLatticeBoltzmannLighting::RequestData(
     lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
   vtkDataArray* direction =
     lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
-  vtkDataArray* sourceDirection = lighting->GetPointData()->GetArray(
-    vtkRefractaLightingVolume::LatticeSourceDirectionName(lighting));
+  vtkDataArray* sourceDirection = photons->GetPointData()->GetArray(
+    vtkRefractaLightingVolume::LatticeSourceDirectionName(photons));
   for (vtkDataArray* d : { direction, sourceDirection })
   {
     if (d && (d->GetNumberOfComponents() != 3 || d->GetNumberOfTuples() != n))
     {
-      vtkErrorMacro(
-        "Input 1: `" << d->GetName() << "` must have 3 components and " << n << " tuples.");
+      vtkErrorMacro("Input " << (d == direction ? 1 : 2) << ": `" << d->GetName()
+                             << "` must have 3 components and " << n << " tuples.");
       return 0;
     }
   }
 
+  vtkNew<vtkFloatArray> ms;
+  ms->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
+  ms->SetNumberOfComponents(3);
+  ms->SetNumberOfTuples(n);
   vtkNew<vtkLatticeBoltzmannSolver> solver;
+  if (everyOrder)
+  {
+    ms->FillValue(0.0f); // the photons carried every order: nothing is left for the lattice
+  }
+  else
+  {
+    const int solved = this->Solve(solver, medium, photons, sourceDirection != nullptr, ms);
+    if (solved <= 0)
+    {
+      output->Initialize();
+      this->LastRunAborted = solved == 0;
+      return solved == 0 ? 1 : 0;
+    }
+  }
+  if (split || everyOrder)
+  {
+    vtkRefractaLightingVolume::AddPhotonMultipleScattering(photons, ms);
+  }
+
+  output->CopyStructure(medium);
+  output->GetPointData()->AddArray(radiance);
+  if (direction)
+  {
+    output->GetPointData()->AddArray(direction);
+  }
+  output->GetPointData()->AddArray(ms);
+  output->GetFieldData()->PassData(lighting->GetFieldData());
+  vtkNew<vtkIntArray> iterations;
+  iterations->SetName("LatticeBoltzmannIterations");
+  iterations->InsertNextValue(everyOrder ? 0 : solver->GetIterations());
+  vtkNew<vtkDoubleArray> residual;
+  residual->SetName("LatticeBoltzmannResidual");
+  residual->InsertNextValue(everyOrder ? 0.0 : solver->GetResidual());
+  vtkNew<vtkIntArray> converged;
+  converged->SetName("LatticeBoltzmannConverged");
+  converged->InsertNextValue(everyOrder || solver->GetConverged() ? 1 : 0);
+  output->GetFieldData()->AddArray(iterations);
+  output->GetFieldData()->AddArray(residual);
+  output->GetFieldData()->AddArray(converged);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkLatticeBoltzmannLighting::Solve(vtkLatticeBoltzmannSolver* solver, vtkImageData* medium,
+  vtkImageData* sources, bool withDirection, vtkFloatArray* ms)
+{
   if (this->Context)
   {
     solver->SetContext(this->Context);
@@ -214,6 +291,10 @@ int vtkLatticeBoltzmannLighting::RequestData(
   forwarder->Last = 0.98;
   solver->AddObserver(vtkCommand::ProgressEvent, forwarder);
 
+  int dims[3];
+  double spacing[3];
+  medium->GetDimensions(dims);
+  medium->GetSpacing(spacing);
   const std::vector<float> extinction =
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::ExtinctionName(), 3, 0.0f);
   const std::vector<float> albedo =
@@ -221,58 +302,21 @@ int vtkLatticeBoltzmannLighting::RequestData(
   const std::vector<float> anisotropy =
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
   const std::vector<float> source = vtkRefractaMedium::ReadArray(
-    lighting, vtkRefractaLightingVolume::LatticeSourceName(lighting), 3, 0.0f);
+    sources, vtkRefractaLightingVolume::LatticeSourceName(sources), 3, 0.0f);
   const std::vector<float> dir = vtkRefractaMedium::ReadArray(
-    lighting, vtkRefractaLightingVolume::LatticeSourceDirectionName(lighting), 3, 0.0f);
+    sources, vtkRefractaLightingVolume::LatticeSourceDirectionName(sources), 3, 0.0f);
   if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()) ||
-    !solver->SetSource(source.data(), sourceDirection ? dir.data() : nullptr) || !solver->Solve())
+    !solver->SetSource(source.data(), withDirection ? dir.data() : nullptr) || !solver->Solve())
   {
     vtkErrorMacro("The Lattice-Boltzmann solver failed (see the previous message).");
-    output->Initialize();
-    return 0;
+    return -1;
   }
   if (solver->GetAborted() || this->GetAbortExecute())
   {
     // An abort is not an error: empty output, the solver and its buffers go with `solver`.
-    output->Initialize();
-    this->LastRunAborted = true;
-    return 1;
-  }
-  vtkNew<vtkFloatArray> ms;
-  ms->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
-  ms->SetNumberOfComponents(3);
-  ms->SetNumberOfTuples(n);
-  if (!solver->ComputeMultipleScattering(ms->GetPointer(0)))
-  {
-    output->Initialize();
     return 0;
   }
-  if (split)
-  {
-    vtkRefractaLightingVolume::AddPhotonMultipleScattering(lighting, ms);
-  }
-
-  output->CopyStructure(medium);
-  output->GetPointData()->AddArray(radiance);
-  if (direction)
-  {
-    output->GetPointData()->AddArray(direction);
-  }
-  output->GetPointData()->AddArray(ms);
-  output->GetFieldData()->PassData(lighting->GetFieldData());
-  vtkNew<vtkIntArray> iterations;
-  iterations->SetName("LatticeBoltzmannIterations");
-  iterations->InsertNextValue(solver->GetIterations());
-  vtkNew<vtkDoubleArray> residual;
-  residual->SetName("LatticeBoltzmannResidual");
-  residual->InsertNextValue(solver->GetResidual());
-  vtkNew<vtkIntArray> converged;
-  converged->SetName("LatticeBoltzmannConverged");
-  converged->InsertNextValue(solver->GetConverged() ? 1 : 0);
-  output->GetFieldData()->AddArray(iterations);
-  output->GetFieldData()->AddArray(residual);
-  output->GetFieldData()->AddArray(converged);
-  return 1;
+  return solver->ComputeMultipleScattering(ms->GetPointer(0)) ? 1 : -1;
 }
 
 //------------------------------------------------------------------------------

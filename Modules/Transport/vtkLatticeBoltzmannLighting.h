@@ -14,6 +14,11 @@
  * SourceDistribution) and vtkLatticeBoltzmannSolver iterates the lattice to its steady state, the
  * diffuse field of light scattered at least once.
  *
+ * With the first-collision split (vtkPhotonTracer::ScatteringOrders k) the source is instead the
+ * light the photons handed on after k scatterings (`MultipleScatteringSource` and its direction,
+ * in the lighting volume or in the photon orders of port 2, SetPhotonOrdersConnection()), and the
+ * photons' own `MultipleScattering` (orders up to k) is added to the lattice's.
+ *
  * Output: the grid of the lighting volume with `Radiance` and `RadianceDirection` passed through
  * (single scattering), the new `MultipleScattering` (RGB) S_ms = sigma_s phi_ms, the power per
  * unit volume scattered out of the diffuse field (second and higher orders, taken as isotropic by
@@ -46,6 +51,9 @@
 #include "vtkImageAlgorithm.h"
 #include "vtkSmartPointer.h" // for the context
 
+class vtkFloatArray;
+class vtkImageData;
+class vtkLatticeBoltzmannSolver;
 class vtkOpenCLContext;
 
 class REFRACTATRANSPORT_EXPORT vtkLatticeBoltzmannLighting : public vtkImageAlgorithm
@@ -60,6 +68,20 @@ public:
    */
   void SetLightingConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
   void SetLightingData(vtkDataObject* data) { this->SetInputData(1, data); }
+
+  /**
+   * Connect the photon orders (port 2, optional): the output of a vtkPhotonTracer run with
+   * ScatteringOrders != 0 on the same medium, when single scattering (port 1) comes from another
+   * pass (vtkLightRaySingleScattering). Its `MultipleScatteringSource` (and direction) is then the
+   * lattice's source and its `MultipleScattering` is added to the lattice's; without a source
+   * (the photons carried every order) its `MultipleScattering` is the output's and no lattice
+   * runs. Without port 2 the lighting volume itself may carry those arrays (a tracer with
+   * ScatteringOrders on port 1).
+   */
+  void SetPhotonOrdersConnection(vtkAlgorithmOutput* output)
+  {
+    this->SetInputConnection(2, output);
+  }
 
   ///@{
   /**
@@ -104,6 +126,10 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // Solves the lattice on `medium` from the source of `sources` (vtkRefractaLightingVolume::
+  // LatticeSourceName) into `ms`: 1 done, 0 aborted, -1 failed (reported).
+  int Solve(vtkLatticeBoltzmannSolver* solver, vtkImageData* medium, vtkImageData* sources,
+    bool withDirection, vtkFloatArray* ms);
 
   int Lattice = 6;
   int BlockSize = 4;

@@ -136,6 +136,15 @@ std::vector<Knob> MakeKnobs(const Settings& settings)
     [](Setting& s, double v) { s.Knobs.BlockSize = static_cast<int>(v); } });
   knobs.push_back(
     { "view step", { 2, 1, 0.5, 0.25 }, [](Setting& s, double v) { s.Knobs.ViewStep = v; } });
+  // Multiple scattering (issue 14): photon orders k with D3Q6 (0: the lattice alone, -1: every
+  // order by photons), then D3Q18 as k + 100.
+  knobs.push_back({ "photon orders", { 0, 1, 3, 7, 100, 103, -1 },
+    [](Setting& s, double v)
+    {
+      const int k = static_cast<int>(v);
+      s.Knobs.Lattice = k >= 100 ? 18 : 6;
+      s.Knobs.ScatteringOrders = k >= 100 ? k - 100 : k;
+    } });
   knobs.push_back({ "resolution",
     settings.Smoke ? std::vector<double>{ 12, 16 } : std::vector<double>{ 16, 24, 32, 48, 64 },
     [](Setting& s, double v) { s.Size = static_cast<int>(v); } });
@@ -633,7 +642,7 @@ void Benchmark::SweepScene(const std::string& name)
       std::ostringstream key;
       key << setting.Size << " " << k.Photons << " " << k.PhotonMinimumStep << " "
           << k.PrimaryTolerance << " " << k.LatticeTolerance << " " << k.BlockSize << " "
-          << k.ViewStep;
+          << k.ViewStep << " " << k.ScatteringOrders << " " << k.Lattice;
       auto found = measured.find(key.str());
       Point point = found != measured.end() ? found->second
                                             : (measured[key.str()] = this->Measure(name, setting));

@@ -13,6 +13,8 @@
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkSceneAnalysis.h"
 
+#include <algorithm>
+
 namespace refracta
 {
 namespace bench
@@ -58,6 +60,15 @@ std::vector<double> RenderPipeline(
   tracer->SetSecondaryTolerance(knobs.SecondaryTolerance);
   pipeline->GetLatticeSolver()->SetTolerance(knobs.LatticeTolerance);
   pipeline->GetLatticeSolver()->SetBlockSize(knobs.BlockSize);
+  pipeline->GetLatticeSolver()->SetLattice(knobs.Lattice);
+  if (knobs.ScatteringOrders > -2)
+  {
+    const int k = knobs.ScatteringOrders;
+    pipeline->SetMultipleScatteringMethod(k == 0
+        ? vtkEffectPlan::LATTICE_ONLY
+        : (k > 0 ? vtkEffectPlan::FIRST_COLLISION_SPLIT : vtkEffectPlan::PHOTONS_EVERY_ORDER));
+    pipeline->SetScatteringOrders(std::max(k, 0));
+  }
   renderer->SetInputData(scene.Medium);
   renderer->SetCamera(scene.Camera);
   renderer->SetImageSize(knobs.ImageWidth, knobs.ImageHeight);

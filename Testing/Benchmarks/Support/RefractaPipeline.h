@@ -27,6 +27,11 @@ struct PipelineKnobs
   double LatticeTolerance = 1e-4;   ///< vtkLatticeBoltzmannLighting::Tolerance
   int BlockSize = 4;                ///< vtkLatticeBoltzmannLighting::BlockSize (0 = unblocked)
   double ViewStep = 1.0;            ///< vtkRefractaImageRenderer::StepSize (voxels)
+  /// Multiple scattering: the orders the photons carry (vtkPhotonTracer::ScatteringOrders): 0 the
+  /// lattice alone, k > 0 the first-collision split, -1 every order; -2 (default) the plan's
+  /// automatic choice. Lattice: its directions (6 or 18).
+  int ScatteringOrders = -2;
+  int Lattice = 6;
   int ImageWidth = 64;
   int ImageHeight = 64;
 };

@@ -456,3 +456,94 @@ TEST(SceneAnalysis, MediumFactsAreReusedUntilTheMediumChanges)
   EXPECT_FALSE(analysis->Analyze());
   EXPECT_TRUE(errors->GetError());
 }
+
+// The multiple-scattering method (issue 14): automatically the lattice alone where every light is
+// outside the medium, and the first-collision split where one is inside, with the smallest k
+// whose measured ray-effect anisotropy is within the tolerance for the lattice in use; forced
+// methods and orders are honoured; lit surfaces always get photons carrying every order; the
+// choice is recorded with its reason.
+TEST(EffectPlan, MultipleScatteringMethodFollowsTheToleranceAndTheLattice)
+{
+  auto fog = MakeMedium(10, 10, 10, 0.1,
+    [](int, int, int)
+    {
+      Voxel v;
+      v.SigmaT = 2.0;
+      v.Albedo = 0.95;
+      return v;
+    });
+  vtkNew<vtkSceneAnalysis> analysis;
+  vtkNew<vtkEffectPlan> plan;
+  auto outside = MakeDirectionalLight(1.0);
+  Plan(fog, outside, plan, analysis);
+  ASSERT_TRUE(plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING));
+  EXPECT_EQ(analysis->GetNumberOfLightsInsideMedium(), 0);
+  EXPECT_EQ(plan->GetChosenMultipleScatteringMethod(), vtkEffectPlan::LATTICE_ONLY)
+    << plan->GetMultipleScatteringMethodReason();
+  auto sun = vtkSmartPointer<vtkLight>::New(); // a point light in the fog (box [-0.05, 0.95])
+  sun->SetPositional(true);
+  sun->SetConeAngle(180);
+  sun->SetPosition(0.45, 0.5, 0.9);
+  sun->SetFocalPoint(0.45, 0.5, 0.0);
+  Plan(fog, sun, plan, analysis);
+  EXPECT_EQ(analysis->GetNumberOfLightsInsideMedium(), 1);
+  EXPECT_EQ(plan->GetChosenMultipleScatteringMethod(), vtkEffectPlan::FIRST_COLLISION_SPLIT);
+  // Tolerance 0.01, D3Q6: 0.012 at k = 6 is above it, 0.0085 at k = 7 within.
+  EXPECT_EQ(plan->GetChosenScatteringOrders(), 7) << plan->GetMultipleScatteringMethodReason();
+  EXPECT_NE(plan->GetSummary().find("multiple scattering by split (k = 7)"), std::string::npos);
+  plan->SetLatticeDirections(18); // 0.0076 at k = 3
+  Plan(fog, sun, plan, analysis);
+  EXPECT_EQ(plan->GetChosenScatteringOrders(), 3);
+  plan->SetTolerance(0.05); // D3Q18: 0.028 at k = 2
+  Plan(fog, sun, plan, analysis);
+  EXPECT_EQ(plan->GetChosenScatteringOrders(), 2);
+  plan->SetLatticeDirections(6); // D3Q6: 0.049 at k = 4
+  Plan(fog, sun, plan, analysis);
+  EXPECT_EQ(plan->GetChosenScatteringOrders(), 4);
+  plan->SetTolerance(1e-6); // out of reach: the largest k the plan chooses
+  Plan(fog, sun, plan, analysis);
+  EXPECT_EQ(plan->GetChosenScatteringOrders(), 8);
+  EXPECT_DOUBLE_EQ(vtkEffectPlan::GetRayEffectAnisotropy(6, 0), 2.57);
+  EXPECT_DOUBLE_EQ(vtkEffectPlan::GetRayEffectAnisotropy(18, 50), 0.0016);
+
+  sun->SetPosition(0.45, 0.5, 0.96); // just outside the box: the lattice again
+  Plan(fog, sun, plan, analysis);
+  EXPECT_EQ(analysis->GetNumberOfLightsInsideMedium(), 0);
+  EXPECT_EQ(plan->GetChosenMultipleScatteringMethod(), vtkEffectPlan::LATTICE_ONLY);
+  sun->SetPosition(0.45, 0.5, 0.9);
+
+  // Forced methods and orders.
+  plan->SetTolerance(0.01);
+  plan->SetMultipleScatteringMethod(vtkEffectPlan::LATTICE_ONLY);
+  Plan(fog, sun, plan, analysis);
+  EXPECT_EQ(plan->GetChosenMultipleScatteringMethod(), vtkEffectPlan::LATTICE_ONLY);
+  EXPECT_EQ(plan->GetChosenScatteringOrders(), 0);
+  plan->SetMultipleScatteringMethod(vtkEffectPlan::PHOTONS_EVERY_ORDER);
+  Plan(fog, sun, plan, analysis);
+  EXPECT_EQ(plan->GetChosenScatteringOrders(), -1);
+  plan->SetMultipleScatteringMethod(vtkEffectPlan::FIRST_COLLISION_SPLIT);
+  plan->SetScatteringOrders(2);
+  Plan(fog, sun, plan, analysis);
+  EXPECT_EQ(plan->GetChosenScatteringOrders(), 2);
+  EXPECT_STREQ(plan->GetMultipleScatteringMethodReason(), "split with k = 2 forced");
+  EXPECT_EQ(vtkEffectPlan::GetMultipleScatteringMethodFromName("split"),
+    vtkEffectPlan::FIRST_COLLISION_SPLIT);
+  EXPECT_EQ(vtkEffectPlan::GetMultipleScatteringMethodFromName("d3q7"), -1);
+  EXPECT_EQ(vtkEffectPlan::GetMultipleScatteringMethodName(99), nullptr);
+
+  // Lit surfaces: photons carry every order whatever was asked (the lattice knows none).
+  vtkNew<vtkRefractaSurfaceSet> surfaces;
+  vtkNew<vtkPlaneSource> floor;
+  floor->Update();
+  surfaces->AddSurface(floor->GetOutput());
+  analysis->SetSurfaces(surfaces);
+  Plan(fog, sun, plan, analysis);
+  EXPECT_EQ(plan->GetChosenMultipleScatteringMethod(), vtkEffectPlan::PHOTONS_EVERY_ORDER);
+  EXPECT_EQ(plan->GetChosenScatteringOrders(), -1);
+  vtkNew<vtkFieldData> fd;
+  plan->RecordInFieldData(fd);
+  auto* recorded =
+    vtkStringArray::SafeDownCast(fd->GetAbstractArray("PlanMultipleScatteringMethod"));
+  ASSERT_NE(recorded, nullptr);
+  EXPECT_EQ(recorded->GetValue(0), "photons");
+}

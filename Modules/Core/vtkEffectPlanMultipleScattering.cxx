@@ -1,0 +1,121 @@
+// vtkEffectPlan's choice of the multiple-scattering method (issue 14): the Lattice-Boltzmann
+// solver alone, the first-collision split (photons carry the first k orders, the lattice the
+// rest) or photons carrying every order.
+#include "vtkEffectPlan.h"
+
+#include "vtkSceneAnalysis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iterator>
+#include <sstream>
+
+namespace
+{
+const char* const MultipleMethodNames[] = { "auto", "lattice", "split", "photons" };
+
+// |axis / diagonal - 1| of S_ms at distance 1 from a point light in fog, per k = 0, 1, ...
+// (RefractaTransport.MultipleScatteringIsotropy and its k sweep, 2^18-2^19 photons).
+const double AnisotropyD3Q6[] = { 2.57, 0.74, 0.27, 0.11, 0.049, 0.024, 0.012, 0.0085, 0.0038 };
+const double AnisotropyD3Q18[] = { 0.34, 0.094, 0.028, 0.0076, 0.0016 };
+// The largest k the plan chooses: beyond the table the anisotropy is below the photon noise of
+// the measurement.
+constexpr int MaximumChosenOrders = 8;
+}
+
+const char* vtkEffectPlan::GetMultipleScatteringMethodName(int method)
+{
+  return method >= AUTOMATIC_MULTIPLE_METHOD && method < NUMBER_OF_MULTIPLE_METHODS
+    ? MultipleMethodNames[method]
+    : nullptr;
+}
+
+int vtkEffectPlan::GetMultipleScatteringMethodFromName(const char* name)
+{
+  for (int m = AUTOMATIC_MULTIPLE_METHOD; m < NUMBER_OF_MULTIPLE_METHODS && name; ++m)
+  {
+    if (std::strcmp(name, MultipleMethodNames[m]) == 0)
+    {
+      return m;
+    }
+  }
+  return -1;
+}
+
+double vtkEffectPlan::GetRayEffectAnisotropy(int lattice, int orders)
+{
+  const double* table = lattice == 18 ? AnisotropyD3Q18 : AnisotropyD3Q6;
+  const int size = lattice == 18 ? static_cast<int>(std::size(AnisotropyD3Q18))
+                                 : static_cast<int>(std::size(AnisotropyD3Q6));
+  return table[std::min(std::max(orders, 0), size - 1)];
+}
+
+//------------------------------------------------------------------------------
+void vtkEffectPlan::DecideMultipleScatteringMethod(vtkSceneAnalysis* analysis)
+{
+  std::ostringstream why;
+  this->ChosenOrders = 0;
+  if (!this->Enabled[MULTIPLE_SCATTERING])
+  {
+    this->ChosenMultipleMethod = LATTICE_ONLY;
+    this->MultipleReason = "multiple scattering off";
+    return;
+  }
+  const bool litSurfaces = this->Enabled[SURFACE_LIGHTING] && analysis->GetNumberOfSurfaces() > 0;
+  if (litSurfaces)
+  {
+    // Whatever was asked: the lattice would never light a surface (Physics.md, "Surfaces and
+    // multiple scattering").
+    this->ChosenMultipleMethod = PHOTONS_EVERY_ORDER;
+    this->ChosenOrders = -1;
+    this->MultipleReason = "lit surfaces: the lattice knows none, the photons carry every order";
+    return;
+  }
+  const int method = this->MultipleScatteringMethod;
+  if (method == LATTICE_ONLY || method == PHOTONS_EVERY_ORDER)
+  {
+    this->ChosenMultipleMethod = method;
+    this->ChosenOrders = method == PHOTONS_EVERY_ORDER ? -1 : 0;
+    why << GetMultipleScatteringMethodName(method) << " forced";
+    if (method == LATTICE_ONLY)
+    {
+      why << " (ray-effect anisotropy up to " << GetRayEffectAnisotropy(this->LatticeDirections, 0)
+          << " around point lights)";
+    }
+    this->MultipleReason = why.str();
+    return;
+  }
+  if (method == AUTOMATIC_MULTIPLE_METHOD && analysis->GetNumberOfLightsInsideMedium() == 0)
+  {
+    // Lights outside the medium put S1 on its lit side, spread over an area: measured, the lattice
+    // alone is as close to the reference as any split (BenchmarkAccuracyTime: cloud 0.95%, dense
+    // cube 5.1% against 6.6-13% with photons carrying orders) and cheaper.
+    this->ChosenMultipleMethod = LATTICE_ONLY;
+    this->MultipleReason = "lattice: no light inside the medium, so no concentrated source to draw "
+                           "ray effects";
+    return;
+  }
+  this->ChosenMultipleMethod = FIRST_COLLISION_SPLIT;
+  if (this->ScatteringOrders > 0)
+  {
+    this->ChosenOrders = this->ScatteringOrders;
+    why << "split with k = " << this->ScatteringOrders << " forced";
+  }
+  else
+  {
+    int k = 1;
+    while (k < MaximumChosenOrders &&
+      GetRayEffectAnisotropy(this->LatticeDirections, k) > this->Tolerance)
+    {
+      ++k;
+    }
+    this->ChosenOrders = k;
+    why << (method == FIRST_COLLISION_SPLIT ? "split forced" : "split (a light inside the medium)")
+        << ", k = " << k << ": the smallest k whose measured ray-effect anisotropy with D3Q"
+        << this->LatticeDirections << " (" << GetRayEffectAnisotropy(this->LatticeDirections, k)
+        << ") is within the tolerance " << this->Tolerance
+        << (k == MaximumChosenOrders ? " or the largest the plan chooses" : "");
+  }
+  this->MultipleReason = why.str();
+}
