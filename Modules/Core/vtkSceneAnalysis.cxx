@@ -292,33 +292,6 @@ bool LightHasPower(vtkLight* light)
 }
 }
 
-namespace
-{
-// Whether `light` is positional and inside the box of `medium`'s cells (index -0.5 .. dims - 0.5
-// per axis from the first point, through the grid's frame: extent, spacing, direction).
-bool LightInsideBox(vtkImageData* medium, vtkLight* light)
-{
-  if (!light->GetPositional())
-  {
-    return false;
-  }
-  vtkNew<vtkRefractaGridFrame> frame;
-  frame->SetImage(medium);
-  double index[3]; // from the first point: 0 .. dims - 1
-  frame->WorldToIndexPoint(light->GetPosition(), index);
-  int dims[3];
-  medium->GetDimensions(dims);
-  for (int a = 0; a < 3; ++a)
-  {
-    if (!(index[a] >= -0.5 && index[a] <= dims[a] - 0.5))
-    {
-      return false;
-    }
-  }
-  return true;
-}
-}
-
 //------------------------------------------------------------------------------
 // The light-independent facts of one medium, and its extinction for the light probes.
 struct vtkSceneAnalysis::MediumCache
@@ -423,6 +396,35 @@ void vtkSceneAnalysis::Reset()
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// Whether `light` is positional and sits in the medium: the voxel nearest to it (through the
+// grid's frame: extent, spacing, direction) has extinction.
+bool LightInMedium(const MediumFields& fields, vtkImageData* medium, vtkLight* light)
+{
+  if (!light->GetPositional() || fields.SigmaT.empty())
+  {
+    return false;
+  }
+  vtkNew<vtkRefractaGridFrame> frame;
+  frame->SetImage(medium);
+  double index[3]; // from the first point: 0 .. dims - 1
+  frame->WorldToIndexPoint(light->GetPosition(), index);
+  int voxel[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!(index[a] >= -0.5 && index[a] <= fields.Dims[a] - 0.5))
+    {
+      return false;
+    }
+    voxel[a] = std::min(std::max(static_cast<int>(std::lround(index[a])), 0), fields.Dims[a] - 1);
+  }
+  const size_t v = fields.Index(voxel[0], voxel[1], voxel[2]);
+  return fields.SigmaT[3 * v] > 0 || fields.SigmaT[3 * v + 1] > 0 || fields.SigmaT[3 * v + 2] > 0;
+}
+}
+
+//------------------------------------------------------------------------------
 bool vtkSceneAnalysis::Analyze()
 {
   this->Reset();
@@ -450,7 +452,8 @@ bool vtkSceneAnalysis::Analyze()
       ++this->NumberOfPoweredLights;
       this->LightOpticalThickness[l] =
         ProbeTowardLight(cache.Fields, this->Medium, this->Lights[l]);
-      this->NumberOfLightsInsideMedium += LightInsideBox(this->Medium, this->Lights[l]) ? 1 : 0;
+      this->NumberOfLightsInsideMedium +=
+        LightInMedium(cache.Fields, this->Medium, this->Lights[l]) ? 1 : 0;
     }
   }
   this->NumberOfSurfaces = CountSurfaces(this->Surfaces);

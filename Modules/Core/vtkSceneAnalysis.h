@@ -154,9 +154,9 @@ public:
   vtkGetMacro(NumberOfPoweredLights, int);
 
   /**
-   * Number of powered positional lights inside the medium's box (the grid's cells, in its frame):
-   * concentrated sources in the medium, whose single scattering the lattice's few directions
-   * carry as ray effects (vtkEffectPlan's multiple-scattering method).
+   * Number of powered positional lights inside the medium: the voxel nearest to the light (in the
+   * grid's frame) has extinction. Concentrated sources in the medium, whose single scattering the
+   * lattice's few directions carry as ray effects (vtkEffectPlan's multiple-scattering method).
    */
   vtkGetMacro(NumberOfLightsInsideMedium, int);
 

@@ -25,6 +25,18 @@ namespace
 constexpr double RelativeSurfaceEpsilon = 1e-5;
 // Margin around the surfaces' bounds in the box the lights aim at, relative to the scene's size.
 constexpr double RelativeEmitMargin = 1e-3;
+
+// The size of the scene the photons fly in: the emission box's extent and distance from the
+// grid-local origin, whichever is larger (what float roundings of its points scale with).
+double SceneSize(const double lo[3], const double hi[3])
+{
+  double size = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    size = std::max({ size, hi[a] - lo[a], std::fabs(lo[a]), std::fabs(hi[a]) });
+  }
+  return size;
+}
 }
 
 //------------------------------------------------------------------------------
@@ -82,6 +94,9 @@ bool vtkPhotonTracer::PrepareSurfaces(Internals& run)
   std::copy(m.ProxyLo, m.ProxyLo + 3, run.EmitLo);
   std::copy(m.ProxyHi, m.ProxyHi + 3, run.EmitHi);
   run.Surfaces = nullptr;
+  // Without surfaces the event loop still runs for analog scattering: a photon leaving the box
+  // steps this far out, so that it is not taken for inside again.
+  run.SurfaceEpsilon = RelativeSurfaceEpsilon * SceneSize(run.EmitLo, run.EmitHi);
   if (!this->Surfaces || this->Surfaces->GetNumberOfSurfaces() == 0)
   {
     return true;
@@ -132,12 +147,7 @@ bool vtkPhotonTracer::PrepareSurfaces(Internals& run)
     run.Frame[r] =
       Float4(l2w[4 * r], l2w[4 * r + 1], l2w[4 * r + 2], l2w[4 * r + 3] - frameOrigin[r]);
   }
-  double size = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    size = std::max(
-      { size, run.EmitHi[a] - run.EmitLo[a], std::fabs(run.EmitLo[a]), std::fabs(run.EmitHi[a]) });
-  }
+  const double size = SceneSize(run.EmitLo, run.EmitHi);
   run.SurfaceEpsilon = RelativeSurfaceEpsilon * size;
   // Photons start where their ray enters this box: grow it so that they start off any surface
   // on its boundary (a photon starting on a surface would not see it, t > 0 only).

@@ -518,6 +518,9 @@ public:
   {
     this->Base.Knobs.ImageWidth = this->Base.Knobs.ImageHeight = settings.Image;
     this->Base.Size = settings.BaseSize;
+    // Multiple scattering by the lattice alone at the base, as the presets were measured; the
+    // methods are the "photon orders" knob.
+    this->Base.Knobs.ScatteringOrders = 0;
     // The most accurate setting: every knob at its most accurate swept value.
     this->Most = this->Base;
     for (const Knob& knob : this->Knobs)

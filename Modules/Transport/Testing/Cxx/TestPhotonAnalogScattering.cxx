@@ -329,3 +329,52 @@ TEST(PhotonAnalogScattering, RotatedAndMovedMediumLightsTheFloorTheSame)
   EXPECT_NEAR(total[1] / total[0], 1.0, 0.01);
   EXPECT_LT(worst, 0.01 * brightest);
 }
+
+// Analog scattering without surfaces (the first-collision split and EVERY_ORDER, issue 14) in a
+// refracting fog: curved photons leave the medium's box and are not taken for inside again (a
+// photon on the box's face once stepped nowhere until the step cap), so no photon ends at the
+// step cap or invalid, and the books close with the power handed to the lattice (split) or none
+// (every order).
+TEST(PhotonAnalogScattering, OrdersWithoutSurfacesInARefractingFog)
+{
+  auto fog = photontest::MakeMedium(N, N, N, SPACING,
+    [&](double x, double, double)
+    {
+      photontest::Voxel v;
+      v.N = 1.0 + 0.2 * x; // a gradient: curved rays
+      v.Extinction = { 1.0, 1.0, 1.0 };
+      v.Albedo = { 0.9, 0.9, 0.9 };
+      return v;
+    });
+  for (int orders : { 2, static_cast<int>(vtkPhotonTracer::EVERY_ORDER) })
+  {
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->SetInputData(fog);
+    tracer->AddLight(photontest::Positional({ 1.4, 6, 1.5 }, { 1.4, 0, 1.5 }, 20, 0, 1.0));
+    tracer->SetNumberOfPhotons(1 << 12);
+    tracer->SetScatteringOrders(orders);
+    tracer->Update();
+    vtkImageData* out = tracer->GetOutput();
+    ASSERT_TRUE(tracer->GetUsedCurvedRays());
+    EXPECT_EQ(tracer->GetUsedScatteringOrders(), orders);
+    EXPECT_EQ(out->GetFieldData()->GetArray("TerminatedStepCap")->GetTuple1(0), 0.0);
+    EXPECT_EQ(out->GetFieldData()->GetArray("TerminatedInvalid")->GetTuple1(0), 0.0);
+    const double emitted = photontest::Energy(out, "EnergyEmitted")[0];
+    const double handed = photontest::Energy(out, "EnergyScattered")[0];
+    const double books = photontest::Energy(out, "EnergyAbsorbed")[0] +
+      photontest::Energy(out, "EnergyEscaped")[0] + handed +
+      photontest::Energy(out, "EnergyRemaining")[0];
+    EXPECT_NEAR(books, emitted, 1e-4 * emitted);
+    if (orders > 0)
+    {
+      EXPECT_GT(handed, 0.0);
+      EXPECT_NE(
+        out->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringSourceName()),
+        nullptr);
+    }
+    else
+    {
+      EXPECT_EQ(handed, 0.0);
+    }
+  }
+}
