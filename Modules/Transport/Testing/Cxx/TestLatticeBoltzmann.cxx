@@ -562,9 +562,27 @@ TEST(LatticeBoltzmannLighting, RejectsBadInput)
     const char* What;
     vtkSmartPointer<vtkImageData> Medium, Lighting;
     const char* Expected;
+    vtkSmartPointer<vtkImageData> Orders = nullptr; // port 2 (the first-collision split)
+  };
+  // Photon orders of the split: S_ms and the handed-on source, on an n^3 or another grid.
+  auto makeOrders = [&](int size, double source)
+  {
+    vtkSmartPointer<vtkImageData> orders = MakeImage(size, 1.0);
+    const vtkIdType points = orders->GetNumberOfPoints();
+    orders->GetPointData()->AddArray(
+      MakeArray(vtkRefractaLightingVolume::MultipleScatteringName(), 3, points, 1));
+    orders->GetPointData()->AddArray(
+      MakeArray(vtkRefractaLightingVolume::MultipleScatteringSourceName(), 3, points, source));
+    return orders;
   };
   std::vector<Case> cases;
   cases.push_back({ "no lighting", makeMedium(), nullptr, "port 1" });
+  cases.push_back({ "photon orders on another grid", makeMedium(), makeLighting(n),
+    "Input 2 (photon orders) has", makeOrders(n + 1, 1) });
+  cases.push_back({ "negative handed-on source", makeMedium(), makeLighting(n),
+    "Input 2 (photon orders) needs a point array `MultipleScatteringSource`", makeOrders(n, -1) });
+  cases.push_back({ "NaN handed-on source", makeMedium(), makeLighting(n), "is nan",
+    makeOrders(n, std::nan("")) });
   cases.push_back({ "grid mismatch", makeMedium(), makeLighting(n + 1), "medium's grid" });
   {
     vtkSmartPointer<vtkImageData> lighting = makeLighting(n);
@@ -594,6 +612,10 @@ TEST(LatticeBoltzmannLighting, RejectsBadInput)
     if (c.Lighting)
     {
       filter->SetLightingData(c.Lighting);
+    }
+    if (c.Orders)
+    {
+      filter->SetInputData(2, c.Orders);
     }
     filter->Update();
     EXPECT_TRUE(errors->GetError()) << c.What;
