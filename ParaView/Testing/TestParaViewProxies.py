@@ -117,6 +117,21 @@ print("RefractaLighting plan:", summary, "| lighting %.3f s" %
 assert "SingleScattering on" in summary and "MultipleScattering off" in summary
 assert lit.GetFieldData().GetArray("LightingSeconds").GetValue(0) > 0
 
+# Multiple scattering (issue 14): the method is a proxy property; this scene has a lit surface,
+# so the plan has photons carry every order whatever is asked (no lattice: seconds on PoCL), and
+# records it.
+lighting.MultipleScattering = 1
+lighting.MultipleScatteringMethod = "Lattice"
+lighting.UpdatePipeline()
+lit = servermanager.Fetch(lighting)
+assert lit.GetPointData().GetArray("MultipleScattering") is not None, "photons carry S_ms"
+method = lit.GetFieldData().GetAbstractArray("PlanMultipleScatteringMethod")
+print("RefractaLighting multiple scattering:", method.GetValue(0), "|", method.GetValue(1))
+assert method.GetValue(0) == "photons"
+lighting.ScatteringOrders = 3
+assert lighting.ScatteringOrders == 3
+lighting.MultipleScattering = 0
+
 image.UpdatePipeline()
 picture = servermanager.Fetch(image)
 assert picture.GetDimensions() == (96, 96, 1)

@@ -132,6 +132,28 @@ int vtkRefractaPluginLighting::GetSingleScatteringMethod()
   return this->Pipeline->GetSingleScatteringMethod();
 }
 
+void vtkRefractaPluginLighting::SetMultipleScatteringMethod(int method)
+{
+  this->Pipeline->SetMultipleScatteringMethod(method);
+  this->Modified();
+}
+
+int vtkRefractaPluginLighting::GetMultipleScatteringMethod()
+{
+  return this->Pipeline->GetMultipleScatteringMethod();
+}
+
+void vtkRefractaPluginLighting::SetScatteringOrders(int orders)
+{
+  this->Pipeline->SetScatteringOrders(orders);
+  this->Modified();
+}
+
+int vtkRefractaPluginLighting::GetScatteringOrders()
+{
+  return this->Pipeline->GetScatteringOrders();
+}
+
 //------------------------------------------------------------------------------
 vtkMTimeType vtkRefractaPluginLighting::GetMTime()
 {

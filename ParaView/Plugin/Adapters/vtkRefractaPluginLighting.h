@@ -93,6 +93,18 @@ public:
   int GetSingleScatteringMethod();
   ///@}
 
+  ///@{
+  /**
+   * How multiple scattering is computed (vtkEffectPlan::MultipleScatteringMethod: 0 auto
+   * (default), 1 the lattice alone, 2 the first-collision split, 3 photons carrying every order)
+   * and the split's k (ScatteringOrders, 0: the plan's choice), the pipeline's settings.
+   */
+  void SetMultipleScatteringMethod(int method);
+  int GetMultipleScatteringMethod();
+  void SetScatteringOrders(int orders);
+  int GetScatteringOrders();
+  ///@}
+
   /**
    * The pipeline this filter runs (its plan, passes and statistics).
    */
