@@ -250,9 +250,7 @@ bool vtkRefractaRenderPipeline::RunLighting()
     in.Running = nullptr;
     if (pass == in.Schedule)
     {
-      this->LastScheduleInterleaved =
-        in.Schedule->GetMode() == vtkPhotonDiffusionSchedule::INTERLEAVED &&
-        !in.Schedule->GetLastRunWarm();
+      this->LastScheduleInterleaved = in.Schedule->GetLastRunInterleaved();
     }
     output = vtkImageData::SafeDownCast(pass->GetOutputDataObject(0));
     if (in.Abort || pass->GetAbortExecute())

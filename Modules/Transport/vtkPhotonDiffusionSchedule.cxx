@@ -162,7 +162,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
   vtkImageData* medium = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   output->Initialize();
-  this->LastRunAborted = false;
+  this->LastRunAborted = this->LastRunInterleaved = false;
   if (!this->PrepareSolver(medium))
   {
     return 0;
@@ -185,6 +185,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
   // chunks' deposits are S1, not that source, so it runs sequentially.
   const bool interleaved =
     this->Mode == INTERLEAVED && !this->LastRunWarm && this->Tracer->GetScatteringOrders() == 0;
+  this->LastRunInterleaved = interleaved;
   this->Tracer->SetStepsPerChunk(interleaved ? this->StepsPerChunk : 0);
   int diffusionSteps = 0;
   bool callbackFailed = false;
@@ -320,5 +321,6 @@ void vtkPhotonDiffusionSchedule::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DiffusionStepsPerChunk: " << this->DiffusionStepsPerChunk << "\n";
   os << indent << "WarmStart: " << this->WarmStart << "\n";
   os << indent << "LastRunWarm: " << this->LastRunWarm << "\n";
+  os << indent << "LastRunInterleaved: " << this->LastRunInterleaved << "\n";
   os << indent << "LastRunAborted: " << this->LastRunAborted << "\n";
 }

@@ -111,6 +111,12 @@ public:
   vtkGetMacro(LastRunWarm, bool);
 
   /**
+   * Whether the last run interleaved the lattice with the marching: Mode INTERLEAVED, not a warm
+   * start, and no first-collision split (vtkPhotonTracer::ScatteringOrders 0).
+   */
+  vtkGetMacro(LastRunInterleaved, bool);
+
+  /**
    * Whether the last RequestData stopped because AbortExecute was set (its output is empty).
    */
   vtkGetMacro(LastRunAborted, bool);
@@ -135,6 +141,7 @@ protected:
   bool LastRunAborted = false;
   bool WarmStart = false;
   bool LastRunWarm = false;
+  bool LastRunInterleaved = false;
   bool HasField = false;    // the solver holds a field of the current medium to start from
   double PhotonShare = 0.5; // the photon pass's share of the progress
   vtkSmartPointer<vtkPhotonTracer> Tracer;

@@ -10,6 +10,7 @@
 //   to a per-step relative change of 1e-7; the lattice's fixed point depends only on the final
 //   source), for k = 4 and 16.
 #include "PhotonTestUtilities.h"
+#include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLatticeBoltzmannSolver.h"
 #include "vtkPhotonDiffusionSchedule.h"
 #include "vtkPhotonTracer.h"
@@ -17,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -265,4 +267,45 @@ TEST(PhotonDiffusionSchedule, WarmStartAgreesWithColdInFewerSteps)
   medium->Modified();
   warm->Update();
   EXPECT_FALSE(warm->GetLastRunWarm()) << "a new medium starts cold";
+}
+
+// The first-collision split through the schedule (issue 14): asked to interleave, it runs
+// sequentially (the chunks carry S1, not the handed-on source) and says so, and its
+// MultipleScattering is vtkLatticeBoltzmannLighting's on the same photons (the two consumers of
+// the split's source agree to the lattice's tolerance).
+TEST(PhotonDiffusionSchedule, FirstCollisionSplitRunsSequentiallyLikeTheLightingFilter)
+{
+  vtkSmartPointer<vtkImageData> medium = Fog(10, 8, 8, { 0.9, 0.9, 0.9 });
+  vtkNew<vtkPhotonDiffusionSchedule> schedule;
+  schedule->SetInputData(medium);
+  schedule->SetMode(vtkPhotonDiffusionSchedule::INTERLEAVED);
+  AimLight(schedule, 3.0, 2.0, 4096, 1e-7);
+  schedule->GetPhotonTracer()->SetScatteringOrders(2);
+  schedule->Update();
+  EXPECT_FALSE(schedule->GetLastRunInterleaved());
+  EXPECT_EQ(schedule->GetPhotonTracer()->GetUsedScatteringOrders(), 2);
+
+  vtkNew<vtkLatticeBoltzmannLighting> lighting;
+  lighting->SetInputData(medium);
+  lighting->SetLightingData(schedule->GetPhotonTracer()->GetOutput());
+  lighting->SetTolerance(1e-7);
+  lighting->SetMaximumIterations(20000);
+  lighting->Update();
+  const char* name = vtkRefractaLightingVolume::MultipleScatteringName();
+  vtkDataArray* a = schedule->GetOutput()->GetPointData()->GetArray(name);
+  vtkDataArray* b = lighting->GetOutput()->GetPointData()->GetArray(name);
+  ASSERT_TRUE(a && b);
+  double peak = 0, difference = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+  {
+    peak = std::max(peak, std::fabs(b->GetVariantValue(i).ToDouble()));
+    difference = std::max(
+      difference, std::fabs(a->GetVariantValue(i).ToDouble() - b->GetVariantValue(i).ToDouble()));
+  }
+  ASSERT_GT(peak, 0.0);
+  EXPECT_LT(difference, 1e-4 * peak);
+
+  schedule->GetPhotonTracer()->SetScatteringOrders(0);
+  schedule->Update();
+  EXPECT_TRUE(schedule->GetLastRunInterleaved()) << "no split: interleaved as asked";
 }
