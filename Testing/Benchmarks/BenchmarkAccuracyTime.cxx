@@ -571,9 +571,13 @@ const Scene& Benchmark::SceneAt(const std::string& name, int size)
   auto found = this->Scenes.find(key);
   if (found == this->Scenes.end())
   {
-    for (Scene& scene : refracta::scenes::AllScenes(size))
+    for (const auto& set :
+      { refracta::scenes::AllScenes(size), refracta::scenes::ExtraScenes(size) })
     {
-      this->Scenes[scene.Name + "@" + std::to_string(size)] = scene;
+      for (const Scene& scene : set)
+      {
+        this->Scenes[scene.Name + "@" + std::to_string(size)] = scene;
+      }
     }
     found = this->Scenes.find(key);
   }
@@ -940,10 +944,19 @@ int Benchmark::Run()
     mkdir(this->Config.Cache.c_str(), 0755);
   }
   std::vector<std::string> names;
+  const auto& wanted = this->Config.Scenes;
+  auto named = [&](const Scene& scene)
+  { return std::find(wanted.begin(), wanted.end(), scene.Name) != wanted.end(); };
   for (const Scene& scene : refracta::scenes::AllScenes(4))
   {
-    const auto& wanted = this->Config.Scenes;
-    if (wanted.empty() || std::find(wanted.begin(), wanted.end(), scene.Name) != wanted.end())
+    if (wanted.empty() || named(scene))
+    {
+      names.push_back(scene.Name);
+    }
+  }
+  for (const Scene& scene : refracta::scenes::ExtraScenes(4))
+  {
+    if (named(scene)) // only when asked for
     {
       names.push_back(scene.Name);
     }

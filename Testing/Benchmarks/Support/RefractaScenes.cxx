@@ -301,9 +301,44 @@ Scene DenseObject(int n)
   return scene;
 }
 
+Scene LampInFog(int n)
+{
+  Scene scene;
+  scene.Name = "lamp-in-fog";
+  scene.Medium = Build(n,
+    [&](double, double, double)
+    {
+      Voxel v;
+      for (int c = 0; c < 3; ++c)
+      {
+        v.SigmaT[c] = 4.0;
+        v.Albedo[c] = 0.95;
+      }
+      v.Albedo[2] = 0.9; // a little colour
+      return v;
+    });
+  auto lamp = vtkSmartPointer<vtkLight>::New();
+  lamp->SetPositional(true);
+  lamp->SetConeAngle(180);
+  lamp->SetPosition(0.5, 0.5, 0.5);
+  lamp->SetFocalPoint(0.5, 0.0, 0.5);
+  lamp->SetIntensity(0.05);
+  scene.Lights.push_back(lamp);
+  scene.Camera = MakeCamera(0.5, 0.5, 3.2);
+  SetBox(scene.RegionOfInterest, 0.2, 0.8, 0.2, 0.8, 0.2, 0.8);
+  scene.LightRadius = 0.02;
+  scene.RegionName = "glow around the lamp";
+  return scene;
+}
+
 std::vector<Scene> AllScenes(int n)
 {
   return { GlassSphereInFog(n), HeterogeneousCloud(n), GrinLens(n), DenseObject(n) };
+}
+
+std::vector<Scene> ExtraScenes(int n)
+{
+  return { LampInFog(n) };
 }
 }
 }

@@ -62,8 +62,17 @@ Scene HeterogeneousCloud(int n);
 Scene GrinLens(int n);
 Scene DenseObject(int n);
 
+/**
+ * A point light (radius 0.02) at the centre of a homogeneous fog (sigma_t 4, albedo 0.95/0.95/0.9,
+ * optical radius 2): the concentrated source that draws the lattice's ray effects (issue 14).
+ */
+Scene LampInFog(int n);
+
 /** All four scenes at resolution n. */
 std::vector<Scene> AllScenes(int n);
+
+/** Scenes run only when named (BenchmarkAccuracyTime --scenes): LampInFog. */
+std::vector<Scene> ExtraScenes(int n);
 
 /** Recompute RefractiveIndexGradient of a medium by central differences (world units). */
 void ComputeIndexGradient(vtkImageData* medium);
