@@ -77,7 +77,7 @@ void vtkEffectPlan::DecideMultipleScatteringMethod(vtkSceneAnalysis* analysis)
   {
     this->ChosenMultipleMethod = method;
     this->ChosenOrders = method == PHOTONS_EVERY_ORDER ? -1 : 0;
-    why << GetMultipleScatteringMethodName(method) << " forced";
+    why << "forced";
     if (method == LATTICE_ONLY)
     {
       why << " (ray-effect anisotropy up to " << GetRayEffectAnisotropy(this->LatticeDirections, 0)
@@ -92,15 +92,15 @@ void vtkEffectPlan::DecideMultipleScatteringMethod(vtkSceneAnalysis* analysis)
     // alone is as close to the reference as any split (BenchmarkAccuracyTime: cloud 0.95%, dense
     // cube 5.1% against 6.6-13% with photons carrying orders) and cheaper.
     this->ChosenMultipleMethod = LATTICE_ONLY;
-    this->MultipleReason = "lattice: no light inside the medium, so no concentrated source to draw "
-                           "ray effects";
+    this->MultipleReason =
+      "no light inside the medium, so no concentrated source to draw ray effects";
     return;
   }
   this->ChosenMultipleMethod = FIRST_COLLISION_SPLIT;
   if (this->ScatteringOrders > 0)
   {
     this->ChosenOrders = this->ScatteringOrders;
-    why << "split with k = " << this->ScatteringOrders << " forced";
+    why << "k = " << this->ScatteringOrders << " forced";
   }
   else
   {
@@ -111,7 +111,7 @@ void vtkEffectPlan::DecideMultipleScatteringMethod(vtkSceneAnalysis* analysis)
       ++k;
     }
     this->ChosenOrders = k;
-    why << (method == FIRST_COLLISION_SPLIT ? "split forced" : "split (a light inside the medium)")
+    why << (method == FIRST_COLLISION_SPLIT ? "forced" : "a light inside the medium")
         << ", k = " << k << ": the smallest k whose measured ray-effect anisotropy with D3Q"
         << this->LatticeDirections << " (" << GetRayEffectAnisotropy(this->LatticeDirections, k)
         << ") is within the tolerance " << this->Tolerance

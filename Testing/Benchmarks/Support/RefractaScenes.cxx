@@ -104,6 +104,19 @@ void SetBox(double box[6], double x0, double x1, double y0, double y1, double z0
   std::copy(values, values + 6, box);
 }
 
+// A point light (cone 180 degrees) at `position`, its axis towards `focus`.
+vtkSmartPointer<vtkLight> MakePointLight(
+  const double position[3], const double focus[3], double intensity)
+{
+  auto light = vtkSmartPointer<vtkLight>::New();
+  light->SetPositional(true);
+  light->SetConeAngle(180);
+  light->SetPosition(position[0], position[1], position[2]);
+  light->SetFocalPoint(focus[0], focus[1], focus[2]);
+  light->SetIntensity(intensity);
+  return light;
+}
+
 vtkSmartPointer<vtkCamera> MakeCamera(double x, double y, double z)
 {
   auto camera = vtkSmartPointer<vtkCamera>::New();
@@ -287,13 +300,8 @@ Scene DenseObject(int n)
       v.Occupancy = inside;
       return v;
     });
-  auto bulb = vtkSmartPointer<vtkLight>::New();
-  bulb->SetPositional(true);
-  bulb->SetConeAngle(180);
-  bulb->SetPosition(0.9, 0.9, 0.9);
-  bulb->SetFocalPoint(0.5, 0.5, 0.5);
-  bulb->SetIntensity(0.5);
-  scene.Lights.push_back(bulb);
+  const double bulb[3] = { 0.9, 0.9, 0.9 }, centre[3] = { 0.5, 0.5, 0.5 };
+  scene.Lights.push_back(MakePointLight(bulb, centre, 0.5));
   scene.Camera = MakeCamera(2.5, 1.5, 2.5);
   SetBox(scene.RegionOfInterest, 0.3, 0.7, 0.3, 0.7, 0.3, 0.7);
   scene.LightRadius = 0.02;
@@ -317,13 +325,8 @@ Scene LampInFog(int n)
       v.Albedo[2] = 0.9; // a little colour
       return v;
     });
-  auto lamp = vtkSmartPointer<vtkLight>::New();
-  lamp->SetPositional(true);
-  lamp->SetConeAngle(180);
-  lamp->SetPosition(0.5, 0.5, 0.5);
-  lamp->SetFocalPoint(0.5, 0.0, 0.5);
-  lamp->SetIntensity(0.05);
-  scene.Lights.push_back(lamp);
+  const double centre[3] = { 0.5, 0.5, 0.5 }, below[3] = { 0.5, 0.0, 0.5 };
+  scene.Lights.push_back(MakePointLight(centre, below, 0.05));
   scene.Camera = MakeCamera(0.5, 0.5, 3.2);
   SetBox(scene.RegionOfInterest, 0.2, 0.8, 0.2, 0.8, 0.2, 0.8);
   scene.LightRadius = 0.02;

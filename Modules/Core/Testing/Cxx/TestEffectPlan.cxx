@@ -512,6 +512,23 @@ TEST(EffectPlan, MultipleScatteringMethodFollowsTheToleranceAndTheLattice)
   EXPECT_EQ(plan->GetChosenMultipleScatteringMethod(), vtkEffectPlan::LATTICE_ONLY);
   sun->SetPosition(0.45, 0.5, 0.9);
 
+  // The same fog with a non-zero extent, moved and turned 90 degrees about z: the light is found
+  // in it through the grid's frame (index (4.5, 5, 9) from the first point), not by its bounds.
+  auto turned = vtkSmartPointer<vtkImageData>::New();
+  turned->DeepCopy(fog);
+  turned->SetExtent(3, 12, -2, 7, 5, 14);
+  turned->SetOrigin(5.0, -1.0, 2.0);
+  turned->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
+  double world[3];
+  turned->TransformContinuousIndexToPhysicalPoint(3 + 4.5, -2 + 5.0, 5 + 9.0, world);
+  sun->SetPosition(world);
+  Plan(turned, sun, plan, analysis);
+  EXPECT_EQ(analysis->GetNumberOfLightsInsideMedium(), 1);
+  EXPECT_EQ(plan->GetChosenMultipleScatteringMethod(), vtkEffectPlan::FIRST_COLLISION_SPLIT);
+  sun->SetPosition(0.45, 0.5, 0.9); // inside the unturned fog, outside the turned one
+  Plan(turned, sun, plan, analysis);
+  EXPECT_EQ(analysis->GetNumberOfLightsInsideMedium(), 0);
+
   // Forced methods and orders.
   plan->SetTolerance(0.01);
   plan->SetMultipleScatteringMethod(vtkEffectPlan::LATTICE_ONLY);
@@ -525,7 +542,7 @@ TEST(EffectPlan, MultipleScatteringMethodFollowsTheToleranceAndTheLattice)
   plan->SetScatteringOrders(2);
   Plan(fog, sun, plan, analysis);
   EXPECT_EQ(plan->GetChosenScatteringOrders(), 2);
-  EXPECT_STREQ(plan->GetMultipleScatteringMethodReason(), "split with k = 2 forced");
+  EXPECT_STREQ(plan->GetMultipleScatteringMethodReason(), "k = 2 forced");
   EXPECT_EQ(vtkEffectPlan::GetMultipleScatteringMethodFromName("split"),
     vtkEffectPlan::FIRST_COLLISION_SPLIT);
   EXPECT_EQ(vtkEffectPlan::GetMultipleScatteringMethodFromName("d3q7"), -1);
