@@ -4,14 +4,23 @@
 // radiance_resolve: one work-item per voxel; fixed point -> float, 3 values per voxel from long
 //   `first` on, times `factor` (deposits: 1 / (scale x voxel volume), power per unit volume;
 //   direction sums: 1 / scale, kept unnormalised until after the smoothing).
-// radiance_smooth: one work-item per voxel, 3-component field. Kernel: the binomial (1, 2, 1) / 4
-//   per axis (a 3x3x3 approximation of a Gaussian), with a mirror boundary: a weight that falls
-//   outside the grid lands on the voxel mirrored back inside (the face voxel itself). Per axis the
-//   operator is then a symmetric matrix whose rows and columns all sum to 1, so a constant field
-//   stays constant at faces, edges and corners (rows) and the total over the grid is conserved
-//   (columns): the smoothing moves energy, it never creates or loses it, and it biases no layer.
-//   (Renormalising each source voxel's weights over the neighbours that exist also conserves the
-//   total, but a uniform field then reads 0.92 in the face layer and 1.08 in the next.)
+// radiance_smooth_axis: one work-item per voxel, 3-component field, one grid axis per launch (the
+//   three launches make the 3x3x3 filter). Each neighbour pair (i, j) along the axis exchanges
+//   out_i = in_i + w_ij (in_j - in_i) with a symmetric weight w_ij = g_ij / 4. With g = 1 this is
+//   the binomial (1, 2, 1) / 4 (a 3x3x3 approximation of a Gaussian) with a mirror boundary (a
+//   weight that falls outside the grid lands on the face voxel itself: nothing crosses a face).
+//   The operator is a symmetric matrix whose rows and columns all sum to 1, for any g: a constant
+//   field stays constant at faces, edges and corners (rows) and the total over the grid is
+//   conserved (columns). g_ij = (lo / hi) x b(tau), with lo and hi the pair's smaller and larger
+//   sigma_t (largest channel) and tau = h hi: the plain filter between alike, optically thin
+//   voxels; none where either voxel has no extinction (a body and the vacuum beside it, or two
+//   vacuum voxels that hold deposits from the edge of a body's cell); and b < 1 where a voxel is
+//   optically thick, where deposits fall off within a voxel (light entering a dense medium): b
+//   keeps the filter's relative change of exp(-sigma_t x) within `biasLimit`
+//   (vtkPhotonTracer::SmoothingBias). Otherwise the filter moves light out of a dense body's
+//   first voxels into the thinner ones outside, which the camera sees unattenuated. (Renormalising each source voxel's weights over
+//   the neighbours that exist also conserves the total, but a uniform field then reads 0.92 in the
+//   face layer and 1.08 in the next.)
 // radiance_normalize: one work-item per voxel; unit direction, or zero where nothing arrived.
 
 __kernel void radiance_resolve(__global const long* fixedPoint, const ulong first,
@@ -28,40 +37,57 @@ __kernel void radiance_resolve(__global const long* fixedPoint, const ulong firs
   }
 }
 
-// Mirror of index i into [0, n): the neighbour beyond a face is the face voxel itself
-// (half-sample symmetric reflection, -1 -> 0 and n -> n - 1).
-inline int radiance_mirror(int i, int n)
+// Smoothing weight factor g of a neighbour pair whose optical depth across one voxel is tau:
+// 1 where the plain filter's bias on exp(-sigma_t x) stays within biasLimit, else what keeps it
+// there (the filter's relative change of exp(-tau i) is g (cosh(tau) - 1) / 2).
+inline float radiance_pair_weight(float tau, float biasLimit)
 {
-  return i < 0 ? 0 : (i >= n ? n - 1 : i);
+  const float c = cosh(tau) - 1.0f;
+  return c <= 2.0f * biasLimit ? 1.0f : 2.0f * biasLimit / c;
 }
 
-__kernel void radiance_smooth(
-  __global const float* in, const int4 dims, __global float* out, const uint count)
+__kernel void radiance_smooth_axis(__global const float* in, __global const float* extinction,
+  const int attenuates, const int4 dims, const int axis, const float spacing,
+  const float biasLimit, __global float* out, const uint count)
 {
   const size_t id = get_global_id(0);
   if (id >= count)
   {
     return;
   }
-  const int i = (int)(id % (size_t)dims.x);
-  const int j = (int)((id / (size_t)dims.x) % (size_t)dims.y);
-  const int k = (int)(id / ((size_t)dims.x * (size_t)dims.y));
-  float3 sum = (float3)(0.0f);
-  for (int dk = -1; dk <= 1; ++dk)
+  const int3 ijk = (int3)((int)(id % (size_t)dims.x), (int)((id / (size_t)dims.x) % (size_t)dims.y),
+    (int)(id / ((size_t)dims.x * (size_t)dims.y)));
+  const int i = axis == 0 ? ijk.x : (axis == 1 ? ijk.y : ijk.z);
+  const int n = axis == 0 ? dims.x : (axis == 1 ? dims.y : dims.z);
+  const size_t stride = axis == 0 ? 1 : (axis == 1 ? (size_t)dims.x : (size_t)dims.x * dims.y);
+  const float3 own = vload3(id, in);
+  float sigmaOwn = 0.0f;
+  if (attenuates)
   {
-    const int kk = radiance_mirror(k + dk, dims.z);
-    const float wk = dk == 0 ? 0.5f : 0.25f;
-    for (int dj = -1; dj <= 1; ++dj)
+    const float3 s = vload3(id, extinction);
+    sigmaOwn = fmax(s.x, fmax(s.y, s.z));
+  }
+  float3 sum = own;
+  for (int side = -1; side <= 1; side += 2)
+  {
+    if (i + side < 0 || i + side >= n)
     {
-      const int jj = radiance_mirror(j + dj, dims.y);
-      const float wj = wk * (dj == 0 ? 0.5f : 0.25f);
-      for (int di = -1; di <= 1; ++di)
-      {
-        const int ii = radiance_mirror(i + di, dims.x);
-        const float w = wj * (di == 0 ? 0.5f : 0.25f);
-        sum += w * vload3(refracta_voxel_index(dims, ii, jj, kk), in);
-      }
+      continue; // mirror boundary: nothing crosses the grid's face
     }
+    const size_t other = side < 0 ? id - stride : id + stride;
+    float g = 1.0f;
+    if (attenuates)
+    {
+      const float3 s = vload3(other, extinction);
+      const float sigmaOther = fmax(s.x, fmax(s.y, s.z));
+      const float hi = fmax(sigmaOwn, sigmaOther), lo = fmin(sigmaOwn, sigmaOther);
+      // Deposits are sigma_s x fluence: between unlike voxels the plain filter would move light
+      // from the denser into the thinner one (out of a body into the vacuum beside it); with
+      // lo / hi the thinner one gains at most a quarter of what it would deposit at its
+      // neighbour's fluence, and a voxel without extinction never changes.
+      g = radiance_pair_weight(spacing * hi, biasLimit) * (hi > 0.0f ? lo / hi : 0.0f);
+    }
+    sum += (0.25f * g) * (vload3(other, in) - own);
   }
   vstore3(sum, id, out);
 }

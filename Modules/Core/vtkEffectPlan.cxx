@@ -202,6 +202,12 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
   {
     detail << ", " << interfaces << " dielectric interface surface(s)";
   }
+  if (analysis->GetNumberOfDepositedParticles() > 0)
+  {
+    // A particle deposit has no index field: its particles scatter and absorb, they do not bend.
+    detail << "; refraction does not apply to particles ("
+           << analysis->GetNumberOfDepositedParticles() << " deposited)";
+  }
   this->DecideEffect(REFRACTION,
     interfaces > 0 ? 1.0 : std::min(analysis->GetMaximumDisplacementInVoxels(), 1.0),
     detail.str().c_str());

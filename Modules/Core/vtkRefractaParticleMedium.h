@@ -66,6 +66,13 @@ public:
   ///@}
 
   /**
+   * Name of the field-data array (one value: the number of particles) that vtkParticleMediumDeposit
+   * puts on the grid medium it makes, so that the scene analysis and the effect plan know the
+   * medium holds particles (refraction does not apply to them).
+   */
+  static const char* DepositedParticlesName() { return "DepositedParticles"; }
+
+  /**
    * Mean chord of a sphere of radius r, 4 r / 3: the length over which a particle's extinction
    * acts on a line that crosses it.
    */

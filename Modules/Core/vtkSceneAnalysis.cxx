@@ -18,6 +18,7 @@
 #include "vtkPointData.h"
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaParticleMedium.h"
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 #include "vtkWeakPointer.h"
@@ -393,6 +394,7 @@ void vtkSceneAnalysis::Reset()
   this->MaximumEmission = this->OccupiedFraction = 0.0;
   this->NumberOfPoweredLights = this->NumberOfLightsInsideMedium = 0;
   this->NumberOfSurfaces = this->NumberOfInterfaceSurfaces = 0;
+  this->NumberOfDepositedParticles = 0;
 }
 
 //------------------------------------------------------------------------------
@@ -459,6 +461,11 @@ bool vtkSceneAnalysis::Analyze()
   this->NumberOfSurfaces = CountSurfaces(this->Surfaces);
   this->NumberOfInterfaceSurfaces =
     this->Surfaces ? this->Surfaces->GetNumberOfNonEmptyDielectricSurfaces() : 0;
+  vtkDataArray* particles =
+    this->Medium->GetFieldData()->GetArray(vtkRefractaParticleMedium::DepositedParticlesName());
+  this->NumberOfDepositedParticles = particles && particles->GetNumberOfTuples() > 0
+    ? static_cast<vtkIdType>(std::max(0.0, particles->GetComponent(0, 0)))
+    : 0;
   this->Modified();
   return true;
 }
@@ -627,6 +634,8 @@ void vtkSceneAnalysis::RecordInFieldData(vtkFieldData* fieldData) const
   add("AnalysisNumberOfSurfaces", { static_cast<double>(this->NumberOfSurfaces) });
   add(
     "AnalysisNumberOfInterfaceSurfaces", { static_cast<double>(this->NumberOfInterfaceSurfaces) });
+  add("AnalysisNumberOfDepositedParticles",
+    { static_cast<double>(this->NumberOfDepositedParticles) });
 }
 
 //------------------------------------------------------------------------------
@@ -643,6 +652,10 @@ std::string vtkSceneAnalysis::GetSummary() const
   if (this->NumberOfInterfaceSurfaces > 0)
   {
     s << " (" << this->NumberOfInterfaceSurfaces << " dielectric)";
+  }
+  if (this->NumberOfDepositedParticles > 0)
+  {
+    s << ", " << this->NumberOfDepositedParticles << " particles deposited";
   }
   return s.str();
 }

@@ -181,6 +181,13 @@ public:
   vtkGetMacro(NumberOfInterfaceSurfaces, int);
 
   /**
+   * Number of particles the medium was deposited from (its field array
+   * vtkRefractaParticleMedium::DepositedParticlesName(), written by vtkParticleMediumDeposit);
+   * 0 for a grid medium.
+   */
+  vtkGetMacro(NumberOfDepositedParticles, vtkIdType);
+
+  /**
    * Write the facts as field-data arrays named "Analysis<Fact>".
    */
   void RecordInFieldData(vtkFieldData* fieldData) const;
@@ -222,6 +229,7 @@ protected:
   bool EnvironmentLight = false;
   int NumberOfSurfaces = 0;
   int NumberOfInterfaceSurfaces = 0;
+  vtkIdType NumberOfDepositedParticles = 0;
   vtkSmartPointer<vtkRefractaSurfaceSet> Surfaces;
 
 private:

@@ -1,7 +1,9 @@
 #include "vtkParticleMediumDeposit.h"
 
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -240,6 +242,10 @@ int vtkParticleMediumDeposit::RequestData(
   medium->GetPointData()->AddArray(alb);
   medium->GetPointData()->AddArray(ani);
   medium->GetPointData()->AddArray(emi);
+  vtkNew<vtkIdTypeArray> particles;
+  particles->SetName(vtkRefractaParticleMedium::DepositedParticlesName());
+  particles->InsertNextValue(input->GetNumberOfPoints());
+  medium->GetFieldData()->AddArray(particles);
   lighting->SetDimensions(dims);
   lighting->SetOrigin(origin);
   lighting->SetSpacing(spacing);

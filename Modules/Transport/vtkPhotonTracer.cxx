@@ -512,7 +512,6 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
   Allocator& alloc = run.Alloc;
   const size_t voxels = m.Voxels;
   const size_t bytes = voxels * 3 * sizeof(float);
-  const cl_int4 dims = Int4(m.Dims);
   const cl_uint voxelCount = static_cast<cl_uint>(voxels);
   for (vtkFloatArray* a : { values, directions })
   {
@@ -528,7 +527,7 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
     return false;
   }
   vtkOpenCLKernel resolve = ctx->CreateKernel(smooth, "radiance_resolve", this);
-  vtkOpenCLKernel filter = ctx->CreateKernel(smooth, "radiance_smooth", this);
+  vtkOpenCLKernel filter = ctx->CreateKernel(smooth, "radiance_smooth_axis", this);
   vtkOpenCLKernel normalize = ctx->CreateKernel(smooth, "radiance_normalize", this);
   if (!resolve || !filter || !normalize)
   {
@@ -556,17 +555,11 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
     {
       return false;
     }
-    cl_mem result = a.Get();
-    if (this->Smoothing)
+    if (this->Smoothing && !this->SmoothAxes(run, filter.Get(), a.Get(), b.Get()))
     {
-      if (!ctx->Check(vtkOpenCLSetKernelArgs(filter.Get(), a.Get(), dims, b.Get(), voxelCount),
-            "clSetKernelArg(radiance_smooth)", this) ||
-        !Run1D(ctx, filter.Get(), voxels, "radiance_smooth", this))
-      {
-        return false;
-      }
-      result = b.Get();
+      return false;
     }
+    const cl_mem result = this->Smoothing ? b.Get() : a.Get();
     if (unit &&
       (!ctx->Check(vtkOpenCLSetKernelArgs(normalize.Get(), result, voxelCount),
          "clSetKernelArg(radiance_normalize)", this) ||
@@ -578,6 +571,31 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
   };
   return field(fixed, offset, valueFactor, values, false) &&
     (!directions || field(directionFixed, directionOffset, directionFactor, directions, true));
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::SmoothAxes(Internals& run, cl_kernel filter, cl_mem a, cl_mem b)
+{
+  // One launch per axis, a -> b -> a -> b: the separable 3x3x3 filter, its result in b.
+  const Medium& m = run.M;
+  const cl_int4 dims = Int4(m.Dims);
+  const cl_int attenuates = m.Attenuates ? 1 : 0;
+  const cl_float biasLimit = static_cast<cl_float>(std::min(this->SmoothingBias, 1e30));
+  const cl_uint voxelCount = static_cast<cl_uint>(m.Voxels);
+  cl_mem from = a, to = b;
+  for (cl_int axis = 0; axis < 3; ++axis)
+  {
+    const cl_float spacing = static_cast<cl_float>(m.Spacing[axis]);
+    if (!run.Context->Check(vtkOpenCLSetKernelArgs(filter, from, run.ExtBuffer.Get(), attenuates,
+                              dims, axis, spacing, biasLimit, to, voxelCount),
+          "clSetKernelArg(radiance_smooth_axis)", this) ||
+      !Run1D(run.Context, filter, m.Voxels, "radiance_smooth_axis", this))
+    {
+      return false;
+    }
+    std::swap(from, to);
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -732,6 +750,7 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumTurn: " << this->MaximumTurn << "\n";
   os << indent << "StepTolerance: " << this->StepTolerance << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";
+  os << indent << "SmoothingBias: " << this->SmoothingBias << "\n";
   os << indent << "StepsPerChunk: " << this->StepsPerChunk << "\n";
   os << indent << "PhotonBatchSize: " << this->PhotonBatchSize << "\n";
   os << indent << "NumberOfBatches: " << this->NumberOfBatches << "\n";

@@ -23,6 +23,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -366,7 +367,26 @@ void InsideMedium(vtkMediumMaterial* material, double body[])
   body[10] = material->IsHeterogeneous() ? 0.0 : 1.0;
 }
 
-// The meshes as exact interfaces in the output's field data (vtkRefractaMedium's names).
+// The refractive indices inside and outside mesh m (the innermost other mesh whose volume holds
+// it, or the surroundings).
+std::array<double, 2> IndexPair(const std::vector<std::unique_ptr<PreparedMesh>>& meshes,
+  const std::vector<vtkMediumMaterial*>& materials, size_t m)
+{
+  return { materials[m + 1]->GetRefractiveIndex(),
+    materials[OuterMaterial(meshes, m)]->GetRefractiveIndex() };
+}
+
+// Whether mesh m is an optical interface: an index-matched mesh (the same n on both sides)
+// neither refracts nor reflects, and its medium is left to the grid's occupancy mix.
+bool IsInterface(const std::vector<std::unique_ptr<PreparedMesh>>& meshes,
+  const std::vector<vtkMediumMaterial*>& materials, size_t m)
+{
+  const std::array<double, 2> pair = IndexPair(meshes, materials, m);
+  return std::abs(pair[0] - pair[1]) > 1e-9 * std::max(pair[0], pair[1]);
+}
+
+// The meshes with an index step as exact interfaces in the output's field data (vtkRefractaMedium's
+// names).
 void WriteInterfaces(const std::vector<std::unique_ptr<PreparedMesh>>& meshes,
   const std::vector<vtkMediumMaterial*>& materials, vtkImageData* output)
 {
@@ -382,21 +402,24 @@ void WriteInterfaces(const std::vector<std::unique_ptr<PreparedMesh>>& meshes,
   indices->SetNumberOfComponents(2);
   for (size_t m = 0; m < meshes.size(); ++m)
   {
+    if (!IsInterface(meshes, materials, m))
+    {
+      continue;
+    }
     const vtkIdType first = points->GetNumberOfTuples();
     const auto& mesh = *meshes[m];
     for (size_t p = 0; p < mesh.Points.size() / 3; ++p)
     {
       points->InsertNextTuple(&mesh.Points[3 * p]);
     }
-    const double pair[2] = { materials[m + 1]->GetRefractiveIndex(),
-      materials[OuterMaterial(meshes, m)]->GetRefractiveIndex() };
+    const std::array<double, 2> pair = IndexPair(meshes, materials, m);
     double body[vtkRefractaMedium::InterfaceMaterialComponents];
     InsideMedium(materials[m + 1], body);
     for (const auto& t : mesh.Triangles)
     {
       const vtkIdType ids[3] = { first + t[0], first + t[1], first + t[2] };
       triangles->InsertNextTypedTuple(ids);
-      indices->InsertNextTuple(pair);
+      indices->InsertNextTuple(pair.data());
       bodies->InsertNextTuple(body);
     }
   }
@@ -567,7 +590,12 @@ int vtkMeshVoxelizer::RequestData(
     densityIndex =
       densityIndex || const_cast<vtkMediumMaterial*>(m)->GetDensityScalesRefractiveIndex();
   }
-  this->WroteInterfaces = this->InterfaceMode == EXACT_INTERFACES && !densityIndex;
+  bool anyInterface = false;
+  for (size_t m = 0; m < meshes.size(); ++m)
+  {
+    anyInterface = anyInterface || IsInterface(meshes, materials, m);
+  }
+  this->WroteInterfaces = this->InterfaceMode == EXACT_INTERFACES && !densityIndex && anyInterface;
   if (this->InterfaceMode == EXACT_INTERFACES && densityIndex)
   {
     vtkWarningMacro("EXACT_INTERFACES needs one refractive index per material, but a material "

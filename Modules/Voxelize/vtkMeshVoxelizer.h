@@ -61,7 +61,9 @@
  * surroundings) for vtkRefractaSurfaceSet::AddMediumInterfaces, and InterfaceMaterialsName(): per
  * triangle the mesh's own medium (extinction, albedo, anisotropy, emission; flagged 0 for a
  * material with a density field), which the passes use inside the mesh instead of the grid's
- * occupancy mix (Physics.md "Glass bodies"). A material whose index follows a density field
+ * occupancy mix (Physics.md "Glass bodies"). A mesh with the same index inside and outside
+ * (index-matched: a fog blob with n = 1 in air) is no interface: it is left out, and its medium is
+ * the grid's occupancy mix like SMOOTHED_INDEX's. A material whose index follows a density field
  * (DensityScalesRefractiveIndex) has no single index at its surface: then the grid is
  * SMOOTHED_INDEX, with a warning. vtkRefractaRenderPipeline (so the mapper, the CLI and ParaView)
  * adds the interfaces to the scene's surfaces by itself. Documentation/Physics.md, "Dielectric
@@ -233,8 +235,8 @@ public:
   ///@}
 
   /**
-   * Whether the last execution wrote exact interfaces (EXACT_INTERFACES and no density-scaled
-   * index).
+   * Whether the last execution wrote exact interfaces (EXACT_INTERFACES, no density-scaled
+   * index, and at least one mesh with another index inside than outside).
    */
   vtkGetMacro(WroteInterfaces, bool);
 

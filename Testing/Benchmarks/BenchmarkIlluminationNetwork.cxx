@@ -9,28 +9,23 @@
 // Usage: BenchmarkIlluminationNetwork [--sizes 1024,16384] [--directions 32,128] [--frames 5]
 //        [--csv file]
 #include "RefractaBenchmark.h"
+#include "RefractaScenes.h"
 
-#include "vtkFloatArray.h"
 #include "vtkIlluminationNetwork.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
-#include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkRefractaParticleMedium.h"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 namespace
 {
-using Medium = vtkRefractaParticleMedium;
 using refracta::bench::Table;
 
 std::vector<int> ParseList(const char* text)
@@ -43,41 +38,6 @@ std::vector<int> ParseList(const char* text)
     values.push_back(std::atoi(item.c_str()));
   }
   return values;
-}
-
-// The paper's cloud: N particles in a unit ball, albedo 0.9, g 0, 2 R tau = 20 collisions across.
-vtkSmartPointer<vtkPolyData> Cloud(int n)
-{
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  vtkNew<vtkPoints> points;
-  while (points->GetNumberOfPoints() < n)
-  {
-    const double x = u(rng), y = u(rng), z = u(rng);
-    if (x * x + y * y + z * z <= 1.0)
-    {
-      points->InsertNextPoint(x, y, z);
-    }
-  }
-  // Particles of volume fraction 1 (n (r)^3 = 1): r = n^(-1/3); sigma so that the cloud's
-  // extinction n V sigma = 10 per unit (20 collisions across the diameter).
-  const double r = std::cbrt(1.0 / n);
-  const double sigma = 10.0 / (n * 4.0 / 3.0 * 3.14159265358979 * r * r * r);
-  auto cloud = vtkSmartPointer<vtkPolyData>::New();
-  cloud->SetPoints(points);
-  auto add = [&](const char* name, int comps, double value)
-  {
-    vtkNew<vtkFloatArray> a;
-    a->SetName(name);
-    a->SetNumberOfComponents(comps);
-    a->SetNumberOfTuples(n);
-    a->Fill(value);
-    cloud->GetPointData()->AddArray(a);
-  };
-  add(Medium::RadiusName(), 1, r);
-  add(Medium::ExtinctionName(), 3, sigma);
-  add(Medium::AlbedoName(), 3, 0.9);
-  return cloud;
 }
 
 double Seconds(const std::function<void()>& work)
@@ -125,7 +85,7 @@ int main(int argc, char* argv[])
     "warm s", "cold iterations", "cold s" });
   for (int n : sizes)
   {
-    vtkSmartPointer<vtkPolyData> cloud = Cloud(n);
+    vtkSmartPointer<vtkPolyData> cloud = refracta::scenes::ParticleCloud(n);
     for (int d : directions)
     {
       vtkNew<vtkIlluminationNetwork> network;

@@ -4,12 +4,18 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkRefractaParticleMedium.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <random>
 
 namespace refracta
 {
@@ -342,6 +348,40 @@ std::vector<Scene> AllScenes(int n)
 std::vector<Scene> ExtraScenes(int n)
 {
   return { LampInFog(n) };
+}
+
+vtkSmartPointer<vtkPolyData> ParticleCloud(int n)
+{
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  vtkNew<vtkPoints> points;
+  while (points->GetNumberOfPoints() < n)
+  {
+    const double x = u(rng), y = u(rng), z = u(rng);
+    if (x * x + y * y + z * z <= 1.0)
+    {
+      points->InsertNextPoint(x, y, z);
+    }
+  }
+  // Particles of volume fraction 1 (n r^3 = 1): r = n^(-1/3); sigma so that the cloud's
+  // extinction n V sigma = 10 per unit (20 collisions across the diameter).
+  const double r = std::cbrt(1.0 / n);
+  const double sigma = 10.0 / (n * 4.0 / 3.0 * vtkMath::Pi() * r * r * r);
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  cloud->SetPoints(points);
+  auto add = [&](const char* name, int comps, double value)
+  {
+    vtkNew<vtkFloatArray> a;
+    a->SetName(name);
+    a->SetNumberOfComponents(comps);
+    a->SetNumberOfTuples(n);
+    a->Fill(value);
+    cloud->GetPointData()->AddArray(a);
+  };
+  add(vtkRefractaParticleMedium::RadiusName(), 1, r);
+  add(vtkRefractaParticleMedium::ExtinctionName(), 3, sigma);
+  add(vtkRefractaParticleMedium::AlbedoName(), 3, 0.9);
+  return cloud;
 }
 }
 }

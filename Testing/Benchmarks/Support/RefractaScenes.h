@@ -31,6 +31,7 @@
 class vtkCamera;
 class vtkImageData;
 class vtkLight;
+class vtkPolyData;
 
 namespace refracta
 {
@@ -73,6 +74,13 @@ std::vector<Scene> AllScenes(int n);
 
 /** Scenes run only when named (BenchmarkAccuracyTime --scenes): LampInFog. */
 std::vector<Scene> ExtraScenes(int n);
+
+/**
+ * The illumination-network paper's particle cloud (papers/002): n particles uniformly in the unit
+ * ball, radius n^(-1/3) (volume fraction 1), extinction such that the cloud has 20 collisions
+ * across its diameter, albedo 0.9, g 0 (the arrays of vtkRefractaParticleMedium). Seeded.
+ */
+vtkSmartPointer<vtkPolyData> ParticleCloud(int n);
 
 /** Recompute RefractiveIndexGradient of a medium by central differences (world units). */
 void ComputeIndexGradient(vtkImageData* medium);

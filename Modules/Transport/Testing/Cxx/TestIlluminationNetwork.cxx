@@ -7,15 +7,21 @@
 // - averaging rotated direction sets reduces the quadrature noise between seeds;
 // - bad particle input (negative radius, NaN, missing arrays, empty, a million particles).
 #include "vtkCommand.h"
+#include "vtkEffectPlan.h"
 #include "vtkExecutive.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIlluminationNetwork.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
+#include "vtkParticleMediumDeposit.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkRefractaParticleMedium.h"
+#include "vtkSceneAnalysis.h"
 #include "vtkSmartPointer.h"
 #include "vtkTestErrorObserver.h"
 
@@ -327,4 +333,40 @@ TEST(IlluminationNetwork, MillionParticles)
     << errors->GetErrorMessage();
   EXPECT_EQ(network->GetOutput()->GetNumberOfPoints(), 0);
   EXPECT_LT(seconds, 5.0);
+}
+
+// The deposit marks its medium as particles, and the effect plan says that refraction does not
+// apply to them (issue 14); a grid medium carries no such mark.
+TEST(ParticleMediumDeposit, ThePlanSaysRefractionDoesNotApplyToParticles)
+{
+  vtkNew<vtkParticleMediumDeposit> deposit;
+  deposit->SetInputData(MakeCloud(64, 1.0, 0.2, 5.0, 0.9));
+  deposit->SetSampleDimensions(16, 16, 16);
+  deposit->Update();
+  vtkNew<vtkLight> sun;
+  sun->SetPositional(false);
+  sun->SetPosition(0, 0, 10);
+  vtkNew<vtkSceneAnalysis> analysis;
+  analysis->SetMedium(deposit->GetMediumOutput());
+  analysis->AddLight(sun);
+  ASSERT_TRUE(analysis->Analyze());
+  EXPECT_EQ(analysis->GetNumberOfDepositedParticles(), 64);
+  vtkNew<vtkEffectPlan> plan;
+  plan->Decide(analysis);
+  EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::REFRACTION));
+  const std::string reason = plan->GetReason(vtkEffectPlan::REFRACTION);
+  EXPECT_NE(reason.find("refraction does not apply to particles (64 deposited)"), std::string::npos)
+    << reason;
+  EXPECT_TRUE(plan->IsEnabled(vtkEffectPlan::SINGLE_SCATTERING));
+  EXPECT_NE(analysis->GetSummary().find("64 particles deposited"), std::string::npos);
+
+  vtkNew<vtkImageData> grid;
+  grid->DeepCopy(deposit->GetMediumOutput());
+  grid->GetFieldData()->RemoveArray(Medium::DepositedParticlesName());
+  analysis->SetMedium(grid);
+  ASSERT_TRUE(analysis->Analyze());
+  EXPECT_EQ(analysis->GetNumberOfDepositedParticles(), 0);
+  plan->Decide(analysis);
+  EXPECT_EQ(
+    std::string(plan->GetReason(vtkEffectPlan::REFRACTION)).find("particles"), std::string::npos);
 }

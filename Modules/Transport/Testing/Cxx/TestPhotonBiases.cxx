@@ -1,6 +1,7 @@
 // Two small biases of the photon pass, each against an exact answer:
 // - the final 3x3x3 smoothing must keep a uniform field uniform at the grid's faces, edges and
-//   corners (a mirror boundary) and conserve the total deposit;
+//   corners (a mirror boundary), conserve the total deposit, and at a dense surface keep light
+//   out of the vacuum and change the slab within its SmoothingBias;
 // - light inside glass that meets the glass/air interface beyond the critical angle must stay
 //   trapped (total internal reflection), also within a degree or two of the critical angle, where
 //   coarse curved-ray steps used to overshoot the turning point and leak.
@@ -106,6 +107,83 @@ TEST(PhotonBiases, SmoothingKeepsAUniformFogUniformAtFacesAndEdges)
     EXPECT_NEAR(rawZ[k] / (n * n), expected, 0.005 * expected) << "z layer " << k;
   }
   EXPECT_NEAR(smoothTotal, rawTotal, 1e-5 * rawTotal);
+}
+
+// A dense slab (sigma_t h = 1.25 per voxel, the accuracy benchmark's dense cube at 48^3) behind
+// eight voxels of vacuum, lit along +x across its face: S1 falls off as exp(-1.25 i) into the
+// slab, and the unsmoothed deposits at its face follow the trilinear medium exactly. The plain
+// filter moved a quarter of the face voxels' light into the vacuum voxel in front (which the camera
+// sees unattenuated: the cube was 6% too bright) and changed every slab layer by (cosh(1.25) - 1) /
+// 2 = 44%. Now: voxels without extinction keep their deposits exactly, no light crosses from the
+// slab into them, each slab layer's mean changes by exactly the exchange the filter's weight g = 2
+// x 0.01 / (cosh(1.25) - 1) prescribes (the y and z passes keep layer sums), which for exp(-tau i)
+// is the SmoothingBias, 1.0%, and the total is conserved.
+TEST(PhotonBiases, DepositsAndTheirSmoothingAtADenseSurface)
+{
+  const int nx = 20, ny = 8, nz = 8, face = 8;
+  const double h = 1.0 / nx;
+  const double tau = 1.25;
+  auto medium = MakeMedium(nx, ny, nz, h,
+    [&](double x, double, double)
+    {
+      Voxel v;
+      const double sigma = x > (face - 0.5) * h ? tau / h : 0.0;
+      v.Extinction = { sigma, sigma, sigma };
+      v.Albedo = { 0.5, 0.5, 0.5 };
+      return v;
+    });
+  const double c = 0.5 * (ny - 1) * h;
+  auto run = [&](bool smoothing)
+  {
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->AddLight(Directional({ -5, c, c }, { 0, c, c }, 1.0));
+    tracer->SetNumberOfPhotons(1 << 18);
+    tracer->SetSmoothing(smoothing);
+    EXPECT_DOUBLE_EQ(tracer->GetSmoothingBias(), 0.01);
+    return Trace(tracer, medium);
+  };
+  auto raw = run(false);
+  auto smooth = run(true);
+  const float* r = Radiance(raw);
+  const float* s = Radiance(smooth);
+  std::vector<double> rawLayer(nx, 0.0), smoothLayer(nx, 0.0);
+  double rawTotal = 0, smoothTotal = 0;
+  for (int v = 0; v < nx * ny * nz; ++v)
+  {
+    const int i = v % nx;
+    rawLayer[i] += r[3 * v];
+    smoothLayer[i] += s[3 * v];
+    rawTotal += r[3 * v];
+    smoothTotal += s[3 * v];
+    if (i < face)
+    {
+      ASSERT_EQ(s[3 * v], r[3 * v]) << "vacuum voxel " << v << " changed";
+    }
+  }
+  // The unsmoothed deposits see the trilinear medium: sigma_t rises linearly from node 7 to node
+  // 8, so voxel 7 (which owns [6.5, 7.5]) scatters 1 - exp(-tau / 8) of the light and voxel 8
+  // ([7.5, 8.5]) 1 - exp(-7 tau / 8) of the rest, times the albedo, per unit area (E = 1), i.e.
+  // that over h per unit volume. (One midpoint sample per voxel saw nothing in voxel 7.)
+  const double area = static_cast<double>(ny) * nz;
+  const double front = 0.5 * -std::expm1(-tau / 8) / h;
+  const double first = 0.5 * std::exp(-tau / 8) * -std::expm1(-7 * tau / 8) / h;
+  std::printf("voxel layers 7, 8: %.5f, %.5f of the trilinear medium's\n",
+    rawLayer[face - 1] / area / front, rawLayer[face] / area / first);
+  EXPECT_NEAR(rawLayer[face - 1] / area, front, 0.005 * front);
+  EXPECT_NEAR(rawLayer[face] / area, first, 0.005 * first);
+  EXPECT_NEAR(smoothTotal, rawTotal, 1e-5 * rawTotal);
+  const double g = 2 * 0.01 / (std::cosh(tau) - 1);
+  for (int i = face; i < 14; ++i)
+  {
+    const double below = i > face ? rawLayer[i - 1] - rawLayer[i] : 0.0;
+    const double expected = rawLayer[i] + 0.25 * g * (below + rawLayer[i + 1] - rawLayer[i]);
+    EXPECT_NEAR(smoothLayer[i], expected, 1e-4 * rawLayer[i]) << "layer " << i;
+    if (i > face + 1) // both neighbours on exp(-tau i)
+    {
+      std::printf("layer %d: smoothed / unsmoothed %.5f\n", i, smoothLayer[i] / rawLayer[i]);
+      EXPECT_NEAR(smoothLayer[i] / rawLayer[i], 1.01, 0.002) << "layer " << i;
+    }
+  }
 }
 
 namespace

@@ -1,7 +1,7 @@
 // vtkMeshVoxelizer::EXACT_INTERFACES (issue 20): n is not smoothed and grad n never holds the jump
 // at a surface; the meshes reach vtkRefractaSurfaceSet as dielectric interfaces with the right
-// indices inside and outside (nested meshes included); a density-scaled index falls back to
-// SMOOTHED_INDEX with a warning.
+// indices inside and outside (nested meshes included); index-matched meshes are no interfaces; a
+// density-scaled index falls back to SMOOTHED_INDEX with a warning.
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -100,6 +100,46 @@ TEST(MeshVoxelizerInterfaces, UnsmoothedIndexAndNoJumpInTheGradient)
   vtkNew<vtkRefractaSurfaceSet> none;
   EXPECT_EQ(none->AddMediumInterfaces(voxelizer->GetOutput()), 0);
   EXPECT_EQ(none->AddMediumInterfaces(nullptr), 0);
+}
+
+// An index-matched mesh (the same n inside and outside: a fog blob with n = 1 in air) neither
+// refracts nor reflects: it is no interface, its medium is the grid's occupancy mix, and a scene of
+// such meshes alone writes none (so the plan sees no surfaces and no refraction). A glass ball
+// inside such a blob is still an interface, against the blob's index.
+TEST(MeshVoxelizerInterfaces, IndexMatchedMeshesAreNoInterfaces)
+{
+  auto fog = Index(1.0);
+  fog->SetExtinction(4.0, 4.0, 4.0);
+  fog->SetAlbedo(0.9, 0.9, 0.9);
+  vtkNew<vtkMeshVoxelizer> voxelizer;
+  voxelizer->AddInputData(Ball(1.0));
+  voxelizer->SetMaterial(0, fog);
+  voxelizer->SetDimensions(24, 24, 24);
+  voxelizer->SetPadding(0.3);
+  voxelizer->SetInterfaceModeToExactInterfaces();
+  voxelizer->Update();
+  EXPECT_FALSE(voxelizer->GetWroteInterfaces());
+  vtkImageData* out = voxelizer->GetOutput();
+  EXPECT_EQ(out->GetFieldData()->GetArray(vtkRefractaMedium::InterfaceTrianglesName()), nullptr);
+  vtkNew<vtkRefractaSurfaceSet> none;
+  EXPECT_EQ(none->AddMediumInterfaces(out), 0);
+  // The blob's medium is in the grid: the centre voxel holds its extinction.
+  vtkDataArray* extinction = out->GetPointData()->GetArray(vtkRefractaMedium::ExtinctionName());
+  ASSERT_NE(extinction, nullptr);
+  const vtkIdType centre = out->FindPoint(0.0, 0.0, 0.0);
+  EXPECT_FLOAT_EQ(extinction->GetComponent(centre, 0), 4.0f);
+
+  // A glass ball in the blob: one interface, 1.5 inside, the blob's 1.0 outside.
+  voxelizer->AddInputData(Ball(0.5));
+  voxelizer->SetMaterial(1, Index(1.5));
+  voxelizer->Update();
+  EXPECT_TRUE(voxelizer->GetWroteInterfaces());
+  vtkNew<vtkRefractaSurfaceSet> set;
+  ASSERT_EQ(set->AddMediumInterfaces(voxelizer->GetOutput()), 1);
+  ASSERT_TRUE(set->Build());
+  EXPECT_EQ(set->GetNumberOfDielectricTriangles(), Ball(0.5)->GetNumberOfCells());
+  EXPECT_EQ(set->GetMaterial(0)->GetIndexInside(), 1.5);
+  EXPECT_EQ(set->GetMaterial(0)->GetIndexOutside(), 1.0);
 }
 
 TEST(MeshVoxelizerInterfaces, DensityIndexFallsBackAndBadArraysAreReported)
