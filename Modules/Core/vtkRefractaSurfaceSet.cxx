@@ -13,6 +13,7 @@
 #include "vtkPolygon.h"
 #include "vtkRefractaBVH.h"
 #include "vtkRefractaSurfaceMaterial.h"
+#include "vtkRefractaSurfaceSetInternals.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "refracta_surfaces.cl" // the flattened layout, shared with the kernels
@@ -25,24 +26,14 @@
 
 vtkStandardNewMacro(vtkRefractaSurfaceSet);
 
+using namespace vtkRefractaSurfaceSetDetail;
+
 namespace
 {
 // The automatic texel size is the diagonal of the surfaces' bounds over this.
 constexpr double AutomaticTexelsPerDiagonal = 128.0;
 // A triangle is degenerate when |e1 x e2| <= this x (longest edge)^2.
 constexpr double DegenerateRatio = 1e-12;
-// A smoothed corner normal is kept only within this angle of its face's normal (cos 30 degrees):
-// a cube's edges stay sharp, a tessellated sphere is smooth.
-constexpr double SmoothNormalCosine = 0.86602540378443865;
-
-// Where a world triangle came from: its surface, cell and the mesh's point ids.
-struct SourceTriangle
-{
-  int Surface;
-  vtkIdType Cell;
-  vtkIdType Points[3];
-};
-
 // How one surface's texels get their colour.
 struct ColorSource
 {
@@ -81,52 +72,7 @@ double LongestEdge(const double* v)
   return std::max({ Length(v, v + 3), Length(v + 3, v + 6), Length(v + 6, v) });
 }
 
-// (v1 - v0) x (v2 - v0) of the triangle v (9 doubles): the winding normal, |c| = doubled area.
-void Cross(const double* v, double c[3])
-{
-  const double e1[3] = { v[3] - v[0], v[4] - v[1], v[5] - v[2] };
-  const double e2[3] = { v[6] - v[0], v[7] - v[1], v[8] - v[2] };
-  c[0] = e1[1] * e2[2] - e1[2] * e2[1];
-  c[1] = e1[2] * e2[0] - e1[0] * e2[2];
-  c[2] = e1[0] * e2[1] - e1[1] * e2[0];
 }
-
-double DoubledArea(const double* v)
-{
-  double c[3];
-  Cross(v, c);
-  return std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-}
-
-// Scales c to unit length (left as it is when zero).
-void Normalize(double c[3])
-{
-  const double l = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-  if (l > 0)
-  {
-    c[0] /= l;
-    c[1] /= l;
-    c[2] /= l;
-  }
-}
-}
-
-//------------------------------------------------------------------------------
-struct vtkRefractaSurfaceSet::Internals
-{
-  struct Entry
-  {
-    vtkSmartPointer<vtkPolyData> Mesh;
-    vtkSmartPointer<vtkRefractaSurfaceMaterial> Material;
-    vtkSmartPointer<vtkMatrix4x4> Matrix;
-  };
-  std::vector<Entry> Surfaces;
-  vtkNew<vtkRefractaBVH> BVH;
-
-  // Build scratch: world triangles (9 doubles each) and where they came from.
-  std::vector<double> World;
-  std::vector<SourceTriangle> Sources;
-};
 
 //------------------------------------------------------------------------------
 vtkRefractaSurfaceSet::vtkRefractaSurfaceSet()
@@ -745,137 +691,6 @@ void vtkRefractaSurfaceSet::BakeAlbedo()
       for (int ch = 0; ch < 3; ++ch)
       {
         out[ch] = static_cast<float>(mean[ch]);
-      }
-    }
-  }
-}
-
-//------------------------------------------------------------------------------
-bool vtkRefractaSurfaceSet::IsDielectric(int surface) const
-{
-  vtkRefractaSurfaceMaterial* m = this->GetMaterial(surface);
-  return m && m->GetKind() == vtkRefractaSurfaceMaterial::DIELECTRIC;
-}
-
-//------------------------------------------------------------------------------
-void vtkRefractaSurfaceSet::DescribeInterfaces()
-{
-  const int surfaces = this->GetNumberOfSurfaces();
-  this->SurfaceInterfaces.assign(REFRACTA_SURFACE_INTERFACE_FLOATS * size_t(surfaces), 1.0f);
-  this->SurfaceBodies.assign(REFRACTA_SURFACE_BODY_FLOATS * size_t(surfaces), 0.0f);
-  std::vector<bool> smooth(surfaces, false);
-  for (int s = 0; s < surfaces; ++s)
-  {
-    if (this->IsDielectric(s))
-    {
-      vtkRefractaSurfaceMaterial* m = this->GetMaterial(s);
-      this->SurfaceInterfaces[REFRACTA_SURFACE_INTERFACE_FLOATS * s] =
-        static_cast<float>(m->GetIndexInside());
-      this->SurfaceInterfaces[REFRACTA_SURFACE_INTERFACE_FLOATS * s + 1] =
-        static_cast<float>(m->GetIndexOutside());
-      smooth[s] = m->GetSmoothNormals();
-      if (m->GetUseInsideMedium())
-      {
-        float* body = &this->SurfaceBodies[REFRACTA_SURFACE_BODY_FLOATS * s];
-        for (int c = 0; c < 3; ++c)
-        {
-          body[c] = static_cast<float>(m->GetInsideExtinction()[c]);
-          body[4 + c] = static_cast<float>(m->GetInsideAlbedo()[c]);
-          body[8 + c] = static_cast<float>(m->GetInsideEmission()[c]);
-        }
-        body[3] = 1.0f;
-        body[7] = static_cast<float>(m->GetInsideAnisotropy());
-      }
-    }
-  }
-  const vtkRefractaBVH* bvh = this->Impl->BVH;
-  const vtkIdType triangles = bvh->GetNumberOfTriangles();
-  const std::vector<double>& tri = bvh->GetTriangles();
-  const std::vector<vtkIdType>& order = bvh->GetTriangleOrder();
-  // The triangles at each mesh point of the smooth surfaces (CSR: offsets per point, then ids).
-  std::vector<std::vector<vtkIdType>> offsets(surfaces), adjacent(surfaces);
-  for (int s = 0; s < surfaces; ++s)
-  {
-    if (smooth[s])
-    {
-      offsets[s].assign(size_t(this->GetSurface(s)->GetNumberOfPoints()) + 1, 0);
-    }
-  }
-  for (int pass = 0; pass < 2; ++pass)
-  {
-    std::vector<std::vector<vtkIdType>> fill(surfaces);
-    for (int s = 0; s < surfaces && pass == 1; ++s)
-    {
-      for (size_t p = 1; p < offsets[s].size(); ++p)
-      {
-        offsets[s][p] += offsets[s][p - 1];
-      }
-      adjacent[s].resize(offsets[s].empty() ? 0 : size_t(offsets[s].back()));
-      fill[s].assign(offsets[s].begin(), offsets[s].end());
-    }
-    for (vtkIdType k = 0; k < triangles; ++k)
-    {
-      const SourceTriangle& source = this->Impl->Sources[order[k]];
-      for (vtkIdType p : source.Points)
-      {
-        if (smooth[source.Surface] && pass == 0)
-        {
-          ++offsets[source.Surface][p + 1];
-        }
-        else if (smooth[source.Surface])
-        {
-          adjacent[source.Surface][fill[source.Surface][p]++] = k;
-        }
-      }
-    }
-  }
-  // Unit face normals and doubled areas in BVH order.
-  std::vector<double> faces(3 * size_t(triangles)), areas(triangles);
-  for (vtkIdType k = 0; k < triangles; ++k)
-  {
-    Cross(&tri[9 * k], &faces[3 * k]);
-    areas[k] = DoubledArea(&tri[9 * k]);
-    Normalize(&faces[3 * k]);
-  }
-  this->DielectricTriangles = 0;
-  this->TriangleNormals.assign(REFRACTA_TRIANGLE_NORMAL_FLOATS * size_t(triangles), 0.0f);
-  for (vtkIdType k = 0; k < triangles; ++k)
-  {
-    const SourceTriangle& source = this->Impl->Sources[order[k]];
-    const bool dielectric = this->IsDielectric(source.Surface);
-    this->TriangleInfo[REFRACTA_TRIANGLE_INFO_INTS * k + REFRACTA_TRIANGLE_INFO_KIND] =
-      dielectric ? REFRACTA_SURFACE_DIELECTRIC : REFRACTA_SURFACE_LAMBERTIAN;
-    this->DielectricTriangles += dielectric ? 1 : 0;
-    const double* face = &faces[3 * k];
-    for (int corner = 0; corner < 3; ++corner)
-    {
-      double n[3] = { face[0], face[1], face[2] };
-      if (smooth[source.Surface])
-      {
-        // The area-weighted mean over the point's faces within the feature angle of this face:
-        // a 45-degree edge of a prism stays sharp on both sides.
-        const vtkIdType p = source.Points[corner];
-        const auto& o = offsets[source.Surface];
-        double mean[3] = { 0, 0, 0 };
-        for (vtkIdType i = o[p]; i < o[p + 1]; ++i)
-        {
-          const vtkIdType j = adjacent[source.Surface][i];
-          const double* f = &faces[3 * j];
-          if (f[0] * face[0] + f[1] * face[1] + f[2] * face[2] >= SmoothNormalCosine)
-          {
-            for (int a = 0; a < 3; ++a)
-            {
-              mean[a] += areas[j] * f[a];
-            }
-          }
-        }
-        Normalize(mean);
-        std::copy(mean, mean + 3, n);
-      }
-      float* out = &this->TriangleNormals[REFRACTA_TRIANGLE_NORMAL_FLOATS * k + 4 * corner];
-      for (int a = 0; a < 3; ++a)
-      {
-        out[a] = static_cast<float>(n[a]);
       }
     }
   }

@@ -400,8 +400,13 @@ void vtkSceneAnalysis::Reset()
 //------------------------------------------------------------------------------
 namespace
 {
-// Whether `light` is positional and sits in the medium: the voxel nearest to it (through the
-// grid's frame: extent, spacing, direction) has extinction.
+// Whether `light` is positional and sits in or next to the medium: a voxel within
+// LightNeighbourhood voxels of it (Chebyshev distance from the voxel nearest to it, through the
+// grid's frame: extent, spacing, direction; the light may be just outside the grid) has
+// extinction. Its single scattering is then concentrated on the grid's scale (a point source for
+// the lattice); a light further away spreads its light over the medium before it scatters.
+constexpr int LightNeighbourhood = 2;
+
 bool LightInMedium(const MediumFields& fields, vtkImageData* medium, vtkLight* light)
 {
   if (!light->GetPositional() || fields.SigmaT.empty())
@@ -412,17 +417,34 @@ bool LightInMedium(const MediumFields& fields, vtkImageData* medium, vtkLight* l
   frame->SetImage(medium);
   double index[3]; // from the first point: 0 .. dims - 1
   frame->WorldToIndexPoint(light->GetPosition(), index);
-  int voxel[3];
+  int lo[3], hi[3];
   for (int a = 0; a < 3; ++a)
   {
-    if (!(index[a] >= -0.5 && index[a] <= fields.Dims[a] - 0.5))
+    if (!(index[a] >= -0.5 - LightNeighbourhood &&
+          index[a] <= fields.Dims[a] - 0.5 + LightNeighbourhood))
     {
       return false;
     }
-    voxel[a] = std::min(std::max(static_cast<int>(std::lround(index[a])), 0), fields.Dims[a] - 1);
+    const int nearest = static_cast<int>(std::lround(index[a]));
+    lo[a] = std::max(nearest - LightNeighbourhood, 0);
+    hi[a] = std::min(nearest + LightNeighbourhood, fields.Dims[a] - 1);
   }
-  const size_t v = fields.Index(voxel[0], voxel[1], voxel[2]);
-  return fields.SigmaT[3 * v] > 0 || fields.SigmaT[3 * v + 1] > 0 || fields.SigmaT[3 * v + 2] > 0;
+  for (int k = lo[2]; k <= hi[2]; ++k)
+  {
+    for (int j = lo[1]; j <= hi[1]; ++j)
+    {
+      for (int i = lo[0]; i <= hi[0]; ++i)
+      {
+        const size_t v = fields.Index(i, j, k);
+        if (fields.SigmaT[3 * v] > 0 || fields.SigmaT[3 * v + 1] > 0 ||
+          fields.SigmaT[3 * v + 2] > 0)
+        {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
 }
 }
 

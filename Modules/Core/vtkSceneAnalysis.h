@@ -154,9 +154,11 @@ public:
   vtkGetMacro(NumberOfPoweredLights, int);
 
   /**
-   * Number of powered positional lights inside the medium: the voxel nearest to the light (in the
-   * grid's frame) has extinction. Concentrated sources in the medium, whose single scattering the
-   * lattice's few directions carry as ray effects (vtkEffectPlan's multiple-scattering method).
+   * Number of powered positional lights in or next to the medium: a voxel within 2 voxels of the
+   * light (Chebyshev distance from the voxel nearest to it, in the grid's frame; the light may be
+   * just outside the grid) has extinction. Concentrated sources in the medium, whose single
+   * scattering the lattice's few directions carry as ray effects (vtkEffectPlan's
+   * multiple-scattering method).
    */
   vtkGetMacro(NumberOfLightsInsideMedium, int);
 

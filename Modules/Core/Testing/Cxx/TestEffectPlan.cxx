@@ -506,10 +506,36 @@ TEST(EffectPlan, MultipleScatteringMethodFollowsTheToleranceAndTheLattice)
   EXPECT_DOUBLE_EQ(vtkEffectPlan::GetRayEffectAnisotropy(6, 0), 2.57);
   EXPECT_DOUBLE_EQ(vtkEffectPlan::GetRayEffectAnisotropy(18, 50), 0.0016);
 
-  sun->SetPosition(0.45, 0.5, 0.96); // just outside the box: the lattice again
+  // Next to the fog (within 2 voxels of a voxel with extinction) still counts: its single
+  // scattering is as concentrated on the grid. Just outside the box (index 9.6) and 1.5 voxels
+  // beyond the last node (index 10.5) it is the split; 3 voxels beyond (index 12), the lattice.
+  for (double z : { 0.96, 1.05 })
+  {
+    sun->SetPosition(0.45, 0.5, z);
+    Plan(fog, sun, plan, analysis);
+    EXPECT_EQ(analysis->GetNumberOfLightsInsideMedium(), 1) << "z = " << z;
+  }
+  sun->SetPosition(0.45, 0.5, 1.2);
   Plan(fog, sun, plan, analysis);
   EXPECT_EQ(analysis->GetNumberOfLightsInsideMedium(), 0);
   EXPECT_EQ(plan->GetChosenMultipleScatteringMethod(), vtkEffectPlan::LATTICE_ONLY);
+  // In the middle of a hollow of vacuum in the fog (voxels 2..7 empty on every axis): 2.5 voxels
+  // from the nearest fog, the lattice; within 2 voxels of the hollow's wall, the split.
+  auto hollow = MakeMedium(10, 10, 10, 0.1,
+    [](int i, int j, int k)
+    {
+      Voxel v;
+      const bool empty = i >= 2 && i <= 7 && j >= 2 && j <= 7 && k >= 2 && k <= 7;
+      v.SigmaT = empty ? 0.0 : 2.0;
+      v.Albedo = 0.95;
+      return v;
+    });
+  sun->SetPosition(0.45, 0.45, 0.45);
+  Plan(hollow, sun, plan, analysis);
+  EXPECT_EQ(analysis->GetNumberOfLightsInsideMedium(), 0);
+  sun->SetPosition(0.3, 0.45, 0.45);
+  Plan(hollow, sun, plan, analysis);
+  EXPECT_EQ(analysis->GetNumberOfLightsInsideMedium(), 1);
   sun->SetPosition(0.45, 0.5, 0.9);
 
   // The same fog with a non-zero extent, moved and turned 90 degrees about z: the light is found
