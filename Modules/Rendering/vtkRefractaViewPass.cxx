@@ -329,7 +329,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.Caustic = surf.GetCausticSubdivision();
   variant.CausticOffset = surf.GetNumberOfTexels();
   cl_program program = context->GetProgram(
-    { "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl", "view_pass.cl" },
+    { "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl", "view_skipping.cl",
+      "view_pass.cl" },
     KernelOptions(variant), this);
   if (!program)
   {
