@@ -20,25 +20,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
 #include <string>
 #include <vector>
 
 namespace
 {
 using refracta::bench::Table;
-
-std::vector<int> ParseList(const char* text)
-{
-  std::vector<int> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-  {
-    values.push_back(std::atoi(item.c_str()));
-  }
-  return values;
-}
 
 double Seconds(const std::function<void()>& work)
 {
@@ -59,11 +46,11 @@ int main(int argc, char* argv[])
     const std::string key = argv[i];
     if (key == "--sizes")
     {
-      sizes = ParseList(argv[i + 1]);
+      sizes = refracta::bench::ParseIntList(argv[i + 1]);
     }
     else if (key == "--directions")
     {
-      directions = ParseList(argv[i + 1]);
+      directions = refracta::bench::ParseIntList(argv[i + 1]);
     }
     else if (key == "--frames")
     {

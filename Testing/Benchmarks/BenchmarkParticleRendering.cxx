@@ -28,7 +28,6 @@
 #include "vtkDataArray.h"
 #include "vtkIlluminationNetwork.h"
 #include "vtkImageData.h"
-#include "vtkLight.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkParticleMediumDeposit.h"
@@ -70,18 +69,6 @@ struct Settings
   std::string Csv;
 };
 
-std::vector<int> ParseList(const std::string& text)
-{
-  std::vector<int> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-  {
-    values.push_back(std::atoi(item.c_str()));
-  }
-  return values;
-}
-
 bool Parse(int argc, char* argv[], Settings& s)
 {
   for (int i = 1; i < argc; ++i)
@@ -108,9 +95,9 @@ bool Parse(int argc, char* argv[], Settings& s)
     else if (key == "--image")
       s.ImageSize = std::atoi(value.c_str());
     else if (key == "--grids")
-      s.Grids = ParseList(value);
+      s.Grids = refracta::bench::ParseIntList(value);
     else if (key == "--directions")
-      s.Directions = ParseList(value);
+      s.Directions = refracta::bench::ParseIntList(value);
     else if (key == "--reference-grid")
       s.ReferenceGrid = std::atoi(value.c_str());
     else if (key == "--reference-spp")
@@ -364,7 +351,7 @@ int main(int argc, char* argv[])
   }
   // The cloud, lit by a directional light from above and the side.
   vtkSmartPointer<vtkPolyData> cloud = refracta::scenes::ParticleCloud(s.Particles);
-  const double travel[3] = { -0.4, -0.8, -0.45 };
+  const double* travel = refracta::scenes::ParticleLightTravel;
   auto light = [&](int directions, double& seconds)
   {
     vtkNew<vtkIlluminationNetwork> network;
@@ -394,20 +381,7 @@ int main(int argc, char* argv[])
     return 1;
   }
 
-  refracta::scenes::Scene view;
-  view.Name = "particle-cloud";
-  auto sun = vtkSmartPointer<vtkLight>::New();
-  sun->SetPositional(false);
-  sun->SetPosition(-10 * travel[0], -10 * travel[1], -10 * travel[2]);
-  sun->SetFocalPoint(0, 0, 0);
-  sun->SetIntensity(1.0);
-  view.Lights.push_back(sun);
-  view.LightAngularRadius = 0.0; // the network's light is a delta light
-  view.Camera = vtkSmartPointer<vtkCamera>::New();
-  view.Camera->SetPosition(0.5, 0.6, 4.0);
-  view.Camera->SetFocalPoint(0, 0, 0);
-  view.Camera->SetViewUp(0, 1, 0);
-  view.Camera->SetViewAngle(36);
+  const refracta::scenes::Scene view = refracta::scenes::ParticleCloudView();
   const Image reference = Reference(lit, view, s);
   std::vector<bool> seen(reference.Value.size() / 3, false);
   for (size_t v = 0; v < reference.Value.size(); ++v)

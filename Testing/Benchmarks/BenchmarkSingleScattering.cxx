@@ -35,18 +35,6 @@
 
 namespace
 {
-std::vector<int> ParseList(const std::string& text)
-{
-  std::vector<int> values;
-  std::stringstream s(text);
-  std::string item;
-  while (std::getline(s, item, ','))
-  {
-    values.push_back(std::atoi(item.c_str()));
-  }
-  return values;
-}
-
 // The scene's sun plus count - 1 point lights on a sphere around the unit cube (golden spiral),
 // the total power split evenly so every row lights the cloud alike.
 std::vector<vtkSmartPointer<vtkLight>> Lights(const refracta::scenes::Scene& scene, int count)
@@ -102,11 +90,11 @@ int main(int argc, char* argv[])
   {
     const std::string key = argv[i], value = argv[i + 1];
     if (key == "--sizes")
-      sizes = ParseList(value);
+      sizes = refracta::bench::ParseIntList(value);
     else if (key == "--lights")
-      lightCounts = ParseList(value);
+      lightCounts = refracta::bench::ParseIntList(value);
     else if (key == "--photon-lights")
-      photonLights = ParseList(value);
+      photonLights = refracta::bench::ParseIntList(value);
     else if (key == "--repeats")
       repeats = std::max(1, std::atoi(value.c_str()));
     else if (key == "--max-photons")

@@ -56,18 +56,6 @@
 
 namespace
 {
-std::vector<int> ParseList(const std::string& s)
-{
-  std::vector<int> out;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ','))
-  {
-    out.push_back(std::stoi(item));
-  }
-  return out;
-}
-
 double Now()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -159,7 +147,7 @@ int main(int argc, char* argv[])
     const std::string arg = argv[i];
     const bool hasValue = i + 1 < argc;
     if (arg == "--sizes" && hasValue)
-      sizes = ParseList(argv[++i]);
+      sizes = refracta::bench::ParseIntList(argv[++i]);
     else if (arg == "--medium" && hasValue)
       n = std::stoi(argv[++i]);
     else if (arg == "--runs" && hasValue)

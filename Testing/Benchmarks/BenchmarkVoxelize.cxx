@@ -25,7 +25,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -53,18 +52,6 @@ vtkSmartPointer<vtkPolyData> MakeMesh(int theta, int phi)
   }
   return mesh;
 }
-
-std::vector<int> ParseSizes(const std::string& text)
-{
-  std::vector<int> sizes;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ','))
-  {
-    sizes.push_back(std::atoi(item.c_str()));
-  }
-  return sizes;
-}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -78,7 +65,7 @@ int main(int argc, char* argv[])
     const std::string arg = argv[a];
     auto next = [&]() { return a + 1 < argc ? std::string(argv[++a]) : std::string(); };
     if (arg == "--sizes")
-      sizes = ParseSizes(next());
+      sizes = refracta::bench::ParseIntList(next());
     else if (arg == "--runs")
       runs = std::max(1, std::atoi(next().c_str()));
     else if (arg == "--theta")

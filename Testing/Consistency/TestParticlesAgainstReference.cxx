@@ -20,7 +20,6 @@
 #include "vtkEffectPlan.h"
 #include "vtkIlluminationNetwork.h"
 #include "vtkImageData.h"
-#include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkParticleMediumDeposit.h"
 #include "vtkPointData.h"
@@ -83,7 +82,7 @@ std::vector<double> Render(vtkImageData* medium, vtkImageData* lighting, vtkCame
 
 TEST(ParticlesAgainstReference, NetworkAndDepositWithinTheMeasuredError)
 {
-  const double travel[3] = { -0.4, -0.8, -0.45 };
+  const double* travel = refracta::scenes::ParticleLightTravel;
   vtkNew<vtkIlluminationNetwork> network;
   network->SetInputData(refracta::scenes::ParticleCloud(Particles));
   network->SetLightType(vtkIlluminationNetwork::DIRECTIONAL_LIGHT);
@@ -97,19 +96,7 @@ TEST(ParticlesAgainstReference, NetworkAndDepositWithinTheMeasuredError)
   deposit->SetSampleDimensions(Grid, Grid, Grid);
   deposit->Update();
 
-  refracta::scenes::Scene scene;
-  auto sun = vtkSmartPointer<vtkLight>::New();
-  sun->SetPositional(false);
-  sun->SetPosition(-10 * travel[0], -10 * travel[1], -10 * travel[2]);
-  sun->SetFocalPoint(0, 0, 0);
-  sun->SetIntensity(1.0);
-  scene.Lights.push_back(sun);
-  scene.LightAngularRadius = 0.0; // the network's light is a delta light
-  scene.Camera = vtkSmartPointer<vtkCamera>::New();
-  scene.Camera->SetPosition(0.5, 0.6, 4.0);
-  scene.Camera->SetFocalPoint(0, 0, 0);
-  scene.Camera->SetViewUp(0, 1, 0);
-  scene.Camera->SetViewAngle(36);
+  refracta::scenes::Scene scene = refracta::scenes::ParticleCloudView();
   vtkNew<vtkParticleMediumDeposit> fine;
   fine->SetInputData(refracta::scenes::ParticleCloud(Particles));
   fine->SetSampleDimensions(ReferenceGrid, ReferenceGrid, ReferenceGrid);

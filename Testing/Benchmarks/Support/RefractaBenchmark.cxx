@@ -59,6 +59,18 @@ double MedianSeconds(int repeats, const std::function<void()>& work)
   return Median(seconds);
 }
 
+std::vector<int> ParseIntList(const std::string& text)
+{
+  std::vector<int> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ','))
+  {
+    values.push_back(std::atoi(item.c_str()));
+  }
+  return values;
+}
+
 double PeakMemoryMiB()
 {
   rusage usage{};

@@ -28,6 +28,9 @@ double MedianSeconds(int repeats, const std::function<void()>& work);
 /** Peak resident memory of this process so far, in MiB. */
 double PeakMemoryMiB();
 
+/** The integers of a comma-separated list ("32,64,96"); an item that is not a number reads 0. */
+std::vector<int> ParseIntList(const std::string& text);
+
 /** A table with named columns: printed aligned, written as CSV. */
 class Table
 {

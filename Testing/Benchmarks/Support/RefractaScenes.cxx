@@ -350,6 +350,28 @@ std::vector<Scene> ExtraScenes(int n)
   return { LampInFog(n) };
 }
 
+const double ParticleLightTravel[3] = { -0.4, -0.8, -0.45 };
+
+Scene ParticleCloudView()
+{
+  Scene view;
+  view.Name = "particle-cloud";
+  auto sun = vtkSmartPointer<vtkLight>::New();
+  sun->SetPositional(false);
+  sun->SetPosition(
+    -10 * ParticleLightTravel[0], -10 * ParticleLightTravel[1], -10 * ParticleLightTravel[2]);
+  sun->SetFocalPoint(0, 0, 0);
+  sun->SetIntensity(1.0);
+  view.Lights.push_back(sun);
+  view.LightAngularRadius = 0.0; // the illumination network's light is a delta light
+  view.Camera = vtkSmartPointer<vtkCamera>::New();
+  view.Camera->SetPosition(0.5, 0.6, 4.0);
+  view.Camera->SetFocalPoint(0, 0, 0);
+  view.Camera->SetViewUp(0, 1, 0);
+  view.Camera->SetViewAngle(36);
+  return view;
+}
+
 vtkSmartPointer<vtkPolyData> ParticleCloud(int n)
 {
   std::mt19937 rng(5);

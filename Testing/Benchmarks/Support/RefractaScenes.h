@@ -82,6 +82,14 @@ std::vector<Scene> ExtraScenes(int n);
  */
 vtkSmartPointer<vtkPolyData> ParticleCloud(int n);
 
+/**
+ * How the particle cloud is seen and lit in the benchmark and the test that render it: a delta
+ * directional light travelling along `ParticleLightTravel` (intensity 1) and a camera at distance
+ * ~4 (view angle 36). No medium (the caller deposits the particles).
+ */
+Scene ParticleCloudView();
+extern const double ParticleLightTravel[3];
+
 /** Recompute RefractiveIndexGradient of a medium by central differences (world units). */
 void ComputeIndexGradient(vtkImageData* medium);
 }
