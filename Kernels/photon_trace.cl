@@ -458,28 +458,36 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
   }
 }
 
-// Walks the chord x0 -> x0 + t1 * (x1 - x0) (grid-local, t1 in [0, 1]) voxel by voxel, each voxel
-// cut at its node's planes: the cells of the walk are half voxels (cell c spans [c, c + 1) in half
-// voxels from the grid's lower face; voxel c >> 1 owns it and gets its deposits). The trilinear
-// sigma_t has its kinks at the node planes, so each cut sees sigma_t smooth along it and its
-// midpoint sample integrates it (exactly where sigma_t is linear along it, as along an axis). One
-// midpoint per voxel saw the nearest node's sigma_t over the whole voxel: light entered a dense
-// body half a voxel deeper than in the trilinear medium the view pass and the reference renderer
-// see (the accuracy benchmark's dense cube read 1.5% dark with the smoothing kept off the surface;
-// Physics.md, "Smoothing of the photon deposits").
+// Walks the chord x0 -> x0 + t1 * (x1 - x0) (grid-local, t1 in [0, 1]) voxel by voxel. With
+// REFRACTA_NODE_CUTS (the host sets it where sigma_t bends steeply at nodes: vtkPhotonTracer's
+// GetUsedNodePlaneCuts()) each voxel is cut at its node's planes: the cells of the walk are half
+// voxels (cell c spans [c, c + 1) in half voxels from the grid's lower face; voxel c >> 1 owns it
+// and gets its deposits). The trilinear sigma_t has its kinks there, so each cut sees sigma_t
+// smooth along it and its midpoint sample integrates it (exactly where sigma_t is linear along it,
+// as along an axis). One midpoint per voxel sees the nearest node's sigma_t over the whole voxel:
+// at a dense body's face light entered half a voxel deeper than in the trilinear medium the view
+// pass and the reference renderer see (the accuracy benchmark's dense cube read 1.5% dark with the
+// smoothing kept off the surface; Physics.md, "Dense surfaces").
+#if REFRACTA_NODE_CUTS
+#define PHOTON_CUT_SHIFT 1
+#else
+#define PHOTON_CUT_SHIFT 0
+#endif
 inline void photon_walk(photon_state* ps, float3 x0, float3 x1, float t1, int4 dims,
   float4 spacing, __global const float* extinction, __global const float* albedo,
   volatile __global long* radiance, volatile __global long* directionSum)
 {
-  const float3 a = 2.0f * refracta_to_voxel(x0, spacing) + 1.0f;
-  const float3 du = 2.0f * refracta_to_voxel(x1, spacing) + 1.0f - a;
+  const float cells = (float)(1 << PHOTON_CUT_SHIFT); // walk cells per voxel along an axis
+  const float3 a = cells * (refracta_to_voxel(x0, spacing) + 0.5f);
+  const float3 du = cells * (refracta_to_voxel(x1, spacing) + 0.5f) - a;
   const float worldLength = length(x1 - x0);
   if (!(worldLength > 0.0f) || !(t1 > 0.0f))
   {
     return;
   }
   const float3 direction = (x1 - x0) / worldLength;
-  const int3 hiCell = (int3)(2 * dims.x - 1, 2 * dims.y - 1, 2 * dims.z - 1);
+  const int3 hiCell = (int3)((dims.x << PHOTON_CUT_SHIFT) - 1, (dims.y << PHOTON_CUT_SHIFT) - 1,
+    (dims.z << PHOTON_CUT_SHIFT) - 1);
   int3 cell = clamp(convert_int3_rtn(a), (int3)(0), hiCell);
   const int3 stepDir = (int3)(du.x > 0.0f ? 1 : (du.x < 0.0f ? -1 : 0),
     du.y > 0.0f ? 1 : (du.y < 0.0f ? -1 : 0), du.z > 0.0f ? 1 : (du.z < 0.0f ? -1 : 0));
@@ -493,17 +501,18 @@ inline void photon_walk(photon_state* ps, float3 x0, float3 x1, float t1, int4 d
                         : (du.z < 0.0f ? ((float)cell.z - a.z) / du.z : INFINITY);
   tNext = fmax(tNext, (float3)(0.0f));
   float t = 0.0f;
-  // A chord of length L half voxels crosses at most L_x + L_y + L_z + 3 cells: never a hang.
+  // A chord of length L cells crosses at most L_x + L_y + L_z + 3 cells: never a hang.
   const int guard = (int)(fabs(du.x) + fabs(du.y) + fabs(du.z)) + 8;
   for (int it = 0; it < guard && !ps->dead; ++it)
   {
     const float tEnd = fmin(fmin(fmin(tNext.x, tNext.y), tNext.z), t1);
     if (tEnd > t)
     {
-      const float3 mid = 0.5f * (a + du * (0.5f * (t + tEnd))) - 0.5f;
+      const float3 mid = (a + du * (0.5f * (t + tEnd))) / cells - 0.5f;
       photon_piece(ps, mid, (tEnd - t) * worldLength, direction,
-        refracta_voxel_index(dims, cell.x >> 1, cell.y >> 1, cell.z >> 1), extinction, albedo,
-        dims, radiance, directionSum);
+        refracta_voxel_index(
+          dims, cell.x >> PHOTON_CUT_SHIFT, cell.y >> PHOTON_CUT_SHIFT, cell.z >> PHOTON_CUT_SHIFT),
+        extinction, albedo, dims, radiance, directionSum);
 #if REFRACTA_ANALOG
       if (ps->collided)
       {

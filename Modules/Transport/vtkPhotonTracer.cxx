@@ -160,6 +160,7 @@ bool vtkPhotonTracer::InitializeDevice(Internals& run)
   this->UsedCurvedRays = m.Curved;
   this->UsedExtinction = m.Attenuates;
   this->UsedDeposit = m.Scatters;
+  this->UsedNodePlaneCuts = m.NodeCuts;
   this->UsedOctree = m.Curved && this->AdaptiveStepping;
   this->ComputedGradient = m.Curved && !m.HasGradient;
 
@@ -195,6 +196,7 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   options << "-DREFRACTA_FIXED_SCALE=" << scaleLiteral.str() << " -DREFRACTA_REFRACT=" << m.Curved
           << " -DREFRACTA_ADAPTIVE=" << this->AdaptiveStepping
           << " -DREFRACTA_EXTINCTION=" << m.Attenuates << " -DREFRACTA_DEPOSIT=" << m.Scatters
+          << " -DREFRACTA_NODE_CUTS=" << m.NodeCuts
           << " -DREFRACTA_MIN_STEP=" << FloatLiteral(this->MinimumStep * voxelUnit)
           << " -DREFRACTA_MAX_STEP=" << FloatLiteral(this->MaximumStep * voxelUnit)
           << " -DREFRACTA_CAP_STEP="
@@ -680,6 +682,7 @@ int vtkPhotonTracer::RequestData(
   this->SmoothingSeconds = this->PeakDeviceMemoryBytes = 0;
   this->PlannedDeviceMemoryBytes = this->PlannedHostMemoryBytes = 0;
   this->UsedCurvedRays = this->UsedExtinction = this->UsedDeposit = false;
+  this->UsedNodePlaneCuts = false;
   this->UsedOctree = this->ComputedGradient = false;
   this->UsedSurfaces = this->LastRunReusedSurfaces = this->UsedEnvironment = false;
   this->UsedAnalogScattering = false;
@@ -769,6 +772,6 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PlannedDeviceMemoryBytes: " << this->PlannedDeviceMemoryBytes << "\n";
   os << indent << "PlannedHostMemoryBytes: " << this->PlannedHostMemoryBytes << "\n";
   os << indent << "Plan: curved " << this->UsedCurvedRays << ", extinction " << this->UsedExtinction
-     << ", deposit " << this->UsedDeposit << ", octree " << this->UsedOctree
-     << ", gradient computed " << this->ComputedGradient << "\n";
+     << ", deposit " << this->UsedDeposit << ", node-plane cuts " << this->UsedNodePlaneCuts
+     << ", octree " << this->UsedOctree << ", gradient computed " << this->ComputedGradient << "\n";
 }

@@ -475,11 +475,14 @@ public:
   ///@{
   /**
    * The plan of the last run: curved rays (n varies), attenuation, deposits (something
-   * scatters), octree built, gradient computed on the device.
+   * scatters), voxels cut at their node planes (sigma_t bends steeply at some node, a dense
+   * body's face: the walk's pieces then integrate the trilinear sigma_t; Physics.md, "Dense
+   * surfaces"), octree built, gradient computed on the device.
    */
   vtkGetMacro(UsedCurvedRays, bool);
   vtkGetMacro(UsedExtinction, bool);
   vtkGetMacro(UsedDeposit, bool);
+  vtkGetMacro(UsedNodePlaneCuts, bool);
   vtkGetMacro(UsedOctree, bool);
   vtkGetMacro(ComputedGradient, bool);
   ///@}
@@ -627,6 +630,7 @@ protected:
   double PlannedHostMemoryBytes = 0;
   bool UsedCurvedRays = false;
   bool UsedExtinction = false;
+  bool UsedNodePlaneCuts = false;
   bool UsedDeposit = false;
   bool UsedOctree = false;
   bool ComputedGradient = false;

@@ -118,6 +118,8 @@ struct Medium
   bool Curved = false;
   bool Attenuates = false;
   bool Scatters = false;
+  // sigma_t bends steeply at some node (SteepExtinctionKinks): the walk cuts voxels at node planes.
+  bool NodeCuts = false;
   double Lo[3], Hi[3];           // domain box, grid-local
   double ProxyLo[3], ProxyHi[3]; // photon start box, grid-local
 };

@@ -34,6 +34,46 @@ void CopyArray(
 }
 }
 
+namespace
+{
+// Whether the trilinear sigma_t bends so steeply at some node that one midpoint sample per voxel
+// misplaces light: a piece of a voxel's width centred on node i along an axis misses
+// |sigma_(i-1) - 2 sigma_i + sigma_(i+1)| h / 8 of optical depth (the slope's jump there, times
+// h^2 / 8). Above NodeCutDepth (0.02) the photon walk cuts voxels at their node planes (a dense
+// body's face: 0.07 in the accuracy benchmark's cube; a smooth cloud, a uniform fog, a clear glass
+// ball in fog: below).
+constexpr double NodeCutDepth = 0.02;
+
+bool SteepExtinctionKinks(const Medium& m)
+{
+  const size_t strides[3] = { 1, static_cast<size_t>(m.Dims[0]),
+    static_cast<size_t>(m.Dims[0]) * m.Dims[1] };
+  for (size_t v = 0; v < m.Voxels; ++v)
+  {
+    const int ijk[3] = { static_cast<int>(v % m.Dims[0]),
+      static_cast<int>((v / m.Dims[0]) % m.Dims[1]),
+      static_cast<int>(v / (static_cast<size_t>(m.Dims[0]) * m.Dims[1])) };
+    for (int a = 0; a < 3; ++a)
+    {
+      if (ijk[a] == 0 || ijk[a] == m.Dims[a] - 1)
+      {
+        continue;
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        const double bend = m.Extinction[3 * (v - strides[a]) + c] - 2.0 * m.Extinction[3 * v + c] +
+          m.Extinction[3 * (v + strides[a]) + c];
+        if (std::abs(bend) * m.Spacing[a] / 8.0 > NodeCutDepth)
+        {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+}
+
 void LoadMedium(vtkImageData* image, bool useProxy, Medium& m)
 {
   image->GetDimensions(m.Dims);
@@ -79,6 +119,7 @@ void LoadMedium(vtkImageData* image, bool useProxy, Medium& m)
       }
     }
   }
+  m.NodeCuts = m.Attenuates && SteepExtinctionKinks(m);
   for (int c = 0; c < 3; ++c)
   {
     m.Lo[c] = -0.5 * m.Spacing[c];

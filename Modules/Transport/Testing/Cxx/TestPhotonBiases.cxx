@@ -59,7 +59,9 @@ TEST(PhotonBiases, SmoothingKeepsAUniformFogUniformAtFacesAndEdges)
     tracer->AddLight(Directional({ c, c, -5 }, { c, c, 0 }, 1.0));
     tracer->SetNumberOfPhotons(1 << 18);
     tracer->SetSmoothing(smoothing);
-    return Trace(tracer, medium);
+    auto out = Trace(tracer, medium);
+    EXPECT_FALSE(tracer->GetUsedNodePlaneCuts()); // a uniform fog has no kinks
+    return out;
   };
   auto raw = run(false);
   auto smooth = run(true);
@@ -140,7 +142,9 @@ TEST(PhotonBiases, DepositsAndTheirSmoothingAtADenseSurface)
     tracer->SetNumberOfPhotons(1 << 18);
     tracer->SetSmoothing(smoothing);
     EXPECT_DOUBLE_EQ(tracer->GetSmoothingBias(), 0.01);
-    return Trace(tracer, medium);
+    auto out = Trace(tracer, medium);
+    EXPECT_TRUE(tracer->GetUsedNodePlaneCuts()); // the face bends sigma_t steeply
+    return out;
   };
   auto raw = run(false);
   auto smooth = run(true);
