@@ -18,9 +18,9 @@
 //   optically thick, where deposits fall off within a voxel (light entering a dense medium): b
 //   keeps the filter's relative change of exp(-sigma_t x) within `biasLimit`
 //   (vtkPhotonTracer::SmoothingBias). Otherwise the filter moves light out of a dense body's
-//   first voxels into the thinner ones outside, which the camera sees unattenuated. (Renormalising each source voxel's weights over
-//   the neighbours that exist also conserves the total, but a uniform field then reads 0.92 in the
-//   face layer and 1.08 in the next.)
+//   first voxels into the thinner ones outside, which the camera sees unattenuated.
+//   (Renormalising each source voxel's weights over the neighbours that exist also conserves the
+//   total, but a uniform field then reads 0.92 in the face layer and 1.08 in the next.)
 // radiance_normalize: one work-item per voxel; unit direction, or zero where nothing arrived.
 
 __kernel void radiance_resolve(__global const long* fixedPoint, const ulong first,
@@ -55,8 +55,8 @@ __kernel void radiance_smooth_axis(__global const float* in, __global const floa
   {
     return;
   }
-  const int3 ijk = (int3)((int)(id % (size_t)dims.x), (int)((id / (size_t)dims.x) % (size_t)dims.y),
-    (int)(id / ((size_t)dims.x * (size_t)dims.y)));
+  const int3 ijk = (int3)((int)(id % (size_t)dims.x),
+    (int)((id / (size_t)dims.x) % (size_t)dims.y), (int)(id / ((size_t)dims.x * (size_t)dims.y)));
   const int i = axis == 0 ? ijk.x : (axis == 1 ? ijk.y : ijk.z);
   const int n = axis == 0 ? dims.x : (axis == 1 ? dims.y : dims.z);
   const size_t stride = axis == 0 ? 1 : (axis == 1 ? (size_t)dims.x : (size_t)dims.x * dims.y);
