@@ -34,6 +34,7 @@
 #include "RefractaCoreModule.h" // for export macro
 #include "vtkObject.h"
 
+#include <cmath>  // for std::expm1
 #include <string> // for std::string
 
 class vtkPointSet;
@@ -77,6 +78,17 @@ public:
    * acts on a line that crosses it.
    */
   static double MeanChord(double radius) { return 4.0 * radius / 3.0; }
+
+  /**
+   * Power a particle scatters per unit of its volume and per unit fluence: a alpha pi r^2 / V,
+   * with alpha = 1 - exp(-sigma_t MeanChord(r)) its opacity and V = 4 pi r^3 / 3 (one channel).
+   * vtkParticleMediumDeposit spreads the network's light over the sphere with it.
+   */
+  static double ScatteringPerVolume(double extinction, double albedo, double radius)
+  {
+    const double alpha = -std::expm1(-extinction * MeanChord(radius));
+    return albedo * alpha * 3.0 / (4.0 * radius); // pi r^2 / (4 pi r^3 / 3)
+  }
 
   /**
    * Checks a particle set: at least one point, Radius (1 component, finite, > 0) and Extinction

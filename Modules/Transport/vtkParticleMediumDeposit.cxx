@@ -25,7 +25,6 @@ vtkStandardNewMacro(vtkParticleMediumDeposit);
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
 using PM = vtkRefractaParticleMedium;
 
 double Value(vtkDataArray* array, vtkIdType p, int c, double fallback)
@@ -152,14 +151,12 @@ int vtkParticleMediumDeposit::RequestData(
       hi[a] = std::min(
         dims[a] - 1, static_cast<int>(std::ceil((x[a] + r - origin[a]) / spacing[a] + 0.5)));
     }
-    // Scattered power of the particle per unit of its volume, per unit fluence: a alpha pi r^2 / V.
-    const double volume = 4.0 / 3.0 * Pi * r * r * r;
-    double alpha[3], a[3], perVolume[3];
+    // Scattered power of the particle per unit of its volume, per unit fluence.
+    double a[3], perVolume[3];
     for (int c = 0; c < 3; ++c)
     {
-      alpha[c] = -std::expm1(-extinction->GetComponent(p, c) * PM::MeanChord(r));
       a[c] = Value(albedo, p, c, 0.0);
-      perVolume[c] = a[c] * alpha[c] * Pi * r * r / volume;
+      perVolume[c] = PM::ScatteringPerVolume(extinction->GetComponent(p, c), a[c], r);
     }
     const double gp = Value(g, p, 0, 0.0);
     for (int k = lo[2]; k <= hi[2]; ++k)

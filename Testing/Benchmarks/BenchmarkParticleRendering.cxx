@@ -160,14 +160,11 @@ std::vector<Particle> SplatParticles(vtkPolyData* lit)
     lit->GetPoint(p, q.Centre.data());
     q.Radius = radius->GetComponent(p, 0);
     q.G = g ? g->GetComponent(p, 0) : 0.0;
-    const double r = q.Radius;
-    const double volume = 4.0 / 3.0 * vtkMath::Pi() * r * r * r;
     for (int c = 0; c < 3; ++c)
     {
       q.SigmaT[c] = extinction->GetComponent(p, c);
-      const double alpha = -std::expm1(-q.SigmaT[c] * PM::MeanChord(r));
       const double perVolume =
-        (albedo ? albedo->GetComponent(p, c) : 0.0) * alpha * vtkMath::Pi() * r * r / volume;
+        PM::ScatteringPerVolume(q.SigmaT[c], albedo ? albedo->GetComponent(p, c) : 0.0, q.Radius);
       q.Single[c] = perVolume * direct->GetComponent(p, c);
       q.Multiple[c] = perVolume * multiple->GetComponent(p, c);
       q.Emission[c] = emission ? emission->GetComponent(p, c) : 0.0;
