@@ -1,5 +1,6 @@
 #include "vtkReferenceIntegrator.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace refracta
@@ -216,13 +217,18 @@ Event Tracer::Advance(RayState& r, double dist, double& moved, int& hit, int64_t
 // Delta/ratio tracking step with piecewise-constant (per block) majorants: moves the ray until
 // the majorant optical length `tau` is used up (Reached: a tentative collision, its majorant in
 // `m`) or the ray leaves the box or hits a light.
-Event AdvanceOptical(const Tracer& tr, RayState& r, double tau, int ch, int& hit, double& m)
+Event AdvanceOptical(
+  const Tracer& tr, RayState& r, double tau, int ch, int& hit, double& m, double floor)
 {
   int64_t steps = 0;
   for (int64_t guard = 0; guard < 10000000; ++guard)
   {
     double dSafe, moved;
     tr.M->LocalMajorant(r.X, ch, m, dSafe);
+    if (m > 0)
+    {
+      m = std::max(m, floor);
+    }
     if (m > 0 && m * dSafe >= tau)
     {
       return tr.Advance(r, tau / m, moved, hit, steps);

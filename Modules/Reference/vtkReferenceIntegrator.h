@@ -83,8 +83,11 @@ struct Tracer
 
 // Delta/ratio tracking step with piecewise-constant (per block) majorants: moves the ray until
 // the majorant optical length `tau` is used up (Reached: a tentative collision, its majorant in
-// `m`) or the ray leaves the box or hits a light or a surface.
-Event AdvanceOptical(const Tracer& tr, RayState& r, double tau, int ch, int& hit, double& m);
+// `m`) or the ray leaves the box or hits a light or a surface. Where the medium has extinction
+// the majorant is raised to at least `floor` (1 / world length; 0: the blocks' own): more
+// tentative collisions, for estimators that use each of them (ratio tracking, gathering).
+Event AdvanceOptical(
+  const Tracer& tr, RayState& r, double tau, int ch, int& hit, double& m, double floor = 0);
 } // namespace reference
 } // namespace refracta
 

@@ -228,16 +228,39 @@ void PhotonScene::Trace(Vec3 x, Vec3 d, const Vec3& power, int ch, bool grey, Rn
 }
 
 //------------------------------------------------------------------------------
+Vec3 PhotonScene::Gather(const Vec3& x, const Vec3& toCamera, double g, double radius, int depth,
+  const PhotonGrid& grid) const
+{
+  // sigma_s (1/n^2) int f L dw at x is albedo / (V n^2) sum_p f(w_p, w) power_p / sigma_t(x_p)
+  // times sigma_t(x) (each photon carries its power / sigma_t at its own collision: fluence x
+  // volume). The caller applies sigma_t(x) (or the collision pdf that cancels it), albedo and
+  // 1/n^2: 1/n^2 turns the photons' physical radiance into the basic radiance L/n^2 that is
+  // conserved along the view ray.
+  Vec3 sum(0.0);
+  grid.ForEachWithin(x,
+    [&](const Photon& p)
+    {
+      if (S->MaxDepth < 0 || p.Depth + depth + 1 <= S->MaxDepth)
+      {
+        sum += HGPhase(g, OneMinusCos(p.Dir, toCamera)) * p.Fluence;
+      }
+    });
+  return (1.0 / KernelVolume(x, radius)) * sum;
+}
+
+//------------------------------------------------------------------------------
 Vec3 PhotonScene::ViewSample(Vec3 origin, Vec3 dir, int channel, const PhotonGrid& grid,
-  double radius, Rng& rng, bool& truncated) const
+  double radius, double gatherRate, Rng& rng, bool& truncated) const
 {
   Vec3 result(0.0);
   const bool grey = channel < 0;
   const int ch = grey ? 0 : channel;
   const Vec3 mask = grey ? Vec3(1, 1, 1) : Vec3(channel == 0, channel == 1, channel == 2);
+  const bool ratioTracking = gatherRate > 0;
   Vec3 beta(1.0);
   int depth = 0;
   Walk walk(*S, S->T, origin, dir);
+  walk.MinimumMajorant = gatherRate;
   for (;;)
   {
     switch (walk.Next(ch, rng, truncated))
@@ -261,42 +284,64 @@ Vec3 PhotonScene::ViewSample(Vec3 origin, Vec3 dir, int channel, const PhotonGri
       {
         const RayState& ray = walk.Ray;
         const Walk::Local here = walk.Here(); // the grid's medium, or a glass body's
-        const Vec3& sigma = here.Sigma;
         const double n = here.N;
+        const double real = here.Sigma[ch] / walk.Majorant; // probability of a real collision
+        const bool gathers = S->MaxDepth < 0 || depth + 1 <= S->MaxDepth;
         if (depth == 0 && here.Emits)
         {
           result += (beta / (walk.Majorant * n * n)) * (mask * here.Emission);
         }
-        if (rng.Uniform() * walk.Majorant >= sigma[ch])
+        if (ratioTracking)
+        {
+          // Every tentative collision gathers, weighted by its probability of being real, and
+          // the path goes on with the probability of a null one (ratio tracking, Novak et al.
+          // 2014): the in-scattered light is summed along the whole ray, not sampled at one
+          // point of it.
+          if (gathers && real > 0)
+          {
+            const Vec3 s = Gather(ray.X, -ray.Dir, here.G, radius, depth, grid);
+            result += (real / (n * n)) * (beta * here.Albedo * (mask * s));
+          }
+          beta *= std::max(0.0, 1 - real);
+          if (!Continue(beta, ch, grey, rng))
+          {
+            return result;
+          }
+          break;
+        }
+        if (rng.Uniform() >= real)
         {
           break; // null collision
         }
-        // The first real collision: the scattering source there, sigma_s (1/n^2) int f L dw,
-        // over sigma_t (the pdf of the collision), from the photons within the radius (each
-        // carrying its power / sigma_t at its own collision: fluence x volume). 1/n^2 turns the
-        // photons' physical radiance into the basic radiance L/n^2 that is conserved along the
-        // view ray.
-        if (S->MaxDepth >= 0 && depth + 1 > S->MaxDepth)
+        // The first real collision: the collision's pdf sigma_t cancels the source's.
+        if (gathers)
         {
-          return result;
+          const Vec3 s = Gather(ray.X, -ray.Dir, here.G, radius, depth, grid);
+          result += (1.0 / (n * n)) * (beta * here.Albedo * (mask * s));
         }
-        const double g = here.G;
-        const double volume = KernelVolume(ray.X, radius);
-        const Vec3 toCamera = -ray.Dir;
-        Vec3 sum(0.0);
-        grid.ForEachWithin(ray.X,
-          [&](const Photon& p)
-          {
-            if (S->MaxDepth < 0 || p.Depth + depth + 1 <= S->MaxDepth)
-            {
-              sum += HGPhase(g, OneMinusCos(p.Dir, toCamera)) * p.Fluence;
-            }
-          });
-        result += (1.0 / (volume * n * n)) * (beta * here.Albedo * (mask * sum));
         return result;
       }
     }
   }
+}
+
+//------------------------------------------------------------------------------
+bool PhotonScene::Continue(Vec3& beta, int ch, bool grey, Rng& rng)
+{
+  // Russian roulette once the ratio-tracking weight is small: unbiased, and it ends rays deep in
+  // dense media after a few optical depths instead of at the box.
+  const double w = Largest(beta, ch, grey);
+  if (w >= RouletteWeight)
+  {
+    return true;
+  }
+  const double q = w / RouletteWeight;
+  if (!(q > 0) || rng.Uniform() >= q)
+  {
+    return false;
+  }
+  beta /= q;
+  return true;
 }
 } // namespace reference
 } // namespace refracta

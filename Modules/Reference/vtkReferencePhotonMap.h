@@ -126,16 +126,31 @@ struct PhotonScene
   void EmitAndTrace(Rng& rng, double photons, std::vector<Photon>& out, bool& truncated) const;
 
   // One view sample along the ray (origin, dir): the path tracer's view path (emission and the
-  // background at depth 0, next-event estimation and a diffuse bounce at surfaces) up to the
-  // first real collision in the medium, where the photons of `grid` within `radius` estimate the
-  // in-scattered radiance. channel < 0: grey, RGB together; else that channel only.
+  // background at depth 0, next-event estimation and a diffuse bounce at surfaces) where the
+  // photons of `grid` within `radius` estimate the in-scattered radiance in the medium.
+  // gatherRate 0: at the path's first real collision (delta tracking), where it ends. gatherRate
+  // > 0 (1 / world length): at every tentative collision, which come at least at that rate where
+  // there is extinction, weighted by their probability of being real, the path going on with the
+  // rest (ratio tracking) to the next surface or the background. channel < 0: grey, RGB together;
+  // else that channel only.
   Vec3 ViewSample(Vec3 origin, Vec3 dir, int channel, const PhotonGrid& grid, double radius,
-    Rng& rng, bool& truncated) const;
+    double gatherRate, Rng& rng, bool& truncated) const;
 
   // Volume of the part of the sphere of radius r around x inside the medium's box.
   double KernelVolume(const Vec3& x, double r) const;
 
 private:
+  // The photons of `grid` within `radius` of x, sum f(w_p, toCamera) power_p / sigma_t(x_p) over
+  // the kernel's volume, f the HG phase with g (photons with depth + depth + 1 past MaxDepth
+  // excluded).
+  Vec3 Gather(const Vec3& x, const Vec3& toCamera, double g, double radius, int depth,
+    const PhotonGrid& grid) const;
+
+  // Ratio-tracking weight below which a view path plays Russian roulette.
+  static constexpr double RouletteWeight = 0.05;
+  // Russian roulette on a small ratio-tracking weight `beta` (rescaled when it survives).
+  static bool Continue(Vec3& beta, int ch, bool grey, Rng& rng);
+
   // Traces a photon of RGB power `power` from x in the unit direction d (channel ch; grey when
   // `grey`).
   void Trace(Vec3 x, Vec3 d, const Vec3& power, int ch, bool grey, Rng& rng,

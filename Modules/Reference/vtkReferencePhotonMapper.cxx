@@ -141,6 +141,14 @@ bool vtkReferencePhotonMapper::CheckSettings()
     vtkErrorMacro("Streams is " << this->Streams << "; it must be >= 1.");
     return false;
   }
+  if (!(this->GatherSpacing >= 0) || !std::isfinite(this->GatherSpacing))
+  {
+    vtkErrorMacro("GatherSpacing is "
+      << this->GatherSpacing
+      << "; it must be finite and >= 0 (units of the pass's radius; 0 gathers at the first "
+         "real collision only).");
+    return false;
+  }
   if (!(this->InitialRadius > 0) || !std::isfinite(this->InitialRadius))
   {
     vtkErrorMacro("InitialRadius is "
@@ -203,6 +211,7 @@ int vtkReferencePhotonMapper::RequestData(
   for (; pass <= passes && !this->GetAbortExecute(); ++pass)
   {
     radius = PassRadius(r1, this->Alpha, pass);
+    const double gatherRate = this->GatherSpacing > 0 ? 1 / (this->GatherSpacing * radius) : 0;
     // Photons, in blocks of fixed size so that the stored order does not depend on threads.
     const uint64_t photonSeed = PassSeed(seed, pass, 0);
     vtkSMPTools::For(0, blocks, 1,
@@ -260,13 +269,13 @@ int vtkReferencePhotonMapper::RequestData(
             bool trunc = false;
             if (grey)
             {
-              val = photons.ViewSample(o, d, -1, grid, radius, rng, trunc);
+              val = photons.ViewSample(o, d, -1, grid, radius, gatherRate, rng, trunc);
             }
             else
             {
               for (int c = 0; c < 3; ++c)
               {
-                val += photons.ViewSample(o, d, c, grid, radius, rng, trunc);
+                val += photons.ViewSample(o, d, c, grid, radius, gatherRate, rng, trunc);
               }
             }
             localTrunc += trunc ? 1 : 0;
@@ -316,6 +325,7 @@ int vtkReferencePhotonMapper::RequestData(
   AddFieldValue(output, "PhotonsPerPass", static_cast<double>(perPass), true);
   AddFieldValue(output, "Streams", streams, true);
   AddFieldValue(output, "Alpha", this->Alpha, false);
+  AddFieldValue(output, "GatherSpacing", this->GatherSpacing, false);
   AddFieldValue(output, "InitialRadius", r1, false);
   AddFieldValue(output, "FinalRadius", radius, false);
   AddFieldValue(output, "StoredPhotons", static_cast<double>(stored), false);
@@ -349,4 +359,5 @@ void vtkReferencePhotonMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InitialRadius: " << this->InitialRadius << "\n";
   os << indent << "Alpha: " << this->Alpha << "\n";
   os << indent << "Streams: " << this->Streams << "\n";
+  os << indent << "GatherSpacing: " << this->GatherSpacing << "\n";
 }

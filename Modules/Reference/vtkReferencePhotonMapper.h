@@ -25,11 +25,13 @@
  *   collision in the medium the photon is stored with power / sigma_t there, then scatters on
  *   (albedo, HG, Russian roulette) or reflects diffusely at surfaces;
  * - every pixel traces SamplesPerPixel view rays: emission and the background as in the path
- *   tracer, next-event estimation and a diffuse bounce at surfaces, and at the first real
- *   collision x in the medium the estimate albedo(x) / (n(x)^2 V_i) * sum_p HG(w_p, -w_view)
- *   power_p / sigma_t(x_p) over the photons within radius r_i of x (V_i the volume of the part
- *   of that sphere inside the medium's box, where photons can be: 4/3 pi r_i^3 away from the
- *   faces);
+ *   tracer, next-event estimation and a diffuse bounce at surfaces, and in the medium the
+ *   in-scattered source sigma_t(x) albedo(x) / (n(x)^2 V_i) * sum_p HG(w_p, -w_view) power_p /
+ *   sigma_t(x_p) over the photons within radius r_i of x (V_i the volume of the part of that
+ *   sphere inside the medium's box, where photons can be: 4/3 pi r_i^3 away from the faces),
+ *   gathered at every tentative collision along the ray with ratio-tracking weights
+ *   (GatherSpacing > 0, the default) or at the path's first real collision only (GatherSpacing
+ *   0);
  * - the radius shrinks with the volumetric schedule r_{i+1}^3 = r_i^3 (i + Alpha) / (i + 1), so
  *   the variance of pass i grows like i^(1 - Alpha) while its bias (O(r_i^2)) vanishes; the image
  *   is the mean of the passes: its variance falls like Passes^-Alpha (error ~ Passes^(-Alpha/2))
@@ -118,6 +120,21 @@ public:
   vtkGetMacro(Streams, int);
   ///@}
 
+  ///@{
+  /**
+   * Where view rays gather photons, >= 0. 0: at the view path's first real collision in the
+   * medium only (delta tracking; one gather per path). > 0: at every tentative collision along
+   * the path, which come at least every GatherSpacing x the pass's radius on average where there
+   * is extinction, each weighted by its probability of being real while the path goes on with
+   * the rest (ratio tracking) to the next surface or the background: the in-scattered light is
+   * summed along the whole view ray, the variance of where one collision falls is gone, and the
+   * estimate stays consistent. Default 2 (Documentation/Benchmarks.md, "Ground truth for
+   * refracted light", measures the choice).
+   */
+  vtkSetMacro(GatherSpacing, double);
+  vtkGetMacro(GatherSpacing, double);
+  ///@}
+
   /**
    * Radius of pass `pass` (1-based) for an initial radius r1 and Alpha: the schedule above.
    */
@@ -135,6 +152,7 @@ protected:
   double InitialRadius = 2.0;
   double Alpha = 2.0 / 3.0;
   int Streams = 8;
+  double GatherSpacing = 2.0;
 
 private:
   // False (after vtkErrorMacro naming the setting and its valid range) when a setting of the

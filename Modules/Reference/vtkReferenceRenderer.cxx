@@ -19,6 +19,7 @@
 #include "vtkReferencePathTracer.h"
 #include "vtkReferenceView.h"
 #include "vtkRefractaEnvironmentMap.h"
+#include "vtkRefractaHostThreads.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -65,6 +66,9 @@ inline unsigned char ToneMap(double v, double exposure)
 //------------------------------------------------------------------------------
 vtkReferenceRenderer::vtkReferenceRenderer()
 {
+  // Debian's ParaView VTK runs vtkSMPTools on one core unless told otherwise: the pixels and the
+  // photon blocks below are its loops.
+  vtkRefractaHostThreads::UseThreadedBackend();
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(1);
   this->Lights = vtkSmartPointer<vtkLightCollection>::New();

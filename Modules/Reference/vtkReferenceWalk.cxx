@@ -1,5 +1,6 @@
 #include "vtkReferenceWalk.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace refracta
@@ -68,11 +69,13 @@ void Walk::ScatterInto(const Vec3& dir)
 Event Walk::AdvanceInBody(double tau, int ch, int& light)
 {
   // A homogeneous medium: the free path is exponential in sigma_t itself (every collision real).
+  // (A raised majorant, MinimumMajorant, adds null collisions.)
   const double sigma = this->S.Surf.BodyMedium(this->Body)[ch];
-  this->Majorant = sigma;
+  this->Majorant = sigma > 0 ? std::max<double>(sigma, this->MinimumMajorant) : 0;
   double moved;
   int64_t steps = 0;
-  return this->T.Advance(this->Ray, sigma > 0 ? tau / sigma : Inf, moved, light, steps);
+  return this->T.Advance(
+    this->Ray, this->Majorant > 0 ? tau / this->Majorant : Inf, moved, light, steps);
 }
 
 //------------------------------------------------------------------------------
@@ -132,7 +135,7 @@ Walk::Stop Walk::Next(int ch, Rng& rng, bool& truncated)
       const double tau = -std::log(1 - rng.Uniform());
       const Event ev = this->Body >= 0
         ? this->AdvanceInBody(tau, ch, light)
-        : AdvanceOptical(this->T, this->Ray, tau, ch, light, this->Majorant);
+        : AdvanceOptical(this->T, this->Ray, tau, ch, light, this->Majorant, this->MinimumMajorant);
       if (ev == Event::Stuck)
       {
         truncated = true;

@@ -63,6 +63,10 @@ public:
   RayState Ray;      // the integrator's state in the box (after Collision: its point)
   double Majorant{}; // after Collision
   int Body = -1;     // the glass body the path is in (Surfaces::BodyMedium), or -1: the grid
+  // Where the medium has extinction, tentative collisions come at a rate of at least this
+  // (1 / world length; default 0: the medium's majorants). For owners that use every tentative
+  // collision with ratio-tracking weights (the photon mapper's gathering view rays).
+  double MinimumMajorant = 0;
 
 private:
   // Whether the path at X along D starts inside the box (then the integrator starts there).

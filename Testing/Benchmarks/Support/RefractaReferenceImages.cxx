@@ -67,9 +67,13 @@ Image RenderReference(
 }
 
 Image RenderPhotonReference(const scenes::Scene& scene, int size, int passes, int photons,
-  int viewSamples, unsigned int seed, vtkImageData* output)
+  int viewSamples, unsigned int seed, vtkImageData* output, double gatherSpacing)
 {
   vtkNew<vtkReferencePhotonMapper> reference;
+  if (gatherSpacing >= 0)
+  {
+    reference->SetGatherSpacing(gatherSpacing);
+  }
   reference->SetInputData(scene.Medium);
   reference->SetCamera(scene.Camera);
   for (const auto& light : scene.Lights)

@@ -39,11 +39,13 @@ Image RenderReference(
  * Render `scene` like RenderReference, with the consistent estimator vtkReferencePhotonMapper
  * (stochastic progressive photon mapping; for scenes where light is refracted before it scatters,
  * which the unbiased renderer does not converge on): `passes` passes of `photons` photons and
- * `viewSamples` view rays per pixel, radius and alpha at their defaults. Its `Error` is the stream
- * estimate of the noise (not the kernel's bias, which falls with the passes).
+ * `viewSamples` view rays per pixel, radius and alpha at their defaults, its view rays gathering
+ * every `gatherSpacing` radii (vtkReferencePhotonMapper::GatherSpacing; < 0: the class default).
+ * Its `Error` is the stream estimate of the noise (not the kernel's bias, which falls with the
+ * passes).
  */
 Image RenderPhotonReference(const scenes::Scene& scene, int size, int passes, int photons,
-  int viewSamples, unsigned int seed, vtkImageData* output = nullptr);
+  int viewSamples, unsigned int seed, vtkImageData* output = nullptr, double gatherSpacing = -1);
 
 /**
  * Relative RMSE of `image` against `reference` over the masked pixels with the reference's
