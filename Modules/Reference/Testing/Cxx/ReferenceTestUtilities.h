@@ -24,6 +24,13 @@ namespace reftest
 {
 constexpr double Pi = 3.14159265358979323846;
 
+// Value `index` of the renderer's field-data array `name` (NaN when there is none).
+inline double FieldValue(vtkImageData* image, const char* name, vtkIdType index = 0)
+{
+  vtkDataArray* a = image->GetFieldData()->GetArray(name);
+  return a && index < a->GetNumberOfTuples() ? a->GetComponent(index, 0) : std::nan("");
+}
+
 struct Voxel
 {
   double N = 1;

@@ -31,12 +31,6 @@ vtkSmartPointer<vtkImageData> Render(vtkReferenceRenderer* r)
   return out;
 }
 
-double FieldValue(vtkImageData* out, const char* name, vtkIdType i = 0)
-{
-  vtkDataArray* a = out->GetFieldData()->GetArray(name);
-  return a && i < a->GetNumberOfTuples() ? a->GetComponent(i, 0) : -1;
-}
-
 double Hdr(vtkImageData* out, vtkIdType p, int c = 0)
 {
   return out->GetPointData()->GetArray("HDR")->GetComponent(p, c);
