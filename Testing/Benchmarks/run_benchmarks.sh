@@ -11,7 +11,8 @@
 #   --out       directory for logs, CSVs and summary.md (default ./benchmark-results).
 #   --bin       directory holding the benchmark executables (default: this build's bin).
 #   --only      comma-separated subset of the program keys listed in PROGRAMS below.
-#   --accuracy  also run the long accuracy programs (glass optics, accuracy/time, reference).
+#   --accuracy  also run the long accuracy programs (glass optics, accuracy/time, reference,
+#               the photon-mapped reference's convergence).
 #   --timeout   seconds each program may run (default 60 with --quick, 3600 without).
 #   --launcher  command each program is run through, e.g. /tmp/b/gpu-env.sh on a lent GPU
 #               machine (shared/tools/gpu/README.md); its device choice applies unless --device.
@@ -69,7 +70,8 @@ effectplan|BenchmarkEffectPlan|--size 12 --image 16 --photons 2048 --runs 1 --cs
 ACCURACY="glassoptics|BenchmarkGlassOptics|--quick|
 glassshaft|BenchmarkGlassOptics|--quick --shaft|--shaft
 accuracytime|BenchmarkAccuracyTime|--smoke --scenes glass-sphere-in-fog,grin-lens --out @DIR@/accuracytime|--out @DIR@/accuracytime
-reference|RefractaReferenceBenchmark|--smoke --csv @CSV@|--csv @CSV@"
+reference|RefractaReferenceBenchmark|--smoke --csv @CSV@|--csv @CSV@
+referencepm|BenchmarkReferencePhotonMapper|--smoke --scenes glass-sphere-in-fog --csv @CSV@|--scenes glass-sphere-in-fog --csv @CSV@"
 [ "$accuracy" = 1 ] && PROGRAMS="$PROGRAMS
 $ACCURACY"
 
@@ -131,6 +133,11 @@ summarise() {
     illumination)
       v=$(awk -F, 'NR > 1 { f = $5 } END { print f }' "$csv")
       row BenchmarkIlluminationNetwork "frames/s (last N, D)" "${v:-n/a}" "frames/s" ;;
+    referencepm)
+      v=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+        { e = $(col["efficiency vs first collision"]) }
+        e != "-" && e + 0 > best { best = e + 0 } END { if (best) print best }' "$csv")
+      row BenchmarkReferencePhotonMapper "photon-mapped truth: efficiency of gathering along the ray vs one gather (best spacing)" "${v:-n/a}" "x" ;;
     effectplan)
       v=$(csvget "$csv" scene glass-sphere-in-fog "planned s")
       row BenchmarkEffectPlan "default scene (glass-sphere-in-fog) planned render" "${v:-n/a}" s ;;
