@@ -25,6 +25,7 @@
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkRefractiveVolumeMapperCompositing.h"
+#include "vtkRefractiveVolumeMapperInternals.h"
 #include "vtkRenderer.h"
 #include "vtkTimeStamp.h"
 #include "vtkTransferFunctionMedium.h"
@@ -48,8 +49,6 @@ vtkStandardNewMacro(vtkRefractiveVolumeMapper);
 
 namespace
 {
-// Whether the voxel at data point `p` is kept by the cropping regions (VTK's 27 regions: index
-// i + 3 j + 9 k, each of i, j, k 0 below the lower plane, 1 between, 2 above; bit set = kept).
 // The multiplier that draws the 99th percentile of the luminance of the pixels where the medium
 // shows at 0.8 (see AutomaticExposure); 1 when nothing shows.
 double MeterExposure(const std::vector<float>& image, const std::vector<float>& transmittance)
@@ -74,6 +73,8 @@ double MeterExposure(const std::vector<float>& image, const std::vector<float>& 
   return *at > 0.0 ? 0.8 / *at : 1.0;
 }
 
+// Whether the voxel at data point `p` is kept by the cropping regions (VTK's 27 regions: index
+// i + 3 j + 9 k, each of i, j, k 0 below the lower plane, 1 between, 2 above; bit set = kept).
 bool KeptByCropping(const double p[3], const double planes[6], int flags)
 {
   int region = 0;
@@ -143,38 +144,6 @@ vtkSmartPointer<vtkImageData> CutAway(vtkImageData* medium, vtkPlaneCollection* 
 }
 }
 
-struct vtkRefractiveVolumeMapper::Internals
-{
-  vtkSmartPointer<vtkRefractaRenderPipeline> Pipeline =
-    vtkSmartPointer<vtkRefractaRenderPipeline>::New();
-  vtkSmartPointer<vtkTransferFunctionMedium> Mapping =
-    vtkSmartPointer<vtkTransferFunctionMedium>::New();
-  vtkSmartPointer<vtkPiecewiseFunction> IndexFunction;
-  vtkSmartPointer<vtkImageData> LightingData;
-  vtkSmartPointer<vtkImageData> Medium; // the input or its transfer-function mapping, cut
-  vtkImageData* Uncut = nullptr;        // what Medium was cut from
-  vtkTimeStamp CutTime;
-  std::vector<double> CutCropping; // the cropping settings it was cut with
-  vtkNew<vtkRefractaRendererBackground> Background;
-  vtkNew<vtkRefractaActorSurfaces> Actors;
-  vtkRefractaSurfaceSet* ClassifiedWith = nullptr; // the surfaces the pixel kinds were made for
-  vtkTimeStamp ClassifiedTime;
-  // The medium's active box (see vtkRefractiveVolumeMapperCompositing.h) and what it was
-  // computed from.
-  vtkRefractiveVolumeMapperDetail::LocalBox ActiveBox;
-  vtkImageData* ActiveBoxMedium = nullptr;
-  vtkMTimeType ActiveBoxTime = 0;
-  std::vector<std::uint8_t> Kinds; // per pixel, vtkRefractiveVolumeMapperDetail::PixelKind
-
-  // The view stage's depth input: the raw depth buffer and the path-length limits it gave.
-  std::vector<float> Depth;
-  std::vector<float> Limits;
-  std::string LastMessage; // said once, not on every Render
-  double MeteredExposure = 1.0;
-  int MeteredAt = -1; // plan + light-pass runs when the exposure was metered
-  bool BlendModeWarned = false;
-};
-
 //------------------------------------------------------------------------------
 vtkRefractiveVolumeMapper::vtkRefractiveVolumeMapper()
   : Internal(new Internals)
@@ -189,238 +158,6 @@ vtkRefractiveVolumeMapper::vtkRefractiveVolumeMapper()
 vtkRefractiveVolumeMapper::~vtkRefractiveVolumeMapper()
 {
   this->Internal->Pipeline->SetEventOwner(nullptr);
-}
-
-void vtkRefractiveVolumeMapper::SetRefractiveIndexFunction(vtkPiecewiseFunction* function)
-{
-  if (this->Internal->IndexFunction != function)
-  {
-    this->Internal->IndexFunction = function;
-    this->Modified();
-  }
-}
-
-vtkPiecewiseFunction* vtkRefractiveVolumeMapper::GetRefractiveIndexFunction()
-{
-  return this->Internal->IndexFunction;
-}
-
-void vtkRefractiveVolumeMapper::SetLightingData(vtkImageData* lighting)
-{
-  this->Internal->Pipeline->SetLightingData(lighting);
-}
-
-vtkImageData* vtkRefractiveVolumeMapper::GetLightingData()
-{
-  return this->Internal->Pipeline->GetLightingData();
-}
-
-void vtkRefractiveVolumeMapper::SetNumberOfPhotons(int photons)
-{
-  this->Internal->Pipeline->GetPhotonTracer()->SetNumberOfPhotons(photons);
-}
-
-int vtkRefractiveVolumeMapper::GetNumberOfPhotons()
-{
-  return this->Internal->Pipeline->GetPhotonTracer()->GetNumberOfPhotons();
-}
-
-void vtkRefractiveVolumeMapper::SetSeed(int seed)
-{
-  this->Internal->Pipeline->GetPhotonTracer()->SetSeed(static_cast<unsigned int>(seed));
-}
-
-int vtkRefractiveVolumeMapper::GetSeed()
-{
-  return static_cast<int>(this->Internal->Pipeline->GetPhotonTracer()->GetSeed());
-}
-
-void vtkRefractiveVolumeMapper::SetMultipleScattering(bool on)
-{
-  this->Internal->Pipeline->SetMultipleScattering(on);
-}
-
-bool vtkRefractiveVolumeMapper::GetMultipleScattering()
-{
-  return this->Internal->Pipeline->GetMultipleScattering();
-}
-
-void vtkRefractiveVolumeMapper::SetBackgroundIlluminates(bool on)
-{
-  if (this->Internal->Pipeline->GetBackgroundIlluminates() != on)
-  {
-    this->Internal->Pipeline->SetBackgroundIlluminates(on);
-    this->Modified();
-  }
-}
-
-bool vtkRefractiveVolumeMapper::GetBackgroundIlluminates()
-{
-  return this->Internal->Pipeline->GetBackgroundIlluminates();
-}
-
-void vtkRefractiveVolumeMapper::SetStepSize(double voxels)
-{
-  this->GetViewPass()->SetStepSize(voxels);
-}
-
-double vtkRefractiveVolumeMapper::GetStepSize()
-{
-  return this->GetViewPass()->GetStepSize();
-}
-
-void vtkRefractiveVolumeMapper::SetRayMode(int mode)
-{
-  this->GetViewPass()->SetRayMode(mode);
-}
-
-int vtkRefractiveVolumeMapper::GetRayMode()
-{
-  return this->GetViewPass()->GetRayMode();
-}
-
-void vtkRefractiveVolumeMapper::SetTransmittanceCutoff(double cutoff)
-{
-  this->GetViewPass()->SetTransmittanceCutoff(cutoff);
-}
-
-double vtkRefractiveVolumeMapper::GetTransmittanceCutoff()
-{
-  return this->GetViewPass()->GetTransmittanceCutoff();
-}
-
-void vtkRefractiveVolumeMapper::SetEmptySpaceSkipping(bool on)
-{
-  this->GetViewPass()->SetEmptySpaceSkipping(on);
-}
-
-bool vtkRefractiveVolumeMapper::GetEmptySpaceSkipping()
-{
-  return this->GetViewPass()->GetEmptySpaceSkipping();
-}
-
-void vtkRefractiveVolumeMapper::SetContext(vtkOpenCLContext* context)
-{
-  this->Internal->Pipeline->SetContext(context);
-}
-
-vtkOpenCLContext* vtkRefractiveVolumeMapper::GetContext()
-{
-  return this->Internal->Pipeline->GetContext();
-}
-
-vtkImageData* vtkRefractiveVolumeMapper::GetMedium()
-{
-  return this->Internal->Pipeline->GetPlannedMedium();
-}
-
-vtkImageData* vtkRefractiveVolumeMapper::GetLighting()
-{
-  return this->Internal->Pipeline->GetLighting();
-}
-
-vtkRefractaViewPass* vtkRefractiveVolumeMapper::GetViewPass()
-{
-  return this->Internal->Pipeline->GetViewPass();
-}
-
-vtkRefractaActorSurfaces* vtkRefractiveVolumeMapper::GetActorSurfaceCollector()
-{
-  return this->Internal->Actors;
-}
-
-vtkRefractaRendererBackground* vtkRefractiveVolumeMapper::GetBackgroundConverter()
-{
-  return this->Internal->Background;
-}
-
-vtkRefractaRenderPipeline* vtkRefractiveVolumeMapper::GetPipeline()
-{
-  return this->Internal->Pipeline;
-}
-
-vtkEffectPlan* vtkRefractiveVolumeMapper::GetEffectPlan()
-{
-  return this->Internal->Pipeline->GetEffectPlan();
-}
-
-vtkSceneAnalysis* vtkRefractiveVolumeMapper::GetSceneAnalysis()
-{
-  return this->Internal->Pipeline->GetSceneAnalysis();
-}
-
-int vtkRefractiveVolumeMapper::GetNumberOfMediumBuilds()
-{
-  return this->Internal->Pipeline->GetNumberOfMediumUpdates();
-}
-
-int vtkRefractiveVolumeMapper::GetNumberOfLightPassRuns()
-{
-  return this->Internal->Pipeline->GetNumberOfLightPassRuns();
-}
-
-int vtkRefractiveVolumeMapper::GetNumberOfViewPassRuns()
-{
-  return this->Internal->Pipeline->GetNumberOfViewPassRuns();
-}
-
-bool vtkRefractiveVolumeMapper::HasLightPasses()
-{
-  return true;
-}
-
-void vtkRefractiveVolumeMapper::SetQuality(int quality)
-{
-  this->Internal->Pipeline->SetQuality(quality);
-}
-
-void vtkRefractiveVolumeMapper::SetSingleScatteringMethod(int method)
-{
-  this->Internal->Pipeline->SetSingleScatteringMethod(method);
-  this->Modified();
-}
-
-int vtkRefractiveVolumeMapper::GetSingleScatteringMethod()
-{
-  return this->Internal->Pipeline->GetSingleScatteringMethod();
-}
-
-void vtkRefractiveVolumeMapper::SetMultipleScatteringMethod(int method)
-{
-  this->Internal->Pipeline->SetMultipleScatteringMethod(method);
-  this->Modified();
-}
-
-int vtkRefractiveVolumeMapper::GetMultipleScatteringMethod()
-{
-  return this->Internal->Pipeline->GetMultipleScatteringMethod();
-}
-
-void vtkRefractiveVolumeMapper::SetScatteringOrders(int orders)
-{
-  this->Internal->Pipeline->SetScatteringOrders(orders);
-  this->Modified();
-}
-
-int vtkRefractiveVolumeMapper::GetScatteringOrders()
-{
-  return this->Internal->Pipeline->GetScatteringOrders();
-}
-
-void vtkRefractiveVolumeMapper::SetLattice(int directions)
-{
-  this->Internal->Pipeline->GetLatticeSolver()->SetLattice(directions);
-  this->Modified();
-}
-
-int vtkRefractiveVolumeMapper::GetLattice()
-{
-  return this->Internal->Pipeline->GetLatticeSolver()->GetLattice();
-}
-
-void vtkRefractiveVolumeMapper::ReleaseGraphicsResources(vtkWindow*)
-{
-  // The image is drawn through the window's own pixel path; nothing of ours lives in GL.
 }
 
 //------------------------------------------------------------------------------

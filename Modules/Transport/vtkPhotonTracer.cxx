@@ -31,6 +31,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <utility>
 #include <cstdint>
 #include <numeric>
 #include <sstream>
@@ -667,6 +668,33 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
 }
 
 //------------------------------------------------------------------------------
+bool vtkPhotonTracer::CheckSettingsAreNumbers()
+{
+  // vtkSetClampMacro keeps a NaN (every comparison with it is false), which would reach the
+  // kernels as a step, a tolerance or a smoothing weight: refuse it by name.
+  const std::pair<const char*, double> settings[] = { { "PrimaryTolerance", this->PrimaryTolerance },
+    { "SecondaryTolerance", this->SecondaryTolerance },
+    { "SecondaryStepLimit", this->SecondaryStepLimit }, { "MinimumStep", this->MinimumStep },
+    { "MaximumStep", this->MaximumStep }, { "FixedStep", this->FixedStep },
+    { "ExtinctionStepLimit", this->ExtinctionStepLimit },
+    { "RouletteThreshold", this->RouletteThreshold }, { "MaximumTurn", this->MaximumTurn },
+    { "StepTolerance", this->StepTolerance }, { "SmoothingBias", this->SmoothingBias },
+    { "LightRadius", this->LightRadius },
+    { "DirectionalLightAngularRadius", this->DirectionalLightAngularRadius } };
+  for (const auto& setting : settings)
+  {
+    if (std::isnan(setting.second))
+    {
+      vtkErrorMacro(<< setting.first
+                    << " is NaN; it must be a number (its range and default are in "
+                       "vtkPhotonTracer.h).");
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 int vtkPhotonTracer::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -678,6 +706,10 @@ int vtkPhotonTracer::RequestData(
     return 0;
   }
   output->Initialize();
+  if (!this->CheckSettingsAreNumbers())
+  {
+    return 0;
+  }
   this->OctreeSeconds = this->GenerationSeconds = this->MarchingSeconds = 0;
   this->SmoothingSeconds = this->PeakDeviceMemoryBytes = 0;
   this->PlannedDeviceMemoryBytes = this->PlannedHostMemoryBytes = 0;

@@ -32,15 +32,13 @@
 // for a target error (draft 10%, interactive 5%, production 2%), each knob takes its cheapest
 // value whose error against the finest setting stays within the target, or within 10% of the
 // best that knob reaches where the target is out of reach, on every scene; the combinations are
-// then measured.
+// then measured, and so are the presets the library ships (vtkEffectPlan::SetQuality: "shipped
+// draft", ...), against the same truths.
 //
 //   BenchmarkAccuracyTime [--out DIR] [--image W] [--base-size N] [--reference-seconds S]
 //     [--reference-spp MAX] [--reference-curve-max S] [--runs R] [--scenes a,b,...]
 //     [--knobs a,b,...] [--cache DIR] [--photons-per-pass N] [--unbiased-seconds S] [--smoke]
-#include "RefractaBenchmark.h"
-#include "RefractaPipeline.h"
-#include "RefractaReferenceImages.h"
-#include "RefractaScenes.h"
+#include "BenchmarkAccuracyTime.h"
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -71,115 +69,17 @@
 #include <sys/stat.h>
 #include <vector>
 
+namespace refracta
+{
+namespace accuracy
+{
 namespace
 {
-using refracta::bench::Image;
 using refracta::bench::NoiseLevel;
-using refracta::bench::PipelineKnobs;
 using refracta::bench::ReadImage;
 using refracta::bench::RelativeError;
 using refracta::bench::RenderPhotonReference;
 using refracta::bench::RenderReference;
-using refracta::bench::Table;
-using refracta::scenes::Scene;
-
-struct Settings
-{
-  std::string Out = "accuracy_time";
-  std::string Cache;
-  int Image = 64;
-  int BaseSize = 48;
-  int ReferenceSpp = 65536;      // at most; the time budget decides
-  double ReferenceSeconds = 150; // budget of the converged reference per scene
-  int ReferenceCurveMax = 256;
-  int PhotonsPerPass = 50000;  // the photon mapper's, on the photon-mapped scenes
-  int ViewSamples = 16;        // its view rays per pixel and pass
-  double UnbiasedSeconds = 20; // the short path tracer run whose noise is extrapolated
-  int Runs = 3;
-  std::vector<std::string> Scenes;
-  std::vector<std::string> KnobNames; // empty: every knob
-  bool Smoke = false;
-};
-
-// What one pipeline run is given: the passes' knobs and the grid resolution of the scene.
-struct Setting
-{
-  PipelineKnobs Knobs;
-  int Size = 48;
-};
-
-// One knob: its name, the values swept and how a value is applied.
-struct Knob
-{
-  std::string Name;
-  std::vector<double> Values;
-  std::function<void(Setting&, double)> Apply;
-};
-
-std::vector<Knob> MakeKnobs(const Settings& settings)
-{
-  std::vector<Knob> knobs;
-  knobs.push_back({ "photons", { 1 << 12, 1 << 14, 1 << 16, 1 << 18, 1 << 20 },
-    [](Setting& s, double v) { s.Knobs.Photons = static_cast<int>(v); } });
-  knobs.push_back({ "photon min step", { 4, 2, 1, 0.5, 0.25 },
-    [](Setting& s, double v) { s.Knobs.PhotonMinimumStep = v; } });
-  // Octree tolerances move together (eps' = 4 eps, as the defaults 0.005 / 0.02).
-  knobs.push_back({ "octree eps", { 0.0025, 0.005, 0.02, 0.08, 0.32 },
-    [](Setting& s, double v)
-    {
-      s.Knobs.PrimaryTolerance = v;
-      s.Knobs.SecondaryTolerance = 4 * v;
-    } });
-  knobs.push_back({ "lattice tolerance", { 1e-2, 1e-3, 1e-4, 1e-5 },
-    [](Setting& s, double v) { s.Knobs.LatticeTolerance = v; } });
-  knobs.push_back({ "lattice block", { 0, 2, 4, 8 },
-    [](Setting& s, double v) { s.Knobs.BlockSize = static_cast<int>(v); } });
-  knobs.push_back(
-    { "view step", { 2, 1, 0.5, 0.25 }, [](Setting& s, double v) { s.Knobs.ViewStep = v; } });
-  // Multiple scattering (issue 14): photon orders k with D3Q6 (0: the lattice alone, -1: every
-  // order by photons), then D3Q18 as k + 100.
-  knobs.push_back({ "photon orders", { 0, 1, 3, 7, 100, 103, -1 },
-    [](Setting& s, double v)
-    {
-      const int k = static_cast<int>(v);
-      s.Knobs.Lattice = k >= 100 ? 18 : 6;
-      s.Knobs.ScatteringOrders = k >= 100 ? k - 100 : k;
-    } });
-  // Every order by photons, as their number grows: the photon method's own convergence (on the
-  // dense cube it is what reaches 3%, where the lattice's bias stays at 5-7%).
-  knobs.push_back({ "photons every order", { 1 << 16, 1 << 18, 1 << 20, 1 << 22 },
-    [](Setting& s, double v)
-    {
-      s.Knobs.Photons = static_cast<int>(v);
-      s.Knobs.ScatteringOrders = -1;
-    } });
-  knobs.push_back({ "resolution",
-    settings.Smoke ? std::vector<double>{ 12, 16 } : std::vector<double>{ 16, 24, 32, 48, 64 },
-    [](Setting& s, double v) { s.Size = static_cast<int>(v); } });
-  if (settings.Smoke)
-  {
-    for (Knob& knob : knobs)
-    {
-      knob.Values.resize(2);
-    }
-    for (Knob& knob : knobs)
-    {
-      if (knob.Name.compare(0, 7, "photons") == 0)
-      {
-        knob.Values = { 1 << 10, 1 << 12 };
-      }
-    }
-  }
-  if (!settings.KnobNames.empty())
-  {
-    const auto& keep = settings.KnobNames;
-    knobs.erase(
-      std::remove_if(knobs.begin(), knobs.end(),
-        [&](const Knob& k) { return std::find(keep.begin(), keep.end(), k.Name) == keep.end(); }),
-      knobs.end());
-  }
-  return knobs;
-}
 
 // An RGB image with its per-pixel standard error (zero for the pipeline).
 // Which pixels (i + W j) see the scene's region of interest: the bounding rectangle of its box's
@@ -344,103 +244,6 @@ Image ConvergedReference(const Scene& scene, int resolution, const Settings& set
   return image;
 }
 
-// One pipeline run: its time and its errors against the converged reference (ground truth, where
-// the reference converged) and against the pipeline's own most accurate setting (how far the
-// knob's value is from what the pipeline converges to).
-struct Point
-{
-  std::string Knob;
-  double Value = 0;
-  double Seconds = 0;
-  double ReferenceError = 0;
-  double ReferenceRegionError = 0;
-  double SelfError = 0;
-  double SelfRegionError = 0;
-  // Against the run with this knob at its most accurate value and every other knob at the base:
-  // the error this knob alone contributes.
-  double KnobError = 0;
-  double KnobRegionError = 0;
-  Image Picture;
-};
-
-// The reference converged when its own noise is below these (relative RMSE); its variance is
-// taken out of every error, so errors of that size stay measurable.
-const double ConvergedImageNoise = 0.02;
-const double ConvergedRegionNoise = 0.03;
-
-// Everything measured on one scene.
-struct SceneResult
-{
-  Image Reference;
-  Image Finest;
-  std::vector<bool> Region;
-  // Pixels that see the medium (the reference has noise there): errors "over the image" are
-  // taken over these, so that background pixels, exact in both renderers, do not dilute them.
-  std::vector<bool> Seen;
-  double ImageNoise = 0;
-  double RegionNoise = 0;
-  bool Converged = false;
-  bool PhotonMapped = false; // the truth is the photon mapper's
-  // The unbiased path tracer on photon-mapped scenes: its noise after a short run of that many
-  // seconds (for its extrapolated time to an error).
-  double UnbiasedNoise = 0;
-  double UnbiasedSeconds = 0;
-  std::vector<Point> Points;          // pipeline runs (sweeps)
-  std::vector<Point> ReferencePoints; // the reference renderer's own curve
-  std::vector<Point> Presets;
-  // The error the fronts and plots use: against the reference where it converged, otherwise
-  // against the pipeline's most accurate setting.
-  double Error(const Point& p) const { return this->Converged ? p.ReferenceError : p.SelfError; }
-};
-
-// Points no other point beats in both time and error, by increasing time.
-std::vector<Point> ParetoFront(std::vector<Point> points, const SceneResult& result)
-{
-  std::sort(points.begin(), points.end(),
-    [](const Point& a, const Point& b) { return a.Seconds < b.Seconds; });
-  std::vector<Point> front;
-  for (const Point& p : points)
-  {
-    if (front.empty() || result.Error(p) < result.Error(front.back()))
-    {
-      front.push_back(p);
-    }
-  }
-  return front;
-}
-
-// Time at which a curve of (seconds, error) first reaches `target`, interpolated log-log between
-// its points; < 0 when it never does. `extrapolate` continues a Monte Carlo curve past its last
-// point with the error ~ time^(-exponent) law (1/2 for unbiased Monte Carlo; Alpha / 2 = 1/3,
-// the noise rate of the photon mapper's schedule, for progressive photon mapping).
-double TimeToError(const std::vector<std::pair<double, double>>& curve, double target,
-  bool extrapolate, bool* extrapolated, double exponent = 0.5)
-{
-  *extrapolated = false;
-  for (size_t i = 0; i < curve.size(); ++i)
-  {
-    if (curve[i].second <= target)
-    {
-      if (i == 0)
-      {
-        return curve[0].first;
-      }
-      const double t0 = std::log(curve[i - 1].first), t1 = std::log(curve[i].first);
-      const double e0 = std::log(std::max(curve[i - 1].second, 1e-12));
-      const double e1 = std::log(std::max(curve[i].second, 1e-12));
-      const double f = (std::log(target) - e0) / (e1 - e0);
-      return std::exp(t0 + f * (t1 - t0));
-    }
-  }
-  if (extrapolate && !curve.empty() && curve.back().second > 0)
-  {
-    *extrapolated = true;
-    const double ratio = curve.back().second / target;
-    return curve.back().first * std::pow(ratio, 1.0 / exponent);
-  }
-  return -1.0;
-}
-
 std::vector<std::string> Split(const std::string& text)
 {
   std::vector<std::string> parts;
@@ -522,62 +325,72 @@ bool ParseArguments(int argc, char* argv[], Settings& settings)
   }
   return true;
 }
+} // namespace
 
-class Benchmark
+std::vector<Knob> MakeKnobs(const Settings& settings)
 {
-public:
-  explicit Benchmark(const Settings& settings)
-    : Config(settings)
-    , Knobs(MakeKnobs(settings))
-  {
-    this->Base.Knobs.ImageWidth = this->Base.Knobs.ImageHeight = settings.Image;
-    this->Base.Size = settings.BaseSize;
-    // Multiple scattering by the lattice alone at the base, as the presets were measured; the
-    // methods are the "photon orders" knob.
-    this->Base.Knobs.ScatteringOrders = 0;
-    // The most accurate setting: every knob at its most accurate swept value.
-    this->Most = this->Base;
-    for (const Knob& knob : this->Knobs)
+  std::vector<Knob> knobs;
+  knobs.push_back({ "photons", { 1 << 12, 1 << 14, 1 << 16, 1 << 18, 1 << 20 },
+    [](Setting& s, double v) { s.Knobs.Photons = static_cast<int>(v); } });
+  knobs.push_back({ "photon min step", { 4, 2, 1, 0.5, 0.25 },
+    [](Setting& s, double v) { s.Knobs.PhotonMinimumStep = v; } });
+  // Octree tolerances move together (eps' = 4 eps, as the defaults 0.005 / 0.02).
+  knobs.push_back({ "octree eps", { 0.0025, 0.005, 0.02, 0.08, 0.32 },
+    [](Setting& s, double v)
     {
-      if (knob.Name != "lattice block") // a speed knob: every block size converges alike
+      s.Knobs.PrimaryTolerance = v;
+      s.Knobs.SecondaryTolerance = 4 * v;
+    } });
+  knobs.push_back({ "lattice tolerance", { 1e-2, 1e-3, 1e-4, 1e-5 },
+    [](Setting& s, double v) { s.Knobs.LatticeTolerance = v; } });
+  knobs.push_back({ "lattice block", { 0, 2, 4, 8 },
+    [](Setting& s, double v) { s.Knobs.BlockSize = static_cast<int>(v); } });
+  knobs.push_back(
+    { "view step", { 2, 1, 0.5, 0.25 }, [](Setting& s, double v) { s.Knobs.ViewStep = v; } });
+  // Multiple scattering (issue 14): photon orders k with D3Q6 (0: the lattice alone, -1: every
+  // order by photons), then D3Q18 as k + 100.
+  knobs.push_back({ "photon orders", { 0, 1, 3, 7, 100, 103, -1 },
+    [](Setting& s, double v)
+    {
+      const int k = static_cast<int>(v);
+      s.Knobs.Lattice = k >= 100 ? 18 : 6;
+      s.Knobs.ScatteringOrders = k >= 100 ? k - 100 : k;
+    } });
+  // Every order by photons, as their number grows: the photon method's own convergence (on the
+  // dense cube it is what reaches 3%, where the lattice's bias stays at 5-7%).
+  knobs.push_back({ "photons every order", { 1 << 16, 1 << 18, 1 << 20, 1 << 22 },
+    [](Setting& s, double v)
+    {
+      s.Knobs.Photons = static_cast<int>(v);
+      s.Knobs.ScatteringOrders = -1;
+    } });
+  knobs.push_back({ "resolution",
+    settings.Smoke ? std::vector<double>{ 12, 16 } : std::vector<double>{ 16, 24, 32, 48, 64 },
+    [](Setting& s, double v) { s.Size = static_cast<int>(v); } });
+  if (settings.Smoke)
+  {
+    for (Knob& knob : knobs)
+    {
+      knob.Values.resize(2);
+    }
+    for (Knob& knob : knobs)
+    {
+      if (knob.Name.compare(0, 7, "photons") == 0)
       {
-        knob.Apply(this->Most, MostAccurate(knob));
+        knob.Values = { 1 << 10, 1 << 12 };
       }
     }
   }
-
-  int Run();
-
-private:
-  static double MostAccurate(const Knob& knob)
+  if (!settings.KnobNames.empty())
   {
-    // More photons and voxels are more accurate; for every other knob, smaller is.
-    const bool more = knob.Name.compare(0, 7, "photons") == 0 || knob.Name == "resolution";
-    return more ? *std::max_element(knob.Values.begin(), knob.Values.end())
-                : *std::min_element(knob.Values.begin(), knob.Values.end());
+    const auto& keep = settings.KnobNames;
+    knobs.erase(
+      std::remove_if(knobs.begin(), knobs.end(),
+        [&](const Knob& k) { return std::find(keep.begin(), keep.end(), k.Name) == keep.end(); }),
+      knobs.end());
   }
-  const Scene& SceneAt(const std::string& name, int size);
-  Image RenderTimed(const std::string& name, const Setting& setting);
-  Point Measure(const std::string& name, const Setting& setting);
-  void SweepScene(const std::string& name);
-  void ReferenceCurve(const std::string& name);
-  void ChoosePresets(const std::vector<std::string>& names);
-  void Report(const std::vector<std::string>& names);
-  void Plot(const std::string& name);
-
-  Settings Config;
-  std::vector<Knob> Knobs;
-  Setting Base, Most;
-  std::map<std::string, Scene> Scenes; // by name@size
-  std::map<std::string, SceneResult> Results;
-  Table Runs{ { "scene", "knob", "value", "seconds", "error vs reference", "region vs reference",
-    "error vs finest", "knob error", "knob region error" } };
-  Table ReferenceRuns{ { "scene", "estimator", "samples per pixel or passes", "seconds", "error",
-    "region error" } };
-  Table Presets{ { "preset", "target", "photons", "photon min step", "octree eps",
-    "lattice tolerance", "lattice block", "view step", "resolution", "scene", "seconds",
-    "error vs reference", "region vs reference", "error vs finest", "region vs finest" } };
-};
+  return knobs;
+}
 
 const Scene& Benchmark::SceneAt(const std::string& name, int size)
 {
@@ -746,210 +559,6 @@ void Benchmark::ReferenceCurve(const std::string& name)
   }
 }
 
-// For a target error e, every knob takes its cheapest swept value whose own error (against its
-// most accurate value) stays within e / sqrt(K) on every scene, K the number of knobs: the
-// knobs' errors add roughly in quadrature, so the combination should stay near e. The
-// combinations are then measured on every scene against the reference and the finest setting.
-void Benchmark::ChoosePresets(const std::vector<std::string>& names)
-{
-  const std::vector<std::pair<std::string, double>> targets = { { "draft", 0.10 },
-    { "interactive", 0.05 }, { "production", 0.02 } };
-  for (const auto& target : targets)
-  {
-    Setting setting = this->Base;
-    const double budget = target.second / std::sqrt(static_cast<double>(this->Knobs.size()));
-    for (const Knob& knob : this->Knobs)
-    {
-      double chosen = 0.0, cheapest = 1e300;
-      bool found = false;
-      for (double value : knob.Values)
-      {
-        double seconds = 0.0;
-        bool within = true;
-        for (const std::string& name : names)
-        {
-          double error = 1e300, time = 0.0;
-          for (const Point& p : this->Results[name].Points)
-          {
-            if (p.Knob == knob.Name && p.Value == value)
-            {
-              error = p.KnobError;
-              time = p.Seconds;
-            }
-          }
-          within = within && error <= budget;
-          seconds += time;
-        }
-        if (within && seconds < cheapest)
-        {
-          cheapest = seconds;
-          chosen = value;
-          found = true;
-        }
-      }
-      if (found)
-      {
-        knob.Apply(setting, chosen);
-      }
-    }
-    for (const std::string& name : names)
-    {
-      Point point = this->Measure(name, setting);
-      const PipelineKnobs& knobs = setting.Knobs;
-      point.Knob = target.first;
-      this->Results[name].Presets.push_back(point);
-      this->Presets.AddRow({ target.first, Table::Format(target.second),
-        std::to_string(knobs.Photons), Table::Format(knobs.PhotonMinimumStep),
-        Table::Format(knobs.PrimaryTolerance), Table::Format(knobs.LatticeTolerance),
-        std::to_string(knobs.BlockSize), Table::Format(knobs.ViewStep),
-        std::to_string(setting.Size), name, Table::Format(point.Seconds),
-        Table::Format(point.ReferenceError), Table::Format(point.ReferenceRegionError),
-        Table::Format(point.SelfError), Table::Format(point.SelfRegionError) });
-    }
-  }
-}
-
-// Two log-log plots per scene: every run's error (against the converged reference, else against
-// the finest setting) with one curve per knob, the reference renderer's own curve, the Pareto front
-// and the presets; and each knob's own error.
-void Benchmark::Plot(const std::string& name)
-{
-  const SceneResult& result = this->Results[name];
-  auto positive = [](double e) { return std::max(e, 1e-5); };
-  std::vector<refracta::bench::Series> series, knobs;
-  for (const Knob& knob : this->Knobs)
-  {
-    refracta::bench::Series curve{ knob.Name, {}, {} };
-    refracta::bench::Series own{ knob.Name, {}, {} };
-    for (const Point& p : result.Points)
-    {
-      if (p.Knob == knob.Name)
-      {
-        curve.X.push_back(p.Seconds);
-        curve.Y.push_back(positive(result.Error(p)));
-        if (p.Value != MostAccurate(knob))
-        {
-          own.X.push_back(p.Seconds);
-          own.Y.push_back(positive(p.KnobError));
-        }
-      }
-    }
-    series.push_back(curve);
-    knobs.push_back(own);
-  }
-  refracta::bench::WritePlot(this->Config.Out + "/knobs_" + name + ".png",
-    name + ": each knob's own error (vs its most accurate value)", "seconds", "relative RMSE",
-    knobs);
-  refracta::bench::Series reference{
-    result.PhotonMapped ? "reference photon mapper" : "reference Monte Carlo", {}, {}
-  };
-  for (const Point& p : result.ReferencePoints)
-  {
-    reference.X.push_back(p.Seconds);
-    reference.Y.push_back(positive(p.ReferenceError));
-  }
-  if (result.Converged)
-  {
-    series.push_back(reference);
-  }
-  refracta::bench::Series front{ "Pareto front", {}, {} };
-  std::vector<Point> all = result.Points;
-  all.insert(all.end(), result.Presets.begin(), result.Presets.end());
-  for (const Point& p : ParetoFront(all, result))
-  {
-    front.X.push_back(p.Seconds);
-    front.Y.push_back(positive(result.Error(p)));
-  }
-  series.push_back(front);
-  refracta::bench::Series presets{ "presets", {}, {} };
-  for (const Point& p : result.Presets)
-  {
-    presets.X.push_back(p.Seconds);
-    presets.Y.push_back(positive(result.Error(p)));
-  }
-  series.push_back(presets);
-  refracta::bench::WritePlot(this->Config.Out + "/accuracy_" + name + ".png",
-    name + (result.Converged ? ": error vs converged reference" : ": error vs finest pipeline"),
-    "seconds", "relative RMSE", series);
-}
-
-void Benchmark::Report(const std::vector<std::string>& names)
-{
-  Table front({ "scene", "knob", "value", "seconds", "error", "region error" });
-  Table speedUp({ "scene", "truth", "reference noise (image / region)", "pipeline best error",
-    "pipeline s to 5%", "reference s to 5%", "speed-up at 5%", "unbiased s to 5%",
-    "speed-up vs unbiased at 5%", "pipeline s to 2%", "reference s to 2%", "speed-up at 2%",
-    "unbiased s to 2%", "speed-up vs unbiased at 2%" });
-  for (const std::string& name : names)
-  {
-    const SceneResult& result = this->Results[name];
-    std::vector<Point> all = result.Points;
-    all.insert(all.end(), result.Presets.begin(), result.Presets.end());
-    const std::vector<Point> pareto = ParetoFront(all, result);
-    std::vector<std::pair<double, double>> frontCurve, referenceCurve;
-    for (const Point& p : pareto)
-    {
-      front.AddRow({ name, p.Knob, Table::Format(p.Value), Table::Format(p.Seconds),
-        Table::Format(result.Error(p)),
-        Table::Format(result.Converged ? p.ReferenceRegionError : p.SelfRegionError) });
-      frontCurve.emplace_back(p.Seconds, result.Error(p));
-    }
-    for (const Point& p : result.ReferencePoints)
-    {
-      referenceCurve.emplace_back(p.Seconds, p.ReferenceError);
-    }
-    std::vector<std::string> row = { name, result.PhotonMapped ? "photon mapper" : "path tracer",
-      Table::Format(result.ImageNoise) + " / " + Table::Format(result.RegionNoise),
-      result.Converged ? Table::Format(pareto.back().ReferenceError) : "not measurable" };
-    for (double target : { 0.05, 0.02 })
-    {
-      bool unused = false, extrapolated = false;
-      const double tPipeline = TimeToError(frontCurve, target, false, &unused);
-      if (!result.Converged)
-      {
-        // The reference's own noise after its budget, extrapolated with noise ~ time^(-1/2)
-        // (time^(-1/3) for the photon mapper),
-        // says how long unbiased Monte Carlo would need; the pipeline's error against it cannot
-        // be measured.
-        const double tReference = result.Reference.Seconds *
-          std::pow(result.ImageNoise / target, result.PhotonMapped ? 3.0 : 2.0);
-        row.push_back("-");
-        row.push_back(Table::Format(tReference) + "*");
-        row.push_back("not measurable");
-        row.push_back("-");
-        row.push_back("-");
-        continue;
-      }
-      const double tReference = TimeToError(
-        referenceCurve, target, true, &extrapolated, result.PhotonMapped ? 1.0 / 3.0 : 0.5);
-      row.push_back(tPipeline < 0 ? "not reached" : Table::Format(tPipeline));
-      row.push_back(Table::Format(tReference) + (extrapolated ? "*" : ""));
-      row.push_back(tPipeline < 0 ? "-" : Table::Format(tReference / tPipeline));
-      // The unbiased path tracer: the reference itself, or on photon-mapped scenes its noise after
-      // a short run extrapolated with noise ~ time^(-1/2) (a lower bound: it has no bias).
-      const double tUnbiased = result.PhotonMapped
-        ? result.UnbiasedSeconds * std::pow(result.UnbiasedNoise / target, 2.0)
-        : tReference;
-      row.push_back(Table::Format(tUnbiased) + (result.PhotonMapped || extrapolated ? "*" : ""));
-      row.push_back(tPipeline < 0 ? "-" : Table::Format(tUnbiased / tPipeline));
-    }
-    speedUp.AddRow(row);
-    this->Plot(name);
-  }
-  this->Runs.Print("Accuracy and time: one knob at a time from the base setting");
-  this->ReferenceRuns.Print("Reference estimators: error against time (seed 2 against the "
-                            "converged seed-1 image of the same estimator)");
-  this->Presets.Print("Quality presets chosen from the sweep, measured");
-  front.Print("Pareto front per scene (error vs reference where it converged, else vs finest)");
-  speedUp.Print("Speed-up of the pipeline over the reference at equal error (* extrapolated: "
-                "error ~ time^-1/2 for the path tracer, time^-1/3 for the photon mapper)");
-  this->Runs.WriteCsv(this->Config.Out + "/accuracy_time.csv");
-  this->ReferenceRuns.WriteCsv(this->Config.Out + "/reference_curve.csv");
-  this->Presets.WriteCsv(this->Config.Out + "/presets.csv");
-  front.WriteCsv(this->Config.Out + "/pareto.csv");
-  speedUp.WriteCsv(this->Config.Out + "/speed_up.csv");
-}
-
 int Benchmark::Run()
 {
   mkdir(this->Config.Out.c_str(), 0755);
@@ -1016,13 +625,16 @@ int Benchmark::Run()
     this->SweepScene(name);
   }
   this->ChoosePresets(names);
+  this->MeasureShippedPresets(names);
   this->Report(names);
   return 0;
 }
-}
+} // namespace accuracy
+} // namespace refracta
 
 int main(int argc, char* argv[])
 {
+  using namespace refracta::accuracy;
   Settings settings;
   if (!ParseArguments(argc, argv, settings))
   {
