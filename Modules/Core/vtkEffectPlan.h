@@ -150,10 +150,12 @@ public:
    * vtkPhotonTracer::ScatteringOrders, the lattice the rest) or PHOTONS_EVERY_ORDER (photons carry
    * every order, no lattice). AUTOMATIC_MULTIPLE_METHOD (default): photons where lit surfaces
    * need them (the lattice knows no surfaces); where a powered positional light is inside the
-   * medium (vtkSceneAnalysis::GetNumberOfLightsInsideMedium(): a concentrated source) the split
-   * with the smallest k whose measured ray-effect anisotropy (GetRayEffectAnisotropy() for the
-   * lattice in use, LatticeDirections) is within the tolerance; else the lattice alone (measured
-   * as close to the reference as any split there, and cheaper).
+   * medium (vtkSceneAnalysis::GetNumberOfLightsInsideMedium(): a concentrated source), or where
+   * refraction moves light by a voxel or more (GetMaximumDisplacementInVoxels() >= 1: it can
+   * focus the light into a concentrated source, e.g. a GRIN lens), the split with the smallest k
+   * whose measured ray-effect anisotropy (GetRayEffectAnisotropy() for the lattice in use,
+   * LatticeDirections) is within the tolerance; else the lattice alone (measured as close to the
+   * reference as any split there, and cheaper).
    */
   enum MultipleScatteringMethod
   {

@@ -458,10 +458,11 @@ TEST(SceneAnalysis, MediumFactsAreReusedUntilTheMediumChanges)
 }
 
 // The multiple-scattering method (issue 14): automatically the lattice alone where every light is
-// outside the medium, and the first-collision split where one is inside, with the smallest k
-// whose measured ray-effect anisotropy is within the tolerance for the lattice in use; forced
-// methods and orders are honoured; lit surfaces always get photons carrying every order; the
-// choice is recorded with its reason.
+// outside a medium that does not focus light, and the first-collision split where one is inside
+// or where refraction displaces light by a voxel or more (issue 19: the GRIN lens's truth), with
+// the smallest k whose measured ray-effect anisotropy is within the tolerance for the lattice in
+// use; forced methods and orders are honoured; lit surfaces always get photons carrying every
+// order; the choice is recorded with its reason.
 TEST(EffectPlan, MultipleScatteringMethodFollowsTheToleranceAndTheLattice)
 {
   auto fog = MakeMedium(10, 10, 10, 0.1,
@@ -480,6 +481,33 @@ TEST(EffectPlan, MultipleScatteringMethodFollowsTheToleranceAndTheLattice)
   EXPECT_EQ(analysis->GetNumberOfLightsInsideMedium(), 0);
   EXPECT_EQ(plan->GetChosenMultipleScatteringMethod(), vtkEffectPlan::LATTICE_ONLY)
     << plan->GetMultipleScatteringMethodReason();
+  // The same fog with n = 1 + 0.3 y bends the light by several voxels: refraction can focus it
+  // into a concentrated source inside the medium (a GRIN lens), so the split, with the light
+  // outside. A tiny gradient (less than a voxel of displacement, refraction still on) does not.
+  for (const double a : { 0.3, 0.002 })
+  {
+    auto grin = MakeMedium(10, 10, 10, 0.1,
+      [a](int, int j, int)
+      {
+        Voxel v;
+        v.N = 1.0 + a * 0.1 * j;
+        v.SigmaT = 2.0;
+        v.Albedo = 0.95;
+        return v;
+      });
+    Plan(grin, outside, plan, analysis); // tolerance 0.01 (default): k = 7 with D3Q6
+    const bool focusing = analysis->GetMaximumDisplacementInVoxels() >= 1.0;
+    EXPECT_EQ(focusing, a > 0.1) << analysis->GetMaximumDisplacementInVoxels();
+    EXPECT_EQ(plan->GetChosenMultipleScatteringMethod(),
+      focusing ? vtkEffectPlan::FIRST_COLLISION_SPLIT : vtkEffectPlan::LATTICE_ONLY)
+      << plan->GetMultipleScatteringMethodReason();
+    if (focusing)
+    {
+      EXPECT_NE(std::string(plan->GetMultipleScatteringMethodReason()).find("refraction can focus"),
+        std::string::npos);
+      EXPECT_EQ(plan->GetChosenScatteringOrders(), 7);
+    }
+  }
   auto sun = vtkSmartPointer<vtkLight>::New(); // a point light in the fog (box [-0.05, 0.95])
   sun->SetPositional(true);
   sun->SetConeAngle(180);
