@@ -244,17 +244,6 @@ Image ConvergedReference(const Scene& scene, int resolution, const Settings& set
   return image;
 }
 
-std::vector<std::string> Split(const std::string& text)
-{
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  for (std::string part; std::getline(stream, part, ',');)
-  {
-    parts.push_back(part);
-  }
-  return parts;
-}
-
 bool ParseArguments(int argc, char* argv[], Settings& settings)
 {
   for (int i = 1; i < argc; ++i)
@@ -303,9 +292,9 @@ bool ParseArguments(int argc, char* argv[], Settings& settings)
     else if (key == "--runs")
       settings.Runs = std::atoi(value.c_str());
     else if (key == "--scenes")
-      settings.Scenes = Split(value);
+      settings.Scenes = refracta::bench::SplitList(value);
     else if (key == "--knobs")
-      settings.KnobNames = Split(value);
+      settings.KnobNames = refracta::bench::SplitList(value);
     else
     {
       std::cerr << "unknown option " << key

@@ -18,6 +18,8 @@
 //
 // Usage: BenchmarkLatticeBoltzmann [--large] [--sizes 32,64] [--repeats N] [--csv file]
 //        [--max-steps N] [--isotropic] [--global-only] [--table1 N]
+#include "RefractaBenchmark.h"
+
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -38,7 +40,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -198,13 +199,7 @@ int main(int argc, char* argv[])
     }
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc)
     {
-      sizes.clear();
-      std::stringstream list(argv[++i]);
-      std::string item;
-      while (std::getline(list, item, ','))
-      {
-        sizes.push_back(std::atoi(item.c_str()));
-      }
+      sizes = refracta::bench::ParseIntList(argv[++i]);
     }
     else if (!std::strcmp(argv[i], "--isotropic"))
     {

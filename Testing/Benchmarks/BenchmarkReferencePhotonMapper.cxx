@@ -63,18 +63,6 @@ struct Settings
   std::string Csv;
 };
 
-std::vector<std::string> Split(const std::string& text)
-{
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-  {
-    items.push_back(item);
-  }
-  return items;
-}
-
 bool Parse(int argc, char* argv[], Settings& s)
 {
   for (int i = 1; i < argc; ++i)
@@ -98,7 +86,7 @@ bool Parse(int argc, char* argv[], Settings& s)
     const std::string value = argv[++i];
     if (key == "--scenes")
     {
-      s.Scenes = Split(value);
+      s.Scenes = refracta::bench::SplitList(value);
     }
     else if (key == "--size")
     {
@@ -123,7 +111,7 @@ bool Parse(int argc, char* argv[], Settings& s)
     else if (key == "--spacings")
     {
       s.Spacings.clear();
-      for (const std::string& v : Split(value))
+      for (const std::string& v : refracta::bench::SplitList(value))
       {
         s.Spacings.push_back(std::atof(v.c_str()));
       }

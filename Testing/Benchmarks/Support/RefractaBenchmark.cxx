@@ -59,12 +59,22 @@ double MedianSeconds(int repeats, const std::function<void()>& work)
   return Median(seconds);
 }
 
-std::vector<int> ParseIntList(const std::string& text)
+std::vector<std::string> SplitList(const std::string& text)
 {
-  std::vector<int> values;
+  std::vector<std::string> items;
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ','))
+  {
+    items.push_back(item);
+  }
+  return items;
+}
+
+std::vector<int> ParseIntList(const std::string& text)
+{
+  std::vector<int> values;
+  for (const std::string& item : SplitList(text))
   {
     values.push_back(std::atoi(item.c_str()));
   }

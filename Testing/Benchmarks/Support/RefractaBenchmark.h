@@ -28,6 +28,9 @@ double MedianSeconds(int repeats, const std::function<void()>& work);
 /** Peak resident memory of this process so far, in MiB. */
 double PeakMemoryMiB();
 
+/** The items of a comma-separated list ("glass-sphere-in-fog,grin-lens"). */
+std::vector<std::string> SplitList(const std::string& text);
+
 /** The integers of a comma-separated list ("32,64,96"); an item that is not a number reads 0. */
 std::vector<int> ParseIntList(const std::string& text);
 
