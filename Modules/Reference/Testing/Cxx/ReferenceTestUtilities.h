@@ -101,6 +101,21 @@ inline vtkSmartPointer<vtkImageData> Homogeneous(
   return MakeMedium(dims, spacing, origin, [&](int, int, int, Voxel& out) { out = v; });
 }
 
+// A grey isotropic slab with sigma_t = 1 and the given albedo: 3 x 3 x 3 nodes spanning
+// [-width, width]^2 laterally and [0, 2 depth] in z (effectively semi-infinite when depth >> 1).
+inline vtkSmartPointer<vtkImageData> IsotropicSlab(double albedo, double width, double depth)
+{
+  const int dims[3] = { 3, 3, 3 };
+  const double spacing[3] = { width, width, depth }, origin[3] = { -width, -width, 0 };
+  Voxel v;
+  for (int c = 0; c < 3; ++c)
+  {
+    v.Sigma[c] = 1.0;
+    v.Albedo[c] = albedo;
+  }
+  return Homogeneous(dims, spacing, origin, v);
+}
+
 inline vtkSmartPointer<vtkCamera> ParallelCamera(
   const double focal[3], const double dirOfProjection[3], const double up[3], double scale)
 {

@@ -20,15 +20,7 @@ TEST(ReferenceConvergence, SemiInfiniteChandrasekhar)
 {
   for (double w : { 0.5, 0.99 })
   {
-    const int dims[3] = { 3, 3, 3 };
-    const double spacing[3] = { 300, 300, 40 }, origin[3] = { -300, -300, 0 };
-    Voxel v;
-    for (int c = 0; c < 3; ++c)
-    {
-      v.Sigma[c] = 1.0;
-      v.Albedo[c] = w;
-    }
-    auto medium = Homogeneous(dims, spacing, origin, v);
+    auto medium = IsotropicSlab(w, 300, 40);
     const double top = 100.0;
     const double towards[3] = { 0, 0, 1 };
     for (double thv : { 0.0, 45.0, 75.0 })

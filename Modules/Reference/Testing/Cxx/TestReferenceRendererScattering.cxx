@@ -206,15 +206,7 @@ TEST(ReferenceRenderer, SemiInfiniteMultipleScatteringChandrasekhar)
 {
   EXPECT_NEAR(HFunction(1.0, 1.0), 2.9078, 5e-3); // tabulated (Chandrasekhar 1950); 64 nodes
   const double w = 0.9, E = 1.0;
-  const int dims[3] = { 3, 3, 3 };
-  const double spacing[3] = { 100, 100, 10 }, origin[3] = { -100, -100, 0 };
-  Voxel v;
-  for (int c = 0; c < 3; ++c)
-  {
-    v.Sigma[c] = 1.0;
-    v.Albedo[c] = w;
-  }
-  auto medium = Homogeneous(dims, spacing, origin, v);
+  auto medium = IsotropicSlab(w, 100, 10);
   const double top = 25.0;
   const double towards[3] = { 0, 0, 1 };
   for (double thv : { 0.0, 60.0 })
@@ -249,15 +241,7 @@ TEST(ReferenceRenderer, SemiInfiniteMultipleScatteringChandrasekhar)
 TEST(ReferenceRenderer, SemiInfinitePlaneAlbedo)
 {
   const double w = 0.8;
-  const int dims[3] = { 3, 3, 3 };
-  const double spacing[3] = { 100, 100, 10 }, origin[3] = { -100, -100, 0 };
-  Voxel v;
-  for (int c = 0; c < 3; ++c)
-  {
-    v.Sigma[c] = 1.0;
-    v.Albedo[c] = w;
-  }
-  auto medium = Homogeneous(dims, spacing, origin, v);
+  auto medium = IsotropicSlab(w, 100, 10);
   const double towards[3] = { 0, 0, 1 };
   std::vector<double> mu, wt;
   GaussLegendre(6, mu, wt);

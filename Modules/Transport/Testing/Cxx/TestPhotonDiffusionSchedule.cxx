@@ -79,11 +79,14 @@ double LargestDifference(vtkDataArray* a, vtkDataArray* b, double& peak)
 {
   peak = 0;
   double largest = 0;
-  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+  const int n = b->GetNumberOfComponents();
+  for (vtkIdType t = 0; t < b->GetNumberOfTuples(); ++t)
   {
-    peak = std::max(peak, std::fabs(b->GetVariantValue(i).ToDouble()));
-    largest = std::max(
-      largest, std::fabs(a->GetVariantValue(i).ToDouble() - b->GetVariantValue(i).ToDouble()));
+    for (int c = 0; c < n; ++c)
+    {
+      peak = std::max(peak, std::fabs(b->GetComponent(t, c)));
+      largest = std::max(largest, std::fabs(a->GetComponent(t, c) - b->GetComponent(t, c)));
+    }
   }
   return largest;
 }
