@@ -1,6 +1,8 @@
 // photon_march.cl: the photon marching kernels (photon_march: each photon to its end in one
 // launch; photon_march_chunk: resumable, a bounded number of steps per launch). Prepend
 // photon_trace.cl and photon_surfaces.cl; see photon_trace.cl's header for the march itself.
+// Both take the volume caustic's brick map, fine accumulators and subdivision last (used with
+// REFRACTA_VOLUME_CAUSTIC only; photon_deposit_volume_caustic).
 
 // A new photon of emitted power `power`: its roulette threshold, zero tallies, its random stream
 // (by photon id, so the stream does not depend on launches or chunks) and the analog-scattering
@@ -43,7 +45,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon,
   __global const float* anisotropy, volatile __global long* multiple,
   __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
-  __global const float4* surfaceBodies)
+  __global const float4* surfaceBodies, __global const int* volumeCausticBricks,
+  volatile __global long* volumeCausticFine, const int volumeCausticSubdivision)
 {
   // Launched in chunks (for progress reports); the stream depends on the photon, not the chunk.
   const uint id = first + (uint)get_global_id(0);
@@ -57,6 +60,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
     return;
   }
   ps.bodies = surfaceBodies;
+  photon_set_volume_caustic(&ps, volumeCausticBricks, volumeCausticFine, volumeCausticSubdivision);
   const float3 emitted = ps.power;
   int steps = 0;
   int outcome = PHOTON_COUNTER_ESCAPED; // counter index: 2 escaped, 3 roulette, 4 step cap, 5 invalid
@@ -134,7 +138,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon,
   __global const float* anisotropy, volatile __global long* multiple,
   __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
-  __global const float4* surfaceBodies)
+  __global const float4* surfaceBodies, __global const int* volumeCausticBricks,
+  volatile __global long* volumeCausticFine, const int volumeCausticSubdivision)
 {
   const uint id = first + (uint)get_global_id(0);
   if (id >= count)
@@ -204,6 +209,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.body = as_int(s[6].w);
   }
   ps.bodies = surfaceBodies;
+  photon_set_volume_caustic(&ps, volumeCausticBricks, volumeCausticFine, volumeCausticSubdivision);
   ps.dead = 0;
   int steps = (int)st.y;
   int outcome = -1; // -1 still marching; 2 escaped, 3 roulette, 4 step cap, 5 invalid, 8 surface

@@ -128,6 +128,9 @@
 #ifndef REFRACTA_ANALOG
 #define REFRACTA_ANALOG 0
 #endif
+#ifndef REFRACTA_VOLUME_CAUSTIC
+#define REFRACTA_VOLUME_CAUSTIC 0
+#endif
 #ifndef REFRACTA_STEP_TOLERANCE
 #define REFRACTA_STEP_TOLERANCE 0.02f
 #endif
@@ -250,7 +253,102 @@ typedef struct
   volatile __global long* multiple;        // analog: S_ms accumulators (order >= 1)
   int body;                                // the glass body it is in, or -1 (the grid)
   __global const float4* bodies;           // the bodies' media (refracta_surfaces.cl)
+  __global const int* causticBricks;       // volume caustic: brick of each voxel, or -1
+  volatile __global long* causticFine;     // volume caustic: PHOTON_FINE_LONGS per fine voxel
+  int causticSub;                          // volume caustic: c, bricks of c^3 fine voxels
 } photon_state;
+
+// The volume caustic's fine accumulators per fine voxel: S1 (3), direction sums (3), pieces (1),
+// one long of padding (vtkPhotonTracerVolumeCaustic.cxx reads the same layout).
+#define PHOTON_FINE_LONGS 8
+
+inline void photon_set_volume_caustic(
+  photon_state* ps, __global const int* bricks, volatile __global long* fine, int subdivision)
+{
+  ps->causticBricks = bricks;
+  ps->causticFine = fine;
+  ps->causticSub = subdivision;
+}
+
+#if REFRACTA_VOLUME_CAUSTIC
+// Volume caustic (vtkPhotonTracer::VolumeCausticSubdivision; Physics.md "Volume caustics"): a
+// caustic photon (ps->caustic: refracted or reflected by an interface since its light, not yet
+// scattered) in a voxel that has a brick deposits its piece's S1 share `sc` (and the direction
+// sums) into the brick's c^3 fine voxels instead of the voxel: each fine voxel the piece crosses
+// gets the share of the piece's length inside it (a 3D DDA over the brick), and counts the piece.
+// `from` and `to` are the piece's ends in voxel units (voxel i spans [i, i + 1)), `cell` the
+// voxel. Returns false (deposit in the voxel as usual) for other photons and voxels.
+inline bool photon_deposit_volume_caustic(photon_state* ps, size_t voxel, int3 cell, float3 from,
+  float3 to, float3 sc, float w, float3 direction)
+{
+  if (!ps->caustic)
+  {
+    return false;
+  }
+  const int brick = ps->causticBricks[voxel];
+  if (brick < 0)
+  {
+    return false;
+  }
+  const int c = ps->causticSub;
+  const float3 f0 = (from - convert_float3(cell)) * (float)c;
+  const float3 df = (to - convert_float3(cell)) * (float)c - f0;
+  int3 fine = clamp(convert_int3_rtn(f0), (int3)(0), (int3)(c - 1));
+  const int3 stepDir = (int3)(df.x > 0.0f ? 1 : (df.x < 0.0f ? -1 : 0),
+    df.y > 0.0f ? 1 : (df.y < 0.0f ? -1 : 0), df.z > 0.0f ? 1 : (df.z < 0.0f ? -1 : 0));
+  const float3 tDelta = fabs((float3)(1.0f) / df);
+  float3 tNext;
+  tNext.x = df.x > 0.0f ? ((float)(fine.x + 1) - f0.x) / df.x
+                        : (df.x < 0.0f ? ((float)fine.x - f0.x) / df.x : INFINITY);
+  tNext.y = df.y > 0.0f ? ((float)(fine.y + 1) - f0.y) / df.y
+                        : (df.y < 0.0f ? ((float)fine.y - f0.y) / df.y : INFINITY);
+  tNext.z = df.z > 0.0f ? ((float)(fine.z + 1) - f0.z) / df.z
+                        : (df.z < 0.0f ? ((float)fine.z - f0.z) / df.z : INFINITY);
+  tNext = fmax(tNext, (float3)(0.0f));
+  const size_t first = (size_t)brick * (size_t)(c * c * c);
+  float t = 0.0f;
+  // The piece lies in one voxel: it crosses at most 3 c fine voxels (+1 for rounding).
+  for (int it = 0; it < 3 * c + 1; ++it)
+  {
+    const float tEnd = fmin(fmin(fmin(tNext.x, tNext.y), tNext.z), 1.0f);
+    // The last fine voxel takes what rounding left, so the shares sum to the piece's deposit.
+    const float share = tEnd >= 1.0f ? 1.0f - t : tEnd - t;
+    if (share > 0.0f)
+    {
+      volatile __global long* acc =
+        ps->causticFine + PHOTON_FINE_LONGS * (first + (size_t)((fine.z * c + fine.y) * c + fine.x));
+      refracta_atomic_add_fixed(acc, share * sc.x);
+      refracta_atomic_add_fixed(acc + 1, share * sc.y);
+      refracta_atomic_add_fixed(acc + 2, share * sc.z);
+      refracta_atomic_add_fixed(acc + 3, share * w * direction.x);
+      refracta_atomic_add_fixed(acc + 4, share * w * direction.y);
+      refracta_atomic_add_fixed(acc + 5, share * w * direction.z);
+      atom_add(acc + 6, 1L);
+      t = tEnd;
+    }
+    if (tEnd >= 1.0f)
+    {
+      break;
+    }
+    if (tNext.x <= tNext.y && tNext.x <= tNext.z)
+    {
+      fine.x = clamp(fine.x + stepDir.x, 0, c - 1);
+      tNext.x += tDelta.x;
+    }
+    else if (tNext.y <= tNext.z)
+    {
+      fine.y = clamp(fine.y + stepDir.y, 0, c - 1);
+      tNext.y += tDelta.y;
+    }
+    else
+    {
+      fine.z = clamp(fine.z + stepDir.z, 0, c - 1);
+      tNext.z += tDelta.z;
+    }
+  }
+  return true;
+}
+#endif
 
 // Initial values of the fields added for analog scattering.
 inline void photon_init_analog(photon_state* ps, __global const float* anisotropy,
@@ -380,9 +478,11 @@ inline float3 photon_sample_hg(float3 d, float g, uint* rng)
 #if REFRACTA_EXTINCTION
 // One piece of a voxel (sigma_t and the albedo sampled at its midpoint `mid`): attenuate, split the
 // loss, deposit the scattered part in `voxel`, then roulette.
+// `cell` is the voxel, `from` and `to` the piece's ends in voxel units (for the volume caustic).
 inline void photon_piece(photon_state* ps, float3 mid, float length, float3 direction,
-  size_t voxel, __global const float* extinction, __global const float* albedo, int4 dims,
-  volatile __global long* radiance, volatile __global long* directionSum)
+  size_t voxel, int3 cell, float3 from, float3 to, __global const float* extinction,
+  __global const float* albedo, int4 dims, volatile __global long* radiance,
+  volatile __global long* directionSum)
 {
 #if REFRACTA_INTERFACES
   const bool inBody = ps->body >= 0;
@@ -417,7 +517,11 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
 #else
   ps->scattered += sc;
 #endif
+#if REFRACTA_VOLUME_CAUSTIC
+  if (w > 0.0f && !photon_deposit_volume_caustic(ps, voxel, cell, from, to, sc, w, direction))
+#else
   if (w > 0.0f)
+#endif
   {
     refracta_atomic_add_fixed(radiance + 3 * voxel, sc.x);
     refracta_atomic_add_fixed(radiance + 3 * voxel + 1, sc.y);
@@ -508,11 +612,13 @@ inline void photon_walk(photon_state* ps, float3 x0, float3 x1, float t1, int4 d
     const float tEnd = fmin(fmin(fmin(tNext.x, tNext.y), tNext.z), t1);
     if (tEnd > t)
     {
+      const float3 from = (a + du * t) / cells;
+      const float3 to = (a + du * tEnd) / cells;
+      const int3 voxel = cell >> PHOTON_CUT_SHIFT;
       const float3 mid = (a + du * (0.5f * (t + tEnd))) / cells - 0.5f;
       photon_piece(ps, mid, (tEnd - t) * worldLength, direction,
-        refracta_voxel_index(
-          dims, cell.x >> PHOTON_CUT_SHIFT, cell.y >> PHOTON_CUT_SHIFT, cell.z >> PHOTON_CUT_SHIFT),
-        extinction, albedo, dims, radiance, directionSum);
+        refracta_voxel_index(dims, voxel.x, voxel.y, voxel.z), voxel, from, to, extinction, albedo,
+        dims, radiance, directionSum);
 #if REFRACTA_ANALOG
       if (ps->collided)
       {

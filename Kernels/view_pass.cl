@@ -190,11 +190,62 @@ inline float3 refracta_view_body_medium(
 }
 #endif
 
-// Source term Q at grid-local point x for a ray travelling in unit direction d.
-inline float3 refracta_view_source(const refracta_view_stencil* st, float3 d,
-  __global const float* emission,
+// The phase-weighted S1 of light with (trilinearly blended) mean direction `mean` seen towards
+// -d: unit vectors shorten when blended, so `mean` is re-normalised, and the phase falls back to
+// isotropic where the stored directions cancel.
+inline float3 refracta_view_single(float3 s1, float3 mean, float3 d, float g)
+{
+  const float len = length(mean);
+  const float phase = len > 1e-6f ? refracta_hg_phase(dot(mean, -d) / len, g) : REFRACTA_INV_4PI;
+  return phase * s1;
+}
+
+#ifdef REFRACTA_HAS_VOLUME_CAUSTIC
+// The volume caustic (vtkRefractaLightingVolume::VolumeCaustic*Name(); Physics.md "Volume
+// caustics"): in a voxel with a brick, the focused light's S1 at c times the resolution, trilinear
+// over the brick's c^3 fine voxels (clamped at the brick's faces: a brick holds only the light
+// that crossed its own voxel), with its own mean direction. `u` is the point in voxel coordinates
+// (voxel centres at integers). Zero outside bricks: there the light is in Radiance.
+inline float3 refracta_view_volume_caustic(int4 dims, float3 u, float3 d, float g,
+  __global const int* bricks, __global const float* fine, __global const float* fineDirection,
+  int c)
+{
+  const int3 v = clamp(convert_int3_rtn(u + 0.5f), (int3)(0), dims.xyz - 1);
+  const int brick = bricks[refracta_voxel_index(dims, v.x, v.y, v.z)];
+  if (brick < 0)
+  {
+    return (float3)(0.0f);
+  }
+  // Fine coordinates with fine-voxel centres at integers 0 .. c - 1.
+  const float3 f =
+    clamp((u - convert_float3(v) + 0.5f) * (float)c - 0.5f, (float3)(0.0f), (float3)(c - 1));
+  const int3 f0 = min(convert_int3_rtn(f), (int3)(c - 2));
+  const float3 w = f - convert_float3(f0);
+  const size_t first = (size_t)brick * (size_t)(c * c * c);
+  float3 s1 = (float3)(0.0f);
+  float3 mean = (float3)(0.0f);
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const int3 o = (int3)(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    const float weight = (o.x ? w.x : 1.0f - w.x) * (o.y ? w.y : 1.0f - w.y) *
+      (o.z ? w.z : 1.0f - w.z);
+    const int3 q = f0 + o;
+    const size_t index = first + (size_t)((q.z * c + q.y) * c + q.x);
+    s1 += weight * vload3(index, fine);
+    mean += weight * vload3(index, fineDirection);
+  }
+  return refracta_view_single(s1, mean, d, g);
+}
+#endif
+
+// Source term Q at grid-local point x (voxel coordinates u) for a ray travelling in unit
+// direction d.
+inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, float3 d,
+  int4 dims, __global const float* emission,
   __global const float* anisotropy, __global const float* radiance,
-  __global const float* radianceDirection, __global const float* multiple)
+  __global const float* radianceDirection, __global const float* multiple,
+  __global const int* causticBricks, __global const float* causticRadiance,
+  __global const float* causticDirection, int causticSub)
 {
   float3 q = (float3)(0.0f);
 #ifdef REFRACTA_HAS_EMISSION
@@ -202,16 +253,16 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 d,
 #endif
 #ifdef REFRACTA_HAS_SINGLE
   const float3 s1 = refracta_view_sample3(radiance, st);
+  const float g = refracta_view_sample1(anisotropy, st);
   if (s1.x + s1.y + s1.z > 0.0f)
   {
-    const float3 mean = refracta_view_sample3(radianceDirection, st);
-    const float len = length(mean);
-    const float g = refracta_view_sample1(anisotropy, st);
-    // w_o = -d (towards the camera); trilinear blending shortens unit vectors: re-normalise, and
-    // fall back to the isotropic phase where the stored directions cancel.
-    const float phase = len > 1e-6f ? refracta_hg_phase(dot(mean, -d) / len, g) : REFRACTA_INV_4PI;
-    q += phase * s1;
+    // w_o = -d (towards the camera).
+    q += refracta_view_single(s1, refracta_view_sample3(radianceDirection, st), d, g);
   }
+#ifdef REFRACTA_HAS_VOLUME_CAUSTIC
+  q += refracta_view_volume_caustic(
+    dims, u, d, g, causticBricks, causticRadiance, causticDirection, causticSub);
+#endif
 #endif
 #ifdef REFRACTA_HAS_MULTIPLE
   q += REFRACTA_INV_4PI * refracta_view_sample3(multiple, st);
@@ -233,11 +284,14 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 d,
     const int4 activeLo, const int4 activeHi, const uint skipMask,                               \
     __global const float4 *nodes, const int nodeCount, __global const float4 *triangles,         \
     const float4 toSurface0, const float4 toSurface1, const float4 toSurface2,                   \
-    __global const float4 *bodies
+    __global const float4 *bodies, __global const int *causticBricks,                             \
+    __global const float *causticRadiance, __global const float *causticDirection,               \
+    const int causticSub
 #define REFRACTA_VIEW_LEG_ARGS                                                                    \
   dims, spacing, extinction, emission, anisotropy, refractiveIndex, gradient, radiance,          \
     radianceDirection, multiple, stepLength, maxSteps, cutoff, occupancy, cellDims, activeLo,    \
-    activeHi, skipMask, nodes, nodeCount, triangles, toSurface0, toSurface1, toSurface2, bodies
+    activeHi, skipMask, nodes, nodeCount, triangles, toSurface0, toSurface1, toSurface2, bodies, \
+    causticBricks, causticRadiance, causticDirection, causticSub
 
 // One leg of a view path: from `origin` in unit direction d (grid-local) until the ray meets a
 // surface, leaves the box (then it sees the background, or a surface outside the box), reaches
@@ -423,11 +477,11 @@ inline refracta_view_leg refracta_view_march(
         blocked = true;
       }
 #endif
-      const refracta_view_stencil st =
-        refracta_view_make_stencil(dims, refracta_to_voxel(x + (0.5f * len) * chord, spacing));
+      const float3 u = refracta_to_voxel(x + (0.5f * len) * chord, spacing);
+      const refracta_view_stencil st = refracta_view_make_stencil(dims, u);
       float3 sigma = refracta_view_sample3(extinction, &st);
-      float3 q = refracta_view_source(
-        &st, chord, emission, anisotropy, radiance, radianceDirection, multiple);
+      float3 q = refracta_view_source(&st, u, chord, dims, emission, anisotropy, radiance,
+        radianceDirection, multiple, causticBricks, causticRadiance, causticDirection, causticSub);
 #ifdef REFRACTA_DIELECTRIC
       if (body >= 0)
       {
@@ -614,7 +668,9 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   __global const float4* triNormals, __global const float2* interfaces,
   const float4 toSurface0, const float4 toSurface1, const float4 toSurface2, __global float* hdr,
   __global uint* steps, __global float* transmittanceOut, __global float* surfaceDepthOut,
-  __global const float4* bodies)
+  __global const float4* bodies, __global const int* causticBricks,
+  __global const float* causticRadiance, __global const float* causticDirection,
+  const int causticSub)
 {
   const int pi = (int)get_global_id(0);
   const int pj = (int)get_global_id(1);

@@ -96,10 +96,10 @@ json FieldDataToJson(vtkFieldData* fd)
   for (int i = 0; fd && i < fd->GetNumberOfArrays(); ++i)
   {
     vtkDataArray* a = fd->GetArray(i);
-    if (!a || !a->GetName() || a->GetNumberOfTuples() < 1 ||
+    if (!a || !a->GetName() || a->GetNumberOfTuples() != 1 ||
       std::string(a->GetName()) == vtkRefractaLightingVolume::SurfaceIrradianceName())
     {
-      continue; // the surfaces' irradiance is one tuple per texel, not a statistic
+      continue; // per-texel or per-voxel arrays (the surfaces' irradiance, caustics) are no statistic
     }
     if (a->GetNumberOfComponents() == 1)
     {
@@ -172,6 +172,8 @@ json LightPassReport(vtkRefractaRenderPipeline* pipeline, int lightCount)
   report["device_memory_used_bytes"] = tracer->GetPeakDeviceMemoryBytes();
   report["host_memory_planned_bytes"] = tracer->GetPlannedHostMemoryBytes();
   report["photon_seconds"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING);
+  report["volume_caustic"] = { { "subdivision", tracer->GetLastVolumeCausticSubdivision() },
+    { "bricks", tracer->GetLastNumberOfVolumeCausticBricks() } };
   if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
   {
     // The plan's method, the orders the photons carried (0 none, k, -1 every order) and, where
@@ -245,6 +247,13 @@ void PrintLightPass(const json& light)
   std::cout << "  light     " << light.value("NumberOfPhotons", 0.0) << " photons, "
             << light.value("TotalSteps", 0.0) << " steps, " << light.value("photon_seconds", 0.0)
             << " s\n";
+  const json volumeCaustic = light.value("volume_caustic", json::object());
+  if (volumeCaustic.value("subdivision", 1) > 1)
+  {
+    const int c = volumeCaustic["subdivision"].get<int>();
+    std::cout << "  caustic   " << volumeCaustic["bricks"].get<long long>()
+              << " voxel(s) of focused light resolved in " << c << "^3 fine voxels\n";
+  }
   std::cout << "  memory    photon pass: device "
             << vtkOpenCLMemoryPlan::FormatBytes(light.value("device_memory_planned_bytes", 0.0))
             << " planned, "

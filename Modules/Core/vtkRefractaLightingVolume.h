@@ -117,6 +117,30 @@ public:
    */
   static const char* SurfaceCausticPhotonsName() { return "SurfaceCausticPhotons"; }
 
+  ///@{
+  /**
+   * The volume caustic (vtkPhotonTracer::VolumeCausticSubdivision c > 1; field-data arrays,
+   * present together). Where light focused by dielectric interfaces crosses a voxel densely, the
+   * voxel has a brick of c^3 fine voxels holding that light's S1 at c times the resolution:
+   * - VolumeCausticBricksName(): integer, 1 component, one tuple per voxel of the grid (point
+   *   order): the voxel's brick, or -1 (none);
+   * - VolumeCausticRadianceName(): 3 components, c^3 tuples per brick: fine voxel (i, j, k) of
+   *   brick b at b c^3 + (k c + j) c + i, covering voxel coordinates [x - 1/2 + i / c,
+   *   x - 1/2 + (i + 1) / c) along x for the brick's voxel x (likewise y, z); S1 of the focused
+   *   light, power per unit volume (RGB, >= 0);
+   * - VolumeCausticRadianceDirectionName(): 3 components, the same tuples: mean travel direction
+   *   of that light (unit, grid-local; zero where none).
+   * `Radiance` then holds the rest of S1, so a voxel's Radiance plus the mean of its brick is
+   * its whole S1 (before Radiance's smoothing). c follows from the tuple counts.
+   */
+  static const char* VolumeCausticBricksName() { return "VolumeCausticBricks"; }
+  static const char* VolumeCausticRadianceName() { return "VolumeCausticRadiance"; }
+  static const char* VolumeCausticRadianceDirectionName()
+  {
+    return "VolumeCausticRadianceDirection";
+  }
+  ///@}
+
   /**
    * Name of the array with the given id, or nullptr for an id out of range.
    */

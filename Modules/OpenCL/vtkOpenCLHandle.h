@@ -102,19 +102,28 @@ using vtkOpenCLKernel = vtkOpenCLHandle<cl_kernel>;
 using vtkOpenCLEvent = vtkOpenCLHandle<cl_event>;
 
 /**
- * Sets kernel arguments 0, 1, ... from the values given (each passed by address with its size;
- * pass cl_mem for buffers). Returns the first error, or CL_SUCCESS.
+ * Sets kernel arguments first, first + 1, ... from the values given (each passed by address with
+ * its size; pass cl_mem for buffers). Returns the first error, or CL_SUCCESS.
  */
 template <typename... Args>
-cl_int vtkOpenCLSetKernelArgs(cl_kernel kernel, const Args&... args)
+cl_int vtkOpenCLSetKernelArgsFrom(cl_kernel kernel, cl_uint first, const Args&... args)
 {
   cl_int status = CL_SUCCESS;
-  cl_uint index = 0;
+  cl_uint index = first;
   // Fold over the arguments; stop setting once one call has failed.
   ((status = (status == CL_SUCCESS ? clSetKernelArg(kernel, index, sizeof(Args), &args) : status),
      ++index),
     ...);
   return status;
+}
+
+/**
+ * Sets kernel arguments 0, 1, ... (vtkOpenCLSetKernelArgsFrom from 0).
+ */
+template <typename... Args>
+cl_int vtkOpenCLSetKernelArgs(cl_kernel kernel, const Args&... args)
+{
+  return vtkOpenCLSetKernelArgsFrom(kernel, 0, args...);
 }
 
 #endif // __VTK_WRAP__

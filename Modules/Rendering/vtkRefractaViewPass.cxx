@@ -316,6 +316,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.IndexVaries = static_cast<bool>(in.Index);
   variant.UniformIndex = in.UniformIndex;
   variant.Single = in.HasSingle;
+  variant.VolumeCaustic = in.VolumeCausticSub > 1;
   variant.Multiple = in.HasMultiple;
   variant.Emission = in.HasEmission;
   variant.Environment = env != nullptr;
@@ -443,7 +444,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       }
       part.V[c] = scaleV * frame.V[c];
     }
-    const cl_int w = width, h = rows;
+    const cl_int w = width, h = rows, causticSub = in.VolumeCausticSub;
     const cl_int status = vtkOpenCLSetKernelArgs(kernel.Get(), dims, spacing, buf(in.Extinction),
       buf(in.Emission), buf(in.Anisotropy), buf(in.Index), buf(in.Gradient), buf(in.Radiance),
       buf(in.RadianceDirection), buf(in.Multiple), Float4(part.Eye), Float4(part.U), Float4(part.V),
@@ -453,7 +454,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       activeHi, skipMask, buf(surf.Nodes), nodeCount, buf(surf.Triangles), buf(surf.TriangleInfo),
       buf(surf.Albedo), buf(surf.Irradiance), buf(surf.Normals), buf(surf.Interfaces), toSurface[0],
       toSurface[1], toSurface[2], hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(),
-      surfaceDepthBuffer.Get(), buf(surf.Bodies));
+      surfaceDepthBuffer.Get(), buf(surf.Bodies), buf(in.CausticBricks), buf(in.CausticRadiance),
+      buf(in.CausticDirection), causticSub);
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
       !this->RunTiles(context, kernel.Get(), width, rows, row0, height, rowsPerTile))
     {

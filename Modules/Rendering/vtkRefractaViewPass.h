@@ -254,9 +254,17 @@ public:
    * Check and (when changed) upload the lighting volume; nullptr means none (emission and
    * background only). Call after SetMedium(). Its field array SurfaceIrradianceName() (3
    * components, one tuple per texel of the surface set, finite and >= 0) lights the surfaces.
+   * Its volume caustic (the field arrays vtkRefractaLightingVolume::VolumeCausticBricksName(),
+   * VolumeCausticRadianceName() and VolumeCausticRadianceDirectionName(), all three or none)
+   * adds the focused light's S1 from the fine voxels of every voxel with a brick.
    * Returns false after an error.
    */
   bool SetLighting(vtkImageData* lighting);
+
+  /**
+   * Subdivision c of the volume caustic of the lighting volume last set (1: none).
+   */
+  int GetLightingVolumeCausticSubdivision() const;
 
   /**
    * Render W x H pixels for `camera` (world coordinates). `propMatrix` (may be nullptr) maps the
@@ -428,6 +436,9 @@ private:
 
   bool PlanImageMemory(vtkOpenCLContext* context, int width, int height, bool depth,
     bool transmittance, int& bufferRows);
+  // Checks and uploads the volume caustic's field arrays of `lighting` (`voxels` voxels); none is
+  // not an error.
+  bool SetVolumeCaustic(vtkImageData* lighting, vtkIdType voxels);
 #ifndef __VTK_WRAP__
   bool RunTiles(vtkOpenCLContext* context, cl_kernel kernel, int width, int height, int firstRow,
     int imageHeight, int& rowsPerTile);

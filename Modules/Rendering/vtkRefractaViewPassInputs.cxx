@@ -2,6 +2,7 @@
 #include "vtkRefractaViewPass.h"
 
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMediumValidator.h"
 #include "vtkOpenCLContext.h"
@@ -12,6 +13,8 @@
 #include "vtkRefractaViewPassFields.h"
 #include "vtkRefractaViewPassInternals.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -163,6 +166,10 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     in.Radiance.Reset();
     in.RadianceDirection.Reset();
     in.Multiple.Reset();
+    in.VolumeCausticSub = 1;
+    in.CausticBricks.Reset();
+    in.CausticRadiance.Reset();
+    in.CausticDirection.Reset();
     in.LightingFlags.clear();
     return true;
   }
@@ -255,8 +262,113 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
       return false;
     }
   }
+  if (!this->SetVolumeCaustic(lighting, n))
+  {
+    return false;
+  }
   in.Lighting = lighting;
   in.LightingTime = lighting->GetMTime();
   ++this->NumberOfUploads;
   return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaViewPass::SetVolumeCaustic(vtkImageData* lighting, vtkIdType voxels)
+{
+  Internals& in = *this->Internal;
+  in.VolumeCausticSub = 1;
+  in.CausticBricks.Reset();
+  in.CausticRadiance.Reset();
+  in.CausticDirection.Reset();
+  vtkFieldData* fd = lighting->GetFieldData();
+  const char* bricksName = vtkRefractaLightingVolume::VolumeCausticBricksName();
+  const char* fineName = vtkRefractaLightingVolume::VolumeCausticRadianceName();
+  const char* directionName = vtkRefractaLightingVolume::VolumeCausticRadianceDirectionName();
+  vtkDataArray* bricks = fd->GetArray(bricksName);
+  vtkDataArray* fine = fd->GetArray(fineName);
+  vtkDataArray* direction = fd->GetArray(directionName);
+  if (!bricks && !fine && !direction)
+  {
+    return true;
+  }
+  if (!bricks || !fine || !direction)
+  {
+    vtkErrorMacro("The lighting volume has some of the volume caustic's field arrays '"
+      << bricksName << "', '" << fineName << "' and '" << directionName
+      << "' but not all three (vtkPhotonTracer writes them together).");
+    return false;
+  }
+  if (!in.HasSingle)
+  {
+    vtkErrorMacro("The lighting volume has a volume caustic ('" << fineName
+                                                                << "') but no 'Radiance'.");
+    return false;
+  }
+  if (bricks->GetNumberOfComponents() != 1 || bricks->GetNumberOfTuples() != voxels)
+  {
+    vtkErrorMacro("The field array '" << bricksName << "' has " << bricks->GetNumberOfTuples()
+                                      << " tuples of " << bricks->GetNumberOfComponents()
+                                      << " components; it must have one integer per voxel ("
+                                      << voxels << ").");
+    return false;
+  }
+  std::vector<int> map(static_cast<size_t>(voxels));
+  vtkIdType count = 0; // bricks: the largest index + 1
+  for (vtkIdType v = 0; v < voxels; ++v)
+  {
+    const double b = bricks->GetComponent(v, 0);
+    if (!(b >= -1.0 && b < double(VTK_INT_MAX)) || b != std::floor(b))
+    {
+      vtkErrorMacro("The field array '" << bricksName << "' has " << b << " at voxel " << v
+                                        << "; each entry must be -1 (no brick) or a brick index.");
+      return false;
+    }
+    map[static_cast<size_t>(v)] = static_cast<int>(b);
+    count = std::max<vtkIdType>(count, static_cast<vtkIdType>(b) + 1);
+  }
+  const vtkIdType tuples = fine->GetNumberOfTuples();
+  const int c = count > 0 ? static_cast<int>(std::lround(std::cbrt(double(tuples) / count))) : 0;
+  if (count == 0 || c < 2 || vtkIdType(c) * c * c * count != tuples)
+  {
+    vtkErrorMacro("The field array '" << fineName << "' has " << tuples << " tuples for " << count
+                                      << " bricks; it must have c^3 per brick, c >= 2.");
+    return false;
+  }
+  std::string error;
+  if (!CheckLightingArray(fine, fineName, tuples, true, error) ||
+    !CheckLightingArray(direction, directionName, tuples, false, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  vtkOpenCLContext* context = in.GetContext();
+  const cl_mem_flags flags = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
+  in.CausticBricks =
+    context->CreateBuffer(flags, map.size() * sizeof(int), map.data(), bricksName, this);
+  std::vector<float> values;
+  FetchFloats(fine, 3, values);
+  in.CausticRadiance = context->CreateBuffer(flags, values.size() * 4, values.data(), fineName, this);
+  FetchFloats(direction, 3, values);
+  in.CausticDirection =
+    context->CreateBuffer(flags, values.size() * 4, values.data(), directionName, this);
+  if (!in.CausticBricks || !in.CausticRadiance || !in.CausticDirection)
+  {
+    return false;
+  }
+  // A voxel with a brick has light to show even where its Radiance is 0: not empty space.
+  for (size_t v = 0; v < map.size(); ++v)
+  {
+    if (map[v] >= 0)
+    {
+      in.LightingFlags[v] |= SourceFlag;
+    }
+  }
+  in.VolumeCausticSub = c;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkRefractaViewPass::GetLightingVolumeCausticSubdivision() const
+{
+  return this->Internal->VolumeCausticSub;
 }

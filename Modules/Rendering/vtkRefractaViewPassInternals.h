@@ -42,6 +42,9 @@ struct vtkRefractaViewPass::Internals
   bool HasSingle = false;
   bool HasMultiple = false;
   vtkOpenCLBuffer Radiance, RadianceDirection, Multiple;
+  // The volume caustic: c (1: none), each voxel's brick, the fine S1 and directions.
+  int VolumeCausticSub = 1;
+  vtkOpenCLBuffer CausticBricks, CausticRadiance, CausticDirection;
 
   // Environment on the device.
   vtkSmartPointer<vtkImageData> EnvironmentUploaded;
@@ -77,7 +80,8 @@ struct vtkRefractaViewPass::Internals
     std::vector<double> sizes;
     for (const vtkOpenCLBuffer* b : { &this->Extinction, &this->Emission, &this->Anisotropy,
            &this->Index, &this->Gradient, &this->Radiance, &this->RadianceDirection,
-           &this->Multiple, &this->EnvironmentBuffer, &this->Occupancy, &this->Dummy })
+           &this->Multiple, &this->CausticBricks, &this->CausticRadiance,
+           &this->CausticDirection, &this->EnvironmentBuffer, &this->Occupancy, &this->Dummy })
     {
       size_t size = 0;
       if (*b &&

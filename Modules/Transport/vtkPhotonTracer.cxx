@@ -225,7 +225,8 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   this->LastCausticSubdivision = run.Caustic;
   options << " -DREFRACTA_CAUSTIC_SUBDIVISION=" << run.Caustic << " -DREFRACTA_CAUSTIC_OFFSET="
           << (run.Caustic > 1 ? run.Surfaces->GetNumberOfTexels() : 0);
-  options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0);
+  options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0)
+          << " -DREFRACTA_VOLUME_CAUSTIC=" << (this->UsesVolumeCaustic(run) ? 1 : 0);
   if (run.SplitOrders > 0)
   {
     options << " -DREFRACTA_ANALOG_ORDERS=" << run.SplitOrders;
@@ -365,6 +366,7 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
     vtkOpenCLBuffer active = alloc.Make(CL_MEM_READ_WRITE, sizeof(cl_int), nullptr, "active");
     if (!marchChunk || !state || !status || !active ||
       !this->SetSurfaceArguments(run, marchChunk.Get(), 21) ||
+      !this->SetVolumeCausticArguments(run, marchChunk.Get(), 36) ||
       !ctx->ZeroBuffer(status.Get(), photons * sizeof(cl_uint4), this))
     {
       return false;
@@ -425,14 +427,9 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
   // every photon's random stream depends on its index only, so the batches do not change the
   // result. PhotonBatchSize 0 sizes each batch from the rate measured so far to take about
   // TargetBatchSeconds (at most doubling from one batch to the next).
-  const size_t group = 64; // Run1D's work-group size: batches must be whole groups
-  const bool automatic = this->PhotonBatchSize <= 0;
-  size_t batch = automatic ? MinimumBatch : std::max<size_t>(this->PhotonBatchSize, 1);
-  batch = (batch + group - 1) / group * group;
-  for (size_t first = 0; this->StepsPerChunk == 0 && first < photons;)
+  // Photons [first, first + count) marched, in launches of at most `chunk`.
+  auto launchMarch = [&](size_t first, size_t count)
   {
-    const size_t count = std::min(batch, photons - first);
-    const auto launchStart = Clock::now();
     for (size_t sub = first; sub < first + count; sub += chunk)
     {
       const cl_uint firstId = static_cast<cl_uint>(sub);
@@ -446,7 +443,23 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
         return false;
       }
     }
-    if (!ctx->Finish(this))
+    return true;
+  };
+  if (this->StepsPerChunk == 0 &&
+    (!this->PlaceVolumeCausticBricks(run, launchMarch, march.Get(), 32) ||
+      !this->ReportProgress(run, ProgressGenerated)))
+  {
+    return false;
+  }
+  const size_t group = 64; // Run1D's work-group size: batches must be whole groups
+  const bool automatic = this->PhotonBatchSize <= 0;
+  size_t batch = automatic ? MinimumBatch : std::max<size_t>(this->PhotonBatchSize, 1);
+  batch = (batch + group - 1) / group * group;
+  for (size_t first = 0; this->StepsPerChunk == 0 && first < photons;)
+  {
+    const size_t count = std::min(batch, photons - first);
+    const auto launchStart = Clock::now();
+    if (!launchMarch(first, count) || !ctx->Finish(this))
     {
       return false;
     }
@@ -680,6 +693,7 @@ bool vtkPhotonTracer::CheckSettingsAreNumbers()
     { "RouletteThreshold", this->RouletteThreshold }, { "MaximumTurn", this->MaximumTurn },
     { "StepTolerance", this->StepTolerance }, { "SmoothingBias", this->SmoothingBias },
     { "LightRadius", this->LightRadius },
+    { "VolumeCausticPiecesPerFineVoxel", this->VolumeCausticPiecesPerFineVoxel },
     { "DirectionalLightAngularRadius", this->DirectionalLightAngularRadius } };
   for (const auto& setting : settings)
   {
@@ -738,7 +752,8 @@ int vtkPhotonTracer::RequestData(
   this->SharePhotons(run);
   if (!this->InitializeDevice(run) || !this->PlanMemory(run) || !this->BuildOctreeStage(run) ||
     !this->GeneratePhotons(run) || !this->MarchPhotons(run) || !this->ResolveRadiance(run) ||
-    !this->ResolveMultipleScattering(run) || !this->ResolveSurfaces(run))
+    !this->ResolveMultipleScattering(run) || !this->ResolveSurfaces(run) ||
+    !this->ResolveVolumeCaustic(run))
   {
     if (run.Aborted)
     {
@@ -751,6 +766,7 @@ int vtkPhotonTracer::RequestData(
   }
   this->PeakDeviceMemoryBytes = run.Alloc.Bytes;
   this->WriteOutput(run, output);
+  this->WriteVolumeCausticOutput(run, output);
   this->KeepMedium(run);
   this->KeepSurfaces(run);
   this->ReportProgress(run, 1.0);
@@ -782,6 +798,13 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CausticSubdivision: " << this->CausticSubdivision << "\n";
   os << indent << "MaximumNumberOfCausticTexels: " << this->MaximumNumberOfCausticTexels << "\n";
   os << indent << "LastCausticSubdivision: " << this->LastCausticSubdivision << "\n";
+  os << indent << "VolumeCausticSubdivision: " << this->VolumeCausticSubdivision << "\n";
+  os << indent << "MaximumNumberOfVolumeCausticVoxels: "
+     << this->MaximumNumberOfVolumeCausticVoxels << "\n";
+  os << indent << "VolumeCausticPiecesPerFineVoxel: " << this->VolumeCausticPiecesPerFineVoxel
+     << "\n";
+  os << indent << "LastVolumeCausticSubdivision: " << this->LastVolumeCausticSubdivision << " ("
+     << this->LastNumberOfVolumeCausticBricks << " bricks)\n";
   os << indent << "MaximumTurn: " << this->MaximumTurn << "\n";
   os << indent << "StepTolerance: " << this->StepTolerance << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";

@@ -372,6 +372,58 @@ public:
 
   ///@{
   /**
+   * Volume caustic subdivision c (default 4; 1 turns it off; at most 8). Light that dielectric
+   * interfaces focus into the medium (the shaft behind a glass lens, narrowing to its focus) is
+   * finer than the voxels. Where enough caustic photons (refracted or reflected by an interface
+   * since their light, not scattered since) cross a voxel, the voxel gets a brick of c^3 fine
+   * voxels, and those photons' S1 deposits there go into the brick's fine voxels, each the share
+   * of the piece's length inside it, instead of into the voxel (Documentation/Physics.md
+   * "Volume caustics"). The output then holds the field-data arrays
+   * vtkRefractaLightingVolume::VolumeCausticBricksName(), VolumeCausticRadianceName() and
+   * VolumeCausticRadianceDirectionName(); `Radiance` holds the rest, so the two add up to the
+   * light of a run without bricks. Which voxels get bricks is decided by a pilot march of one
+   * photon in 8 (about 12% more marching): a voxel that an estimated
+   * VolumeCausticPiecesPerFineVoxel x c^3 caustic pieces cross. Used only where photons carry
+   * every scattered order themselves (analog scattering: `Radiance` is then read by the view pass
+   * alone, never by the lattice) in an unchunked march with dielectric surfaces; otherwise
+   * nothing is allocated and the output is unchanged (GetLastVolumeCausticSubdivision() 1).
+   * Memory: 64 bytes per fine voxel on the device while tracing (and 64 per voxel for the pilot),
+   * 24 in the output.
+   */
+  vtkSetClampMacro(VolumeCausticSubdivision, int, 1, 8);
+  vtkGetMacro(VolumeCausticSubdivision, int);
+  ///@}
+
+  ///@{
+  /**
+   * Most fine voxels of the volume caustic's bricks (default 2^20: 64 MiB on the device while
+   * tracing). A run uses the largest c' <= VolumeCausticSubdivision whose bricks fit (no volume
+   * caustic if none does).
+   */
+  vtkSetClampMacro(MaximumNumberOfVolumeCausticVoxels, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(MaximumNumberOfVolumeCausticVoxels, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
+   * Caustic voxel pieces a fine voxel must expect for its voxel to get a brick (default 16; a
+   * voxel needs VolumeCausticPiecesPerFineVoxel x c^3 from the pilot's estimate). Lower values
+   * put bricks where fewer caustic photons pass and make their fine voxels noisier.
+   */
+  vtkSetClampMacro(VolumeCausticPiecesPerFineVoxel, double, 0.0, 1e30);
+  vtkGetMacro(VolumeCausticPiecesPerFineVoxel, double);
+  ///@}
+
+  ///@{
+  /**
+   * The volume caustic of the last run: its subdivision (1: none) and its number of bricks.
+   */
+  vtkGetMacro(LastVolumeCausticSubdivision, int);
+  vtkGetMacro(LastNumberOfVolumeCausticBricks, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
    * Largest change of v = n dx/ds in one step, as a fraction of n (default 0.5): a steep index
    * step turns a ray over a few steps instead of throwing it out of the grid.
    */
@@ -598,6 +650,11 @@ protected:
   int CausticSubdivision = 4;
   vtkIdType MaximumNumberOfCausticTexels = vtkIdType(1) << 22;
   int LastCausticSubdivision = 1;
+  int VolumeCausticSubdivision = 4;
+  vtkIdType MaximumNumberOfVolumeCausticVoxels = vtkIdType(1) << 20;
+  double VolumeCausticPiecesPerFineVoxel = 16.0;
+  int LastVolumeCausticSubdivision = 1;
+  vtkIdType LastNumberOfVolumeCausticBricks = 0;
   double MaximumTurn = 0.5;
   double StepTolerance = 0.02;
   bool Smoothing = true;
@@ -670,6 +727,18 @@ private:
   bool SmoothAxes(Internals& run, cl_kernel filter, cl_mem a, cl_mem b);
 #endif
   void WriteSurfaceOutput(Internals& run, vtkImageData* output);
+  // The volume caustic (vtkPhotonTracerVolumeCaustic.cxx): whether this run builds one; its
+  // kernel arguments (placeholders when off) from index `first`; the pilot march that places the
+  // bricks (the accumulators are cleared after it); the fine deposits resolved; the output.
+  bool UsesVolumeCaustic(Internals& run);
+#ifndef __VTK_WRAP__
+  bool SetVolumeCausticArguments(Internals& run, cl_kernel kernel, cl_uint first);
+  // `march(first, count)` launches the march kernel `kernel` over photons [first, first + count).
+  bool PlaceVolumeCausticBricks(Internals& run,
+    const std::function<bool(size_t, size_t)>& march, cl_kernel kernel, cl_uint first);
+#endif
+  bool ResolveVolumeCaustic(Internals& run);
+  void WriteVolumeCausticOutput(Internals& run, vtkImageData* output);
   void KeepSurfaces(Internals& run);
   // The environment light (vtkPhotonTracerEnvironment.cxx): its radiance table, CDFs and emission
   // sphere (appended to run.Lights as one more source), and the generation launch for its photons.

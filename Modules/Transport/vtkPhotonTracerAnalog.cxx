@@ -41,6 +41,7 @@ bool vtkPhotonTracer::UploadAnalogScattering(Internals& run)
     CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(float), g.data(), "anisotropy");
   const size_t bytes = voxels * AccumulatorsPerVoxel(run.SplitOrders) * sizeof(cl_long);
   run.MultipleFixed = alloc.Make(CL_MEM_READ_WRITE, bytes, nullptr, "S_ms accumulator");
+  run.MultipleBytes = bytes;
   return run.AnisotropyBuffer && run.MultipleFixed &&
     run.Context->ZeroBuffer(run.MultipleFixed.Get(), bytes, this);
 }

@@ -214,6 +214,17 @@ struct vtkPhotonTracer::Internals
   vtkNew<vtkFloatArray> Multiple;
   vtkNew<vtkFloatArray> LatticeSource;
   vtkNew<vtkFloatArray> LatticeSourceDirection;
+  // Volume caustic (vtkPhotonTracer::VolumeCausticSubdivision): whether the kernels have it, c of
+  // this run's bricks (1: none placed), each voxel's brick (-1: none), the device's brick map and
+  // fine accumulators (PHOTON_FINE_LONGS per fine voxel), the resolved fine S1 and directions;
+  // the byte sizes of the accumulators the pilot march dirtied and the run clears again.
+  bool VolumeCaustic = false;
+  int VolumeCausticSub = 1;
+  std::vector<int> Bricks;
+  vtkIdType NumberOfBricks = 0;
+  vtkOpenCLBuffer BrickBuffer, FineFixed;
+  vtkNew<vtkFloatArray> FineRadiance, FineDirection;
+  size_t MultipleBytes = 0, SurfIrradianceBytes = 0;
   vtkPhotonTracerDetail::EnvironmentSetup Env;
   double TotalBound = 0; // sum of the lights' power bounds towards the box
   size_t Photons = 0;

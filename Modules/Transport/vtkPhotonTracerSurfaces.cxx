@@ -254,6 +254,7 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
   const size_t accumulators = run.Caustic > 1 ? texels * (3 + 3 * c2 + 1) : 3 * texels;
   run.SurfIrradiance = alloc.Make(
     CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "surface irradiance accumulator");
+  run.SurfIrradianceBytes = accumulators * sizeof(cl_long);
   return run.SurfNodes && run.SurfTriangles && run.SurfInfo && run.SurfAlbedo &&
     run.SurfIrradiance && run.SurfNormals && run.SurfInterfaces && run.SurfBodies &&
     ctx->ZeroBuffer(run.SurfIrradiance.Get(), accumulators * sizeof(cl_long), this);

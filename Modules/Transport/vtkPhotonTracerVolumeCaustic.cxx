@@ -1,0 +1,236 @@
+// The volume-caustic stage of vtkPhotonTracer (VolumeCausticSubdivision): a pilot march places
+// bricks of c^3 fine voxels where light focused by dielectric interfaces crosses voxels densely;
+// the march then deposits that light's S1 into the bricks (photon_deposit_volume_caustic in
+// photon_trace.cl), and the fine deposits are resolved into field-data arrays
+// (vtkRefractaLightingVolume::VolumeCaustic*Name()). Documentation/Physics.md "Volume caustics".
+#include "vtkPhotonTracer.h"
+#include "vtkPhotonTracerInternals.h"
+
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkRefractaLightingVolume.h"
+
+#include "photon_tallies.cl" // the sizes of the tallies and counters the pilot clears
+
+#include <numeric>
+
+using namespace vtkPhotonTracerDetail;
+
+namespace
+{
+// Fixed-point accumulators per fine voxel: S1 (3), direction sums (3), caustic pieces (1), one
+// of padding (PHOTON_FINE_LONGS in photon_trace.cl).
+constexpr size_t FineLongs = 8;
+constexpr size_t PieceCount = 6; // index of the piece count among them
+// The pilot marches the first 1/PilotShare of every light's photons (whole work-groups).
+constexpr size_t PilotShare = 8;
+constexpr size_t Group = 64; // Run1D's work-group size
+
+size_t Cube(int c)
+{
+  return static_cast<size_t>(c) * c * c;
+}
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::UsesVolumeCaustic(Internals& run)
+{
+  // Without analog scattering `Radiance` is the lattice's source, which must keep all of S1; a
+  // chunked march hands the accumulators to its callback while photons are still in flight.
+  const bool interfaces = run.Surfaces && run.Surfaces->GetNumberOfDielectricTriangles() > 0;
+  run.VolumeCaustic = this->VolumeCausticSubdivision > 1 && interfaces && run.Analog &&
+    run.M.Scatters && this->StepsPerChunk == 0;
+  run.VolumeCausticSub = 1;
+  run.NumberOfBricks = 0;
+  this->LastVolumeCausticSubdivision = 1;
+  this->LastNumberOfVolumeCausticBricks = 0;
+  return run.VolumeCaustic;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::SetVolumeCausticArguments(Internals& run, cl_kernel kernel, cl_uint first)
+{
+  if (!run.BrickBuffer)
+  {
+    // The kernels take the arguments whatever the variant: placeholders.
+    run.BrickBuffer = run.Alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "volume caustic bricks (none)");
+    run.FineFixed =
+      run.Alloc.Make(CL_MEM_READ_WRITE, 16, nullptr, "volume caustic accumulators (none)");
+    if (!run.BrickBuffer || !run.FineFixed)
+    {
+      return false;
+    }
+  }
+  const cl_mem bricks = run.BrickBuffer.Get(), fine = run.FineFixed.Get();
+  const cl_int sub = run.VolumeCausticSub;
+  return run.Context->Check(vtkOpenCLSetKernelArgsFrom(kernel, first, bricks, fine, sub),
+    "clSetKernelArg(volume caustic)", this);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::PlaceVolumeCausticBricks(
+  Internals& run, const std::function<bool(size_t, size_t)>& march, cl_kernel kernel, cl_uint first)
+{
+  if (!run.VolumeCaustic)
+  {
+    return this->SetVolumeCausticArguments(run, kernel, first);
+  }
+  vtkOpenCLContext* ctx = run.Context;
+  Allocator& alloc = run.Alloc;
+  const size_t voxels = run.M.Voxels;
+  // The pilot: every voxel is its own brick at c = 1, so the fine accumulators count the caustic
+  // pieces per voxel.
+  std::vector<int> identity(voxels);
+  std::iota(identity.begin(), identity.end(), 0);
+  run.BrickBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(int),
+    identity.data(), "volume caustic pilot bricks");
+  const size_t pilotBytes = voxels * FineLongs * sizeof(cl_long);
+  run.FineFixed =
+    alloc.Make(CL_MEM_READ_WRITE, pilotBytes, nullptr, "volume caustic pilot accumulators");
+  if (!run.BrickBuffer || !run.FineFixed ||
+    !ctx->ZeroBuffer(run.FineFixed.Get(), pilotBytes, this) ||
+    !this->SetVolumeCausticArguments(run, kernel, first))
+  {
+    return false;
+  }
+  size_t offset = 0, marched = 0;
+  for (const LightSetup& ls : run.Lights)
+  {
+    const size_t n = ls.Photons;
+    const size_t pilot = std::min(n, (n + PilotShare * Group - 1) / (PilotShare * Group) * Group);
+    if (pilot > 0 && !march(offset, pilot))
+    {
+      return false;
+    }
+    offset += n;
+    marched += pilot;
+  }
+  std::vector<cl_long> fixed(voxels * FineLongs);
+  if (!ctx->Finish(this) ||
+    !ctx->ReadBuffer(run.FineFixed.Get(), pilotBytes, fixed.data(), this))
+  {
+    return false;
+  }
+  // The largest c' <= c whose bricks (voxels expecting K c'^3 caustic pieces) fit the budget.
+  const double perPilotPiece = marched > 0 ? double(run.Photons) / double(marched) : 0.0;
+  const double k = this->VolumeCausticPiecesPerFineVoxel;
+  int chosen = 1;
+  size_t bricks = 0;
+  for (int c = this->VolumeCausticSubdivision; c >= 2 && chosen == 1; --c)
+  {
+    const double needed = k * double(Cube(c));
+    size_t qualifying = 0;
+    for (size_t v = 0; v < voxels; ++v)
+    {
+      const double expected = double(fixed[FineLongs * v + PieceCount]) * perPilotPiece;
+      qualifying += expected > 0.0 && expected >= needed ? 1 : 0;
+    }
+    if (qualifying > 0 &&
+      double(qualifying) * double(Cube(c)) <= double(this->MaximumNumberOfVolumeCausticVoxels))
+    {
+      chosen = c;
+      bricks = qualifying;
+    }
+  }
+  run.Bricks.assign(voxels, -1);
+  if (chosen > 1)
+  {
+    const double needed = k * double(Cube(chosen));
+    int next = 0;
+    for (size_t v = 0; v < voxels; ++v)
+    {
+      const double expected = double(fixed[FineLongs * v + PieceCount]) * perPilotPiece;
+      if (expected > 0.0 && expected >= needed)
+      {
+        run.Bricks[v] = next++;
+      }
+    }
+  }
+  run.VolumeCausticSub = chosen;
+  run.NumberOfBricks = static_cast<vtkIdType>(bricks);
+  // The main march starts from clean accumulators: the pilot's deposits, books and counts go.
+  const size_t fineBytes = std::max<size_t>(bricks * Cube(chosen) * FineLongs * sizeof(cl_long), 16);
+  run.BrickBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(int),
+    run.Bricks.data(), "volume caustic bricks");
+  run.FineFixed = alloc.Make(CL_MEM_READ_WRITE, fineBytes, nullptr, "volume caustic accumulators");
+  const size_t accumulatorBytes = voxels * 3 * sizeof(cl_long);
+  return run.BrickBuffer && run.FineFixed &&
+    ctx->ZeroBuffer(run.FineFixed.Get(), fineBytes, this) &&
+    ctx->ZeroBuffer(run.RadFixed.Get(), accumulatorBytes, this) &&
+    ctx->ZeroBuffer(run.DirFixed.Get(), accumulatorBytes, this) &&
+    ctx->ZeroBuffer(run.Tallies.Get(), PHOTON_TALLY_COUNT * sizeof(cl_long), this) &&
+    ctx->ZeroBuffer(run.Counters.Get(), PHOTON_COUNTER_COUNT * sizeof(cl_long), this) &&
+    (run.MultipleBytes == 0 || ctx->ZeroBuffer(run.MultipleFixed.Get(), run.MultipleBytes, this)) &&
+    (run.SurfIrradianceBytes == 0 ||
+      ctx->ZeroBuffer(run.SurfIrradiance.Get(), run.SurfIrradianceBytes, this)) &&
+    this->SetVolumeCausticArguments(run, kernel, first);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPhotonTracer::ResolveVolumeCaustic(Internals& run)
+{
+  const int c = run.VolumeCausticSub;
+  if (c < 2)
+  {
+    return true;
+  }
+  const size_t fine = static_cast<size_t>(run.NumberOfBricks) * Cube(c);
+  std::vector<cl_long> fixed(fine * FineLongs);
+  if (!run.Context->ReadBuffer(
+        run.FineFixed.Get(), fixed.size() * sizeof(cl_long), fixed.data(), this))
+  {
+    return false;
+  }
+  // Deposits become power per unit volume of a fine voxel (1 / c^3 of a voxel's).
+  const double* h = run.M.Spacing;
+  const double valueFactor = double(Cube(c)) / (run.Scale * h[0] * h[1] * h[2]);
+  vtkFloatArray* radiance = run.FineRadiance;
+  vtkFloatArray* direction = run.FineDirection;
+  radiance->SetName(vtkRefractaLightingVolume::VolumeCausticRadianceName());
+  direction->SetName(vtkRefractaLightingVolume::VolumeCausticRadianceDirectionName());
+  for (vtkFloatArray* a : { radiance, direction })
+  {
+    a->SetNumberOfComponents(3);
+    a->SetNumberOfTuples(static_cast<vtkIdType>(fine));
+  }
+  float* r = radiance->GetPointer(0);
+  float* d = direction->GetPointer(0);
+  for (size_t i = 0; i < fine; ++i)
+  {
+    const cl_long* acc = fixed.data() + FineLongs * i;
+    double sum[3];
+    double length = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      r[3 * i + k] = static_cast<float>(std::max(0.0, double(acc[k]) * valueFactor));
+      sum[k] = double(acc[3 + k]);
+      length += sum[k] * sum[k];
+    }
+    length = std::sqrt(length);
+    for (int k = 0; k < 3; ++k)
+    {
+      d[3 * i + k] = length > 0.0 ? static_cast<float>(sum[k] / length) : 0.0f;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkPhotonTracer::WriteVolumeCausticOutput(Internals& run, vtkImageData* output)
+{
+  this->LastVolumeCausticSubdivision = run.VolumeCausticSub;
+  this->LastNumberOfVolumeCausticBricks = run.NumberOfBricks;
+  if (run.VolumeCausticSub < 2)
+  {
+    return;
+  }
+  vtkNew<vtkIntArray> bricks;
+  bricks->SetName(vtkRefractaLightingVolume::VolumeCausticBricksName());
+  bricks->SetNumberOfTuples(static_cast<vtkIdType>(run.Bricks.size()));
+  std::copy(run.Bricks.begin(), run.Bricks.end(), bricks->GetPointer(0));
+  vtkFieldData* fd = output->GetFieldData();
+  fd->AddArray(bricks);
+  fd->AddArray(run.FineRadiance);
+  fd->AddArray(run.FineDirection);
+}
