@@ -1,12 +1,15 @@
 #include "vtkRefractaLightingVolume.h"
 
 #include "vtkDataSet.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkRefractaMedium.h"
 #include "vtkSMPTools.h"
 
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -66,6 +69,64 @@ const char* vtkRefractaLightingVolume::LatticeSourceDirectionName(vtkDataSet* li
 {
   return HasPhotonMultipleScattering(lighting) ? MultipleScatteringSourceDirectionName()
                                                : RadianceDirectionName();
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaLightingVolume::ReadLatticeSource(
+  vtkImageData* lighting, std::vector<float>& source, std::vector<float>& direction)
+{
+  source = vtkRefractaMedium::ReadArray(lighting, LatticeSourceName(lighting), 3, 0.0f);
+  direction = vtkRefractaMedium::ReadArray(lighting, LatticeSourceDirectionName(lighting), 3, 0.0f);
+  vtkFieldData* fd = lighting ? lighting->GetFieldData() : nullptr;
+  vtkDataArray* bricks = fd ? fd->GetArray(VolumeCausticBricksName()) : nullptr;
+  vtkDataArray* fine = fd ? fd->GetArray(VolumeCausticRadianceName()) : nullptr;
+  vtkDataArray* fineDirection = fd ? fd->GetArray(VolumeCausticRadianceDirectionName()) : nullptr;
+  const vtkIdType voxels = static_cast<vtkIdType>(source.size() / 3);
+  if (HasPhotonMultipleScattering(lighting) || !bricks || !fine || !fineDirection ||
+    bricks->GetNumberOfTuples() != voxels || bricks->GetNumberOfComponents() != 1 ||
+    fine->GetNumberOfComponents() != 3 || fineDirection->GetNumberOfComponents() != 3 ||
+    fineDirection->GetNumberOfTuples() != fine->GetNumberOfTuples())
+  {
+    return;
+  }
+  const double count = bricks->GetRange(0)[1] + 1;
+  const vtkIdType c3 = count >= 1 ? static_cast<vtkIdType>(fine->GetNumberOfTuples() / count) : 0;
+  for (vtkIdType v = 0; c3 > 0 && v < voxels; ++v)
+  {
+    const vtkIdType b = static_cast<vtkIdType>(bricks->GetComponent(v, 0));
+    if (b < 0 || (b + 1) * c3 > fine->GetNumberOfTuples())
+    {
+      continue;
+    }
+    float* s = source.data() + 3 * v;
+    float* d = direction.data() + 3 * v;
+    double weighted[3];
+    const double own = double(s[0]) + s[1] + s[2];
+    for (int k = 0; k < 3; ++k)
+    {
+      weighted[k] = own * d[k];
+    }
+    for (vtkIdType f = b * c3; f < (b + 1) * c3; ++f)
+    {
+      double power = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        const double value = fine->GetComponent(f, k) / double(c3);
+        s[k] += static_cast<float>(value);
+        power += value;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        weighted[k] += power * fineDirection->GetComponent(f, k);
+      }
+    }
+    const double length =
+      std::sqrt(weighted[0] * weighted[0] + weighted[1] * weighted[1] + weighted[2] * weighted[2]);
+    for (int k = 0; k < 3; ++k)
+    {
+      d[k] = length > 0 ? static_cast<float>(weighted[k] / length) : 0.0f;
+    }
+  }
 }
 
 //------------------------------------------------------------------------------

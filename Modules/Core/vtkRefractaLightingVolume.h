@@ -35,7 +35,10 @@
 #include "RefractaCoreModule.h" // for export macro
 #include "vtkObject.h"
 
+#include <vector> // for ReadLatticeSource
+
 class vtkDataSet;
+class vtkImageData;
 class vtkFloatArray;
 
 class REFRACTACORE_EXPORT vtkRefractaLightingVolume : public vtkObject
@@ -83,6 +86,18 @@ public:
   static const char* LatticeSourceDirectionName(vtkDataSet* lighting);
   static bool HasPhotonMultipleScattering(vtkDataSet* lighting);
   ///@}
+
+  /**
+   * The lattice's source and source direction of `lighting` as floats (3 per voxel; zeros where
+   * an array is missing): LatticeSourceName() and LatticeSourceDirectionName(), with, where the
+   * source is Radiance and `lighting` has a volume caustic, each brick's mean S1 added back into
+   * its voxel (and its light's direction into the voxel's power-weighted mean direction): the
+   * lattice scatters all of S1 on, whatever resolution holds it.
+   */
+#ifndef __VTK_WRAP__
+  static void ReadLatticeSource(
+    vtkImageData* lighting, std::vector<float>& source, std::vector<float>& direction);
+#endif
 
   /**
    * Adds the photons' `MultipleScattering` of `lighting` (when it has one with the shape of `ms`)

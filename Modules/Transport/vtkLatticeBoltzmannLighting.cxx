@@ -301,10 +301,8 @@ int vtkLatticeBoltzmannLighting::Solve(vtkLatticeBoltzmannSolver* solver, vtkIma
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
   const std::vector<float> anisotropy =
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
-  const std::vector<float> source = vtkRefractaMedium::ReadArray(
-    sources, vtkRefractaLightingVolume::LatticeSourceName(sources), 3, 0.0f);
-  const std::vector<float> dir = vtkRefractaMedium::ReadArray(
-    sources, vtkRefractaLightingVolume::LatticeSourceDirectionName(sources), 3, 0.0f);
+  std::vector<float> source, dir;
+  vtkRefractaLightingVolume::ReadLatticeSource(sources, source, dir);
   if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()) ||
     !solver->SetSource(source.data(), withDirection ? dir.data() : nullptr) || !solver->Solve())
   {

@@ -236,10 +236,21 @@ int vtkPhotonDiffusionSchedule::RequestData(
   // run's field (warm start) or from zero (sequential).
   const auto solveStart = std::chrono::steady_clock::now();
   std::vector<float> s1Copy, d1Copy;
-  const float* s1 =
-    ThreeFloats(lighting, vtkRefractaLightingVolume::LatticeSourceName(lighting), s1Copy);
-  const float* d1 =
-    ThreeFloats(lighting, vtkRefractaLightingVolume::LatticeSourceDirectionName(lighting), d1Copy);
+  const float* s1 = nullptr;
+  const float* d1 = nullptr;
+  if (lighting->GetFieldData()->GetArray(vtkRefractaLightingVolume::VolumeCausticBricksName()))
+  {
+    // S1 in the volume caustic's bricks goes back into its voxels for the lattice.
+    vtkRefractaLightingVolume::ReadLatticeSource(lighting, s1Copy, d1Copy);
+    s1 = s1Copy.data();
+    d1 = d1Copy.data();
+  }
+  else
+  {
+    s1 = ThreeFloats(lighting, vtkRefractaLightingVolume::LatticeSourceName(lighting), s1Copy);
+    d1 = ThreeFloats(
+      lighting, vtkRefractaLightingVolume::LatticeSourceDirectionName(lighting), d1Copy);
+  }
   if (!interleaved && !this->LastRunWarm && !solver->ResetState())
   {
     return 0;

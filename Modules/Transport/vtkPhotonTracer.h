@@ -383,10 +383,11 @@ public:
    * VolumeCausticRadianceDirectionName(); `Radiance` holds the rest, so the two add up to the
    * light of a run without bricks. Which voxels get bricks is decided by a pilot march of one
    * photon in 8 (about 12% more marching): a voxel that an estimated
-   * VolumeCausticPiecesPerFineVoxel x c^3 caustic pieces cross. Used only where photons carry
-   * every scattered order themselves (analog scattering: `Radiance` is then read by the view pass
-   * alone, never by the lattice) in an unchunked march with dielectric surfaces; otherwise
-   * nothing is allocated and the output is unchanged (GetLastVolumeCausticSubdivision() 1).
+   * VolumeCausticPiecesPerFineVoxel x c^3 caustic pieces cross. A lattice solve takes the
+   * bricks' light back into their voxels (vtkRefractaLightingVolume::ReadLatticeSource()). Used
+   * only in an unchunked march (StepsPerChunk 0: the interleaved lattice reads the accumulators
+   * while photons fly) with dielectric surfaces in a scattering medium; otherwise nothing is
+   * allocated and the output is unchanged (GetLastVolumeCausticSubdivision() 1).
    * Memory: 64 bytes per fine voxel on the device while tracing (and 64 per voxel for the pilot),
    * 24 in the output.
    */

@@ -36,11 +36,11 @@ size_t Cube(int c)
 //------------------------------------------------------------------------------
 bool vtkPhotonTracer::UsesVolumeCaustic(Internals& run)
 {
-  // Without analog scattering `Radiance` is the lattice's source, which must keep all of S1; a
-  // chunked march hands the accumulators to its callback while photons are still in flight.
+  // A chunked march hands the accumulators to its callback (the interleaved lattice) while
+  // photons are still in flight, before any brick could be read back into its voxel.
   const bool interfaces = run.Surfaces && run.Surfaces->GetNumberOfDielectricTriangles() > 0;
-  run.VolumeCaustic = this->VolumeCausticSubdivision > 1 && interfaces && run.Analog &&
-    run.M.Scatters && this->StepsPerChunk == 0;
+  run.VolumeCaustic = this->VolumeCausticSubdivision > 1 && interfaces && run.M.Scatters &&
+    this->StepsPerChunk == 0;
   run.VolumeCausticSub = 1;
   run.NumberOfBricks = 0;
   this->LastVolumeCausticSubdivision = 1;

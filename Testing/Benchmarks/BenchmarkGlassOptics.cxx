@@ -49,9 +49,11 @@
 // --check: exit 1 unless the exact interfaces' shaft holds the ideal light, each visible
 // row from y = -0.45 down within 20%, and the smoothed index's does not; needs --single).
 // --single: the shaft's renders without multiple scattering; --grid N: an N x 0.95 N x N grid,
-// --photons N: photons (both after --quick).
+// --photons N: photons (both after --quick); --volume-caustic C: vtkPhotonTracer's
+// VolumeCausticSubdivision (default 4; 1: none), also the factor of the shaft's S1 lattices.
 #include "vtkCamera.h"
 #include "vtkEffectPlan.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -103,6 +105,7 @@ struct Settings
   int ShaftRays = 3000;                // light rays for the shaft's fluence planes (per cone axis)
   int ShaftImageRays = 1500;           // light rays for the shaft's ideal image
   bool ShaftMultipleScattering = true; // false: the shaft's renders without the lattice
+  int VolumeCaustic = 4; // vtkPhotonTracer::VolumeCausticSubdivision; the shaft's S1 lattices' factor
 };
 
 // Which scene to render. The shaft's renders (BlackFloor) take the default scene with its fog and
@@ -166,7 +169,10 @@ struct Render
   ScatteringLattice Lighting; // the lighting volume's S1 = sigma_s phi (red)
 };
 
-void KeepSingleScattering(vtkRefractaRenderPipeline* pipeline, Render& r)
+// S1 (red) of the pipeline's lighting volume on a lattice `factor` times finer than its grid: each
+// fine point takes its voxel's Radiance plus, where the voxel has a volume-caustic brick, the
+// brick's fine voxel at that point (so the light of the bricks is measured at their resolution).
+void KeepSingleScattering(vtkRefractaRenderPipeline* pipeline, Render& r, int factor)
 {
   vtkImageData* lighting = pipeline->GetLighting();
   vtkDataArray* s1 = lighting
@@ -176,14 +182,54 @@ void KeepSingleScattering(vtkRefractaRenderPipeline* pipeline, Render& r)
   {
     return;
   }
-  ScatteringLattice& l = r.Lighting;
-  lighting->GetOrigin(l.Origin);
-  lighting->GetSpacing(l.Spacing);
-  lighting->GetDimensions(l.Dimensions);
-  l.S1.resize(s1->GetNumberOfTuples());
-  for (vtkIdType i = 0; i < s1->GetNumberOfTuples(); ++i)
+  vtkFieldData* fd = lighting->GetFieldData();
+  vtkDataArray* bricks = fd->GetArray(vtkRefractaLightingVolume::VolumeCausticBricksName());
+  vtkDataArray* fine = fd->GetArray(vtkRefractaLightingVolume::VolumeCausticRadianceName());
+  int d[3];
+  double origin[3], h[3];
+  lighting->GetDimensions(d);
+  lighting->GetOrigin(origin);
+  lighting->GetSpacing(h);
+  vtkIdType count = 0;
+  for (vtkIdType v = 0; bricks && v < bricks->GetNumberOfTuples(); ++v)
   {
-    l.S1[i] = static_cast<float>(s1->GetComponent(i, 0));
+    count = std::max<vtkIdType>(count, static_cast<vtkIdType>(bricks->GetComponent(v, 0)) + 1);
+  }
+  const int c = count > 0 && fine
+    ? static_cast<int>(std::lround(std::cbrt(double(fine->GetNumberOfTuples()) / count)))
+    : 1;
+  ScatteringLattice& l = r.Lighting;
+  for (int a = 0; a < 3; ++a)
+  {
+    l.Dimensions[a] = factor * d[a];
+    l.Spacing[a] = h[a] / factor;
+    l.Origin[a] = origin[a] - 0.5 * h[a] + 0.5 * l.Spacing[a];
+  }
+  l.S1.assign(static_cast<size_t>(l.Dimensions[0]) * l.Dimensions[1] * l.Dimensions[2], 0.0f);
+  size_t i = 0;
+  for (int z = 0; z < l.Dimensions[2]; ++z)
+  {
+    for (int y = 0; y < l.Dimensions[1]; ++y)
+    {
+      for (int x = 0; x < l.Dimensions[0]; ++x, ++i)
+      {
+        const int f[3] = { x, y, z };
+        int v[3], b[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          v[a] = f[a] / factor; // the voxel, and the fine point's fine voxel in its brick
+          b[a] = std::min(c - 1, static_cast<int>((f[a] % factor + 0.5) * c / factor));
+        }
+        const vtkIdType voxel = v[0] + vtkIdType(d[0]) * (v[1] + vtkIdType(d[1]) * v[2]);
+        double value = s1->GetComponent(voxel, 0);
+        const int brick = c > 1 ? static_cast<int>(bricks->GetComponent(voxel, 0)) : -1;
+        if (brick >= 0)
+        {
+          value += fine->GetComponent(brick * vtkIdType(c) * c * c + (b[2] * c + b[1]) * c + b[0], 0);
+        }
+        l.S1[i] = static_cast<float>(value);
+      }
+    }
   }
 }
 
@@ -234,6 +280,7 @@ Render RenderScene(const Settings& s, const Scene& scene)
   SetCamera(camera);
   pipeline->SetCamera(camera);
   pipeline->GetPhotonTracer()->SetNumberOfPhotons(s.Photons);
+  pipeline->GetPhotonTracer()->SetVolumeCausticSubdivision(s.VolumeCaustic);
   // The default scene's checkerboard behind (seen, not lighting): it makes the ball visible
   // against the render without it.
   const double color1[3] = { 0.9, 0.85, 0.75 }, color2[3] = { 0.08, 0.12, 0.3 };
@@ -244,7 +291,7 @@ Render RenderScene(const Settings& s, const Scene& scene)
   if (pipeline->Render(s.Size, s.Size))
   {
     r.Image = pipeline->GetImage();
-    KeepSingleScattering(pipeline, r);
+    KeepSingleScattering(pipeline, r, scene.BlackFloor ? s.VolumeCaustic : 1);
   }
   r.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
@@ -724,6 +771,11 @@ int main(int argc, char* argv[])
     {
       s.Photons = std::atoi(argv[++a]);
     }
+    else if (std::strcmp(argv[a], "--volume-caustic") == 0 && a + 1 < argc &&
+      std::atoi(argv[a + 1]) >= 1 && std::atoi(argv[a + 1]) <= 8)
+    {
+      s.VolumeCaustic = std::atoi(argv[++a]);
+    }
     else if (std::strcmp(argv[a], "--quick") == 0)
     {
       s.Size = 128;
@@ -738,7 +790,7 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: BenchmarkGlassOptics [--quick] [--check] [--shaft] [--single] "
-        "[--grid N] [--photons N]\n");
+        "[--grid N] [--photons N] [--volume-caustic C]\n");
       return 2;
     }
   }

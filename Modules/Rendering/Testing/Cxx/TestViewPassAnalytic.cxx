@@ -7,13 +7,14 @@
 // double precision). Because the kernel integrates each step exactly for a constant medium, the
 // answer must hold for any step length, with perspective and parallel cameras, a rotated and
 // shifted grid (direction matrix, origin far from zero), and the output's alpha must be
-// 1 - mean transmittance. Tolerance: 2e-5 relative + 2e-6 absolute (float arithmetic over a few
+// 1 - mean transmittance; so must the same S1 held in volume-caustic bricks. Tolerance: 2e-5 relative + 2e-6 absolute (float arithmetic over a few
 // hundred steps; a wrong chord, phase sign or transmittance gives errors of 1e-2 or more).
 #include "RenderingTestUtilities.h"
 
 #include "vtkCamera.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
+#include "vtkIntArray.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkRefractaImageRenderer.h"
@@ -192,6 +193,62 @@ TEST(ViewPassAnalytic, HomogeneousCubeMatchesClosedForm)
     renderer->Update();
     CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36),
       rotated ? "rotated parallel" : "parallel");
+  }
+}
+
+// The volume caustic (vtkRefractaLightingVolume::VolumeCaustic*Name()) with every voxel bricked
+// (c = 3), its fine voxels holding S1 and its direction and Radiance holding 0: the same light
+// as the cube above, so the same closed form, on the plain and the rotated, far-off grid.
+TEST(ViewPassAnalytic, VolumeCausticBricksEverywhereMatchTheClosedForm)
+{
+  const int c = 3;
+  for (bool rotated : { false, true })
+  {
+    Scene scene = MakeScene(rotated);
+    vtkPointData* pd = scene.Lighting->GetPointData();
+    const vtkIdType voxels = scene.Lighting->GetNumberOfPoints();
+    vtkNew<vtkIntArray> bricks;
+    bricks->SetName(vtkRefractaLightingVolume::VolumeCausticBricksName());
+    bricks->SetNumberOfTuples(voxels);
+    vtkNew<vtkFloatArray> fine, direction;
+    fine->SetName(vtkRefractaLightingVolume::VolumeCausticRadianceName());
+    direction->SetName(vtkRefractaLightingVolume::VolumeCausticRadianceDirectionName());
+    for (vtkFloatArray* a : { fine.Get(), direction.Get() })
+    {
+      a->SetNumberOfComponents(3);
+      a->SetNumberOfTuples(voxels * c * c * c);
+    }
+    for (vtkIdType v = 0; v < voxels; ++v)
+    {
+      bricks->SetValue(v, static_cast<int>(voxels - 1 - v)); // any order of bricks
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      fine->FillComponent(k, S1[k]);
+      direction->FillComponent(k, scene.LightDirLocal[k]);
+    }
+    pd->GetArray(vtkRefractaLightingVolume::RadianceName())->Fill(0.0);
+    scene.Lighting->GetFieldData()->AddArray(bricks);
+    scene.Lighting->GetFieldData()->AddArray(fine);
+    scene.Lighting->GetFieldData()->AddArray(direction);
+    vtkNew<vtkCamera> camera;
+    double centre[3];
+    scene.Medium->TransformContinuousIndexToPhysicalPoint(5.5, 4.5, 3.5, centre);
+    camera->SetFocalPoint(centre);
+    camera->SetPosition(centre[0] + 1.7, centre[1] + 1.1, centre[2] + 2.3);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetViewAngle(40);
+    vtkNew<vtkRefractaImageRenderer> renderer;
+    renderer->SetInputData(scene.Medium);
+    renderer->SetLightingData(scene.Lighting);
+    renderer->SetCamera(camera);
+    renderer->SetImageSize(48, 36);
+    renderer->SetBackgroundColor(Background[0], Background[1], Background[2]);
+    renderer->SetTransmittanceCutoff(0.0);
+    renderer->Update();
+    EXPECT_EQ(renderer->GetViewPass()->GetLightingVolumeCausticSubdivision(), c);
+    CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36),
+      rotated ? "volume caustic, rotated" : "volume caustic");
   }
 }
 
