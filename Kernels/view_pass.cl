@@ -238,9 +238,11 @@ inline float3 refracta_view_volume_caustic(int4 dims, float3 u, float3 d, float 
 }
 #endif
 
-// Source term Q at grid-local point x (voxel coordinates u) for a ray travelling in unit
-// direction d.
-inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, float3 d,
+// Source term Q of a step (midpoint at voxel coordinates u, the step `du` in voxel units) for a
+// ray travelling in unit direction d: the voxel fields at the midpoint; the volume caustic, c
+// times finer, as the mean of c points evenly spread over the step (one midpoint per fine voxel
+// crossed, where a single midpoint would alias the focused light into streaks).
+inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, float3 du, float3 d,
   int4 dims, __global const float* emission,
   __global const float* anisotropy, __global const float* radiance,
   __global const float* radianceDirection, __global const float* multiple,
@@ -260,8 +262,14 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
     q += refracta_view_single(s1, refracta_view_sample3(radianceDirection, st), d, g);
   }
 #ifdef REFRACTA_HAS_VOLUME_CAUSTIC
-  q += refracta_view_volume_caustic(
-    dims, u, d, g, causticBricks, causticRadiance, causticDirection, causticSub);
+  float3 focused = (float3)(0.0f);
+  for (int k = 0; k < causticSub; ++k)
+  {
+    const float3 uk = u + (((float)k + 0.5f) / (float)causticSub - 0.5f) * du;
+    focused += refracta_view_volume_caustic(
+      dims, uk, d, g, causticBricks, causticRadiance, causticDirection, causticSub);
+  }
+  q += focused / (float)causticSub;
 #endif
 #endif
 #ifdef REFRACTA_HAS_MULTIPLE
@@ -480,8 +488,9 @@ inline refracta_view_leg refracta_view_march(
       const float3 u = refracta_to_voxel(x + (0.5f * len) * chord, spacing);
       const refracta_view_stencil st = refracta_view_make_stencil(dims, u);
       float3 sigma = refracta_view_sample3(extinction, &st);
-      float3 q = refracta_view_source(&st, u, chord, dims, emission, anisotropy, radiance,
-        radianceDirection, multiple, causticBricks, causticRadiance, causticDirection, causticSub);
+      float3 q = refracta_view_source(&st, u, refracta_to_voxel(len * chord, spacing), chord, dims,
+        emission, anisotropy, radiance, radianceDirection, multiple, causticBricks,
+        causticRadiance, causticDirection, causticSub);
 #ifdef REFRACTA_DIELECTRIC
       if (body >= 0)
       {

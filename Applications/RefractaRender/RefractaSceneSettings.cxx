@@ -74,7 +74,8 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
     { "preset", "photons", "seed", "view_step", "ray_mode", "transmittance_cutoff",
       "photon_min_step", "octree_tolerance", "photon_smoothing", "multiple_scattering",
       "multiple_scattering_tolerance", "multiple_scattering_block_size",
-      "multiple_scattering_method", "scattering_orders", "tolerance", "single_scattering_method" });
+      "multiple_scattering_method", "scattering_orders", "tolerance", "single_scattering_method",
+      "volume_caustic" });
   int preset;
   std::tie(s.Preset, preset) = Choice(quality, "preset", q, "none", Presets);
   const bool hasPreset = preset != NoPreset;
@@ -95,6 +96,7 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
   s.OctreeTolerance = Number(quality, "octree_tolerance", q,
     hasPreset ? plan->GetRecommendedOctreeTolerance() : 0.005, 0.0, 1.0);
   s.PhotonSmoothing = Boolean(quality, "photon_smoothing", q, true);
+  s.VolumeCaustic = Integer(quality, "volume_caustic", q, 4, 1, 8);
   s.MultipleScattering = Boolean(quality, "multiple_scattering", q, true);
   s.LatticeTolerance = Number(quality, "multiple_scattering_tolerance", q,
     hasPreset ? plan->GetRecommendedLatticeTolerance() : 1e-4, 1e-8, 1.0);
@@ -154,6 +156,7 @@ void ApplySettings(const RenderSettings& s, vtkRefractaImageRenderer* renderer)
   tracer->SetMinimumStep(s.PhotonMinStep);
   pipeline->SetOctreeTolerance(s.OctreeTolerance);
   tracer->SetSmoothing(s.PhotonSmoothing);
+  tracer->SetVolumeCausticSubdivision(s.VolumeCaustic);
   pipeline->GetLatticeSolver()->SetTolerance(s.LatticeTolerance);
   pipeline->GetLatticeSolver()->SetBlockSize(s.LatticeBlockSize);
   pipeline->GetLatticeSolver()->SetLattice(s.Lattice);
@@ -176,6 +179,7 @@ json QualityReport(const RenderSettings& s)
   return { { "photons", s.Photons }, { "seed", s.Seed }, { "view_step", s.ViewStep },
     { "ray_mode", s.RayModeName }, { "transmittance_cutoff", s.TransmittanceCutoff },
     { "photon_min_step", s.PhotonMinStep }, { "photon_smoothing", s.PhotonSmoothing },
+    { "volume_caustic", s.VolumeCaustic },
     { "multiple_scattering", s.MultipleScattering },
     { "single_scattering_method", s.SingleScatteringMethodName },
     { "multiple_scattering_tolerance", s.LatticeTolerance },

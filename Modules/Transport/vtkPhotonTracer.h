@@ -407,7 +407,8 @@ public:
 
   ///@{
   /**
-   * Caustic voxel pieces a fine voxel must expect for its voxel to get a brick (default 16; a
+   * Caustic voxel pieces a fine voxel must expect for its voxel to get a brick (default 4, chosen by
+   * measurement: Documentation/Benchmarks.md "The light shaft below the ball"; a
    * voxel needs VolumeCausticPiecesPerFineVoxel x c^3 from the pilot's estimate). Lower values
    * put bricks where fewer caustic photons pass and make their fine voxels noisier.
    */
@@ -653,7 +654,7 @@ protected:
   int LastCausticSubdivision = 1;
   int VolumeCausticSubdivision = 4;
   vtkIdType MaximumNumberOfVolumeCausticVoxels = vtkIdType(1) << 20;
-  double VolumeCausticPiecesPerFineVoxel = 16.0;
+  double VolumeCausticPiecesPerFineVoxel = 4.0;
   int LastVolumeCausticSubdivision = 1;
   vtkIdType LastNumberOfVolumeCausticBricks = 0;
   double MaximumTurn = 0.5;

@@ -50,7 +50,9 @@
 // row from y = -0.45 down within 20%, and the smoothed index's does not; needs --single).
 // --single: the shaft's renders without multiple scattering; --grid N: an N x 0.95 N x N grid,
 // --photons N: photons (both after --quick); --volume-caustic C: vtkPhotonTracer's
-// VolumeCausticSubdivision (default 4; 1: none), also the factor of the shaft's S1 lattices.
+// VolumeCausticSubdivision (default 4; 1: none), also the factor of the shaft's S1 lattices;
+// --caustic-pieces K: its VolumeCausticPiecesPerFineVoxel. The shaft's noise compares the exact
+// interfaces' render with one from another photon seed.
 #include "vtkCamera.h"
 #include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
@@ -106,6 +108,7 @@ struct Settings
   int ShaftImageRays = 1500;           // light rays for the shaft's ideal image
   bool ShaftMultipleScattering = true; // false: the shaft's renders without the lattice
   int VolumeCaustic = 4; // vtkPhotonTracer::VolumeCausticSubdivision; the shaft's S1 lattices' factor
+  double CausticPieces = -1; // vtkPhotonTracer::VolumeCausticPiecesPerFineVoxel (< 0: its default)
 };
 
 // Which scene to render. The shaft's renders (BlackFloor) take the default scene with its fog and
@@ -119,6 +122,7 @@ struct Scene
   bool Fog = false;        // the default scene's fog
   bool OpaqueBall = false; // a black opaque sphere instead of the glass
   bool BlackFloor = false; // floor albedo 0 (else 0.8); single scattering by photons
+  unsigned int Seed = 1;   // the photon pass's
 };
 
 //------------------------------------------------------------------------------
@@ -166,6 +170,8 @@ struct Render
 {
   std::vector<float> Image; // RGBA, row 0 at the bottom
   double Seconds = 0;
+  double LightSeconds = 0;  // the photon pass's
+  int VolumeCaustic = 1;    // the volume caustic's subdivision in the photon pass (1: none)
   ScatteringLattice Lighting; // the lighting volume's S1 = sigma_s phi (red)
 };
 
@@ -281,6 +287,11 @@ Render RenderScene(const Settings& s, const Scene& scene)
   pipeline->SetCamera(camera);
   pipeline->GetPhotonTracer()->SetNumberOfPhotons(s.Photons);
   pipeline->GetPhotonTracer()->SetVolumeCausticSubdivision(s.VolumeCaustic);
+  if (s.CausticPieces >= 0)
+  {
+    pipeline->GetPhotonTracer()->SetVolumeCausticPiecesPerFineVoxel(s.CausticPieces);
+  }
+  pipeline->GetPhotonTracer()->SetSeed(scene.Seed);
   // The default scene's checkerboard behind (seen, not lighting): it makes the ball visible
   // against the render without it.
   const double color1[3] = { 0.9, 0.85, 0.75 }, color2[3] = { 0.08, 0.12, 0.3 };
@@ -292,6 +303,8 @@ Render RenderScene(const Settings& s, const Scene& scene)
   {
     r.Image = pipeline->GetImage();
     KeepSingleScattering(pipeline, r, scene.BlackFloor ? s.VolumeCaustic : 1);
+    r.LightSeconds = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING);
+    r.VolumeCaustic = pipeline->GetPhotonTracer()->GetLastVolumeCausticSubdivision();
   }
   r.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
@@ -634,6 +647,38 @@ int AxisRow(const View& view, double y, double& pixelsPerUnit)
   return view.SeesBall(view.Size / 2, row) ? -1 : row;
 }
 
+// The shaft's noise: RMS of (a - b) / sqrt 2 over the mean of (a + b) / 2, on the pixels of the
+// rows from y = -0.45 to -0.75 where the ideal image exceeds 10% of its row's peak.
+double ShaftNoise(const View& view, const std::vector<double>& ideal, const std::vector<double>& a,
+  const std::vector<double>& b)
+{
+  double squares = 0, sum = 0;
+  int count = 0;
+  for (int row = 0; row < view.Size && !a.empty() && a.size() == b.size(); ++row)
+  {
+    double x, top, bottom;
+    view.Project({ 0.0, -0.45, 0.0 }, x, top);
+    view.Project({ 0.0, -0.75, 0.0 }, x, bottom);
+    if (row < bottom || row > top)
+    {
+      continue;
+    }
+    const std::vector<double> line = ImageRow(ideal, view.Size, row);
+    const double peak = *std::max_element(line.begin(), line.end());
+    for (int i = 0; i < view.Size; ++i)
+    {
+      if (line[i] > 0.1 * peak)
+      {
+        const size_t p = static_cast<size_t>(row) * view.Size + i;
+        squares += 0.5 * (a[p] - b[p]) * (a[p] - b[p]);
+        sum += 0.5 * (a[p] + b[p]);
+        ++count;
+      }
+    }
+  }
+  return count > 0 && sum > 0 ? std::sqrt(squares / count) / (sum / count) : 0.0;
+}
+
 // Measures and prints the shaft; returns whether every render ran. `lightMet[m]` (m = 0 exact,
 // 1 smoothed): whether the render's shaft holds the ideal single-scattered light, every visible
 // row from y = -0.45 down summing to within 20% of ideal (meaningful without multiple
@@ -657,8 +702,12 @@ bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2])
   {
     return false;
   }
+  scene.Exact = true;
+  scene.Seed = 2;
+  const Render reseeded = RenderScene(s, scene);
   const std::vector<double> images[3] = { ideal.Image, RedDifference(exact.Image, opaque.Image),
     RedDifference(smoothed.Image, opaque.Image) };
+  const double noise = ShaftNoise(view, ideal.Image, images[1], RedDifference(reseeded.Image, opaque.Image));
   const double h = exact.Lighting.Spacing[0];
   std::printf("\nThe light shaft below the ball: the default scene with its fog and a black floor; "
               "rendered = glass ball - black opaque ball (S1 by photons in both), %.0f s + %.0f s "
@@ -732,6 +781,11 @@ bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2])
         ProfileFwhm(LatticeProfile(smoothed.Lighting, opaque.Lighting, y), h, 100));
     }
   }
+  std::printf("\nNoise of the exact interfaces' shaft (two photon seeds; RMS of their difference "
+              "/ sqrt 2 over the mean, pixels of the rows y = -0.45 to -0.75 where the ideal "
+              "image exceeds 10%% of its row's peak): %.1f%%; photon pass %.1f s (volume caustic "
+              "%d^3)\n",
+    100 * noise, exact.LightSeconds, exact.VolumeCaustic);
   std::printf("\nNarrowest r50 (planes every 0.01): ideal %.4f at y = %.2f, exact %.4f at %.2f, "
               "smoothed %.4f at %.2f\n",
     narrowest[0], at[0], narrowest[1], at[1], narrowest[2], at[2]);
@@ -776,6 +830,11 @@ int main(int argc, char* argv[])
     {
       s.VolumeCaustic = std::atoi(argv[++a]);
     }
+    else if (std::strcmp(argv[a], "--caustic-pieces") == 0 && a + 1 < argc &&
+      std::atof(argv[a + 1]) >= 0)
+    {
+      s.CausticPieces = std::atof(argv[++a]);
+    }
     else if (std::strcmp(argv[a], "--quick") == 0)
     {
       s.Size = 128;
@@ -790,7 +849,7 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: BenchmarkGlassOptics [--quick] [--check] [--shaft] [--single] "
-        "[--grid N] [--photons N] [--volume-caustic C]\n");
+        "[--grid N] [--photons N] [--volume-caustic C] [--caustic-pieces K]\n");
       return 2;
     }
   }
