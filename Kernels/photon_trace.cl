@@ -255,6 +255,7 @@ typedef struct
   __global const float4* bodies;           // the bodies' media (refracta_surfaces.cl)
   __global const int* causticBricks;       // volume caustic: brick of each voxel, or -1
   volatile __global long* causticFine;     // volume caustic: PHOTON_FINE_LONGS per fine voxel
+                                           // (the pilot, c = 1: one uint per voxel)
   int causticSub;                          // volume caustic: c, bricks of c^3 fine voxels
 } photon_state;
 
@@ -291,6 +292,12 @@ inline bool photon_deposit_volume_caustic(photon_state* ps, size_t voxel, int3 c
     return false;
   }
   const int c = ps->causticSub;
+  if (c == 1)
+  {
+    // The pilot (every voxel its own brick): only count the caustic pieces, one uint per voxel.
+    atomic_inc((volatile __global uint*)ps->causticFine + brick);
+    return true;
+  }
   const float3 f0 = (from - convert_float3(cell)) * (float)c;
   const float3 df = (to - convert_float3(cell)) * (float)c - f0;
   int3 fine = clamp(convert_int3_rtn(f0), (int3)(0), (int3)(c - 1));

@@ -596,6 +596,18 @@ bool vtkPhotonTracer::PlanMemory(Internals& run)
     plan->AddDeviceBuffer(
       grid, "resolved fields", fields * (this->Smoothing ? 2 : 1) * v * 12, gridSetting);
   }
+  // The volume caustic (vtkPhotonTracerVolumeCaustic.cxx), where it may apply: the brick map,
+  // the pilot's piece counts and at most its budget of fine voxels (PHOTON_FINE_LONGS longs each;
+  // 24 bytes each in the output).
+  if (this->VolumeCausticSubdivision > 1 && m.Scatters && this->StepsPerChunk == 0 &&
+    run.Surfaces && run.Surfaces->GetNumberOfDielectricTriangles() > 0)
+  {
+    const double c = this->VolumeCausticSubdivision;
+    const double fine = std::min(double(this->MaximumNumberOfVolumeCausticVoxels), v * c * c * c);
+    plan->AddDeviceBuffer(grid, "volume caustic bricks and pilot counts", v * 8, gridSetting);
+    plan->AddDeviceBuffer(grid, "volume caustic accumulators (at most)", fine * 64, gridSetting);
+    plan->AddHostMemory(grid, "volume caustic (at most)", fine * (64 + 24), gridSetting);
+  }
   // Host: the medium's float copies (index, gradient, extinction, albedo) and the two outputs.
   plan->AddHostMemory(
     grid, "medium copies", v * 4 * (1 + 3 + 3 + (m.HasGradient ? 3 : 0)), gridSetting);

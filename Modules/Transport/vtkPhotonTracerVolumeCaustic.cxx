@@ -22,7 +22,6 @@ namespace
 // Fixed-point accumulators per fine voxel: S1 (3), direction sums (3), caustic pieces (1), one
 // of padding (PHOTON_FINE_LONGS in photon_trace.cl).
 constexpr size_t FineLongs = 8;
-constexpr size_t PieceCount = 6; // index of the piece count among them
 // The pilot marches the first 1/PilotShare of every light's photons (whole work-groups).
 constexpr size_t PilotShare = 8;
 constexpr size_t Group = 64; // Run1D's work-group size
@@ -79,13 +78,13 @@ bool vtkPhotonTracer::PlaceVolumeCausticBricks(
   vtkOpenCLContext* ctx = run.Context;
   Allocator& alloc = run.Alloc;
   const size_t voxels = run.M.Voxels;
-  // The pilot: every voxel is its own brick at c = 1, so the fine accumulators count the caustic
-  // pieces per voxel.
+  // The pilot: every voxel is its own brick at c = 1, where the kernel only counts the caustic
+  // pieces per voxel (one cl_uint each).
   std::vector<int> identity(voxels);
   std::iota(identity.begin(), identity.end(), 0);
   run.BrickBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(int),
     identity.data(), "volume caustic pilot bricks");
-  const size_t pilotBytes = voxels * FineLongs * sizeof(cl_long);
+  const size_t pilotBytes = voxels * sizeof(cl_uint);
   run.FineFixed =
     alloc.Make(CL_MEM_READ_WRITE, pilotBytes, nullptr, "volume caustic pilot accumulators");
   if (!run.BrickBuffer || !run.FineFixed ||
@@ -106,9 +105,9 @@ bool vtkPhotonTracer::PlaceVolumeCausticBricks(
     offset += n;
     marched += pilot;
   }
-  std::vector<cl_long> fixed(voxels * FineLongs);
+  std::vector<cl_uint> pieces(voxels);
   if (!ctx->Finish(this) ||
-    !ctx->ReadBuffer(run.FineFixed.Get(), pilotBytes, fixed.data(), this))
+    !ctx->ReadBuffer(run.FineFixed.Get(), pilotBytes, pieces.data(), this))
   {
     return false;
   }
@@ -123,7 +122,7 @@ bool vtkPhotonTracer::PlaceVolumeCausticBricks(
     size_t qualifying = 0;
     for (size_t v = 0; v < voxels; ++v)
     {
-      const double expected = double(fixed[FineLongs * v + PieceCount]) * perPilotPiece;
+      const double expected = double(pieces[v]) * perPilotPiece;
       qualifying += expected > 0.0 && expected >= needed ? 1 : 0;
     }
     if (qualifying > 0 &&
@@ -140,7 +139,7 @@ bool vtkPhotonTracer::PlaceVolumeCausticBricks(
     int next = 0;
     for (size_t v = 0; v < voxels; ++v)
     {
-      const double expected = double(fixed[FineLongs * v + PieceCount]) * perPilotPiece;
+      const double expected = double(pieces[v]) * perPilotPiece;
       if (expected > 0.0 && expected >= needed)
       {
         run.Bricks[v] = next++;

@@ -46,8 +46,9 @@
 // 1 unless the exact interfaces meet the targets (caustic width within 1.5x of ideal,
 // peak / lit within 30%, shadow within 0.1, apparent radius within 2%) and the smoothed index
 // misses one (so the check can fail); no timing renders. --shaft: the shaft only (with
-// --check: exit 1 unless the exact interfaces' shaft holds the ideal light, each visible
-// row from y = -0.45 down within 20%, and the smoothed index's does not; needs --single).
+// --check: exit 1 unless the exact interfaces' shaft holds the ideal light and has the ideal
+// width, each visible row from y = -0.45 down within 20% and 1.5x, and the smoothed index's
+// misses both; needs --single).
 // --single: the shaft's renders without multiple scattering; --grid N: an N x 0.95 N x N grid,
 // --photons N: photons (both after --quick); --volume-caustic C: vtkPhotonTracer's
 // VolumeCausticSubdivision (default 4; 1: none), also the factor of the shaft's S1 lattices;
@@ -679,11 +680,13 @@ double ShaftNoise(const View& view, const std::vector<double>& ideal, const std:
   return count > 0 && sum > 0 ? std::sqrt(squares / count) / (sum / count) : 0.0;
 }
 
-// Measures and prints the shaft; returns whether every render ran. `lightMet[m]` (m = 0 exact,
+// Measures and prints the shaft; returns whether every render ran. `narrowMet[m]` (m = 0 exact,
+// 1 smoothed): whether every visible row's image FWHM from y = -0.45 down is within 1.5x of
+// ideal (the shaft narrows to the focus as the optics say). `lightMet[m]` (m = 0 exact,
 // 1 smoothed): whether the render's shaft holds the ideal single-scattered light, every visible
 // row from y = -0.45 down summing to within 20% of ideal (meaningful without multiple
 // scattering, --single: the lattice adds about 30% there).
-bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2])
+bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2], bool narrowMet[2])
 {
   const std::vector<double> heights = PlaneHeights();
   IdealShaft ideal(view, Fog(), heights, 0.002, 0.45, 0.11);
@@ -729,12 +732,13 @@ bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2])
       continue;
     }
     std::printf("| %.2f | %d |", y, row);
-    double sums[3] = { 0, 0, 0 };
+    double sums[3] = { 0, 0, 0 }, widths[3] = { 0, 0, 0 };
     for (int m = 0; m < 3; ++m)
     {
       const std::vector<double> line = ImageRow(images[m], view.Size, row);
       const double w = ProfileFwhm(line, 1.0, view.Size / 4);
       std::printf(" %.1f (%.3f) |", w, w / ppu);
+      widths[m] = w;
       for (int i = view.Size / 4; i < 3 * view.Size / 4; ++i)
       {
         sums[m] += line[i] / (m ? LightIntensity : 1.0);
@@ -745,10 +749,14 @@ bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2])
     for (int m = 0; m < 2 && y < -0.44; ++m)
     {
       lightMet[m] = lightMet[m] && std::abs(sums[m + 1] / sums[0] - 1.0) <= 0.2;
+      narrowMet[m] = narrowMet[m] && widths[m + 1] <= 1.5 * widths[0];
     }
   }
-  lightMet[0] = lightMet[0] && rowsChecked > 0;
-  lightMet[1] = lightMet[1] && rowsChecked > 0;
+  for (int m = 0; m < 2; ++m)
+  {
+    lightMet[m] = lightMet[m] && rowsChecked > 0;
+    narrowMet[m] = narrowMet[m] && rowsChecked > 0;
+  }
   std::printf("\nFluence below the ball (S1 = sigma_s phi of the lighting grid, spacing h = %.4f): "
               "r50 = radius holding half of phi's integral over the plane y within 0.44 of the "
               "axis; FWHM of phi along x at z = 0 (ideal: on a lattice of spacing h, h / 2, h / 4, "
@@ -856,16 +864,20 @@ int main(int argc, char* argv[])
   const View view(s.Size);
   if (shaft)
   {
-    bool lightMet[2] = { true, true };
-    const bool ran = MeasureShaft(s, view, lightMet);
+    bool lightMet[2] = { true, true }, narrowMet[2] = { true, true };
+    const bool ran = MeasureShaft(s, view, lightMet, narrowMet);
     std::printf("\nshaft light (rows from y = -0.45 down within 20%% of ideal): exact %s, smoothed "
-                "%s\n",
-      lightMet[0] ? "met" : "MISSED", lightMet[1] ? "met" : "MISSED");
+                "%s\nshaft width (rows from y = -0.45 down within 1.5x of ideal): exact %s, "
+                "smoothed %s\n",
+      lightMet[0] ? "met" : "MISSED", lightMet[1] ? "met" : "MISSED",
+      narrowMet[0] ? "met" : "MISSED", narrowMet[1] ? "met" : "MISSED");
     if (check)
     {
-      // Can fail: the exact interfaces must hold the optics' light in the shaft, and the smoothed
-      // index (its graded blob gathers more light and focuses it elsewhere) must not.
-      const bool passed = ran && lightMet[0] && !lightMet[1] && !s.ShaftMultipleScattering;
+      // Can fail: the exact interfaces must hold the optics' light in the shaft and narrow it as
+      // the optics do (the volume caustic), and the smoothed index (its graded blob gathers more
+      // light and focuses it elsewhere) must miss both.
+      const bool passed = ran && lightMet[0] && narrowMet[0] && !lightMet[1] && !narrowMet[1] &&
+        !s.ShaftMultipleScattering;
       std::printf("check: %s%s\n", passed ? "passed" : "FAILED",
         s.ShaftMultipleScattering ? " (the shaft check needs --single)" : "");
       return passed ? 0 : 1;
