@@ -1,5 +1,5 @@
 // photon_environment.cl: photons emitted by the environment (the sky lights the scene).
-// Appended after photon_trace.cl (R2 constants, photon_unit_disc) in the photon program.
+// Appended after photon_generate.cl (R2 constants, photon_unit_disc) in the photon program.
 //
 // photon_generate_environment: one work-item per photon of the environment. Photon i takes point
 // i of the rotated R2 lattice, (xi1, xi2), and inverts the host's luminance x solid-angle CDFs:

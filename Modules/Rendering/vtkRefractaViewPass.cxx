@@ -331,7 +331,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.CausticOffset = surf.GetNumberOfTexels();
   cl_program program = context->GetProgram(
     { "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl", "view_skipping.cl",
-      "view_pass.cl" },
+      "view_caustic.cl", "view_pass.cl" },
     KernelOptions(variant), this);
   if (!program)
   {

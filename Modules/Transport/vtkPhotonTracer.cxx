@@ -233,7 +233,8 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   }
   run.Trace = ctx->GetProgram(
     { "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl", "refracta_surfaces.cl",
-      "photon_trace.cl", "photon_surfaces.cl", "photon_march.cl", "photon_environment.cl" },
+      "photon_trace.cl", "photon_surfaces.cl", "photon_march.cl", "photon_generate.cl",
+      "photon_environment.cl" },
     options.str(), this);
   cl_program trace = run.Trace;
   if (!trace)
@@ -681,34 +682,6 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
 }
 
 //------------------------------------------------------------------------------
-bool vtkPhotonTracer::CheckSettingsAreNumbers()
-{
-  // vtkSetClampMacro keeps a NaN (every comparison with it is false), which would reach the
-  // kernels as a step, a tolerance or a smoothing weight: refuse it by name.
-  const std::pair<const char*, double> settings[] = { { "PrimaryTolerance", this->PrimaryTolerance },
-    { "SecondaryTolerance", this->SecondaryTolerance },
-    { "SecondaryStepLimit", this->SecondaryStepLimit }, { "MinimumStep", this->MinimumStep },
-    { "MaximumStep", this->MaximumStep }, { "FixedStep", this->FixedStep },
-    { "ExtinctionStepLimit", this->ExtinctionStepLimit },
-    { "RouletteThreshold", this->RouletteThreshold }, { "MaximumTurn", this->MaximumTurn },
-    { "StepTolerance", this->StepTolerance }, { "SmoothingBias", this->SmoothingBias },
-    { "LightRadius", this->LightRadius },
-    { "VolumeCausticPiecesPerFineVoxel", this->VolumeCausticPiecesPerFineVoxel },
-    { "DirectionalLightAngularRadius", this->DirectionalLightAngularRadius } };
-  for (const auto& setting : settings)
-  {
-    if (std::isnan(setting.second))
-    {
-      vtkErrorMacro(<< setting.first
-                    << " is NaN; it must be a number (its range and default are in "
-                       "vtkPhotonTracer.h).");
-      return false;
-    }
-  }
-  return true;
-}
-
-//------------------------------------------------------------------------------
 int vtkPhotonTracer::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -798,13 +771,7 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CausticSubdivision: " << this->CausticSubdivision << "\n";
   os << indent << "MaximumNumberOfCausticTexels: " << this->MaximumNumberOfCausticTexels << "\n";
   os << indent << "LastCausticSubdivision: " << this->LastCausticSubdivision << "\n";
-  os << indent << "VolumeCausticSubdivision: " << this->VolumeCausticSubdivision << "\n";
-  os << indent << "MaximumNumberOfVolumeCausticVoxels: "
-     << this->MaximumNumberOfVolumeCausticVoxels << "\n";
-  os << indent << "VolumeCausticPiecesPerFineVoxel: " << this->VolumeCausticPiecesPerFineVoxel
-     << "\n";
-  os << indent << "LastVolumeCausticSubdivision: " << this->LastVolumeCausticSubdivision << " ("
-     << this->LastNumberOfVolumeCausticBricks << " bricks)\n";
+  this->PrintVolumeCaustic(os, indent);
   os << indent << "MaximumTurn: " << this->MaximumTurn << "\n";
   os << indent << "StepTolerance: " << this->StepTolerance << "\n";
   os << indent << "Smoothing: " << this->Smoothing << "\n";

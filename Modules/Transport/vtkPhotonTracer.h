@@ -741,6 +741,7 @@ private:
 #endif
   bool ResolveVolumeCaustic(Internals& run);
   void WriteVolumeCausticOutput(Internals& run, vtkImageData* output);
+  void PrintVolumeCaustic(ostream& os, vtkIndent indent);
   void KeepSurfaces(Internals& run);
   // The environment light (vtkPhotonTracerEnvironment.cxx): its radiance table, CDFs and emission
   // sphere (appended to run.Lights as one more source), and the generation launch for its photons.

@@ -233,3 +233,15 @@ void vtkPhotonTracer::WriteVolumeCausticOutput(Internals& run, vtkImageData* out
   fd->AddArray(run.FineRadiance);
   fd->AddArray(run.FineDirection);
 }
+
+//------------------------------------------------------------------------------
+void vtkPhotonTracer::PrintVolumeCaustic(ostream& os, vtkIndent indent)
+{
+  os << indent << "VolumeCausticSubdivision: " << this->VolumeCausticSubdivision << "\n";
+  os << indent << "MaximumNumberOfVolumeCausticVoxels: "
+     << this->MaximumNumberOfVolumeCausticVoxels << "\n";
+  os << indent << "VolumeCausticPiecesPerFineVoxel: " << this->VolumeCausticPiecesPerFineVoxel
+     << "\n";
+  os << indent << "LastVolumeCausticSubdivision: " << this->LastVolumeCausticSubdivision << " ("
+     << this->LastNumberOfVolumeCausticBricks << " bricks)\n";
+}

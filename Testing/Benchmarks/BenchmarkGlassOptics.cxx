@@ -176,70 +176,6 @@ struct Render
   ScatteringLattice Lighting; // the lighting volume's S1 = sigma_s phi (red)
 };
 
-// S1 (red) of the pipeline's lighting volume on a lattice `factor` times finer than its grid: each
-// fine point takes its voxel's Radiance plus, where the voxel has a volume-caustic brick, the
-// brick's fine voxel at that point (so the light of the bricks is measured at their resolution).
-void KeepSingleScattering(vtkRefractaRenderPipeline* pipeline, Render& r, int factor)
-{
-  vtkImageData* lighting = pipeline->GetLighting();
-  vtkDataArray* s1 = lighting
-    ? lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName())
-    : nullptr;
-  if (!s1)
-  {
-    return;
-  }
-  vtkFieldData* fd = lighting->GetFieldData();
-  vtkDataArray* bricks = fd->GetArray(vtkRefractaLightingVolume::VolumeCausticBricksName());
-  vtkDataArray* fine = fd->GetArray(vtkRefractaLightingVolume::VolumeCausticRadianceName());
-  int d[3];
-  double origin[3], h[3];
-  lighting->GetDimensions(d);
-  lighting->GetOrigin(origin);
-  lighting->GetSpacing(h);
-  vtkIdType count = 0;
-  for (vtkIdType v = 0; bricks && v < bricks->GetNumberOfTuples(); ++v)
-  {
-    count = std::max<vtkIdType>(count, static_cast<vtkIdType>(bricks->GetComponent(v, 0)) + 1);
-  }
-  const int c = count > 0 && fine
-    ? static_cast<int>(std::lround(std::cbrt(double(fine->GetNumberOfTuples()) / count)))
-    : 1;
-  ScatteringLattice& l = r.Lighting;
-  for (int a = 0; a < 3; ++a)
-  {
-    l.Dimensions[a] = factor * d[a];
-    l.Spacing[a] = h[a] / factor;
-    l.Origin[a] = origin[a] - 0.5 * h[a] + 0.5 * l.Spacing[a];
-  }
-  l.S1.assign(static_cast<size_t>(l.Dimensions[0]) * l.Dimensions[1] * l.Dimensions[2], 0.0f);
-  size_t i = 0;
-  for (int z = 0; z < l.Dimensions[2]; ++z)
-  {
-    for (int y = 0; y < l.Dimensions[1]; ++y)
-    {
-      for (int x = 0; x < l.Dimensions[0]; ++x, ++i)
-      {
-        const int f[3] = { x, y, z };
-        int v[3], b[3];
-        for (int a = 0; a < 3; ++a)
-        {
-          v[a] = f[a] / factor; // the voxel, and the fine point's fine voxel in its brick
-          b[a] = std::min(c - 1, static_cast<int>((f[a] % factor + 0.5) * c / factor));
-        }
-        const vtkIdType voxel = v[0] + vtkIdType(d[0]) * (v[1] + vtkIdType(d[1]) * v[2]);
-        double value = s1->GetComponent(voxel, 0);
-        const int brick = c > 1 ? static_cast<int>(bricks->GetComponent(voxel, 0)) : -1;
-        if (brick >= 0)
-        {
-          value += fine->GetComponent(brick * vtkIdType(c) * c * c + (b[2] * c + b[1]) * c + b[0], 0);
-        }
-        l.S1[i] = static_cast<float>(value);
-      }
-    }
-  }
-}
-
 Render RenderScene(const Settings& s, const Scene& scene)
 {
   vtkNew<vtkRefractaRenderPipeline> pipeline;
@@ -303,7 +239,7 @@ Render RenderScene(const Settings& s, const Scene& scene)
   if (pipeline->Render(s.Size, s.Size))
   {
     r.Image = pipeline->GetImage();
-    KeepSingleScattering(pipeline, r, scene.BlackFloor ? s.VolumeCaustic : 1);
+    r.Lighting = FineScatteringLattice(pipeline->GetLighting(), scene.BlackFloor ? s.VolumeCaustic : 1);
     r.LightSeconds = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING);
     r.VolumeCaustic = pipeline->GetPhotonTracer()->GetLastVolumeCausticSubdivision();
   }
@@ -648,38 +584,6 @@ int AxisRow(const View& view, double y, double& pixelsPerUnit)
   return view.SeesBall(view.Size / 2, row) ? -1 : row;
 }
 
-// The shaft's noise: RMS of (a - b) / sqrt 2 over the mean of (a + b) / 2, on the pixels of the
-// rows from y = -0.45 to -0.75 where the ideal image exceeds 10% of its row's peak.
-double ShaftNoise(const View& view, const std::vector<double>& ideal, const std::vector<double>& a,
-  const std::vector<double>& b)
-{
-  double squares = 0, sum = 0;
-  int count = 0;
-  for (int row = 0; row < view.Size && !a.empty() && a.size() == b.size(); ++row)
-  {
-    double x, top, bottom;
-    view.Project({ 0.0, -0.45, 0.0 }, x, top);
-    view.Project({ 0.0, -0.75, 0.0 }, x, bottom);
-    if (row < bottom || row > top)
-    {
-      continue;
-    }
-    const std::vector<double> line = ImageRow(ideal, view.Size, row);
-    const double peak = *std::max_element(line.begin(), line.end());
-    for (int i = 0; i < view.Size; ++i)
-    {
-      if (line[i] > 0.1 * peak)
-      {
-        const size_t p = static_cast<size_t>(row) * view.Size + i;
-        squares += 0.5 * (a[p] - b[p]) * (a[p] - b[p]);
-        sum += 0.5 * (a[p] + b[p]);
-        ++count;
-      }
-    }
-  }
-  return count > 0 && sum > 0 ? std::sqrt(squares / count) / (sum / count) : 0.0;
-}
-
 // Measures and prints the shaft; returns whether every render ran. `narrowMet[m]` (m = 0 exact,
 // 1 smoothed): whether every visible row's image FWHM from y = -0.45 down is within 1.5x of
 // ideal (the shaft narrows to the focus as the optics say). `lightMet[m]` (m = 0 exact,
@@ -710,7 +614,12 @@ bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2], bool na
   const Render reseeded = RenderScene(s, scene);
   const std::vector<double> images[3] = { ideal.Image, RedDifference(exact.Image, opaque.Image),
     RedDifference(smoothed.Image, opaque.Image) };
-  const double noise = ShaftNoise(view, ideal.Image, images[1], RedDifference(reseeded.Image, opaque.Image));
+  double x, top, bottom; // the noise's rows: y = -0.45 to -0.75 on the axis
+  view.Project({ 0.0, -0.45, 0.0 }, x, top);
+  view.Project({ 0.0, -0.75, 0.0 }, x, bottom);
+  const double noise = PairNoise(ideal.Image, images[1],
+    RedDifference(reseeded.Image, opaque.Image), view.Size, static_cast<int>(std::ceil(bottom)),
+    static_cast<int>(top));
   const double h = exact.Lighting.Spacing[0];
   std::printf("\nThe light shaft below the ball: the default scene with its fog and a black floor; "
               "rendered = glass ball - black opaque ball (S1 by photons in both), %.0f s + %.0f s "

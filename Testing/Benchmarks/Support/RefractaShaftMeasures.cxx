@@ -1,11 +1,106 @@
 #include "RefractaShaftMeasures.h"
 
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkRefractaLightingVolume.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 
 namespace RefractaShaftMeasures
 {
+ScatteringLattice FineScatteringLattice(vtkImageData* lighting, int factor)
+{
+  ScatteringLattice l;
+  vtkDataArray* s1 = lighting
+    ? lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName())
+    : nullptr;
+  if (!s1)
+  {
+    return l;
+  }
+  vtkFieldData* fd = lighting->GetFieldData();
+  vtkDataArray* bricks = fd->GetArray(vtkRefractaLightingVolume::VolumeCausticBricksName());
+  vtkDataArray* fine = fd->GetArray(vtkRefractaLightingVolume::VolumeCausticRadianceName());
+  int d[3];
+  double origin[3], h[3];
+  lighting->GetDimensions(d);
+  lighting->GetOrigin(origin);
+  lighting->GetSpacing(h);
+  vtkIdType count = 0;
+  for (vtkIdType v = 0; bricks && v < bricks->GetNumberOfTuples(); ++v)
+  {
+    count = std::max<vtkIdType>(count, static_cast<vtkIdType>(bricks->GetComponent(v, 0)) + 1);
+  }
+  const int c = count > 0 && fine
+    ? static_cast<int>(std::lround(std::cbrt(double(fine->GetNumberOfTuples()) / count)))
+    : 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    l.Dimensions[a] = factor * d[a];
+    l.Spacing[a] = h[a] / factor;
+    l.Origin[a] = origin[a] - 0.5 * h[a] + 0.5 * l.Spacing[a];
+  }
+  l.S1.assign(static_cast<size_t>(l.Dimensions[0]) * l.Dimensions[1] * l.Dimensions[2], 0.0f);
+  size_t i = 0;
+  for (int z = 0; z < l.Dimensions[2]; ++z)
+  {
+    for (int y = 0; y < l.Dimensions[1]; ++y)
+    {
+      for (int x = 0; x < l.Dimensions[0]; ++x, ++i)
+      {
+        const int f[3] = { x, y, z };
+        int v[3], b[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          v[a] = f[a] / factor; // the voxel, and the fine point's fine voxel in its brick
+          b[a] = std::min(c - 1, static_cast<int>((f[a] % factor + 0.5) * c / factor));
+        }
+        const vtkIdType voxel = v[0] + vtkIdType(d[0]) * (v[1] + vtkIdType(d[1]) * v[2]);
+        double value = s1->GetComponent(voxel, 0);
+        const int brick = c > 1 ? static_cast<int>(bricks->GetComponent(voxel, 0)) : -1;
+        if (brick >= 0)
+        {
+          value += fine->GetComponent(brick * vtkIdType(c) * c * c + (b[2] * c + b[1]) * c + b[0], 0);
+        }
+        l.S1[i] = static_cast<float>(value);
+      }
+    }
+  }
+  return l;
+}
+
+double PairNoise(const std::vector<double>& mask, const std::vector<double>& a,
+  const std::vector<double>& b, int size, int firstRow, int lastRow)
+{
+  double squares = 0, sum = 0;
+  int count = 0;
+  const size_t n = static_cast<size_t>(size) * size;
+  if (a.size() != n || b.size() != n || mask.size() != n)
+  {
+    return 0.0;
+  }
+  for (int row = std::max(firstRow, 0); row <= std::min(lastRow, size - 1); ++row)
+  {
+    const std::vector<double> line = ImageRow(mask, size, row);
+    const double peak = *std::max_element(line.begin(), line.end());
+    for (int i = 0; i < size; ++i)
+    {
+      if (line[i] > 0.1 * peak)
+      {
+        const size_t p = static_cast<size_t>(row) * size + i;
+        squares += 0.5 * (a[p] - b[p]) * (a[p] - b[p]);
+        sum += 0.5 * (a[p] + b[p]);
+        ++count;
+      }
+    }
+  }
+  return count > 0 && sum > 0 ? std::sqrt(squares / count) / (sum / count) : 0.0;
+}
+
 double Fwhm(const std::vector<double>& values, int peak)
 {
   const double half = 0.5 * values[peak];

@@ -9,6 +9,8 @@
 
 #include <vector>
 
+class vtkImageData;
+
 namespace RefractaShaftMeasures
 {
 /// Width of the run of values >= half of values[peak] around `peak` (ends linear between the
@@ -33,6 +35,18 @@ struct ScatteringLattice
   double Origin[3] = { 0, 0, 0 }, Spacing[3] = { 1, 1, 1 };
   int Dimensions[3] = { 0, 0, 0 };
 };
+
+/// S1 (red) of a lighting volume on a lattice `factor` times finer than its grid: each fine point
+/// takes its voxel's Radiance plus, where the voxel has a volume-caustic brick
+/// (vtkRefractaLightingVolume::VolumeCaustic*Name()), the brick's fine voxel at that point, so
+/// the bricks' light is measured at their resolution. Empty without a Radiance array.
+ScatteringLattice FineScatteringLattice(vtkImageData* lighting, int factor);
+
+/// Noise of two renders of one quantity: the RMS of (a - b) / sqrt 2 over the mean of (a + b) / 2
+/// (size x size images of doubles, row 0 first), on the pixels of rows firstRow..lastRow where
+/// `mask` exceeds 10% of its row's peak. 0 when no pixel qualifies.
+double PairNoise(const std::vector<double>& mask, const std::vector<double>& a,
+  const std::vector<double>& b, int size, int firstRow, int lastRow);
 
 /// S1 of `r` minus S1 of `reference` along the lattice's x at (y, z = 0), linear in y and z,
 /// over |x| < 0.44. Empty when the lattices differ.
