@@ -171,6 +171,24 @@ inline void photon_set_volume_caustic(
   ps->causticSub = subdivision;
 }
 
+// A 3D DDA over unit cells along a + t du (t in [0, 1]) from `cell`: each axis's step (-1, 0, 1),
+// the t between its cell faces and the t of its next face.
+inline void photon_dda_start(
+  float3 a, float3 du, int3 cell, int3* stepDir, float3* tDelta, float3* tNext)
+{
+  *stepDir = (int3)(du.x > 0.0f ? 1 : (du.x < 0.0f ? -1 : 0),
+    du.y > 0.0f ? 1 : (du.y < 0.0f ? -1 : 0), du.z > 0.0f ? 1 : (du.z < 0.0f ? -1 : 0));
+  *tDelta = fabs((float3)(1.0f) / du);
+  float3 next;
+  next.x = du.x > 0.0f ? ((float)(cell.x + 1) - a.x) / du.x
+                       : (du.x < 0.0f ? ((float)cell.x - a.x) / du.x : INFINITY);
+  next.y = du.y > 0.0f ? ((float)(cell.y + 1) - a.y) / du.y
+                       : (du.y < 0.0f ? ((float)cell.y - a.y) / du.y : INFINITY);
+  next.z = du.z > 0.0f ? ((float)(cell.z + 1) - a.z) / du.z
+                       : (du.z < 0.0f ? ((float)cell.z - a.z) / du.z : INFINITY);
+  *tNext = fmax(next, (float3)(0.0f));
+}
+
 #if REFRACTA_VOLUME_CAUSTIC
 // Volume caustic (vtkPhotonTracer::VolumeCausticSubdivision; Physics.md "Volume caustics"): a
 // caustic photon (ps->caustic: refracted or reflected by an interface since its light, not yet
@@ -201,17 +219,9 @@ inline bool photon_deposit_volume_caustic(photon_state* ps, size_t voxel, int3 c
   const float3 f0 = (from - convert_float3(cell)) * (float)c;
   const float3 df = (to - convert_float3(cell)) * (float)c - f0;
   int3 fine = clamp(convert_int3_rtn(f0), (int3)(0), (int3)(c - 1));
-  const int3 stepDir = (int3)(df.x > 0.0f ? 1 : (df.x < 0.0f ? -1 : 0),
-    df.y > 0.0f ? 1 : (df.y < 0.0f ? -1 : 0), df.z > 0.0f ? 1 : (df.z < 0.0f ? -1 : 0));
-  const float3 tDelta = fabs((float3)(1.0f) / df);
-  float3 tNext;
-  tNext.x = df.x > 0.0f ? ((float)(fine.x + 1) - f0.x) / df.x
-                        : (df.x < 0.0f ? ((float)fine.x - f0.x) / df.x : INFINITY);
-  tNext.y = df.y > 0.0f ? ((float)(fine.y + 1) - f0.y) / df.y
-                        : (df.y < 0.0f ? ((float)fine.y - f0.y) / df.y : INFINITY);
-  tNext.z = df.z > 0.0f ? ((float)(fine.z + 1) - f0.z) / df.z
-                        : (df.z < 0.0f ? ((float)fine.z - f0.z) / df.z : INFINITY);
-  tNext = fmax(tNext, (float3)(0.0f));
+  int3 stepDir;
+  float3 tDelta, tNext;
+  photon_dda_start(f0, df, fine, &stepDir, &tDelta, &tNext);
   const size_t first = (size_t)brick * (size_t)(c * c * c);
   float t = 0.0f;
   // The piece lies in one voxel: it crosses at most 3 c fine voxels (+1 for rounding).
@@ -500,17 +510,9 @@ inline void photon_walk(photon_state* ps, float3 x0, float3 x1, float t1, int4 d
   const int3 hiCell = (int3)((dims.x << PHOTON_CUT_SHIFT) - 1, (dims.y << PHOTON_CUT_SHIFT) - 1,
     (dims.z << PHOTON_CUT_SHIFT) - 1);
   int3 cell = clamp(convert_int3_rtn(a), (int3)(0), hiCell);
-  const int3 stepDir = (int3)(du.x > 0.0f ? 1 : (du.x < 0.0f ? -1 : 0),
-    du.y > 0.0f ? 1 : (du.y < 0.0f ? -1 : 0), du.z > 0.0f ? 1 : (du.z < 0.0f ? -1 : 0));
-  const float3 tDelta = fabs((float3)(1.0f) / du);
-  float3 tNext;
-  tNext.x = du.x > 0.0f ? ((float)(cell.x + 1) - a.x) / du.x
-                        : (du.x < 0.0f ? ((float)cell.x - a.x) / du.x : INFINITY);
-  tNext.y = du.y > 0.0f ? ((float)(cell.y + 1) - a.y) / du.y
-                        : (du.y < 0.0f ? ((float)cell.y - a.y) / du.y : INFINITY);
-  tNext.z = du.z > 0.0f ? ((float)(cell.z + 1) - a.z) / du.z
-                        : (du.z < 0.0f ? ((float)cell.z - a.z) / du.z : INFINITY);
-  tNext = fmax(tNext, (float3)(0.0f));
+  int3 stepDir;
+  float3 tDelta, tNext;
+  photon_dda_start(a, du, cell, &stepDir, &tDelta, &tNext);
   float t = 0.0f;
   // A chord of length L cells crosses at most L_x + L_y + L_z + 3 cells: never a hang.
   const int guard = (int)(fabs(du.x) + fabs(du.y) + fabs(du.z)) + 8;

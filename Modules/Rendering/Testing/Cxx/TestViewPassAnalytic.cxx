@@ -131,6 +131,26 @@ std::vector<double> Expected(
   return result;
 }
 
+// A camera looking at the box centre from an oblique direction (world coordinates), and a 48 x 36
+// renderer of the scene through it with the test's background and no cutoff.
+vtkSmartPointer<vtkRefractaImageRenderer> ObliqueRenderer(const Scene& scene, vtkCamera* camera)
+{
+  double centre[3];
+  scene.Medium->TransformContinuousIndexToPhysicalPoint(5.5, 4.5, 3.5, centre);
+  camera->SetFocalPoint(centre);
+  camera->SetPosition(centre[0] + 1.7, centre[1] + 1.1, centre[2] + 2.3);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetViewAngle(40);
+  auto renderer = vtkSmartPointer<vtkRefractaImageRenderer>::New();
+  renderer->SetInputData(scene.Medium);
+  renderer->SetLightingData(scene.Lighting);
+  renderer->SetCamera(camera);
+  renderer->SetImageSize(48, 36);
+  renderer->SetBackgroundColor(Background[0], Background[1], Background[2]);
+  renderer->SetTransmittanceCutoff(0.0);
+  return renderer;
+}
+
 void CheckImage(vtkImageData* image, const std::vector<double>& expected, const char* what)
 {
   ASSERT_NE(image->GetPointData()->GetArray("HDR"), nullptr) << what;
@@ -162,22 +182,7 @@ TEST(ViewPassAnalytic, HomogeneousCubeMatchesClosedForm)
   {
     Scene scene = MakeScene(rotated);
     vtkNew<vtkCamera> camera;
-    // Look at the box centre from an oblique direction, in world coordinates.
-    double centreLocal[3] = { 11 * 0.0625, 9 * 0.0625, 7 * 0.0625 }, centre[3];
-    scene.Medium->TransformContinuousIndexToPhysicalPoint(
-      centreLocal[0] / 0.125, centreLocal[1] / 0.125, centreLocal[2] / 0.125, centre);
-    camera->SetFocalPoint(centre);
-    camera->SetPosition(centre[0] + 1.7, centre[1] + 1.1, centre[2] + 2.3);
-    camera->SetViewUp(0, 1, 0);
-    camera->SetViewAngle(40);
-
-    vtkNew<vtkRefractaImageRenderer> renderer;
-    renderer->SetInputData(scene.Medium);
-    renderer->SetLightingData(scene.Lighting);
-    renderer->SetCamera(camera);
-    renderer->SetImageSize(48, 36);
-    renderer->SetBackgroundColor(Background[0], Background[1], Background[2]);
-    renderer->SetTransmittanceCutoff(0.0);
+    auto renderer = ObliqueRenderer(scene, camera);
     for (double step : { 1.0, 3.7, 0.25 })
     {
       renderer->SetStepSize(step);
@@ -232,19 +237,7 @@ TEST(ViewPassAnalytic, VolumeCausticBricksEverywhereMatchTheClosedForm)
     scene.Lighting->GetFieldData()->AddArray(fine);
     scene.Lighting->GetFieldData()->AddArray(direction);
     vtkNew<vtkCamera> camera;
-    double centre[3];
-    scene.Medium->TransformContinuousIndexToPhysicalPoint(5.5, 4.5, 3.5, centre);
-    camera->SetFocalPoint(centre);
-    camera->SetPosition(centre[0] + 1.7, centre[1] + 1.1, centre[2] + 2.3);
-    camera->SetViewUp(0, 1, 0);
-    camera->SetViewAngle(40);
-    vtkNew<vtkRefractaImageRenderer> renderer;
-    renderer->SetInputData(scene.Medium);
-    renderer->SetLightingData(scene.Lighting);
-    renderer->SetCamera(camera);
-    renderer->SetImageSize(48, 36);
-    renderer->SetBackgroundColor(Background[0], Background[1], Background[2]);
-    renderer->SetTransmittanceCutoff(0.0);
+    auto renderer = ObliqueRenderer(scene, camera);
     renderer->Update();
     EXPECT_EQ(renderer->GetViewPass()->GetLightingVolumeCausticSubdivision(), c);
     CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36),
