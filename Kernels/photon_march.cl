@@ -2,7 +2,7 @@
 // launch; photon_march_chunk: resumable, a bounded number of steps per launch). Prepend
 // photon_trace.cl and photon_surfaces.cl; see photon_trace.cl's header for the march itself.
 // Both take the volume caustic's brick map, fine accumulators and subdivision last (used with
-// REFRACTA_VOLUME_CAUSTIC only; photon_deposit_volume_caustic).
+// REFRACTA_INTERFACES only; photon_deposit_volume_caustic).
 
 // A new photon of emitted power `power`: its roulette threshold, zero tallies, its random stream
 // (by photon id, so the stream does not depend on launches or chunks) and the analog-scattering

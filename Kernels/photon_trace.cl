@@ -61,10 +61,11 @@
 // analog scattering's anisotropy, are the body's, not the grid's trilinear samples (which blend
 // the materials of the voxels the surface cuts); deposits still go to the voxel the piece is in.
 //
-// Volume caustic (REFRACTA_VOLUME_CAUSTIC; vtkPhotonTracer::VolumeCausticSubdivision): a caustic
-// photon's S1 in a voxel with a brick goes into the brick's c^3 fine voxels instead
+// Volume caustic (with REFRACTA_INTERFACES, where photons can be caustic; a run-time choice by the
+// subdivision argument, so it adds no kernel variant; vtkPhotonTracer::VolumeCausticSubdivision):
+// a caustic photon's S1 in a voxel with a brick goes into the brick's c^3 fine voxels instead
 // (photon_deposit_volume_caustic); the pilot march (c = 1, every voxel its own brick) only counts
-// caustic pieces per voxel.
+// caustic pieces per voxel; c = 0: none.
 //
 // Tallies (fixed point, REFRACTA_FIXED_SCALE): tallies[3 * T + c] for the books T =
 // PHOTON_TALLY_EMITTED ... PHOTON_TALLY_GAINED; counters: PHOTON_COUNTER_MARCHED ...
@@ -118,9 +119,6 @@
 #endif
 #ifndef REFRACTA_ANALOG
 #define REFRACTA_ANALOG 0
-#endif
-#ifndef REFRACTA_VOLUME_CAUSTIC
-#define REFRACTA_VOLUME_CAUSTIC 0
 #endif
 #ifndef REFRACTA_STEP_TOLERANCE
 #define REFRACTA_STEP_TOLERANCE 0.02f
@@ -189,18 +187,19 @@ inline void photon_dda_start(
   *tNext = fmax(next, (float3)(0.0f));
 }
 
-#if REFRACTA_VOLUME_CAUSTIC
+#if REFRACTA_INTERFACES
 // Volume caustic (vtkPhotonTracer::VolumeCausticSubdivision; Physics.md "Volume caustics"): a
 // caustic photon (ps->caustic: refracted or reflected by an interface since its light, not yet
 // scattered) in a voxel that has a brick deposits its piece's S1 share `sc` (and the direction
 // sums) into the brick's c^3 fine voxels instead of the voxel: each fine voxel the piece crosses
 // gets the share of the piece's length inside it (a 3D DDA over the brick), and counts the piece.
 // `from` and `to` are the piece's ends in voxel units (voxel i spans [i, i + 1)), `cell` the
-// voxel. Returns false (deposit in the voxel as usual) for other photons and voxels.
+// voxel. Returns false (deposit in the voxel as usual) for other photons and voxels, and when the
+// run has no volume caustic (subdivision 0).
 inline bool photon_deposit_volume_caustic(photon_state* ps, size_t voxel, int3 cell, float3 from,
   float3 to, float3 sc, float w, float3 direction)
 {
-  if (!ps->caustic)
+  if (!ps->caustic || ps->causticSub == 0)
   {
     return false;
   }
@@ -434,7 +433,7 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
 #else
   ps->scattered += sc;
 #endif
-#if REFRACTA_VOLUME_CAUSTIC
+#if REFRACTA_INTERFACES
   if (w > 0.0f && !photon_deposit_volume_caustic(ps, voxel, cell, from, to, sc, w, direction))
 #else
   if (w > 0.0f)

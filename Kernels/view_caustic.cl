@@ -16,7 +16,7 @@ inline float3 refracta_view_single(float3 s1, float3 mean, float3 d, float g)
   return phase * s1;
 }
 
-#ifdef REFRACTA_HAS_VOLUME_CAUSTIC
+#ifdef REFRACTA_HAS_SINGLE
 // The volume caustic (vtkRefractaLightingVolume::VolumeCaustic*Name(); Physics.md "Volume
 // caustics"): in a voxel with a brick, the focused light's S1 at c times the resolution, trilinear
 // over the brick's c^3 fine voxels (clamped at the brick's faces: a brick holds only the light

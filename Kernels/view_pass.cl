@@ -32,8 +32,8 @@
 // REFRACTA_SKIP (empty-space skipping, below), REFRACTA_HAS_SURFACES (opaque triangle surfaces,
 // below; view_surfaces.cl), REFRACTA_SURFACE_NEAREST (no irradiance interpolation),
 // REFRACTA_DIELECTRIC (glass triangles: paths split at them, see refracta_view_dielectric_split)
-// with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>, REFRACTA_HAS_VOLUME_CAUSTIC
-// (with REFRACTA_HAS_SINGLE: the volume caustic's bricks, view_caustic.cl).
+// with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>. With REFRACTA_HAS_SINGLE
+// the volume caustic's bricks are read where causticSub > 1 (view_caustic.cl).
 //
 // Glass bodies (REFRACTA_DIELECTRIC; `bodies`, refracta_surfaces.cl): a leg refracted into the
 // inside of a dielectric surface that has an inside medium is in that body until it is refracted
@@ -214,16 +214,17 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
     // w_o = -d (towards the camera).
     q += refracta_view_single(s1, refracta_view_sample3(radianceDirection, st), d, g);
   }
-#ifdef REFRACTA_HAS_VOLUME_CAUSTIC
-  float3 focused = (float3)(0.0f);
-  for (int k = 0; k < causticSub; ++k)
+  if (causticSub > 1) // a run-time choice: no kernel variant of its own
   {
-    const float3 uk = u + (((float)k + 0.5f) / (float)causticSub - 0.5f) * du;
-    focused += refracta_view_volume_caustic(
-      dims, uk, d, g, causticBricks, causticRadiance, causticDirection, causticSub);
+    float3 focused = (float3)(0.0f);
+    for (int k = 0; k < causticSub; ++k)
+    {
+      const float3 uk = u + (((float)k + 0.5f) / (float)causticSub - 0.5f) * du;
+      focused += refracta_view_volume_caustic(
+        dims, uk, d, g, causticBricks, causticRadiance, causticDirection, causticSub);
+    }
+    q += focused / (float)causticSub;
   }
-  q += focused / (float)causticSub;
-#endif
 #endif
 #ifdef REFRACTA_HAS_MULTIPLE
   q += REFRACTA_INV_4PI * refracta_view_sample3(multiple, st);

@@ -316,7 +316,6 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.IndexVaries = static_cast<bool>(in.Index);
   variant.UniformIndex = in.UniformIndex;
   variant.Single = in.HasSingle;
-  variant.VolumeCaustic = in.VolumeCausticSub > 1;
   variant.Multiple = in.HasMultiple;
   variant.Emission = in.HasEmission;
   variant.Environment = env != nullptr;

@@ -183,7 +183,6 @@ std::string KernelOptions(const KernelVariant& v)
     options += scale.str();
   }
   flag(v.Single, "REFRACTA_HAS_SINGLE");
-  flag(v.Single && v.VolumeCaustic, "REFRACTA_HAS_VOLUME_CAUSTIC");
   flag(v.Multiple, "REFRACTA_HAS_MULTIPLE");
   flag(v.Emission, "REFRACTA_HAS_EMISSION");
   flag(v.Environment, "REFRACTA_HAS_ENVIRONMENT");

@@ -63,7 +63,6 @@ struct KernelVariant
   int SplitDepth = 1;          // REFRACTA_SPLIT_DEPTH (interfaces where both legs are followed)
   int Caustic = 1;             // REFRACTA_CAUSTIC_SUBDIVISION (c > 1: the caustic atlas is read)
   long long CausticOffset = 0; // REFRACTA_CAUSTIC_OFFSET (atlas texels before the fine ones)
-  bool VolumeCaustic = false;  // REFRACTA_HAS_VOLUME_CAUSTIC (with Single)
 };
 
 // The build options of a kernel variant.

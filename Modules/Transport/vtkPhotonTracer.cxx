@@ -225,8 +225,8 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   this->LastCausticSubdivision = run.Caustic;
   options << " -DREFRACTA_CAUSTIC_SUBDIVISION=" << run.Caustic << " -DREFRACTA_CAUSTIC_OFFSET="
           << (run.Caustic > 1 ? run.Surfaces->GetNumberOfTexels() : 0);
-  options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0)
-          << " -DREFRACTA_VOLUME_CAUSTIC=" << (this->UsesVolumeCaustic(run) ? 1 : 0);
+  options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0);
+  this->UsesVolumeCaustic(run); // a run-time choice of the kernels (their last arguments)
   if (run.SplitOrders > 0)
   {
     options << " -DREFRACTA_ANALOG_ORDERS=" << run.SplitOrders;
@@ -367,7 +367,7 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
     vtkOpenCLBuffer active = alloc.Make(CL_MEM_READ_WRITE, sizeof(cl_int), nullptr, "active");
     if (!marchChunk || !state || !status || !active ||
       !this->SetSurfaceArguments(run, marchChunk.Get(), 21) ||
-      !this->SetVolumeCausticArguments(run, marchChunk.Get(), 36) ||
+      !this->SetVolumeCausticArguments(run, marchChunk.Get(), 36, 0) ||
       !ctx->ZeroBuffer(status.Get(), photons * sizeof(cl_uint4), this))
     {
       return false;

@@ -730,11 +730,13 @@ private:
 #endif
   void WriteSurfaceOutput(Internals& run, vtkImageData* output);
   // The volume caustic (vtkPhotonTracerVolumeCaustic.cxx): whether this run builds one; its
-  // kernel arguments (placeholders when off) from index `first`; the pilot march that places the
-  // bricks (the accumulators are cleared after it); the fine deposits resolved; the output.
+  // kernel arguments from index `first` (subdivision 0: none, with placeholders; 1: the pilot);
+  // the pilot march that places the bricks (the accumulators are cleared after it); the fine
+  // deposits resolved; the output.
   bool UsesVolumeCaustic(Internals& run);
 #ifndef __VTK_WRAP__
-  bool SetVolumeCausticArguments(Internals& run, cl_kernel kernel, cl_uint first);
+  bool SetVolumeCausticArguments(
+    Internals& run, cl_kernel kernel, cl_uint first, int subdivision);
   // `march(first, count)` launches the march kernel `kernel` over photons [first, first + count).
   bool PlaceVolumeCausticBricks(Internals& run,
     const std::function<bool(size_t, size_t)>& march, cl_kernel kernel, cl_uint first);

@@ -48,7 +48,8 @@ bool vtkPhotonTracer::UsesVolumeCaustic(Internals& run)
 }
 
 //------------------------------------------------------------------------------
-bool vtkPhotonTracer::SetVolumeCausticArguments(Internals& run, cl_kernel kernel, cl_uint first)
+bool vtkPhotonTracer::SetVolumeCausticArguments(
+  Internals& run, cl_kernel kernel, cl_uint first, int subdivision)
 {
   if (!run.BrickBuffer)
   {
@@ -62,7 +63,7 @@ bool vtkPhotonTracer::SetVolumeCausticArguments(Internals& run, cl_kernel kernel
     }
   }
   const cl_mem bricks = run.BrickBuffer.Get(), fine = run.FineFixed.Get();
-  const cl_int sub = run.VolumeCausticSub;
+  const cl_int sub = subdivision;
   return run.Context->Check(vtkOpenCLSetKernelArgsFrom(kernel, first, bricks, fine, sub),
     "clSetKernelArg(volume caustic)", this);
 }
@@ -73,7 +74,7 @@ bool vtkPhotonTracer::PlaceVolumeCausticBricks(
 {
   if (!run.VolumeCaustic)
   {
-    return this->SetVolumeCausticArguments(run, kernel, first);
+    return this->SetVolumeCausticArguments(run, kernel, first, 0);
   }
   vtkOpenCLContext* ctx = run.Context;
   Allocator& alloc = run.Alloc;
@@ -89,7 +90,7 @@ bool vtkPhotonTracer::PlaceVolumeCausticBricks(
     alloc.Make(CL_MEM_READ_WRITE, pilotBytes, nullptr, "volume caustic pilot accumulators");
   if (!run.BrickBuffer || !run.FineFixed ||
     !ctx->ZeroBuffer(run.FineFixed.Get(), pilotBytes, this) ||
-    !this->SetVolumeCausticArguments(run, kernel, first))
+    !this->SetVolumeCausticArguments(run, kernel, first, 1))
   {
     return false;
   }
@@ -163,7 +164,7 @@ bool vtkPhotonTracer::PlaceVolumeCausticBricks(
     (run.MultipleBytes == 0 || ctx->ZeroBuffer(run.MultipleFixed.Get(), run.MultipleBytes, this)) &&
     (run.SurfIrradianceBytes == 0 ||
       ctx->ZeroBuffer(run.SurfIrradiance.Get(), run.SurfIrradianceBytes, this)) &&
-    this->SetVolumeCausticArguments(run, kernel, first);
+    this->SetVolumeCausticArguments(run, kernel, first, chosen > 1 ? chosen : 0);
 }
 
 //------------------------------------------------------------------------------

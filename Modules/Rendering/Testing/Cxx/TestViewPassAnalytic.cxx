@@ -261,17 +261,7 @@ TEST(ViewPassAnalytic, SourcesCountOneOverIndexSquared)
       refracta_test::AddConstant(scene.Medium, "RefractiveIndexGradient", 3, 0, 0, 0);
     }
     vtkNew<vtkCamera> camera;
-    camera->SetFocalPoint(0.6875, 0.5625, 0.4375);
-    camera->SetPosition(0.6875 + 1.7, 0.5625 + 1.1, 0.4375 + 2.3);
-    camera->SetViewUp(0, 1, 0);
-    camera->SetViewAngle(40);
-    vtkNew<vtkRefractaImageRenderer> renderer;
-    renderer->SetInputData(scene.Medium);
-    renderer->SetLightingData(scene.Lighting);
-    renderer->SetCamera(camera);
-    renderer->SetImageSize(48, 36);
-    renderer->SetBackgroundColor(Background[0], Background[1], Background[2]);
-    renderer->SetTransmittanceCutoff(0.0);
+    auto renderer = ObliqueRenderer(scene, camera);
     renderer->Update();
     EXPECT_EQ(renderer->GetViewPass()->GetLastCurved(), varying);
     CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36, 1.5),
