@@ -13,6 +13,7 @@
 
 #include "photon_tallies.cl" // the sizes of the tallies and counters the pilot clears
 
+#include <algorithm>
 #include <numeric>
 
 using namespace vtkPhotonTracerDetail;
@@ -29,6 +30,39 @@ constexpr size_t Group = 64; // Run1D's work-group size
 size_t Cube(int c)
 {
   return static_cast<size_t>(c) * c * c;
+}
+
+// The bricks from the pilot's caustic pieces per voxel (times perPilotPiece, the photons per pilot
+// photon): the largest c <= maxC for which the voxels expecting at least k c^3 pieces, c^3 fine
+// voxels each, fit in `budget` fine voxels. Fills `bricks` (per voxel: its brick, numbered in
+// voxel order, or -1) and returns c, or 1 (every entry -1) when none fits.
+int ChooseBricks(const std::vector<cl_uint>& pieces, double perPilotPiece, double k, int maxC,
+  vtkIdType budget, std::vector<int>& bricks)
+{
+  auto qualifies = [&](size_t v, int c)
+  {
+    const double expected = double(pieces[v]) * perPilotPiece;
+    return expected > 0.0 && expected >= k * double(Cube(c));
+  };
+  bricks.assign(pieces.size(), -1);
+  for (int c = maxC; c >= 2; --c)
+  {
+    size_t count = 0;
+    for (size_t v = 0; v < pieces.size(); ++v)
+    {
+      count += qualifies(v, c) ? 1 : 0;
+    }
+    if (count > 0 && double(count) * double(Cube(c)) <= double(budget))
+    {
+      int next = 0;
+      for (size_t v = 0; v < pieces.size(); ++v)
+      {
+        bricks[v] = qualifies(v, c) ? next++ : -1;
+      }
+      return c;
+    }
+  }
+  return 1;
 }
 }
 
@@ -112,41 +146,11 @@ bool vtkPhotonTracer::PlaceVolumeCausticBricks(
   {
     return false;
   }
-  // The largest c' <= c whose bricks (voxels expecting K c'^3 caustic pieces) fit the budget.
   const double perPilotPiece = marched > 0 ? double(run.Photons) / double(marched) : 0.0;
-  const double k = this->VolumeCausticPiecesPerFineVoxel;
-  int chosen = 1;
-  size_t bricks = 0;
-  for (int c = this->VolumeCausticSubdivision; c >= 2 && chosen == 1; --c)
-  {
-    const double needed = k * double(Cube(c));
-    size_t qualifying = 0;
-    for (size_t v = 0; v < voxels; ++v)
-    {
-      const double expected = double(pieces[v]) * perPilotPiece;
-      qualifying += expected > 0.0 && expected >= needed ? 1 : 0;
-    }
-    if (qualifying > 0 &&
-      double(qualifying) * double(Cube(c)) <= double(this->MaximumNumberOfVolumeCausticVoxels))
-    {
-      chosen = c;
-      bricks = qualifying;
-    }
-  }
-  run.Bricks.assign(voxels, -1);
-  if (chosen > 1)
-  {
-    const double needed = k * double(Cube(chosen));
-    int next = 0;
-    for (size_t v = 0; v < voxels; ++v)
-    {
-      const double expected = double(pieces[v]) * perPilotPiece;
-      if (expected > 0.0 && expected >= needed)
-      {
-        run.Bricks[v] = next++;
-      }
-    }
-  }
+  const int chosen = ChooseBricks(pieces, perPilotPiece, this->VolumeCausticPiecesPerFineVoxel,
+    this->VolumeCausticSubdivision, this->MaximumNumberOfVolumeCausticVoxels, run.Bricks);
+  const size_t bricks =
+    chosen > 1 ? static_cast<size_t>(*std::max_element(run.Bricks.begin(), run.Bricks.end()) + 1) : 0;
   run.VolumeCausticSub = chosen;
   run.NumberOfBricks = static_cast<vtkIdType>(bricks);
   // The main march starts from clean accumulators: the pilot's deposits, books and counts go.

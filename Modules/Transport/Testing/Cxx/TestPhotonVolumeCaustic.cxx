@@ -2,8 +2,9 @@
 // "Volume caustics"): a sharp glass ball lens (n = 1.5, R = 1) under a beam through a hole of
 // radius 0.3 focuses its light in a thin fog (sigma_t 0.1, albedo 1) on a 0.125 grid.
 // - The bricks change where S1 is stored, nothing else: every book and counter equals a run
-//   without them (same seed), and each voxel's Radiance without bricks equals its Radiance plus
-//   the mean of its brick with them (smoothing off), to fixed-point rounding.
+//   without them (same seed; a budget too small for any brick, so the same pilot and kernels),
+//   and each voxel's Radiance without bricks equals its Radiance plus the mean of its brick with
+//   them (smoothing off), to fixed-point rounding.
 // - The bricks resolve the focus: the RMS radius of S1 about the axis in the fine layer of each
 //   plane follows an independent Snell trace of the beam (SharpSphereTrace.h) within 15% down to
 //   the fine voxels' own floor, where the voxels stay at theirs (4x wider).
@@ -103,6 +104,20 @@ TracerRun Trace(int subdivision, vtkRefractaSurfaceSet* set, int chunk = 0, vtkI
   return r;
 }
 
+// The ball lens traced once without bricks (a budget of 7 fine voxels: not one brick of 2^3 fits,
+// so the pilot runs and places none) and once with them; shared by the tests below.
+const TracerRun& Plain()
+{
+  static const TracerRun run = Trace(4, BallLens(), 0, 7);
+  return run;
+}
+
+const TracerRun& Bricked()
+{
+  static const TracerRun run = Trace(4, BallLens());
+  return run;
+}
+
 vtkDataArray* Field(vtkImageData* out, const char* name)
 {
   return out->GetFieldData()->GetArray(name);
@@ -159,9 +174,8 @@ double LayerRms(vtkImageData* out, double z, bool fine)
 
 TEST(PhotonVolumeCaustic, BricksMoveLightWithoutChangingIt)
 {
-  auto set = BallLens();
-  const TracerRun plain = Trace(1, set);
-  const TracerRun bricked = Trace(4, set);
+  const TracerRun& plain = Plain();
+  const TracerRun& bricked = Bricked();
   EXPECT_EQ(plain.Subdivision, 1);
   EXPECT_EQ(Field(plain.Output, vtkRefractaLightingVolume::VolumeCausticBricksName()), nullptr);
   ASSERT_EQ(bricked.Subdivision, 4);
@@ -222,9 +236,8 @@ TEST(PhotonVolumeCaustic, BricksMoveLightWithoutChangingIt)
 
 TEST(PhotonVolumeCaustic, BricksResolveTheFocus)
 {
-  auto set = BallLens();
-  const TracerRun plain = Trace(1, set);
-  const TracerRun bricked = Trace(4, set);
+  const TracerRun& plain = Plain();
+  const TracerRun& bricked = Bricked();
   ASSERT_EQ(bricked.Subdivision, 4);
   // Planes from just below the ball through the focus (traced: 1.51) and beyond. The axis runs
   // along voxel (and fine-voxel) corners, so a field sampled at centres spaced s cannot show an
@@ -250,14 +263,14 @@ TEST(PhotonVolumeCaustic, OffWhereItCannotApply)
   const TracerRun noGlass = Trace(4, none);
   EXPECT_EQ(noGlass.Subdivision, 1);
   EXPECT_EQ(Field(noGlass.Output, vtkRefractaLightingVolume::VolumeCausticBricksName()), nullptr);
-  auto set = BallLens();
   // A chunked march hands its deposits on while photons fly: no bricks.
-  const TracerRun chunked = Trace(4, set, 64);
+  const TracerRun chunked = Trace(4, BallLens(), 64);
   EXPECT_EQ(chunked.Subdivision, 1);
-  // A budget below one brick of 2^3: none placed, and the output is the plain one.
-  const TracerRun tight = Trace(4, set, 0, 7);
-  EXPECT_EQ(tight.Subdivision, 1);
-  EXPECT_EQ(Field(tight.Output, vtkRefractaLightingVolume::VolumeCausticRadianceName()), nullptr);
+  EXPECT_EQ(Field(chunked.Output, vtkRefractaLightingVolume::VolumeCausticBricksName()), nullptr);
+  // A budget below one brick of 2^3: none placed (the plain run of the tests above).
+  EXPECT_EQ(Plain().Subdivision, 1);
+  EXPECT_EQ(Plain().Bricks, 0);
+  EXPECT_EQ(Field(Plain().Output, vtkRefractaLightingVolume::VolumeCausticRadianceName()), nullptr);
   // A NaN threshold is refused by name.
   vtkNew<vtkPhotonTracer> tracer;
   tracer->SetInputData(Fog());
