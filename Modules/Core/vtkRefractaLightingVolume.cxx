@@ -72,29 +72,61 @@ const char* vtkRefractaLightingVolume::LatticeSourceDirectionName(vtkDataSet* li
 }
 
 //------------------------------------------------------------------------------
+int vtkRefractaLightingVolume::GetVolumeCausticSubdivision(vtkDataSet* lighting, vtkIdType* bricks)
+{
+  vtkFieldData* fd = lighting ? lighting->GetFieldData() : nullptr;
+  vtkDataArray* map = fd ? fd->GetArray(VolumeCausticBricksName()) : nullptr;
+  vtkDataArray* fine = fd ? fd->GetArray(VolumeCausticRadianceName()) : nullptr;
+  vtkDataArray* direction = fd ? fd->GetArray(VolumeCausticRadianceDirectionName()) : nullptr;
+  if (bricks)
+  {
+    *bricks = 0;
+  }
+  if (!map || !fine || !direction || map->GetNumberOfComponents() != 1 ||
+    map->GetNumberOfTuples() != lighting->GetNumberOfPoints() || fine->GetNumberOfComponents() != 3 ||
+    direction->GetNumberOfComponents() != 3 ||
+    direction->GetNumberOfTuples() != fine->GetNumberOfTuples())
+  {
+    return 1;
+  }
+  const double largest = map->GetNumberOfTuples() > 0 ? map->GetRange(0)[1] : -1.0;
+  const vtkIdType count = largest >= 0 && largest < VTK_INT_MAX ? vtkIdType(largest) + 1 : 0;
+  const int c = count > 0
+    ? static_cast<int>(std::lround(std::cbrt(double(fine->GetNumberOfTuples()) / double(count))))
+    : 0;
+  if (c < 2 || vtkIdType(c) * c * c * count != fine->GetNumberOfTuples())
+  {
+    return 1;
+  }
+  if (bricks)
+  {
+    *bricks = count;
+  }
+  return c;
+}
+
+//------------------------------------------------------------------------------
 void vtkRefractaLightingVolume::ReadLatticeSource(
   vtkImageData* lighting, std::vector<float>& source, std::vector<float>& direction)
 {
   source = vtkRefractaMedium::ReadArray(lighting, LatticeSourceName(lighting), 3, 0.0f);
   direction = vtkRefractaMedium::ReadArray(lighting, LatticeSourceDirectionName(lighting), 3, 0.0f);
-  vtkFieldData* fd = lighting ? lighting->GetFieldData() : nullptr;
-  vtkDataArray* bricks = fd ? fd->GetArray(VolumeCausticBricksName()) : nullptr;
-  vtkDataArray* fine = fd ? fd->GetArray(VolumeCausticRadianceName()) : nullptr;
-  vtkDataArray* fineDirection = fd ? fd->GetArray(VolumeCausticRadianceDirectionName()) : nullptr;
+  vtkIdType count = 0;
+  const int c = GetVolumeCausticSubdivision(lighting, &count);
   const vtkIdType voxels = static_cast<vtkIdType>(source.size() / 3);
-  if (HasPhotonMultipleScattering(lighting) || !bricks || !fine || !fineDirection ||
-    bricks->GetNumberOfTuples() != voxels || bricks->GetNumberOfComponents() != 1 ||
-    fine->GetNumberOfComponents() != 3 || fineDirection->GetNumberOfComponents() != 3 ||
-    fineDirection->GetNumberOfTuples() != fine->GetNumberOfTuples())
+  if (HasPhotonMultipleScattering(lighting) || c < 2 || voxels != lighting->GetNumberOfPoints())
   {
     return;
   }
-  const double count = bricks->GetRange(0)[1] + 1;
-  const vtkIdType c3 = count >= 1 ? static_cast<vtkIdType>(fine->GetNumberOfTuples() / count) : 0;
+  vtkFieldData* fd = lighting->GetFieldData();
+  vtkDataArray* bricks = fd->GetArray(VolumeCausticBricksName());
+  vtkDataArray* fine = fd->GetArray(VolumeCausticRadianceName());
+  vtkDataArray* fineDirection = fd->GetArray(VolumeCausticRadianceDirectionName());
+  const vtkIdType c3 = vtkIdType(c) * c * c;
   for (vtkIdType v = 0; c3 > 0 && v < voxels; ++v)
   {
     const vtkIdType b = static_cast<vtkIdType>(bricks->GetComponent(v, 0));
-    if (b < 0 || (b + 1) * c3 > fine->GetNumberOfTuples())
+    if (b < 0 || b >= count)
     {
       continue;
     }

@@ -149,6 +149,14 @@ public:
    * its whole S1 (before Radiance's smoothing). c follows from the tuple counts.
    */
   static const char* VolumeCausticBricksName() { return "VolumeCausticBricks"; }
+  /**
+   * The volume caustic's subdivision c of `lighting` (c >= 2), read from its arrays' shapes: a
+   * bricks array of one component and one tuple per point whose largest entry is B - 1, and two
+   * 3-component arrays of B c^3 tuples each. 1 when any is missing or the shapes disagree (no
+   * volume caustic). The number of bricks B goes to `bricks` when given. Entries are not checked
+   * one by one (vtkRefractaViewPass::SetLighting does that).
+   */
+  static int GetVolumeCausticSubdivision(vtkDataSet* lighting, vtkIdType* bricks = nullptr);
   static const char* VolumeCausticRadianceName() { return "VolumeCausticRadiance"; }
   static const char* VolumeCausticRadianceDirectionName()
   {

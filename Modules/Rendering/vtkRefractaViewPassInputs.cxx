@@ -313,7 +313,6 @@ bool vtkRefractaViewPass::SetVolumeCaustic(vtkImageData* lighting, vtkIdType vox
     return false;
   }
   std::vector<int> map(static_cast<size_t>(voxels));
-  vtkIdType count = 0; // bricks: the largest index + 1
   for (vtkIdType v = 0; v < voxels; ++v)
   {
     const double b = bricks->GetComponent(v, 0);
@@ -324,21 +323,22 @@ bool vtkRefractaViewPass::SetVolumeCaustic(vtkImageData* lighting, vtkIdType vox
       return false;
     }
     map[static_cast<size_t>(v)] = static_cast<int>(b);
-    count = std::max<vtkIdType>(count, static_cast<vtkIdType>(b) + 1);
   }
   const vtkIdType tuples = fine->GetNumberOfTuples();
-  const int c = count > 0 ? static_cast<int>(std::lround(std::cbrt(double(tuples) / count))) : 0;
-  if (count == 0 || c < 2 || vtkIdType(c) * c * c * count != tuples)
-  {
-    vtkErrorMacro("The field array '" << fineName << "' has " << tuples << " tuples for " << count
-                                      << " bricks; it must have c^3 per brick, c >= 2.");
-    return false;
-  }
   std::string error;
   if (!CheckLightingArray(fine, fineName, tuples, true, error) ||
     !CheckLightingArray(direction, directionName, tuples, false, error))
   {
     vtkErrorMacro(<< error);
+    return false;
+  }
+  vtkIdType count = 0;
+  const int c = vtkRefractaLightingVolume::GetVolumeCausticSubdivision(lighting, &count);
+  if (c < 2)
+  {
+    vtkErrorMacro("The field array '" << fineName << "' has " << tuples << " tuples for "
+                                      << bricks->GetRange(0)[1] + 1
+                                      << " bricks; it must have c^3 per brick, c >= 2.");
     return false;
   }
   vtkOpenCLContext* context = in.GetContext();

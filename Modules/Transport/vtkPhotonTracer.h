@@ -730,7 +730,7 @@ private:
 #endif
   void WriteSurfaceOutput(Internals& run, vtkImageData* output);
   // The volume caustic (vtkPhotonTracerVolumeCaustic.cxx): whether this run builds one; its
-  // kernel arguments from index `first` (subdivision 0: none, with placeholders; 1: the pilot);
+  // kernel arguments from index `first` (subdivision 0: none, 16-byte buffers; 1: the pilot);
   // the pilot march that places the bricks (the accumulators are cleared after it); the fine
   // deposits resolved; the output.
   bool UsesVolumeCaustic(Internals& run);

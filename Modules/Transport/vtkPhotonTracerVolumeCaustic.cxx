@@ -87,7 +87,7 @@ bool vtkPhotonTracer::SetVolumeCausticArguments(
 {
   if (!run.BrickBuffer)
   {
-    // The kernels take the arguments whatever the variant: placeholders.
+    // The kernels take these arguments in every run: 16-byte buffers they never read (0).
     run.BrickBuffer = run.Alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "volume caustic bricks (none)");
     run.FineFixed =
       run.Alloc.Make(CL_MEM_READ_WRITE, 16, nullptr, "volume caustic accumulators (none)");

@@ -30,14 +30,7 @@ ScatteringLattice FineScatteringLattice(vtkImageData* lighting, int factor)
   lighting->GetDimensions(d);
   lighting->GetOrigin(origin);
   lighting->GetSpacing(h);
-  vtkIdType count = 0;
-  for (vtkIdType v = 0; bricks && v < bricks->GetNumberOfTuples(); ++v)
-  {
-    count = std::max<vtkIdType>(count, static_cast<vtkIdType>(bricks->GetComponent(v, 0)) + 1);
-  }
-  const int c = count > 0 && fine
-    ? static_cast<int>(std::lround(std::cbrt(double(fine->GetNumberOfTuples()) / count)))
-    : 1;
+  const int c = vtkRefractaLightingVolume::GetVolumeCausticSubdivision(lighting);
   for (int a = 0; a < 3; ++a)
   {
     l.Dimensions[a] = factor * d[a];

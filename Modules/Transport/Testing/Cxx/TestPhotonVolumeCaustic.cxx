@@ -4,7 +4,8 @@
 // - The bricks change where S1 is stored, nothing else: every book and counter equals a run
 //   without them (same seed; a budget too small for any brick, so the same pilot and kernels),
 //   and each voxel's Radiance without bricks equals its Radiance plus the mean of its brick with
-//   them (smoothing off), to fixed-point rounding.
+//   them (smoothing off), to fixed-point rounding; the lattice's source
+//   (vtkRefractaLightingVolume::ReadLatticeSource) takes the bricks' light back into its voxels.
 // - The bricks resolve the focus: the RMS radius of S1 about the axis in the fine layer of each
 //   plane follows an independent Snell trace of the beam (SharpSphereTrace.h) within 15% down to
 //   the fine voxels' own floor, where the voxels stay at theirs (4x wider).
@@ -133,9 +134,7 @@ double LayerRms(vtkImageData* out, double z, bool fine)
   vtkDataArray* bricks = Field(out, vtkRefractaLightingVolume::VolumeCausticBricksName());
   vtkDataArray* values = Field(out, vtkRefractaLightingVolume::VolumeCausticRadianceName());
   const double* o = out->GetOrigin();
-  const int c = fine && bricks ? static_cast<int>(std::lround(std::cbrt(
-                                   values->GetNumberOfTuples() / (bricks->GetRange(0)[1] + 1))))
-                               : 1;
+  const int c = fine ? vtkRefractaLightingVolume::GetVolumeCausticSubdivision(out) : 1;
   const double u = (z - o[2]) / H + 0.5; // voxel units, voxel k spans [k, k + 1)
   const int k = static_cast<int>(std::floor(u));
   const int kf = std::min(c - 1, static_cast<int>((u - k) * c));
@@ -232,6 +231,30 @@ TEST(PhotonVolumeCaustic, BricksMoveLightWithoutChangingIt)
   }
   EXPECT_LE(worst, 1e-5 * peak);
   EXPECT_GT(moved, 0.0);
+
+  // A lattice solve takes all of S1 back: the bricked run's lattice source is the plain run's S1,
+  // and its directions are unit vectors where light was deposited.
+  std::vector<float> source, sourceDirection, plainSource, plainDirection;
+  vtkRefractaLightingVolume::ReadLatticeSource(bricked.Output, source, sourceDirection);
+  vtkRefractaLightingVolume::ReadLatticeSource(plain.Output, plainSource, plainDirection);
+  ASSERT_EQ(source.size(), plainSource.size());
+  double worstSource = 0, worstUnit = 0;
+  for (size_t i = 0; i < source.size(); i += 3)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      worstSource = std::max(worstSource, double(std::abs(source[i + c] - plainSource[i + c])));
+    }
+    if (source[i] > 1e-3 * peak)
+    {
+      const float* d = sourceDirection.data() + i;
+      const double length =
+        std::sqrt(double(d[0]) * d[0] + double(d[1]) * d[1] + double(d[2]) * d[2]);
+      worstUnit = std::max(worstUnit, std::abs(length - 1.0));
+    }
+  }
+  EXPECT_LE(worstSource, 1e-5 * peak);
+  EXPECT_LE(worstUnit, 1e-5);
 }
 
 TEST(PhotonVolumeCaustic, BricksResolveTheFocus)
