@@ -214,6 +214,7 @@ json ViewPassReport(vtkRefractaImageRenderer* renderer)
     { "active_cell_fraction", view->GetLastActiveCellFraction() },
     { "buffer_tiles", view->GetLastNumberOfBufferTiles() },
     { "fine_caustic_texels", view->GetLastNumberOfFineCausticTexels() },
+    { "supersampled_pixels", view->GetLastNumberOfSupersampledPixels() },
     { "device_memory_planned_bytes", view->GetPlannedDeviceMemoryBytes() },
     { "memory_plan", view->GetMemoryPlan()->GetSummary() } };
 }
@@ -245,6 +246,7 @@ void PrintLightPass(const json& light)
     return;
   }
   std::cout << "  light     " << light.value("NumberOfPhotons", 0.0) << " photons, "
+            << (light.value("curved_rays", false) ? "curved" : "straight") << " paths, "
             << light.value("TotalSteps", 0.0) << " steps, " << light.value("photon_seconds", 0.0)
             << " s\n";
   const json volumeCaustic = light.value("volume_caustic", json::object());
@@ -357,6 +359,12 @@ void PrintSummary(const json& report)
                      "% of macro cells active), "
                                                          : std::string("no empty space skipped, "))
             << seconds["view_pass"].get<double>() << " s\n";
+  if (const long long edges = view.value("supersampled_pixels", 0LL))
+  {
+    std::cout << "  edges     " << edges << " pixel(s) over edges of glass, "
+              << quality["glass_supersampling"].get<int>() << " x "
+              << quality["glass_supersampling"].get<int>() << " rays each\n";
+  }
   if (const long long fine = view.value("fine_caustic_texels", 0LL))
   {
     std::cout << "  caustic   " << fine << " atlas texel(s) read from their fine texels\n";

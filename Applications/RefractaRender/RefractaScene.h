@@ -33,6 +33,10 @@ struct Scene
   double MediumSeconds = 0.0;
 };
 
+/// refracta-render's default scene (--print-default-scene): a glass sphere (n = 1.5) in a light
+/// fog above a checkered floor, lit by a spot light from above, before a checkerboard background.
+extern const char* const DefaultSceneJson;
+
 /// Reads `scene` (file names relative to `base`) and configures `renderer` with it: settings,
 /// surfaces, medium as its input, lights, camera, background. Prints the medium stage unless
 /// `quiet`. Throws SceneError for a bad scene, std::runtime_error where building the medium fails.

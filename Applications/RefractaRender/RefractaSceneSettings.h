@@ -39,6 +39,7 @@ struct RenderSettings
   int Lattice = 6;                                   // 6 (D3Q6) or 18 (D3Q18)
   int ScatteringOrders = 0; // quality.scattering_orders: the split's k (0: the plan's choice)
   int VolumeCaustic = 4;    // quality.volume_caustic: vtkPhotonTracer::VolumeCausticSubdivision
+  int GlassSupersampling = 3; // quality.glass_supersampling: DielectricSupersampling of the view
 };
 
 /// Reads "scene.image", "scene.quality" and "scene.effects". A quality preset is set on the

@@ -26,7 +26,7 @@
  * BackgroundColor (linear RGB radiance, default black), EnvironmentMap / EnvironmentTexture
  * (equirectangular, looked up in the ray's bent exit direction; see vtkRefractaViewPass for the
  * orientation, EnvironmentUp and EnvironmentRight), StepSize (voxels, default 1), RayMode (AUTO,
- * STRAIGHT, CURVED; default AUTO: curved only where n varies), TransmittanceCutoff (default
+ * STRAIGHT, CURVED; default AUTO: curved only where grad n is non-zero somewhere), TransmittanceCutoff (default
  * 1e-4), MaxSteps (0 = automatic), Exposure (default 1), ToneMapping (default CLAMP), Context
  * (default vtkOpenCLContext::GetDefault()).
  *

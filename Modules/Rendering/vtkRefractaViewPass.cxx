@@ -291,7 +291,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   }
 
   const bool curved = this->RayMode == CURVED ? static_cast<bool>(in.Index)
-                                              : (this->RayMode == AUTO && in.Refractive);
+                                              : (this->RayMode == AUTO && in.Bends);
   if (this->RayMode == CURVED && !in.Index)
   {
     vtkDebugMacro("RayMode CURVED with a constant refractive index: rays are straight.");
@@ -330,7 +330,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.CausticOffset = surf.GetNumberOfTexels();
   cl_program program = context->GetProgram(
     { "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl", "view_skipping.cl",
-      "view_caustic.cl", "view_pass.cl" },
+      "view_caustic.cl", "view_pass.cl", "view_pixel.cl" },
     KernelOptions(variant), this);
   if (!program)
   {
@@ -400,6 +400,13 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   surfaceDepthImage.resize(surfaceDepth ? pixels : 0);
   steps.resize(pixels);
   int rowsPerTile = std::max(1, std::min(height, this->TilePixels / width));
+  cl_int supersampledPixels = 0;
+  vtkOpenCLBuffer supersampledBuffer = context->CreateBuffer(CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+    sizeof(cl_int), &supersampledPixels, "supersampled pixel count", this);
+  if (!supersampledBuffer)
+  {
+    return false;
+  }
   // Buffer tiles (PlanImageMemory): when the whole image's buffers exceed what one allocation
   // may hold, rows [row0, row0 + rows) are rendered as an image of their own, whose frame is
   // the slice of the full one (the kernel's pixel (i, j) of the slice is pixel (i, row0 + j)).
@@ -443,7 +450,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       }
       part.V[c] = scaleV * frame.V[c];
     }
-    const cl_int w = width, h = rows, causticSub = in.VolumeCausticSub;
+    const cl_int w = width, h = rows, causticSub = in.VolumeCausticSub,
+                 supersampling = this->DielectricSupersampling;
     const cl_int status = vtkOpenCLSetKernelArgs(kernel.Get(), dims, spacing, buf(in.Extinction),
       buf(in.Emission), buf(in.Anisotropy), buf(in.Index), buf(in.Gradient), buf(in.Radiance),
       buf(in.RadianceDirection), buf(in.Multiple), Float4(part.Eye), Float4(part.U), Float4(part.V),
@@ -454,7 +462,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       buf(surf.Albedo), buf(surf.Irradiance), buf(surf.Normals), buf(surf.Interfaces), toSurface[0],
       toSurface[1], toSurface[2], hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(),
       surfaceDepthBuffer.Get(), buf(surf.Bodies), buf(in.CausticBricks), buf(in.CausticRadiance),
-      buf(in.CausticDirection), causticSub);
+      buf(in.CausticDirection), causticSub, supersampling, supersampledBuffer.Get());
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
       !this->RunTiles(context, kernel.Get(), width, rows, row0, height, rowsPerTile))
     {
@@ -474,6 +482,11 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     }
     ++this->LastNumberOfBufferTiles;
   }
+  if (!context->ReadBuffer(supersampledBuffer.Get(), sizeof(cl_int), &supersampledPixels, this))
+  {
+    return false;
+  }
+  this->LastNumberOfSupersampledPixels = supersampledPixels;
   hdr.swap(image);
   if (transmittance)
   {
@@ -620,6 +633,9 @@ void vtkRefractaViewPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MacroCellSize: " << this->MacroCellSize << " voxels\n";
   os << indent << "Surfaces: " << this->Internal->SurfaceSet.Get() << "\n";
   os << indent << "DielectricSplitDepth: " << this->DielectricSplitDepth << "\n";
+  os << indent << "DielectricSupersampling: " << this->DielectricSupersampling << "\n";
+  os << indent << "LastNumberOfSupersampledPixels: " << this->LastNumberOfSupersampledPixels
+     << "\n";
   os << indent << "SurfaceFilter: "
      << (this->SurfaceFilter == NEAREST_TEXEL ? "NEAREST_TEXEL" : "LINEAR_TEXEL") << "\n";
   os << indent << "CausticPhotonsPerFineTexel: " << this->CausticPhotonsPerFineTexel << "\n";

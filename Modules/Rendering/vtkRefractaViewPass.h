@@ -16,8 +16,10 @@
  * Settings (units, defaults):
  * - StepSize: view-ray step in voxels (multiples of the smallest spacing), clamped to
  *   [0.01, 16]; default 1 (one voxel, as Sun et al. argue).
- * - RayMode: AUTO (default: curved rays only where the medium's refractive index varies, by more
- *   than 1e-6), STRAIGHT, or CURVED.
+ * - RayMode: AUTO (default: curved rays when the medium's refractive index varies, by more than
+ *   1e-6, and some sample of its gradient is non-zero: a medium voxelized with exact interfaces,
+ *   whose n jumps only across the meshes, gets straight rays that refract at the surfaces),
+ *   STRAIGHT, or CURVED.
  * - TransmittanceCutoff: a ray stops when every channel's transmittance is below it; [0, 1],
  *   default 1e-4 (the radiance it can miss is at most cutoff times the rest of the path's).
  * - MaxSteps: cap on steps per ray; 0 (default) means 4 (Nx + Ny + Nz) / StepSize, enough for
@@ -55,7 +57,8 @@
  * Glass: triangles of a DIELECTRIC surface material are interfaces, not opaque. A ray meeting
  * one splits into a Fresnel-reflected leg (weight R) and a refracted leg (weight 1 - R; none under
  * total internal reflection), with the interpolated shading normal, each continuing as an
- * ordinary march (DielectricSplitDepth; Documentation/Physics.md, "Glass in the view pass"). The
+ * ordinary march (DielectricSplitDepth; Documentation/Physics.md, "Glass in the view pass"); pixels
+ * over edges of glass take several rays (DielectricSupersampling). The
  * pixel's transmittance output is then the summed weight of the legs that end in the background
  * (or at the depth limit), its surface depth the distance to the first surface met.
  */
@@ -235,6 +238,20 @@ public:
   vtkGetMacro(DielectricSplitDepth, int);
   ///@}
 
+  ///@{
+  /**
+   * Glass edges (Documentation/Physics.md "Glass edges: supersampling"): a pixel whose footprint
+   * holds an edge of glass (its four corner rays and its centre ray, straight from the eye, do not
+   * all meet the same dielectric surface first, or one meets it at grazing incidence, |cos| < 0.5)
+   * is the mean of n x n paths through an n x n grid over its footprint instead of its centre
+   * ray alone, n = DielectricSupersampling; other pixels keep one ray. Without it the reflections
+   * and refractions at a ball's rim alias into speckle. 1 turns it off. Default 3, chosen by
+   * measurement (Benchmarks.md, "The ball's rim"). Clamped to [1, 8].
+   */
+  vtkSetClampMacro(DielectricSupersampling, int, 1, 8);
+  vtkGetMacro(DielectricSupersampling, int);
+  ///@}
+
   /**
    * Number of times surface geometry (BVH, triangles, atlas) was uploaded to the device.
    */
@@ -296,6 +313,12 @@ public:
   vtkGetMacro(LastTotalSteps, double);
   vtkGetMacro(LastCurved, bool);
   ///@}
+
+  /**
+   * The number of pixels of the last Render() taken as the mean of several paths
+   * (DielectricSupersampling); 0 without glass or with DielectricSupersampling 1.
+   */
+  vtkGetMacro(LastNumberOfSupersampledPixels, vtkIdType);
 
   ///@{
   /**
@@ -371,7 +394,8 @@ public:
   ///@}
 
   /**
-   * Whether the current medium's refractive index varies (so AUTO traces curved rays).
+   * Whether the current medium's refractive index varies (sources then count 1 / n^2 per step;
+   * AUTO traces curved rays when its gradient is also non-zero somewhere, see GetLastCurved()).
    */
   bool GetMediumIsRefractive() const;
 
@@ -410,12 +434,14 @@ protected:
   int SurfaceFilter = LINEAR_TEXEL;
   double CausticPhotonsPerFineTexel = 64;
   int DielectricSplitDepth = 2;
+  int DielectricSupersampling = 3;
   bool LastSkipping = false;
   double LastActiveCellFraction = 1.0;
   double OccupancySeconds = 0.0;
   double LastSeconds = 0.0;
   double LastTotalSteps = 0.0;
   bool LastCurved = false;
+  vtkIdType LastNumberOfSupersampledPixels = 0;
   int NumberOfUploads = 0;
   int NumberOfRenders = 0;
   int TilePixels = 65536;

@@ -95,6 +95,7 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
 
   // Refractive index: curved rays need n and grad n (grad n in the grid-local frame).
   in.Refractive = false;
+  in.Bends = false;
   in.UniformIndex = 1.0;
   in.Index.Reset();
   in.Gradient.Reset();
@@ -125,6 +126,7 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
     // Curved rays are straight exactly where the grad n samples are zero (the integrator never
     // reads n itself except to scale |v|), so that is what the skipping test needs.
     MarkNonzero(gradient, 3, GradientFlag, flags);
+    in.Bends = std::any_of(gradient.begin(), gradient.end(), [](float g) { return g != 0.0f; });
     in.Gradient = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
       gradient.size() * 4, gradient.data(), "RefractiveIndexGradient", this);
     if (!in.Gradient)

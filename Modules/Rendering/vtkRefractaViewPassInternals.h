@@ -33,6 +33,9 @@ struct vtkRefractaViewPass::Internals
   vtkNew<vtkRefractaGridFrame> Grid;
   bool HasEmission = false;
   bool Refractive = false;
+  // Some grad n sample is non-zero. A medium whose n jumps only across exact interfaces (the
+  // voxelizer writes grad n = 0 there) bends rays at the surfaces alone: straight rays between.
+  bool Bends = false;
   double UniformIndex = 1.0; // the index where it does not vary (sources then count 1 / n^2)
   vtkOpenCLBuffer Extinction, Emission, Anisotropy, Index, Gradient;
 

@@ -93,8 +93,14 @@ void LoadMedium(vtkImageData* image, bool useProxy, Medium& m)
   {
     CopyArray(g, 3, 0.0f, m.Voxels, m.Gradient);
   }
+  // Paths curve only where grad n is non-zero. A given gradient that is zero everywhere (a medium
+  // voxelized with exact interfaces: n jumps only across the meshes, which the surfaces' BVH
+  // refracts) bends no path, so the march is straight between surfaces: curved steps would trace
+  // the same lines at many times the cost.
   const auto range = std::minmax_element(m.N.begin(), m.N.end());
-  m.Curved = *range.second > *range.first;
+  m.Curved = *range.second > *range.first &&
+    (!m.HasGradient ||
+      std::any_of(m.Gradient.begin(), m.Gradient.end(), [](float g) { return g != 0.0f; }));
   int lo[3] = { m.Dims[0], m.Dims[1], m.Dims[2] };
   int hi[3] = { -1, -1, -1 };
   for (size_t v = 0; v < m.Voxels; ++v)

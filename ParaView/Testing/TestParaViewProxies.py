@@ -140,9 +140,26 @@ for field in ("PlanSummary", "PlanSeconds", "LightingSeconds", "ViewSeconds"):
 info = image.GetDataInformation().DataInformation.GetFieldDataInformation()
 assert info.GetArrayInformation("PlanSummary") is not None, "the Information panel sees the plan"
 
+# The glass knobs reach the passes (built-in session: the proxies' own objects, whose PrintSelf
+# reads the values back from the photon tracer and the view pass).
+lighting.VolumeCausticSubdivision = 2
+lighting.UpdatePipeline()
+assert "VolumeCausticSubdivision: 2" in str(lighting.GetClientSideObject()), "reaches the tracer"
+image.VolumeCausticSubdivision = 1
+image.GlassSupersampling = 5
+image.UpdatePipeline()
+printed = str(image.GetClientSideObject())
+assert "VolumeCausticSubdivision: 1" in printed and "GlassSupersampling: 5" in printed, printed
+
 # --- The representation type, offered for image data ---
 view = simple.CreateRenderView()
 display = simple.Show(medium, view)
 assert "Refracta" in display.GetProperty("Representation").Available, "Refracta representation"
 print("representation types:", display.GetProperty("Representation").Available)
+display.Representation = "Refracta"
+display.RefractaGlassSupersampling = 2
+display.RefractaVolumeCausticSubdivision = 3
+printed = str(display.GetClientSideObject().GetActiveRepresentation())
+assert "RefractaGlassSupersampling: 2" in printed, "reaches the mapper's view pass"
+assert "RefractaVolumeCausticSubdivision: 3" in printed, "reaches the mapper's photon tracer"
 print("OK")

@@ -54,6 +54,8 @@
 // VolumeCausticSubdivision (default 4; 1: none), also the factor of the shaft's S1 lattices;
 // --caustic-pieces K: its VolumeCausticPiecesPerFineVoxel. The shaft's noise compares the exact
 // interfaces' render with one from another photon seed.
+#include "BenchmarkGlassOptics.h"
+
 #include "vtkCamera.h"
 #include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
@@ -78,8 +80,6 @@
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 
-#include "RefractaIdealGlass.h"
-#include "RefractaShaftMeasures.h"
 
 #include <algorithm>
 #include <array>
@@ -91,43 +91,12 @@
 #include <string>
 #include <vector>
 
+namespace glass_optics
+{
 namespace
 {
-using namespace RefractaIdealGlass;
-using namespace RefractaShaftMeasures;
-
-// The spot light's intensity on its axis (the ideal optics uses 1).
-const double LightIntensity = 60;
-
-struct Settings
-{
-  int Size = 256;
-  int Photons = 1 << 18;
-  int Grid[3] = { 80, 76, 80 };
-  int Rays = 4000;
-  int ShaftRays = 3000;                // light rays for the shaft's fluence planes (per cone axis)
-  int ShaftImageRays = 1500;           // light rays for the shaft's ideal image
-  bool ShaftMultipleScattering = true; // false: the shaft's renders without the lattice
-  int VolumeCaustic = 4; // vtkPhotonTracer::VolumeCausticSubdivision; the shaft's S1 lattices' factor
-  double CausticPieces = -1; // vtkPhotonTracer::VolumeCausticPiecesPerFineVoxel (< 0: its default)
-};
-
-// Which scene to render. The shaft's renders (BlackFloor) take the default scene with its fog and
-// a black floor, with the glass ball and with a black opaque ball in its place: their difference
-// is the light through the glass (the floor behind the shaft, which would add the caustic and the
-// light through the ball on the floor, adds nothing to either).
-struct Scene
-{
-  bool Ball = true;        // the glass ball (false: none)
-  bool Exact = true;       // exact interfaces (false: the paper's smoothed index)
-  bool Fog = false;        // the default scene's fog
-  bool OpaqueBall = false; // a black opaque sphere instead of the glass
-  bool BlackFloor = false; // floor albedo 0 (else 0.8); single scattering by photons
-  unsigned int Seed = 1;   // the photon pass's
-};
-
-//------------------------------------------------------------------------------
-// The scene through the render pipeline.
+// The default scene's medium: the ball (or none) voxelized with exact interfaces or the paper's
+// smoothed index, in the fog or in vacuum.
 vtkSmartPointer<vtkImageData> Medium(const Settings& s, bool ball, bool exact, bool fog)
 {
   vtkNew<vtkSphereSource> sphere;
@@ -158,6 +127,7 @@ vtkSmartPointer<vtkImageData> Medium(const Settings& s, bool ball, bool exact, b
   medium->ShallowCopy(voxelizer->GetOutput());
   return medium;
 }
+}
 
 void SetCamera(vtkCamera* camera)
 {
@@ -166,15 +136,6 @@ void SetCamera(vtkCamera* camera)
   camera->SetViewUp(0, 1, 0);
   camera->SetViewAngle(34);
 }
-
-struct Render
-{
-  std::vector<float> Image; // RGBA, row 0 at the bottom
-  double Seconds = 0;
-  double LightSeconds = 0;  // the photon pass's
-  int VolumeCaustic = 1;    // the volume caustic's subdivision in the photon pass (1: none)
-  ScatteringLattice Lighting; // the lighting volume's S1 = sigma_s phi (red)
-};
 
 Render RenderScene(const Settings& s, const Scene& scene)
 {
@@ -229,6 +190,10 @@ Render RenderScene(const Settings& s, const Scene& scene)
     pipeline->GetPhotonTracer()->SetVolumeCausticPiecesPerFineVoxel(s.CausticPieces);
   }
   pipeline->GetPhotonTracer()->SetSeed(scene.Seed);
+  if (scene.CentreRays)
+  {
+    pipeline->GetViewPass()->SetDielectricSupersampling(1);
+  }
   // The default scene's checkerboard behind (seen, not lighting): it makes the ball visible
   // against the render without it.
   const double color1[3] = { 0.9, 0.85, 0.75 }, color2[3] = { 0.08, 0.12, 0.3 };
@@ -247,53 +212,8 @@ Render RenderScene(const Settings& s, const Scene& scene)
   return r;
 }
 
-//------------------------------------------------------------------------------
-// The camera's rays and the floor, in pixel coordinates (x, y in [0, size), pixel i covering
-// [i, i + 1), row 0 at the bottom).
-struct View : Pinhole
+namespace
 {
-  explicit View(int size)
-  {
-    Size = size;
-    vtkNew<vtkCamera> c;
-    SetCamera(c);
-    double p[3], f[3], u[3];
-    c->GetPosition(p);
-    c->GetFocalPoint(f);
-    c->GetViewUp(u);
-    Eye = { p[0], p[1], p[2] };
-    Forward = Unit(Add({ f[0], f[1], f[2] }, Eye, -1.0));
-    V3 up = { u[0], u[1], u[2] };
-    Right = Unit({ Forward[1] * up[2] - Forward[2] * up[1], Forward[2] * up[0] - Forward[0] * up[2],
-      Forward[0] * up[1] - Forward[1] * up[0] });
-    Up = { Right[1] * Forward[2] - Right[2] * Forward[1],
-      Right[2] * Forward[0] - Right[0] * Forward[2],
-      Right[0] * Forward[1] - Right[1] * Forward[0] };
-    Tan = std::tan(vtkMath::RadiansFromDegrees(c->GetViewAngle()) / 2);
-  }
-
-  // Floor point seen along the ray through (x, y); false when the ray misses the floor.
-  bool Floor(double x, double y, V3& hit) const
-  {
-    const V3 d = Ray(x, y);
-    if (d[1] >= 0)
-    {
-      return false;
-    }
-    hit = Add(Eye, d, (FloorY - Eye[1]) / d[1]);
-    return std::abs(hit[0]) <= 1.2 && std::abs(hit[2]) <= 1.2;
-  }
-
-  // Whether the pixel's centre ray meets the ball.
-  bool SeesBall(int i, int j) const
-  {
-    const V3 d = Ray(i + 0.5, j + 0.5);
-    const V3 oc = Add(Eye, BallCentre, -1.0);
-    const double b = Dot(oc, d), c = Dot(oc, oc) - BallRadius * BallRadius;
-    return b * b - c > 0 && -b > 0;
-  }
-};
-
 //------------------------------------------------------------------------------
 // Ideal geometric optics on the floor.
 struct IdealFloor
@@ -556,163 +476,11 @@ void PrintRow(const char* name, const Figures& f, double seconds)
     f.FwhmY, f.PeakOverLit, f.ShadowOverLit, f.UnderOverLit, f.Radius,
     seconds > 0 ? (std::to_string(seconds).substr(0, 5) + " s").c_str() : "-");
 }
-
-//------------------------------------------------------------------------------
-// The light shaft below the ball (the default scene with its fog).
-const double TableHeights[] = { -0.40, -0.45, -0.50, -0.55, -0.60, -0.65, -0.70, -0.75 };
-
-// Fluence planes every 0.01 from just below the ball (y = -0.38) to just above the floor.
-std::vector<double> PlaneHeights()
-{
-  std::vector<double> heights;
-  for (int k = 0; k < 42; ++k)
-  {
-    heights.push_back(-0.38 - 0.01 * k);
-  }
-  return heights;
-}
-
-// The image row through the axis point (0, y, 0) and its pixels per world unit there; -1 when
-// the ball hides that point.
-int AxisRow(const View& view, double y, double& pixelsPerUnit)
-{
-  double x0, y0, x1, y1;
-  view.Project({ -0.05, y, 0.0 }, x0, y0);
-  view.Project({ 0.05, y, 0.0 }, x1, y1);
-  pixelsPerUnit = (x1 - x0) / 0.1;
-  const int row = static_cast<int>(0.5 * (y0 + y1));
-  return view.SeesBall(view.Size / 2, row) ? -1 : row;
-}
-
-// Measures and prints the shaft; returns whether every render ran. `narrowMet[m]` (m = 0 exact,
-// 1 smoothed): whether every visible row's image FWHM from y = -0.45 down is within 1.5x of
-// ideal (the shaft narrows to the focus as the optics say). `lightMet[m]` (m = 0 exact,
-// 1 smoothed): whether the render's shaft holds the ideal single-scattered light, every visible
-// row from y = -0.45 down summing to within 20% of ideal (meaningful without multiple
-// scattering, --single: the lattice adds about 30% there).
-bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2], bool narrowMet[2])
-{
-  const std::vector<double> heights = PlaneHeights();
-  IdealShaft ideal(view, Fog(), heights, 0.002, 0.45, 0.11);
-  TraceThroughBall(s.ShaftRays, 6, Fog().Extinction, [&](const Beam& b) { ideal.AddToPlanes(b); });
-  TraceThroughBall(
-    s.ShaftImageRays, 6, Fog().Extinction, [&](const Beam& b) { ideal.AddToImage(b); });
-  ideal.Finish();
-
-  Scene scene{ true, true, true, true, true };
-  const Render opaque = RenderScene(s, scene);
-  scene.OpaqueBall = false;
-  const Render exact = RenderScene(s, scene);
-  scene.Exact = false;
-  const Render smoothed = RenderScene(s, scene);
-  if (opaque.Image.empty() || exact.Image.empty() || smoothed.Image.empty())
-  {
-    return false;
-  }
-  scene.Exact = true;
-  scene.Seed = 2;
-  const Render reseeded = RenderScene(s, scene);
-  const std::vector<double> images[3] = { ideal.Image, RedDifference(exact.Image, opaque.Image),
-    RedDifference(smoothed.Image, opaque.Image) };
-  double x, top, bottom; // the noise's rows: y = -0.45 to -0.75 on the axis
-  view.Project({ 0.0, -0.45, 0.0 }, x, top);
-  view.Project({ 0.0, -0.75, 0.0 }, x, bottom);
-  const double noise = PairNoise(ideal.Image, images[1],
-    RedDifference(reseeded.Image, opaque.Image), view.Size, static_cast<int>(std::ceil(bottom)),
-    static_cast<int>(top));
-  const double h = exact.Lighting.Spacing[0];
-  std::printf("\nThe light shaft below the ball: the default scene with its fog and a black floor; "
-              "rendered = glass ball - black opaque ball (S1 by photons in both), %.0f s + %.0f s "
-              "+ %.0f s. Ideal: %d^2 light rays (fluence, 0.002 cells), %d^2 (image).\n\n",
-    opaque.Seconds, exact.Seconds, smoothed.Seconds, s.ShaftRays, s.ShaftImageRays);
-  std::printf("Image rows through the axis point (0, y, 0): FWHM across the row, pixels (world "
-              "units at the axis); the row's sum over its middle half, rendered / %g over ideal\n\n"
-              "| y | row | ideal | exact | smoothed | sum exact / ideal | sum smoothed / ideal "
-              "|\n|---|---|---|---|---|---|---|\n",
-    LightIntensity);
-  int rowsChecked = 0;
-  for (double y : TableHeights)
-  {
-    double ppu;
-    const int row = AxisRow(view, y, ppu);
-    if (row < 0)
-    {
-      std::printf("| %.2f | behind the ball | | | | | |\n", y);
-      continue;
-    }
-    std::printf("| %.2f | %d |", y, row);
-    double sums[3] = { 0, 0, 0 }, widths[3] = { 0, 0, 0 };
-    for (int m = 0; m < 3; ++m)
-    {
-      const std::vector<double> line = ImageRow(images[m], view.Size, row);
-      const double w = ProfileFwhm(line, 1.0, view.Size / 4);
-      std::printf(" %.1f (%.3f) |", w, w / ppu);
-      widths[m] = w;
-      for (int i = view.Size / 4; i < 3 * view.Size / 4; ++i)
-      {
-        sums[m] += line[i] / (m ? LightIntensity : 1.0);
-      }
-    }
-    std::printf(" %.2f | %.2f |\n", sums[1] / sums[0], sums[2] / sums[0]);
-    rowsChecked += y < -0.44;
-    for (int m = 0; m < 2 && y < -0.44; ++m)
-    {
-      lightMet[m] = lightMet[m] && std::abs(sums[m + 1] / sums[0] - 1.0) <= 0.2;
-      narrowMet[m] = narrowMet[m] && widths[m + 1] <= 1.5 * widths[0];
-    }
-  }
-  for (int m = 0; m < 2; ++m)
-  {
-    lightMet[m] = lightMet[m] && rowsChecked > 0;
-    narrowMet[m] = narrowMet[m] && rowsChecked > 0;
-  }
-  std::printf("\nFluence below the ball (S1 = sigma_s phi of the lighting grid, spacing h = %.4f): "
-              "r50 = radius holding half of phi's integral over the plane y within 0.44 of the "
-              "axis; FWHM of phi along x at z = 0 (ideal: on a lattice of spacing h, h / 2, h / 4, "
-              "voxel means and (1, 2, 1) smoothing)\n\n| y | r50 ideal | r50 exact | r50 smoothed "
-              "| FWHM ideal, h | h / 2 | h / 4 | FWHM exact | FWHM smoothed |\n"
-              "|---|---|---|---|---|---|---|---|---|\n",
-    h);
-  double narrowest[3] = { 1e9, 1e9, 1e9 }, at[3] = { 0, 0, 0 };
-  for (int k = 0; k < static_cast<int>(heights.size()); ++k)
-  {
-    const double y = heights[k];
-    const double r50[3] = { ideal.EncircledRadius(k, 0.5),
-      LatticeHalfRadius(exact.Lighting, opaque.Lighting, y),
-      LatticeHalfRadius(smoothed.Lighting, opaque.Lighting, y) };
-    for (int m = 0; m < 3; ++m)
-    {
-      if (r50[m] < narrowest[m])
-      {
-        narrowest[m] = r50[m];
-        at[m] = y;
-      }
-    }
-    if (k == 0 || k % 5 == 2)
-    {
-      std::printf("| %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f |\n", y, r50[0],
-        r50[1], r50[2], ProfileFwhm(ideal.ProfileOnLattice(k, h), h, 100),
-        ProfileFwhm(ideal.ProfileOnLattice(k, h / 2), h / 2, 200),
-        ProfileFwhm(ideal.ProfileOnLattice(k, h / 4), h / 4, 400),
-        ProfileFwhm(LatticeProfile(exact.Lighting, opaque.Lighting, y), h, 100),
-        ProfileFwhm(LatticeProfile(smoothed.Lighting, opaque.Lighting, y), h, 100));
-    }
-  }
-  std::printf("\nNoise of the exact interfaces' shaft (two photon seeds; RMS of their difference "
-              "/ sqrt 2 over the mean, pixels of the rows y = -0.45 to -0.75 where the ideal "
-              "image exceeds 10%% of its row's peak): %.1f%%; photon pass %.1f s (volume caustic "
-              "%d^3)\n",
-    100 * noise, exact.LightSeconds, exact.VolumeCaustic);
-  std::printf("\nNarrowest r50 (planes every 0.01): ideal %.4f at y = %.2f, exact %.4f at %.2f, "
-              "smoothed %.4f at %.2f\n",
-    narrowest[0], at[0], narrowest[1], at[1], narrowest[2], at[2]);
-  std::printf("Direct light left in the difference (mean |S1 glass - S1 opaque| 0.55 to 0.75 from "
-              "the axis at y = -0.6, over its peak there): exact %.4f, smoothed %.4f\n",
-    DirectLightResidual(exact.Lighting, opaque.Lighting),
-    DirectLightResidual(smoothed.Lighting, opaque.Lighting));
-  return true;
-}
 } // namespace
+} // namespace glass_optics
+
+using namespace glass_optics;
+
 
 int main(int argc, char* argv[])
 {
@@ -804,12 +572,16 @@ int main(int argc, char* argv[])
     "| interfaces | caustic FWHM x / y (px) | caustic peak / lit | shadow / lit | under the "
     "ball / lit | apparent radius (px) | render time |\n|---|---|---|---|---|---|---|\n");
   PrintRow("ideal optics", ideal, 0);
-  const Render without = RenderScene(s, Scene{ false, true, false });
+  Scene figures{ false, true, false };
+  figures.CentreRays = true;
+  const Render without = RenderScene(s, figures);
   bool ok = !without.Image.empty();
   Figures measured[2];
+  figures.Ball = true;
   for (bool exact : { false, true })
   {
-    const Render r = RenderScene(s, Scene{ true, exact, false });
+    figures.Exact = exact;
+    const Render r = RenderScene(s, figures);
     ok = ok && !r.Image.empty();
     Figures& f = measured[exact];
     f = Measure(view, RenderedImage(view, r));

@@ -69,6 +69,7 @@ illumination|BenchmarkIlluminationNetwork|--sizes 256 --directions 16 --frames 2
 effectplan|BenchmarkEffectPlan|--size 12 --image 16 --photons 2048 --runs 1 --csv @CSV@|--csv @CSV@"
 ACCURACY="glassoptics|BenchmarkGlassOptics|--quick|
 glassshaft|BenchmarkGlassOptics|--quick --shaft|--shaft
+glassedges|BenchmarkGlassEdges|--quick --samples 1,3 --reference 2 --runs 1|
 accuracytime|BenchmarkAccuracyTime|--smoke --scenes glass-sphere-in-fog,grin-lens --out @DIR@/accuracytime|--out @DIR@/accuracytime
 reference|RefractaReferenceBenchmark|--smoke --csv @CSV@|--csv @CSV@
 referencepm|BenchmarkReferencePhotonMapper|--smoke --scenes glass-sphere-in-fog --csv @CSV@|--scenes glass-sphere-in-fog --csv @CSV@"
@@ -166,7 +167,8 @@ while IFS='|' read -r key exe qargs fargs; do
     [ "$rc" -eq 127 ] && why="not found in $bin"
     row "$exe" "FAILED ($why), see $key.log" "-" "-"
     echo "   FAILED ($why)"
-  elif [ -f "$csv" ] || [ "$key" = glassoptics ] || [ "$key" = glassshaft ] || [ "$key" = accuracytime ]; then
+  elif [ -f "$csv" ] || [ "$key" = glassoptics ] || [ "$key" = glassshaft ] || [ "$key" = glassedges ] ||
+    [ "$key" = accuracytime ]; then
     summarise "$key" "$csv" "$exe"
   else
     row "$exe" "FAILED (no CSV written), see $key.log" "-" "-"

@@ -95,6 +95,18 @@ void vtkRefractaPluginLighting::SetNumberOfPhotons(int photons)
 }
 
 //------------------------------------------------------------------------------
+void vtkRefractaPluginLighting::SetVolumeCausticSubdivision(int subdivision)
+{
+  this->Pipeline->GetPhotonTracer()->SetVolumeCausticSubdivision(subdivision);
+  this->Modified();
+}
+
+int vtkRefractaPluginLighting::GetVolumeCausticSubdivision()
+{
+  return this->Pipeline->GetPhotonTracer()->GetVolumeCausticSubdivision();
+}
+
+//------------------------------------------------------------------------------
 void vtkRefractaPluginLighting::SetSeed(int seed)
 {
   this->Pipeline->GetPhotonTracer()->SetSeed(static_cast<unsigned int>(seed));
@@ -241,6 +253,8 @@ void vtkRefractaPluginLighting::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Quality: " << this->QualitySettings.Quality << "\n";
   os << indent << "NumberOfPhotons: " << this->QualitySettings.NumberOfPhotons << "\n";
+  os << indent << "VolumeCausticSubdivision: "
+     << this->Pipeline->GetPhotonTracer()->GetVolumeCausticSubdivision() << "\n";
   os << indent << "Lights:\n";
   this->Lights->PrintSelf(os, indent.GetNextIndent());
 }

@@ -78,6 +78,16 @@ public:
 
   ///@{
   /**
+   * The photon pass's volume caustic subdivision (vtkPhotonTracer::VolumeCausticSubdivision,
+   * 1..8, default 4; 1 off): light focused by glass into the fog is held in c^3 finer voxels
+   * where it is dense.
+   */
+  void SetVolumeCausticSubdivision(int subdivision);
+  int GetVolumeCausticSubdivision();
+  ///@}
+
+  ///@{
+  /**
    * Run multiple scattering where the plan calls for it (default on).
    */
   void SetMultipleScattering(bool on);

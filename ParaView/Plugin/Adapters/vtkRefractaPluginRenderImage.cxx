@@ -9,6 +9,7 @@
 #include "vtkRefractaPluginInputCheck.h"
 #include "vtkRefractaPluginLightList.h"
 #include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaViewPass.h"
 
 #include <algorithm>
 
@@ -96,6 +97,20 @@ void vtkRefractaPluginRenderImage::SetSeed(int seed)
 }
 
 //------------------------------------------------------------------------------
+void vtkRefractaPluginRenderImage::SetVolumeCausticSubdivision(int subdivision)
+{
+  this->GetPipeline()->GetPhotonTracer()->SetVolumeCausticSubdivision(subdivision);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaPluginRenderImage::SetGlassSupersampling(int samples)
+{
+  this->GetViewPass()->SetDielectricSupersampling(samples);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
 void vtkRefractaPluginRenderImage::SetMultipleScattering(bool on)
 {
   this->GetPipeline()->SetMultipleScattering(on);
@@ -156,6 +171,10 @@ void vtkRefractaPluginRenderImage::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Quality: " << this->QualitySettings.Quality << "\n";
   os << indent << "NumberOfPhotons: " << this->QualitySettings.NumberOfPhotons << "\n";
+  os << indent << "VolumeCausticSubdivision: "
+     << this->GetPipeline()->GetPhotonTracer()->GetVolumeCausticSubdivision() << "\n";
+  os << indent << "GlassSupersampling: " << this->GetViewPass()->GetDielectricSupersampling()
+     << "\n";
   os << indent << "Lights:\n";
   this->Lights->PrintSelf(os, indent.GetNextIndent());
 }

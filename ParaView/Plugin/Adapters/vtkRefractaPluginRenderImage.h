@@ -11,7 +11,8 @@
  * - lights as rows (SetLight / RemoveAllLights; see vtkRefractaPluginLightList), used when no
  *   lighting volume is connected to input 1;
  * - Quality (vtkEffectPlan presets, default INTERACTIVE), NumberOfPhotons (0, the default, keeps
- *   the preset's), Seed (default 1) and MultipleScattering (default on) of its pipeline.
+ *   the preset's), Seed (default 1) and MultipleScattering (default on) of its pipeline;
+ * - VolumeCausticSubdivision (default 4) and GlassSupersampling (default 3) for glass.
  */
 #ifndef vtkRefractaPluginRenderImage_h
 #define vtkRefractaPluginRenderImage_h
@@ -71,6 +72,16 @@ public:
    */
   void SetSeed(int seed);
   void SetMultipleScattering(bool on);
+  ///@}
+
+  ///@{
+  /**
+   * Glass: the photon pass's volume caustic subdivision (vtkPhotonTracer::
+   * VolumeCausticSubdivision, 1..8, default 4; 1 off) and the view pass's supersampling of pixels
+   * over edges of glass (vtkRefractaViewPass::DielectricSupersampling, 1..8, default 3; 1 off).
+   */
+  void SetVolumeCausticSubdivision(int subdivision);
+  void SetGlassSupersampling(int samples);
   ///@}
 
 protected:

@@ -3,8 +3,11 @@
 #include "vtkDataSet.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLODVolume.h"
+#include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaViewPass.h"
 #include "vtkRefractiveVolumeMapper.h"
 
 vtkStandardNewMacro(vtkRefractaVolumeRepresentation);
@@ -55,6 +58,19 @@ void vtkRefractaVolumeRepresentation::SetRefractaNumberOfPhotons(int photons)
 }
 
 //------------------------------------------------------------------------------
+void vtkRefractaVolumeRepresentation::SetRefractaVolumeCausticSubdivision(int subdivision)
+{
+  this->GetRefractiveMapper()->GetPipeline()->GetPhotonTracer()->SetVolumeCausticSubdivision(
+    subdivision);
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaVolumeRepresentation::SetRefractaGlassSupersampling(int samples)
+{
+  this->GetRefractiveMapper()->GetViewPass()->SetDielectricSupersampling(samples);
+}
+
+//------------------------------------------------------------------------------
 void vtkRefractaVolumeRepresentation::UpdateMapperParameters()
 {
   this->Superclass::UpdateMapperParameters();
@@ -87,6 +103,11 @@ void vtkRefractaVolumeRepresentation::UpdateMapperParameters()
 void vtkRefractaVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  vtkRefractiveVolumeMapper* mapper = this->GetRefractiveMapper();
+  os << indent << "RefractaVolumeCausticSubdivision: "
+     << mapper->GetPipeline()->GetPhotonTracer()->GetVolumeCausticSubdivision() << "\n";
+  os << indent << "RefractaGlassSupersampling: "
+     << mapper->GetViewPass()->GetDielectricSupersampling() << "\n";
   os << indent << "Mapper:\n";
   this->VolumeMapper->PrintSelf(os, indent.GetNextIndent());
 }

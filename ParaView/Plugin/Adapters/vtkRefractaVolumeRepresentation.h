@@ -16,7 +16,9 @@
  * Knobs forwarded to the mapper (defaults are the mapper's): RefractaQuality
  * (vtkEffectPlan::Quality, default INTERACTIVE), RefractaExposure (default 1),
  * RefractaAutomaticExposure (default off), RefractaMultipleScattering (default on),
- * RefractaNumberOfPhotons (default 2^18). The mapper reports bad input (no medium arrays and no
+ * RefractaNumberOfPhotons (default 2^18), RefractaVolumeCausticSubdivision (the photon tracer's
+ * VolumeCausticSubdivision, default 4) and RefractaGlassSupersampling (the view pass's
+ * DielectricSupersampling, default 3). The mapper reports bad input (no medium arrays and no
  * selected scalars) once, in the output window.
  */
 #ifndef vtkRefractaVolumeRepresentation_h
@@ -44,6 +46,8 @@ public:
   void SetRefractaAutomaticExposure(bool on);
   void SetRefractaMultipleScattering(bool on);
   void SetRefractaNumberOfPhotons(int photons);
+  void SetRefractaVolumeCausticSubdivision(int subdivision);
+  void SetRefractaGlassSupersampling(int samples);
   ///@}
 
   /**

@@ -356,6 +356,7 @@ struct Scene
     }
     this->reference.background = background;
     this->pass->SetBackgroundColor(background, background, background);
+    this->pass->SetDielectricSupersampling(1); // one centre ray per pixel, as the trace
     ASSERT_TRUE(this->pass->SetMedium(this->medium));
     ASSERT_TRUE(this->pass->SetLighting(UnitLighting(this->medium, this->set)));
     this->pass->SetSurfaces(this->set);
@@ -526,6 +527,82 @@ TEST(ViewPassGlass, CurvedMarchContinuesOnTheNewSide)
     100 * e.badFraction);
   EXPECT_LT(e.mean, 2e-3);
   EXPECT_LT(e.badFraction, 0.01);
+}
+
+//------------------------------------------------------------------------------
+// Glass edges (DielectricSupersampling): a pixel over the ball's rim or silhouette is the mean of
+// the n x n rays through its footprint, so with n = 3 it equals the mean of its 3 x 3 pixels in a
+// render three times the size with one ray each; every other pixel is its centre ray, exactly as
+// with n = 1. The pixels taken lie at the ball's edge: the rim (grazing hits) and the silhouette.
+TEST(ViewPassGlass, SupersampledEdgesAreFootprintMeans)
+{
+  Scene s;
+  BallOverFloor(s);
+  s.camera->SetPosition(0.05, 0.1, 3.0);
+  s.camera->SetFocalPoint(0, 0, -0.3);
+  s.camera->SetViewUp(0, 1, 0);
+  s.camera->SetViewAngle(40);
+  s.w = s.h = 40;
+  const std::vector<float> one = s.Render(2);
+  EXPECT_EQ(s.pass->GetLastNumberOfSupersampledPixels(), 0);
+  s.pass->SetDielectricSupersampling(3);
+  const std::vector<float> three = s.Render(2);
+  const vtkIdType taken = s.pass->GetLastNumberOfSupersampledPixels();
+  s.pass->SetDielectricSupersampling(1);
+  s.w = s.h = 120;
+  const std::vector<float> fine = s.Render(2);
+  s.w = s.h = 40;
+
+  int asCentre = 0, asMean = 0, neither = 0;
+  double rhoMin = 1e9, rhoMax = 0;
+  for (int j = 0; j < 40; ++j)
+  {
+    for (int i = 0; i < 40; ++i)
+    {
+      const size_t p = i + 40 * static_cast<size_t>(j);
+      double toCentre = 0, toMean = 0;
+      for (int c = 0; c < 4; ++c)
+      {
+        double mean = 0;
+        for (int b = 0; b < 3; ++b)
+        {
+          for (int a = 0; a < 3; ++a)
+          {
+            mean += fine[4 * ((3 * i + a) + 120 * static_cast<size_t>(3 * j + b)) + c] / 9.0;
+          }
+        }
+        toCentre = std::max(toCentre, std::abs(double(three[4 * p + c]) - one[4 * p + c]));
+        toMean = std::max(toMean, std::abs(three[4 * p + c] - mean));
+      }
+      if (toCentre <= 1e-6)
+      {
+        ++asCentre;
+        continue;
+      }
+      if (toMean > 1e-3)
+      {
+        ++neither;
+        continue;
+      }
+      ++asMean;
+      Vec o, d; // the centre ray's closest approach to the ball's centre, over its radius
+      s.Ray(i, j, o, d);
+      const double along = -Dot(o, d);
+      const double rho = std::sqrt(Dot(Add(o, Mul(along, d)), Add(o, Mul(along, d)))) / 0.5;
+      rhoMin = std::min(rhoMin, rho);
+      rhoMax = std::max(rhoMax, rho);
+    }
+  }
+  std::printf("supersampled %lld pixels: %d footprint means (rho %.3f to %.3f), %d centre rays, "
+              "%d neither\n",
+    static_cast<long long>(taken), asMean, rhoMin, rhoMax, asCentre, neither);
+  EXPECT_GT(asMean, 20) << "the ball's edge is supersampled";
+  EXPECT_LE(asMean, taken) << "only the pixels the pass counts differ from their centre ray";
+  EXPECT_LE(neither, 4) << "each pixel is its centre ray or its footprint mean (float rounding)";
+  // A ray at closest approach rho meets the ball at sin(theta) = rho: grazing (cos < 0.5) from
+  // rho = 0.866 on, at one of the footprint's corners, half a diagonal (0.085 here) from its centre.
+  EXPECT_GT(rhoMin, 0.866 - 0.09) << "no pixel well inside the ball (no grazing hit there)";
+  EXPECT_LT(rhoMax, 1.1) << "no pixel away from the ball";
 }
 
 //------------------------------------------------------------------------------
