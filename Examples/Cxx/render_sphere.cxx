@@ -5,9 +5,9 @@
 //
 // vtkMeshVoxelizer turns the sphere (n = 1.5) and the fog around it into a medium;
 // vtkRefractaImageRenderer runs the render pipeline on it headless (effect plan, photon pass with
-// caustics, multiple scattering, curved view rays) at the DRAFT quality preset and the PNG is
-// written. Exit code 1 unless the sphere focuses the spot light: the caustic below it must be
-// more than twice as bright as the lit fog beside the beam.
+// caustics, multiple scattering, view rays refracted at the sphere) at the DRAFT quality preset
+// and the PNG is written. Exit code 1 unless the sphere focuses the spot light: the caustic below
+// it must be more than twice as bright as the lit fog beside the beam.
 #include "vtkEffectPlan.h"
 #include "vtkMediumMaterial.h"
 #include "vtkMeshVoxelizer.h"

@@ -5,8 +5,8 @@
 
 vtkMeshVoxelizer turns the sphere and its materials into a medium; vtkRefractaImageRenderer runs
 the render pipeline on it headless (effect plan, photon pass with caustics, multiple scattering,
-curved view rays) at the DRAFT quality preset. As a smoke test it checks that the sphere focuses
-the spot light: the caustic below the sphere is brighter than the beam beside it.
+view rays refracted at the sphere) at the DRAFT quality preset. As a smoke test it checks that the
+sphere focuses the spot light: the caustic below the sphere is brighter than the beam beside it.
 """
 import argparse
 

@@ -43,7 +43,9 @@ void vtkEffectPlan::DecideSingleScatteringMethod(vtkSceneAnalysis* analysis)
   // Refraction forced on in a medium of uniform n (estimate 0) bends nothing: light rays still fit.
   if (this->Enabled[REFRACTION] && this->Estimates[REFRACTION] > 0.0)
   {
-    photonsOnly = "refraction is on: light paths curve";
+    photonsOnly = analysis->GetNumberOfInterfaceSurfaces() > 0
+      ? "refraction is on: light paths bend at dielectric interfaces"
+      : "refraction is on: light paths curve";
   }
   else if (litSurfaces)
   {
