@@ -19,7 +19,8 @@
 // Usage: BenchmarkGlassEdges [--quick] [--samples LIST] [--reference R] [--runs N]
 // --quick: 128 x 128, 2^16 photons, R = 4 (about a minute); default 256 x 256, 2^18 photons,
 // R = 8. --samples: the settings n (default 1,2,3,4). --runs: view-pass runs per setting
-// (default 3).
+// (default 3). The truth's rays must not coincide with a setting's: R = 8 shares none with
+// n = 2, 3 or 4 (R = 4 holds all of n = 4's rays, so --quick's n = 4 row is not a measurement).
 
 #include "RefractaBenchmark.h"
 #include "RefractaScene.h"
