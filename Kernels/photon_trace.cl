@@ -157,8 +157,9 @@ typedef struct
   int causticSub;                          // volume caustic: c, bricks of c^3 fine voxels
 } photon_state;
 
-// The volume caustic's fine accumulators per fine voxel: S1 (3), direction sums (3), pieces (1),
-// one long of padding (vtkPhotonTracerVolumeCaustic.cxx reads the same layout).
+// The volume caustic's fine accumulators per fine voxel: S1 (3), direction sums (3), two longs of
+// padding (64 bytes: one cache line per fine voxel; vtkPhotonTracerVolumeCaustic.cxx reads the
+// same layout).
 #define PHOTON_FINE_LONGS 8
 
 inline void photon_set_volume_caustic(
@@ -192,7 +193,7 @@ inline void photon_dda_start(
 // caustic photon (ps->caustic: refracted or reflected by an interface since its light, not yet
 // scattered) in a voxel that has a brick deposits its piece's S1 share `sc` (and the direction
 // sums) into the brick's c^3 fine voxels instead of the voxel: each fine voxel the piece crosses
-// gets the share of the piece's length inside it (a 3D DDA over the brick), and counts the piece.
+// gets the share of the piece's length inside it (a 3D DDA over the brick).
 // `from` and `to` are the piece's ends in voxel units (voxel i spans [i, i + 1)), `cell` the
 // voxel. Returns false (deposit in the voxel as usual) for other photons and voxels, and when the
 // run has no volume caustic (subdivision 0).
@@ -239,7 +240,6 @@ inline bool photon_deposit_volume_caustic(photon_state* ps, size_t voxel, int3 c
       refracta_atomic_add_fixed(acc + 3, share * w * direction.x);
       refracta_atomic_add_fixed(acc + 4, share * w * direction.y);
       refracta_atomic_add_fixed(acc + 5, share * w * direction.z);
-      atom_add(acc + 6, 1L);
       t = tEnd;
     }
     if (tEnd >= 1.0f)

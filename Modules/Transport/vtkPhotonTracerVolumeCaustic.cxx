@@ -20,8 +20,8 @@ using namespace vtkPhotonTracerDetail;
 
 namespace
 {
-// Fixed-point accumulators per fine voxel: S1 (3), direction sums (3), caustic pieces (1), one
-// of padding (PHOTON_FINE_LONGS in photon_trace.cl).
+// Fixed-point accumulators per fine voxel: S1 (3), direction sums (3), two of padding (64 bytes;
+// PHOTON_FINE_LONGS in photon_trace.cl).
 constexpr size_t FineLongs = 8;
 // The pilot marches the first 1/PilotShare of every light's photons (whole work-groups).
 constexpr size_t PilotShare = 8;
