@@ -74,7 +74,9 @@
  * 4. Smoothing (optional): the paper's 3x3x3 filter with a mirror boundary: total-conserving,
  *    and a uniform field stays uniform up to the faces, edges and corners.
  * Only the work the medium needs is compiled in: straight rays (no gradient or octree lookups;
- * a RefractiveIndexGradient array is then ignored) when n is constant, no piece walk when nothing
+ * a RefractiveIndexGradient array is then ignored) when n is constant or its gradient, given or
+ * computed, is zero everywhere (a medium voxelized with exact interfaces: paths bend only at the
+ * surfaces, Documentation/Physics.md "Straight between interfaces"), no piece walk when nothing
  * attenuates, no deposits when nothing scatters (see GetUsedCurvedRays() etc.).
  *
  * Lengths of the step knobs are in voxels (multiples of the smallest spacing). Results are
@@ -528,10 +530,10 @@ public:
 
   ///@{
   /**
-   * The plan of the last run: curved rays (n varies), attenuation, deposits (something
-   * scatters), voxels cut at their node planes (sigma_t bends steeply at some node, a dense
-   * body's face: the walk's pieces then integrate the trilinear sigma_t; Physics.md, "Dense
-   * surfaces"), octree built, gradient computed on the device.
+   * The plan of the last run: curved rays (n varies with a non-zero gradient), attenuation,
+   * deposits (something scatters), voxels cut at their node planes (sigma_t bends steeply at some
+   * node, a dense body's face: the walk's pieces then integrate the trilinear sigma_t; Physics.md,
+   * "Dense surfaces"), octree built, gradient computed on the device.
    */
   vtkGetMacro(UsedCurvedRays, bool);
   vtkGetMacro(UsedExtinction, bool);
