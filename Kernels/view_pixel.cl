@@ -103,20 +103,18 @@ inline void refracta_view_camera_ray(const float4 eye, const float4 camU, const 
 }
 
 #ifdef REFRACTA_DIELECTRIC
-// Rays meeting glass at an angle of incidence whose cosine is below this are grazing: the
-// reflectance and the refracted direction change fastest there (a ray at r from the axis of a
-// ball of radius R far away meets it at cos = sqrt(1 - (r / R)^2): the outer 13% of its radius).
-#define REFRACTA_GRAZING_COSINE 0.5f
-
 // Whether pixel (pi, pj)'s footprint holds an edge of glass: its four corner rays and its centre
 // ray, straight from the eye to the first surface before the pixel's depth limit (the test
 // ignores grad n: it only chooses where to take more rays), do not all meet the same dielectric
-// surface or all none, or one of them meets a dielectric surface at grazing incidence.
+// surface or all none, or one of them meets a dielectric surface at grazing incidence: |cos| of
+// the angle of incidence below grazingCosine, where the reflectance and the refracted direction
+// change fastest (a ray at r from the axis of a distant ball of radius R meets it at
+// cos = sqrt(1 - (r / R)^2): 0.5 marks the outer 13% of its radius, 1 every pixel of glass).
 inline bool refracta_view_footprint_aliases(__global const float4* nodes, const int nodeCount,
   __global const float4* triangles, const float4 m0, const float4 m1, const float4 m2,
   __global const int* triInfo, const float4 eye, const float4 camU, const float4 camV,
   const float4 camW, const int pi, const int pj, const int width, const int height,
-  const float limit)
+  const float limit, const float grazingCosine)
 {
   int firstGlass = -2;
   for (int k = 0; k < 5; ++k)
@@ -141,7 +139,7 @@ inline bool refracta_view_footprint_aliases(__global const float4* nodes, const 
     firstGlass = surface;
     if (glass &&
       fabs(dot(d, refracta_view_normal_to_local(refracta_triangle_normal(triangles, tri), m0, m1,
-             m2))) < REFRACTA_GRAZING_COSINE)
+             m2))) < grazingCosine)
     {
       return true;
     }
@@ -317,7 +315,8 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   __global uint* steps, __global float* transmittanceOut, __global float* surfaceDepthOut,
   __global const float4* bodies, __global const int* causticBricks,
   __global const float* causticRadiance, __global const float* causticDirection,
-  const int causticSub, const int supersampling, volatile __global int* supersampledPixels)
+  const int causticSub, const int supersampling, const float grazingCosine,
+  volatile __global int* supersampledPixels)
 {
   const int pi = (int)get_global_id(0);
   const int pj = (int)get_global_id(1);
@@ -341,7 +340,7 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
 #ifdef REFRACTA_DIELECTRIC
   if (supersampling > 1 &&
     refracta_view_footprint_aliases(nodes, nodeCount, triangles, toSurface0, toSurface1,
-      toSurface2, triInfo, eye, camU, camV, camW, pi, pj, width, height, limit))
+      toSurface2, triInfo, eye, camU, camV, camW, pi, pj, width, height, limit, grazingCosine))
   {
     // The mean over an n x n grid of the footprint; with n odd its middle point is the centre ray.
     const int n = supersampling;

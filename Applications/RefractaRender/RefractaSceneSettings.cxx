@@ -75,7 +75,7 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
       "photon_min_step", "octree_tolerance", "photon_smoothing", "multiple_scattering",
       "multiple_scattering_tolerance", "multiple_scattering_block_size",
       "multiple_scattering_method", "scattering_orders", "tolerance", "single_scattering_method",
-      "volume_caustic", "glass_supersampling" });
+      "volume_caustic", "glass_supersampling", "glass_grazing_cosine" });
   int preset;
   std::tie(s.Preset, preset) = Choice(quality, "preset", q, "none", Presets);
   const bool hasPreset = preset != NoPreset;
@@ -98,6 +98,7 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
   s.PhotonSmoothing = Boolean(quality, "photon_smoothing", q, true);
   s.VolumeCaustic = Integer(quality, "volume_caustic", q, 4, 1, 8);
   s.GlassSupersampling = Integer(quality, "glass_supersampling", q, 3, 1, 8);
+  s.GlassGrazingCosine = Number(quality, "glass_grazing_cosine", q, 0.5, 0.0, 1.0);
   s.MultipleScattering = Boolean(quality, "multiple_scattering", q, true);
   s.LatticeTolerance = Number(quality, "multiple_scattering_tolerance", q,
     hasPreset ? plan->GetRecommendedLatticeTolerance() : 1e-4, 1e-8, 1.0);
@@ -168,6 +169,7 @@ void ApplySettings(const RenderSettings& s, vtkRefractaImageRenderer* renderer)
   renderer->SetRayMode(s.RayMode);
   renderer->SetTransmittanceCutoff(s.TransmittanceCutoff);
   renderer->GetViewPass()->SetDielectricSupersampling(s.GlassSupersampling);
+  renderer->GetViewPass()->SetDielectricGrazingCosine(s.GlassGrazingCosine);
 }
 
 json ImageReport(const RenderSettings& s)
@@ -182,6 +184,7 @@ json QualityReport(const RenderSettings& s)
     { "ray_mode", s.RayModeName }, { "transmittance_cutoff", s.TransmittanceCutoff },
     { "photon_min_step", s.PhotonMinStep }, { "photon_smoothing", s.PhotonSmoothing },
     { "volume_caustic", s.VolumeCaustic }, { "glass_supersampling", s.GlassSupersampling },
+    { "glass_grazing_cosine", s.GlassGrazingCosine },
     { "multiple_scattering", s.MultipleScattering },
     { "single_scattering_method", s.SingleScatteringMethodName },
     { "multiple_scattering_tolerance", s.LatticeTolerance },

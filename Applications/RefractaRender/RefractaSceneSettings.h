@@ -40,6 +40,7 @@ struct RenderSettings
   int ScatteringOrders = 0; // quality.scattering_orders: the split's k (0: the plan's choice)
   int VolumeCaustic = 4;    // quality.volume_caustic: vtkPhotonTracer::VolumeCausticSubdivision
   int GlassSupersampling = 3; // quality.glass_supersampling: DielectricSupersampling of the view
+  double GlassGrazingCosine = 0.5; // quality.glass_grazing_cosine: DielectricGrazingCosine
 };
 
 /// Reads "scene.image", "scene.quality" and "scene.effects". A quality preset is set on the

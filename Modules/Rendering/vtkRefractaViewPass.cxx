@@ -452,6 +452,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     }
     const cl_int w = width, h = rows, causticSub = in.VolumeCausticSub,
                  supersampling = this->DielectricSupersampling;
+    const cl_float grazingCosine = static_cast<cl_float>(this->DielectricGrazingCosine);
     const cl_int status = vtkOpenCLSetKernelArgs(kernel.Get(), dims, spacing, buf(in.Extinction),
       buf(in.Emission), buf(in.Anisotropy), buf(in.Index), buf(in.Gradient), buf(in.Radiance),
       buf(in.RadianceDirection), buf(in.Multiple), Float4(part.Eye), Float4(part.U), Float4(part.V),
@@ -462,7 +463,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       buf(surf.Albedo), buf(surf.Irradiance), buf(surf.Normals), buf(surf.Interfaces), toSurface[0],
       toSurface[1], toSurface[2], hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(),
       surfaceDepthBuffer.Get(), buf(surf.Bodies), buf(in.CausticBricks), buf(in.CausticRadiance),
-      buf(in.CausticDirection), causticSub, supersampling, supersampledBuffer.Get());
+      buf(in.CausticDirection), causticSub, supersampling, grazingCosine,
+      supersampledBuffer.Get());
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
       !this->RunTiles(context, kernel.Get(), width, rows, row0, height, rowsPerTile))
     {
@@ -634,6 +636,7 @@ void vtkRefractaViewPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Surfaces: " << this->Internal->SurfaceSet.Get() << "\n";
   os << indent << "DielectricSplitDepth: " << this->DielectricSplitDepth << "\n";
   os << indent << "DielectricSupersampling: " << this->DielectricSupersampling << "\n";
+  os << indent << "DielectricGrazingCosine: " << this->DielectricGrazingCosine << "\n";
   os << indent << "LastNumberOfSupersampledPixels: " << this->LastNumberOfSupersampledPixels
      << "\n";
   os << indent << "SurfaceFilter: "

@@ -242,14 +242,26 @@ public:
   /**
    * Glass edges (Documentation/Physics.md "Glass edges: supersampling"): a pixel whose footprint
    * holds an edge of glass (its four corner rays and its centre ray, straight from the eye, do not
-   * all meet the same dielectric surface first, or one meets it at grazing incidence, |cos| < 0.5)
-   * is the mean of n x n paths through an n x n grid over its footprint instead of its centre
-   * ray alone, n = DielectricSupersampling; other pixels keep one ray. Without it the reflections
-   * and refractions at a ball's rim alias into speckle. 1 turns it off. Default 3, chosen by
-   * measurement (Benchmarks.md, "The ball's rim"). Clamped to [1, 8].
+   * all meet the same dielectric surface first, or one meets it at grazing incidence, |cos| below
+   * DielectricGrazingCosine) is the mean of n x n paths through an n x n grid over its footprint
+   * instead of its centre ray alone, n = DielectricSupersampling; other pixels keep one ray.
+   * Without it the reflections and refractions at a ball's rim alias into speckle. 1 turns it off.
+   * Default 3, chosen by measurement (Benchmarks.md, "The ball's rim"). Clamped to [1, 8].
    */
   vtkSetClampMacro(DielectricSupersampling, int, 1, 8);
   vtkGetMacro(DielectricSupersampling, int);
+  ///@}
+
+  ///@{
+  /**
+   * The grazing test of DielectricSupersampling: a ray meeting glass with |cos| of its angle of
+   * incidence below this marks its pixel. Default 0.5 (a distant ball's outer 13% of radius: its
+   * rim); 1 takes every pixel that sees glass, which also removes the aliasing of what is seen
+   * through a ball at about twice the view pass's time of 0.5 (Physics.md "Glass edges:
+   * supersampling"); 0 takes only silhouettes. Clamped to [0, 1].
+   */
+  vtkSetClampMacro(DielectricGrazingCosine, double, 0.0, 1.0);
+  vtkGetMacro(DielectricGrazingCosine, double);
   ///@}
 
   /**
@@ -435,6 +447,7 @@ protected:
   double CausticPhotonsPerFineTexel = 64;
   int DielectricSplitDepth = 2;
   int DielectricSupersampling = 3;
+  double DielectricGrazingCosine = 0.5;
   bool LastSkipping = false;
   double LastActiveCellFraction = 1.0;
   double OccupancySeconds = 0.0;

@@ -17,10 +17,13 @@
 //   truth (a smooth image has a small one; aliasing raises it).
 //
 // Usage: BenchmarkGlassEdges [--quick] [--samples LIST] [--reference R] [--runs N]
+// [--grazing-cosine C]
 // --quick: 128 x 128, 2^16 photons, R = 4 (about a minute); default 256 x 256, 2^18 photons,
 // R = 8. --samples: the settings n (default 1,2,3,4). --runs: view-pass runs per setting
 // (default 3). The truth's rays must not coincide with a setting's: R = 8 shares none with
 // n = 2, 3 or 4 (R = 4 holds all of n = 4's rays, so --quick's n = 4 row is not a measurement).
+// --grazing-cosine: vtkRefractaViewPass::DielectricGrazingCosine (default 0.5; 1: every pixel of
+// glass).
 
 #include "RefractaBenchmark.h"
 #include "RefractaScene.h"
@@ -47,9 +50,12 @@ using RefractaRender::json;
 using refracta::bench::Median;
 using refracta::bench::ParseIntList;
 
-// The default scene's ball (RefractaRender::DefaultSceneJson: medium.meshes[0]).
-constexpr double BallCentre[3] = { 0.0, 0.05, 0.0 };
-constexpr double BallRadius = 0.42;
+// The default scene's ball (medium.meshes[0] of RefractaRender::DefaultSceneJson).
+struct Ball
+{
+  double Centre[3];
+  double Radius;
+};
 
 struct Settings
 {
@@ -57,6 +63,7 @@ struct Settings
   int Photons = 1 << 18;
   int Reference = 8;
   int Runs = 3;
+  double GrazingCosine = 0.5;
   std::vector<int> Samples = { 1, 2, 3, 4 };
 };
 
@@ -73,7 +80,7 @@ enum Band
 const char* const BandNames[NumberOfBands] = { "inside (rho < 0.85)", "rim (0.85-1)",
   "silhouette (1-1.1)", "rest of the image" };
 
-std::vector<int> PixelBands(vtkCamera* camera, int size)
+std::vector<int> PixelBands(vtkCamera* camera, int size, const Ball& ball)
 {
   double eye[3], focal[3], up[3];
   camera->GetPosition(eye);
@@ -107,14 +114,14 @@ std::vector<int> PixelBands(vtkCamera* camera, int size)
       double along = 0.0, dist2 = 0.0;
       for (int c = 0; c < 3; ++c)
       {
-        along += (BallCentre[c] - eye[c]) * d[c] / dl;
+        along += (ball.Centre[c] - eye[c]) * d[c] / dl;
       }
       for (int c = 0; c < 3; ++c)
       {
-        const double e = eye[c] + along * d[c] / dl - BallCentre[c];
+        const double e = eye[c] + along * d[c] / dl - ball.Centre[c];
         dist2 += e * e;
       }
-      const double rho = std::sqrt(dist2) / BallRadius;
+      const double rho = std::sqrt(dist2) / ball.Radius;
       bands[i + static_cast<size_t>(size) * j] =
         rho < 0.85 ? Inside : rho < 1.0 ? Rim : rho < 1.1 ? Silhouette : Rest;
     }
@@ -210,19 +217,25 @@ bool ParseArguments(int argc, char* argv[], Settings& s)
     {
       s.Runs = std::atoi(argv[++a]);
     }
+    else if (!std::strcmp(argv[a], "--grazing-cosine") && more)
+    {
+      s.GrazingCosine = std::atof(argv[++a]);
+    }
     else
     {
       std::fprintf(stderr,
-        "usage: BenchmarkGlassEdges [--quick] [--samples LIST] [--reference R] [--runs N]\n");
+        "usage: BenchmarkGlassEdges [--quick] [--samples LIST] [--reference R] [--runs N] "
+        "[--grazing-cosine C]\n");
       return false;
     }
   }
   const bool samplesValid = !s.Samples.empty() &&
     std::all_of(s.Samples.begin(), s.Samples.end(), [](int n) { return n >= 1 && n <= 8; });
-  if (!samplesValid || s.Reference < 2 || s.Reference > 16 || s.Runs < 1)
+  if (!samplesValid || s.Reference < 2 || s.Reference > 16 || s.Runs < 1 ||
+    !(s.GrazingCosine >= 0.0 && s.GrazingCosine <= 1.0))
   {
-    std::fprintf(stderr,
-      "BenchmarkGlassEdges: --samples takes 1..8, --reference 2..16, --runs >= 1\n");
+    std::fprintf(stderr, "BenchmarkGlassEdges: --samples takes 1..8, --reference 2..16, --runs "
+                         ">= 1, --grazing-cosine 0..1\n");
     return false;
   }
   return true;
@@ -251,6 +264,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkRefractaImageRenderer> renderer;
   const RefractaRender::Scene read = RefractaRender::ReadScene(scene, ".", renderer, true);
   vtkRefractaViewPass* view = renderer->GetViewPass();
+  view->SetDielectricGrazingCosine(s.GrazingCosine);
 
   // The lighting (once), then the truth: R x the size, one ray per pixel.
   RenderView(renderer, s.Size, 1);
@@ -262,12 +276,20 @@ int main(int argc, char* argv[])
     std::fprintf(stderr, "BenchmarkGlassEdges: the reference render failed\n");
     return 1;
   }
-  const std::vector<int> bands = PixelBands(read.Camera, s.Size);
+  const json& sphere = scene["medium"]["meshes"][0]["sphere"];
+  Ball ball;
+  for (int c = 0; c < 3; ++c)
+  {
+    ball.Centre[c] = sphere["center"][c].get<double>();
+  }
+  ball.Radius = sphere["radius"].get<double>();
+  const std::vector<int> bands = PixelBands(read.Camera, s.Size, ball);
   const std::vector<BandFigures> truthFigures = Measure(truth, truth, bands, s.Size);
 
-  std::printf("Glass edges on the default scene, %d x %d, %d photons. Truth: each pixel's "
-              "footprint mean, %d x %d rays per pixel (%d x %d image, %.2f s of view pass).\n\n",
-    s.Size, s.Size, s.Photons, s.Reference, s.Reference,
+  std::printf("Glass edges on the default scene, %d x %d, %d photons, grazing cosine %g. Truth: "
+              "each pixel's footprint mean, %d x %d rays per pixel (%d x %d image, %.2f s of view "
+              "pass).\n\n",
+    s.Size, s.Size, s.Photons, s.GrazingCosine, s.Reference, s.Reference,
     s.Size * s.Reference, s.Size * s.Reference, truthSeconds);
   std::printf("| n | supersampled pixels | view pass (median of %d) | time / n = 1 |", s.Runs);
   for (int b = 0; b < NumberOfBands; ++b)

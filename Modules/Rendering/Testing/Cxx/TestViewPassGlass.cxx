@@ -542,67 +542,78 @@ TEST(ViewPassGlass, SupersampledEdgesAreFootprintMeans)
   s.camera->SetFocalPoint(0, 0, -0.3);
   s.camera->SetViewUp(0, 1, 0);
   s.camera->SetViewAngle(40);
+  s.w = s.h = 120;
+  const std::vector<float> fine = s.Render(2); // one ray per pixel, three times the size
   s.w = s.h = 40;
   const std::vector<float> one = s.Render(2);
   EXPECT_EQ(s.pass->GetLastNumberOfSupersampledPixels(), 0);
   s.pass->SetDielectricSupersampling(3);
-  const std::vector<float> three = s.Render(2);
-  const vtkIdType taken = s.pass->GetLastNumberOfSupersampledPixels();
-  s.pass->SetDielectricSupersampling(1);
-  s.w = s.h = 120;
-  const std::vector<float> fine = s.Render(2);
-  s.w = s.h = 40;
 
-  int asCentre = 0, asMean = 0, neither = 0;
-  double rhoMin = 1e9, rhoMax = 0;
-  for (int j = 0; j < 40; ++j)
+  // Grazing cosine 0.5 (default): the rim and the silhouette; 1: every pixel that sees the ball.
+  for (double cosine : { 0.5, 1.0 })
   {
-    for (int i = 0; i < 40; ++i)
+    s.pass->SetDielectricGrazingCosine(cosine);
+    const std::vector<float> three = s.Render(2);
+    const vtkIdType taken = s.pass->GetLastNumberOfSupersampledPixels();
+    int asCentre = 0, asMean = 0, neither = 0;
+    double rhoMin = 1e9, rhoMax = 0;
+    for (int j = 0; j < 40; ++j)
     {
-      const size_t p = i + 40 * static_cast<size_t>(j);
-      double toCentre = 0, toMean = 0;
-      for (int c = 0; c < 4; ++c)
+      for (int i = 0; i < 40; ++i)
       {
-        double mean = 0;
-        for (int b = 0; b < 3; ++b)
+        const size_t p = i + 40 * static_cast<size_t>(j);
+        double toCentre = 0, toMean = 0;
+        for (int c = 0; c < 4; ++c)
         {
-          for (int a = 0; a < 3; ++a)
+          double mean = 0;
+          for (int b = 0; b < 3; ++b)
           {
-            mean += fine[4 * ((3 * i + a) + 120 * static_cast<size_t>(3 * j + b)) + c] / 9.0;
+            for (int a = 0; a < 3; ++a)
+            {
+              mean += fine[4 * ((3 * i + a) + 120 * static_cast<size_t>(3 * j + b)) + c] / 9.0;
+            }
           }
+          toCentre = std::max(toCentre, std::abs(double(three[4 * p + c]) - one[4 * p + c]));
+          toMean = std::max(toMean, std::abs(three[4 * p + c] - mean));
         }
-        toCentre = std::max(toCentre, std::abs(double(three[4 * p + c]) - one[4 * p + c]));
-        toMean = std::max(toMean, std::abs(three[4 * p + c] - mean));
+        if (toCentre <= 1e-6)
+        {
+          ++asCentre;
+          continue;
+        }
+        if (toMean > 1e-3)
+        {
+          ++neither;
+          continue;
+        }
+        ++asMean;
+        Vec o, d; // the centre ray's closest approach to the ball's centre, over its radius
+        s.Ray(i, j, o, d);
+        const double along = -Dot(o, d);
+        const double rho = std::sqrt(Dot(Add(o, Mul(along, d)), Add(o, Mul(along, d)))) / 0.5;
+        rhoMin = std::min(rhoMin, rho);
+        rhoMax = std::max(rhoMax, rho);
       }
-      if (toCentre <= 1e-6)
-      {
-        ++asCentre;
-        continue;
-      }
-      if (toMean > 1e-3)
-      {
-        ++neither;
-        continue;
-      }
-      ++asMean;
-      Vec o, d; // the centre ray's closest approach to the ball's centre, over its radius
-      s.Ray(i, j, o, d);
-      const double along = -Dot(o, d);
-      const double rho = std::sqrt(Dot(Add(o, Mul(along, d)), Add(o, Mul(along, d)))) / 0.5;
-      rhoMin = std::min(rhoMin, rho);
-      rhoMax = std::max(rhoMax, rho);
+    }
+    std::printf("grazing cosine %.1f: supersampled %lld pixels: %d footprint means (rho %.3f to "
+                "%.3f), %d centre rays, %d neither\n",
+      cosine, static_cast<long long>(taken), asMean, rhoMin, rhoMax, asCentre, neither);
+    EXPECT_GT(asMean, 20) << "the ball's edge is supersampled";
+    EXPECT_LE(asMean, taken) << "only the pixels the pass counts differ from their centre ray";
+    EXPECT_LE(neither, 4) << "each pixel is its centre ray or its footprint mean (float rounding)";
+    EXPECT_LT(rhoMax, 1.1) << "no pixel away from the ball";
+    if (cosine < 1.0)
+    {
+      // A ray at closest approach rho meets the ball at sin(theta) = rho: grazing (cos < 0.5)
+      // from rho = 0.866 on, at one of the footprint's corners, half a diagonal (0.085 here)
+      // from its centre.
+      EXPECT_GT(rhoMin, 0.866 - 0.09) << "no pixel well inside the ball (no grazing hit there)";
+    }
+    else
+    {
+      EXPECT_LT(rhoMin, 0.3) << "the ball's inside is taken too";
     }
   }
-  std::printf("supersampled %lld pixels: %d footprint means (rho %.3f to %.3f), %d centre rays, "
-              "%d neither\n",
-    static_cast<long long>(taken), asMean, rhoMin, rhoMax, asCentre, neither);
-  EXPECT_GT(asMean, 20) << "the ball's edge is supersampled";
-  EXPECT_LE(asMean, taken) << "only the pixels the pass counts differ from their centre ray";
-  EXPECT_LE(neither, 4) << "each pixel is its centre ray or its footprint mean (float rounding)";
-  // A ray at closest approach rho meets the ball at sin(theta) = rho: grazing (cos < 0.5) from
-  // rho = 0.866 on, at one of the footprint's corners, half a diagonal (0.085 here) from its centre.
-  EXPECT_GT(rhoMin, 0.866 - 0.09) << "no pixel well inside the ball (no grazing hit there)";
-  EXPECT_LT(rhoMax, 1.1) << "no pixel away from the ball";
 }
 
 //------------------------------------------------------------------------------
