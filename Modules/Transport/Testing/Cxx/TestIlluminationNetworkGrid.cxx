@@ -118,6 +118,11 @@ TEST(IlluminationNetworkGrid, AgreesWithTheGridPathOnTheDepositedCloud)
               "%.4f vs %.4f (%.2f%%); network %d iterations\n",
     singleNetwork, singleGrid, 100 * (singleNetwork / singleGrid - 1), multipleNetwork,
     multipleGrid, 100 * (multipleNetwork / multipleGrid - 1), network->GetIterations());
-  EXPECT_NEAR(singleNetwork / singleGrid, 1.0, 0.05);
+  // Two models of the same cloud, neither a ground truth (Refracta.ParticlesAgainstReference
+  // compares both with the path tracer): single 3.35% apart when this test was written; 5.77%
+  // since the photon walk integrates the grid's trilinear sigma_t exactly at steep kinks (829d2d8,
+  // node-plane cuts: the grid path's single scattering -2.3%, as the dense cube against the path
+  // tracer asked for). The bounds leave room for that, not for a lost factor.
+  EXPECT_NEAR(singleNetwork / singleGrid, 1.0, 0.08);
   EXPECT_NEAR(multipleNetwork / multipleGrid, 1.0, 0.25);
 }
