@@ -46,9 +46,9 @@
 
 namespace
 {
-using RefractaRender::json;
 using refracta::bench::Median;
 using refracta::bench::ParseIntList;
+using RefractaRender::json;
 
 // The default scene's ball (medium.meshes[0] of RefractaRender::DefaultSceneJson).
 struct Ball
@@ -122,8 +122,10 @@ std::vector<int> PixelBands(vtkCamera* camera, int size, const Ball& ball)
         dist2 += e * e;
       }
       const double rho = std::sqrt(dist2) / ball.Radius;
-      bands[i + static_cast<size_t>(size) * j] =
-        rho < 0.85 ? Inside : rho < 1.0 ? Rim : rho < 1.1 ? Silhouette : Rest;
+      bands[i + static_cast<size_t>(size) * j] = rho < 0.85 ? Inside
+        : rho < 1.0                                         ? Rim
+        : rho < 1.1                                         ? Silhouette
+                                                            : Rest;
     }
   }
   return bands;
@@ -181,8 +183,8 @@ std::vector<BandFigures> Measure(const std::vector<double>& image, const std::ve
       absolute[b] += std::abs(image[p] - truth[p]);
       mean[b] += truth[p];
       own[b] += image[p];
-      lap[b] += std::abs(image[p - 1] + image[p + 1] + image[p - size] + image[p + size] -
-        4.0 * image[p]);
+      lap[b] +=
+        std::abs(image[p - 1] + image[p + 1] + image[p - size] + image[p + size] - 4.0 * image[p]);
       ++out[b].Pixels;
     }
   }
@@ -234,8 +236,9 @@ bool ParseArguments(int argc, char* argv[], Settings& s)
   if (!samplesValid || s.Reference < 2 || s.Reference > 16 || s.Runs < 1 ||
     !(s.GrazingCosine >= 0.0 && s.GrazingCosine <= 1.0))
   {
-    std::fprintf(stderr, "BenchmarkGlassEdges: --samples takes 1..8, --reference 2..16, --runs "
-                         ">= 1, --grazing-cosine 0..1\n");
+    std::fprintf(stderr,
+      "BenchmarkGlassEdges: --samples takes 1..8, --reference 2..16, --runs "
+      ">= 1, --grazing-cosine 0..1\n");
     return false;
   }
   return true;
@@ -289,8 +292,8 @@ int main(int argc, char* argv[])
   std::printf("Glass edges on the default scene, %d x %d, %d photons, grazing cosine %g. Truth: "
               "each pixel's footprint mean, %d x %d rays per pixel (%d x %d image, %.2f s of view "
               "pass).\n\n",
-    s.Size, s.Size, s.Photons, s.GrazingCosine, s.Reference, s.Reference,
-    s.Size * s.Reference, s.Size * s.Reference, truthSeconds);
+    s.Size, s.Size, s.Photons, s.GrazingCosine, s.Reference, s.Reference, s.Size * s.Reference,
+    s.Size * s.Reference, truthSeconds);
   std::printf("| n | supersampled pixels | view pass (median of %d) | time / n = 1 |", s.Runs);
   for (int b = 0; b < NumberOfBands; ++b)
   {

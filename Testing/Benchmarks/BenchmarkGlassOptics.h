@@ -1,6 +1,7 @@
 // BenchmarkGlassOptics.h: what the two files of BenchmarkGlassOptics share (the program's
 // settings, scenes, render and view; BenchmarkGlassOptics.cxx holds the floor figures and main,
-// BenchmarkGlassOpticsShaft.cxx the light shaft). See BenchmarkGlassOptics.cxx for what it measures.
+// BenchmarkGlassOpticsShaft.cxx the light shaft). See BenchmarkGlassOptics.cxx for what it
+// measures.
 #ifndef BenchmarkGlassOptics_h
 #define BenchmarkGlassOptics_h
 
@@ -19,7 +20,6 @@ namespace glass_optics
 using namespace RefractaIdealGlass;
 using namespace RefractaShaftMeasures;
 
-
 // The spot light's intensity on its axis (the ideal optics uses 1).
 constexpr double LightIntensity = 60;
 
@@ -32,7 +32,8 @@ struct Settings
   int ShaftRays = 3000;                // light rays for the shaft's fluence planes (per cone axis)
   int ShaftImageRays = 1500;           // light rays for the shaft's ideal image
   bool ShaftMultipleScattering = true; // false: the shaft's renders without the lattice
-  int VolumeCaustic = 4; // vtkPhotonTracer::VolumeCausticSubdivision; the shaft's S1 lattices' factor
+  // vtkPhotonTracer::VolumeCausticSubdivision; also the factor of the shaft's S1 lattices.
+  int VolumeCaustic = 4;
   double CausticPieces = -1; // vtkPhotonTracer::VolumeCausticPiecesPerFineVoxel (< 0: its default)
 };
 
@@ -60,8 +61,8 @@ struct Render
 {
   std::vector<float> Image; // RGBA, row 0 at the bottom
   double Seconds = 0;
-  double LightSeconds = 0;  // the photon pass's
-  int VolumeCaustic = 1;    // the volume caustic's subdivision in the photon pass (1: none)
+  double LightSeconds = 0;    // the photon pass's
+  int VolumeCaustic = 1;      // the volume caustic's subdivision in the photon pass (1: none)
   ScatteringLattice Lighting; // the lighting volume's S1 = sigma_s phi (red)
 };
 

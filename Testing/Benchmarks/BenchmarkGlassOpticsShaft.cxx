@@ -72,9 +72,9 @@ bool MeasureShaft(const Settings& s, const View& view, bool lightMet[2], bool na
   double x, top, bottom; // the noise's rows: y = -0.45 to -0.75 on the axis
   view.Project({ 0.0, -0.45, 0.0 }, x, top);
   view.Project({ 0.0, -0.75, 0.0 }, x, bottom);
-  const double noise = PairNoise(ideal.Image, images[1],
-    RedDifference(reseeded.Image, opaque.Image), view.Size, static_cast<int>(std::ceil(bottom)),
-    static_cast<int>(top));
+  const double noise =
+    PairNoise(ideal.Image, images[1], RedDifference(reseeded.Image, opaque.Image), view.Size,
+      static_cast<int>(std::ceil(bottom)), static_cast<int>(top));
   const double h = exact.Lighting.Spacing[0];
   std::printf("\nThe light shaft below the ball: the default scene with its fog and a black floor; "
               "rendered = glass ball - black opaque ball (S1 by photons in both), %.0f s + %.0f s "
