@@ -31,6 +31,7 @@
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkRefractaImageRenderer.h"
@@ -80,48 +81,36 @@ enum Band
 const char* const BandNames[NumberOfBands] = { "inside (rho < 0.85)", "rim (0.85-1)",
   "silhouette (1-1.1)", "rest of the image" };
 
-std::vector<int> PixelBands(vtkCamera* camera, int size, const Ball& ball)
+std::vector<int> PixelBands(vtkCamera* camera, vtkImageData* medium, int size, const Ball& ball)
 {
-  double eye[3], focal[3], up[3];
-  camera->GetPosition(eye);
-  camera->GetFocalPoint(focal);
-  camera->GetViewUp(up);
-  double w[3] = { focal[0] - eye[0], focal[1] - eye[1], focal[2] - eye[2] };
-  const double wl = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-  for (double& c : w)
+  // The view pass's own rays (grid-local frame), so the bands follow the pixels it renders.
+  vtkRefractaViewPass::RayFrame f;
+  std::vector<int> bands(static_cast<size_t>(size) * size, Rest);
+  if (!vtkRefractaViewPass::ComputeRayFrame(camera, medium, nullptr, size, size, f))
   {
-    c /= wl;
+    return bands;
   }
-  double u[3] = { w[1] * up[2] - w[2] * up[1], w[2] * up[0] - w[0] * up[2],
-    w[0] * up[1] - w[1] * up[0] }; // right
-  const double ul = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-  double v[3] = { u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2],
-    u[0] * w[1] - u[1] * w[0] }; // up
-  const double t = std::tan(0.5 * camera->GetViewAngle() * M_PI / 180.0);
-  std::vector<int> bands(static_cast<size_t>(size) * size);
+  double centre[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    centre[r] = f.WorldToLocal[r][0] * ball.Centre[0] + f.WorldToLocal[r][1] * ball.Centre[1] +
+      f.WorldToLocal[r][2] * ball.Centre[2] + f.WorldToLocal[r][3];
+  }
   for (int j = 0; j < size; ++j)
   {
     for (int i = 0; i < size; ++i)
     {
-      const double sx = t * (2.0 * (i + 0.5) / size - 1.0);
-      const double sy = t * (2.0 * (j + 0.5) / size - 1.0);
-      double d[3];
+      const double sx = 2.0 * (i + 0.5) / size - 1.0, sy = 2.0 * (j + 0.5) / size - 1.0;
+      double d[3], toCentre[3];
       for (int c = 0; c < 3; ++c)
       {
-        d[c] = w[c] + sx * u[c] / ul + sy * v[c] / ul;
+        d[c] = f.W[c] + sx * f.U[c] + sy * f.V[c];
+        toCentre[c] = centre[c] - f.Eye[c];
       }
-      const double dl = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      double along = 0.0, dist2 = 0.0;
-      for (int c = 0; c < 3; ++c)
-      {
-        along += (ball.Centre[c] - eye[c]) * d[c] / dl;
-      }
-      for (int c = 0; c < 3; ++c)
-      {
-        const double e = eye[c] + along * d[c] / dl - ball.Centre[c];
-        dist2 += e * e;
-      }
-      const double rho = std::sqrt(dist2) / ball.Radius;
+      vtkMath::Normalize(d);
+      const double along = vtkMath::Dot(toCentre, d);
+      const double rho =
+        std::sqrt(std::max(vtkMath::Dot(toCentre, toCentre) - along * along, 0.0)) / ball.Radius;
       bands[i + static_cast<size_t>(size) * j] = rho < 0.85 ? Inside
         : rho < 1.0                                         ? Rim
         : rho < 1.1                                         ? Silhouette
@@ -286,7 +275,7 @@ int main(int argc, char* argv[])
     ball.Centre[c] = sphere["center"][c].get<double>();
   }
   ball.Radius = sphere["radius"].get<double>();
-  const std::vector<int> bands = PixelBands(read.Camera, s.Size, ball);
+  const std::vector<int> bands = PixelBands(read.Camera, read.Medium.Image, s.Size, ball);
   const std::vector<BandFigures> truthFigures = Measure(truth, truth, bands, s.Size);
 
   std::printf("Glass edges on the default scene, %d x %d, %d photons, grazing cosine %g. Truth: "
