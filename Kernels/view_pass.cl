@@ -33,7 +33,9 @@
 // REFRACTA_SKIP (empty-space skipping, below), REFRACTA_HAS_SURFACES (opaque triangle surfaces,
 // below; view_surfaces.cl), REFRACTA_SURFACE_NEAREST (no irradiance interpolation),
 // REFRACTA_DIELECTRIC (glass triangles: paths split at them, see refracta_view_dielectric_split)
-// with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>. With REFRACTA_HAS_SINGLE
+// with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>, REFRACTA_PACKED_MEDIUM (the
+// extinction is grey: `extinction` holds float4 (sigma, emission RGB) per voxel and `emission` is
+// not read, one gather per step instead of two). With REFRACTA_HAS_SINGLE
 // the volume caustic's bricks are read where causticSub > 1 (view_caustic.cl).
 //
 // Glass bodies (REFRACTA_DIELECTRIC; `bodies`, refracta_surfaces.cl): a leg refracted into the
@@ -85,15 +87,20 @@ typedef struct
 inline refracta_view_stencil refracta_view_make_stencil(int4 dims, float3 u)
 {
   const refracta_stencil s = refracta_make_stencil(dims, u);
+  // One 64-bit index and three offsets (0 on a clamped edge) instead of eight index products.
+  const size_t base = refracta_voxel_index(dims, s.i0, s.j0, s.k0);
+  const size_t dx = (size_t)(s.i1 - s.i0);
+  const size_t dy = (size_t)(s.j1 - s.j0) * (size_t)dims.x;
+  const size_t dz = (size_t)(s.k1 - s.k0) * (size_t)dims.x * (size_t)dims.y;
   refracta_view_stencil v;
-  v.c[0] = refracta_voxel_index(dims, s.i0, s.j0, s.k0);
-  v.c[1] = refracta_voxel_index(dims, s.i1, s.j0, s.k0);
-  v.c[2] = refracta_voxel_index(dims, s.i0, s.j1, s.k0);
-  v.c[3] = refracta_voxel_index(dims, s.i1, s.j1, s.k0);
-  v.c[4] = refracta_voxel_index(dims, s.i0, s.j0, s.k1);
-  v.c[5] = refracta_voxel_index(dims, s.i1, s.j0, s.k1);
-  v.c[6] = refracta_voxel_index(dims, s.i0, s.j1, s.k1);
-  v.c[7] = refracta_voxel_index(dims, s.i1, s.j1, s.k1);
+  v.c[0] = base;
+  v.c[1] = base + dx;
+  v.c[2] = base + dy;
+  v.c[3] = base + dx + dy;
+  v.c[4] = base + dz;
+  v.c[5] = base + dx + dz;
+  v.c[6] = base + dy + dz;
+  v.c[7] = base + dx + dy + dz;
   v.fx = s.fx;
   v.fy = s.fy;
   v.fz = s.fz;
@@ -109,6 +116,15 @@ inline float refracta_view_sample1(__global const float* f, const refracta_view_
   return mix(mix(c00, c10, s->fy), mix(c01, c11, s->fy), s->fz);
 }
 
+inline float4 refracta_view_sample4(__global const float* f, const refracta_view_stencil* s)
+{
+  const float4 c00 = mix(vload4(s->c[0], f), vload4(s->c[1], f), s->fx);
+  const float4 c10 = mix(vload4(s->c[2], f), vload4(s->c[3], f), s->fx);
+  const float4 c01 = mix(vload4(s->c[4], f), vload4(s->c[5], f), s->fx);
+  const float4 c11 = mix(vload4(s->c[6], f), vload4(s->c[7], f), s->fx);
+  return mix(mix(c00, c10, s->fy), mix(c01, c11, s->fy), s->fz);
+}
+
 inline float3 refracta_view_sample3(__global const float* f, const refracta_view_stencil* s)
 {
   const float3 c00 = mix(vload3(s->c[0], f), vload3(s->c[1], f), s->fx);
@@ -118,14 +134,61 @@ inline float3 refracta_view_sample3(__global const float* f, const refracta_view
   return mix(mix(c00, c10, s->fy), mix(c01, c11, s->fy), s->fz);
 }
 
-// (1 - exp(-tau)) / tau per channel, without cancellation for small tau.
-inline float3 refracta_segment_weight(float3 tau)
+// One channel of a step's exact integration: w = (1 - exp(-tau)) / tau and the step's
+// transmittance exp(-tau) = 1 - tau w. For tau <= 1/2 (almost every step of a view ray) w is its
+// Taylor series sum_k (-tau)^k / (k + 1)!, k <= 9 (truncation below 6e-10 relative), evaluated by
+// Estrin's scheme (four multiply-adds deep): on a CPU expm1 and exp cost most of a step. Thicker
+// steps call them (exp keeps the relative accuracy of a tiny transmittance).
+float refracta_step_weight_thick(float tau, float* stepTransmittance)
 {
-  float3 w;
-  w.x = tau.x > 1e-3f ? -expm1(-tau.x) / tau.x : 1.0f - 0.5f * tau.x + tau.x * tau.x / 6.0f;
-  w.y = tau.y > 1e-3f ? -expm1(-tau.y) / tau.y : 1.0f - 0.5f * tau.y + tau.y * tau.y / 6.0f;
-  w.z = tau.z > 1e-3f ? -expm1(-tau.z) / tau.z : 1.0f - 0.5f * tau.z + tau.z * tau.z / 6.0f;
+  *stepTransmittance = exp(-tau);
+  return -expm1(-tau) / tau;
+}
+
+inline float refracta_step_weight(float tau, float* stepTransmittance)
+{
+  if (tau > 0.5f)
+  {
+    return refracta_step_weight_thick(tau, stepTransmittance);
+  }
+  const float t = -tau;
+  const float t2 = t * t;
+  const float t4 = t2 * t2;
+  const float a0 = fma(t, 1.0f / 2.0f, 1.0f);
+  const float a1 = fma(t, 1.0f / 24.0f, 1.0f / 6.0f);
+  const float a2 = fma(t, 1.0f / 720.0f, 1.0f / 120.0f);
+  const float a3 = fma(t, 1.0f / 40320.0f, 1.0f / 5040.0f);
+  const float a4 = fma(t, 1.0f / 3628800.0f, 1.0f / 362880.0f);
+  const float b0 = fma(t2, a1, a0);
+  const float b1 = fma(t2, a3, a2);
+  const float w = fma(t4 * t4, a4, fma(t4, b1, b0));
+  *stepTransmittance = fma(t, w, 1.0f);
   return w;
+}
+
+// A step of length len through a medium constant over it (extinction sigma, source q per unit
+// length): L += T q (1 - exp(-tau)) / sigma, T *= exp(-tau), tau = sigma len, per channel; a grey
+// extinction (the same in every channel, e.g. any vtkVolumeProperty's scalar opacity) is
+// integrated once for all three.
+inline void refracta_integrate_step(
+  float3 sigma, float3 q, float len, float3* radianceSum, float3* transmittance)
+{
+  float3 w, stepT;
+  if (sigma.x == sigma.y && sigma.y == sigma.z)
+  {
+    float t;
+    w = (float3)(refracta_step_weight(sigma.x * len, &t));
+    stepT = (float3)(t);
+  }
+  else
+  {
+    float tx, ty, tz; // (no address of a vector component in OpenCL C)
+    w = (float3)(refracta_step_weight(sigma.x * len, &tx),
+      refracta_step_weight(sigma.y * len, &ty), refracta_step_weight(sigma.z * len, &tz));
+    stepT = (float3)(tx, ty, tz);
+  }
+  *radianceSum += *transmittance * q * (len * w);
+  *transmittance *= stepT;
 }
 
 // Background radiance seen in grid-local direction d. The environment image (RGB floats, row 0 at
@@ -192,21 +255,17 @@ inline float3 refracta_view_body_medium(
 }
 #endif
 
-// Source term Q of a step (midpoint at voxel coordinates u, the step `du` in voxel units) for a
+// Scattered source term Q of a step (midpoint at voxel coordinates u, the step `du` in voxel units) for a
 // ray travelling in unit direction d: the voxel fields at the midpoint; the volume caustic, c
 // times finer, as the mean of c points evenly spread over the step (one midpoint per fine voxel
 // crossed, where a single midpoint would alias the focused light into streaks).
 inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, float3 du, float3 d,
-  int4 dims, __global const float* emission,
-  __global const float* anisotropy, __global const float* radiance,
+  int4 dims, __global const float* anisotropy, __global const float* radiance,
   __global const float* radianceDirection, __global const float* multiple,
   __global const int* causticBricks, __global const float* causticRadiance,
   __global const float* causticDirection, int causticSub)
 {
   float3 q = (float3)(0.0f);
-#ifdef REFRACTA_HAS_EMISSION
-  q += refracta_view_sample3(emission, st);
-#endif
 #ifdef REFRACTA_HAS_SINGLE
   const float3 s1 = refracta_view_sample3(radiance, st);
   const float g = refracta_view_sample1(anisotropy, st);
@@ -442,18 +501,27 @@ inline refracta_view_leg refracta_view_march(
 #endif
       const float3 u = refracta_to_voxel(x + (0.5f * len) * chord, spacing);
       const refracta_view_stencil st = refracta_view_make_stencil(dims, u);
+      // The grid's extinction and emission at the step's midpoint: one float4 gather from the
+      // packed (sigma, emission) layout where the extinction is grey, else one per field.
+#ifdef REFRACTA_PACKED_MEDIUM
+      const float4 packed = refracta_view_sample4(extinction, &st);
+      float3 sigma = (float3)(packed.x);
+      const float3 gridEmission = packed.yzw;
+#else
       float3 sigma = refracta_view_sample3(extinction, &st);
-      float3 q = refracta_view_source(&st, u, refracta_to_voxel(len * chord, spacing), chord, dims,
-        emission, anisotropy, radiance, radianceDirection, multiple, causticBricks,
-        causticRadiance, causticDirection, causticSub);
+#ifdef REFRACTA_HAS_EMISSION
+      const float3 gridEmission = refracta_view_sample3(emission, &st);
+#else
+      const float3 gridEmission = (float3)(0.0f);
+#endif
+#endif
+      float3 q = gridEmission +
+        refracta_view_source(&st, u, refracta_to_voxel(len * chord, spacing), chord, dims,
+          anisotropy, radiance, radianceDirection, multiple, causticBricks, causticRadiance,
+          causticDirection, causticSub);
 #ifdef REFRACTA_DIELECTRIC
       if (body >= 0)
       {
-#ifdef REFRACTA_HAS_EMISSION
-        const float3 gridEmission = refracta_view_sample3(emission, &st);
-#else
-        const float3 gridEmission = (float3)(0.0f);
-#endif
         q = refracta_view_body_medium(bodies, body, q, gridEmission, &sigma);
       }
 #endif
@@ -465,9 +533,7 @@ inline refracta_view_leg refracta_view_march(
 #elif defined(REFRACTA_SOURCE_SCALE)
       q *= REFRACTA_SOURCE_SCALE;
 #endif
-      const float3 tau = sigma * len;
-      radianceSum += transmittance * q * (len * refracta_segment_weight(tau));
-      transmittance *= exp(-tau);
+      refracta_integrate_step(sigma, q, len, &radianceSum, &transmittance);
       travelled += len;
       ++count;
       if (blocked)

@@ -137,6 +137,12 @@ public:
   size_t GetMaximumWorkGroupSize() const;
   ///@}
 
+  /**
+   * The largest work-group `kernel` may run in on this device: the smaller of
+   * CL_KERNEL_WORK_GROUP_SIZE and GetMaximumWorkGroupSize().
+   */
+  size_t GetKernelWorkGroupSize(cl_kernel kernel) const;
+
   ///@{
   /**
    * Test hooks: pretend a smaller device or host (bytes; work-items), or a device without the

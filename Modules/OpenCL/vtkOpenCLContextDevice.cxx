@@ -416,10 +416,7 @@ bool vtkOpenCLContext::CheckRequiredExtensions(
 bool vtkOpenCLContext::CheckLaunch(cl_kernel kernel, const size_t* localSize, cl_uint dimensions,
   const char* label, vtkObject* reporter)
 {
-  size_t kernelMaximum = 0;
   cl_ulong kernelLocal = 0;
-  clGetKernelWorkGroupInfo(kernel, this->Device, CL_KERNEL_WORK_GROUP_SIZE, sizeof(kernelMaximum),
-    &kernelMaximum, nullptr);
   clGetKernelWorkGroupInfo(
     kernel, this->Device, CL_KERNEL_LOCAL_MEM_SIZE, sizeof(kernelLocal), &kernelLocal, nullptr);
   size_t group = 1;
@@ -427,11 +424,7 @@ bool vtkOpenCLContext::CheckLaunch(cl_kernel kernel, const size_t* localSize, cl
   {
     group *= std::max<size_t>(localSize[d], 1);
   }
-  size_t allowed = this->GetMaximumWorkGroupSize();
-  if (kernelMaximum > 0)
-  {
-    allowed = std::min(allowed, kernelMaximum);
-  }
+  const size_t allowed = this->GetKernelWorkGroupSize(kernel);
   std::ostringstream msg;
   if (localSize && group > allowed)
   {
@@ -488,6 +481,15 @@ double vtkOpenCLContext::GetHostMemoryBytes() const
                         : this->SimulatedHostMemoryBytes;
   }
   return physical;
+}
+
+size_t vtkOpenCLContext::GetKernelWorkGroupSize(cl_kernel kernel) const
+{
+  size_t kernelMaximum = 0;
+  clGetKernelWorkGroupInfo(kernel, this->Device, CL_KERNEL_WORK_GROUP_SIZE, sizeof(kernelMaximum),
+    &kernelMaximum, nullptr);
+  const size_t device = this->GetMaximumWorkGroupSize();
+  return kernelMaximum > 0 ? std::min(device, kernelMaximum) : device;
 }
 
 size_t vtkOpenCLContext::GetMaximumWorkGroupSize() const

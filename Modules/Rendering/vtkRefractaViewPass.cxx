@@ -318,6 +318,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.Single = in.HasSingle;
   variant.Multiple = in.HasMultiple;
   variant.Emission = in.HasEmission;
+  variant.Packed = in.PackedMedium;
   variant.Environment = env != nullptr;
   variant.Checker = env != nullptr && in.EnvironmentIsChecker;
   variant.DepthLimit = depthLimit != nullptr;
@@ -350,6 +351,15 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     {
       return false;
     }
+  }
+  // Work-groups of side x side pixels, 8 x 8 where the kernel may run 64 work-items: neighbouring
+  // rays share the medium's cache lines, and one shape means one work-group function (PoCL
+  // compiles one per local size, and a size left to the driver follows each tile's height).
+  int groupSide = 8;
+  while (groupSide > 1 &&
+    static_cast<size_t>(groupSide * groupSide) > context->GetKernelWorkGroupSize(kernel.Get()))
+  {
+    groupSide /= 2;
   }
   const size_t pixels = static_cast<size_t>(width) * height;
   auto buf = [&](const vtkOpenCLBuffer& b) { return b ? b.Get() : in.Dummy.Get(); };
@@ -466,7 +476,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       buf(in.CausticDirection), causticSub, supersampling, grazingCosine,
       supersampledBuffer.Get());
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
-      !this->RunTiles(context, kernel.Get(), width, rows, row0, height, rowsPerTile))
+      !this->RunTiles(
+        context, kernel.Get(), width, rows, row0, height, rowsPerTile, groupSide))
     {
       return false;
     }
@@ -568,19 +579,23 @@ bool vtkRefractaViewPass::PlanImageMemory(
 
 //------------------------------------------------------------------------------
 bool vtkRefractaViewPass::RunTiles(vtkOpenCLContext* context, cl_kernel kernel, int width,
-  int height, int firstRow, int imageHeight, int& rowsPerTile)
+  int height, int firstRow, int imageHeight, int& rowsPerTile, int groupSide)
 {
   // Tiles of whole rows (a global offset on the same kernel: every pixel computes exactly what it
   // would in one launch), each waited for, so that progress is reported and an abort is seen
   // between them. The first tile has TilePixels pixels; later ones are sized from the measured
-  // rate to take about TileSeconds (at most twice the previous tile, at least one row).
+  // rate to take about TileSeconds (at most twice the previous tile, at least one row). Tiles
+  // are whole work-groups of groupSide rows (the last one padded: the kernel skips pixels past
+  // the image).
+  const size_t local[2] = { static_cast<size_t>(groupSide), static_cast<size_t>(groupSide) };
   for (int row = 0, rows = 0; row < height; row += rows)
   {
+    rowsPerTile = (rowsPerTile + groupSide - 1) / groupSide * groupSide;
     rows = std::min(rowsPerTile, height - row);
     const auto tileStart = std::chrono::steady_clock::now();
     const size_t offset[2] = { 0, static_cast<size_t>(row) };
     const size_t global[2] = { static_cast<size_t>(width), static_cast<size_t>(rows) };
-    if (!context->RunKernel(kernel, 2, global, nullptr, "refracta_view_pass", this, offset) ||
+    if (!context->RunKernel(kernel, 2, global, local, "refracta_view_pass", this, offset) ||
       !context->Finish(this))
     {
       return false;

@@ -480,7 +480,7 @@ private:
   bool SetVolumeCaustic(vtkImageData* lighting, vtkIdType voxels);
 #ifndef __VTK_WRAP__
   bool RunTiles(vtkOpenCLContext* context, cl_kernel kernel, int width, int height, int firstRow,
-    int imageHeight, int& rowsPerTile);
+    int imageHeight, int& rowsPerTile, int groupSide);
 #endif
 };
 

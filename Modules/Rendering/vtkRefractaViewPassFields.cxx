@@ -22,6 +22,36 @@ void FetchFloats(vtkDataArray* array, int comps, std::vector<float>& out)
 }
 
 //------------------------------------------------------------------------------
+bool IsGrey(const std::vector<float>& rgb)
+{
+  for (size_t i = 0; i + 2 < rgb.size(); i += 3)
+  {
+    if (rgb[i] != rgb[i + 1] || rgb[i] != rgb[i + 2])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+std::vector<float> PackGreyMedium(
+  const std::vector<float>& extinction, const std::vector<float>& emission)
+{
+  const size_t n = extinction.size() / 3;
+  std::vector<float> packed(4 * n, 0.0f);
+  for (size_t i = 0; i < n; ++i)
+  {
+    packed[4 * i] = extinction[3 * i];
+    if (!emission.empty())
+    {
+      std::copy_n(emission.begin() + 3 * i, 3, packed.begin() + 4 * i + 1);
+    }
+  }
+  return packed;
+}
+
+//------------------------------------------------------------------------------
 void RotateToLocal(const vtkRefractaGridFrame* grid, std::vector<float>& vectors)
 {
   for (size_t i = 0; i + 2 < vectors.size(); i += 3)
@@ -185,6 +215,7 @@ std::string KernelOptions(const KernelVariant& v)
   flag(v.Single, "REFRACTA_HAS_SINGLE");
   flag(v.Multiple, "REFRACTA_HAS_MULTIPLE");
   flag(v.Emission, "REFRACTA_HAS_EMISSION");
+  flag(v.Packed, "REFRACTA_PACKED_MEDIUM");
   flag(v.Environment, "REFRACTA_HAS_ENVIRONMENT");
   flag(v.Environment && v.Checker, "REFRACTA_CHECKER_ENVIRONMENT");
   flag(v.DepthLimit, "REFRACTA_HAS_DEPTH_LIMIT");

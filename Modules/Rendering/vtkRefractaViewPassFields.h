@@ -22,6 +22,14 @@ namespace vtkRefractaViewPassDetail
 // Copies an array's values into floats, `comps` components per tuple (fast path for floats).
 void FetchFloats(vtkDataArray* array, int comps, std::vector<float>& out);
 
+// Whether 3-component values (x fastest) have the same value in every component of every tuple.
+bool IsGrey(const std::vector<float>& rgb);
+
+// (sigma, emission RGB) per voxel from a grey extinction (3 components) and an emission (3
+// components, or empty for none), as the kernel's REFRACTA_PACKED_MEDIUM reads them.
+std::vector<float> PackGreyMedium(
+  const std::vector<float>& extinction, const std::vector<float>& emission);
+
 // Rotates world-frame vectors (3 per tuple) into the grid-local frame.
 void RotateToLocal(const vtkRefractaGridFrame* grid, std::vector<float>& vectors);
 
@@ -53,6 +61,7 @@ struct KernelVariant
   bool Single = false;         // REFRACTA_HAS_SINGLE
   bool Multiple = false;       // REFRACTA_HAS_MULTIPLE
   bool Emission = false;       // REFRACTA_HAS_EMISSION
+  bool Packed = false;         // REFRACTA_PACKED_MEDIUM (grey extinction and emission, float4)
   bool Environment = false;    // REFRACTA_HAS_ENVIRONMENT
   bool Checker = false;        // REFRACTA_CHECKER_ENVIRONMENT (with Environment)
   bool DepthLimit = false;     // REFRACTA_HAS_DEPTH_LIMIT

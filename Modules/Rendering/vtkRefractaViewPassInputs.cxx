@@ -49,11 +49,9 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
   const size_t n = static_cast<size_t>(in.Dims[0]) * in.Dims[1] * in.Dims[2];
   vtkPointData* pd = medium->GetPointData();
 
-  auto upload = [&](int id, const char* what, vtkOpenCLBuffer& buffer,
-                  std::vector<float>* keep = nullptr) -> bool
+  auto fetch = [&](int id, std::vector<float>& values)
   {
     const int comps = vtkRefractaMedium::GetNumberOfComponents(id);
-    std::vector<float> values;
     if (vtkDataArray* array = pd->GetArray(vtkRefractaMedium::GetArrayName(id)))
     {
       FetchFloats(array, comps, values);
@@ -62,35 +60,57 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
     {
       values.assign(n * comps, static_cast<float>(vtkRefractaMedium::GetDefaultValue(id)));
     }
+  };
+  auto create = [&](const std::vector<float>& values, const char* what, vtkOpenCLBuffer& buffer)
+  {
     buffer = context->CreateBuffer(
       CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4, values.data(), what, this);
+    return static_cast<bool>(buffer);
+  };
+  auto upload = [&](int id, const char* what, vtkOpenCLBuffer& buffer,
+                  std::vector<float>* keep = nullptr) -> bool
+  {
+    std::vector<float> values;
+    fetch(id, values);
+    const bool created = create(values, what, buffer);
     if (keep)
     {
       *keep = std::move(values);
     }
-    return static_cast<bool>(buffer);
+    return created;
   };
 
-  std::vector<float> kept;
+  // Extinction and emission: one float4 per voxel (sigma, emission RGB) where the extinction is
+  // grey (the kernel's REFRACTA_PACKED_MEDIUM: one gather per step instead of two), else one
+  // buffer each.
+  std::vector<float> extinction, emission;
   std::vector<uint8_t> flags(n, 0);
-  if (!upload(vtkRefractaMedium::EXTINCTION, "Extinction", in.Extinction, &kept) ||
-    !upload(vtkRefractaMedium::ANISOTROPY, "Anisotropy", in.Anisotropy))
-  {
-    return false;
-  }
-  MarkNonzero(kept, 3, SourceFlag, flags);
+  fetch(vtkRefractaMedium::EXTINCTION, extinction);
+  MarkNonzero(extinction, 3, SourceFlag, flags);
   in.HasEmission = pd->GetArray(vtkRefractaMedium::EmissionName()) != nullptr;
-  if (in.HasEmission && !upload(vtkRefractaMedium::EMISSION, "Emission", in.Emission, &kept))
-  {
-    return false;
-  }
   if (in.HasEmission)
   {
-    MarkNonzero(kept, 3, SourceFlag, flags);
+    fetch(vtkRefractaMedium::EMISSION, emission);
+    MarkNonzero(emission, 3, SourceFlag, flags);
   }
-  if (!in.HasEmission)
+  in.PackedMedium = IsGrey(extinction);
+  in.Emission.Reset();
+  if (in.PackedMedium)
   {
-    in.Emission.Reset();
+    if (!create(PackGreyMedium(extinction, emission), "Extinction and Emission (packed)",
+          in.Extinction))
+    {
+      return false;
+    }
+  }
+  else if (!create(extinction, "Extinction", in.Extinction) ||
+    (in.HasEmission && !create(emission, "Emission", in.Emission)))
+  {
+    return false;
+  }
+  if (!upload(vtkRefractaMedium::ANISOTROPY, "Anisotropy", in.Anisotropy))
+  {
+    return false;
   }
 
   // Refractive index: curved rays need n and grad n (grad n in the grid-local frame).

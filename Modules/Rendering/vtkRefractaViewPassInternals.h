@@ -32,6 +32,9 @@ struct vtkRefractaViewPass::Internals
   double Spacing[3] = { 1, 1, 1 };
   vtkNew<vtkRefractaGridFrame> Grid;
   bool HasEmission = false;
+  // Extinction is the same in every channel: `Extinction` holds (sigma, emission RGB) per voxel
+  // and `Emission` is empty (the kernel's REFRACTA_PACKED_MEDIUM).
+  bool PackedMedium = false;
   bool Refractive = false;
   // Some grad n sample is non-zero. A medium whose n jumps only across exact interfaces (the
   // voxelizer writes grad n = 0 there) bends rays at the surfaces alone: straight rays between.

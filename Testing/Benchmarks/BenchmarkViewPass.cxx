@@ -19,7 +19,10 @@
 // Medians of --runs runs (default 3); CSV to --csv (default benchmark_view_pass.csv).
 //
 // usage: BenchmarkViewPass [--sizes 256,512,1024] [--medium 128] [--runs 3] [--photons 65536]
-//                          [--compare-size 512] [--cell-size 8] [--csv FILE]
+//                          [--compare-size 512] [--cell-size 8] [--parts view,ea,small,glass]
+//                          [--csv FILE]
+// --parts: which parts run (default all): view (part 1), ea (the emission-absorption ball of
+// part 2), small (part 3's small object), glass (part 4).
 // --cell-size: vtkRefractaViewPass::MacroCellSize (voxels) for every Refracta row.
 // Part 2 needs an X server (xvfb-run with Debian's VTK).
 #include "RefractaBenchmark.h"
@@ -142,6 +145,7 @@ int main(int argc, char* argv[])
   std::vector<int> sizes = { 256, 512, 1024 };
   int n = 128, runs = 3, photons = 65536, compareSize = 512, cellSize = 8;
   std::string csv = "benchmark_view_pass.csv";
+  std::string parts = "view,ea,small,glass";
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -160,10 +164,13 @@ int main(int argc, char* argv[])
       cellSize = std::stoi(argv[++i]);
     else if (arg == "--csv" && hasValue)
       csv = argv[++i];
+    else if (arg == "--parts" && hasValue)
+      parts = argv[++i];
     else
     {
       std::cerr << "usage: BenchmarkViewPass [--sizes 256,512,1024] [--medium 128] [--runs 3] "
-                   "[--photons 65536] [--compare-size 512] [--cell-size 8] [--csv FILE]\n";
+                   "[--photons 65536] [--compare-size 512] [--cell-size 8] "
+                   "[--parts view,ea,small,glass] [--csv FILE]\n";
       return 2;
     }
   }
@@ -178,52 +185,58 @@ int main(int argc, char* argv[])
   refracta::bench::Table table({ "part", "rays", "image", "skip", "active", "median_ms",
     "steps_per_pixel", "Msteps_per_s", "ratio" });
 
+  const auto runs_part = [&parts](const std::string& name)
+  { return ("," + parts + ",").find("," + name + ",") != std::string::npos; };
+
   // ---- Part 1: the view pass alone.
-  refracta::scenes::Scene scene = refracta::scenes::GlassSphereInFog(n);
-  vtkNew<vtkPhotonTracer> tracer;
-  tracer->SetInputData(scene.Medium);
-  for (auto& light : scene.Lights)
-  {
-    tracer->AddLight(light);
-  }
-  tracer->SetNumberOfPhotons(photons);
-  tracer->Update();
-  vtkNew<vtkRefractaViewPass> pass;
-  pass->SetMacroCellSize(cellSize);
-  if (!pass->SetMedium(scene.Medium) || !pass->SetLighting(tracer->GetOutput()))
-  {
-    return 1;
-  }
   std::vector<float> hdr;
-  for (int mode : { vtkRefractaViewPass::CURVED, vtkRefractaViewPass::STRAIGHT })
+  if (runs_part("view"))
   {
-    pass->SetRayMode(mode);
-    for (int w : sizes)
+    refracta::scenes::Scene scene = refracta::scenes::GlassSphereInFog(n);
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->SetInputData(scene.Medium);
+    for (auto& light : scene.Lights)
     {
-      for (bool skip : { false, true })
+      tracer->AddLight(light);
+    }
+    tracer->SetNumberOfPhotons(photons);
+    tracer->Update();
+    vtkNew<vtkRefractaViewPass> pass;
+    pass->SetMacroCellSize(cellSize);
+    if (!pass->SetMedium(scene.Medium) || !pass->SetLighting(tracer->GetOutput()))
+    {
+      return 1;
+    }
+    for (int mode : { vtkRefractaViewPass::CURVED, vtkRefractaViewPass::STRAIGHT })
+    {
+      pass->SetRayMode(mode);
+      for (int w : sizes)
       {
-        pass->SetEmptySpaceSkipping(skip);
-        if (!pass->Render(scene.Camera, w, w, nullptr, nullptr, hdr)) // warm-up: compile
+        for (bool skip : { false, true })
         {
-          return 1;
+          pass->SetEmptySpaceSkipping(skip);
+          if (!pass->Render(scene.Camera, w, w, nullptr, nullptr, hdr)) // warm-up: compile
+          {
+            return 1;
+          }
+          std::vector<double> seconds;
+          for (int r = 0; r < runs; ++r)
+          {
+            pass->Render(scene.Camera, w, w, nullptr, nullptr, hdr);
+            seconds.push_back(pass->GetLastSeconds());
+          }
+          const double median = refracta::bench::Median(seconds);
+          const double steps = pass->GetLastTotalSteps();
+          const std::string rays = mode == vtkRefractaViewPass::CURVED ? "curved" : "straight";
+          table.AddRow({ "view pass", rays, std::to_string(w) + "x" + std::to_string(w),
+            skip ? (pass->GetLastSkipping() ? "on" : "on (no empty cell)") : "off",
+            refracta::bench::Table::Format(pass->GetLastActiveCellFraction()),
+            refracta::bench::Table::Format(median * 1e3),
+            refracta::bench::Table::Format(steps / (double(w) * w)),
+            refracta::bench::Table::Format(steps / median / 1e6), "" });
+          std::cout << "  " << rays << " " << w << "x" << w << " skipping " << (skip ? "on" : "off")
+                    << ": " << median * 1e3 << " ms\n";
         }
-        std::vector<double> seconds;
-        for (int r = 0; r < runs; ++r)
-        {
-          pass->Render(scene.Camera, w, w, nullptr, nullptr, hdr);
-          seconds.push_back(pass->GetLastSeconds());
-        }
-        const double median = refracta::bench::Median(seconds);
-        const double steps = pass->GetLastTotalSteps();
-        const std::string rays = mode == vtkRefractaViewPass::CURVED ? "curved" : "straight";
-        table.AddRow({ "view pass", rays, std::to_string(w) + "x" + std::to_string(w),
-          skip ? (pass->GetLastSkipping() ? "on" : "on (no empty cell)") : "off",
-          refracta::bench::Table::Format(pass->GetLastActiveCellFraction()),
-          refracta::bench::Table::Format(median * 1e3),
-          refracta::bench::Table::Format(steps / (double(w) * w)),
-          refracta::bench::Table::Format(steps / median / 1e6), "" });
-        std::cout << "  " << rays << " " << w << "x" << w << " skipping " << (skip ? "on" : "off")
-                  << ": " << median * 1e3 << " ms\n";
       }
     }
   }
@@ -256,8 +269,15 @@ int main(int argc, char* argv[])
     const char* Name;
     vtkSmartPointer<vtkImageData> Data;
   };
-  const Field fields[2] = { { "emission-absorption", ScalarField(n) },
-    { "small object (r 0.12) in the grid", ScalarField(n, 0.12, smallCentre) } };
+  std::vector<Field> fields;
+  if (runs_part("ea"))
+  {
+    fields.push_back({ "emission-absorption", ScalarField(n) });
+  }
+  if (runs_part("small"))
+  {
+    fields.push_back({ "small object (r 0.12) in the grid", ScalarField(n, 0.12, smallCentre) });
+  }
   for (const Field& field : fields)
   {
     vtkNew<vtkTransferFunctionMedium> mapping;
@@ -348,6 +368,7 @@ int main(int argc, char* argv[])
   // ---- Part 4: curved rays through a small glass ball (n = 1.33 inside, ambient 1, boundary
   // smoothed over ~3 voxels with compact support, faint absorption inside) in the same N^3 grid,
   // seen against a grey background: skipping off and on.
+  if (runs_part("glass"))
   {
     auto glass = vtkSmartPointer<vtkImageData>::New();
     glass->SetDimensions(n, n, n);
