@@ -139,13 +139,14 @@ inline float3 refracta_view_sample3(__global const float* f, const refracta_view
 // Taylor series sum_k (-tau)^k / (k + 1)!, k <= 9 (truncation below 6e-10 relative), evaluated by
 // Estrin's scheme (four multiply-adds deep): on a CPU expm1 and exp cost most of a step. Thicker
 // steps call them (exp keeps the relative accuracy of a tiny transmittance).
-float refracta_step_weight_thick(float tau, float* stepTransmittance)
+__attribute__((noinline)) float refracta_step_weight_thick(float tau, float* stepTransmittance)
 {
   *stepTransmittance = exp(-tau);
   return -expm1(-tau) / tau;
 }
 
-inline float refracta_step_weight(float tau, float* stepTransmittance)
+__attribute__((always_inline)) inline float refracta_step_weight(
+  float tau, float* stepTransmittance)
 {
   if (tau > 0.5f)
   {
@@ -170,7 +171,7 @@ inline float refracta_step_weight(float tau, float* stepTransmittance)
 // length): L += T q (1 - exp(-tau)) / sigma, T *= exp(-tau), tau = sigma len, per channel; a grey
 // extinction (the same in every channel, e.g. any vtkVolumeProperty's scalar opacity) is
 // integrated once for all three.
-inline void refracta_integrate_step(
+__attribute__((always_inline)) inline void refracta_integrate_step(
   float3 sigma, float3 q, float len, float3* radianceSum, float3* transmittance)
 {
   float3 w, stepT;
@@ -382,6 +383,10 @@ inline refracta_view_leg refracta_view_march(
 #ifdef REFRACTA_CURVED
     float n = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
     float3 v = n * d;
+#else
+    // Straight rays step in voxel coordinates: no division per step.
+    const float3 uEntry = refracta_to_voxel(x, spacing);
+    const float3 dVoxel = refracta_to_voxel(d, spacing);
 #endif
 #ifdef REFRACTA_SKIP
     const float3 cellExtent = (float)cellDims.w * spacing.xyz;
@@ -473,7 +478,6 @@ inline refracta_view_leg refracta_view_march(
       leaves = tB >= t1;
       len = fmax(tB - tA, 0.0f);
       chord = d;
-      x = origin + tA * d;
 #endif
       bool blocked = false;
       if (travelled + len >= limit)
@@ -499,7 +503,11 @@ inline refracta_view_leg refracta_view_march(
         blocked = true;
       }
 #endif
+#ifdef REFRACTA_CURVED
       const float3 u = refracta_to_voxel(x + (0.5f * len) * chord, spacing);
+#else
+      const float3 u = uEntry + ((float)s * stepLength + 0.5f * len) * dVoxel;
+#endif
       const refracta_view_stencil st = refracta_view_make_stencil(dims, u);
       // The grid's extinction and emission at the step's midpoint: one float4 gather from the
       // packed (sigma, emission) layout where the extinction is grey, else one per field.

@@ -16,7 +16,8 @@
 // overhead of building the occupancy and choosing the plain kernel).
 // Part 4: curved rays through a small glass ball (n 1.33, faint absorption) in the same grid,
 // skipping off and on, and the image differences set beside those of a 1e-6 camera move.
-// Medians of --runs runs (default 3); CSV to --csv (default benchmark_view_pass.csv).
+// Medians of --runs runs (default 3; part 2 and 3 interleave the runs of every setting and of the
+// fixed-point mapper); CSV to --csv (default benchmark_view_pass.csv).
 //
 // usage: BenchmarkViewPass [--sizes 256,512,1024] [--medium 128] [--runs 3] [--photons 65536]
 //                          [--compare-size 512] [--cell-size 8] [--parts view,ea,small,glass]
@@ -95,49 +96,62 @@ vtkSmartPointer<vtkImageData> ScalarField(
   image->GetPointData()->SetScalars(s);
   return image;
 }
-// Median seconds of vtkFixedPointVolumeRayCastMapper rendering the field through the same
-// property and camera, in an offscreen window of size x size (after one warm-up render), or NaN
-// with a message where no render window can be opened (the Refracta rows still run).
-double TimeFixedPointMapper(vtkImageData* data, vtkVolumeProperty* property, vtkCamera* camera,
-  int size, int n, int runs, int threads)
+// vtkFixedPointVolumeRayCastMapper rendering a field through the same property and camera in an
+// offscreen window of size x size, one timed render at a time (so that its runs interleave with
+// Refracta's and both see the same load on a shared machine). Ready() is false, with a message,
+// where no render window can be opened (the Refracta rows still run).
+class FixedPointRenderer
 {
-  if (!vtkRefractaRenderWindowCheck::CanOpen())
+public:
+  FixedPointRenderer(vtkImageData* data, vtkVolumeProperty* property, vtkCamera* camera, int size,
+    int n, int threads)
+    : Camera(camera)
   {
-    std::cerr << "skipping vtkFixedPointVolumeRayCastMapper: "
-              << vtkRefractaRenderWindowCheck::GetReason() << "\n";
-    return std::numeric_limits<double>::quiet_NaN();
+    if (!vtkRefractaRenderWindowCheck::CanOpen())
+    {
+      std::cerr << "skipping vtkFixedPointVolumeRayCastMapper: "
+                << vtkRefractaRenderWindowCheck::GetReason() << "\n";
+      return;
+    }
+    this->Window = vtkSmartPointer<vtkRenderWindow>::New();
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetSize(size, size);
+    this->Window->AddRenderer(this->Renderer);
+    this->Mapper->SetInputData(data);
+    this->Mapper->SetAutoAdjustSampleDistances(0);
+    this->Mapper->SetSampleDistance(1.0 / n);
+    this->Mapper->SetImageSampleDistance(1.0);
+    this->Mapper->SetNumberOfThreads(threads);
+    this->Volume->SetMapper(this->Mapper);
+    this->Volume->SetProperty(property);
+    this->Renderer->AddVolume(this->Volume);
+    this->Renderer->SetActiveCamera(camera);
+    this->Renderer->ResetCameraClippingRange();
+    camera->GetPosition(this->Position);
+    this->Window->Render(); // warm-up: builds the mapper's tables
   }
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetSize(size, size);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
-  fixedPoint->SetInputData(data);
-  fixedPoint->SetAutoAdjustSampleDistances(0);
-  fixedPoint->SetSampleDistance(1.0 / n);
-  fixedPoint->SetImageSampleDistance(1.0);
-  fixedPoint->SetNumberOfThreads(threads);
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(fixedPoint);
-  volume->SetProperty(property);
-  renderer->AddVolume(volume);
-  renderer->SetActiveCamera(camera);
-  renderer->ResetCameraClippingRange();
-  window->Render(); // warm-up: builds the mapper's tables
-  std::vector<double> seconds;
-  double position[3];
-  camera->GetPosition(position);
-  for (int r = 0; r < runs; ++r)
+  ~FixedPointRenderer() { this->Camera->SetPosition(this->Position); } // undo the jitter
+
+  bool Ready() const { return this->Window != nullptr; }
+
+  // Seconds of one render after a tiny camera move (which forces a re-render).
+  double Render()
   {
-    camera->Azimuth(r % 2 ? 0.01 : -0.01); // force a re-render
+    this->Camera->Azimuth(this->Runs++ % 2 ? 0.01 : -0.01);
     const double t0 = Now();
-    window->Render();
-    seconds.push_back(Now() - t0);
+    this->Window->Render();
+    return Now() - t0;
   }
-  camera->SetPosition(position); // undo the jitter for the next field
-  return refracta::bench::Median(seconds);
-}
+
+private:
+  vtkCamera* Camera;
+  double Position[3] = { 0, 0, 0 };
+  int Runs = 0;
+  vtkSmartPointer<vtkRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkFixedPointVolumeRayCastMapper> Mapper;
+  vtkNew<vtkVolume> Volume;
+};
 }
 
 int main(int argc, char* argv[])
@@ -305,39 +319,57 @@ int main(int argc, char* argv[])
     bool used[3];
     std::vector<float> reference;
     double maxDiff = 0;
-    for (int c = 0; c < 3; ++c)
+    // Two warm-up renders per setting (kernel builds, first touches of the buffers), then the
+    // timed runs interleaved: each run renders every setting and the fixed-point mapper once.
+    for (const Setting& setting : settings)
     {
-      eaPass->SetTransmittanceCutoff(settings[c].Cutoff);
-      eaPass->SetEmptySpaceSkipping(settings[c].Skip);
-      if (!eaPass->Render(camera, compareSize, compareSize, nullptr, nullptr, hdr))
+      eaPass->SetTransmittanceCutoff(setting.Cutoff);
+      eaPass->SetEmptySpaceSkipping(setting.Skip);
+      for (int warm = 0; warm < 2; ++warm)
       {
-        return 1;
-      }
-      std::vector<double> seconds;
-      for (int r = 0; r < runs; ++r)
-      {
-        eaPass->Render(camera, compareSize, compareSize, nullptr, nullptr, hdr);
-        seconds.push_back(eaPass->GetLastSeconds());
-      }
-      medians[c] = refracta::bench::Median(seconds);
-      steps[c] = eaPass->GetLastTotalSteps();
-      active[c] = eaPass->GetLastActiveCellFraction();
-      used[c] = eaPass->GetLastSkipping();
-      if (c == 1)
-      {
-        reference = hdr;
-      }
-      if (c == 2)
-      {
-        for (size_t i = 0; i < hdr.size(); ++i)
+        if (!eaPass->Render(camera, compareSize, compareSize, nullptr, nullptr, hdr))
         {
-          maxDiff = std::max(maxDiff, static_cast<double>(std::abs(hdr[i] - reference[i])));
+          return 1;
         }
       }
     }
-
-    const double vtkMedian = TimeFixedPointMapper(
-      field.Data, property, camera, compareSize, n, runs, context->GetNumberOfComputeUnits());
+    FixedPointRenderer fixedPoint(
+      field.Data, property, camera, compareSize, n, context->GetNumberOfComputeUnits());
+    std::vector<double> seconds[3], vtkSeconds;
+    for (int r = 0; r < runs; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        eaPass->SetTransmittanceCutoff(settings[c].Cutoff);
+        eaPass->SetEmptySpaceSkipping(settings[c].Skip);
+        eaPass->Render(camera, compareSize, compareSize, nullptr, nullptr, hdr);
+        seconds[c].push_back(eaPass->GetLastSeconds());
+        steps[c] = eaPass->GetLastTotalSteps();
+        active[c] = eaPass->GetLastActiveCellFraction();
+        used[c] = eaPass->GetLastSkipping();
+        if (c == 1)
+        {
+          reference = hdr;
+        }
+        if (c == 2)
+        {
+          for (size_t i = 0; i < hdr.size(); ++i)
+          {
+            maxDiff = std::max(maxDiff, static_cast<double>(std::abs(hdr[i] - reference[i])));
+          }
+        }
+      }
+      if (fixedPoint.Ready())
+      {
+        vtkSeconds.push_back(fixedPoint.Render());
+      }
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      medians[c] = refracta::bench::Median(seconds[c]);
+    }
+    const double vtkMedian = fixedPoint.Ready() ? refracta::bench::Median(vtkSeconds)
+                                                : std::numeric_limits<double>::quiet_NaN();
     const bool haveVTK = !std::isnan(vtkMedian);
     for (int c = 0; c < 3; ++c)
     {
