@@ -60,39 +60,44 @@ __constant int lbl_class[REFRACTA_LBL_Q] = REFRACTA_LBL_CLASSES;
 #define LBL_COEF_G (REFRACTA_LBL_NCLASS * 3 + 3)
 
 // Source weights over the directions for voxel v (sum 1).
-inline void lbl_source_weights(__global const float* src, size_t n, size_t v, float g, float* w)
+__attribute__((always_inline)) inline void lbl_source_weights(
+  __global const float* src, size_t n, size_t v, float g, float* w)
 {
 #if REFRACTA_LBL_SOURCE_PHASE
-  const float3 d = (float3)(src[3 * n + v], src[4 * n + v], src[5 * n + v]);
-  const float len = length(d);
-  if (len > 1e-6f)
+  // Scalar arithmetic and no branch (no float3 builtins, whose vector results, and no early
+  // return, which keep PoCL from vectorising the work-item loop). Without a direction (|d| <=
+  // 1e-6) the weights are uniform.
+  const float dx = src[3 * n + v], dy = src[4 * n + v], dz = src[5 * n + v];
+  const float len = sqrt(dx * dx + dy * dy + dz * dz);
+  const bool directed = len > 1e-6f;
+  const float inv = directed ? 1.0f / len : 0.0f;
+  float sum = 0.0f;
+  #pragma unroll
+  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
   {
-    const float3 u = d / len;
-    float sum = 0.0f;
-    #pragma unroll
-    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
-    {
-      const float3 c = normalize((float3)((float)lbl_cx[i], (float)lbl_cy[i], (float)lbl_cz[i]));
-      w[i] = refracta_hg_phase(dot(u, c), g);
-      sum += w[i];
-    }
-    #pragma unroll
-    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
-    {
-      w[i] /= sum;
-    }
-    return;
+    // cos between the source direction and unit lattice direction c_i (|c_i| = 1 or sqrt 2).
+    const float c = (float)lbl_cx[i] * dx + (float)lbl_cy[i] * dy + (float)lbl_cz[i] * dz;
+    const float norm = i < 6 ? 1.0f : 0.70710678118654752f;
+    w[i] = refracta_hg_phase(c * inv * norm, g);
+    sum += w[i];
   }
-#endif
+  const float scale = 1.0f / sum;
+  #pragma unroll
+  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
+  {
+    w[i] = directed ? w[i] * scale : 1.0f / (float)REFRACTA_LBL_Q;
+  }
+#else
   #pragma unroll
   for (int i = 0; i < REFRACTA_LBL_Q; ++i)
   {
     w[i] = 1.0f / (float)REFRACTA_LBL_Q;
   }
+#endif
 }
 
 // Collision of one channel: fin -> out (see the header).
-inline void lbl_collide(const float* fin, float* out, const float* t, float a, float g, float q,
+__attribute__((always_inline)) inline void lbl_collide(const float* fin, float* out, const float* t, float a, float g, float q,
   const float* wsrc)
 {
   const float gf = fmax(g, 0.0f);

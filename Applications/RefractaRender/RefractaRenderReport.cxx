@@ -189,6 +189,13 @@ json LightPassReport(vtkRefractaRenderPipeline* pipeline, int lightCount)
       ms["residual"] = report.value("LatticeBoltzmannResidual", 0.0);
       ms["converged"] = report.value("LatticeBoltzmannConverged", 0.0) != 0.0;
       ms["schedule"] = pipeline->GetLastScheduleInterleaved() ? "interleaved" : "sequential";
+      // The lattice's update: blocks in local memory, or the global update (block size 0, or a
+      // device whose local memory is ordinary memory: vtkLatticeBoltzmannSolver::BlockPolicy).
+      vtkLatticeBoltzmannSolver* solver = pipeline->GetLatticeSolver();
+      ms["update"] = solver->UsesBlocks()
+        ? "blocks of " + std::to_string(solver->GetBlockSize()) + "^3"
+        : std::string(solver->GetBlockSize() > 0 ? "global (the device has no on-chip local memory)"
+                                                 : "global");
       ms["seconds"] = report.value("ScheduleFinalSolveSeconds", 0.0);
       ms["device_memory_planned_bytes"] =
         pipeline->GetLatticeSolver()->GetPlannedDeviceMemoryBytes();
@@ -273,7 +280,8 @@ void PrintLightPass(const json& light)
       std::cout << "; Lattice-Boltzmann " << ms["iterations"].get<double>()
                 << " iterations, residual " << ms["residual"].get<double>()
                 << (ms["converged"].get<bool>() ? " (converged), " : " (NOT converged), ")
-                << ms["seconds"].get<double>() << " s";
+                << ms["seconds"].get<double>() << " s, " << ms["update"].get<std::string>()
+                << " update";
     }
     std::cout << "\n";
   }

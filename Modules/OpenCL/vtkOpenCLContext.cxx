@@ -627,6 +627,7 @@ void vtkOpenCLContext::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumAllocationBytes: " << this->GetMaximumAllocationBytes() << "\n";
   os << indent << "GlobalMemoryBytes: " << this->GetGlobalMemoryBytes() << "\n";
   os << indent << "LocalMemoryBytes: " << this->GetLocalMemoryBytes() << "\n";
+  os << indent << "DedicatedLocalMemory: " << (this->DedicatedLocalMemory ? "yes" : "no") << "\n";
   os << indent << "HostMemoryBytes: " << this->GetHostMemoryBytes() << "\n";
   os << indent << "MaximumWorkGroupSize: " << this->GetMaximumWorkGroupSize() << "\n";
   os << indent << "DiskCache:\n";

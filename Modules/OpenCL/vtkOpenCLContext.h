@@ -143,6 +143,13 @@ public:
    */
   size_t GetKernelWorkGroupSize(cl_kernel kernel) const;
 
+  /**
+   * Whether the device's local memory is its own on-chip memory (CL_DEVICE_LOCAL_MEM_TYPE
+   * CL_LOCAL: GPUs) rather than ordinary memory (CL_GLOBAL: CPU devices such as PoCL's), where
+   * kernels that stage data in local memory gain nothing. False before Initialize().
+   */
+  bool HasDedicatedLocalMemory() const { return this->DedicatedLocalMemory; }
+
   ///@{
   /**
    * Test hooks: pretend a smaller device or host (bytes; work-items), or a device without the
@@ -357,6 +364,7 @@ protected:
   double GlobalMemoryBytes = 0;
   double MaxAllocationBytes = 0;
   double LocalMemoryBytes = 0;
+  bool DedicatedLocalMemory = false;
   size_t MaxWorkGroupSize = 0;
   std::string LastErrorMessage;
 

@@ -326,6 +326,8 @@ bool vtkOpenCLContext::SelectDevice()
   this->LocalMemoryBytes =
     static_cast<double>(DeviceValue<cl_ulong>(entry.Device, CL_DEVICE_LOCAL_MEM_SIZE));
   this->MaxWorkGroupSize = DeviceValue<size_t>(entry.Device, CL_DEVICE_MAX_WORK_GROUP_SIZE);
+  this->DedicatedLocalMemory =
+    DeviceValue<cl_device_local_mem_type>(entry.Device, CL_DEVICE_LOCAL_MEM_TYPE) == CL_LOCAL;
 
   cl_int error = CL_SUCCESS;
   const cl_context_properties properties[] = { CL_CONTEXT_PLATFORM,

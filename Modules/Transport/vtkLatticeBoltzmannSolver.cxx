@@ -81,6 +81,14 @@ vtkOpenCLContext* vtkLatticeBoltzmannSolver::GetContext()
 }
 
 //------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::UsesBlocks()
+{
+  vtkOpenCLContext* context = this->GetContext();
+  this->DeviceHasLocalMemory = context->Initialize() && context->HasDedicatedLocalMemory();
+  return this->UseBlocks();
+}
+
+//------------------------------------------------------------------------------
 bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spacing[3],
   const float* extinction, const float* albedo, const float* anisotropy)
 {
@@ -90,6 +98,7 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
     vtkErrorMacro("No OpenCL device: " << context->GetLastErrorMessage());
     return false;
   }
+  this->DeviceHasLocalMemory = context->HasDedicatedLocalMemory();
   for (int a = 0; a < 3; ++a)
   {
     if (dims[a] < 1 || !(spacing[a] > 0) || !std::isfinite(spacing[a]))
@@ -742,6 +751,8 @@ void vtkLatticeBoltzmannSolver::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Lattice: D3Q" << this->Lattice << "\n";
   os << indent << "BlockSize: " << this->BlockSize << "\n";
+  os << indent << "BlockPolicy: "
+     << (this->BlockPolicy == ALWAYS_BLOCKS ? "always blocks" : "dedicated local memory") << "\n";
   os << indent << "StepsPerExchange: " << this->StepsPerExchange << "\n";
   os << indent << "Boundary: " << (this->Boundary == VACUUM ? "vacuum" : "reflective") << "\n";
   os << indent << "SourceDistribution: "

@@ -28,7 +28,9 @@
  * Blocks (D3Q6 only; D3Q18 always runs unblocked): BlockSize b > 0 partitions the grid into b^3
  * blocks that iterate StepsPerExchange steps locally and exchange density through alternating
  * interface buffers (Fig. 5). StepsPerExchange = 1 is step for step the global update; larger
- * values reach the same steady state.
+ * values reach the same steady state. The blocks stage the lattice in local memory, which pays
+ * where it is on-chip (GPUs); on a device whose local memory is ordinary memory (CPU devices)
+ * the global update runs instead unless BlockPolicy is ALWAYS_BLOCKS (UsesBlocks() says which).
  *
  * Termination (Solve()): every CheckInterval steps the summed density at sparse probe voxels
  * (every ProbeSpacing-th voxel per axis, plus the 8 voxels with the strongest source) is read
@@ -90,6 +92,29 @@ public:
   vtkSetClampMacro(BlockSize, int, 0, 8);
   vtkGetMacro(BlockSize, int);
   ///@}
+
+  ///@{
+  /**
+   * Where BlockSize > 0 takes effect. DEDICATED_LOCAL_MEMORY (default): on devices whose local
+   * memory is on-chip (vtkOpenCLContext::HasDedicatedLocalMemory(); GPUs); elsewhere the global
+   * update runs, which is faster there (64^3 on PoCL's 2-core CPU device: 3.7 ms per step
+   * against 21-23 ms for b = 4, and fewer steps to converge; Documentation/Reference.md).
+   * ALWAYS_BLOCKS: on every device (tests of the blocked kernels, benchmarks).
+   */
+  enum BlockPolicyType
+  {
+    DEDICATED_LOCAL_MEMORY = 0,
+    ALWAYS_BLOCKS = 1
+  };
+  vtkSetClampMacro(BlockPolicy, int, DEDICATED_LOCAL_MEMORY, ALWAYS_BLOCKS);
+  vtkGetMacro(BlockPolicy, int);
+  ///@}
+
+  /**
+   * Whether the blocked update runs: BlockSize > 0, D3Q6, and the BlockPolicy allows it on the
+   * context's device.
+   */
+  bool UsesBlocks();
 
   ///@{
   /**
@@ -365,7 +390,8 @@ protected:
 
   bool UseBlocks() const
   {
-    return this->BlockSize > 0 && this->Lattice == D3Q6;
+    return this->BlockSize > 0 && this->Lattice == D3Q6 &&
+      (this->BlockPolicy == ALWAYS_BLOCKS || this->DeviceHasLocalMemory);
   }
   bool PlanMemory(size_t coefficientPlanes);
   bool BuildKernels();
@@ -376,6 +402,8 @@ protected:
 
   int Lattice = D3Q6;
   int BlockSize = 4;
+  int BlockPolicy = DEDICATED_LOCAL_MEMORY;
+  bool DeviceHasLocalMemory = false; // the context's, read when the lattice is initialised
   int StepsPerExchange = 4;
   int Boundary = VACUUM;
   int SourceDistribution = PHASE_FUNCTION_SOURCE;

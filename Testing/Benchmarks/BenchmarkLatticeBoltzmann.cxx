@@ -284,6 +284,7 @@ int main(int argc, char* argv[])
         {
           vtkNew<vtkLatticeBoltzmannSolver> solver;
           solver->SetBlockSize(blocked ? 4 : 0);
+          solver->SetBlockPolicy(vtkLatticeBoltzmannSolver::ALWAYS_BLOCKS);
           solver->SetStepsPerExchange(4);
           // The warm-up only builds the kernels (a few steps).
           solver->SetMaximumIterations(r < 0 ? 8 : maxSteps);

@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace
@@ -87,6 +88,7 @@ vtkNew<vtkLatticeBoltzmannSolver> MakeSolver(
   vtkNew<vtkLatticeBoltzmannSolver> solver;
   solver->SetLattice(lattice);
   solver->SetBlockSize(block);
+  solver->SetBlockPolicy(vtkLatticeBoltzmannSolver::ALWAYS_BLOCKS); // also on a CPU device
   solver->SetStepsPerExchange(steps);
   solver->SetBoundary(boundary);
   EXPECT_TRUE(
@@ -269,6 +271,7 @@ void CheckGreensFunction(const GreenCase& k)
   vtkNew<vtkLatticeBoltzmannSolver> solver;
   solver->SetLattice(k.Lattice);
   solver->SetBlockSize(k.Lattice == 6 ? 4 : 0);
+  solver->SetBlockPolicy(vtkLatticeBoltzmannSolver::ALWAYS_BLOCKS);
   solver->SetStepsPerExchange(4);
   solver->SetCollisionModel(k.Model);
   solver->SetSourceDistribution(vtkLatticeBoltzmannSolver::ISOTROPIC_SOURCE);
@@ -665,4 +668,27 @@ TEST(LatticeBoltzmann, MemoryBeyondTheDeviceLimitsIsNamed)
         solver->GetPlannedDeviceMemoryBytes(), solver->GetAllocatedDeviceMemoryBytes());
     }
   }
+}
+
+// Blocks run where local memory is on-chip (or when asked for on every device); on PoCL's CPU
+// device, whose local memory is ordinary memory, the default policy runs the global update.
+TEST(LatticeBoltzmann, BlockPolicyFollowsTheDevice)
+{
+  vtkNew<vtkLatticeBoltzmannSolver> solver;
+  vtkOpenCLContext* context = solver->GetContext();
+  ASSERT_TRUE(context->Initialize());
+  solver->SetBlockSize(4);
+  EXPECT_EQ(solver->UsesBlocks(), context->HasDedicatedLocalMemory());
+  if (std::string(context->GetPlatformName()).find("Portable Computing Language") !=
+    std::string::npos)
+  {
+    EXPECT_FALSE(context->HasDedicatedLocalMemory());
+  }
+  solver->SetBlockPolicy(vtkLatticeBoltzmannSolver::ALWAYS_BLOCKS);
+  EXPECT_TRUE(solver->UsesBlocks());
+  solver->SetLattice(vtkLatticeBoltzmannSolver::D3Q18); // D3Q18 never runs blocked
+  EXPECT_FALSE(solver->UsesBlocks());
+  solver->SetLattice(vtkLatticeBoltzmannSolver::D3Q6);
+  solver->SetBlockSize(0);
+  EXPECT_FALSE(solver->UsesBlocks());
 }
