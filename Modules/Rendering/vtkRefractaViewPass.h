@@ -296,6 +296,13 @@ public:
   int GetLightingVolumeCausticSubdivision() const;
 
   /**
+   * Whether the medium last set has a grey extinction (the same in every channel, as from any
+   * vtkVolumeProperty's scalar opacity), so that its extinction and emission are one float4 per
+   * voxel on the device: one gather per step instead of two.
+   */
+  bool GetMediumIsPacked() const;
+
+  /**
    * Render W x H pixels for `camera` (world coordinates). `propMatrix` (may be nullptr) maps the
    * medium's data coordinates to world (a vtkVolume's matrix). `depthLimit` (may be nullptr; W H
    * floats) caps each pixel's path length in the medium's world units (opaque geometry).

@@ -394,3 +394,9 @@ int vtkRefractaViewPass::GetLightingVolumeCausticSubdivision() const
 {
   return this->Internal->VolumeCausticSub;
 }
+
+//------------------------------------------------------------------------------
+bool vtkRefractaViewPass::GetMediumIsPacked() const
+{
+  return this->Internal->PackedMedium;
+}
