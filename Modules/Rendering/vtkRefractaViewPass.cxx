@@ -290,8 +290,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     return false;
   }
 
-  const bool curved = this->RayMode == CURVED ? static_cast<bool>(in.Index)
-                                              : (this->RayMode == AUTO && in.Bends);
+  const bool curved =
+    this->RayMode == CURVED ? static_cast<bool>(in.Index) : (this->RayMode == AUTO && in.Bends);
   if (this->RayMode == CURVED && !in.Index)
   {
     vtkDebugMacro("RayMode CURVED with a constant refractive index: rays are straight.");
@@ -329,10 +329,10 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.SplitDepth = this->DielectricSplitDepth;
   variant.Caustic = surf.GetCausticSubdivision();
   variant.CausticOffset = surf.GetNumberOfTexels();
-  cl_program program = context->GetProgram(
-    { "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl", "view_skipping.cl",
-      "view_caustic.cl", "view_pass.cl", "view_pixel.cl" },
-    KernelOptions(variant), this);
+  cl_program program =
+    context->GetProgram({ "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl",
+                          "view_skipping.cl", "view_caustic.cl", "view_pass.cl", "view_pixel.cl" },
+      KernelOptions(variant), this);
   if (!program)
   {
     return false;
@@ -411,8 +411,9 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   steps.resize(pixels);
   int rowsPerTile = std::max(1, std::min(height, this->TilePixels / width));
   cl_int supersampledPixels = 0;
-  vtkOpenCLBuffer supersampledBuffer = context->CreateBuffer(CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
-    sizeof(cl_int), &supersampledPixels, "supersampled pixel count", this);
+  vtkOpenCLBuffer supersampledBuffer =
+    context->CreateBuffer(CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(cl_int),
+      &supersampledPixels, "supersampled pixel count", this);
   if (!supersampledBuffer)
   {
     return false;
@@ -473,11 +474,9 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       buf(surf.Albedo), buf(surf.Irradiance), buf(surf.Normals), buf(surf.Interfaces), toSurface[0],
       toSurface[1], toSurface[2], hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(),
       surfaceDepthBuffer.Get(), buf(surf.Bodies), buf(in.CausticBricks), buf(in.CausticRadiance),
-      buf(in.CausticDirection), causticSub, supersampling, grazingCosine,
-      supersampledBuffer.Get());
+      buf(in.CausticDirection), causticSub, supersampling, grazingCosine, supersampledBuffer.Get());
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
-      !this->RunTiles(
-        context, kernel.Get(), width, rows, row0, height, rowsPerTile, groupSide))
+      !this->RunTiles(context, kernel.Get(), width, rows, row0, height, rowsPerTile, groupSide))
     {
       return false;
     }

@@ -97,8 +97,8 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
   in.Emission.Reset();
   if (in.PackedMedium)
   {
-    if (!create(PackGreyMedium(extinction, emission), "Extinction and Emission (packed)",
-          in.Extinction))
+    if (!create(
+          PackGreyMedium(extinction, emission), "Extinction and Emission (packed)", in.Extinction))
     {
       return false;
     }
@@ -322,8 +322,8 @@ bool vtkRefractaViewPass::SetVolumeCaustic(vtkImageData* lighting, vtkIdType vox
   }
   if (!in.HasSingle)
   {
-    vtkErrorMacro("The lighting volume has a volume caustic ('" << fineName
-                                                                << "') but no 'Radiance'.");
+    vtkErrorMacro(
+      "The lighting volume has a volume caustic ('" << fineName << "') but no 'Radiance'.");
     return false;
   }
   if (bricks->GetNumberOfComponents() != 1 || bricks->GetNumberOfTuples() != voxels)
@@ -369,7 +369,8 @@ bool vtkRefractaViewPass::SetVolumeCaustic(vtkImageData* lighting, vtkIdType vox
     context->CreateBuffer(flags, map.size() * sizeof(int), map.data(), bricksName, this);
   std::vector<float> values;
   FetchFloats(fine, 3, values);
-  in.CausticRadiance = context->CreateBuffer(flags, values.size() * 4, values.data(), fineName, this);
+  in.CausticRadiance =
+    context->CreateBuffer(flags, values.size() * 4, values.data(), fineName, this);
   FetchFloats(direction, 3, values);
   in.CausticDirection =
     context->CreateBuffer(flags, values.size() * 4, values.data(), directionName, this);

@@ -86,8 +86,8 @@ struct vtkRefractaViewPass::Internals
     std::vector<double> sizes;
     for (const vtkOpenCLBuffer* b : { &this->Extinction, &this->Emission, &this->Anisotropy,
            &this->Index, &this->Gradient, &this->Radiance, &this->RadianceDirection,
-           &this->Multiple, &this->CausticBricks, &this->CausticRadiance,
-           &this->CausticDirection, &this->EnvironmentBuffer, &this->Occupancy, &this->Dummy })
+           &this->Multiple, &this->CausticBricks, &this->CausticRadiance, &this->CausticDirection,
+           &this->EnvironmentBuffer, &this->Occupancy, &this->Dummy })
     {
       size_t size = 0;
       if (*b &&
