@@ -97,8 +97,8 @@ __attribute__((always_inline)) inline void lbl_source_weights(
 }
 
 // Collision of one channel: fin -> out (see the header).
-__attribute__((always_inline)) inline void lbl_collide(const float* fin, float* out, const float* t, float a, float g, float q,
-  const float* wsrc)
+__attribute__((always_inline)) inline void lbl_collide(
+  const float* fin, float* out, const float* t, float a, float g, float q, const float* wsrc)
 {
   const float gf = fmax(g, 0.0f);
   const float gb = fmax(-g, 0.0f);

@@ -35,8 +35,8 @@
 // REFRACTA_DIELECTRIC (glass triangles: paths split at them, see refracta_view_dielectric_split)
 // with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>, REFRACTA_PACKED_MEDIUM (the
 // extinction is grey: `extinction` holds float4 (sigma, emission RGB) per voxel and `emission` is
-// not read, one gather per step instead of two). With REFRACTA_HAS_SINGLE
-// the volume caustic's bricks are read where causticSub > 1 (view_caustic.cl).
+// not read, one gather per step instead of two). With REFRACTA_HAS_SINGLE the volume caustic's
+// bricks are read where causticSub > 1 (view_caustic.cl).
 //
 // Glass bodies (REFRACTA_DIELECTRIC; `bodies`, refracta_surfaces.cl): a leg refracted into the
 // inside of a dielectric surface that has an inside medium is in that body until it is refracted
@@ -256,10 +256,11 @@ inline float3 refracta_view_body_medium(
 }
 #endif
 
-// Scattered source term Q of a step (midpoint at voxel coordinates u, the step `du` in voxel units) for a
-// ray travelling in unit direction d: the voxel fields at the midpoint; the volume caustic, c
-// times finer, as the mean of c points evenly spread over the step (one midpoint per fine voxel
-// crossed, where a single midpoint would alias the focused light into streaks).
+// Scattered source term Q of a step (midpoint at voxel coordinates u, the step `du` in voxel
+// units) for a ray travelling in unit direction d: the voxel fields at the midpoint; the volume
+// caustic, c times finer, as the mean of c points evenly spread over the step (one midpoint per
+// fine voxel crossed, where a single midpoint would alias the focused light into streaks). The
+// grid's emission is added by the caller (refracta_view_march).
 inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, float3 du, float3 d,
   int4 dims, __global const float* anisotropy, __global const float* radiance,
   __global const float* radianceDirection, __global const float* multiple,
