@@ -597,14 +597,18 @@ bool vtkPhotonTracer::SmoothAxes(Internals& run, cl_kernel filter, cl_mem a, cl_
   const Medium& m = run.M;
   const cl_int4 dims = Int4(m.Dims);
   const cl_int attenuates = m.Attenuates ? 1 : 0;
-  const cl_float biasLimit = static_cast<cl_float>(std::min(this->SmoothingBias, 1e30));
+  const double bias = std::min(this->SmoothingBias, 1e30);
+  const cl_float biasLimit = static_cast<cl_float>(bias);
+  // The optical depth up to which the plain filter's bias stays within biasLimit: cosh(tau) - 1
+  // <= 2 biasLimit (the kernel evaluates cosh only beyond it).
+  const cl_float tauLimit = static_cast<cl_float>(std::acosh(1.0 + 2.0 * bias));
   const cl_uint voxelCount = static_cast<cl_uint>(m.Voxels);
   cl_mem from = a, to = b;
   for (cl_int axis = 0; axis < 3; ++axis)
   {
     const cl_float spacing = static_cast<cl_float>(m.Spacing[axis]);
     if (!run.Context->Check(vtkOpenCLSetKernelArgs(filter, from, run.ExtBuffer.Get(), attenuates,
-                              dims, axis, spacing, biasLimit, to, voxelCount),
+                              dims, axis, spacing, biasLimit, tauLimit, to, voxelCount),
           "clSetKernelArg(radiance_smooth_axis)", this) ||
       !Run1D(run.Context, filter, m.Voxels, "radiance_smooth_axis", this))
     {
