@@ -658,6 +658,7 @@ void vtkRefractaViewPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CausticPhotonsPerFineTexel: " << this->CausticPhotonsPerFineTexel << "\n";
   os << indent << "NumberOfSurfaceUploads: " << this->Internal->Surfaces.GetNumberOfUploads()
      << "\n";
+  os << indent << "MediumIsPacked: " << (this->GetMediumIsPacked() ? "yes" : "no") << "\n";
   os << indent << "LastSkipping: " << (this->LastSkipping ? "yes" : "no") << "\n";
   os << indent << "LastActiveCellFraction: " << this->LastActiveCellFraction << "\n";
   os << indent << "LastSeconds: " << this->LastSeconds << "\n";
