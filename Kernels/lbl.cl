@@ -450,12 +450,12 @@ __kernel void lbl_copy(__global const float4* a, __global float4* b, const ulong
   }
 }
 
-// The photon pass's fixed-point accumulators (interleaved, cl_long) -> the LBL source planes:
+// The photon pass's fixed-point deposits (six cl_long per voxel: RGB power, then the direction
+// sums) -> the LBL source planes:
 // src[c * n + v] = S1 = radiance * radianceFactor, src[(3 + c) * n + v] = direction sums *
 // directionFactor (unnormalised; the source weights normalise it). One work-item per voxel.
-__kernel void lbl_source_from_fixed(__global const long* radianceFixed,
-  __global const long* directionFixed, const float radianceFactor, const float directionFactor,
-  __global float* src, const uint n)
+__kernel void lbl_source_from_fixed(__global const long* deposits, const float radianceFactor,
+  const float directionFactor, __global float* src, const uint n)
 {
   const size_t v = get_global_id(0);
   if (v >= n)
@@ -464,7 +464,7 @@ __kernel void lbl_source_from_fixed(__global const long* radianceFixed,
   }
   for (int c = 0; c < 3; ++c)
   {
-    src[c * (size_t)n + v] = (float)radianceFixed[3 * v + c] * radianceFactor;
-    src[(3 + c) * (size_t)n + v] = (float)directionFixed[3 * v + c] * directionFactor;
+    src[c * (size_t)n + v] = (float)deposits[6 * v + c] * radianceFactor;
+    src[(3 + c) * (size_t)n + v] = (float)deposits[6 * v + 3 + c] * directionFactor;
   }
 }

@@ -37,7 +37,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   __global const float4* photonPower, const uint count, __global const float* refractiveIndex,
   __global const float* gradient, __global const float* extinction, __global const float* albedo,
   __global const uchar* octree, const int4 dims, const float4 spacing,
-  volatile __global long* radiance, volatile __global long* directionSum,
+  volatile __global long* deposits,
   volatile __global long* tallies, volatile __global long* counters, const uint seed,
   const uint first, __global const float4* surfaceNodes, const int surfaceNodeCount,
   __global const float4* surfaceTriangles, __global const int4* surfaceInfo,
@@ -82,7 +82,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   do
   {
     outcome = photon_surface_event(&ps, &x, &v, &steps, lo, hi, octree, extinction, albedo,
-      refractiveIndex, gradient, dims, spacing, radiance, directionSum, &surf);
+      refractiveIndex, gradient, dims, spacing, deposits, &surf);
   } while (outcome < 0);
 #elif !REFRACTA_REFRACT
   // Straight ray: a single step from the start to the domain's exit.
@@ -92,8 +92,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   {
     steps = 1;
 #if REFRACTA_EXTINCTION
-    photon_walk(&ps, x + t0 * d0, x + t1 * d0, 1.0f, dims, spacing, extinction, albedo, radiance,
-      directionSum);
+    photon_walk(&ps, x + t0 * d0, x + t1 * d0, 1.0f, dims, spacing, extinction, albedo, deposits);
 #endif
   }
 #else
@@ -101,7 +100,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   do
   {
     outcome = photon_curved_step(&ps, &x, &v, &steps, lo, hi, octree, extinction, albedo,
-      refractiveIndex, gradient, dims, spacing, radiance, directionSum);
+      refractiveIndex, gradient, dims, spacing, deposits);
   } while (outcome < 0);
 #endif
   if (ps.dead)
@@ -128,8 +127,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   __global const float4* photonDir, __global const float4* photonPower, const uint count,
   __global const float* refractiveIndex, __global const float* gradient,
   __global const float* extinction, __global const float* albedo, __global const uchar* octree,
-  const int4 dims, const float4 spacing, volatile __global long* radiance,
-  volatile __global long* directionSum, volatile __global long* tallies,
+  const int4 dims, const float4 spacing, volatile __global long* deposits, volatile __global long* tallies,
   volatile __global long* counters, const uint seed, const uint first, __global float4* state,
   __global uint4* status, const uint chunkSteps, volatile __global int* active,
   __global const float4* surfaceNodes, const int surfaceNodeCount,
@@ -227,7 +225,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   for (uint c = 0; c < chunkSteps && outcome < 0; ++c)
   {
     outcome = photon_surface_event(&ps, &x, &v, &steps, lo, hi, octree, extinction, albedo,
-      refractiveIndex, gradient, dims, spacing, radiance, directionSum, &surf);
+      refractiveIndex, gradient, dims, spacing, deposits, &surf);
   }
 #elif !REFRACTA_REFRACT
   {
@@ -246,8 +244,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
         steps = 1; // photon_march counts a straight ray as one step
       }
 #if REFRACTA_EXTINCTION
-      photon_walk(&ps, x, x + len * v, 1.0f, dims, spacing, extinction, albedo, radiance,
-        directionSum);
+      photon_walk(&ps, x, x + len * v, 1.0f, dims, spacing, extinction, albedo, deposits);
 #endif
       x = x + len * v;
       t1 -= len;
@@ -265,7 +262,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   for (uint c = 0; c < chunkSteps && outcome < 0; ++c)
   {
     outcome = photon_curved_step(&ps, &x, &v, &steps, lo, hi, octree, extinction, albedo,
-      refractiveIndex, gradient, dims, spacing, radiance, directionSum);
+      refractiveIndex, gradient, dims, spacing, deposits);
   }
 #endif
   if (outcome < 0)

@@ -258,8 +258,7 @@ inline void photon_scatter(photon_state* ps, float3* x, float3* v, float3 d, flo
 inline int photon_surface_event(photon_state* ps, float3* x, float3* v, int* steps, float3 lo,
   float3 hi, __global const uchar* octree, __global const float* extinction,
   __global const float* albedo, __global const float* refractiveIndex,
-  __global const float* gradient, int4 dims, float4 spacing, volatile __global long* radiance,
-  volatile __global long* directionSum, const photon_surfaces* s)
+  __global const float* gradient, int4 dims, float4 spacing, volatile __global long* deposits, const photon_surfaces* s)
 {
   if (*steps >= REFRACTA_MAX_STEPS)
   {
@@ -289,7 +288,7 @@ inline int photon_surface_event(photon_state* ps, float3* x, float3* v, int* ste
     h = photon_trace_surfaces(s, *x, chord, tExit);
 #if REFRACTA_EXTINCTION
     photon_walk(ps, *x, x1, h.triangle >= 0 ? h.t : tExit, dims, spacing, extinction, albedo,
-      radiance, directionSum);
+      deposits);
     if (ps->dead)
     {
       return PHOTON_COUNTER_ROULETTE;
@@ -338,7 +337,7 @@ inline int photon_surface_event(photon_state* ps, float3* x, float3* v, int* ste
     if (box && t0 < h.t)
     {
       photon_walk(ps, *x + t0 * d, *x + fmin(t1, h.t) * d, 1.0f, dims, spacing, extinction, albedo,
-        radiance, directionSum);
+        deposits);
       if (ps->dead)
       {
         return PHOTON_COUNTER_ROULETTE;

@@ -2,7 +2,7 @@
 // RadianceDirection arrays, with the optional 3x3x3 smoothing of Sun et al. 2008, section 4.4.
 //
 // radiance_resolve: one work-item per voxel; fixed point -> float, 3 values per voxel from long
-//   `first` on, times `factor` (deposits: 1 / (scale x voxel volume), power per unit volume;
+//   `first` on, `stride` longs apart from voxel to voxel, times `factor` (deposits: 1 / (scale x voxel volume), power per unit volume;
 //   direction sums: 1 / scale, kept unnormalised until after the smoothing).
 // radiance_smooth_axis: one work-item per voxel, 3-component field, one grid axis per launch (the
 //   three launches make the 3x3x3 filter). Each neighbour pair (i, j) along the axis exchanges
@@ -24,7 +24,7 @@
 // radiance_normalize: one work-item per voxel; unit direction, or zero where nothing arrived.
 
 __kernel void radiance_resolve(__global const long* fixedPoint, const ulong first,
-  const float factor, __global float* out, const uint count)
+  const uint stride, const float factor, __global float* out, const uint count)
 {
   const size_t id = get_global_id(0);
   if (id >= count)
@@ -33,7 +33,7 @@ __kernel void radiance_resolve(__global const long* fixedPoint, const ulong firs
   }
   for (int c = 0; c < 3; ++c)
   {
-    out[3 * id + c] = (float)fixedPoint[first + 3 * id + c] * factor;
+    out[3 * id + c] = (float)fixedPoint[first + stride * id + c] * factor;
   }
 }
 

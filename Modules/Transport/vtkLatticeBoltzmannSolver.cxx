@@ -523,7 +523,7 @@ bool vtkLatticeBoltzmannSolver::SetSource(const float* s1, const float* directio
 
 //------------------------------------------------------------------------------
 bool vtkLatticeBoltzmannSolver::SetSourceFromFixedPoint(
-  cl_mem radianceFixed, cl_mem directionFixed, double radianceFactor, double directionFactor)
+  cl_mem deposits, double radianceFactor, double directionFactor)
 {
   if (!this->BuildKernels())
   {
@@ -534,9 +534,9 @@ bool vtkLatticeBoltzmannSolver::SetSourceFromFixedPoint(
   const size_t global = n;
   const size_t local = 64;
   this->SourceIsZero = false; // unknown until UpdateSourceProbes() reads it back
-  return context->Check(vtkOpenCLSetKernelArgs(this->SourceKernel.Get(), radianceFixed,
-                          directionFixed, static_cast<float>(radianceFactor),
-                          static_cast<float>(directionFactor), this->Source.Get(), n),
+  return context->Check(vtkOpenCLSetKernelArgs(this->SourceKernel.Get(), deposits,
+                          static_cast<float>(radianceFactor), static_cast<float>(directionFactor),
+                          this->Source.Get(), n),
            "clSetKernelArg(lbl_source_from_fixed)", this) &&
     context->RunKernel(this->SourceKernel.Get(), 1, &global, &local, "lbl_source_from_fixed", this);
 }

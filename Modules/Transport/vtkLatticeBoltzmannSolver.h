@@ -263,11 +263,10 @@ public:
 
   /**
    * Enqueue (without waiting) the conversion of a photon pass's fixed-point accumulators
-   * (interleaved cl_long RGB and direction sums, see vtkPhotonTracer::SetChunkCallback) into the
-   * source buffer: S1 = radiance * radianceFactor.
+   * (six cl_long per voxel: RGB power, then the direction sums; see
+   * vtkPhotonTracer::SetChunkCallback) into the source buffer: S1 = power * radianceFactor.
    */
-  bool SetSourceFromFixedPoint(
-    cl_mem radianceFixed, cl_mem directionFixed, double radianceFactor, double directionFactor);
+  bool SetSourceFromFixedPoint(cl_mem deposits, double radianceFactor, double directionFactor);
 
   /**
    * Re-read the source buffer and add its strongest voxels to the convergence probes; call it

@@ -192,10 +192,10 @@ int vtkPhotonDiffusionSchedule::RequestData(
   const int perChunk = this->DiffusionStepsPerChunk;
   this->Tracer->SetChunkCallback(
     [solver, perChunk, &diffusionSteps, &callbackFailed](
-      cl_mem rad, cl_mem dir, double rf, double df, int)
+      cl_mem deposits, double rf, double df, int)
     {
       const int before = solver->GetStepsDone();
-      if (!solver->SetSourceFromFixedPoint(rad, dir, rf, df) ||
+      if (!solver->SetSourceFromFixedPoint(deposits, rf, df) ||
         (perChunk > 0 && !solver->Iterate(perChunk, false)))
       {
         callbackFailed = true;

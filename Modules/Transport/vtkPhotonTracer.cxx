@@ -318,12 +318,12 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
   vtkOpenCLBuffer& power = run.Power;
   vtkOpenCLBuffer& extBuffer = run.ExtBuffer;
   vtkOpenCLBuffer& albBuffer = run.AlbBuffer;
-  vtkOpenCLBuffer& radFixed = run.RadFixed;
-  vtkOpenCLBuffer& dirFixed = run.DirFixed;
+  vtkOpenCLBuffer& deposits = run.Deposits;
   vtkOpenCLBuffer& tallies = run.Tallies;
   vtkOpenCLBuffer& counters = run.Counters;
   const auto start = Clock::now();
-  const size_t accumulators = m.Scatters ? voxels * 3 : 1;
+  // Six per voxel (RGB power, then the direction sums): one cache line per deposit.
+  const size_t accumulators = m.Scatters ? voxels * 6 : 1;
   if (!run.ReusedMedium)
   {
     extBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
@@ -331,19 +331,16 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
     albBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
       (m.Scatters ? voxels * 3 : 1) * sizeof(float), m.Albedo.data(), "Albedo");
   }
-  radFixed =
-    alloc.Make(CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "radiance accumulator");
-  dirFixed =
-    alloc.Make(CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "direction accumulator");
+  deposits = alloc.Make(CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr,
+    "radiance and direction accumulators");
   tallies = alloc.Make(CL_MEM_READ_WRITE, PHOTON_TALLY_COUNT * sizeof(cl_long), nullptr, "tallies");
   counters =
     alloc.Make(CL_MEM_READ_WRITE, PHOTON_COUNTER_COUNT * sizeof(cl_long), nullptr, "counters");
   vtkOpenCLKernel march = ctx->CreateKernel(trace, "photon_march", this);
-  if (!extBuffer || !albBuffer || !radFixed || !dirFixed || !tallies || !counters || !march ||
+  if (!extBuffer || !albBuffer || !deposits || !tallies || !counters || !march ||
     !this->UploadSurfaces(run) || !this->UploadAnalogScattering(run) ||
-    !this->SetSurfaceArguments(run, march.Get(), 17) ||
-    !ctx->ZeroBuffer(radFixed.Get(), accumulators * sizeof(cl_long), this) ||
-    !ctx->ZeroBuffer(dirFixed.Get(), accumulators * sizeof(cl_long), this) ||
+    !this->SetSurfaceArguments(run, march.Get(), 16) ||
+    !ctx->ZeroBuffer(deposits.Get(), accumulators * sizeof(cl_long), this) ||
     !ctx->ZeroBuffer(tallies.Get(), PHOTON_TALLY_COUNT * sizeof(cl_long), this) ||
     !ctx->ZeroBuffer(counters.Get(), PHOTON_COUNTER_COUNT * sizeof(cl_long), this))
   {
@@ -366,8 +363,8 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
       alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_uint4), nullptr, "photon status");
     vtkOpenCLBuffer active = alloc.Make(CL_MEM_READ_WRITE, sizeof(cl_int), nullptr, "active");
     if (!marchChunk || !state || !status || !active ||
-      !this->SetSurfaceArguments(run, marchChunk.Get(), 21) ||
-      !this->SetVolumeCausticArguments(run, marchChunk.Get(), 36, 0) ||
+      !this->SetSurfaceArguments(run, marchChunk.Get(), 20) ||
+      !this->SetVolumeCausticArguments(run, marchChunk.Get(), 35, 0) ||
       !ctx->ZeroBuffer(status.Get(), photons * sizeof(cl_uint4), this))
     {
       return false;
@@ -393,8 +390,8 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
         if (!ctx->Check(
               vtkOpenCLSetKernelArgs(marchChunk.Get(), pos.Get(), dirs.Get(), power.Get(),
                 photonCount, nBuffer.Get(), gradBuffer.Get(), extBuffer.Get(), albBuffer.Get(),
-                octree.Get(), dims, spacing, radFixed.Get(), dirFixed.Get(), tallies.Get(),
-                counters.Get(), seed, firstId, state.Get(), status.Get(), k, active.Get()),
+                octree.Get(), dims, spacing, deposits.Get(), tallies.Get(), counters.Get(), seed,
+                firstId, state.Get(), status.Get(), k, active.Get()),
               "clSetKernelArg(photon_march_chunk)", this) ||
           !Run1D(
             ctx, marchChunk.Get(), std::min(chunk, photons - first), "photon_march_chunk", this))
@@ -410,7 +407,7 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
       stillActive = count;
       ++this->NumberOfChunks;
       if (this->Callback &&
-        !this->Callback(radFixed.Get(), dirFixed.Get(), radianceFactor, 1.0 / scale, count))
+        !this->Callback(deposits.Get(), radianceFactor, 1.0 / scale, count))
       {
         vtkErrorMacro("The chunk callback failed after chunk " << this->NumberOfChunks << ".");
         return false;
@@ -436,8 +433,8 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
       const cl_uint firstId = static_cast<cl_uint>(sub);
       if (!ctx->Check(vtkOpenCLSetKernelArgs(march.Get(), pos.Get(), dirs.Get(), power.Get(),
                         photonCount, nBuffer.Get(), gradBuffer.Get(), extBuffer.Get(),
-                        albBuffer.Get(), octree.Get(), dims, spacing, radFixed.Get(),
-                        dirFixed.Get(), tallies.Get(), counters.Get(), seed, firstId),
+                        albBuffer.Get(), octree.Get(), dims, spacing, deposits.Get(),
+                        tallies.Get(), counters.Get(), seed, firstId),
             "clSetKernelArg(photon_march)", this) ||
         !Run1D(ctx, march.Get(), std::min(chunk, first + count - sub), "photon_march", this))
       {
@@ -447,7 +444,7 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
     return true;
   };
   if (this->StepsPerChunk == 0 &&
-    (!this->PlaceVolumeCausticBricks(run, launchMarch, march.Get(), 32) ||
+    (!this->PlaceVolumeCausticBricks(run, launchMarch, march.Get(), 31) ||
       !this->ReportProgress(run, ProgressGenerated)))
   {
     return false;
@@ -511,7 +508,7 @@ bool vtkPhotonTracer::ResolveRadiance(Internals& run)
     }
   }
   else if (!this->ResolveDeposits(
-             run, run.RadFixed.Get(), 0, run.DirFixed.Get(), 0, radiance, direction))
+             run, run.Deposits.Get(), 0, run.Deposits.Get(), 3, 6, radiance, direction))
   {
     return false;
   }
@@ -522,7 +519,8 @@ bool vtkPhotonTracer::ResolveRadiance(Internals& run)
 
 //------------------------------------------------------------------------------
 bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offset,
-  cl_mem directionFixed, size_t directionOffset, vtkFloatArray* values, vtkFloatArray* directions)
+  cl_mem directionFixed, size_t directionOffset, size_t stride, vtkFloatArray* values,
+  vtkFloatArray* directions)
 {
   Medium& m = run.M;
   vtkOpenCLContext* ctx = run.Context;
@@ -565,8 +563,10 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
       b = alloc.Make(CL_MEM_READ_WRITE, bytes, nullptr, out->GetName());
     }
     const cl_ulong first = static_cast<cl_ulong>(at);
+    const cl_uint strideLongs = static_cast<cl_uint>(stride);
     if (!a || (this->Smoothing && !b) ||
-      !ctx->Check(vtkOpenCLSetKernelArgs(resolve.Get(), source, first, factor, a.Get(), voxelCount),
+      !ctx->Check(vtkOpenCLSetKernelArgs(
+                    resolve.Get(), source, first, strideLongs, factor, a.Get(), voxelCount),
         "clSetKernelArg(radiance_resolve)", this) ||
       !Run1D(ctx, resolve.Get(), voxels, "radiance_resolve", this))
     {

@@ -599,12 +599,13 @@ public:
 #ifndef __VTK_WRAP__
   /**
    * Called after each chunk (on the context's queue, nothing waited for): the fixed-point
-   * Radiance and direction-sum accumulators (interleaved RGB/xyz, cl_long), the factors that turn
-   * them into S1 (power per unit volume) and direction sums, and the number of photons still
-   * marching after this chunk (0 on the last call). Return false to abort the run (an error).
+   * deposits (six cl_long per voxel: the Radiance accumulator's RGB, then the direction sums'
+   * xyz), the factors that turn them into S1 (power per unit volume) and direction sums, and the
+   * number of photons still marching after this chunk (0 on the last call). Return false to abort
+   * the run (an error).
    */
-  using ChunkCallback = std::function<bool(cl_mem radianceFixed, cl_mem directionFixed,
-    double radianceFactor, double directionFactor, int activePhotons)>;
+  using ChunkCallback = std::function<bool(
+    cl_mem deposits, double radianceFactor, double directionFactor, int activePhotons)>;
   void SetChunkCallback(ChunkCallback callback)
   {
     this->Callback = std::move(callback);
@@ -722,11 +723,12 @@ private:
   bool UploadAnalogScattering(Internals& run);
   bool ResolveMultipleScattering(Internals& run);
 #ifndef __VTK_WRAP__
-  // Fixed-point deposits (3 per voxel from `offset` longs into `fixed`) into power per unit
-  // volume in `values`, smoothed with Smoothing; with `directions`, the direction sums (from
-  // `directionOffset` into `directionFixed`) into unit mean directions, smoothed the same way.
+  // Fixed-point deposits (3 per voxel from `offset` longs into `fixed`, voxel v's at offset +
+  // stride v) into power per unit volume in `values`, smoothed with Smoothing; with
+  // `directions`, the direction sums (from `directionOffset` into `directionFixed`, the same
+  // stride) into unit mean directions, smoothed the same way.
   bool ResolveDeposits(Internals& run, cl_mem fixed, size_t offset, cl_mem directionFixed,
-    size_t directionOffset, vtkFloatArray* values, vtkFloatArray* directions);
+    size_t directionOffset, size_t stride, vtkFloatArray* values, vtkFloatArray* directions);
   // The smoothing's three axis passes (radiance_smooth_axis) from `a` into `b` (`a` is scratch).
   bool SmoothAxes(Internals& run, cl_kernel filter, cl_mem a, cl_mem b);
 #endif

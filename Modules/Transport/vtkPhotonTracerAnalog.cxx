@@ -55,7 +55,8 @@ bool vtkPhotonTracer::ResolveMultipleScattering(Internals& run)
   }
   const size_t voxels = run.M.Voxels;
   run.Multiple->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
-  if (!this->ResolveDeposits(run, run.MultipleFixed.Get(), 0, nullptr, 0, run.Multiple, nullptr))
+  if (!this->ResolveDeposits(
+        run, run.MultipleFixed.Get(), 0, nullptr, 0, 3, run.Multiple, nullptr))
   {
     return false;
   }
@@ -67,5 +68,5 @@ bool vtkPhotonTracer::ResolveMultipleScattering(Internals& run)
   run.LatticeSourceDirection->SetName(
     vtkRefractaLightingVolume::MultipleScatteringSourceDirectionName());
   return this->ResolveDeposits(run, run.MultipleFixed.Get(), 3 * voxels, run.MultipleFixed.Get(),
-    6 * voxels, run.LatticeSource, run.LatticeSourceDirection);
+    6 * voxels, 3, run.LatticeSource, run.LatticeSourceDirection);
 }

@@ -235,7 +235,8 @@ struct vtkPhotonTracer::Internals
   cl_program Trace = nullptr;
   vtkOpenCLBuffer NBuffer, GradBuffer, Octree;
   vtkOpenCLBuffer Pos, Dirs, Power;
-  vtkOpenCLBuffer ExtBuffer, AlbBuffer, RadFixed, DirFixed, Tallies, Counters;
+  // Deposits: six cl_long per voxel (the Radiance accumulator's RGB, then the direction sums).
+  vtkOpenCLBuffer ExtBuffer, AlbBuffer, Deposits, Tallies, Counters;
   std::vector<cl_long> Tally, Count;
   vtkNew<vtkFloatArray> Radiance;
   vtkNew<vtkFloatArray> Direction;

@@ -575,9 +575,8 @@ bool vtkPhotonTracer::PlanMemory(Internals& run)
     plan->AddDeviceBuffer(photons, "photon state (chunked march)", p * 128, photonSetting);
     plan->AddDeviceBuffer(photons, "photon status (chunked march)", p * 16, photonSetting);
   }
-  const double accumulators = m.Scatters ? v * 3 * 8 : 8;
-  plan->AddDeviceBuffer(grid, "radiance accumulator", accumulators, gridSetting);
-  plan->AddDeviceBuffer(grid, "direction accumulator", accumulators, gridSetting);
+  const double accumulators = m.Scatters ? v * 6 * 8 : 8;
+  plan->AddDeviceBuffer(grid, "radiance and direction accumulators", accumulators, gridSetting);
   // Analog scattering: every order with surfaces (the lattice knows none), the first
   // ScatteringOrders ones for the first-collision split (vtkPhotonTracer.h).
   const bool everyOrder =

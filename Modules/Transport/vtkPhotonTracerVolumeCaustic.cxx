@@ -158,11 +158,10 @@ bool vtkPhotonTracer::PlaceVolumeCausticBricks(
   run.BrickBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(int),
     run.Bricks.data(), "volume caustic bricks");
   run.FineFixed = alloc.Make(CL_MEM_READ_WRITE, fineBytes, nullptr, "volume caustic accumulators");
-  const size_t accumulatorBytes = voxels * 3 * sizeof(cl_long);
+  const size_t accumulatorBytes = voxels * 6 * sizeof(cl_long); // run.Deposits
   return run.BrickBuffer && run.FineFixed &&
     ctx->ZeroBuffer(run.FineFixed.Get(), fineBytes, this) &&
-    ctx->ZeroBuffer(run.RadFixed.Get(), accumulatorBytes, this) &&
-    ctx->ZeroBuffer(run.DirFixed.Get(), accumulatorBytes, this) &&
+    ctx->ZeroBuffer(run.Deposits.Get(), accumulatorBytes, this) &&
     ctx->ZeroBuffer(run.Tallies.Get(), PHOTON_TALLY_COUNT * sizeof(cl_long), this) &&
     ctx->ZeroBuffer(run.Counters.Get(), PHOTON_COUNTER_COUNT * sizeof(cl_long), this) &&
     (run.MultipleBytes == 0 || ctx->ZeroBuffer(run.MultipleFixed.Get(), run.MultipleBytes, this)) &&

@@ -128,7 +128,7 @@ TEST(PhotonTracerFaults, PhotonsOrGridBeyondTheDeviceLimitsAreNamed)
   EXPECT_EQ(vtkOpenCLLiveHandles(0), before) << "nothing may be allocated before the check";
   EXPECT_EQ(context->GetNumberOfEnqueues(), enqueues);
 
-  // A 48^3 scattering grid: 2.5 MiB per accumulator.
+  // A 48^3 scattering grid: 5.1 MiB for the radiance and direction accumulators.
   observer->Clear();
   tracer->SetInputData(SphereInFog(48));
   tracer->SetNumberOfPhotons(1 << 12);
