@@ -33,9 +33,9 @@
 // REFRACTA_SKIP (empty-space skipping, below), REFRACTA_HAS_SURFACES (opaque triangle surfaces,
 // below; view_surfaces.cl), REFRACTA_SURFACE_NEAREST (no irradiance interpolation),
 // REFRACTA_DIELECTRIC (glass triangles: paths split at them, see refracta_view_dielectric_split)
-// with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>, REFRACTA_PACKED_MEDIUM (the
-// extinction is grey: `extinction` holds float4 (sigma, emission RGB) per voxel and `emission` is
-// not read, one gather per step instead of two). With REFRACTA_HAS_SINGLE the volume caustic's
+// with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>, REFRACTA_PACKED_MEDIUM (an
+// emitting medium with a grey extinction: `extinction` holds float4 (sigma, emission RGB) per voxel
+// and `emission` is not read, one gather per step instead of two). With REFRACTA_HAS_SINGLE the volume caustic's
 // bricks are read where causticSub > 1 (view_caustic.cl).
 //
 // Glass bodies (REFRACTA_DIELECTRIC; `bodies`, refracta_surfaces.cl): a leg refracted into the
@@ -511,7 +511,7 @@ inline refracta_view_leg refracta_view_march(
 #endif
       const refracta_view_stencil st = refracta_view_make_stencil(dims, u);
       // The grid's extinction and emission at the step's midpoint: one float4 gather from the
-      // packed (sigma, emission) layout where the extinction is grey, else one per field.
+      // packed (sigma, emission) layout of an emitting grey medium, else one per field.
 #ifdef REFRACTA_PACKED_MEDIUM
       const float4 packed = refracta_view_sample4(extinction, &st);
       float3 sigma = (float3)(packed.x);

@@ -296,9 +296,9 @@ public:
   int GetLightingVolumeCausticSubdivision() const;
 
   /**
-   * Whether the medium last set has a grey extinction (the same in every channel, as from any
-   * vtkVolumeProperty's scalar opacity), so that its extinction and emission are one float4 per
-   * voxel on the device: one gather per step instead of two.
+   * Whether the medium last set has emission and a grey extinction (the same in every channel,
+   * as from any vtkVolumeProperty's scalar opacity), so that its extinction and emission are one
+   * float4 per voxel on the device: one gather per step instead of two.
    */
   bool GetMediumIsPacked() const;
 

@@ -39,14 +39,11 @@ std::vector<float> PackGreyMedium(
   const std::vector<float>& extinction, const std::vector<float>& emission)
 {
   const size_t n = extinction.size() / 3;
-  std::vector<float> packed(4 * n, 0.0f);
+  std::vector<float> packed(4 * n);
   for (size_t i = 0; i < n; ++i)
   {
     packed[4 * i] = extinction[3 * i];
-    if (!emission.empty())
-    {
-      std::copy_n(emission.begin() + 3 * i, 3, packed.begin() + 4 * i + 1);
-    }
+    std::copy_n(emission.begin() + 3 * i, 3, packed.begin() + 4 * i + 1);
   }
   return packed;
 }

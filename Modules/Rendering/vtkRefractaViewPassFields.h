@@ -25,8 +25,8 @@ void FetchFloats(vtkDataArray* array, int comps, std::vector<float>& out);
 // Whether 3-component values (x fastest) have the same value in every component of every tuple.
 bool IsGrey(const std::vector<float>& rgb);
 
-// (sigma, emission RGB) per voxel from a grey extinction (3 components) and an emission (3
-// components, or empty for none), as the kernel's REFRACTA_PACKED_MEDIUM reads them.
+// (sigma, emission RGB) per voxel from a grey extinction and an emission (3 components each, the
+// same number of tuples), as the kernel's REFRACTA_PACKED_MEDIUM reads them.
 std::vector<float> PackGreyMedium(
   const std::vector<float>& extinction, const std::vector<float>& emission);
 

@@ -80,9 +80,9 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
     return created;
   };
 
-  // Extinction and emission: one float4 per voxel (sigma, emission RGB) where the extinction is
-  // grey (the kernel's REFRACTA_PACKED_MEDIUM: one gather per step instead of two), else one
-  // buffer each.
+  // Extinction and emission: one float4 per voxel (sigma, emission RGB) where there is emission
+  // and the extinction is grey (the kernel's REFRACTA_PACKED_MEDIUM: one gather per step instead
+  // of two), else one buffer each (without emission, packing would only add a float per voxel).
   std::vector<float> extinction, emission;
   std::vector<uint8_t> flags(n, 0);
   fetch(vtkRefractaMedium::EXTINCTION, extinction);
@@ -93,7 +93,7 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
     fetch(vtkRefractaMedium::EMISSION, emission);
     MarkNonzero(emission, 3, SourceFlag, flags);
   }
-  in.PackedMedium = IsGrey(extinction);
+  in.PackedMedium = in.HasEmission && IsGrey(extinction);
   in.Emission.Reset();
   if (in.PackedMedium)
   {
