@@ -370,7 +370,10 @@ __kernel void refracta_view_pass(const int4 dims, const float4 spacing,
   }
 #endif
   surfaceDepthOut[pixel] = centre.firstDepth;
-  const float alpha = 1.0f - (transmittance.x + transmittance.y + transmittance.z) / 3.0f;
+  // A multiplication, not '/ 3': OpenCL lets a division be 2.5 ulp off, and NVIDIA's driver
+  // rounds 3 / 3 above 1, which made the alpha of a clear pixel -1e-7 (clamped all the same).
+  const float alpha =
+    clamp(1.0f - (transmittance.x + transmittance.y + transmittance.z) * (1.0f / 3.0f), 0.0f, 1.0f);
   vstore4((float4)(radianceSum, alpha), pixel, hdr);
   steps[pixel] = count;
   vstore4((float4)(transmittance, 0.0f), pixel, transmittanceOut);
