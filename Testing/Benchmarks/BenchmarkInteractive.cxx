@@ -14,6 +14,7 @@
 //
 //   BenchmarkInteractive [--size N] [--photons P] [--width W] [--height H] [--runs R]
 //                        [--csv FILE] [--profile] [--persistent-only] [--warm-start]
+//                        [--transfers]
 // Defaults are the target configuration: 128^3, 2^20 photons, 640 x 480, 5 runs.
 // --profile times every OpenCL call of the persistent frames (vtkOpenCLKernelProfile): device_s is
 // the median device time per frame (kernels and transfers), cl_host_s the host's wall time inside
@@ -21,7 +22,8 @@
 // Each interaction's kernels and transfers are printed, longest first. --persistent-only skips the
 // fresh pipelines (their columns read 0) where device time is scarce. --warm-start turns on the
 // persistent pipeline's LatticeWarmStart (a light move iterates the lattice on from the last
-// field); lattice_steps is the median of its steps per frame.
+// field); lattice_steps is the median of its steps per frame. --transfers first measures host <->
+// device copies of one lighting array from pageable and from pinned host memory.
 #include "RefractaBenchmark.h"
 
 #include "vtkCamera.h"
@@ -63,6 +65,7 @@ struct Options
   bool Profile = false;
   bool PersistentOnly = false;
   bool WarmStart = false;
+  bool Transfers = false;
 };
 
 double Seconds(const std::function<bool()>& work)
@@ -74,6 +77,54 @@ double Seconds(const std::function<bool()>& work)
     std::exit(1);
   }
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Host <-> device copy rates for one lighting array of the scene (N^3 RGB floats), the way the
+// passes hand the lighting volume on today: from and to pageable host memory (a std::vector, what
+// a vtkFloatArray holds), and from and to pinned memory (a CL_MEM_ALLOC_HOST_PTR buffer, mapped),
+// which a device-resident hand-off or pinned staging would use. Medians of `runs` copies, GB/s.
+void MeasureTransfers(vtkOpenCLContext* context, int n, int runs)
+{
+  const size_t bytes = size_t(n) * n * n * 3 * sizeof(float);
+  vtkOpenCLBuffer device = context->CreateBuffer(CL_MEM_READ_WRITE, bytes, nullptr, "transfer");
+  vtkOpenCLBuffer pinned = context->CreateBuffer(
+    CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, bytes, nullptr, "pinned staging");
+  if (!device || !pinned)
+  {
+    std::cout << "  transfers: buffers of " << bytes << " bytes could not be created\n";
+    return;
+  }
+  cl_int status = CL_SUCCESS;
+  void* mapped = clEnqueueMapBuffer(context->GetQueue(), pinned.Get(), CL_TRUE,
+    CL_MAP_READ | CL_MAP_WRITE, 0, bytes, 0, nullptr, nullptr, &status);
+  if (status != CL_SUCCESS || !mapped)
+  {
+    std::cout << "  transfers: clEnqueueMapBuffer failed (" << status << ")\n";
+    return;
+  }
+  std::vector<float> pageable(bytes / sizeof(float), 1.0f);
+  auto rate = [&](void* host, bool read)
+  {
+    std::vector<double> rates;
+    for (int r = 0; r < runs + 1; ++r) // the first copy is a warm-up
+    {
+      const double t = Seconds([&] {
+        return read ? context->ReadBuffer(device.Get(), bytes, host)
+                    : context->WriteBuffer(device.Get(), bytes, host) && context->Finish();
+      });
+      if (r > 0)
+      {
+        rates.push_back(bytes / t * 1e-9);
+      }
+    }
+    return refracta::bench::Median(rates);
+  };
+  std::cout << "  transfers of one lighting array (" << bytes / 1048576.0
+            << " MiB), GB/s: pageable read " << rate(pageable.data(), true) << ", write "
+            << rate(pageable.data(), false) << "; pinned read " << rate(mapped, true)
+            << ", write " << rate(mapped, false) << "\n";
+  clEnqueueUnmapMemObject(context->GetQueue(), pinned.Get(), mapped, 0, nullptr, nullptr);
+  context->Finish();
 }
 
 // A smooth blob: density 1 in the core falling to 0 at the box's edge, with some structure.
@@ -210,11 +261,13 @@ int main(int argc, char* argv[])
       o.PersistentOnly = true;
     else if (arg == "--warm-start")
       o.WarmStart = true;
+    else if (arg == "--transfers")
+      o.Transfers = true;
     else
     {
       std::cerr << "usage: BenchmarkInteractive [--size N] [--photons P] [--width W] "
                    "[--height H] [--runs R] [--csv FILE] [--profile] [--persistent-only] "
-                   "[--warm-start]\n";
+                   "[--warm-start] [--transfers]\n";
       return 2;
     }
   }
@@ -228,6 +281,10 @@ int main(int argc, char* argv[])
             << " x " << o.Height << ", " << o.Runs << " runs on " << context->GetDeviceName()
             << "\n";
 
+  if (o.Transfers)
+  {
+    MeasureTransfers(context, o.Size, o.Runs);
+  }
   context->SetProfileKernels(o.Profile);
   vtkOpenCLKernelProfile* profile = context->GetKernelProfile();
   Scene scene(o.Size);
