@@ -118,6 +118,19 @@ cl_int vtkOpenCLSetKernelArgsFrom(cl_kernel kernel, cl_uint first, const Args&..
 }
 
 /**
+ * Sets kernel arguments index, index + 1, ... and advances index past them: kernels whose
+ * arguments come in groups (each set by its own code) are set group after group, with no
+ * argument index written down twice.
+ */
+template <typename... Args>
+cl_int vtkOpenCLAppendKernelArgs(cl_kernel kernel, cl_uint& index, const Args&... args)
+{
+  const cl_int status = vtkOpenCLSetKernelArgsFrom(kernel, index, args...);
+  index += static_cast<cl_uint>(sizeof...(Args));
+  return status;
+}
+
+/**
  * Sets kernel arguments 0, 1, ... (vtkOpenCLSetKernelArgsFrom from 0).
  */
 template <typename... Args>

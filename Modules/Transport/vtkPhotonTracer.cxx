@@ -336,19 +336,54 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
   tallies = alloc.Make(CL_MEM_READ_WRITE, PHOTON_TALLY_COUNT * sizeof(cl_long), nullptr, "tallies");
   counters =
     alloc.Make(CL_MEM_READ_WRITE, PHOTON_COUNTER_COUNT * sizeof(cl_long), nullptr, "counters");
+  const cl_uint photonCount = static_cast<cl_uint>(photons);
+  const cl_uint seed = this->Seed;
+  // Both march kernels take the common arguments, the index of the launch's first photon (set
+  // again for every launch, at firstPhotonArg), their own, the surfaces' and the volume
+  // caustic's, each group appended where the one before ended. Returns the index of the volume
+  // caustic's first argument, 0 on failure.
+  cl_uint firstPhotonArg = 0;
+  auto setMarchArguments = [&](cl_kernel kernel, const char* what, const auto&... own) -> cl_uint
+  {
+    cl_uint next = 0;
+    const cl_uint firstPhoton = 0;
+    const bool set = ctx->Check(vtkOpenCLAppendKernelArgs(kernel, next, pos.Get(), dirs.Get(),
+                                  power.Get(), photonCount, nBuffer.Get(), gradBuffer.Get(),
+                                  extBuffer.Get(), albBuffer.Get(), octree.Get(), dims, spacing,
+                                  deposits.Get(), tallies.Get(), counters.Get(), seed),
+                       what, this) &&
+      (firstPhotonArg = next,
+        ctx->Check(vtkOpenCLAppendKernelArgs(kernel, next, firstPhoton, own...), what, this)) &&
+      this->SetSurfaceArguments(run, kernel, next);
+    return set ? next : 0;
+  };
   vtkOpenCLKernel march = ctx->CreateKernel(trace, "photon_march", this);
+  cl_uint marchCausticArg = 0;
   if (!extBuffer || !albBuffer || !deposits || !tallies || !counters || !march ||
     !this->UploadSurfaces(run) || !this->UploadAnalogScattering(run) ||
-    !this->SetSurfaceArguments(run, march.Get(), 16) ||
+    (marchCausticArg = setMarchArguments(march.Get(), "clSetKernelArg(photon_march)")) == 0 ||
     !ctx->ZeroBuffer(deposits.Get(), accumulators * sizeof(cl_long), this) ||
     !ctx->ZeroBuffer(tallies.Get(), PHOTON_TALLY_COUNT * sizeof(cl_long), this) ||
     !ctx->ZeroBuffer(counters.Get(), PHOTON_COUNTER_COUNT * sizeof(cl_long), this))
   {
     return false;
   }
-  const cl_uint photonCount = static_cast<cl_uint>(photons);
-  const cl_uint seed = this->Seed;
+  // Launches of `kernel` over photons [first, first + count), at most `chunk` each.
   const size_t chunk = size_t(1) << 16;
+  auto runMarch = [&](cl_kernel kernel, const char* name, size_t first, size_t count)
+  {
+    for (size_t sub = first; sub < first + count; sub += chunk)
+    {
+      const cl_uint firstPhoton = static_cast<cl_uint>(sub);
+      if (!ctx->Check(vtkOpenCLSetKernelArgsFrom(kernel, firstPhotonArg, firstPhoton),
+            "clSetKernelArg(first photon)", this) ||
+        !Run1D(ctx, kernel, std::min(chunk, first + count - sub), name, this))
+      {
+        return false;
+      }
+    }
+    return true;
+  };
   this->NumberOfChunks = 0;
   this->NumberOfBatches = 0;
   if (this->StepsPerChunk > 0)
@@ -362,15 +397,17 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
     vtkOpenCLBuffer status =
       alloc.Make(CL_MEM_READ_WRITE, photons * sizeof(cl_uint4), nullptr, "photon status");
     vtkOpenCLBuffer active = alloc.Make(CL_MEM_READ_WRITE, sizeof(cl_int), nullptr, "active");
+    const cl_uint k = static_cast<cl_uint>(this->StepsPerChunk);
+    cl_uint causticArg = 0;
     if (!marchChunk || !state || !status || !active ||
-      !this->SetSurfaceArguments(run, marchChunk.Get(), 20) ||
-      !this->SetVolumeCausticArguments(run, marchChunk.Get(), 35, 0) ||
+      (causticArg = setMarchArguments(marchChunk.Get(), "clSetKernelArg(photon_march_chunk)",
+         state.Get(), status.Get(), k, active.Get())) == 0 ||
+      !this->SetVolumeCausticArguments(run, marchChunk.Get(), causticArg, 0) ||
       !ctx->ZeroBuffer(status.Get(), photons * sizeof(cl_uint4), this))
     {
       return false;
     }
     const double radianceFactor = 1.0 / (scale * m.Spacing[0] * m.Spacing[1] * m.Spacing[2]);
-    const cl_uint k = static_cast<cl_uint>(this->StepsPerChunk);
     // Curved rays stop at MaximumNumberOfSteps; straight ones cross at most the grid's diagonal
     // in voxel edges. The bound only guards against a hang.
     const size_t bound = static_cast<size_t>(this->MaximumNumberOfSteps) + 4 +
@@ -384,20 +421,9 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
       {
         return false;
       }
-      for (size_t first = 0; first < photons; first += chunk)
+      if (!runMarch(marchChunk.Get(), "photon_march_chunk", 0, photons))
       {
-        const cl_uint firstId = static_cast<cl_uint>(first);
-        if (!ctx->Check(
-              vtkOpenCLSetKernelArgs(marchChunk.Get(), pos.Get(), dirs.Get(), power.Get(),
-                photonCount, nBuffer.Get(), gradBuffer.Get(), extBuffer.Get(), albBuffer.Get(),
-                octree.Get(), dims, spacing, deposits.Get(), tallies.Get(), counters.Get(), seed,
-                firstId, state.Get(), status.Get(), k, active.Get()),
-              "clSetKernelArg(photon_march_chunk)", this) ||
-          !Run1D(
-            ctx, marchChunk.Get(), std::min(chunk, photons - first), "photon_march_chunk", this))
-        {
-          return false;
-        }
+        return false;
       }
       cl_int count = 0;
       if (!ctx->ReadBuffer(active.Get(), sizeof(cl_int), &count, this))
@@ -425,26 +451,10 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
   // every photon's random stream depends on its index only, so the batches do not change the
   // result. PhotonBatchSize 0 sizes each batch from the rate measured so far to take about
   // TargetBatchSeconds (at most doubling from one batch to the next).
-  // Photons [first, first + count) marched, in launches of at most `chunk`.
   auto launchMarch = [&](size_t first, size_t count)
-  {
-    for (size_t sub = first; sub < first + count; sub += chunk)
-    {
-      const cl_uint firstId = static_cast<cl_uint>(sub);
-      if (!ctx->Check(vtkOpenCLSetKernelArgs(march.Get(), pos.Get(), dirs.Get(), power.Get(),
-                        photonCount, nBuffer.Get(), gradBuffer.Get(), extBuffer.Get(),
-                        albBuffer.Get(), octree.Get(), dims, spacing, deposits.Get(),
-                        tallies.Get(), counters.Get(), seed, firstId),
-            "clSetKernelArg(photon_march)", this) ||
-        !Run1D(ctx, march.Get(), std::min(chunk, first + count - sub), "photon_march", this))
-      {
-        return false;
-      }
-    }
-    return true;
-  };
+  { return runMarch(march.Get(), "photon_march", first, count); };
   if (this->StepsPerChunk == 0 &&
-    (!this->PlaceVolumeCausticBricks(run, launchMarch, march.Get(), 31) ||
+    (!this->PlaceVolumeCausticBricks(run, launchMarch, march.Get(), marchCausticArg) ||
       !this->ReportProgress(run, ProgressGenerated)))
   {
     return false;

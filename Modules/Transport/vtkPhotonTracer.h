@@ -710,11 +710,12 @@ private:
   std::unique_ptr<SurfaceCache> KeptSurfaces; // the surfaces' device arrays of the last run
   // The surface stage (vtkPhotonTracerSurfaces.cxx): build the set and the emission box; upload
   // (or take the kept) device arrays and the irradiance accumulator; set the kernels' surface
-  // arguments from index `first`; read back the irradiance; keep the arrays for the next run.
+  // arguments from `index` on (advanced past them); read back the irradiance; keep the arrays
+  // for the next run.
   bool PrepareSurfaces(Internals& run);
   bool UploadSurfaces(Internals& run);
 #ifndef __VTK_WRAP__
-  bool SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint first);
+  bool SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint& index);
 #endif
   bool ResolveSurfaces(Internals& run);
   // Analog scattering (vtkPhotonTracerAnalog.cxx): the anisotropy and S_ms accumulator buffers

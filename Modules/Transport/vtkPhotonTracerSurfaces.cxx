@@ -261,7 +261,7 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
 }
 
 //------------------------------------------------------------------------------
-bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint first)
+bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint& index)
 {
   const cl_int nodeCount =
     run.Surfaces ? static_cast<cl_int>(run.Surfaces->GetBVH()->GetNumberOfNodes()) : 0;
@@ -270,7 +270,6 @@ bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_u
   const cl_mem info = run.SurfInfo.Get(), albedo = run.SurfAlbedo.Get();
   const cl_mem irradiance = run.SurfIrradiance.Get();
   cl_int status = CL_SUCCESS;
-  cl_uint index = first;
   auto set = [&](size_t bytes, const void* value)
   {
     if (status == CL_SUCCESS)
