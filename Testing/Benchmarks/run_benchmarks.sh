@@ -61,7 +61,7 @@ PROGRAMS="photon|BenchmarkPhotonTracer|--quick @CSV@|@CSV@
 lattice|BenchmarkLatticeBoltzmann|--sizes 8 --repeats 1 --max-steps 64 --csv @CSV@|--csv @CSV@
 table1|BenchmarkLatticeBoltzmann|--table1 8 --repeats 1 --csv @CSV@|--table1 64 --csv @CSV@
 viewpass|BenchmarkViewPass|--sizes 32 --medium 24 --runs 1 --photons 4096 --compare-size 32 --csv @CSV@|--csv @CSV@
-interactive|BenchmarkInteractive|--size 16 --photons 4096 --width 32 --height 24 --runs 1 --csv @CSV@|--csv @CSV@
+interactive|BenchmarkInteractive|--size 16 --photons 4096 --width 32 --height 24 --runs 1 --csv @CSV@|--runs 3 --csv @CSV@
 surfaces|BenchmarkSurfaces|--quick --csv @CSV@|--csv @CSV@
 singlescattering|BenchmarkSingleScattering|--sizes 24 --lights 1,8 --repeats 1 --max-photons 16384 --csv @CSV@|--csv @CSV@
 voxelize|BenchmarkVoxelize|--sizes 16 --runs 1 --theta 24 --phi 12 --csv @CSV@|--csv @CSV@
