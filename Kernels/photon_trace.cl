@@ -20,7 +20,10 @@
 //
 // Variants (-D, 0 or 1): REFRACTA_REFRACT (curved rays with n and grad n lookups; 0: straight rays, one
 // step to the exit), REFRACTA_ADAPTIVE (octree step; 0: REFRACTA_FIXED_STEP), REFRACTA_EXTINCTION (anything attenuates; 0:
-// no piece walk at all), REFRACTA_DEPOSIT (anything scatters; 0: no radiance accumulation).
+// no piece walk at all), REFRACTA_DEPOSIT (anything scatters; 0: no radiance accumulation),
+// REFRACTA_GREY_EXTINCTION and REFRACTA_GREY_ALBEDO (the medium's sigma_t, or albedo, is the same
+// in every channel and `extinction`, or `albedo`, holds one value per voxel instead of three: a
+// third of the gathers and of the cache footprint).
 // Lengths (REFRACTA_MIN_STEP, REFRACTA_MAX_STEP, REFRACTA_CAP_STEP, REFRACTA_FIXED_STEP) are in world units; REFRACTA_EXT_STEP_LIMIT is an
 // optical depth (0: off); REFRACTA_ROULETTE a fraction of the initial power; REFRACTA_FIXED_SCALE the
 // fixed-point scale of refracta_atomics.cl.
@@ -393,6 +396,18 @@ inline float3 photon_sample_hg(float3 d, float g, uint* rng)
 }
 #endif
 
+// sigma_t and the albedo at u (voxel units), RGB, from one value per voxel in a grey medium.
+#if REFRACTA_GREY_EXTINCTION
+#define photon_extinction_at(field, dims, u) ((float3)(refracta_sample1((field), (dims), (u))))
+#else
+#define photon_extinction_at(field, dims, u) refracta_sample3((field), (dims), (u))
+#endif
+#if REFRACTA_GREY_ALBEDO
+#define photon_albedo_at(field, dims, u) ((float3)(refracta_sample1((field), (dims), (u))))
+#else
+#define photon_albedo_at(field, dims, u) refracta_sample3((field), (dims), (u))
+#endif
+
 #if REFRACTA_EXTINCTION
 // One piece of a voxel (sigma_t and the albedo sampled at its midpoint `mid`): attenuate, split the
 // loss, deposit the scattered part in `voxel`, then roulette.
@@ -404,19 +419,19 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
 #if REFRACTA_INTERFACES
   const bool inBody = ps->body >= 0;
   const float3 sigmaT =
-    inBody ? ps->bodies[3 * ps->body].xyz : refracta_sample3(extinction, dims, mid);
+    inBody ? ps->bodies[3 * ps->body].xyz : photon_extinction_at(extinction, dims, mid);
 #else
-  const float3 sigmaT = refracta_sample3(extinction, dims, mid);
+  const float3 sigmaT = photon_extinction_at(extinction, dims, mid);
 #endif
   const float3 lost = ps->power * (-expm1(-sigmaT * length));
   ps->power = fmax(ps->power - lost, (float3)(0.0f));
   ps->pieces++;
 #if REFRACTA_DEPOSIT
 #if REFRACTA_INTERFACES
-  const float3 a = inBody ? ps->bodies[3 * ps->body + 1].xyz : refracta_sample3(albedo, dims, mid);
+  const float3 a = inBody ? ps->bodies[3 * ps->body + 1].xyz : photon_albedo_at(albedo, dims, mid);
   const float3 sc = lost * clamp(a, 0.0f, 1.0f);
 #else
-  const float3 sc = lost * clamp(refracta_sample3(albedo, dims, mid), 0.0f, 1.0f);
+  const float3 sc = lost * clamp(photon_albedo_at(albedo, dims, mid), 0.0f, 1.0f);
 #endif
   ps->absorbed += lost - sc;
   const float w = sc.x + sc.y + sc.z;
@@ -592,7 +607,7 @@ inline float photon_step(float3 x, float3 d, __global const uchar* octree,
 #if REFRACTA_EXTINCTION
   if (REFRACTA_EXT_STEP_LIMIT > 0.0f)
   {
-    const float3 st = refracta_sample3(extinction, dims, refracta_to_voxel(x, spacing));
+    const float3 st = photon_extinction_at(extinction, dims, refracta_to_voxel(x, spacing));
     const float m = fmax(st.x, fmax(st.y, st.z));
     if (m > 0.0f)
     {

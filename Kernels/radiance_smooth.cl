@@ -52,8 +52,21 @@ inline float radiance_pair_weight(float tau, float biasLimit, float tauLimit)
   return c <= 2.0f * biasLimit ? 1.0f : 2.0f * biasLimit / c;
 }
 
+// The largest channel of sigma_t in voxel v; `channels` values per voxel (1: a grey medium).
+inline float radiance_sigma_max(__global const float* extinction, int channels, size_t v)
+{
+  if (channels == 1)
+  {
+    return extinction[v];
+  }
+  const float3 s = vload3(v, extinction);
+  return fmax(s.x, fmax(s.y, s.z));
+}
+
+// extinctionChannels: 0 where nothing attenuates (the plain filter), else the values per voxel of
+// `extinction` (1 grey, 3 RGB).
 __kernel void radiance_smooth_axis(__global const float* in, __global const float* extinction,
-  const int attenuates, const int4 dims, const int axis, const float spacing,
+  const int extinctionChannels, const int4 dims, const int axis, const float spacing,
   const float biasLimit, const float tauLimit, __global float* out, const uint count)
 {
   const size_t id = get_global_id(0);
@@ -67,12 +80,8 @@ __kernel void radiance_smooth_axis(__global const float* in, __global const floa
   const int n = axis == 0 ? dims.x : (axis == 1 ? dims.y : dims.z);
   const size_t stride = axis == 0 ? 1 : (axis == 1 ? (size_t)dims.x : (size_t)dims.x * dims.y);
   const float3 own = vload3(id, in);
-  float sigmaOwn = 0.0f;
-  if (attenuates)
-  {
-    const float3 s = vload3(id, extinction);
-    sigmaOwn = fmax(s.x, fmax(s.y, s.z));
-  }
+  const bool attenuates = extinctionChannels > 0;
+  const float sigmaOwn = attenuates ? radiance_sigma_max(extinction, extinctionChannels, id) : 0.0f;
   float3 sum = own;
   for (int side = -1; side <= 1; side += 2)
   {
@@ -84,8 +93,7 @@ __kernel void radiance_smooth_axis(__global const float* in, __global const floa
     float g = 1.0f;
     if (attenuates)
     {
-      const float3 s = vload3(other, extinction);
-      const float sigmaOther = fmax(s.x, fmax(s.y, s.z));
+      const float sigmaOther = radiance_sigma_max(extinction, extinctionChannels, other);
       const float hi = fmax(sigmaOwn, sigmaOther), lo = fmin(sigmaOwn, sigmaOther);
       // Deposits are sigma_s x fluence: between unlike voxels the plain filter would move light
       // from the denser into the thinner one (out of a body into the vacuum beside it); with

@@ -198,6 +198,8 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DREFRACTA_ADAPTIVE=" << this->AdaptiveStepping
           << " -DREFRACTA_EXTINCTION=" << m.Attenuates << " -DREFRACTA_DEPOSIT=" << m.Scatters
           << " -DREFRACTA_NODE_CUTS=" << m.NodeCuts
+          << " -DREFRACTA_GREY_EXTINCTION=" << (m.ExtinctionChannels == 1)
+          << " -DREFRACTA_GREY_ALBEDO=" << (m.AlbedoChannels == 1)
           << " -DREFRACTA_MIN_STEP=" << FloatLiteral(this->MinimumStep * voxelUnit)
           << " -DREFRACTA_MAX_STEP=" << FloatLiteral(this->MaximumStep * voxelUnit)
           << " -DREFRACTA_CAP_STEP="
@@ -326,10 +328,13 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
   const size_t accumulators = m.Scatters ? voxels * 6 : 1;
   if (!run.ReusedMedium)
   {
+    std::vector<float> grey;
     extBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-      (m.Attenuates ? voxels * 3 : 1) * sizeof(float), m.Extinction.data(), "Extinction");
+      (m.Attenuates ? voxels * m.ExtinctionChannels : 1) * sizeof(float),
+      DeviceChannels(m.Extinction, m.ExtinctionChannels, grey).data(), "Extinction");
     albBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-      (m.Scatters ? voxels * 3 : 1) * sizeof(float), m.Albedo.data(), "Albedo");
+      (m.Scatters ? voxels * m.AlbedoChannels : 1) * sizeof(float),
+      DeviceChannels(m.Albedo, m.AlbedoChannels, grey).data(), "Albedo");
   }
   deposits = alloc.Make(CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr,
     "radiance and direction accumulators");
@@ -606,7 +611,7 @@ bool vtkPhotonTracer::SmoothAxes(Internals& run, cl_kernel filter, cl_mem a, cl_
   // One launch per axis, a -> b -> a -> b: the separable 3x3x3 filter, its result in b.
   const Medium& m = run.M;
   const cl_int4 dims = Int4(m.Dims);
-  const cl_int attenuates = m.Attenuates ? 1 : 0;
+  const cl_int extinctionChannels = m.Attenuates ? m.ExtinctionChannels : 0;
   const double bias = std::min(this->SmoothingBias, 1e30);
   const cl_float biasLimit = static_cast<cl_float>(bias);
   // The optical depth up to which the plain filter's bias stays within biasLimit: cosh(tau) - 1
@@ -617,7 +622,7 @@ bool vtkPhotonTracer::SmoothAxes(Internals& run, cl_kernel filter, cl_mem a, cl_
   for (cl_int axis = 0; axis < 3; ++axis)
   {
     const cl_float spacing = static_cast<cl_float>(m.Spacing[axis]);
-    if (!run.Context->Check(vtkOpenCLSetKernelArgs(filter, from, run.ExtBuffer.Get(), attenuates,
+    if (!run.Context->Check(vtkOpenCLSetKernelArgs(filter, from, run.ExtBuffer.Get(), extinctionChannels,
                               dims, axis, spacing, biasLimit, tauLimit, to, voxelCount),
           "clSetKernelArg(radiance_smooth_axis)", this) ||
       !Run1D(run.Context, filter, m.Voxels, "radiance_smooth_axis", this))

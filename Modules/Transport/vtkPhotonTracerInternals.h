@@ -120,6 +120,10 @@ struct Medium
   bool Scatters = false;
   // sigma_t bends steeply at some node (SteepExtinctionKinks): the walk cuts voxels at node planes.
   bool NodeCuts = false;
+  // Values per voxel of the device's extinction and albedo: 1 where every voxel's three channels
+  // are equal (a grey medium: the march gathers a third as much), else 3 (DeviceChannels).
+  int ExtinctionChannels = 3;
+  int AlbedoChannels = 3;
   double Lo[3], Hi[3];           // domain box, grid-local
   double ProxyLo[3], ProxyHi[3]; // photon start box, grid-local
 };
@@ -169,6 +173,10 @@ struct Allocator
 
 // Reads the medium's arrays (defaults for missing ones), the plan facts and the proxy box.
 void LoadMedium(vtkImageData* image, bool useProxy, Medium& m);
+// `rgb` (3 values per voxel) as the device takes it: itself with 3 channels, its first channel
+// (copied into `grey`) with 1.
+const std::vector<float>& DeviceChannels(
+  const std::vector<float>& rgb, int channels, std::vector<float>& grey);
 // Whether the glass bodies of `set` (dielectric surfaces with an inside medium; nullptr: none)
 // attenuate (sigma_t > 0) and scatter (sigma_t albedo > 0): the kernel variant must include them
 // even where the grid does neither (vtkPhotonTracerSurfaces.cxx).

@@ -32,6 +32,34 @@ void CopyArray(
 {
   vtkRefractaMedium::ReadArray(array, static_cast<vtkIdType>(voxels), comps, fallback, out);
 }
+
+// 1 where every voxel's three channels are equal, else 3.
+int ChannelsNeeded(const std::vector<float>& rgb)
+{
+  for (size_t i = 0; i + 2 < rgb.size(); i += 3)
+  {
+    if (rgb[i] != rgb[i + 1] || rgb[i] != rgb[i + 2])
+    {
+      return 3;
+    }
+  }
+  return 1;
+}
+}
+
+const std::vector<float>& DeviceChannels(
+  const std::vector<float>& rgb, int channels, std::vector<float>& grey)
+{
+  if (channels == 3)
+  {
+    return rgb;
+  }
+  grey.resize(rgb.size() / 3);
+  for (size_t v = 0; v < grey.size(); ++v)
+  {
+    grey[v] = rgb[3 * v];
+  }
+  return grey;
 }
 
 namespace
@@ -126,6 +154,8 @@ void LoadMedium(vtkImageData* image, bool useProxy, Medium& m)
     }
   }
   m.NodeCuts = m.Attenuates && SteepExtinctionKinks(m);
+  m.ExtinctionChannels = ChannelsNeeded(m.Extinction);
+  m.AlbedoChannels = ChannelsNeeded(m.Albedo);
   for (int c = 0; c < 3; ++c)
   {
     m.Lo[c] = -0.5 * m.Spacing[c];
@@ -469,8 +499,8 @@ void vtkPhotonTracer::KeepMedium(Internals& run)
   { return static_cast<double>((std::max<size_t>(bytes, 1) + 15) / 16 * 16); };
   const size_t v = m.Voxels;
   c->Bytes = rounded((m.Curved ? v : 1) * 4) + rounded(m.Curved ? v * 12 : 16) +
-    rounded(this->UsedOctree ? v : 16) + rounded((m.Attenuates ? v * 3 : 1) * 4) +
-    rounded((m.Scatters ? v * 3 : 1) * 4);
+    rounded(this->UsedOctree ? v : 16) + rounded((m.Attenuates ? v * m.ExtinctionChannels : 1) * 4) +
+    rounded((m.Scatters ? v * m.AlbedoChannels : 1) * 4);
   c->M = std::move(run.M);
   c->NBuffer = std::move(run.NBuffer);
   c->GradBuffer = std::move(run.GradBuffer);
@@ -563,8 +593,9 @@ bool vtkPhotonTracer::PlanMemory(Internals& run)
       plan->AddDeviceBuffer(grid, "octree", v, gridSetting);
       plan->AddDeviceBuffer(grid, "octree pyramid", v * 8 * 8 / 7, gridSetting);
     }
-    plan->AddDeviceBuffer(grid, "extinction", (m.Attenuates ? v : 1) * 12, gridSetting);
-    plan->AddDeviceBuffer(grid, "albedo", (m.Scatters ? v : 1) * 12, gridSetting);
+    plan->AddDeviceBuffer(
+      grid, "extinction", (m.Attenuates ? v * m.ExtinctionChannels : 1) * 4, gridSetting);
+    plan->AddDeviceBuffer(grid, "albedo", (m.Scatters ? v * m.AlbedoChannels : 1) * 4, gridSetting);
   }
   for (const char* what : { "photon positions", "photon directions", "photon powers" })
   {
