@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -96,17 +97,24 @@ struct PointMapping
   double Colour[3] = { 0, 0, 0 };
   double Index = 1.0;
 
-  // Empty when the values are usable; otherwise what is wrong and what would be valid.
-  std::string Map(double s, vtkPiecewiseFunction* opacity, vtkColorTransferFunction* colour,
-    vtkPiecewiseFunction* grey, vtkPiecewiseFunction* index, double unit, double emissionScale)
+  // True when the values are usable; otherwise false with `error` saying what is wrong and what
+  // would be valid (the message is built only then: a stream per voxel cost more than the mapping).
+  bool Map(double s, vtkPiecewiseFunction* opacity, vtkColorTransferFunction* colour,
+    vtkPiecewiseFunction* grey, vtkPiecewiseFunction* index, double unit, double emissionScale,
+    std::string& error)
   {
-    std::ostringstream why;
+    auto fail = [&error](const std::ostringstream& why)
+    {
+      error = why.str();
+      return false;
+    };
     const double a = opacity->GetValue(s);
     if (std::isnan(a))
     {
+      std::ostringstream why;
       why << "the scalar opacity function is NaN at scalar " << s
           << "; opacities must be numbers in [0, 1]";
-      return why.str();
+      return fail(why);
     }
     this->Sigma = -std::log1p(-std::min(std::max(a, 0.0), 1.0 - 1e-6)) / unit;
     if (grey)
@@ -121,20 +129,22 @@ struct PointMapping
     {
       if (std::isnan(c))
       {
+        std::ostringstream why;
         why << "the colour transfer function is NaN at scalar " << s
             << "; colours (albedos) must be numbers in [0, 1]";
-        return why.str();
+        return fail(why);
       }
       c = std::min(std::max(c, 0.0), 1.0);
     }
     const double emission = emissionScale * this->Sigma;
     if (!(this->Sigma <= FLT_MAX) || !(emission <= FLT_MAX))
     {
+      std::ostringstream why;
       why << "the extinction " << this->Sigma << " (opacity " << a << " over the unit distance "
           << unit << ") times the emission scale " << emissionScale
           << " exceeds the float range at scalar " << s
           << "; use a larger ScalarOpacityUnitDistance or a smaller EmissionScale";
-      return why.str();
+      return fail(why);
     }
     if (index)
     {
@@ -142,12 +152,13 @@ struct PointMapping
       this->Index = std::max(1.0, value);
       if (!(value <= FLT_MAX)) // NaN, +Inf, or beyond a float
       {
+        std::ostringstream why;
         why << "the refractive index function gives " << value << " at scalar " << s
             << "; indices must be finite numbers >= 1";
-        return why.str();
+        return fail(why);
       }
     }
-    return std::string();
+    return true;
   }
 };
 }
@@ -248,6 +259,10 @@ int vtkTransferFunctionMedium::RequestData(
     this->EmissionScale > 0 ? make(vtkRefractaMedium::EmissionName(), 3) : nullptr;
   anisotropy->FillValue(static_cast<float>(g));
   PointMapping point;
+  // Neighbouring voxels often share a scalar (a background, a segmented label): the last mapping
+  // is kept and reused (the transfer functions are evaluated once per run of equal scalars).
+  double mapped = std::numeric_limits<double>::quiet_NaN();
+  std::string why;
   for (vtkIdType i = 0; i < n; ++i)
   {
     if (i % 65536 == 0)
@@ -255,16 +270,20 @@ int vtkTransferFunctionMedium::RequestData(
       this->UpdateProgress(static_cast<double>(i) / n);
     }
     const double s = scalars->GetComponent(i, 0);
-    const std::string why = std::isfinite(s)
-      ? point.Map(s, opacity, colour, greyFunction, this->RefractiveIndexFunction, unit,
-          this->EmissionScale)
-      : "every scalar must be finite";
-    if (!why.empty())
+    if (!(s == mapped) &&
+      (!std::isfinite(s) ||
+        !point.Map(s, opacity, colour, greyFunction, this->RefractiveIndexFunction, unit,
+          this->EmissionScale, why)))
     {
+      if (why.empty())
+      {
+        why = "every scalar must be finite";
+      }
       vtkErrorMacro("Cannot map the input scalar " << s << " at point " << i << ": " << why << ".");
       output->Initialize();
       return 0;
     }
+    mapped = s;
     float* e = extinction->GetPointer(3 * i);
     float* al = albedo->GetPointer(3 * i);
     for (int k = 0; k < 3; ++k)

@@ -127,6 +127,39 @@ TEST(TransferFunctionMedium, NaNFromTheFunctionsIsRejected)
   }
 }
 
+TEST(TransferFunctionMedium, NonFiniteScalarsAreRejected)
+{
+  Fixture f;
+  vtkDataArray* scalars = f.Image->GetPointData()->GetScalars();
+  scalars->SetComponent(3, 0, NaN);
+  f.ExpectError("Cannot map the input scalar nan at point 3: every scalar must be finite");
+}
+
+// Neighbours with equal scalars reuse one evaluation of the functions: every voxel must still
+// get its own scalar's values (opacity 0.5 s over the unit distance 0.5, colour (1, 1 - s, 1 - s)).
+TEST(TransferFunctionMedium, RunsOfEqualScalarsMapLikeSingleOnes)
+{
+  Fixture f;
+  vtkDataArray* scalars = f.Image->GetPointData()->GetScalars();
+  const double values[8] = { 0.5, 0.5, 0.5, 0.2, 0.2, 0.5, 1.0, 0.2 };
+  for (int i = 0; i < 8; ++i)
+  {
+    scalars->SetComponent(i, 0, values[i]);
+  }
+  f.Mapping->Update();
+  vtkImageData* out = f.Mapping->GetOutput();
+  vtkDataArray* extinction = out->GetPointData()->GetArray("Extinction");
+  vtkDataArray* albedo = out->GetPointData()->GetArray("Albedo");
+  ASSERT_TRUE(extinction && albedo);
+  for (int i = 0; i < 8; ++i)
+  {
+    const double sigma = -std::log1p(-0.5 * values[i]) / 0.5;
+    EXPECT_NEAR(extinction->GetComponent(i, 0), sigma, 1e-6 * sigma) << "voxel " << i;
+    EXPECT_NEAR(albedo->GetComponent(i, 0), 1.0, 1e-6) << "voxel " << i;
+    EXPECT_NEAR(albedo->GetComponent(i, 1), 1.0 - values[i], 1e-6) << "voxel " << i;
+  }
+}
+
 TEST(TransferFunctionMedium, ValuesBeyondFloatAreRejected)
 {
   Fixture f;
