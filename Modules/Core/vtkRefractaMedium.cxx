@@ -120,6 +120,19 @@ std::vector<float> vtkRefractaMedium::ReadArray(
 }
 
 //------------------------------------------------------------------------------
+bool vtkRefractaMedium::IsGrey(const std::vector<float>& rgb)
+{
+  for (size_t i = 0; i + 2 < rgb.size(); i += 3)
+  {
+    if (rgb[i] != rgb[i + 1] || rgb[i] != rgb[i + 2])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 void vtkRefractaMedium::ReadArray(
   vtkDataArray* array, vtkIdType tuples, int components, float fallback, std::vector<float>& out)
 {

@@ -147,6 +147,12 @@ public:
    */
   static void ReadArray(
     vtkDataArray* array, vtkIdType tuples, int components, float fallback, std::vector<float>& out);
+
+  /**
+   * Whether interleaved RGB values (3 per point, as ReadArray gives them) are grey: the three
+   * channels equal at every point. Passes then keep one value per point on the device.
+   */
+  static bool IsGrey(const std::vector<float>& rgb);
 #endif
 
 protected:

@@ -22,19 +22,6 @@ void FetchFloats(vtkDataArray* array, int comps, std::vector<float>& out)
 }
 
 //------------------------------------------------------------------------------
-bool IsGrey(const std::vector<float>& rgb)
-{
-  for (size_t i = 0; i + 2 < rgb.size(); i += 3)
-  {
-    if (rgb[i] != rgb[i + 1] || rgb[i] != rgb[i + 2])
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
-//------------------------------------------------------------------------------
 std::vector<float> PackGreyMedium(
   const std::vector<float>& extinction, const std::vector<float>& emission)
 {

@@ -22,9 +22,6 @@ namespace vtkRefractaViewPassDetail
 // Copies an array's values into floats, `comps` components per tuple (fast path for floats).
 void FetchFloats(vtkDataArray* array, int comps, std::vector<float>& out);
 
-// Whether 3-component values (x fastest) have the same value in every component of every tuple.
-bool IsGrey(const std::vector<float>& rgb);
-
 // (sigma, emission RGB) per voxel from a grey extinction and an emission (3 components each, the
 // same number of tuples), as the kernel's REFRACTA_PACKED_MEDIUM reads them.
 std::vector<float> PackGreyMedium(

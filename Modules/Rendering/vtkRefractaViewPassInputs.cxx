@@ -93,7 +93,7 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
     fetch(vtkRefractaMedium::EMISSION, emission);
     MarkNonzero(emission, 3, SourceFlag, flags);
   }
-  in.PackedMedium = in.HasEmission && IsGrey(extinction);
+  in.PackedMedium = in.HasEmission && vtkRefractaMedium::IsGrey(extinction);
   in.Emission.Reset();
   if (in.PackedMedium)
   {

@@ -32,19 +32,6 @@ void CopyArray(
 {
   vtkRefractaMedium::ReadArray(array, static_cast<vtkIdType>(voxels), comps, fallback, out);
 }
-
-// 1 where every voxel's three channels are equal, else 3.
-int ChannelsNeeded(const std::vector<float>& rgb)
-{
-  for (size_t i = 0; i + 2 < rgb.size(); i += 3)
-  {
-    if (rgb[i] != rgb[i + 1] || rgb[i] != rgb[i + 2])
-    {
-      return 3;
-    }
-  }
-  return 1;
-}
 }
 
 const std::vector<float>& DeviceChannels(
@@ -154,8 +141,8 @@ void LoadMedium(vtkImageData* image, bool useProxy, Medium& m)
     }
   }
   m.NodeCuts = m.Attenuates && SteepExtinctionKinks(m);
-  m.ExtinctionChannels = ChannelsNeeded(m.Extinction);
-  m.AlbedoChannels = ChannelsNeeded(m.Albedo);
+  m.ExtinctionChannels = vtkRefractaMedium::IsGrey(m.Extinction) ? 1 : 3;
+  m.AlbedoChannels = vtkRefractaMedium::IsGrey(m.Albedo) ? 1 : 3;
   for (int c = 0; c < 3; ++c)
   {
     m.Lo[c] = -0.5 * m.Spacing[c];
