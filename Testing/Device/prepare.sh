@@ -3,7 +3,7 @@
 # there; NVIDIA's OpenCL driver): packs the build with the shared tool, lists the default suite's
 # tests for it, and copies the scripts, all into .gpu/ of the checkout (ignored by git).
 # Then run, with the device tool, from the checkout's root:
-#   command: bash .gpu/device_check.sh     carry: [".gpu"]     timeout_s: 400
+#   command: bash .gpu/device_check.sh     carry: [".gpu"]     timeout_s: 570
 # and read $OUT's log.txt, bench.tgz and tests.tgz (Documentation/Benchmarks.md, "GPU checks").
 #
 # usage, from the checkout's root: Testing/Device/prepare.sh [BUILD_DIR] (default ./build)
