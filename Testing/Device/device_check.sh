@@ -9,7 +9,7 @@ set -u
 root=$PWD
 gpu="$root/.gpu"
 exec > >(tee -a "$OUT/log.txt") 2>&1
-mkdir -p /tmp/b /tmp/results && tar -C /tmp/b -xzf "$gpu/bundle.tar.gz"
+mkdir -p /tmp/b /tmp/results /tmp/tests && tar -C /tmp/b -xzf "$gpu/bundle.tar.gz"
 # The tests and kernels were built with this checkout's absolute paths.
 src=$(cat "$gpu/source_dir")
 [ -e "$src" ] || { mkdir -p "$(dirname "$src")" && ln -s "$root" "$src"; }
@@ -43,7 +43,8 @@ echo "== tests ($(date -u +%T))"
 timeout 150 "$G" bash "$gpu/run_device_tests.sh" "$gpu/tests.txt" /tmp/b/bin /tmp/tests 6 \
   > $R/tests.txt 2>&1
 echo "$(grep -c ' rc=0 ' $R/tests.txt) of $(wc -l < "$gpu/tests.txt") tests passed"
-for t in $(grep -v ' rc=0 ' $R/tests.txt | awk '{ print $1 }'); do
+grep -v ' rc=' $R/tests.txt # what the runner itself printed (e.g. no NVIDIA driver)
+for t in $(grep ' rc=' $R/tests.txt | grep -v ' rc=0 ' | awk '{ print $1 }'); do
   echo "---- $t"
   grep -E "Failure|Which is|Expected|FAILED|ERR|rror|drift" /tmp/tests/$t.log | head -12
 done
