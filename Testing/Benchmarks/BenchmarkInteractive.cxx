@@ -14,7 +14,7 @@
 //
 //   BenchmarkInteractive [--size N] [--photons P] [--width W] [--height H] [--runs R]
 //                        [--csv FILE] [--profile] [--persistent-only] [--warm-start]
-//                        [--transfers]
+//                        [--transfers] [--only camera,light,material,full]
 // Defaults are the target configuration: 128^3, 2^20 photons, 640 x 480, 5 runs.
 // --profile times every OpenCL call of the persistent frames (vtkOpenCLKernelProfile): device_s is
 // the median device time per frame (kernels and transfers), cl_host_s the host's wall time inside
@@ -23,7 +23,8 @@
 // fresh pipelines (their columns read 0) where device time is scarce. --warm-start turns on the
 // persistent pipeline's LatticeWarmStart (a light move iterates the lattice on from the last
 // field); lattice_steps is the median of its steps per frame. --transfers first measures host <->
-// device copies of one lighting array from pageable and from pinned host memory.
+// device copies of one lighting array from pageable and from pinned host memory. --only runs
+// some of the interactions (camera, light, material, full).
 #include "RefractaBenchmark.h"
 
 #include "vtkCamera.h"
@@ -67,6 +68,7 @@ struct Options
   bool PersistentOnly = false;
   bool WarmStart = false;
   bool Transfers = false;
+  std::string Only; // comma-separated first words of the interactions to run (empty: all)
 };
 
 double Seconds(const std::function<bool()>& work)
@@ -277,11 +279,13 @@ int main(int argc, char* argv[])
       o.WarmStart = true;
     else if (arg == "--transfers")
       o.Transfers = true;
+    else if (arg == "--only")
+      o.Only = next();
     else
     {
       std::cerr << "usage: BenchmarkInteractive [--size N] [--photons P] [--width W] "
                    "[--height H] [--runs R] [--csv FILE] [--profile] [--persistent-only] "
-                   "[--warm-start] [--transfers]\n";
+                   "[--warm-start] [--transfers] [--only camera,light,material,full]\n";
       return 2;
     }
   }
@@ -314,6 +318,11 @@ int main(int argc, char* argv[])
   int frame = 0;
   for (const Interaction& interaction : Interactions())
   {
+    const std::string key = interaction.Name.substr(0, interaction.Name.find(' '));
+    if (!o.Only.empty() && ("," + o.Only + ",").find("," + key + ",") == std::string::npos)
+    {
+      continue;
+    }
     std::vector<double> fresh, kept, device, clHost, steps,
       stage[vtkRefractaRenderPipeline::NUMBER_OF_STAGES];
     std::string kernels;
