@@ -9,12 +9,15 @@
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkRefractaHostThreads.h"
 #include "vtkRefractaMedium.h"
+#include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkVersionMacros.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -30,6 +33,7 @@ vtkTransferFunctionMedium::vtkTransferFunctionMedium()
   this->SetNumberOfOutputPorts(1);
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+  vtkRefractaHostThreads::UseThreadedBackend(); // the mapping runs on every core
 }
 
 vtkTransferFunctionMedium::~vtkTransferFunctionMedium() = default;
@@ -258,47 +262,71 @@ int vtkTransferFunctionMedium::RequestData(
   vtkFloatArray* emission =
     this->EmissionScale > 0 ? make(vtkRefractaMedium::EmissionName(), 3) : nullptr;
   anisotropy->FillValue(static_cast<float>(g));
-  PointMapping point;
-  // Neighbouring voxels often share a scalar (a background, a segmented label): the last mapping
-  // is kept and reused (the transfer functions are evaluated once per run of equal scalars).
-  double mapped = std::numeric_limits<double>::quiet_NaN();
-  std::string why;
-  for (vtkIdType i = 0; i < n; ++i)
+  // Blocks of voxels in parallel (vtkSMPTools; VTK evaluates its transfer functions without
+  // changing them), each block with its own mapping; the first voxel that cannot be mapped (in
+  // index order, as a serial loop would find it) is mapped again below to report why.
+  vtkPiecewiseFunction* indexFunction = this->RefractiveIndexFunction;
+  const double emissionScale = this->EmissionScale;
+  auto mapRange = [&](vtkIdType begin, vtkIdType end, std::atomic<vtkIdType>& firstBad)
   {
-    if (i % 65536 == 0)
+    PointMapping point;
+    // Neighbouring voxels often share a scalar (a background, a segmented label): the last
+    // mapping is reused (the functions are evaluated once per run of equal scalars).
+    double mapped = std::numeric_limits<double>::quiet_NaN();
+    std::string why;
+    for (vtkIdType i = begin; i < end; ++i)
     {
-      this->UpdateProgress(static_cast<double>(i) / n);
+      const double s = scalars->GetComponent(i, 0);
+      if (!(s == mapped) &&
+        (!std::isfinite(s) ||
+          !point.Map(s, opacity, colour, greyFunction, indexFunction, unit, emissionScale, why)))
+      {
+        vtkIdType known = firstBad.load();
+        while (i < known && !firstBad.compare_exchange_weak(known, i))
+        {
+        }
+        return;
+      }
+      mapped = s;
+      float* e = extinction->GetPointer(3 * i);
+      float* al = albedo->GetPointer(3 * i);
+      float* em = emission ? emission->GetPointer(3 * i) : nullptr;
+      for (int k = 0; k < 3; ++k)
+      {
+        e[k] = static_cast<float>(point.Sigma);
+        al[k] = static_cast<float>(point.Colour[k]);
+        if (em)
+        {
+          em[k] = static_cast<float>(emissionScale * point.Colour[k] * point.Sigma);
+        }
+      }
+      if (index)
+      {
+        index->SetValue(i, static_cast<float>(point.Index));
+      }
     }
+  };
+  std::atomic<vtkIdType> firstBad(n);
+  const vtkIdType progressStep = 1 << 18; // voxels between progress reports
+  for (vtkIdType first = 0; first < n && firstBad.load() == n; first += progressStep)
+  {
+    this->UpdateProgress(static_cast<double>(first) / n);
+    vtkSMPTools::For(first, std::min(n, first + progressStep),
+      [&](vtkIdType begin, vtkIdType end) { mapRange(begin, end, firstBad); });
+  }
+  if (firstBad.load() < n)
+  {
+    const vtkIdType i = firstBad.load();
     const double s = scalars->GetComponent(i, 0);
-    if (!(s == mapped) &&
-      (!std::isfinite(s) ||
-        !point.Map(s, opacity, colour, greyFunction, this->RefractiveIndexFunction, unit,
-          this->EmissionScale, why)))
+    PointMapping point;
+    std::string why = "every scalar must be finite";
+    if (std::isfinite(s))
     {
-      if (why.empty())
-      {
-        why = "every scalar must be finite";
-      }
-      vtkErrorMacro("Cannot map the input scalar " << s << " at point " << i << ": " << why << ".");
-      output->Initialize();
-      return 0;
+      point.Map(s, opacity, colour, greyFunction, indexFunction, unit, emissionScale, why);
     }
-    mapped = s;
-    float* e = extinction->GetPointer(3 * i);
-    float* al = albedo->GetPointer(3 * i);
-    for (int k = 0; k < 3; ++k)
-    {
-      e[k] = static_cast<float>(point.Sigma);
-      al[k] = static_cast<float>(point.Colour[k]);
-      if (emission)
-      {
-        emission->SetComponent(i, k, this->EmissionScale * point.Colour[k] * point.Sigma);
-      }
-    }
-    if (index)
-    {
-      index->SetValue(i, static_cast<float>(point.Index));
-    }
+    vtkErrorMacro("Cannot map the input scalar " << s << " at point " << i << ": " << why << ".");
+    output->Initialize();
+    return 0;
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -135,6 +135,22 @@ TEST(TransferFunctionMedium, NonFiniteScalarsAreRejected)
   f.ExpectError("Cannot map the input scalar nan at point 3: every scalar must be finite");
 }
 
+// The mapping runs in parallel blocks: with two bad scalars far apart, the error still names the
+// first one in index order (what a serial loop reports).
+TEST(TransferFunctionMedium, TheFirstBadScalarIsReported)
+{
+  Fixture f;
+  f.Image->SetDimensions(64, 64, 64);
+  vtkNew<vtkDoubleArray> s;
+  s->SetName("density");
+  s->SetNumberOfTuples(64 * 64 * 64);
+  s->Fill(0.5);
+  s->SetValue(200000, NaN);
+  s->SetValue(50000, NaN);
+  f.Image->GetPointData()->SetScalars(s);
+  f.ExpectError("Cannot map the input scalar nan at point 50000: every scalar must be finite");
+}
+
 // Neighbours with equal scalars reuse one evaluation of the functions: every voxel must still
 // get its own scalar's values (opacity 0.5 s over the unit distance 0.5, colour (1, 1 - s, 1 - s)).
 TEST(TransferFunctionMedium, RunsOfEqualScalarsMapLikeSingleOnes)
