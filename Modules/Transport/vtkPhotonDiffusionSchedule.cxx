@@ -191,8 +191,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
   bool callbackFailed = false;
   const int perChunk = this->DiffusionStepsPerChunk;
   this->Tracer->SetChunkCallback(
-    [solver, perChunk, &diffusionSteps, &callbackFailed](
-      cl_mem deposits, double rf, double df, int)
+    [solver, perChunk, &diffusionSteps, &callbackFailed](cl_mem deposits, double rf, double df, int)
     {
       const int before = solver->GetStepsDone();
       if (!solver->SetSourceFromFixedPoint(deposits, rf, df) ||

@@ -437,8 +437,7 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
       }
       stillActive = count;
       ++this->NumberOfChunks;
-      if (this->Callback &&
-        !this->Callback(deposits.Get(), radianceFactor, 1.0 / scale, count))
+      if (this->Callback && !this->Callback(deposits.Get(), radianceFactor, 1.0 / scale, count))
       {
         vtkErrorMacro("The chunk callback failed after chunk " << this->NumberOfChunks << ".");
         return false;
@@ -622,8 +621,9 @@ bool vtkPhotonTracer::SmoothAxes(Internals& run, cl_kernel filter, cl_mem a, cl_
   for (cl_int axis = 0; axis < 3; ++axis)
   {
     const cl_float spacing = static_cast<cl_float>(m.Spacing[axis]);
-    if (!run.Context->Check(vtkOpenCLSetKernelArgs(filter, from, run.ExtBuffer.Get(), extinctionChannels,
-                              dims, axis, spacing, biasLimit, tauLimit, to, voxelCount),
+    if (!run.Context->Check(
+          vtkOpenCLSetKernelArgs(filter, from, run.ExtBuffer.Get(), extinctionChannels, dims, axis,
+            spacing, biasLimit, tauLimit, to, voxelCount),
           "clSetKernelArg(radiance_smooth_axis)", this) ||
       !Run1D(run.Context, filter, m.Voxels, "radiance_smooth_axis", this))
     {

@@ -55,8 +55,7 @@ bool vtkPhotonTracer::ResolveMultipleScattering(Internals& run)
   }
   const size_t voxels = run.M.Voxels;
   run.Multiple->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
-  if (!this->ResolveDeposits(
-        run, run.MultipleFixed.Get(), 0, nullptr, 0, 3, run.Multiple, nullptr))
+  if (!this->ResolveDeposits(run, run.MultipleFixed.Get(), 0, nullptr, 0, 3, run.Multiple, nullptr))
   {
     return false;
   }

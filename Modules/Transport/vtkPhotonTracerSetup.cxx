@@ -486,7 +486,8 @@ void vtkPhotonTracer::KeepMedium(Internals& run)
   { return static_cast<double>((std::max<size_t>(bytes, 1) + 15) / 16 * 16); };
   const size_t v = m.Voxels;
   c->Bytes = rounded((m.Curved ? v : 1) * 4) + rounded(m.Curved ? v * 12 : 16) +
-    rounded(this->UsedOctree ? v : 16) + rounded((m.Attenuates ? v * m.ExtinctionChannels : 1) * 4) +
+    rounded(this->UsedOctree ? v : 16) +
+    rounded((m.Attenuates ? v * m.ExtinctionChannels : 1) * 4) +
     rounded((m.Scatters ? v * m.AlbedoChannels : 1) * 4);
   c->M = std::move(run.M);
   c->NBuffer = std::move(run.NBuffer);

@@ -23,7 +23,7 @@
 // fresh pipelines (their columns read 0) where device time is scarce. --warm-start turns on the
 // persistent pipeline's LatticeWarmStart (a light move iterates the lattice on from the last
 // field); lattice_steps is the median of its steps per frame. --transfers first measures host <->
-// device copies of one lighting array from pageable and from pinned host memory. --only runs
+// device copies of one lighting array from pageable, pinned and pinned-staged memory. --only runs
 // some of the interactions (camera, light, material, full).
 #include "RefractaBenchmark.h"
 
@@ -123,8 +123,7 @@ void MeasureTransfers(vtkOpenCLContext* context, int n, int runs)
             return done && (!staged || std::memcpy(host, mapped, bytes));
           }
           return (!staged || std::memcpy(mapped, host, bytes)) &&
-            context->WriteBuffer(device.Get(), bytes, staged ? mapped : host) &&
-            context->Finish();
+            context->WriteBuffer(device.Get(), bytes, staged ? mapped : host) && context->Finish();
         });
       if (r > 0)
       {
@@ -135,10 +134,10 @@ void MeasureTransfers(vtkOpenCLContext* context, int n, int runs)
   };
   std::cout << "  transfers of one lighting array (" << bytes / 1048576.0
             << " MiB), GB/s: pageable read " << rate(pageable.data(), true) << ", write "
-            << rate(pageable.data(), false) << "; pinned read " << rate(mapped, true)
-            << ", write " << rate(mapped, false) << "; pageable staged through pinned read "
-            << rate(pageable.data(), true, true) << ", write "
-            << rate(pageable.data(), false, true) << "\n";
+            << rate(pageable.data(), false) << "; pinned read " << rate(mapped, true) << ", write "
+            << rate(mapped, false) << "; pageable staged through pinned read "
+            << rate(pageable.data(), true, true) << ", write " << rate(pageable.data(), false, true)
+            << "\n";
   clEnqueueUnmapMemObject(context->GetQueue(), pinned.Get(), mapped, 0, nullptr, nullptr);
   context->Finish();
 }
@@ -280,7 +279,20 @@ int main(int argc, char* argv[])
     else if (arg == "--transfers")
       o.Transfers = true;
     else if (arg == "--only")
+    {
       o.Only = next();
+      std::string rest = o.Only + ",";
+      for (size_t comma; (comma = rest.find(',')) != std::string::npos; rest.erase(0, comma + 1))
+      {
+        const std::string key = rest.substr(0, comma);
+        if (key != "camera" && key != "light" && key != "material" && key != "full")
+        {
+          std::cerr << "BenchmarkInteractive: --only " << o.Only << ": unknown interaction '" << key
+                    << "' (valid: camera, light, material, full, comma-separated)\n";
+          return 2;
+        }
+      }
+    }
     else
     {
       std::cerr << "usage: BenchmarkInteractive [--size N] [--photons P] [--width W] "

@@ -164,7 +164,8 @@ int RunTable1(int n, int repeats, bool persistent, const std::string& csv)
       chunks, during, steps);
     std::fflush(stdout);
     out << n << "," << name << "," << k << "," << Median(total) << "," << Median(marching) << ","
-        << Median(solve) << "," << chunks << "," << during << "," << steps << "," << (persistent ? 1 : 0) << "\n";
+        << Median(solve) << "," << chunks << "," << during << "," << steps << ","
+        << (persistent ? 1 : 0) << "\n";
   }
   if (persistent)
   {

@@ -71,8 +71,8 @@ TEST(PhotonChannels, GreyLayoutMatchesTheRgbLayout)
       worst[c] = std::max(worst[c], std::abs(b->GetComponent(v, c) - expected) / peak);
     }
   }
-  std::printf("peak %g; largest difference / peak: red %.2e, green %.2e, blue (x 1/2) %.2e\n",
-    peak, worst[0], worst[1], worst[2]);
+  std::printf("peak %g; largest difference / peak: red %.2e, green %.2e, blue (x 1/2) %.2e\n", peak,
+    worst[0], worst[1], worst[2]);
   for (int c = 0; c < 3; ++c)
   {
     EXPECT_LT(worst[c], 1e-5) << "channel " << c;
