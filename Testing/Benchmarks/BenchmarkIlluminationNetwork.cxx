@@ -60,6 +60,17 @@ int main(int argc, char* argv[])
     {
       csv = argv[i + 1];
     }
+    else
+    {
+      std::fprintf(stderr, "usage: BenchmarkIlluminationNetwork [--sizes 1024,16384] "
+                           "[--directions 32,128] [--frames 5] [--csv FILE]\n");
+      return 2;
+    }
+  }
+  if (argc % 2 == 0)
+  {
+    std::fprintf(stderr, "option %s needs a value\n", argv[argc - 1]);
+    return 2;
   }
   vtkOpenCLContext* context = vtkOpenCLContext::GetDefault();
   if (!context->Initialize())

@@ -8,9 +8,11 @@
 // `adaptive-no-control` is adaptive with StepTolerance 0 (the marcher before the step control of
 // issue 18): the run prints the control's cost as a same-run ratio.
 //
-// Usage: BenchmarkPhotonTracer [--quick] [--max-log2 K] [--runs R] [output.csv]
+// Usage: BenchmarkPhotonTracer [--quick] [--max-log2 K] [--runs R] [--modes LIST] [output.csv]
 //   --quick: 32^3 grid, 2^12 photons, one run, adaptive only (a smoke test of the program).
 //   --max-log2 K: stop at 2^K photons (default 20). --runs R: runs per median (default 3).
+//   --modes LIST: only these step modes (comma-separated, from adaptive, adaptive-no-control,
+//   fixed-1, adaptive+ext0.1, adaptive-min0.5), e.g. for a profile of one row.
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -21,6 +23,8 @@
 #include "vtkPointData.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkSmartPointer.h"
+
+#include "RefractaBenchmark.h"
 
 #include <sys/resource.h>
 
@@ -185,6 +189,9 @@ int main(int argc, char* argv[])
   int maxLog2 = 20;
   int runsWanted = 3;
   std::string csv = "BenchmarkPhotonTracer.csv";
+  std::vector<std::string> onlyModes;
+  const std::vector<std::string> knownModes = { "adaptive", "adaptive-no-control", "fixed-1",
+    "adaptive+ext0.1", "adaptive-min0.5" };
   for (int a = 1; a < argc; ++a)
   {
     if (std::strcmp(argv[a], "--quick") == 0)
@@ -199,9 +206,31 @@ int main(int argc, char* argv[])
     {
       runsWanted = std::atoi(argv[++a]);
     }
-    else
+    else if (std::strcmp(argv[a], "--modes") == 0 && a + 1 < argc)
+    {
+      onlyModes = refracta::bench::SplitList(argv[++a]);
+      for (const auto& mode : onlyModes)
+      {
+        if (std::find(knownModes.begin(), knownModes.end(), mode) == knownModes.end())
+        {
+          std::fprintf(stderr,
+            "--modes: unknown mode '%s' (valid: adaptive, adaptive-no-control, fixed-1, "
+            "adaptive+ext0.1, adaptive-min0.5)\n",
+            mode.c_str());
+          return 2;
+        }
+      }
+    }
+    else if (argv[a][0] != '-')
     {
       csv = argv[a];
+    }
+    else
+    {
+      std::fprintf(stderr,
+        "usage: BenchmarkPhotonTracer [--quick] [--max-log2 K] [--runs R] [--modes LIST] "
+        "[output.csv]\n");
+      return std::strcmp(argv[a], "--help") == 0 ? 0 : 2;
     }
   }
   vtkOpenCLContext* context = vtkOpenCLContext::GetDefault();
@@ -266,6 +295,13 @@ int main(int argc, char* argv[])
     {
       modes.push_back("adaptive+ext0.1");
       modes.push_back("adaptive-min0.5");
+    }
+    if (!onlyModes.empty())
+    {
+      modes.erase(std::remove_if(modes.begin(), modes.end(),
+                    [&](const std::string& m)
+                    { return std::find(onlyModes.begin(), onlyModes.end(), m) == onlyModes.end(); }),
+        modes.end());
     }
     for (const auto& mode : modes)
     {
