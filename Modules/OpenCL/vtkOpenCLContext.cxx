@@ -492,7 +492,7 @@ bool vtkOpenCLContext::WriteBuffer(
   cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter)
 {
   return bytes == 0 ||
-    this->Enqueue("clEnqueueWriteBuffer", "[write]", reporter,
+    this->Enqueue("clEnqueueWriteBuffer", "[write]", bytes, reporter,
       [&](cl_event* event) {
         return clEnqueueWriteBuffer(
           this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, event);
@@ -503,7 +503,7 @@ bool vtkOpenCLContext::WriteBuffer(
 bool vtkOpenCLContext::ReadBuffer(cl_mem buffer, size_t bytes, void* data, vtkObject* reporter)
 {
   return bytes == 0 ||
-    this->Enqueue("clEnqueueReadBuffer", "[read]", reporter,
+    this->Enqueue("clEnqueueReadBuffer", "[read]", bytes, reporter,
       [&](cl_event* event) {
         return clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, event);
       });
@@ -514,7 +514,7 @@ bool vtkOpenCLContext::ZeroBuffer(cl_mem buffer, size_t bytes, vtkObject* report
 {
   const cl_uint zero = 0;
   return bytes == 0 ||
-    this->Enqueue("clEnqueueFillBuffer", "[fill]", reporter,
+    this->Enqueue("clEnqueueFillBuffer", "[fill]", bytes, reporter,
       [&](cl_event* event)
       {
         return clEnqueueFillBuffer(this->Queue, buffer, &zero, sizeof(zero), 0,
@@ -523,8 +523,8 @@ bool vtkOpenCLContext::ZeroBuffer(cl_mem buffer, size_t bytes, vtkObject* report
 }
 
 //------------------------------------------------------------------------------
-bool vtkOpenCLContext::Enqueue(const char* call, const char* label, vtkObject* reporter,
-  const std::function<cl_int(cl_event*)>& enqueue)
+bool vtkOpenCLContext::Enqueue(const char* call, const char* label, size_t bytes,
+  vtkObject* reporter, const std::function<cl_int(cl_event*)>& enqueue)
 {
   if (this->InjectedFault(call, reporter))
   {
@@ -532,8 +532,13 @@ bool vtkOpenCLContext::Enqueue(const char* call, const char* label, vtkObject* r
   }
   const double start = HostClock();
   cl_event event = nullptr;
-  return this->Check(enqueue(this->ProfileKernels ? &event : nullptr), call, reporter) &&
-    this->RecordLaunch(label, event, start);
+  if (!this->Check(enqueue(this->ProfileKernels ? &event : nullptr), call, reporter))
+  {
+    return false;
+  }
+  const std::string entry =
+    this->ProfileKernels && reporter ? std::string(label) + " " + reporter->GetClassName() : label;
+  return this->RecordLaunch(entry.c_str(), event, start, bytes);
 }
 
 //------------------------------------------------------------------------------
@@ -572,11 +577,13 @@ double vtkOpenCLContext::HostClock()
 }
 
 //------------------------------------------------------------------------------
-bool vtkOpenCLContext::RecordLaunch(const char* label, cl_event event, double hostStart)
+bool vtkOpenCLContext::RecordLaunch(
+  const char* label, cl_event event, double hostStart, size_t bytes)
 {
   if (this->ProfileKernels)
   {
-    this->KernelProfile->Record(label, vtkOpenCLEvent(event), HostClock() - hostStart);
+    this->KernelProfile->Record(
+      label, vtkOpenCLEvent(event), HostClock() - hostStart, static_cast<double>(bytes));
   }
   else if (event)
   {

@@ -381,10 +381,11 @@ protected:
     vtkObject* reporter);
   // With ProfileKernels on, hands the call's event (or none) and the host's wall time since
   // `hostStart` (HostClock()) to the profile; always returns true so it chains after Check().
-  bool RecordLaunch(const char* label, cl_event event, double hostStart);
-  // One transfer or fill: the fault hook, the call (given the event to fill, or null when not
-  // profiling), its check, and its record under `label`.
-  bool Enqueue(const char* call, const char* label, vtkObject* reporter,
+  bool RecordLaunch(const char* label, cl_event event, double hostStart, size_t bytes = 0);
+  // One transfer or fill of `bytes`: the fault hook, the call (given the event to fill, or null
+  // when not profiling), its check, and its record under `label` followed by the reporter's class
+  // (who moved the data: the profile's per-pass transfer volumes).
+  bool Enqueue(const char* call, const char* label, size_t bytes, vtkObject* reporter,
     const std::function<cl_int(cl_event*)>& enqueue);
   static double HostClock();
   vtkSmartPointer<vtkOpenCLBinaryCache> DiskCache;

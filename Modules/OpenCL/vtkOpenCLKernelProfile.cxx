@@ -13,6 +13,7 @@ namespace
 // Fold finished events in once this many are pending: bounds the memory of a long run (the
 // lattice launches thousands of iterations) without a status query per launch.
 constexpr size_t FoldThreshold = 256;
+constexpr double MiB = 1048576.0;
 }
 
 struct vtkOpenCLKernelProfile::Pending
@@ -28,10 +29,12 @@ vtkOpenCLKernelProfile::vtkOpenCLKernelProfile()
 
 vtkOpenCLKernelProfile::~vtkOpenCLKernelProfile() = default;
 
-void vtkOpenCLKernelProfile::Record(const char* label, vtkOpenCLEvent event, double hostSeconds)
+void vtkOpenCLKernelProfile::Record(
+  const char* label, vtkOpenCLEvent event, double hostSeconds, double bytes)
 {
   const std::string name = label ? label : "(unnamed)";
   this->TotalOf(name).HostSeconds += hostSeconds;
+  this->TotalOf(name).Bytes += bytes;
   if (!event)
   {
     ++this->TotalOf(name).Launches;
@@ -55,7 +58,7 @@ vtkOpenCLKernelProfile::Total& vtkOpenCLKernelProfile::TotalOf(const std::string
       return t;
     }
   }
-  this->Totals.push_back({ label, 0, 0.0, 0.0 });
+  this->Totals.push_back({ label, 0, 0.0, 0.0, 0.0 });
   return this->Totals.back();
 }
 
@@ -150,6 +153,21 @@ double vtkOpenCLKernelProfile::GetTotalHostSeconds() const
   return sum;
 }
 
+double vtkOpenCLKernelProfile::GetBytes(int i) const
+{
+  return i >= 0 && i < this->GetNumberOfKernels() ? this->Totals[i].Bytes : 0.0;
+}
+
+double vtkOpenCLKernelProfile::GetTotalBytes() const
+{
+  double sum = 0.0;
+  for (const Total& t : this->Totals)
+  {
+    sum += t.Bytes;
+  }
+  return sum;
+}
+
 std::string vtkOpenCLKernelProfile::GetTable() const
 {
   std::vector<Total> sorted = this->Totals;
@@ -157,15 +175,16 @@ std::string vtkOpenCLKernelProfile::GetTable() const
     [](const Total& a, const Total& b) { return a.Seconds > b.Seconds; });
   const double all = this->GetTotalDeviceSeconds();
   std::ostringstream os;
-  os << "| kernel | launches | device s | share | host s in call |\n|---|---|---|---|---|\n";
+  os << "| kernel | launches | device s | share | host s in call | MiB moved |\n"
+        "|---|---|---|---|---|---|\n";
   for (const Total& t : sorted)
   {
     os << "| " << t.Label << " | " << t.Launches << " | " << std::setprecision(4) << t.Seconds
        << " | " << std::setprecision(3) << (all > 0 ? 100.0 * t.Seconds / all : 0.0) << "% | "
-       << std::setprecision(4) << t.HostSeconds << " |\n";
+       << std::setprecision(4) << t.HostSeconds << " | " << t.Bytes / MiB << " |\n";
   }
   os << "| total | | " << std::setprecision(4) << all << " | | " << this->GetTotalHostSeconds()
-     << " |\n";
+     << " | " << this->GetTotalBytes() / MiB << " |\n";
   return os.str();
 }
 
@@ -176,4 +195,5 @@ void vtkOpenCLKernelProfile::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PendingLaunches: " << this->PendingLaunches->size() << "\n";
   os << indent << "TotalDeviceSeconds: " << this->GetTotalDeviceSeconds() << "\n";
   os << indent << "TotalHostSeconds: " << this->GetTotalHostSeconds() << "\n";
+  os << indent << "TotalBytes: " << this->GetTotalBytes() << "\n";
 }

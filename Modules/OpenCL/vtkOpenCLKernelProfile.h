@@ -9,8 +9,9 @@
  * launches and the device time from CL_PROFILING_COMMAND_START to CL_PROFILING_COMMAND_END
  * (seconds). Events of finished launches are folded in as they accumulate, so a long run holds at
  * most a few hundred events. The context's transfers are recorded the same way under bracketed
- * labels ("[write]", "[read]", "[fill]"), and calls with no device work under theirs
- * ("[create buffer]", "[finish]"). Every entry also sums the host's wall time inside the OpenCL
+ * labels ("[write]", "[read]", "[fill]", followed by the class of the object that asked for the
+ * transfer where the caller named one, e.g. "[read] vtkPhotonTracer"), with the bytes they moved,
+ * and calls with no device work under theirs ("[create buffer]", "[finish]"). Every entry also sums the host's wall time inside the OpenCL
  * call (the enqueue, or the whole wait of a blocking transfer or clFinish): a frame's wall time
  * less GetTotalHostSeconds() is the host's own work, and GetTotalDeviceSeconds() is what the
  * device did of it.
@@ -61,10 +62,17 @@ public:
   /** Host wall time inside the OpenCL calls of entry i (seconds). */
   double GetHostSeconds(int i) const;
   double GetTotalHostSeconds() const;
+  /**
+   * Bytes of entry i: copied between host and device by a transfer, or set on the device by a
+   * fill (0 for kernels and waits).
+   */
+  double GetBytes(int i) const;
+  double GetTotalBytes() const;
   ///@}
 
   /**
-   * The totals as a Markdown table, longest first: label, launches, device seconds, share.
+   * The totals as a Markdown table, longest first: label, launches, device seconds, share, host
+   * seconds in the calls, MiB moved.
    */
   std::string GetTable() const;
 
@@ -73,9 +81,10 @@ public:
    * Keeps `event` (a finished or pending launch of `label`) until Collect() or until it has
    * finished and enough events are pending to fold the finished ones in, and adds `hostSeconds`
    * (the host's wall time inside the call) to the label's host total. A null event counts the
-   * call and its host time only.
+   * call and its host time only. `bytes`: what a transfer or fill moved (0 for a kernel).
    */
-  void Record(const char* label, vtkOpenCLEvent event, double hostSeconds = 0.0);
+  void Record(
+    const char* label, vtkOpenCLEvent event, double hostSeconds = 0.0, double bytes = 0.0);
 #endif
 
 protected:
@@ -92,6 +101,7 @@ private:
     int Launches = 0;
     double Seconds = 0.0;
     double HostSeconds = 0.0;
+    double Bytes = 0.0;
   };
   struct Pending;
   Total& TotalOf(const std::string& label);

@@ -3,6 +3,7 @@
 // process survives; programs come from the memory cache and, in a new context (a new process),
 // from the disk binary cache instead of being recompiled; a bad device selection is explained.
 #include "vtkCommand.h"
+#include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
 #include "vtkOpenCLKernelLibrary.h"
@@ -289,6 +290,22 @@ TEST(OpenCLContext, KernelProfileCountsLaunchesAndDeviceTime)
   }
   EXPECT_DOUBLE_EQ(profile->GetTotalHostSeconds(),
     profile->GetHostSeconds(0) + profile->GetHostSeconds(1) + profile->GetHostSeconds(2));
+  EXPECT_EQ(profile->GetBytes(0), n * sizeof(float));
+  EXPECT_EQ(profile->GetBytes(1), 2 * n * sizeof(float));
+  EXPECT_EQ(profile->GetBytes(2), 0.0);
+  EXPECT_EQ(profile->GetTotalBytes(), 3 * n * sizeof(float));
+  profile->Reset();
+
+  // A transfer asked for by an object is booked under its class: who moves how much.
+  vtkNew<vtkFloatArray> requester;
+  ASSERT_TRUE(context->ReadBuffer(yBuffer.Get(), n * sizeof(float), back.data(), requester));
+  ASSERT_TRUE(context->ZeroBuffer(yBuffer.Get(), n * sizeof(float), requester));
+  profile = context->GetKernelProfile();
+  ASSERT_EQ(profile->GetNumberOfKernels(), 2);
+  EXPECT_STREQ(profile->GetKernelLabel(0), "[read] vtkFloatArray");
+  EXPECT_STREQ(profile->GetKernelLabel(1), "[fill] vtkFloatArray");
+  EXPECT_EQ(profile->GetBytes(1), n * sizeof(float));
+  EXPECT_TRUE(Contains(profile->GetTable(), "| [read] vtkFloatArray | 1 |"));
   profile->Reset();
   EXPECT_EQ(profile->GetNumberOfKernels(), 0);
   EXPECT_EQ(profile->GetTotalDeviceSeconds(), 0.0);
