@@ -88,6 +88,8 @@ vtkRefractaRenderPipeline::vtkRefractaRenderPipeline()
   static_cast<vtkObject*>(this->Internal->Schedule->GetPhotonTracer())
     ->AddObserver(vtkCommand::ProgressEvent, forward);
   this->Internal->ViewPass->AddObserver(vtkCommand::ProgressEvent, forward);
+  // Every light move re-runs the tracer with the same sizes: its scratch buffers are kept.
+  this->Internal->Schedule->GetPhotonTracer()->ReuseScratchBuffersOn();
 }
 
 vtkRefractaRenderPipeline::~vtkRefractaRenderPipeline() = default;

@@ -166,6 +166,14 @@ bool vtkPhotonTracer::InitializeDevice(Internals& run)
   this->ComputedGradient = m.Curved && !m.HasGradient;
 
   run.Alloc = Allocator{ ctx, this };
+  if (this->ReuseScratchBuffers)
+  {
+    if (!this->Scratch)
+    {
+      this->Scratch = std::make_unique<ScratchPool>();
+    }
+    run.Alloc.Pool = this->Scratch.get();
+  }
   return true;
 }
 
@@ -747,6 +755,7 @@ int vtkPhotonTracer::RequestData(
     !this->ResolveMultipleScattering(run) || !this->ResolveSurfaces(run) ||
     !this->ResolveVolumeCaustic(run))
   {
+    this->ReleaseScratchBuffers(); // what a failed or aborted run left is not kept
     if (run.Aborted)
     {
       // An abort is not an error: the output stays empty, the device buffers are released with
@@ -757,12 +766,36 @@ int vtkPhotonTracer::RequestData(
     return 0;
   }
   this->PeakDeviceMemoryBytes = run.Alloc.Bytes;
+  if (run.Alloc.Pool)
+  {
+    run.Alloc.Pool->EndRun();
+  }
   this->WriteOutput(run, output);
   this->WriteVolumeCausticOutput(run, output);
   this->KeepMedium(run);
   this->KeepSurfaces(run);
   this->ReportProgress(run, 1.0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkPhotonTracer::SetReuseScratchBuffers(bool reuse)
+{
+  if (reuse != this->ReuseScratchBuffers)
+  {
+    this->ReuseScratchBuffers = reuse;
+    if (!reuse)
+    {
+      this->ReleaseScratchBuffers();
+    }
+    // No Modified(): the output does not depend on where the buffers come from.
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkPhotonTracer::ReleaseScratchBuffers()
+{
+  this->Scratch.reset();
 }
 
 //------------------------------------------------------------------------------
@@ -785,6 +818,8 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ExtinctionStepLimit: " << this->ExtinctionStepLimit << "\n";
   os << indent << "RouletteThreshold: " << this->RouletteThreshold << "\n";
   os << indent << "MaximumNumberOfSteps: " << this->MaximumNumberOfSteps << "\n";
+  os << indent << "ReuseScratchBuffers: " << (this->ReuseScratchBuffers ? "On" : "Off") << " ("
+     << (this->Scratch ? this->Scratch->Entries.size() : 0) << " kept)\n";
   os << indent << "MaximumNumberOfInterfaceEvents: " << this->MaximumNumberOfInterfaceEvents
      << "\n";
   os << indent << "CausticSubdivision: " << this->CausticSubdivision << "\n";

@@ -113,6 +113,10 @@ class vtkLightCollection;
 class vtkMatrix4x4;
 class vtkOpenCLContext;
 class vtkRefractaSurfaceSet;
+namespace vtkPhotonTracerDetail
+{
+struct ScratchPool;
+}
 
 class REFRACTATRANSPORT_EXPORT vtkPhotonTracer : public vtkImageAlgorithm
 {
@@ -589,6 +593,23 @@ public:
    */
   vtkGetMacro(LastRunReusedMedium, bool);
 
+  ///@{
+  /**
+   * Keep the run's scratch device buffers (the deposit accumulators, the photons' state, the
+   * resolve's and the smoothing's work arrays: about 120 bytes per voxel plus 64 per photon) for
+   * the next run of the same sizes, which then borrows them instead of creating them. Off by
+   * default: a run leaves only its medium on the device. vtkRefractaRenderPipeline turns it on
+   * for its persistent tracer, where every light move re-runs the tracer: on a CPU device each
+   * fresh buffer's first fill faults all its pages in (a light move at 128^3 filled 240 MiB of
+   * fresh buffers in 0.83 s, the kept ones in about 0.04 s; Benchmarks.md). Turning it off, or
+   * ReleaseScratchBuffers(), frees them.
+   */
+  virtual void SetReuseScratchBuffers(bool reuse);
+  vtkGetMacro(ReuseScratchBuffers, bool);
+  vtkBooleanMacro(ReuseScratchBuffers, bool);
+  void ReleaseScratchBuffers();
+  ///@}
+
   /**
    * Whether the last run had surfaces, and whether it reused the device copy of the surface set
    * (same set, not rebuilt since, same context) instead of uploading it.
@@ -708,6 +729,8 @@ private:
   std::unique_ptr<MediumCache> Cache; // the medium kept from the last successful run
   struct SurfaceCache;
   std::unique_ptr<SurfaceCache> KeptSurfaces; // the surfaces' device arrays of the last run
+  std::unique_ptr<vtkPhotonTracerDetail::ScratchPool> Scratch; // ReuseScratchBuffers
+  bool ReuseScratchBuffers = false;
   // The surface stage (vtkPhotonTracerSurfaces.cxx): build the set and the emission box; upload
   // (or take the kept) device arrays and the irradiance accumulator; set the kernels' surface
   // arguments from `index` on (advanced past them); read back the irradiance; keep the arrays

@@ -19,6 +19,7 @@
 #include "vtkRefractaMedium.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <array>
 #include <sstream>
 #include <string>
@@ -32,6 +33,44 @@ void CopyArray(
 {
   vtkRefractaMedium::ReadArray(array, static_cast<vtkIdType>(voxels), comps, fallback, out);
 }
+}
+
+vtkOpenCLBuffer ScratchPool::Borrow(
+  vtkOpenCLContext* ctx, cl_mem_flags flags, size_t bytes, const char* what, vtkObject* reporter)
+{
+  if (ctx != this->Context)
+  {
+    this->Entries.clear(); // another context's buffers are of no use here
+    this->Context = ctx;
+  }
+  const std::string name = what ? what : "";
+  auto kept = std::find_if(this->Entries.begin(), this->Entries.end(),
+    [&](const Entry& e)
+    { return !e.Borrowed && e.Flags == flags && e.Bytes == bytes && e.What == name; });
+  if (kept == this->Entries.end())
+  {
+    vtkOpenCLBuffer created = ctx->CreateBuffer(flags, bytes, nullptr, what, reporter);
+    if (!created)
+    {
+      return created;
+    }
+    this->Entries.push_back({ name, flags, bytes, std::move(created), false });
+    kept = this->Entries.end() - 1;
+  }
+  kept->Borrowed = true;
+  clRetainMemObject(kept->Buffer.Get());
+  return vtkOpenCLBuffer(kept->Buffer.Get());
+}
+
+void ScratchPool::EndRun()
+{
+  this->Entries.erase(std::remove_if(this->Entries.begin(), this->Entries.end(),
+                        [](const Entry& e) { return !e.Borrowed; }),
+    this->Entries.end());
+  for (Entry& e : this->Entries)
+  {
+    e.Borrowed = false;
+  }
 }
 
 const std::vector<float>& DeviceChannels(
