@@ -14,7 +14,7 @@
 //
 //   BenchmarkInteractive [--size N] [--photons P] [--width W] [--height H] [--runs R]
 //                        [--csv FILE] [--profile] [--persistent-only] [--warm-start]
-//                        [--transfers] [--only camera,light,material,full]
+//                        [--transfers] [--fresh-scratch] [--only camera,light,material,full]
 // Defaults are the target configuration: 128^3, 2^20 photons, 640 x 480, 5 runs.
 // --profile times every OpenCL call of the persistent frames (vtkOpenCLKernelProfile): device_s is
 // the median device time per frame (kernels and transfers), cl_host_s the host's wall time inside
@@ -24,7 +24,8 @@
 // persistent pipeline's LatticeWarmStart (a light move iterates the lattice on from the last
 // field); lattice_steps is the median of its steps per frame. --transfers first measures host <->
 // device copies of one lighting array from pageable, pinned and pinned-staged memory. --only runs
-// some of the interactions (camera, light, material, full).
+// some of the interactions (camera, light, material, full). --fresh-scratch turns the photon
+// tracer's ReuseScratchBuffers off (the persistent pipeline's default is on): its A/B.
 #include "RefractaBenchmark.h"
 
 #include "vtkCamera.h"
@@ -68,6 +69,7 @@ struct Options
   bool PersistentOnly = false;
   bool WarmStart = false;
   bool Transfers = false;
+  bool FreshScratch = false; // the tracer creates its scratch buffers every run (A/B)
   std::string Only; // comma-separated first words of the interactions to run (empty: all)
 };
 
@@ -214,6 +216,7 @@ vtkSmartPointer<vtkRefractaRenderPipeline> MakePipeline(Scene& scene, const Opti
   pipeline->AddLight(scene.Light);
   pipeline->SetCamera(scene.Camera);
   pipeline->GetPhotonTracer()->SetNumberOfPhotons(o.Photons);
+  pipeline->GetPhotonTracer()->SetReuseScratchBuffers(!o.FreshScratch);
   return pipeline;
 }
 
@@ -278,6 +281,8 @@ int main(int argc, char* argv[])
       o.WarmStart = true;
     else if (arg == "--transfers")
       o.Transfers = true;
+    else if (arg == "--fresh-scratch")
+      o.FreshScratch = true;
     else if (arg == "--only")
     {
       o.Only = next();
@@ -297,7 +302,8 @@ int main(int argc, char* argv[])
     {
       std::cerr << "usage: BenchmarkInteractive [--size N] [--photons P] [--width W] "
                    "[--height H] [--runs R] [--csv FILE] [--profile] [--persistent-only] "
-                   "[--warm-start] [--transfers] [--only camera,light,material,full]\n";
+                   "[--warm-start] [--transfers] [--fresh-scratch] "
+                   "[--only camera,light,material,full]\n";
       return 2;
     }
   }
