@@ -2,7 +2,7 @@
 // after photon_trace.cl (refracta_common.cl's random numbers) in the photon program.
 //
 // photon_generate: one work-item per photon of one light. Photon i takes point i of a 2D
-// rank-1 lattice (Roberts' R2 sequence in 32-bit fixed point, rotated by a seed-derived offset:
+// rank-1 lattice (marched in slot offset + w, where photonStream[offset + w] = offset + i) (Roberts' R2 sequence in 32-bit fixed point, rotated by a seed-derived offset:
 // low-discrepancy, deterministic) and maps it onto the light's footprint on the proxy box:
 //   directional light: a rectangle perpendicular to the travel direction covering the box's
 //     projection; photon power = E * (rectangle area) / N;
@@ -30,16 +30,22 @@ inline float2 photon_unit_disc(uint seed, uint i)
 }
 
 __kernel void photon_generate(__global float4* photonPos, __global float4* photonDir,
-  __global float4* photonPower, const uint offset, const uint count, const int positional,
+  __global float4* photonPower, __global const uint* photonStream, const uint offset,
+  const uint count, const int positional,
   const float4 origin, const float4 axis, const float4 basis1, const float4 basis2,
   const float4 spot, const float4 params, const float4 intensity, const float4 boxLo,
   const float4 boxHi, const uint rotation1, const uint rotation2, const float extent)
 {
-  const uint i = (uint)get_global_id(0);
-  if (i >= count)
+  const uint w = (uint)get_global_id(0);
+  if (w >= count)
   {
     return;
   }
+  // Slot offset + w holds lattice point i: the host orders a light's points so that neighbouring
+  // slots start close together (vtkPhotonTracer, CoherentPhotonOrder); the point's random stream
+  // is offset + i wherever it is marched.
+  const uint o = offset + w;
+  const uint i = photonStream[o] - offset;
   const float xi1 = (float)((rotation1 + (i + 1u) * PHOTON_R2_A1) >> 8) * (1.0f / 16777216.0f);
   const float xi2 = (float)((rotation2 + (i + 1u) * PHOTON_R2_A2) >> 8) * (1.0f / 16777216.0f);
   float3 start;
@@ -101,7 +107,6 @@ __kernel void photon_generate(__global float4* photonPos, __global float4* photo
       power = (float3)(0.0f);
     }
   }
-  const uint o = offset + i;
   photonPos[o] = (float4)(start, 0.0f);
   photonDir[o] = (float4)(dir, 0.0f);
   photonPower[o] = (float4)(power, 0.0f);

@@ -5,7 +5,8 @@
 // REFRACTA_INTERFACES only; photon_deposit_volume_caustic).
 
 // A new photon of emitted power `power`: its roulette threshold, zero tallies, its random stream
-// (by photon id, so the stream does not depend on launches or chunks) and the analog-scattering
+// (`id`: the photon's stream, photonStream[slot], so the stream depends neither on launches or
+// chunks nor on the slot the photon is marched in) and the analog-scattering
 // state; its body is found once the surfaces are set. Returns false, counting the photon as
 // missed, when it carries no power.
 inline bool photon_start(photon_state* ps, const float3 power, const uint seed, const uint id,
@@ -34,7 +35,7 @@ inline bool photon_start(photon_state* ps, const float3 power, const uint seed, 
 }
 
 __kernel void photon_march(__global const float4* photonPos, __global const float4* photonDir,
-  __global const float4* photonPower, const uint count, __global const float* refractiveIndex,
+  __global const float4* photonPower, __global const uint* photonStream, const uint count, __global const float* refractiveIndex,
   __global const float* gradient, __global const float* extinction, __global const float* albedo,
   __global const uchar* octree, const int4 dims, const float4 spacing,
   volatile __global long* deposits,
@@ -55,7 +56,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
     return;
   }
   photon_state ps;
-  if (!photon_start(&ps, photonPower[id].xyz, seed, id, anisotropy, multiple, counters))
+  if (!photon_start(&ps, photonPower[id].xyz, seed, photonStream[id], anisotropy, multiple, counters))
   {
     return;
   }
@@ -124,7 +125,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
 // gives the same books and, step for step, the same deposits. `active` counts the photons still
 // marching after the launch. One work-item per photon (offset `first`).
 __kernel void photon_march_chunk(__global const float4* photonPos,
-  __global const float4* photonDir, __global const float4* photonPower, const uint count,
+  __global const float4* photonDir, __global const float4* photonPower,
+  __global const uint* photonStream, const uint count,
   __global const float* refractiveIndex, __global const float* gradient,
   __global const float* extinction, __global const float* albedo, __global const uchar* octree,
   const int4 dims, const float4 spacing, volatile __global long* deposits, volatile __global long* tallies,
@@ -158,7 +160,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   const bool fresh = st.x == 0u; // a new photon: its start body is found below
   if (fresh)
   {
-    if (!photon_start(&ps, photonPower[id].xyz, seed, id, anisotropy, multiple, counters))
+    if (!photon_start(&ps, photonPower[id].xyz, seed, photonStream[id], anisotropy, multiple, counters))
     {
       status[id] = (uint4)(2u, 0u, 0u, 0u);
       return;

@@ -31,11 +31,11 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <utility>
 #include <cstdint>
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkPhotonTracer);
@@ -263,13 +263,42 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   {
     return false;
   }
+  // Each light's two lattice rotations, and every slot's stream: a light's photons in coherent
+  // order (CoherentPhotonOrder), the sky's in lattice order.
   uint64_t seedState = 0x5eedULL ^ (static_cast<uint64_t>(this->Seed) << 17);
+  std::vector<std::array<cl_uint, 2>> rotations;
+  std::vector<cl_uint> streams(photons);
   cl_uint offset = 0;
   for (const auto& ls : lights)
   {
+    rotations.push_back({ SplitMix(seedState), SplitMix(seedState) });
+    cl_uint* slots = streams.data() + offset;
+    if (ls.Environment || !this->CoherentPhotonOrder)
+    {
+      std::iota(slots, slots + ls.Photons, 0u);
+    }
+    else
+    {
+      CoherentLatticeOrder(ls.Photons, rotations.back()[0], rotations.back()[1], slots);
+    }
+    for (cl_uint w = 0; w < ls.Photons; ++w)
+    {
+      slots[w] += offset;
+    }
+    offset += ls.Photons;
+  }
+  run.Streams = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, photons * sizeof(cl_uint),
+    streams.data(), "photon streams");
+  if (!run.Streams)
+  {
+    return false;
+  }
+  offset = 0;
+  for (const auto& ls : lights)
+  {
     const cl_uint count = ls.Photons;
-    const cl_uint r1 = SplitMix(seedState);
-    const cl_uint r2 = SplitMix(seedState);
+    const cl_uint r1 = rotations[&ls - lights.data()][0];
+    const cl_uint r2 = rotations[&ls - lights.data()][1];
     if (count == 0)
     {
       continue;
@@ -287,9 +316,9 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
     const cl_float4 params =
       Float4(1.0 - ls.OneMinusCos, ls.Exponent, ls.Measure / count, ls.OneMinusCos);
     if (!ctx->Check(
-          vtkOpenCLSetKernelArgs(generate.Get(), pos.Get(), dirs.Get(), power.Get(), offset, count,
-            positional, Float4(ls.Origin), Float4(ls.Axis), Float4(ls.Basis1), Float4(ls.Basis2),
-            Float4(ls.SpotAxis, ls.SpotCos), params,
+          vtkOpenCLSetKernelArgs(generate.Get(), pos.Get(), dirs.Get(), power.Get(),
+            run.Streams.Get(), offset, count, positional, Float4(ls.Origin), Float4(ls.Axis),
+            Float4(ls.Basis1), Float4(ls.Basis2), Float4(ls.SpotAxis, ls.SpotCos), params,
             Float4(ls.Colour[0] / unit, ls.Colour[1] / unit, ls.Colour[2] / unit),
             Float4(run.EmitLo), Float4(run.EmitHi), r1, r2, static_cast<cl_float>(ls.Extent)),
           "clSetKernelArg(photon_generate)", this) ||
@@ -360,11 +389,12 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
   {
     cl_uint next = 0;
     const cl_uint firstPhoton = 0;
-    const bool set = ctx->Check(vtkOpenCLAppendKernelArgs(kernel, next, pos.Get(), dirs.Get(),
-                                  power.Get(), photonCount, nBuffer.Get(), gradBuffer.Get(),
-                                  extBuffer.Get(), albBuffer.Get(), octree.Get(), dims, spacing,
-                                  deposits.Get(), tallies.Get(), counters.Get(), seed),
-                       what, this) &&
+    const bool set =
+      ctx->Check(vtkOpenCLAppendKernelArgs(kernel, next, pos.Get(), dirs.Get(), power.Get(),
+                   run.Streams.Get(), photonCount, nBuffer.Get(), gradBuffer.Get(), extBuffer.Get(),
+                   albBuffer.Get(), octree.Get(), dims, spacing, deposits.Get(), tallies.Get(),
+                   counters.Get(), seed),
+        what, this) &&
       (firstPhotonArg = next,
         ctx->Check(vtkOpenCLAppendKernelArgs(kernel, next, firstPhoton, own...), what, this)) &&
       this->SetSurfaceArguments(run, kernel, next);
@@ -818,6 +848,7 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ExtinctionStepLimit: " << this->ExtinctionStepLimit << "\n";
   os << indent << "RouletteThreshold: " << this->RouletteThreshold << "\n";
   os << indent << "MaximumNumberOfSteps: " << this->MaximumNumberOfSteps << "\n";
+  os << indent << "CoherentPhotonOrder: " << (this->CoherentPhotonOrder ? "On" : "Off") << "\n";
   os << indent << "ReuseScratchBuffers: " << (this->ReuseScratchBuffers ? "On" : "Off") << " ("
      << (this->Scratch ? this->Scratch->Entries.size() : 0) << " kept)\n";
   os << indent << "MaximumNumberOfInterfaceEvents: " << this->MaximumNumberOfInterfaceEvents

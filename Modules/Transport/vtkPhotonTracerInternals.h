@@ -202,6 +202,15 @@ struct Allocator
   }
 };
 
+// The order in which a light's `count` photons are marched: slot w takes point order[w] of the
+// generation's rank-1 lattice (photon_generate.cl: point i is (xi1, xi2) = the top bits of
+// r1 + (i + 1) a1 and r2 + (i + 1) a2), sorted by the Morton code of its cell in a 2^b x 2^b grid
+// over (xi1, xi2) with about four points per cell (counting sort, O(count)). Neighbouring slots
+// then start close together on the light's footprint (or in its cone), follow nearby paths and
+// find the voxels the photon before them touched still in the cache; which points are traced,
+// and each one's random stream, do not change (the deposits are the same to the bit).
+void CoherentLatticeOrder(uint32_t count, uint32_t r1, uint32_t r2, uint32_t* order);
+
 // Reads the medium's arrays (defaults for missing ones), the plan facts and the proxy box.
 void LoadMedium(vtkImageData* image, bool useProxy, Medium& m);
 // `rgb` (3 values per voxel) as the device takes it: itself with 3 channels, its first channel
@@ -274,6 +283,7 @@ struct vtkPhotonTracer::Internals
   cl_program Trace = nullptr;
   vtkOpenCLBuffer NBuffer, GradBuffer, Octree;
   vtkOpenCLBuffer Pos, Dirs, Power;
+  vtkOpenCLBuffer Streams; // per slot: the photon's random stream (and lattice point + offset)
   // Deposits: six cl_long per voxel (the Radiance accumulator's RGB, then the direction sums).
   vtkOpenCLBuffer ExtBuffer, AlbBuffer, Deposits, Tallies, Counters;
   std::vector<cl_long> Tally, Count;

@@ -73,6 +73,49 @@ void ScratchPool::EndRun()
   }
 }
 
+namespace
+{
+// Spreads the low 16 bits of v to the even bits.
+uint32_t SpreadBits(uint32_t v)
+{
+  v &= 0xffffu;
+  v = (v | (v << 8)) & 0x00ff00ffu;
+  v = (v | (v << 4)) & 0x0f0f0f0fu;
+  v = (v | (v << 2)) & 0x33333333u;
+  v = (v | (v << 1)) & 0x55555555u;
+  return v;
+}
+}
+
+void CoherentLatticeOrder(uint32_t count, uint32_t r1, uint32_t r2, uint32_t* order)
+{
+  // photon_generate.cl's R2 generators (PHOTON_R2_A1, PHOTON_R2_A2).
+  constexpr uint32_t a1 = 3242174889u, a2 = 2447445413u;
+  int bits = 1;
+  while (bits < 10 && (uint64_t(1) << (2 * (bits + 1))) <= count / 4)
+  {
+    ++bits;
+  }
+  const uint32_t shift = 32 - bits;
+  std::vector<uint32_t> code(count);
+  std::vector<uint32_t> first((size_t(1) << (2 * bits)) + 1, 0);
+  for (uint32_t i = 0; i < count; ++i)
+  {
+    const uint32_t x = (r1 + (i + 1u) * a1) >> shift;
+    const uint32_t y = (r2 + (i + 1u) * a2) >> shift;
+    code[i] = SpreadBits(x) | (SpreadBits(y) << 1);
+    ++first[code[i] + 1];
+  }
+  for (size_t c = 1; c < first.size(); ++c)
+  {
+    first[c] += first[c - 1];
+  }
+  for (uint32_t i = 0; i < count; ++i)
+  {
+    order[first[code[i]]++] = i; // stable: equal cells keep the lattice's order
+  }
+}
+
 const std::vector<float>& DeviceChannels(
   const std::vector<float>& rgb, int channels, std::vector<float>& grey)
 {

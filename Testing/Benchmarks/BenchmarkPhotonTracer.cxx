@@ -6,13 +6,15 @@
 // memory, and the relative L2 error of Radiance against a reference run with 0.25-voxel fixed
 // steps (same photons, same seed: the error is the stepping's, not noise). Writes a CSV.
 // `adaptive-no-control` is adaptive with StepTolerance 0 (the marcher before the step control of
-// issue 18): the run prints the control's cost as a same-run ratio.
+// issue 18): the run prints the control's cost as a same-run ratio. `adaptive-lattice-order` is
+// adaptive with CoherentPhotonOrder off (the photons in the generation's order): the run prints
+// the coherent order's gain in voxel pieces per second (the same pieces, the same output).
 //
 // Usage: BenchmarkPhotonTracer [--quick] [--max-log2 K] [--runs R] [--modes LIST] [output.csv]
 //   --quick: 32^3 grid, 2^12 photons, one run, adaptive only (a smoke test of the program).
 //   --max-log2 K: stop at 2^K photons (default 20). --runs R: runs per median (default 3).
-//   --modes LIST: only these step modes (comma-separated, from adaptive, adaptive-no-control,
-//   fixed-1, adaptive+ext0.1, adaptive-min0.5), e.g. for a profile of one row.
+//   --modes LIST: only these modes (comma-separated, from adaptive, adaptive-lattice-order,
+//   adaptive-no-control, fixed-1, adaptive+ext0.1, adaptive-min0.5), e.g. for a profile of one.
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -131,6 +133,10 @@ Result Measure(vtkImageData* medium, int photons, const std::string& mode, int r
   {
     tracer->SetMinimumStep(0.5);
   }
+  else if (mode == "adaptive-lattice-order")
+  {
+    tracer->CoherentPhotonOrderOff(); // the photons in the generation's order (before issue 17)
+  }
   else if (mode == "adaptive-no-control")
   {
     tracer->SetStepTolerance(0.0); // the marcher before the step control (issue 18)
@@ -190,8 +196,8 @@ int main(int argc, char* argv[])
   int runsWanted = 3;
   std::string csv = "BenchmarkPhotonTracer.csv";
   std::vector<std::string> onlyModes;
-  const std::vector<std::string> knownModes = { "adaptive", "adaptive-no-control", "fixed-1",
-    "adaptive+ext0.1", "adaptive-min0.5" };
+  const std::vector<std::string> knownModes = { "adaptive", "adaptive-lattice-order",
+    "adaptive-no-control", "fixed-1", "adaptive+ext0.1", "adaptive-min0.5" };
   for (int a = 1; a < argc; ++a)
   {
     if (std::strcmp(argv[a], "--quick") == 0)
@@ -214,7 +220,8 @@ int main(int argc, char* argv[])
         if (std::find(knownModes.begin(), knownModes.end(), mode) == knownModes.end())
         {
           std::fprintf(stderr,
-            "--modes: unknown mode '%s' (valid: adaptive, adaptive-no-control, fixed-1, "
+            "--modes: unknown mode '%s' (valid: adaptive, adaptive-lattice-order, "
+            "adaptive-no-control, fixed-1, "
             "adaptive+ext0.1, adaptive-min0.5)\n",
             mode.c_str());
           return 2;
@@ -288,6 +295,7 @@ int main(int argc, char* argv[])
     std::vector<std::string> modes = { "adaptive" };
     if (!quick)
     {
+      modes.push_back("adaptive-lattice-order");
       modes.push_back("adaptive-no-control");
       modes.push_back("fixed-1");
     }
@@ -321,8 +329,11 @@ int main(int argc, char* argv[])
     const Result* a = nullptr;
     const Result* f = nullptr;
     const Result* u = nullptr;
+    const Result* l = nullptr;
     for (const auto& r : results)
     {
+      if (r.Photons == photons && r.Mode == "adaptive-lattice-order")
+        l = &r;
       if (r.Photons == photons && r.Mode == "adaptive")
         a = &r;
       if (r.Photons == photons && r.Mode == "fixed-1")
@@ -336,6 +347,14 @@ int main(int argc, char* argv[])
                   "steps x%.3f, marching time x%.3f; L2 error %.4f -> %.4f\n",
         static_cast<int>(std::lround(std::log2(photons))), a->Steps / u->Steps,
         a->Marching / u->Marching, u->Error, a->Error);
+    }
+    if (a && l)
+    {
+      std::printf("2^%d photons: coherent photon order (adaptive / adaptive-lattice-order): voxel "
+                  "pieces per second x%.2f (%.3g / %.3g), same pieces: %s\n",
+        static_cast<int>(std::lround(std::log2(photons))),
+        (a->Pieces / a->Marching) / (l->Pieces / l->Marching), a->Pieces / a->Marching,
+        l->Pieces / l->Marching, a->Pieces == l->Pieces && a->Error == l->Error ? "yes" : "NO");
     }
     if (a && f)
     {
