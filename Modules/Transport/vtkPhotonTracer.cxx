@@ -32,7 +32,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <numeric>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -263,37 +262,26 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   {
     return false;
   }
-  // Each light's two lattice rotations, and every slot's stream: a light's photons in coherent
-  // order (CoherentPhotonOrder), the sky's in lattice order.
+  // Each light's two lattice rotations, and every slot's random stream.
   uint64_t seedState = 0x5eedULL ^ (static_cast<uint64_t>(this->Seed) << 17);
   std::vector<std::array<cl_uint, 2>> rotations;
-  std::vector<cl_uint> streams(photons);
-  cl_uint offset = 0;
-  for (const auto& ls : lights)
+  for (size_t l = 0; l < lights.size(); ++l)
   {
     rotations.push_back({ SplitMix(seedState), SplitMix(seedState) });
-    cl_uint* slots = streams.data() + offset;
-    if (ls.Environment || !this->CoherentPhotonOrder)
-    {
-      std::iota(slots, slots + ls.Photons, 0u);
-    }
-    else
-    {
-      CoherentLatticeOrder(ls.Photons, rotations.back()[0], rotations.back()[1], slots);
-    }
-    for (cl_uint w = 0; w < ls.Photons; ++w)
-    {
-      slots[w] += offset;
-    }
-    offset += ls.Photons;
   }
+  if (!this->Streams)
+  {
+    this->Streams = std::make_unique<PhotonStreams>();
+  }
+  const std::vector<cl_uint>& streams =
+    this->Streams->Update(lights, rotations, this->CoherentPhotonOrder);
   run.Streams = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, photons * sizeof(cl_uint),
     streams.data(), "photon streams");
   if (!run.Streams)
   {
     return false;
   }
-  offset = 0;
+  cl_uint offset = 0;
   for (const auto& ls : lights)
   {
     const cl_uint count = ls.Photons;

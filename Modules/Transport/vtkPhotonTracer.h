@@ -116,6 +116,7 @@ class vtkRefractaSurfaceSet;
 namespace vtkPhotonTracerDetail
 {
 struct ScratchPool;
+struct PhotonStreams;
 }
 
 class REFRACTATRANSPORT_EXPORT vtkPhotonTracer : public vtkImageAlgorithm
@@ -745,6 +746,7 @@ private:
   struct SurfaceCache;
   std::unique_ptr<SurfaceCache> KeptSurfaces; // the surfaces' device arrays of the last run
   std::unique_ptr<vtkPhotonTracerDetail::ScratchPool> Scratch; // ReuseScratchBuffers
+  std::unique_ptr<vtkPhotonTracerDetail::PhotonStreams> Streams; // the last run's photon order
   bool ReuseScratchBuffers = false;
   bool CoherentPhotonOrder = true;
   // The surface stage (vtkPhotonTracerSurfaces.cxx): build the set and the emission box; upload

@@ -13,6 +13,7 @@
 #include "vtkWeakPointer.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -210,6 +211,18 @@ struct Allocator
 // find the voxels the photon before them touched still in the cache; which points are traced,
 // and each one's random stream, do not change (the deposits are the same to the bit).
 void CoherentLatticeOrder(uint32_t count, uint32_t r1, uint32_t r2, uint32_t* order);
+
+// Every photon slot's random stream, offset + i for lattice point i of the light whose photons
+// start at `offset` (photon_generate.cl, photon_march.cl): each light's points in coherent order
+// (CoherentLatticeOrder), the sky's in lattice order. Kept for the next run with the same photon
+// counts, rotations and kinds of light (a light move does not sort again: 20 ms at 2^20).
+struct PhotonStreams
+{
+  std::vector<uint64_t> Key;
+  std::vector<uint32_t> Streams;
+  const std::vector<uint32_t>& Update(const std::vector<LightSetup>& lights,
+    const std::vector<std::array<uint32_t, 2>>& rotations, bool coherent);
+};
 
 // Reads the medium's arrays (defaults for missing ones), the plan facts and the proxy box.
 void LoadMedium(vtkImageData* image, bool useProxy, Medium& m);

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <numeric>
 #include <sstream>
 #include <string>
 
@@ -114,6 +115,45 @@ void CoherentLatticeOrder(uint32_t count, uint32_t r1, uint32_t r2, uint32_t* or
   {
     order[first[code[i]]++] = i; // stable: equal cells keep the lattice's order
   }
+}
+
+const std::vector<uint32_t>& PhotonStreams::Update(const std::vector<LightSetup>& lights,
+  const std::vector<std::array<uint32_t, 2>>& rotations, bool coherent)
+{
+  std::vector<uint64_t> key = { coherent ? 1u : 0u };
+  size_t photons = 0;
+  for (size_t l = 0; l < lights.size(); ++l)
+  {
+    key.push_back((uint64_t(lights[l].Photons) << 1) | (lights[l].Environment ? 1u : 0u));
+    key.push_back((uint64_t(rotations[l][0]) << 32) | rotations[l][1]);
+    photons += lights[l].Photons;
+  }
+  if (key == this->Key)
+  {
+    return this->Streams;
+  }
+  this->Streams.resize(photons);
+  uint32_t offset = 0;
+  for (size_t l = 0; l < lights.size(); ++l)
+  {
+    uint32_t* slots = this->Streams.data() + offset;
+    const uint32_t count = lights[l].Photons;
+    if (lights[l].Environment || !coherent)
+    {
+      std::iota(slots, slots + count, 0u);
+    }
+    else
+    {
+      CoherentLatticeOrder(count, rotations[l][0], rotations[l][1], slots);
+    }
+    for (uint32_t w = 0; w < count; ++w)
+    {
+      slots[w] += offset;
+    }
+    offset += count;
+  }
+  this->Key = std::move(key);
+  return this->Streams;
 }
 
 const std::vector<float>& DeviceChannels(
