@@ -274,7 +274,7 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
     this->Streams = std::make_unique<PhotonStreams>();
   }
   const std::vector<cl_uint>& streams =
-    this->Streams->Update(lights, rotations, this->CoherentPhotonOrder);
+    this->Streams->Update(lights, rotations, this->CoherentPhotonOrder, run.VolumeCaustic);
   run.Streams = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, photons * sizeof(cl_uint),
     streams.data(), "photon streams");
   if (!run.Streams)

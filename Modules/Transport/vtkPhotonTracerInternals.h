@@ -205,23 +205,30 @@ struct Allocator
 
 // The order in which a light's `count` photons are marched: slot w takes point order[w] of the
 // generation's rank-1 lattice (photon_generate.cl: point i is (xi1, xi2) = the top bits of
-// r1 + (i + 1) a1 and r2 + (i + 1) a2), sorted by the Morton code of its cell in a 2^b x 2^b grid
-// over (xi1, xi2) with about four points per cell (counting sort, O(count)). Neighbouring slots
-// then start close together on the light's footprint (or in its cone), follow nearby paths and
-// find the voxels the photon before them touched still in the cache; which points are traced,
-// and each one's random stream, do not change (the deposits are the same to the bit).
-void CoherentLatticeOrder(uint32_t count, uint32_t r1, uint32_t r2, uint32_t* order);
+// r1 + (i + 1) a1 and r2 + (i + 1) a2). Slots below `first` keep points 0 .. first - 1 (the volume
+// caustic's pilot marches them: a low-discrepancy sample of the whole footprint); the others are
+// sorted by the Morton code of their cell in a 2^b x 2^b grid over (xi1, xi2) with about four
+// points per cell (counting sort, O(count)). Neighbouring slots then start close together (on the
+// light's footprint or in its cone), follow nearby paths and find the voxels the photon before
+// them touched still in the cache; which points are traced, and each one's random stream, do not
+// change (the deposits are the same to the bit).
+void CoherentLatticeOrder(
+  uint32_t count, uint32_t first, uint32_t r1, uint32_t r2, uint32_t* order);
+
+// How many of a light's `photons` the volume caustic's pilot marches (its first slots).
+size_t VolumeCausticPilot(size_t photons);
 
 // Every photon slot's random stream, offset + i for lattice point i of the light whose photons
 // start at `offset` (photon_generate.cl, photon_march.cl): each light's points in coherent order
-// (CoherentLatticeOrder), the sky's in lattice order. Kept for the next run with the same photon
-// counts, rotations and kinds of light (a light move does not sort again: 20 ms at 2^20).
+// (CoherentLatticeOrder; with `pilot`, the volume caustic's pilot slots in lattice order), the
+// sky's in lattice order. Kept for the next run with the same photon counts, rotations and kinds
+// of light (a light move does not sort again: 20 ms at 2^20).
 struct PhotonStreams
 {
   std::vector<uint64_t> Key;
   std::vector<uint32_t> Streams;
   const std::vector<uint32_t>& Update(const std::vector<LightSetup>& lights,
-    const std::vector<std::array<uint32_t, 2>>& rotations, bool coherent);
+    const std::vector<std::array<uint32_t, 2>>& rotations, bool coherent, bool pilot);
 };
 
 // Reads the medium's arrays (defaults for missing ones), the plan facts and the proxy box.

@@ -88,39 +88,43 @@ uint32_t SpreadBits(uint32_t v)
 }
 }
 
-void CoherentLatticeOrder(uint32_t count, uint32_t r1, uint32_t r2, uint32_t* order)
+void CoherentLatticeOrder(uint32_t count, uint32_t first, uint32_t r1, uint32_t r2, uint32_t* order)
 {
   // photon_generate.cl's R2 generators (PHOTON_R2_A1, PHOTON_R2_A2).
   constexpr uint32_t a1 = 3242174889u, a2 = 2447445413u;
+  first = std::min(first, count);
+  std::iota(order, order + first, 0u);
+  const uint32_t sorted = count - first;
   int bits = 1;
-  while (bits < 10 && (uint64_t(1) << (2 * (bits + 1))) <= count / 4)
+  while (bits < 10 && (uint64_t(1) << (2 * (bits + 1))) <= sorted / 4)
   {
     ++bits;
   }
   const uint32_t shift = 32 - bits;
-  std::vector<uint32_t> code(count);
-  std::vector<uint32_t> first((size_t(1) << (2 * bits)) + 1, 0);
-  for (uint32_t i = 0; i < count; ++i)
+  std::vector<uint32_t> code(sorted);
+  std::vector<uint32_t> start((size_t(1) << (2 * bits)) + 1, 0);
+  for (uint32_t k = 0; k < sorted; ++k)
   {
+    const uint32_t i = first + k;
     const uint32_t x = (r1 + (i + 1u) * a1) >> shift;
     const uint32_t y = (r2 + (i + 1u) * a2) >> shift;
-    code[i] = SpreadBits(x) | (SpreadBits(y) << 1);
-    ++first[code[i] + 1];
+    code[k] = SpreadBits(x) | (SpreadBits(y) << 1);
+    ++start[code[k] + 1];
   }
-  for (size_t c = 1; c < first.size(); ++c)
+  for (size_t c = 1; c < start.size(); ++c)
   {
-    first[c] += first[c - 1];
+    start[c] += start[c - 1];
   }
-  for (uint32_t i = 0; i < count; ++i)
+  for (uint32_t k = 0; k < sorted; ++k)
   {
-    order[first[code[i]]++] = i; // stable: equal cells keep the lattice's order
+    order[first + start[code[k]]++] = first + k; // stable: equal cells keep the lattice's order
   }
 }
 
 const std::vector<uint32_t>& PhotonStreams::Update(const std::vector<LightSetup>& lights,
-  const std::vector<std::array<uint32_t, 2>>& rotations, bool coherent)
+  const std::vector<std::array<uint32_t, 2>>& rotations, bool coherent, bool pilot)
 {
-  std::vector<uint64_t> key = { coherent ? 1u : 0u };
+  std::vector<uint64_t> key = { (coherent ? 1u : 0u) | (pilot ? 2u : 0u) };
   size_t photons = 0;
   for (size_t l = 0; l < lights.size(); ++l)
   {
@@ -144,7 +148,8 @@ const std::vector<uint32_t>& PhotonStreams::Update(const std::vector<LightSetup>
     }
     else
     {
-      CoherentLatticeOrder(count, rotations[l][0], rotations[l][1], slots);
+      const uint32_t first = pilot ? static_cast<uint32_t>(VolumeCausticPilot(count)) : 0;
+      CoherentLatticeOrder(count, first, rotations[l][0], rotations[l][1], slots);
     }
     for (uint32_t w = 0; w < count; ++w)
     {

@@ -67,6 +67,12 @@ int ChooseBricks(const std::vector<cl_uint>& pieces, double perPilotPiece, doubl
 }
 
 //------------------------------------------------------------------------------
+size_t vtkPhotonTracerDetail::VolumeCausticPilot(size_t photons)
+{
+  return std::min(photons, (photons + PilotShare * Group - 1) / (PilotShare * Group) * Group);
+}
+
+//------------------------------------------------------------------------------
 bool vtkPhotonTracer::UsesVolumeCaustic(Internals& run)
 {
   // A chunked march hands the accumulators to its callback (the interleaved lattice) while
@@ -132,7 +138,7 @@ bool vtkPhotonTracer::PlaceVolumeCausticBricks(
   for (const LightSetup& ls : run.Lights)
   {
     const size_t n = ls.Photons;
-    const size_t pilot = std::min(n, (n + PilotShare * Group - 1) / (PilotShare * Group) * Group);
+    const size_t pilot = VolumeCausticPilot(n);
     if (pilot > 0 && !march(offset, pilot))
     {
       return false;
