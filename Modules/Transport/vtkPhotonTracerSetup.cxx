@@ -716,6 +716,7 @@ bool vtkPhotonTracer::PlanMemory(Internals& run)
   {
     plan->AddDeviceBuffer(photons, what, p * 16, photonSetting);
   }
+  plan->AddDeviceBuffer(photons, "photon streams", p * 4, photonSetting);
   if (this->StepsPerChunk > 0)
   {
     plan->AddDeviceBuffer(photons, "photon state (chunked march)", p * 128, photonSetting);
@@ -763,6 +764,8 @@ bool vtkPhotonTracer::PlanMemory(Internals& run)
   plan->AddHostMemory(
     grid, "medium copies", v * 4 * (1 + 3 + 3 + (m.HasGradient ? 3 : 0)), gridSetting);
   plan->AddHostMemory(grid, "Radiance and RadianceDirection", v * 12 * 2, gridSetting);
+  // The photon order (kept between runs) and, while it is sorted, a code per photon.
+  plan->AddHostMemory(photons, "photon streams and their sort", p * 8, photonSetting);
   this->PlannedDeviceMemoryBytes =
     plan->GetDeviceBytes() + (run.ReusedMedium ? run.Alloc.Bytes : 0);
   this->PlannedHostMemoryBytes = plan->GetHostBytes();
