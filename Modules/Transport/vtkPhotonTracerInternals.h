@@ -203,15 +203,18 @@ struct Allocator
   }
 };
 
+// Work-items per work-group of the photon kernels (Run1D).
+constexpr uint32_t PhotonWorkGroup = 64;
+
 // The order in which a light's `count` photons are marched: slot w takes point order[w] of the
 // generation's rank-1 lattice (photon_generate.cl: point i is (xi1, xi2) = the top bits of
 // r1 + (i + 1) a1 and r2 + (i + 1) a2). Slots below `first` keep points 0 .. first - 1 (the volume
 // caustic's pilot marches them: a low-discrepancy sample of the whole footprint); the others are
 // sorted by the Morton code of their cell in a 2^b x 2^b grid over (xi1, xi2) with about four
-// points per cell (counting sort, O(count)). Neighbouring slots then start close together (on the
-// light's footprint or in its cone), follow nearby paths and find the voxels the photon before
-// them touched still in the cache; which points are traced, and each one's random stream, do not
-// change (the deposits are the same to the bit).
+// points per cell (counting sort, O(count)), in work-groups dealt out with a golden-ratio stride.
+// Neighbouring slots then start close together (on the light's footprint or in its cone), follow
+// nearby paths and find the voxels the photon before them touched still in the cache; which points
+// are traced, and each one's random stream, do not change (the deposits are the same to the bit).
 void CoherentLatticeOrder(
   uint32_t count, uint32_t first, uint32_t r1, uint32_t r2, uint32_t* order);
 

@@ -119,6 +119,27 @@ void CoherentLatticeOrder(uint32_t count, uint32_t first, uint32_t r1, uint32_t 
   {
     order[first + start[code[k]]++] = first + k; // stable: equal cells keep the lattice's order
   }
+  // Whole work-groups dealt out with a golden-ratio stride: a group's photons stay together, but
+  // the costly regions (through the glass, into dense fog) are spread over the launch instead of
+  // queueing at its end with one core left idle (0.84-0.91x at 2^12 photons on a 32^3 grid
+  // without it; the same at 2^16 to 2^20 on 128^3).
+  const uint32_t groups = sorted / PhotonWorkGroup;
+  if (groups > 2)
+  {
+    uint32_t stride = static_cast<uint32_t>(groups * 0.6180339887) | 1u;
+    while (std::gcd(stride, groups) != 1)
+    {
+      stride += 2;
+    }
+    const std::vector<uint32_t> sortedOrder(
+      order + first, order + first + groups * PhotonWorkGroup);
+    for (uint32_t g = 0; g < groups; ++g)
+    {
+      const uint64_t to = (uint64_t(g) * stride) % groups;
+      std::copy_n(sortedOrder.begin() + size_t(g) * PhotonWorkGroup, PhotonWorkGroup,
+        order + first + to * PhotonWorkGroup);
+    }
+  }
 }
 
 const std::vector<uint32_t>& PhotonStreams::Update(const std::vector<LightSetup>& lights,
@@ -291,7 +312,7 @@ void LoadMedium(vtkImageData* image, bool useProxy, Medium& m)
 
 bool Run1D(vtkOpenCLContext* ctx, cl_kernel kernel, size_t count, const char* label, vtkObject* r)
 {
-  const size_t local = 64;
+  const size_t local = PhotonWorkGroup;
   const size_t global = std::max<size_t>(count, 1);
   return ctx->RunKernel(kernel, 1, &global, &local, label, r);
 }

@@ -25,7 +25,7 @@ namespace
 constexpr size_t FineLongs = 8;
 // The pilot marches the first 1/PilotShare of every light's photons (whole work-groups).
 constexpr size_t PilotShare = 8;
-constexpr size_t Group = 64; // Run1D's work-group size
+constexpr size_t Group = PhotonWorkGroup;
 
 size_t Cube(int c)
 {

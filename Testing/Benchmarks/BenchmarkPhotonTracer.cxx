@@ -11,7 +11,8 @@
 // the coherent order's gain in voxel pieces per second (the same pieces, the same output).
 //
 // Usage: BenchmarkPhotonTracer [--quick] [--max-log2 K] [--runs R] [--modes LIST] [output.csv]
-//   --quick: 32^3 grid, 2^12 photons, one run, adaptive only (a smoke test of the program).
+//   --quick: 32^3 grid, 2^12 photons, one run, adaptive and adaptive-lattice-order only (a smoke
+//   test of the program).
 //   --max-log2 K: stop at 2^K photons (default 20). --runs R: runs per median (default 3).
 //   --modes LIST: only these modes (comma-separated, from adaptive, adaptive-lattice-order,
 //   adaptive-no-control, fixed-1, adaptive+ext0.1, adaptive-min0.5), e.g. for a profile of one.
@@ -292,10 +293,9 @@ int main(int argc, char* argv[])
     // The reference for the error column: same photons with 0.25-voxel fixed steps.
     Result reference = Measure(medium, photons, "fixed-0.25", 1);
     reference.Error = 0;
-    std::vector<std::string> modes = { "adaptive" };
+    std::vector<std::string> modes = { "adaptive", "adaptive-lattice-order" };
     if (!quick)
     {
-      modes.push_back("adaptive-lattice-order");
       modes.push_back("adaptive-no-control");
       modes.push_back("fixed-1");
     }

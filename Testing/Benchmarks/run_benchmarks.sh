@@ -100,7 +100,9 @@ summarise() {
   case "$key" in
     photon)
       v=$(awk -F, 'NR > 1 && $2 == "adaptive" { r = $4 / $8 } END { if (r) printf "%.4g", r }' "$csv")
-      row BenchmarkPhotonTracer "marching voxel pieces/s (adaptive, largest photon count)" "${v:-n/a}" "pieces/s" ;;
+      row BenchmarkPhotonTracer "marching voxel pieces/s (adaptive, largest photon count)" "${v:-n/a}" "pieces/s"
+      v=$(awk -F, 'NR > 1 && $2 == "adaptive" { a = $4 / $8 } NR > 1 && $2 == "adaptive-lattice-order" { l = $4 / $8 } END { if (a && l) printf "%.3g", a / l }' "$csv")
+      row BenchmarkPhotonTracer "coherent photon order: pieces/s over the lattice order (largest count)" "${v:-n/a}" "x" ;;
     lattice)
       v=$(awk -F, 'NR > 1 { print $8 }' "$csv" | sort -g | awk '{ a[NR] = $1 } END { if (NR) print a[int((NR + 1) / 2)] }')
       row BenchmarkLatticeBoltzmann "lattice updates/s (median over rows)" "${v:-n/a}" "M updates/s"
