@@ -123,49 +123,49 @@ int vtkOpenCLKernelProfile::GetNumberOfLaunches(int i) const
   return i >= 0 && i < this->GetNumberOfKernels() ? this->Totals[i].Launches : 0;
 }
 
+double vtkOpenCLKernelProfile::EntryValue(int i, double Total::*field) const
+{
+  return i >= 0 && i < this->GetNumberOfKernels() ? this->Totals[i].*field : 0.0;
+}
+
+double vtkOpenCLKernelProfile::SumOf(double Total::*field) const
+{
+  double sum = 0.0;
+  for (const Total& t : this->Totals)
+  {
+    sum += t.*field;
+  }
+  return sum;
+}
+
 double vtkOpenCLKernelProfile::GetDeviceSeconds(int i) const
 {
-  return i >= 0 && i < this->GetNumberOfKernels() ? this->Totals[i].Seconds : 0.0;
+  return this->EntryValue(i, &Total::Seconds);
 }
 
 double vtkOpenCLKernelProfile::GetTotalDeviceSeconds() const
 {
-  double sum = 0.0;
-  for (const Total& t : this->Totals)
-  {
-    sum += t.Seconds;
-  }
-  return sum;
+  return this->SumOf(&Total::Seconds);
 }
 
 double vtkOpenCLKernelProfile::GetHostSeconds(int i) const
 {
-  return i >= 0 && i < this->GetNumberOfKernels() ? this->Totals[i].HostSeconds : 0.0;
+  return this->EntryValue(i, &Total::HostSeconds);
 }
 
 double vtkOpenCLKernelProfile::GetTotalHostSeconds() const
 {
-  double sum = 0.0;
-  for (const Total& t : this->Totals)
-  {
-    sum += t.HostSeconds;
-  }
-  return sum;
+  return this->SumOf(&Total::HostSeconds);
 }
 
 double vtkOpenCLKernelProfile::GetBytes(int i) const
 {
-  return i >= 0 && i < this->GetNumberOfKernels() ? this->Totals[i].Bytes : 0.0;
+  return this->EntryValue(i, &Total::Bytes);
 }
 
 double vtkOpenCLKernelProfile::GetTotalBytes() const
 {
-  double sum = 0.0;
-  for (const Total& t : this->Totals)
-  {
-    sum += t.Bytes;
-  }
-  return sum;
+  return this->SumOf(&Total::Bytes);
 }
 
 std::string vtkOpenCLKernelProfile::GetTable() const

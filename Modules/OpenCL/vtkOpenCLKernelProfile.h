@@ -105,6 +105,10 @@ private:
   };
   struct Pending;
   Total& TotalOf(const std::string& label);
+#ifndef __VTK_WRAP__ // (the wrappers' parser reads no pointers to members)
+  double EntryValue(int i, double Total::*field) const; // 0 for an index out of range
+  double SumOf(double Total::*field) const;
+#endif
   void Fold(bool wait);
   std::vector<Total> Totals;
   std::unique_ptr<std::vector<Pending>> PendingLaunches;
