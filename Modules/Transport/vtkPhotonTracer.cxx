@@ -274,10 +274,11 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
     this->Streams = std::make_unique<PhotonStreams>();
   }
   const std::vector<cl_uint>& streams =
-    this->Streams->Update(lights, rotations, this->CoherentPhotonOrder, run.VolumeCaustic);
-  run.Streams = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, photons * sizeof(cl_uint),
-    streams.data(), "photon streams");
-  if (!run.Streams)
+    this->Streams->Update(photons, lights, rotations, this->CoherentPhotonOrder, run.VolumeCaustic);
+  // Made empty and written (not copied at creation): a scratch buffer, kept with the others.
+  run.Streams = alloc.Make(CL_MEM_READ_ONLY, photons * sizeof(cl_uint), nullptr, "photon streams");
+  if (!run.Streams ||
+    !ctx->WriteBuffer(run.Streams.Get(), photons * sizeof(cl_uint), streams.data(), this))
   {
     return false;
   }

@@ -230,7 +230,7 @@ struct PhotonStreams
 {
   std::vector<uint64_t> Key;
   std::vector<uint32_t> Streams;
-  const std::vector<uint32_t>& Update(const std::vector<LightSetup>& lights,
+  const std::vector<uint32_t>& Update(size_t photons, const std::vector<LightSetup>& lights,
     const std::vector<std::array<uint32_t, 2>>& rotations, bool coherent, bool pilot);
 };
 

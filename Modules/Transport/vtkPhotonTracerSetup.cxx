@@ -142,27 +142,29 @@ void CoherentLatticeOrder(uint32_t count, uint32_t first, uint32_t r1, uint32_t 
   }
 }
 
-const std::vector<uint32_t>& PhotonStreams::Update(const std::vector<LightSetup>& lights,
-  const std::vector<std::array<uint32_t, 2>>& rotations, bool coherent, bool pilot)
+const std::vector<uint32_t>& PhotonStreams::Update(size_t photons,
+  const std::vector<LightSetup>& lights, const std::vector<std::array<uint32_t, 2>>& rotations,
+  bool coherent, bool pilot)
 {
-  std::vector<uint64_t> key = { (coherent ? 1u : 0u) | (pilot ? 2u : 0u) };
-  size_t photons = 0;
+  std::vector<uint64_t> key = { (coherent ? 1u : 0u) | (pilot ? 2u : 0u), photons };
   for (size_t l = 0; l < lights.size(); ++l)
   {
     key.push_back((uint64_t(lights[l].Photons) << 1) | (lights[l].Environment ? 1u : 0u));
     key.push_back((uint64_t(rotations[l][0]) << 32) | rotations[l][1]);
-    photons += lights[l].Photons;
   }
   if (key == this->Key)
   {
     return this->Streams;
   }
+  // Slots no light fills (none where the lights share all the photons) keep their own index.
   this->Streams.resize(photons);
+  std::iota(this->Streams.begin(), this->Streams.end(), 0u);
   uint32_t offset = 0;
-  for (size_t l = 0; l < lights.size(); ++l)
+  for (size_t l = 0; l < lights.size() && offset < photons; ++l)
   {
     uint32_t* slots = this->Streams.data() + offset;
-    const uint32_t count = lights[l].Photons;
+    const uint32_t count =
+      static_cast<uint32_t>(std::min<size_t>(lights[l].Photons, photons - offset));
     if (lights[l].Environment || !coherent)
     {
       std::iota(slots, slots + count, 0u);
