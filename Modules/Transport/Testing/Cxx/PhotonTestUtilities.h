@@ -12,7 +12,11 @@
 #include "vtkRefractaLightingVolume.h"
 #include "vtkSmartPointer.h"
 
+#include <gtest/gtest.h>
+
 #include <array>
+#include <cmath>
+#include <cstring>
 #include <functional>
 #include <string>
 
@@ -63,6 +67,49 @@ inline vtkSmartPointer<vtkImageData> MakeMedium(int nx, int ny, int nz, double s
   image->GetPointData()->AddArray(e);
   image->GetPointData()->AddArray(a);
   return image;
+}
+
+// A refracting ball (n = 1.3, radius sqrt(0.06) about (0.5, 0.45, 0.4)) in a fog whose sigma_t is
+// base + amplitude sin(6x) cos(4z) times `tint` per channel, albedo `albedo` everywhere, on an
+// nx x ny x nz grid of spacing 0.05: every stage of the photon pass runs and every trilinear
+// gather matters.
+inline vtkSmartPointer<vtkImageData> RefractingFog(int nx, int ny, int nz, double base,
+  double amplitude, std::array<double, 3> tint, std::array<double, 3> albedo)
+{
+  return MakeMedium(nx, ny, nz, 0.05,
+    [=](double x, double y, double z)
+    {
+      Voxel v;
+      const double r2 = (x - 0.5) * (x - 0.5) + (y - 0.45) * (y - 0.45) + (z - 0.4) * (z - 0.4);
+      v.N = r2 < 0.06 ? 1.3 : 1.0;
+      const double fog = base + amplitude * std::sin(6 * x) * std::cos(4 * z);
+      v.Extinction = { fog * tint[0], fog * tint[1], fog * tint[2] };
+      v.Albedo = albedo;
+      return v;
+    });
+}
+
+// Every array of `a` holds the same bits as `b`'s array of the same name (point data or field
+// data: the outputs, the books and counters); arrays named *Seconds* (timings) are skipped.
+inline void ExpectSameBits(vtkFieldData* a, vtkFieldData* b, const std::string& where)
+{
+  ASSERT_EQ(a->GetNumberOfArrays(), b->GetNumberOfArrays()) << where;
+  for (int i = 0; i < a->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* x = a->GetArray(i);
+    if (!x || std::string(x->GetName()).find("Seconds") != std::string::npos)
+    {
+      continue;
+    }
+    vtkDataArray* y = b->GetArray(x->GetName());
+    ASSERT_TRUE(y) << x->GetName() << where;
+    ASSERT_EQ(x->GetDataType(), y->GetDataType()) << x->GetName() << where;
+    ASSERT_EQ(x->GetNumberOfValues(), y->GetNumberOfValues()) << x->GetName() << where;
+    EXPECT_EQ(std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
+                static_cast<size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()),
+      0)
+      << x->GetName() << where;
+  }
 }
 
 inline vtkSmartPointer<vtkLight> Directional(std::array<double, 3> from, std::array<double, 3> to,
