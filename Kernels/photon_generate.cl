@@ -2,8 +2,9 @@
 // after photon_trace.cl (refracta_common.cl's random numbers) in the photon program.
 //
 // photon_generate: one work-item per photon of one light. Photon i takes point i of a 2D
-// rank-1 lattice (marched in slot offset + w, where photonStream[offset + w] = offset + i) (Roberts' R2 sequence in 32-bit fixed point, rotated by a seed-derived offset:
-// low-discrepancy, deterministic) and maps it onto the light's footprint on the proxy box:
+// rank-1 lattice (Roberts' R2 sequence in 32-bit fixed point, rotated by a seed-derived offset:
+// low-discrepancy, deterministic) and maps it onto the light's footprint on the proxy box; it is
+// written to slot offset + w, where photonStream[offset + w] = offset + i (the host's order):
 //   directional light: a rectangle perpendicular to the travel direction covering the box's
 //     projection; photon power = E * (rectangle area) / N;
 //   point/spot light: a spherical cap of directions (the cone around the box's bounding sphere,

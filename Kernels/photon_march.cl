@@ -35,8 +35,9 @@ inline bool photon_start(photon_state* ps, const float3 power, const uint seed, 
 }
 
 __kernel void photon_march(__global const float4* photonPos, __global const float4* photonDir,
-  __global const float4* photonPower, __global const uint* photonStream, const uint count, __global const float* refractiveIndex,
-  __global const float* gradient, __global const float* extinction, __global const float* albedo,
+  __global const float4* photonPower, __global const uint* photonStream, const uint count,
+  __global const float* refractiveIndex, __global const float* gradient,
+  __global const float* extinction, __global const float* albedo,
   __global const uchar* octree, const int4 dims, const float4 spacing,
   volatile __global long* deposits,
   volatile __global long* tallies, volatile __global long* counters, const uint seed,
@@ -56,7 +57,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
     return;
   }
   photon_state ps;
-  if (!photon_start(&ps, photonPower[id].xyz, seed, photonStream[id], anisotropy, multiple, counters))
+  if (!photon_start(
+        &ps, photonPower[id].xyz, seed, photonStream[id], anisotropy, multiple, counters))
   {
     return;
   }
@@ -160,7 +162,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   const bool fresh = st.x == 0u; // a new photon: its start body is found below
   if (fresh)
   {
-    if (!photon_start(&ps, photonPower[id].xyz, seed, photonStream[id], anisotropy, multiple, counters))
+    if (!photon_start(
+        &ps, photonPower[id].xyz, seed, photonStream[id], anisotropy, multiple, counters))
     {
       status[id] = (uint4)(2u, 0u, 0u, 0u);
       return;

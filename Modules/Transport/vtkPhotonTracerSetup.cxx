@@ -156,27 +156,24 @@ const std::vector<uint32_t>& PhotonStreams::Update(size_t photons,
   {
     return this->Streams;
   }
-  // Slots no light fills (none where the lights share all the photons) keep their own index.
+  // Slot w's stream is w where the photons keep the lattice order (the sky's, every light's with
+  // `coherent` off, slots no light fills); a light's coherent order overwrites its slots.
   this->Streams.resize(photons);
   std::iota(this->Streams.begin(), this->Streams.end(), 0u);
-  uint32_t offset = 0;
+  size_t offset = 0;
   for (size_t l = 0; l < lights.size() && offset < photons; ++l)
   {
-    uint32_t* slots = this->Streams.data() + offset;
     const uint32_t count =
       static_cast<uint32_t>(std::min<size_t>(lights[l].Photons, photons - offset));
-    if (lights[l].Environment || !coherent)
+    if (coherent && !lights[l].Environment)
     {
-      std::iota(slots, slots + count, 0u);
-    }
-    else
-    {
+      uint32_t* slots = this->Streams.data() + offset;
       const uint32_t first = pilot ? static_cast<uint32_t>(VolumeCausticPilot(count)) : 0;
       CoherentLatticeOrder(count, first, rotations[l][0], rotations[l][1], slots);
-    }
-    for (uint32_t w = 0; w < count; ++w)
-    {
-      slots[w] += offset;
+      for (uint32_t w = 0; w < count; ++w)
+      {
+        slots[w] += static_cast<uint32_t>(offset);
+      }
     }
     offset += count;
   }
