@@ -25,7 +25,6 @@ namespace
 constexpr size_t FineLongs = 8;
 // The pilot marches the first 1/PilotShare of every light's photons (whole work-groups).
 constexpr size_t PilotShare = 8;
-constexpr size_t Group = PhotonWorkGroup;
 
 size_t Cube(int c)
 {
@@ -69,7 +68,8 @@ int ChooseBricks(const std::vector<cl_uint>& pieces, double perPilotPiece, doubl
 //------------------------------------------------------------------------------
 size_t vtkPhotonTracerDetail::VolumeCausticPilot(size_t photons)
 {
-  return std::min(photons, (photons + PilotShare * Group - 1) / (PilotShare * Group) * Group);
+  const size_t block = PilotShare * PhotonWorkGroup;
+  return std::min(photons, (photons + block - 1) / block * PhotonWorkGroup);
 }
 
 //------------------------------------------------------------------------------
