@@ -329,19 +329,30 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.SplitDepth = this->DielectricSplitDepth;
   variant.Caustic = surf.GetCausticSubdivision();
   variant.CausticOffset = surf.GetNumberOfTexels();
-  cl_program program =
-    context->GetProgram({ "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl",
-                          "view_skipping.cl", "view_caustic.cl", "view_pass.cl", "view_pixel.cl" },
-      KernelOptions(variant), this);
+  variant.LaneMarching = this->LaneMarching &&
+    LaneMarchingApplies(
+      variant, context->GetIsGPU(), static_cast<vtkIdType>(in.Dims[0]) * in.Dims[1] * in.Dims[2]);
+  this->LastLaneMarching = variant.LaneMarching;
+  cl_program program = context->GetProgram(
+    { "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl", "view_skipping.cl",
+      "view_caustic.cl", "view_pass.cl", "view_pixel.cl", "view_ea.cl" },
+    KernelOptions(variant), this);
   if (!program)
   {
     return false;
   }
-  vtkOpenCLKernel kernel = context->CreateKernel(program, "refracta_view_pass", this);
+  vtkRefractaViewLaunch launch;
+  if (variant.LaneMarching)
+  {
+    launch.Name = "refracta_view_pass_ea";
+    launch.PixelsPerItem = 8;
+  }
+  vtkOpenCLKernel kernel = context->CreateKernel(program, launch.Name, this);
   if (!kernel)
   {
     return false;
   }
+  launch.Kernel = kernel.Get();
   if (!in.Dummy)
   {
     const float zero[4] = { 0, 0, 0, 0 };
@@ -354,12 +365,13 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   }
   // Work-groups of side x side pixels, 8 x 8 where the kernel may run 64 work-items: neighbouring
   // rays share the medium's cache lines, and one shape means one work-group function (PoCL
-  // compiles one per local size, and a size left to the driver follows each tile's height).
-  int groupSide = 8;
-  while (groupSide > 1 &&
-    static_cast<size_t>(groupSide * groupSide) > context->GetKernelWorkGroupSize(kernel.Get()))
+  // compiles one per local size, and a size left to the driver follows each tile's height). The
+  // lane kernel's groups are 1 x 8 items of 8 pixels each (its required work-group size).
+  while (launch.PixelsPerItem == 1 && launch.GroupSide > 1 &&
+    static_cast<size_t>(launch.GroupSide * launch.GroupSide) >
+      context->GetKernelWorkGroupSize(kernel.Get()))
   {
-    groupSide /= 2;
+    launch.GroupSide /= 2;
   }
   const size_t pixels = static_cast<size_t>(width) * height;
   auto buf = [&](const vtkOpenCLBuffer& b) { return b ? b.Get() : in.Dummy.Get(); };
@@ -476,7 +488,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       surfaceDepthBuffer.Get(), buf(surf.Bodies), buf(in.CausticBricks), buf(in.CausticRadiance),
       buf(in.CausticDirection), causticSub, supersampling, grazingCosine, supersampledBuffer.Get());
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
-      !this->RunTiles(context, kernel.Get(), width, rows, row0, height, rowsPerTile, groupSide))
+      !this->RunTiles(context, launch, width, rows, row0, height, rowsPerTile))
     {
       return false;
     }
@@ -577,8 +589,8 @@ bool vtkRefractaViewPass::PlanImageMemory(
 }
 
 //------------------------------------------------------------------------------
-bool vtkRefractaViewPass::RunTiles(vtkOpenCLContext* context, cl_kernel kernel, int width,
-  int height, int firstRow, int imageHeight, int& rowsPerTile, int groupSide)
+bool vtkRefractaViewPass::RunTiles(vtkOpenCLContext* context, const vtkRefractaViewLaunch& launch,
+  int width, int height, int firstRow, int imageHeight, int& rowsPerTile)
 {
   // Tiles of whole rows (a global offset on the same kernel: every pixel computes exactly what it
   // would in one launch), each waited for, so that progress is reported and an abort is seen
@@ -586,15 +598,19 @@ bool vtkRefractaViewPass::RunTiles(vtkOpenCLContext* context, cl_kernel kernel, 
   // rate to take about TileSeconds (at most twice the previous tile, at least one row). Tiles
   // are whole work-groups of groupSide rows (the last one padded: the kernel skips pixels past
   // the image).
-  const size_t local[2] = { static_cast<size_t>(groupSide), static_cast<size_t>(groupSide) };
+  const int groupSide = launch.GroupSide;
+  const size_t local[2] = { static_cast<size_t>(launch.PixelsPerItem > 1 ? 1 : groupSide),
+    static_cast<size_t>(groupSide) };
   for (int row = 0, rows = 0; row < height; row += rows)
   {
     rowsPerTile = (rowsPerTile + groupSide - 1) / groupSide * groupSide;
     rows = std::min(rowsPerTile, height - row);
     const auto tileStart = std::chrono::steady_clock::now();
     const size_t offset[2] = { 0, static_cast<size_t>(row) };
-    const size_t global[2] = { static_cast<size_t>(width), static_cast<size_t>(rows) };
-    if (!context->RunKernel(kernel, 2, global, local, "refracta_view_pass", this, offset) ||
+    const size_t global[2] = { static_cast<size_t>(
+                                 (width + launch.PixelsPerItem - 1) / launch.PixelsPerItem),
+      static_cast<size_t>(rows) };
+    if (!context->RunKernel(launch.Kernel, 2, global, local, launch.Name, this, offset) ||
       !context->Finish(this))
     {
       return false;
@@ -634,6 +650,7 @@ void vtkRefractaViewPass::PrintSelf(ostream& os, vtkIndent indent)
      << (this->RayMode == AUTO ? "AUTO" : (this->RayMode == STRAIGHT ? "STRAIGHT" : "CURVED"))
      << "\n";
   os << indent << "TransmittanceCutoff: " << this->TransmittanceCutoff << "\n";
+  os << indent << "LaneMarching: " << this->LaneMarching << "\n";
   os << indent << "MaxSteps: " << this->MaxSteps << "\n";
   os << indent << "TilePixels: " << this->TilePixels << "\n";
   os << indent << "TileSeconds: " << this->TileSeconds << "\n";

@@ -40,6 +40,13 @@
  *   grid, so the image equals the one without skipping up to float rounding. The occupancy grid is
  *   rebuilt only when the medium, the lighting volume or MacroCellSize changes.
  * - MacroCellSize: edge of a macro cell in voxels, clamped to [2, 64]; default 8.
+ * - LaneMarching: on (default) or off. On a CPU device, a medium with a grey extinction and
+ *   emission only (what vtkTransferFunctionMedium makes of a vtkVolumeProperty) seen through
+ *   straight rays with no lighting volume and no surfaces is marched by a kernel of its own,
+ *   eight rays per work-item in SIMD lanes (Kernels/view_ea.cl), with or without skipping: the
+ *   same steps and the same image up to float rounding, about 2.5x faster on PoCL than the
+ *   general kernel (Documentation/Benchmarks.md). Other scenes and GPU devices use the general
+ *   kernel; GetLastLaneMarching() says which ran.
  *
  * The lighting volume must be on the medium's grid and carry `Radiance` (S1, RGB) with
  * `RadianceDirection` (3, unit, in the grid-local frame), and/or `MultipleScattering` (S_ms, RGB).
@@ -83,6 +90,7 @@ class vtkImageData;
 class vtkMatrix4x4;
 class vtkOpenCLContext;
 class vtkRefractaSurfaceSet;
+struct vtkRefractaViewLaunch;
 
 class REFRACTARENDERING_EXPORT vtkRefractaViewPass : public vtkObject
 {
@@ -151,6 +159,16 @@ public:
   vtkSetMacro(EmptySpaceSkipping, bool);
   vtkGetMacro(EmptySpaceSkipping, bool);
   vtkBooleanMacro(EmptySpaceSkipping, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Eight-lane emission-absorption kernel where it applies (see the class description). Default
+   * on; off always runs the general kernel (for comparisons).
+   */
+  vtkSetMacro(LaneMarching, bool);
+  vtkGetMacro(LaneMarching, bool);
+  vtkBooleanMacro(LaneMarching, bool);
   ///@}
 
   ///@{
@@ -350,6 +368,11 @@ public:
   ///@}
 
   /**
+   * Whether the last Render() ran the eight-lane emission-absorption kernel (LaneMarching).
+   */
+  vtkGetMacro(LastLaneMarching, bool);
+
+  /**
    * Host seconds of the last build of the occupancy grid (done in Render() when the medium, the
    * lighting or MacroCellSize changed; not part of LastSeconds).
    */
@@ -450,12 +473,14 @@ protected:
   double EnvironmentRight[3] = { 1.0, 0.0, 0.0 };
   bool EmptySpaceSkipping = true;
   int MacroCellSize = 8;
+  bool LaneMarching = true;
   int SurfaceFilter = LINEAR_TEXEL;
   double CausticPhotonsPerFineTexel = 64;
   int DielectricSplitDepth = 2;
   int DielectricSupersampling = 3;
   double DielectricGrazingCosine = 0.5;
   bool LastSkipping = false;
+  bool LastLaneMarching = false;
   double LastActiveCellFraction = 1.0;
   double OccupancySeconds = 0.0;
   double LastSeconds = 0.0;
@@ -486,8 +511,9 @@ private:
   // not an error.
   bool SetVolumeCaustic(vtkImageData* lighting, vtkIdType voxels);
 #ifndef __VTK_WRAP__
-  bool RunTiles(vtkOpenCLContext* context, cl_kernel kernel, int width, int height, int firstRow,
-    int imageHeight, int& rowsPerTile, int groupSide);
+  // Runs `launch`'s kernel over rows [0, height) of a buffer tile, in tiles of whole work-groups.
+  bool RunTiles(vtkOpenCLContext* context, const vtkRefractaViewLaunch& launch, int width,
+    int height, int firstRow, int imageHeight, int& rowsPerTile);
 #endif
 };
 

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace vtkRefractaViewPassDetail
@@ -204,6 +205,7 @@ std::string KernelOptions(const KernelVariant& v)
   flag(v.Environment && v.Checker, "REFRACTA_CHECKER_ENVIRONMENT");
   flag(v.DepthLimit, "REFRACTA_HAS_DEPTH_LIMIT");
   flag(v.Skip, "REFRACTA_SKIP");
+  flag(v.LaneMarching, "REFRACTA_VIEW_EA");
   flag(v.Surfaces, "REFRACTA_HAS_SURFACES");
   flag(v.Surfaces && v.NearestTexel, "REFRACTA_SURFACE_NEAREST");
   flag(v.Surfaces && v.Dielectric, "REFRACTA_DIELECTRIC");
@@ -217,6 +219,13 @@ std::string KernelOptions(const KernelVariant& v)
       " -DREFRACTA_CAUSTIC_OFFSET=" + std::to_string(v.CausticOffset);
   }
   return options;
+}
+
+//------------------------------------------------------------------------------
+bool LaneMarchingApplies(const KernelVariant& v, bool gpu, vtkIdType voxels)
+{
+  return !gpu && !v.Curved && v.Packed && !v.Single && !v.Multiple && !v.Surfaces &&
+    !v.IndexVaries && voxels <= std::numeric_limits<int>::max();
 }
 
 //------------------------------------------------------------------------------

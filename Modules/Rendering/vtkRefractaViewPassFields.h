@@ -69,10 +69,17 @@ struct KernelVariant
   int SplitDepth = 1;          // REFRACTA_SPLIT_DEPTH (interfaces where both legs are followed)
   int Caustic = 1;             // REFRACTA_CAUSTIC_SUBDIVISION (c > 1: the caustic atlas is read)
   long long CausticOffset = 0; // REFRACTA_CAUSTIC_OFFSET (atlas texels before the fine ones)
+  bool LaneMarching = false;   // REFRACTA_VIEW_EA: the kernel refracta_view_pass_ea
 };
 
 // The build options of a kernel variant.
 std::string KernelOptions(const KernelVariant& variant);
+
+// Whether the eight-lane emission-absorption kernel (Kernels/view_ea.cl) can render `variant`
+// (straight rays, the packed grey medium, no lighting volume, no surfaces, no varying index)
+// on a device (not a GPU: it runs its rays in lanes of its own) for a grid of `voxels` voxels
+// (its corner indices are 32-bit).
+bool LaneMarchingApplies(const KernelVariant& variant, bool gpu, vtkIdType voxels);
 
 // The environment's basis (vtkRefractaEnvironmentMap: right, up, front = up x right, in world)
 // rotated into the grid-local frame by the linear part of `worldToLocal` and re-normalised:
@@ -81,5 +88,16 @@ void EnvironmentBasisLocal(
   const double up[3], const double right[3], const double worldToLocal[4][4], double out[3][3]);
 
 }
+
+// How the view pass launches a kernel: the kernel and its name (for the profile), the work-group
+// of side x side pixels and the pixels per work-item (8 for refracta_view_pass_ea: work-groups of
+// 1 x side items, each a row of 8 pixels).
+struct vtkRefractaViewLaunch
+{
+  cl_kernel Kernel = nullptr;
+  const char* Name = "refracta_view_pass";
+  int GroupSide = 8;
+  int PixelsPerItem = 1;
+};
 
 #endif

@@ -1,0 +1,303 @@
+// view_ea.cl: the view pass for a plain emission-absorption medium on a CPU, eight rays per
+// work-item in SIMD lanes. Prepend refracta_common.cl, view_pass.cl and view_pixel.cl (the general
+// kernel's helpers); compiled only with -DREFRACTA_VIEW_EA. Documentation/Reference.md,
+// "Rendering" (the emission-absorption kernel).
+//
+// What it computes is refracta_view_pass's image for the variant it serves (straight rays, the
+// packed grey medium of REFRACTA_PACKED_MEDIUM, no scattered light, no surfaces; with or without
+// empty-space skipping): each ray takes the same steps at the same positions with the same exact step
+// integration, cutoff, step cap, depth limit and background; the image differs from the general
+// kernel's by float rounding only (Testing: RefractaRendering.ViewPass, EmissionAbsorptionKernel).
+//
+// Why a kernel of its own: PoCL runs a work-group as a loop over its work-items and leaves it to
+// LLVM's loop vectoriser to put them in SIMD lanes, which it cannot do for work-items whose march
+// loops end at different steps: the general kernel runs one ray per core at a time in scalar code
+// (about 200 instructions per step, its loads one after another). Here a work-item marches the
+// eight neighbouring pixels pi = 8 g .. 8 g + 7 of a row in the lanes of float8 values: the
+// stencil, the step integration and the ray's bookkeeping are computed once for eight rays, and
+// the eight rays' corner loads are independent, so that the core overlaps their cache misses. The
+// corners are still loaded per lane (vload4 of the packed float4, as in the general kernel) and
+// interpolated per lane; only the interpolated (sigma, emission) is moved into the lanes. A
+// work-item runs until its last ray ends; rays that ended earlier are masked (their lanes compute
+// but change nothing). Work-groups of 1 x 8 items cover 8 x 8 pixels, the general kernel's tile.
+// The host uses this kernel on CPU devices only: a GPU already runs each ray in a lane of its own.
+
+#ifdef REFRACTA_VIEW_EA
+
+#define REFRACTA_EA_LANES 8
+
+// A per-lane step for the eight lanes: MACRO(s0) .. MACRO(s7) (a vector component cannot be
+// indexed by a variable in OpenCL C).
+#define REFRACTA_EA_FOR_LANES(MACRO)                                                              \
+  MACRO(s0) MACRO(s1) MACRO(s2) MACRO(s3) MACRO(s4) MACRO(s5) MACRO(s6) MACRO(s7)
+
+// refracta_step_weight (view_pass.cl) for eight lanes: w = (1 - exp(-tau)) / tau by its series
+// for tau <= 1/2 and with the library's exp and expm1 beyond (called only when a lane needs
+// them), and the step's transmittance.
+inline float8 refracta_ea_step_weight(float8 tau, float8* stepTransmittance)
+{
+  const float8 t = -tau;
+  const float8 t2 = t * t;
+  const float8 t4 = t2 * t2;
+  const float8 a0 = fma(t, (float8)(1.0f / 2.0f), (float8)(1.0f));
+  const float8 a1 = fma(t, (float8)(1.0f / 24.0f), (float8)(1.0f / 6.0f));
+  const float8 a2 = fma(t, (float8)(1.0f / 720.0f), (float8)(1.0f / 120.0f));
+  const float8 a3 = fma(t, (float8)(1.0f / 40320.0f), (float8)(1.0f / 5040.0f));
+  const float8 a4 = fma(t, (float8)(1.0f / 3628800.0f), (float8)(1.0f / 362880.0f));
+  const float8 b0 = fma(t2, a1, a0);
+  const float8 b1 = fma(t2, a3, a2);
+  float8 w = fma(t4 * t4, a4, fma(t4, b1, b0));
+  float8 stepT = fma(t, w, (float8)(1.0f));
+  const int8 thick = tau > 0.5f;
+  if (any(thick))
+  {
+    w = select(w, -expm1(t) / tau, thick);
+    stepT = select(stepT, exp(t), thick);
+  }
+  *stepTransmittance = stepT;
+  return w;
+}
+
+#ifdef REFRACTA_SKIP
+// Empty-space skipping for the lanes in `check` (view_skipping.cl), as refracta_view_march does
+// it for a straight ray: from the lane's step start, the run of empty macro cells ahead, clipped
+// to the box exit and the depth limit, is jumped over in whole steps (not counted as steps
+// marched), and the next test waits until the ray has passed `recheck`. Lane by lane in scalar
+// code: a lane asks about once per macro cell it crosses.
+inline void refracta_ea_skip(int8 check, const float3* origins, const float3* directions,
+  const float* t0s, const float* t1s, const float* limits, float3 lo, float3 hi, float4 spacing,
+  int4 cellDims, int4 activeLo, int4 activeHi, __global const uchar* occupancy, uint skipMask,
+  float stepLength, int maxSteps, int8* step, float8* travelled, float8* nextCheck)
+{
+  int checks[REFRACTA_EA_LANES], steps[REFRACTA_EA_LANES];
+  float paths[REFRACTA_EA_LANES], nexts[REFRACTA_EA_LANES];
+  vstore8(check, 0, checks);
+  vstore8(*step, 0, steps);
+  vstore8(*travelled, 0, paths);
+  vstore8(*nextCheck, 0, nexts);
+  const float3 cellExtent = (float)cellDims.w * spacing.xyz;
+  for (int l = 0; l < REFRACTA_EA_LANES; ++l)
+  {
+    if (!checks[l])
+    {
+      continue;
+    }
+    const float tS = t0s[l] + (float)steps[l] * stepLength;
+    const float toExit = fmax(t1s[l] - tS, 0.0f);
+    float recheck;
+    float run = refracta_empty_run(origins[l] + tS * directions[l], directions[l], lo, hi,
+      cellExtent, cellDims, activeLo, activeHi, occupancy, skipMask, &recheck);
+    nexts[l] = paths[l] + recheck;
+    run = fmin(run, fmin(toExit, limits[l] - paths[l]));
+    const int k = min((int)floor(run / stepLength), maxSteps - 1 - steps[l]);
+    if (k > 0)
+    {
+      steps[l] += k;
+      paths[l] += (float)k * stepLength;
+    }
+  }
+  *step = vload8(0, steps);
+  *travelled = vload8(0, paths);
+  *nextCheck = vload8(0, nexts);
+}
+#endif
+
+// The kernel's arguments are refracta_view_pass's (one argument list for the host to set); those
+// of the effects this variant does not have are unused.
+__kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_ea(
+  const int4 dims, const float4 spacing, __global const float* extinction,
+  __global const float* emission, __global const float* anisotropy,
+  __global const float* refractiveIndex, __global const float* gradient,
+  __global const float* radiance, __global const float* radianceDirection,
+  __global const float* multiple, const float4 eye, const float4 camU, const float4 camV,
+  const float4 camW, const int width, const int height, const float stepLength,
+  const int maxSteps, const float cutoff, const float4 background,
+  __global const float* environment, const int2 envSize, const float4 envRight,
+  const float4 envUp, const float4 envFront, __global const float* depthLimit,
+  __global const uchar* occupancy, const int4 cellDims, const int4 activeLo, const int4 activeHi,
+  const uint skipMask, __global const float4* nodes, const int nodeCount,
+  __global const float4* triangles, __global const int* triInfo,
+  __global const float* surfaceAlbedo, __global const float* surfaceIrradiance,
+  __global const float4* triNormals, __global const float2* interfaces,
+  const float4 toSurface0, const float4 toSurface1, const float4 toSurface2, __global float* hdr,
+  __global uint* steps, __global float* transmittanceOut, __global float* surfaceDepthOut,
+  __global const float4* bodies, __global const int* causticBricks,
+  __global const float* causticRadiance, __global const float* causticDirection,
+  const int causticSub, const int supersampling, const float grazingCosine,
+  volatile __global int* supersampledPixels)
+{
+  const int firstPixel = REFRACTA_EA_LANES * (int)get_global_id(0);
+  const int pj = (int)get_global_id(1);
+  if (firstPixel >= width || pj >= height)
+  {
+    return;
+  }
+  float3 lo, hi;
+  refracta_domain(dims, spacing, &lo, &hi);
+
+  // Each lane's ray, set up as the general kernel sets up its one ray; a lane past the image's
+  // right edge or a ray that meets no medium gets zeros and is not marched.
+  float t0s[REFRACTA_EA_LANES], t1s[REFRACTA_EA_LANES], limits[REFRACTA_EA_LANES];
+  float ux[REFRACTA_EA_LANES], uy[REFRACTA_EA_LANES], uz[REFRACTA_EA_LANES];
+  float dx[REFRACTA_EA_LANES], dy[REFRACTA_EA_LANES], dz[REFRACTA_EA_LANES];
+  int marching[REFRACTA_EA_LANES];
+#ifdef REFRACTA_SKIP
+  float3 origins[REFRACTA_EA_LANES], directions[REFRACTA_EA_LANES];
+#endif
+  for (int l = 0; l < REFRACTA_EA_LANES; ++l)
+  {
+    const int pi = min(firstPixel + l, width - 1);
+#ifdef REFRACTA_HAS_DEPTH_LIMIT
+    limits[l] = depthLimit[(size_t)pi + (size_t)width * (size_t)pj];
+#else
+    limits[l] = INFINITY;
+#endif
+    float3 origin, d;
+    refracta_view_camera_ray(eye, camU, camV, camW,
+      2.0f * ((float)pi + 0.5f) / (float)width - 1.0f,
+      2.0f * ((float)pj + 0.5f) / (float)height - 1.0f, &origin, &d);
+    float t0, t1;
+    const bool marches = refracta_intersect_box(origin, d, lo, hi, &t0, &t1) && t0 < limits[l] &&
+      firstPixel + l < width;
+    const float3 u = marches ? refracta_to_voxel(origin + t0 * d, spacing) : (float3)(0.0f);
+    const float3 v = marches ? refracta_to_voxel(d, spacing) : (float3)(0.0f);
+    marching[l] = marches ? -1 : 0;
+#ifdef REFRACTA_SKIP
+    origins[l] = origin;
+    directions[l] = d;
+#endif
+    t0s[l] = marches ? t0 : 0.0f;
+    t1s[l] = marches ? t1 : 0.0f;
+    ux[l] = u.x;
+    uy[l] = u.y;
+    uz[l] = u.z;
+    dx[l] = v.x;
+    dy[l] = v.y;
+    dz[l] = v.z;
+  }
+  const float8 t0 = vload8(0, t0s), t1 = vload8(0, t1s), limit = vload8(0, limits);
+  const float8 u0x = vload8(0, ux), u0y = vload8(0, uy), u0z = vload8(0, uz);
+  const float8 dvx = vload8(0, dx), dvy = vload8(0, dy), dvz = vload8(0, dz);
+  int8 alive = vload8(0, marching);
+  // A ray that meets no medium sees the background unless opaque geometry stops it first.
+  int8 seesBackground = alive | (limit == INFINITY);
+
+  const float8 hx = (float8)((float)(dims.x - 1));
+  const float8 hy = (float8)((float)(dims.y - 1));
+  const float8 hz = (float8)((float)(dims.z - 1));
+  const int strideY = dims.x, strideZ = dims.x * dims.y;
+  float8 radianceR = 0.0f, radianceG = 0.0f, radianceB = 0.0f;
+  float8 transmittance = 1.0f; // grey: the packed medium's extinction is the same in R, G, B
+  float8 travelled = t0;
+  int8 count = 0;
+  int8 step = 0; // each lane's step index s: lanes skip different numbers of steps
+#ifdef REFRACTA_SKIP
+  float8 nextCheck = t0; // no skip test before this path length (inside an occupied cell)
+#endif
+  while (any(alive)) // every lane ends within maxSteps steps
+  {
+#ifdef REFRACTA_SKIP
+    const int8 check = alive & (travelled >= nextCheck);
+    if (any(check))
+    {
+      refracta_ea_skip(check, origins, directions, t0s, t1s, limits, lo, hi, spacing, cellDims,
+        activeLo, activeHi, occupancy, skipMask, stepLength, maxSteps, &step, &travelled,
+        &nextCheck);
+    }
+#endif
+    // The general kernel's step (view_pass.cl, refracta_view_march), lane by lane.
+    const float8 along = convert_float8(step) * stepLength;
+    const float8 tA = t0 + along;
+    const float8 tB = fmin(tA + stepLength, t1);
+    const int8 leaves = tB >= t1;
+    float8 len = fmax(tB - tA, 0.0f);
+    const int8 blocked = travelled + len >= limit;
+    len = select(len, fmax(limit - travelled, 0.0f), blocked);
+    const float8 a = along + 0.5f * len;
+    const float8 cx = clamp(fma(a, dvx, u0x), (float8)(0.0f), hx);
+    const float8 cy = clamp(fma(a, dvy, u0y), (float8)(0.0f), hy);
+    const float8 cz = clamp(fma(a, dvz, u0z), (float8)(0.0f), hz);
+    const int8 i0 = convert_int8(cx), j0 = convert_int8(cy), k0 = convert_int8(cz); // >= 0
+    const float8 fx = cx - convert_float8(i0), fy = cy - convert_float8(j0),
+                 fz = cz - convert_float8(k0);
+    const int8 base = i0 + strideY * j0 + strideZ * k0;
+    const int8 offX = min(i0 + 1, dims.x - 1) - i0;
+    const int8 offY = (min(j0 + 1, dims.y - 1) - j0) * strideY;
+    const int8 offZ = (min(k0 + 1, dims.z - 1) - k0) * strideZ;
+    // Each lane's eight corners of (sigma, emission RGB), interpolated as refracta_view_sample4.
+#define REFRACTA_EA_SAMPLE(L)                                                                     \
+  float4 m##L;                                                                                     \
+  {                                                                                                \
+    const int c = base.L, ox = offX.L, oy = offY.L, oz = offZ.L;                                   \
+    const float4 c00 = mix(vload4(c, extinction), vload4(c + ox, extinction), fx.L);               \
+    const float4 c10 = mix(vload4(c + oy, extinction), vload4(c + ox + oy, extinction), fx.L);     \
+    const float4 c01 = mix(vload4(c + oz, extinction), vload4(c + ox + oz, extinction), fx.L);     \
+    const float4 c11 =                                                                             \
+      mix(vload4(c + oy + oz, extinction), vload4(c + ox + oy + oz, extinction), fx.L);            \
+    m##L = mix(mix(c00, c10, fy.L), mix(c01, c11, fy.L), fz.L);                                    \
+  }
+    REFRACTA_EA_FOR_LANES(REFRACTA_EA_SAMPLE)
+#undef REFRACTA_EA_SAMPLE
+    const float8 sigma =
+      (float8)(ms0.x, ms1.x, ms2.x, ms3.x, ms4.x, ms5.x, ms6.x, ms7.x);
+    float8 qR = (float8)(ms0.y, ms1.y, ms2.y, ms3.y, ms4.y, ms5.y, ms6.y, ms7.y);
+    float8 qG = (float8)(ms0.z, ms1.z, ms2.z, ms3.z, ms4.z, ms5.z, ms6.z, ms7.z);
+    float8 qB = (float8)(ms0.w, ms1.w, ms2.w, ms3.w, ms4.w, ms5.w, ms6.w, ms7.w);
+#ifdef REFRACTA_SOURCE_SCALE
+    qR *= REFRACTA_SOURCE_SCALE;
+    qG *= REFRACTA_SOURCE_SCALE;
+    qB *= REFRACTA_SOURCE_SCALE;
+#endif
+    float8 stepT;
+    const float8 w = refracta_ea_step_weight(sigma * len, &stepT);
+    // refracta_integrate_step (view_pass.cl), grey; lanes that ended add nothing.
+    const float8 gain = select((float8)(0.0f), transmittance * (len * w), alive);
+    radianceR += gain * qR;
+    radianceG += gain * qG;
+    radianceB += gain * qB;
+    const float8 stepped = transmittance * stepT;
+    transmittance = select(transmittance, stepped, alive);
+    travelled = select(travelled, travelled + len, alive);
+    count -= alive; // true is -1
+    // The general kernel's ends: the box exit (sees the background), the depth limit, the cutoff
+    // and the step cap (see nothing behind).
+    const int8 opaque = stepped < cutoff;
+    const int8 capped = step + 1 == maxSteps;
+    ++step;
+    const int8 sees = ~(blocked | (~leaves & (opaque | capped)));
+    seesBackground = select(seesBackground, sees, alive);
+    alive &= ~(blocked | leaves | opaque | capped);
+  }
+
+  float rs[REFRACTA_EA_LANES], gs[REFRACTA_EA_LANES], bs[REFRACTA_EA_LANES];
+  float ts[REFRACTA_EA_LANES];
+  int counts[REFRACTA_EA_LANES], sees[REFRACTA_EA_LANES];
+  vstore8(radianceR, 0, rs);
+  vstore8(radianceG, 0, gs);
+  vstore8(radianceB, 0, bs);
+  vstore8(transmittance, 0, ts);
+  vstore8(count, 0, counts);
+  vstore8(seesBackground, 0, sees);
+  for (int l = 0; l < REFRACTA_EA_LANES && firstPixel + l < width; ++l)
+  {
+    const int pi = firstPixel + l;
+    const size_t pixel = (size_t)pi + (size_t)width * (size_t)pj;
+    float3 radianceSum = (float3)(rs[l], gs[l], bs[l]);
+    if (sees[l])
+    {
+      float3 origin, d;
+      refracta_view_camera_ray(eye, camU, camV, camW,
+        2.0f * ((float)pi + 0.5f) / (float)width - 1.0f,
+        2.0f * ((float)pj + 0.5f) / (float)height - 1.0f, &origin, &d);
+      radianceSum += ts[l] *
+        refracta_background(d, background, environment, envSize, envRight, envUp, envFront);
+    }
+    const float alpha = clamp(1.0f - 3.0f * ts[l] * (1.0f / 3.0f), 0.0f, 1.0f);
+    surfaceDepthOut[pixel] = INFINITY;
+    vstore4((float4)(radianceSum, alpha), pixel, hdr);
+    steps[pixel] = (uint)counts[l];
+    vstore4((float4)(ts[l], ts[l], ts[l], 0.0f), pixel, transmittanceOut);
+  }
+}
+
+#endif

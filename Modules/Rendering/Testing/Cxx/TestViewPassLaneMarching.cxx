@@ -1,0 +1,269 @@
+// The eight-lane emission-absorption kernel (vtkRefractaViewPass::LaneMarching, Kernels/view_ea.cl)
+// must render what the general kernel renders, and run only where it applies.
+//
+// Scene: a 40 x 33 x 29 grid with a far origin, unequal spacings and a rotated frame, holding an
+// emission-absorption medium of grey extinction (the packed layout vtkTransferFunctionMedium
+// produces): a soft ball of extinction 6-30 per unit with RGB emission, a thick slab (extinction
+// 400 per unit: steps of optical depth > 1/2, the exp branch of the step integration) and empty
+// space around them (macro cells to skip). Every configuration renders an image whose width is
+// not a multiple of 8 (lanes past the edge) with LaneMarching off (the general kernel) and on, and
+// asserts that the lane kernel ran, that the steps marched are the same, and that
+//   max |on - off| <= 1e-5 max |off| + 1e-7 over RGBA and the path transmittance:
+// the two kernels take the same steps at the same positions and differ by float rounding only
+// (the step weight's exp in SIMD lanes, and the order of a few operations). Configurations:
+// perspective from outside with skipping and the default cutoff; parallel with a per-pixel depth
+// limit and an environment map; the camera inside the grid with a MaxSteps cap that stops rays
+// midway and a uniform refractive index n = 1.3 (sources count 1 / n^2); cutoff 0 through the
+// thick slab. Breaking the kernel's bookkeeping (e.g. not masking ended lanes, or taking the
+// background for rays stopped by the cap) fails these by O(0.1). Scenes the lane kernel cannot
+// render (lighting, curved rays) must use the general kernel.
+#include "RenderingTestUtilities.h"
+
+#include "vtkCamera.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaViewPass.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+namespace
+{
+const int NX = 40, NY = 33, NZ = 29;
+
+// The medium; with `index` a uniform RefractiveIndex n = 1.3.
+vtkSmartPointer<vtkImageData> Medium(bool index)
+{
+  const double origin[3] = { 250.0, -120.0, 35.0 };
+  auto medium = refracta_test::MakeGrid(NX, NY, NZ, 0.025, origin);
+  medium->SetSpacing(0.025, 0.03, 0.035);
+  const double a = vtkMath::RadiansFromDegrees(25.0), b = vtkMath::RadiansFromDegrees(-15.0);
+  const double rz[9] = { std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1 };
+  const double rx[9] = { 1, 0, 0, 0, std::cos(b), -std::sin(b), 0, std::sin(b), std::cos(b) };
+  double m[9];
+  vtkMatrix3x3::Multiply3x3(rx, rz, m);
+  medium->SetDirectionMatrix(m);
+  vtkFloatArray* extinction = refracta_test::AddConstant(medium, "Extinction", 3, 0, 0, 0);
+  vtkFloatArray* emission = refracta_test::AddConstant(medium, "Emission", 3, 0, 0, 0);
+  if (index)
+  {
+    refracta_test::AddConstant(medium, "RefractiveIndex", 1, 1.3);
+  }
+  for (int k = 0; k < NZ; ++k)
+  {
+    for (int j = 0; j < NY; ++j)
+    {
+      for (int i = 0; i < NX; ++i)
+      {
+        const vtkIdType id = i + NX * (j + static_cast<vtkIdType>(NY) * k);
+        const double x = (i - 14.0) / 9.0, y = (j - 15.0) / 9.0, z = (k - 12.0) / 8.0;
+        const double r2 = x * x + y * y + z * z;
+        if (r2 < 1.0)
+        {
+          const double s = 6.0 + 24.0 * (1.0 - r2);
+          extinction->SetTuple3(id, s, s, s);
+          emission->SetTuple3(id, 3.0 * (1.0 - r2), 1.0 + x, 2.0 * std::abs(y));
+        }
+        else if (i >= 31 && i <= 34 && j >= 4 && j <= 28 && k >= 5 && k <= 24)
+        {
+          extinction->SetTuple3(id, 400.0, 400.0, 400.0); // a thick slab: tau > 1/2 per step
+          emission->SetTuple3(id, 0.5, 2.0, 0.25);
+        }
+      }
+    }
+  }
+  return medium;
+}
+
+vtkSmartPointer<vtkImageData> Environment()
+{
+  const int ew = 32, eh = 16;
+  auto image = refracta_test::MakeGrid(ew, eh, 1, 1.0);
+  vtkNew<vtkFloatArray> rgb;
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(ew * eh);
+  for (int j = 0; j < eh; ++j)
+  {
+    for (int i = 0; i < ew; ++i)
+    {
+      rgb->SetTuple3(i + ew * j, 0.5 + 0.5 * std::sin(0.6 * i), (j + 0.5) / eh, (j / 2) % 2);
+    }
+  }
+  image->GetPointData()->SetScalars(rgb);
+  return image;
+}
+
+double MaxAbs(const std::vector<float>& v)
+{
+  double m = 0;
+  for (float x : v)
+  {
+    m = std::max(m, std::abs(static_cast<double>(x)));
+  }
+  return m;
+}
+
+double MaxDiff(const std::vector<float>& a, const std::vector<float>& b)
+{
+  double m = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+  {
+    m = std::max(m, std::abs(static_cast<double>(a[i]) - b[i]));
+  }
+  return m;
+}
+
+struct Config
+{
+  const char* Name;
+  bool Parallel = false;
+  bool Inside = false;
+  bool DepthLimit = false;
+  bool Environment = false;
+  bool Index = false;
+  bool Skipping = true;
+  int MaxSteps = 0;
+  double Cutoff = 1e-4;
+};
+
+void SetCamera(vtkCamera* camera, const Config& config, vtkImageData* medium)
+{
+  double bounds[6]; // world bounds (through the grid's frame)
+  medium->GetBounds(bounds);
+  const double p[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+    0.5 * (bounds[4] + bounds[5]) };
+  camera->SetFocalPoint(p);
+  if (config.Inside)
+  {
+    camera->SetPosition(p[0] + 0.2, p[1] + 0.1, p[2] + 0.15);
+    camera->SetViewAngle(80);
+  }
+  else
+  {
+    camera->SetPosition(p[0] + 1.1, p[1] + 0.7, p[2] + 1.6);
+    camera->SetViewAngle(40);
+  }
+  camera->SetViewUp(0, 1, 0);
+  camera->SetParallelProjection(config.Parallel);
+  camera->SetParallelScale(0.7);
+}
+
+void CheckConfig(const Config& config)
+{
+  SCOPED_TRACE(config.Name);
+  vtkSmartPointer<vtkImageData> medium = Medium(config.Index);
+  vtkNew<vtkRefractaViewPass> pass;
+  pass->SetRayMode(vtkRefractaViewPass::AUTO); // a uniform index: straight rays
+  pass->SetMaxSteps(config.MaxSteps);
+  pass->SetTransmittanceCutoff(config.Cutoff);
+  pass->SetEmptySpaceSkipping(config.Skipping);
+  pass->SetBackgroundColor(0.1, 0.2, 0.3);
+  if (config.Environment)
+  {
+    pass->SetEnvironmentMap(Environment());
+  }
+  ASSERT_TRUE(pass->SetMedium(medium));
+  vtkNew<vtkCamera> camera;
+  SetCamera(camera, config, medium);
+  const int w = 61, h = 43;
+  std::vector<float> depth;
+  if (config.DepthLimit)
+  {
+    // Path-length limits from 0 to 2.5 in a pixel hash: rays stop before, in and behind objects.
+    depth.resize(size_t(w) * h);
+    for (size_t q = 0; q < depth.size(); ++q)
+    {
+      depth[q] = static_cast<float>(2.5 * ((q * 2654435761u) % 1000) / 1000.0);
+    }
+  }
+  const float* limit = config.DepthLimit ? depth.data() : nullptr;
+  std::vector<float> off, on, offT, onT;
+  pass->LaneMarchingOff();
+  ASSERT_TRUE(pass->Render(camera, w, h, nullptr, limit, off, &offT));
+  EXPECT_FALSE(pass->GetLastLaneMarching());
+  EXPECT_FALSE(pass->GetLastCurved());
+  const double stepsOff = pass->GetLastTotalSteps();
+  pass->LaneMarchingOn();
+  ASSERT_TRUE(pass->Render(camera, w, h, nullptr, limit, on, &onT));
+  EXPECT_TRUE(pass->GetLastLaneMarching());
+  EXPECT_EQ(pass->GetLastSkipping(), config.Skipping);
+  const double stepsOn = pass->GetLastTotalSteps();
+
+  const double scale = MaxAbs(off);
+  const double diff = MaxDiff(on, off);
+  const double diffT = MaxDiff(onT, offT);
+  std::cout << config.Name << ": max |lanes - general| = " << diff << " (image max " << scale
+            << "), transmittance " << diffT << ", steps " << stepsOn << " vs " << stepsOff << "\n";
+  EXPECT_GT(scale, 0.3); // the scene is visible
+  EXPECT_EQ(stepsOn, stepsOff);
+  EXPECT_LE(diff, 1e-5 * scale + 1e-7);
+  EXPECT_LE(diffT, 1e-5 + 1e-7);
+}
+}
+
+TEST(ViewPassLaneMarching, PerspectiveSkipping)
+{
+  CheckConfig({ "perspective, skipping" });
+}
+
+TEST(ViewPassLaneMarching, ParallelDepthLimitEnvironment)
+{
+  Config config{ "parallel, depth limit, environment" };
+  config.Parallel = true;
+  config.DepthLimit = true;
+  config.Environment = true;
+  config.Skipping = false;
+  CheckConfig(config);
+}
+
+TEST(ViewPassLaneMarching, CameraInsideStepCapUniformIndex)
+{
+  Config config{ "camera inside, MaxSteps 23, n = 1.3" };
+  config.Inside = true;
+  config.Index = true;
+  config.MaxSteps = 23;
+  CheckConfig(config);
+}
+
+TEST(ViewPassLaneMarching, ThickSlabWithoutCutoff)
+{
+  Config config{ "cutoff 0 through the thick slab" };
+  config.Cutoff = 0.0;
+  CheckConfig(config);
+}
+
+TEST(ViewPassLaneMarching, OnlyWhereItApplies)
+{
+  // A lighting volume (scattered light) or curved rays need the general kernel.
+  vtkSmartPointer<vtkImageData> medium = Medium(false);
+  vtkNew<vtkRefractaViewPass> pass;
+  ASSERT_TRUE(pass->SetMedium(medium));
+  vtkNew<vtkCamera> camera;
+  SetCamera(camera, Config{ "" }, medium);
+  std::vector<float> hdr;
+  ASSERT_TRUE(pass->Render(camera, 16, 16, nullptr, nullptr, hdr));
+  EXPECT_TRUE(pass->GetLastLaneMarching());
+
+  auto lighting = vtkSmartPointer<vtkImageData>::New();
+  lighting->CopyStructure(medium);
+  refracta_test::AddConstant(
+    lighting, vtkRefractaLightingVolume::MultipleScatteringName(), 3, 0.1, 0.1, 0.1);
+  ASSERT_TRUE(pass->SetLighting(lighting));
+  ASSERT_TRUE(pass->Render(camera, 16, 16, nullptr, nullptr, hdr));
+  EXPECT_FALSE(pass->GetLastLaneMarching());
+
+  ASSERT_TRUE(pass->SetLighting(nullptr));
+  vtkSmartPointer<vtkImageData> bending = Medium(true); // curved rays need a varying index
+  vtkFloatArray::SafeDownCast(bending->GetPointData()->GetArray("RefractiveIndex"))
+    ->SetValue(NX * NY * 12 + NX * 15 + 14, 1.5f);
+  ASSERT_TRUE(pass->SetMedium(bending));
+  pass->SetRayMode(vtkRefractaViewPass::CURVED);
+  ASSERT_TRUE(pass->Render(camera, 16, 16, nullptr, nullptr, hdr));
+  EXPECT_TRUE(pass->GetLastCurved());
+  EXPECT_FALSE(pass->GetLastLaneMarching());
+}
