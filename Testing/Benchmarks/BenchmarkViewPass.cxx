@@ -8,6 +8,8 @@
 // W = 512, rendered by Refracta's view pass (straight rays, one-voxel steps) and by
 // vtkFixedPointVolumeRayCastMapper (sample distance one voxel, no auto-adjustment, no shading)
 // in an offscreen render window of the same size, in the same run; prints the time ratio.
+// Parts 2 and 3 time the general kernel (LaneMarching off) beside the eight-lane one
+// (Kernels/view_ea.cl, the default for such a medium on a CPU device).
 // Part 3: empty-space skipping. Every Refracta row above is timed with EmptySpaceSkipping off and
 // on in the same run (column "skip"; "active" is the fraction of macro cells rays must march),
 // and a third scene puts a small emission-absorption object (support radius 0.12 of the unit box,
@@ -306,25 +308,34 @@ int main(int argc, char* argv[])
     {
       return 1;
     }
-    // Cutoff 0: every ray marches through the whole box (without skipping); 1e-4 (the default):
-    // rays stop once the medium in front is opaque, like the fixed-point mapper's early ray
-    // termination. Skipping off and on, in the same run.
+    // The general kernel (LaneMarching off) and the eight-lane one (the default here), skipping
+    // off and on, in the same run. Cutoff 0: every ray marches through the whole box (without
+    // skipping); 1e-4 (the default): rays stop once the medium in front is opaque, like the
+    // fixed-point mapper's early ray termination. The last setting is the pass's defaults.
     struct Setting
     {
+      bool Lanes;
       double Cutoff;
       bool Skip;
     };
-    const Setting settings[3] = { { 0.0, false }, { 1e-4, false }, { 1e-4, true } };
-    double medians[3], steps[3], active[3];
-    bool used[3];
+    const Setting settings[] = { { false, 1e-4, false }, { false, 1e-4, true }, { true, 0.0, false },
+      { true, 1e-4, false }, { true, 1e-4, true } };
+    const int count = static_cast<int>(sizeof(settings) / sizeof(settings[0]));
+    auto apply = [&](const Setting& setting)
+    {
+      eaPass->SetLaneMarching(setting.Lanes);
+      eaPass->SetTransmittanceCutoff(setting.Cutoff);
+      eaPass->SetEmptySpaceSkipping(setting.Skip);
+    };
+    std::vector<double> medians(count), steps(count), active(count);
+    std::vector<bool> used(count), lanes(count);
     std::vector<float> reference;
-    double maxDiff = 0;
+    double maxDiff = 0; // of every cutoff-1e-4 image from the general kernel's without skipping
     // Two warm-up renders per setting (kernel builds, first touches of the buffers), then the
     // timed runs interleaved: each run renders every setting and the fixed-point mapper once.
     for (const Setting& setting : settings)
     {
-      eaPass->SetTransmittanceCutoff(setting.Cutoff);
-      eaPass->SetEmptySpaceSkipping(setting.Skip);
+      apply(setting);
       for (int warm = 0; warm < 2; ++warm)
       {
         if (!eaPass->Render(camera, compareSize, compareSize, nullptr, nullptr, hdr))
@@ -335,23 +346,24 @@ int main(int argc, char* argv[])
     }
     FixedPointRenderer fixedPoint(
       field.Data, property, camera, compareSize, n, context->GetNumberOfComputeUnits());
-    std::vector<double> seconds[3], vtkSeconds;
+    std::vector<std::vector<double>> seconds(count);
+    std::vector<double> vtkSeconds;
     for (int r = 0; r < runs; ++r)
     {
-      for (int c = 0; c < 3; ++c)
+      for (int c = 0; c < count; ++c)
       {
-        eaPass->SetTransmittanceCutoff(settings[c].Cutoff);
-        eaPass->SetEmptySpaceSkipping(settings[c].Skip);
+        apply(settings[c]);
         eaPass->Render(camera, compareSize, compareSize, nullptr, nullptr, hdr);
         seconds[c].push_back(eaPass->GetLastSeconds());
         steps[c] = eaPass->GetLastTotalSteps();
         active[c] = eaPass->GetLastActiveCellFraction();
         used[c] = eaPass->GetLastSkipping();
-        if (c == 1)
+        lanes[c] = eaPass->GetLastLaneMarching();
+        if (c == 0)
         {
           reference = hdr;
         }
-        if (c == 2)
+        else if (settings[c].Cutoff > 0)
         {
           for (size_t i = 0; i < hdr.size(); ++i)
           {
@@ -364,18 +376,19 @@ int main(int argc, char* argv[])
         vtkSeconds.push_back(fixedPoint.Render());
       }
     }
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < count; ++c)
     {
       medians[c] = refracta::bench::Median(seconds[c]);
     }
     const double vtkMedian = fixedPoint.Ready() ? refracta::bench::Median(vtkSeconds)
                                                 : std::numeric_limits<double>::quiet_NaN();
     const bool haveVTK = !std::isnan(vtkMedian);
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < count; ++c)
     {
       table.AddRow({ field.Name,
-        std::string("refracta straight, cutoff ") + (settings[c].Cutoff > 0 ? "1e-4" : "0"), image,
-        used[c] ? "on" : "off", refracta::bench::Table::Format(active[c]),
+        std::string("refracta straight, ") + (lanes[c] ? "8 lanes" : "general kernel") +
+          ", cutoff " + (settings[c].Cutoff > 0 ? "1e-4" : "0"),
+        image, used[c] ? "on" : "off", refracta::bench::Table::Format(active[c]),
         refracta::bench::Table::Format(medians[c] * 1e3),
         refracta::bench::Table::Format(steps[c] / (double(compareSize) * compareSize)),
         refracta::bench::Table::Format(steps[c] / medians[c] / 1e6),
@@ -387,13 +400,14 @@ int main(int argc, char* argv[])
         refracta::bench::Table::Format(vtkMedian * 1e3), "", "", "1" });
     }
     std::ostringstream line;
-    line << field.Name << " (" << image << ", " << n << "^3): skipping " << medians[1] * 1e3
-         << " -> " << medians[2] * 1e3 << " ms (" << medians[1] / medians[2] << "x, active cells "
-         << active[2] << ", occupancy built in " << eaPass->GetOccupancySeconds() * 1e3
-         << " ms, max |HDR difference| " << maxDiff
-         << "); vtkFixedPointVolumeRayCastMapper / Refracta time ratio " << vtkMedian / medians[1]
-         << " without, " << vtkMedian / medians[2] << " with skipping (" << vtkMedian * 1e3
-         << " ms)";
+    line << field.Name << " (" << image << ", " << n << "^3): 8 lanes / general kernel speed-up "
+         << medians[0] / medians[3] << "x without skipping, " << medians[1] / medians[4]
+         << "x with (active cells " << active[4] << ", occupancy built in "
+         << eaPass->GetOccupancySeconds() * 1e3 << " ms, max |HDR difference| " << maxDiff
+         << "); vtkFixedPointVolumeRayCastMapper / Refracta time ratio " << vtkMedian / medians[3]
+         << " without, " << vtkMedian / medians[4] << " with skipping (" << vtkMedian * 1e3
+         << " ms; general kernel " << vtkMedian / medians[0] << " and " << vtkMedian / medians[1]
+         << ")";
     summary.push_back(line.str());
   }
 
