@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <string>
 #include <vector>
 
 namespace
@@ -266,4 +267,27 @@ TEST(ViewPassLaneMarching, OnlyWhereItApplies)
   ASSERT_TRUE(pass->Render(camera, 16, 16, nullptr, nullptr, hdr));
   EXPECT_TRUE(pass->GetLastCurved());
   EXPECT_FALSE(pass->GetLastLaneMarching());
+}
+
+TEST(ViewPassLaneMarching, ImagesNarrowerThanEightLanes)
+{
+  // Rows shorter than a work-item's eight pixels and widths that leave a partial work-item.
+  vtkSmartPointer<vtkImageData> medium = Medium(false);
+  vtkNew<vtkRefractaViewPass> pass;
+  ASSERT_TRUE(pass->SetMedium(medium));
+  vtkNew<vtkCamera> camera;
+  SetCamera(camera, Config{ "" }, medium);
+  const int sizes[][2] = { { 1, 1 }, { 3, 5 }, { 9, 2 }, { 17, 3 } };
+  for (const auto& size : sizes)
+  {
+    SCOPED_TRACE(std::to_string(size[0]) + " x " + std::to_string(size[1]));
+    std::vector<float> off, on;
+    pass->LaneMarchingOff();
+    ASSERT_TRUE(pass->Render(camera, size[0], size[1], nullptr, nullptr, off));
+    pass->LaneMarchingOn();
+    ASSERT_TRUE(pass->Render(camera, size[0], size[1], nullptr, nullptr, on));
+    EXPECT_TRUE(pass->GetLastLaneMarching());
+    ASSERT_EQ(on.size(), size_t(4) * size[0] * size[1]);
+    EXPECT_LE(MaxDiff(on, off), 1e-5 * MaxAbs(off) + 1e-7);
+  }
 }
