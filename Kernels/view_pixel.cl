@@ -297,26 +297,31 @@ inline refracta_view_sample refracta_view_path(
   return out;
 }
 
-__kernel void refracta_view_pass(const int4 dims, const float4 spacing,
-  __global const float* extinction, __global const float* emission,
-  __global const float* anisotropy, __global const float* refractiveIndex,
-  __global const float* gradient, __global const float* radiance,
-  __global const float* radianceDirection, __global const float* multiple, const float4 eye,
-  const float4 camU, const float4 camV, const float4 camW, const int width, const int height,
-  const float stepLength, const int maxSteps, const float cutoff, const float4 background,
-  __global const float* environment, const int2 envSize, const float4 envRight,
-  const float4 envUp, const float4 envFront, __global const float* depthLimit,
-  __global const uchar* occupancy, const int4 cellDims, const int4 activeLo, const int4 activeHi,
-  const uint skipMask, __global const float4* nodes, const int nodeCount,
-  __global const float4* triangles, __global const int* triInfo,
-  __global const float* surfaceAlbedo, __global const float* surfaceIrradiance,
-  __global const float4* triNormals, __global const float2* interfaces,
-  const float4 toSurface0, const float4 toSurface1, const float4 toSurface2, __global float* hdr,
-  __global uint* steps, __global float* transmittanceOut, __global float* surfaceDepthOut,
-  __global const float4* bodies, __global const int* causticBricks,
-  __global const float* causticRadiance, __global const float* causticDirection,
-  const int causticSub, const int supersampling, const float grazingCosine,
-  volatile __global int* supersampledPixels)
+// The view-pass kernels' parameters (refracta_view_pass here, refracta_view_pass_ea in view_ea.cl:
+// one argument list for the host to set).
+#define REFRACTA_VIEW_KERNEL_PARAMS                                                                \
+  const int4 dims, const float4 spacing, __global const float* extinction,                         \
+    __global const float* emission, __global const float* anisotropy,                              \
+    __global const float* refractiveIndex, __global const float* gradient,                         \
+    __global const float* radiance, __global const float* radianceDirection,                       \
+    __global const float* multiple, const float4 eye, const float4 camU, const float4 camV,        \
+    const float4 camW, const int width, const int height, const float stepLength,                  \
+    const int maxSteps, const float cutoff, const float4 background,                               \
+    __global const float* environment, const int2 envSize, const float4 envRight,                  \
+    const float4 envUp, const float4 envFront, __global const float* depthLimit,                   \
+    __global const uchar* occupancy, const int4 cellDims, const int4 activeLo,                     \
+    const int4 activeHi, const uint skipMask, __global const float4* nodes,                        \
+    const int nodeCount, __global const float4* triangles, __global const int* triInfo,            \
+    __global const float* surfaceAlbedo, __global const float* surfaceIrradiance,                  \
+    __global const float4* triNormals, __global const float2* interfaces,                          \
+    const float4 toSurface0, const float4 toSurface1, const float4 toSurface2,                     \
+    __global float* hdr, __global uint* steps, __global float* transmittanceOut,                   \
+    __global float* surfaceDepthOut, __global const float4* bodies,                                \
+    __global const int* causticBricks, __global const float* causticRadiance,                      \
+    __global const float* causticDirection, const int causticSub, const int supersampling,         \
+    const float grazingCosine, volatile __global int* supersampledPixels
+
+__kernel void refracta_view_pass(REFRACTA_VIEW_KERNEL_PARAMS)
 {
   const int pi = (int)get_global_id(0);
   const int pj = (int)get_global_id(1);

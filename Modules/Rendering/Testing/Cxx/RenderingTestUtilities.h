@@ -21,6 +21,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace refracta_test
 {
@@ -51,6 +52,28 @@ inline vtkFloatArray* AddConstant(
   }
   image->GetPointData()->AddArray(array);
   return array;
+}
+
+// The largest absolute value of an image, and the largest absolute difference of two of the same
+// size.
+inline double MaxAbs(const std::vector<float>& v)
+{
+  double m = 0;
+  for (float x : v)
+  {
+    m = std::max(m, std::abs(static_cast<double>(x)));
+  }
+  return m;
+}
+
+inline double MaxDiff(const std::vector<float>& a, const std::vector<float>& b)
+{
+  double m = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+  {
+    m = std::max(m, std::abs(static_cast<double>(a[i]) - b[i]));
+  }
+  return m;
 }
 
 inline std::string EnvOr(const char* name, const char* fallback)

@@ -99,26 +99,6 @@ vtkSmartPointer<vtkImageData> Environment()
   return image;
 }
 
-double MaxAbs(const std::vector<float>& v)
-{
-  double m = 0;
-  for (float x : v)
-  {
-    m = std::max(m, std::abs(static_cast<double>(x)));
-  }
-  return m;
-}
-
-double MaxDiff(const std::vector<float>& a, const std::vector<float>& b)
-{
-  double m = 0;
-  for (size_t i = 0; i < a.size(); ++i)
-  {
-    m = std::max(m, std::abs(static_cast<double>(a[i]) - b[i]));
-  }
-  return m;
-}
-
 struct Config
 {
   const char* Name;
@@ -195,9 +175,9 @@ void CheckConfig(const Config& config)
   EXPECT_EQ(pass->GetLastSkipping(), config.Skipping);
   const double stepsOn = pass->GetLastTotalSteps();
 
-  const double scale = MaxAbs(off);
-  const double diff = MaxDiff(on, off);
-  const double diffT = MaxDiff(onT, offT);
+  const double scale = refracta_test::MaxAbs(off);
+  const double diff = refracta_test::MaxDiff(on, off);
+  const double diffT = refracta_test::MaxDiff(onT, offT);
   std::cout << config.Name << ": max |lanes - general| = " << diff << " (image max " << scale
             << "), transmittance " << diffT << ", steps " << stepsOn << " vs " << stepsOff << "\n";
   EXPECT_GT(scale, 0.3); // the scene is visible
@@ -288,6 +268,6 @@ TEST(ViewPassLaneMarching, ImagesNarrowerThanEightLanes)
     ASSERT_TRUE(pass->Render(camera, size[0], size[1], nullptr, nullptr, on));
     EXPECT_TRUE(pass->GetLastLaneMarching());
     ASSERT_EQ(on.size(), size_t(4) * size[0] * size[1]);
-    EXPECT_LE(MaxDiff(on, off), 1e-5 * MaxAbs(off) + 1e-7);
+    EXPECT_LE(refracta_test::MaxDiff(on, off), 1e-5 * refracta_test::MaxAbs(off) + 1e-7);
   }
 }

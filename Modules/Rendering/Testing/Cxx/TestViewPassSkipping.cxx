@@ -124,26 +124,6 @@ Scene MakeScene(bool refractive)
   return scene;
 }
 
-double MaxAbs(const std::vector<float>& v)
-{
-  double m = 0;
-  for (float x : v)
-  {
-    m = std::max(m, std::abs(static_cast<double>(x)));
-  }
-  return m;
-}
-
-double MaxDiff(const std::vector<float>& a, const std::vector<float>& b)
-{
-  double m = 0;
-  for (size_t i = 0; i < a.size(); ++i)
-  {
-    m = std::max(m, std::abs(static_cast<double>(a[i]) - b[i]));
-  }
-  return m;
-}
-
 struct Config
 {
   const char* Name;
@@ -215,9 +195,9 @@ void CheckConfig(const Config& config)
   const double stepsOn = pass->GetLastTotalSteps();
   const double fraction = pass->GetLastActiveCellFraction();
 
-  const double scale = MaxAbs(off);
-  const double diff = MaxDiff(on, off);
-  const double diffT = MaxDiff(onT, offT);
+  const double scale = refracta_test::MaxAbs(off);
+  const double diff = refracta_test::MaxDiff(on, off);
+  const double diffT = refracta_test::MaxDiff(onT, offT);
   std::cout << config.Name << ": max |on - off| = " << diff << " (image max " << scale
             << "), transmittance " << diffT << ", active cells " << fraction << ", steps "
             << stepsOn << " vs " << stepsOff << " (" << stepsOff / std::max(stepsOn, 1.0)
@@ -367,8 +347,8 @@ TEST(ViewPassSkipping, PhotonTracedLightingThroughImageRenderer)
     ASSERT_NE(hdr, nullptr);
     images[on].assign(hdr->GetPointer(0), hdr->GetPointer(0) + hdr->GetNumberOfValues());
   }
-  EXPECT_GT(MaxAbs(images[0]), 1e-3); // the lit object is visible
-  EXPECT_EQ(MaxDiff(images[0], images[1]), 0.0);
+  EXPECT_GT(refracta_test::MaxAbs(images[0]), 1e-3); // the lit object is visible
+  EXPECT_EQ(refracta_test::MaxDiff(images[0], images[1]), 0.0);
 }
 
 // Edge cases: an all-vacuum medium (every cell empty: the image is exactly the background), a
