@@ -400,6 +400,7 @@ int vtkRefractaImageRenderer::RequestData(
   record("CurvedRays", pass->GetLastCurved() ? 1.0 : 0.0);
   record("EmptySpaceSkipping", pass->GetLastSkipping() ? 1.0 : 0.0);
   record("ActiveCellFraction", pass->GetLastActiveCellFraction());
+  record("LaneMarching", pass->GetLastLaneMarching() ? 1.0 : 0.0);
   record("PlanSeconds", pipeline->GetStageSeconds(vtkRefractaRenderPipeline::PLAN));
   record("LightingSeconds", pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING));
   record("ViewSeconds", pipeline->GetStageSeconds(vtkRefractaRenderPipeline::VIEW));

@@ -19,16 +19,17 @@
  *   then the sRGB transfer curve (1.055 c^(1/2.4) - 0.055, 12.92 c below 0.0031308) and
  *   rounding to 0..255.
  * Field data records `ViewPassSeconds`, `TotalSteps`, `CurvedRays` (0/1), `EmptySpaceSkipping`
- * (0/1: whether the skipping kernel ran) and `ActiveCellFraction` (macro cells rays had to march
- * through; 1 without skipping) of the run.
+ * (0/1: whether the skipping kernel ran), `ActiveCellFraction` (macro cells rays had to march
+ * through; 1 without skipping) and `LaneMarching` (0/1: whether the eight-lane
+ * emission-absorption kernel ran, vtkRefractaViewPass::LaneMarching) of the run.
  *
  * Knobs (units, defaults): Camera (required), ImageSize (pixels, default 256 x 256),
  * BackgroundColor (linear RGB radiance, default black), EnvironmentMap / EnvironmentTexture
  * (equirectangular, looked up in the ray's bent exit direction; see vtkRefractaViewPass for the
  * orientation, EnvironmentUp and EnvironmentRight), StepSize (voxels, default 1), RayMode (AUTO,
- * STRAIGHT, CURVED; default AUTO: curved only where grad n is non-zero somewhere), TransmittanceCutoff (default
- * 1e-4), MaxSteps (0 = automatic), Exposure (default 1), ToneMapping (default CLAMP), Context
- * (default vtkOpenCLContext::GetDefault()).
+ * STRAIGHT, CURVED; default AUTO: curved only where grad n is non-zero somewhere),
+ * TransmittanceCutoff (default 1e-4), MaxSteps (0 = automatic), Exposure (default 1), ToneMapping
+ * (default CLAMP), Context (default vtkOpenCLContext::GetDefault()).
  *
  * Lights (AddLight, world coordinates): when lights are given and no lighting volume is
  * connected, the light passes run too (photon pass, and multiple scattering where the effect plan

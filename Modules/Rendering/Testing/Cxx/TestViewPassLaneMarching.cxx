@@ -20,8 +20,10 @@
 #include "RenderingTestUtilities.h"
 
 #include "vtkCamera.h"
+#include "vtkFieldData.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
+#include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaViewPass.h"
 
@@ -270,4 +272,19 @@ TEST(ViewPassLaneMarching, ImagesNarrowerThanEightLanes)
     ASSERT_EQ(on.size(), size_t(4) * size[0] * size[1]);
     EXPECT_LE(refracta_test::MaxDiff(on, off), 1e-5 * refracta_test::MaxAbs(off) + 1e-7);
   }
+}
+
+TEST(ViewPassLaneMarching, TheImageRendererSaysWhichKernelRan)
+{
+  vtkSmartPointer<vtkImageData> medium = Medium(false);
+  vtkNew<vtkCamera> camera;
+  SetCamera(camera, Config{ "" }, medium);
+  vtkNew<vtkRefractaImageRenderer> renderer;
+  renderer->SetInputData(medium);
+  renderer->SetCamera(camera);
+  renderer->SetImageSize(24, 16);
+  renderer->Update();
+  vtkDataArray* lanes = renderer->GetOutput()->GetFieldData()->GetArray("LaneMarching");
+  ASSERT_NE(lanes, nullptr);
+  EXPECT_EQ(lanes->GetTuple1(0), 1.0);
 }
