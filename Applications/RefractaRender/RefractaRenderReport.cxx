@@ -219,6 +219,7 @@ json ViewPassReport(vtkRefractaImageRenderer* renderer)
     { "steps_per_pixel", view->GetLastTotalSteps() / (double(size[0]) * size[1]) },
     { "empty_space_skipping", view->GetLastSkipping() },
     { "active_cell_fraction", view->GetLastActiveCellFraction() },
+    { "lane_marching", view->GetLastLaneMarching() },
     { "buffer_tiles", view->GetLastNumberOfBufferTiles() },
     { "fine_caustic_texels", view->GetLastNumberOfFineCausticTexels() },
     { "supersampled_pixels", view->GetLastNumberOfSupersampledPixels() },
@@ -366,6 +367,7 @@ void PrintSummary(const json& report)
                      std::to_string(100.0 * view["active_cell_fraction"].get<double>()) +
                      "% of macro cells active), "
                                                          : std::string("no empty space skipped, "))
+            << (view["lane_marching"].get<bool>() ? "8 rays per work-item, " : "")
             << seconds["view_pass"].get<double>() << " s\n";
   if (const long long edges = view.value("supersampled_pixels", 0LL))
   {
