@@ -5,9 +5,9 @@
 //
 // What it computes is refracta_view_pass's image for the variant it serves (straight rays, the
 // packed grey medium of REFRACTA_PACKED_MEDIUM, no scattered light, no surfaces; with or without
-// empty-space skipping): each ray takes the same steps at the same positions with the same exact step
-// integration, cutoff, step cap, depth limit and background; the image differs from the general
-// kernel's by float rounding only (Testing: RefractaRendering.ViewPass, EmissionAbsorptionKernel).
+// empty-space skipping): each ray takes the same steps at the same positions with the same exact
+// step integration, cutoff, step cap, depth limit and background; the image differs from the
+// general kernel's by float rounding only (test RefractaRendering.ViewPassLaneMarching).
 //
 // Why a kernel of its own: PoCL runs a work-group as a loop over its work-items and leaves it to
 // LLVM's loop vectoriser to put them in SIMD lanes, which it cannot do for work-items whose march

@@ -363,7 +363,8 @@ __kernel void refracta_view_pass(REFRACTA_VIEW_KERNEL_PARAMS)
         refracta_view_camera_ray(eye, camU, camV, camW,
           2.0f * ((float)pi + ((float)a + 0.5f) / (float)n) / (float)width - 1.0f,
           2.0f * ((float)pj + ((float)b + 0.5f) / (float)n) / (float)height - 1.0f, &origin, &d);
-        const refracta_view_sample s = refracta_view_path(REFRACTA_VIEW_PATH_ARGS, origin, d, limit);
+        const refracta_view_sample s =
+          refracta_view_path(REFRACTA_VIEW_PATH_ARGS, origin, d, limit);
         radianceSum += s.radiance;
         transmittance += s.transmittance;
         count += s.count;
