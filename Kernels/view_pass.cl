@@ -294,6 +294,59 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
   return q;
 }
 
+// The grid's fields a step reads (refracta_view_step_medium's arguments).
+#define REFRACTA_VIEW_MEDIUM_PARAMS                                                               \
+  int4 dims, __global const float *extinction, __global const float *emission,                   \
+    __global const float *anisotropy, __global const float *radiance,                            \
+    __global const float *radianceDirection, __global const float *multiple,                     \
+    __global const int *causticBricks, __global const float *causticRadiance,                    \
+    __global const float *causticDirection, int causticSub
+#define REFRACTA_VIEW_MEDIUM_ARGS                                                                 \
+  dims, extinction, emission, anisotropy, radiance, radianceDirection, multiple, causticBricks,  \
+    causticRadiance, causticDirection, causticSub
+
+// The grid's medium at a step's midpoint (stencil st at voxel coordinates u; du the step in voxel
+// units, d the ray's unit direction): its extinction *sigma and emission *gridEmission, and the
+// step's source q = emission + scattered light (refracta_view_source) as the return value. The
+// extinction and emission come from one float4 gather of the packed (sigma, emission) layout of
+// an emitting grey medium, else one per field. Shared by refracta_view_march and the lane kernel
+// (view_lanes.cl).
+inline float3 refracta_view_step_medium(const refracta_view_stencil* st, float3 u, float3 du,
+  float3 d, REFRACTA_VIEW_MEDIUM_PARAMS, float3* sigma, float3* gridEmission)
+{
+#ifdef REFRACTA_PACKED_MEDIUM
+  const float4 packed = refracta_view_sample4(extinction, st);
+  *sigma = (float3)(packed.x);
+  *gridEmission = packed.yzw;
+#else
+  *sigma = refracta_view_sample3(extinction, st);
+#ifdef REFRACTA_HAS_EMISSION
+  *gridEmission = refracta_view_sample3(emission, st);
+#else
+  *gridEmission = (float3)(0.0f);
+#endif
+#endif
+  return *gridEmission +
+    refracta_view_source(st, u, du, d, dims, anisotropy, radiance, radianceDirection, multiple,
+      causticBricks, causticRadiance, causticDirection, causticSub);
+}
+
+// What a source counts at a step: sources are physical radiance per length; what reaches the
+// camera (in n = 1) is the basic radiance L / n^2, conserved along the ray, so a source at index
+// n counts 1 / n^2 (n sampled at the stencil where it varies, a constant where it is uniform).
+inline float refracta_view_source_weight(
+  const refracta_view_stencil* st, __global const float* refractiveIndex)
+{
+#ifdef REFRACTA_INDEX_WEIGHT
+  const float nMid = refracta_view_sample1(refractiveIndex, st);
+  return 1.0f / (nMid * nMid);
+#elif defined(REFRACTA_SOURCE_SCALE)
+  return REFRACTA_SOURCE_SCALE;
+#else
+  return 1.0f;
+#endif
+}
+
 // The surfaces' arguments, passed on to the helpers below.
 #ifdef REFRACTA_HAS_SURFACES
 #define REFRACTA_VIEW_SURFACES nodes, nodeCount, triangles, toSurface0, toSurface1, toSurface2
@@ -510,38 +563,16 @@ inline refracta_view_leg refracta_view_march(
       const float3 u = uEntry + ((float)s * stepLength + 0.5f * len) * dVoxel;
 #endif
       const refracta_view_stencil st = refracta_view_make_stencil(dims, u);
-      // The grid's extinction and emission at the step's midpoint: one float4 gather from the
-      // packed (sigma, emission) layout of an emitting grey medium, else one per field.
-#ifdef REFRACTA_PACKED_MEDIUM
-      const float4 packed = refracta_view_sample4(extinction, &st);
-      float3 sigma = (float3)(packed.x);
-      const float3 gridEmission = packed.yzw;
-#else
-      float3 sigma = refracta_view_sample3(extinction, &st);
-#ifdef REFRACTA_HAS_EMISSION
-      const float3 gridEmission = refracta_view_sample3(emission, &st);
-#else
-      const float3 gridEmission = (float3)(0.0f);
-#endif
-#endif
-      float3 q = gridEmission +
-        refracta_view_source(&st, u, refracta_to_voxel(len * chord, spacing), chord, dims,
-          anisotropy, radiance, radianceDirection, multiple, causticBricks, causticRadiance,
-          causticDirection, causticSub);
+      float3 sigma, gridEmission;
+      float3 q = refracta_view_step_medium(&st, u, refracta_to_voxel(len * chord, spacing), chord,
+        REFRACTA_VIEW_MEDIUM_ARGS, &sigma, &gridEmission);
 #ifdef REFRACTA_DIELECTRIC
       if (body >= 0)
       {
         q = refracta_view_body_medium(bodies, body, q, gridEmission, &sigma);
       }
 #endif
-      // Sources are physical radiance per length; what reaches the camera (in n = 1) is the
-      // basic radiance L / n^2, conserved along the ray: a source at index n counts 1 / n^2.
-#ifdef REFRACTA_INDEX_WEIGHT
-      const float nMid = refracta_view_sample1(refractiveIndex, &st);
-      q *= 1.0f / (nMid * nMid);
-#elif defined(REFRACTA_SOURCE_SCALE)
-      q *= REFRACTA_SOURCE_SCALE;
-#endif
+      q *= refracta_view_source_weight(&st, refractiveIndex);
       refracta_integrate_step(sigma, q, len, &radianceSum, &transmittance);
       travelled += len;
       ++count;

@@ -297,8 +297,8 @@ inline refracta_view_sample refracta_view_path(
   return out;
 }
 
-// The view-pass kernels' parameters (refracta_view_pass here, refracta_view_pass_ea in view_ea.cl:
-// one argument list for the host to set).
+// The view-pass kernels' parameters (refracta_view_pass here, refracta_view_pass_lanes in
+// view_lanes.cl: one argument list for the host to set).
 #define REFRACTA_VIEW_KERNEL_PARAMS                                                                \
   const int4 dims, const float4 spacing, __global const float* extinction,                         \
     __global const float* emission, __global const float* anisotropy,                              \

@@ -21,7 +21,7 @@
  * Field data records `ViewPassSeconds`, `TotalSteps`, `CurvedRays` (0/1), `EmptySpaceSkipping`
  * (0/1: whether the skipping kernel ran), `ActiveCellFraction` (macro cells rays had to march
  * through; 1 without skipping) and `LaneMarching` (0/1: whether the eight-lane
- * emission-absorption kernel ran, vtkRefractaViewPass::LaneMarching) of the run.
+ * kernel ran, vtkRefractaViewPass::LaneMarching) of the run.
  *
  * Knobs (units, defaults): Camera (required), ImageSize (pixels, default 256 x 256),
  * BackgroundColor (linear RGB radiance, default black), EnvironmentMap / EnvironmentTexture

@@ -335,7 +335,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   this->LastLaneMarching = variant.LaneMarching;
   cl_program program = context->GetProgram(
     { "refracta_common.cl", "refracta_surfaces.cl", "view_surfaces.cl", "view_skipping.cl",
-      "view_caustic.cl", "view_pass.cl", "view_pixel.cl", "view_ea.cl" },
+      "view_caustic.cl", "view_pass.cl", "view_pixel.cl", "view_lanes.cl" },
     KernelOptions(variant), this);
   if (!program)
   {
@@ -344,7 +344,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   vtkRefractaViewLaunch launch;
   if (variant.LaneMarching)
   {
-    launch.Name = "refracta_view_pass_ea";
+    launch.Name = "refracta_view_pass_lanes";
     launch.PixelsPerItem = 8;
   }
   vtkOpenCLKernel kernel = context->CreateKernel(program, launch.Name, this);

@@ -40,12 +40,12 @@
  *   grid, so the image equals the one without skipping up to float rounding. The occupancy grid is
  *   rebuilt only when the medium, the lighting volume or MacroCellSize changes.
  * - MacroCellSize: edge of a macro cell in voxels, clamped to [2, 64]; default 8.
- * - LaneMarching: on (default) or off. On a CPU device, a medium with a grey extinction and
- *   emission only (what vtkTransferFunctionMedium makes of a vtkVolumeProperty) seen through
- *   straight rays with no lighting volume and no surfaces is marched by a kernel of its own,
- *   eight rays per work-item in SIMD lanes (Kernels/view_ea.cl), with or without skipping: the
- *   same steps and the same image up to float rounding, about 2.5x faster on PoCL than the
- *   general kernel (Documentation/Benchmarks.md). Other scenes and GPU devices use the general
+ * - LaneMarching: on (default) or off. On a CPU device, straight rays through a scene without
+ *   surfaces (any medium and lighting volume; what vtkTransferFunctionMedium makes of a
+ *   vtkVolumeProperty included) are marched by a kernel of its own, eight rays per work-item in
+ *   SIMD lanes (Kernels/view_lanes.cl), with or without skipping: the same steps and the same
+ *   image up to float rounding, 2-3x faster on PoCL than the general kernel
+ *   (Documentation/Benchmarks.md). Curved rays, surfaces and GPU devices use the general
  *   kernel; GetLastLaneMarching() says which ran.
  *
  * The lighting volume must be on the medium's grid and carry `Radiance` (S1, RGB) with
@@ -163,8 +163,8 @@ public:
 
   ///@{
   /**
-   * Eight-lane emission-absorption kernel where it applies (see the class description). Default
-   * on; off always runs the general kernel (for comparisons).
+   * Eight-lane kernel where it applies (see the class description). Default on; off always runs
+   * the general kernel (for comparisons).
    */
   vtkSetMacro(LaneMarching, bool);
   vtkGetMacro(LaneMarching, bool);
@@ -368,7 +368,7 @@ public:
   ///@}
 
   /**
-   * Whether the last Render() ran the eight-lane emission-absorption kernel (LaneMarching).
+   * Whether the last Render() ran the eight-lane kernel (LaneMarching).
    */
   vtkGetMacro(LastLaneMarching, bool);
 

@@ -205,7 +205,7 @@ std::string KernelOptions(const KernelVariant& v)
   flag(v.Environment && v.Checker, "REFRACTA_CHECKER_ENVIRONMENT");
   flag(v.DepthLimit, "REFRACTA_HAS_DEPTH_LIMIT");
   flag(v.Skip, "REFRACTA_SKIP");
-  flag(v.LaneMarching, "REFRACTA_VIEW_EA");
+  flag(v.LaneMarching, "REFRACTA_VIEW_LANES");
   flag(v.Surfaces, "REFRACTA_HAS_SURFACES");
   flag(v.Surfaces && v.NearestTexel, "REFRACTA_SURFACE_NEAREST");
   flag(v.Surfaces && v.Dielectric, "REFRACTA_DIELECTRIC");
@@ -224,8 +224,7 @@ std::string KernelOptions(const KernelVariant& v)
 //------------------------------------------------------------------------------
 bool LaneMarchingApplies(const KernelVariant& v, bool gpu, vtkIdType voxels)
 {
-  return !gpu && !v.Curved && v.Packed && !v.Single && !v.Multiple && !v.Surfaces &&
-    !v.IndexVaries && voxels <= std::numeric_limits<int>::max();
+  return !gpu && !v.Curved && !v.Surfaces && voxels <= std::numeric_limits<int>::max();
 }
 
 //------------------------------------------------------------------------------

@@ -69,16 +69,15 @@ struct KernelVariant
   int SplitDepth = 1;          // REFRACTA_SPLIT_DEPTH (interfaces where both legs are followed)
   int Caustic = 1;             // REFRACTA_CAUSTIC_SUBDIVISION (c > 1: the caustic atlas is read)
   long long CausticOffset = 0; // REFRACTA_CAUSTIC_OFFSET (atlas texels before the fine ones)
-  bool LaneMarching = false;   // REFRACTA_VIEW_EA: the kernel refracta_view_pass_ea
+  bool LaneMarching = false;   // REFRACTA_VIEW_LANES: the kernel refracta_view_pass_lanes
 };
 
 // The build options of a kernel variant.
 std::string KernelOptions(const KernelVariant& variant);
 
-// Whether the eight-lane emission-absorption kernel (Kernels/view_ea.cl) can render `variant`
-// (straight rays, the packed grey medium, no lighting volume, no surfaces, no varying index)
-// on a device (not a GPU: it runs its rays in lanes of its own) for a grid of `voxels` voxels
-// (its corner indices are 32-bit).
+// Whether the eight-lane kernel (Kernels/view_lanes.cl) can render `variant` (straight rays, no
+// surfaces) on a device (not a GPU: it runs its rays in lanes of its own) for a grid of `voxels`
+// voxels (its corner indices are 32-bit).
 bool LaneMarchingApplies(const KernelVariant& variant, bool gpu, vtkIdType voxels);
 
 // The environment's basis (vtkRefractaEnvironmentMap: right, up, front = up x right, in world)
@@ -90,8 +89,8 @@ void EnvironmentBasisLocal(
 }
 
 // How the view pass launches a kernel: the kernel and its name (for the profile), the work-group
-// of side x side pixels and the pixels per work-item (8 for refracta_view_pass_ea: work-groups of
-// 1 x side items, each a row of 8 pixels).
+// of side x side pixels and the pixels per work-item (8 for refracta_view_pass_lanes: work-groups
+// of 1 x side items, each a row of 8 pixels).
 struct vtkRefractaViewLaunch
 {
   cl_kernel Kernel = nullptr;

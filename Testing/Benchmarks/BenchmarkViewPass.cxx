@@ -2,14 +2,15 @@
 //
 // Part 1: the view pass alone (vtkRefractaViewPass::Render, kernel + read-back) for W x W images
 // of the GlassSphereInFog scene at N^3 (default 128^3) with its photon-traced lighting volume,
-// curved rays (n varies: the sphere) and straight rays (RayMode STRAIGHT on the same medium).
+// curved rays (n varies: the sphere) and straight rays (RayMode STRAIGHT on the same medium), the
+// latter by the general kernel and by the eight-lane one in the same run.
 // Part 2: an emission-absorption-only scene (a procedural scalar field mapped by
 // vtkTransferFunctionMedium with EmissionScale 1, i.e. VTK's compositing model) at N^3 and
 // W = 512, rendered by Refracta's view pass (straight rays, one-voxel steps) and by
 // vtkFixedPointVolumeRayCastMapper (sample distance one voxel, no auto-adjustment, no shading)
 // in an offscreen render window of the same size, in the same run; prints the time ratio.
 // Parts 2 and 3 time the general kernel (LaneMarching off) beside the eight-lane one
-// (Kernels/view_ea.cl, the default for such a medium on a CPU device).
+// (Kernels/view_lanes.cl, the default for straight rays without surfaces on a CPU device).
 // Part 3: empty-space skipping. Every Refracta row above is timed with EmptySpaceSkipping off and
 // on in the same run (column "skip"; "active" is the fraction of macro cells rays must march),
 // and a third scene puts a small emission-absorption object (support radius 0.12 of the unit box,
@@ -58,6 +59,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -223,9 +225,14 @@ int main(int argc, char* argv[])
     {
       return 1;
     }
-    for (int mode : { vtkRefractaViewPass::CURVED, vtkRefractaViewPass::STRAIGHT })
+    // Curved rays, then straight ones by the general kernel and by the eight-lane one (the
+    // default for straight rays on a CPU device).
+    const std::pair<int, bool> modes[] = { { vtkRefractaViewPass::CURVED, true },
+      { vtkRefractaViewPass::STRAIGHT, false }, { vtkRefractaViewPass::STRAIGHT, true } };
+    for (const auto& mode : modes)
     {
-      pass->SetRayMode(mode);
+      pass->SetRayMode(mode.first);
+      pass->SetLaneMarching(mode.second);
       for (int w : sizes)
       {
         for (bool skip : { false, true })
@@ -243,7 +250,9 @@ int main(int argc, char* argv[])
           }
           const double median = refracta::bench::Median(seconds);
           const double steps = pass->GetLastTotalSteps();
-          const std::string rays = mode == vtkRefractaViewPass::CURVED ? "curved" : "straight";
+          const std::string rays = pass->GetLastCurved()
+            ? "curved"
+            : (pass->GetLastLaneMarching() ? "straight, 8 lanes" : "straight, general kernel");
           table.AddRow({ "view pass", rays, std::to_string(w) + "x" + std::to_string(w),
             skip ? (pass->GetLastSkipping() ? "on" : "on (no empty cell)") : "off",
             refracta::bench::Table::Format(pass->GetLastActiveCellFraction()),

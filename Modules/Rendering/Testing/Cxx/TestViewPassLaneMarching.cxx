@@ -1,30 +1,37 @@
-// The eight-lane emission-absorption kernel (vtkRefractaViewPass::LaneMarching, Kernels/view_ea.cl)
-// must render what the general kernel renders, and run only where it applies.
+// The eight-lane view-pass kernel (vtkRefractaViewPass::LaneMarching, Kernels/view_lanes.cl) must
+// render what the general kernel renders, and run only where it applies.
 //
 // Scene: a 40 x 33 x 29 grid with a far origin, unequal spacings and a rotated frame, holding an
 // emission-absorption medium of grey extinction (the packed layout vtkTransferFunctionMedium
 // produces): a soft ball of extinction 6-30 per unit with RGB emission, a thick slab (extinction
 // 400 per unit: steps of optical depth > 1/2, the exp branch of the step integration) and empty
-// space around them (macro cells to skip). Every configuration renders an image whose width is
-// not a multiple of 8 (lanes past the edge) with LaneMarching off (the general kernel) and on, and
-// asserts that the lane kernel ran, that the steps marched are the same, and that
+// space around them (macro cells to skip). The lit variant gives the ball an RGB extinction,
+// albedo, HG anisotropy g = 0.6 and a varying refractive index (sources weighted 1 / n^2 per step,
+// rays kept straight), and adds a lighting volume: single-scattered Radiance with a
+// RadianceDirection that turns across the grid, and MultipleScattering. Every configuration renders
+// an image whose width is not a multiple of 8 (lanes past the edge) with LaneMarching off (the
+// general kernel) and on, and asserts that the lane kernel ran, that the steps marched are the
+// same, and that
 //   max |on - off| <= 1e-5 max |off| + 1e-7 over RGBA and the path transmittance:
 // the two kernels take the same steps at the same positions and differ by float rounding only
 // (the step weight's exp in SIMD lanes, and the order of a few operations). Configurations:
 // perspective from outside with skipping and the default cutoff; parallel with a per-pixel depth
 // limit and an environment map; the camera inside the grid with a MaxSteps cap that stops rays
 // midway and a uniform refractive index n = 1.3 (sources count 1 / n^2); cutoff 0 through the
-// thick slab. Breaking the kernel's bookkeeping (e.g. not masking ended lanes, or taking the
-// background for rays stopped by the cap) fails these by O(0.1). Scenes the lane kernel cannot
-// render (lighting, curved rays) must use the general kernel.
+// thick slab; the lit medium with skipping (perspective) and without (parallel, depth limit).
+// Breaking the kernel's bookkeeping (e.g. not masking ended lanes, or taking the background for
+// rays stopped by the cap) fails these by O(0.1). Scenes the lane kernel cannot render (lighting,
+// curved rays) must use the general kernel.
 #include "RenderingTestUtilities.h"
 
 #include "vtkCamera.h"
 #include "vtkFieldData.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
+#include "vtkPlaneSource.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaSurfaceSet.h"
 #include "vtkRefractaViewPass.h"
 
 #include <gtest/gtest.h>
@@ -39,8 +46,8 @@ namespace
 {
 const int NX = 40, NY = 33, NZ = 29;
 
-// The medium; with `index` a uniform RefractiveIndex n = 1.3.
-vtkSmartPointer<vtkImageData> Medium(bool index)
+// The medium; with `index` a uniform RefractiveIndex n = 1.3; `lit`: see the file comment.
+vtkSmartPointer<vtkImageData> Medium(bool index, bool lit = false)
 {
   const double origin[3] = { 250.0, -120.0, 35.0 };
   auto medium = refracta_test::MakeGrid(NX, NY, NZ, 0.025, origin);
@@ -53,9 +60,12 @@ vtkSmartPointer<vtkImageData> Medium(bool index)
   medium->SetDirectionMatrix(m);
   vtkFloatArray* extinction = refracta_test::AddConstant(medium, "Extinction", 3, 0, 0, 0);
   vtkFloatArray* emission = refracta_test::AddConstant(medium, "Emission", 3, 0, 0, 0);
-  if (index)
+  vtkFloatArray* n =
+    index || lit ? refracta_test::AddConstant(medium, "RefractiveIndex", 1, 1.3) : nullptr;
+  if (lit)
   {
-    refracta_test::AddConstant(medium, "RefractiveIndex", 1, 1.3);
+    refracta_test::AddConstant(medium, "Albedo", 3, 0.8, 0.7, 0.6);
+    refracta_test::AddConstant(medium, "Anisotropy", 1, 0.6);
   }
   for (int k = 0; k < NZ; ++k)
   {
@@ -69,7 +79,11 @@ vtkSmartPointer<vtkImageData> Medium(bool index)
         if (r2 < 1.0)
         {
           const double s = 6.0 + 24.0 * (1.0 - r2);
-          extinction->SetTuple3(id, s, s, s);
+          extinction->SetTuple3(id, s, lit ? 0.7 * s : s, lit ? 0.4 * s : s);
+          if (lit)
+          {
+            n->SetValue(id, static_cast<float>(1.3 + 0.2 * (1.0 - r2)));
+          }
           emission->SetTuple3(id, 3.0 * (1.0 - r2), 1.0 + x, 2.0 * std::abs(y));
         }
         else if (i >= 31 && i <= 34 && j >= 4 && j <= 28 && k >= 5 && k <= 24)
@@ -81,6 +95,38 @@ vtkSmartPointer<vtkImageData> Medium(bool index)
     }
   }
   return medium;
+}
+
+// The lighting volume of the lit medium.
+vtkSmartPointer<vtkImageData> Lighting(vtkImageData* medium)
+{
+  auto lighting = vtkSmartPointer<vtkImageData>::New();
+  lighting->CopyStructure(medium);
+  vtkFloatArray* radiance =
+    refracta_test::AddConstant(lighting, vtkRefractaLightingVolume::RadianceName(), 3, 0, 0, 0);
+  vtkFloatArray* direction = refracta_test::AddConstant(
+    lighting, vtkRefractaLightingVolume::RadianceDirectionName(), 3, 0, 0, 1);
+  vtkFloatArray* multiple = refracta_test::AddConstant(
+    lighting, vtkRefractaLightingVolume::MultipleScatteringName(), 3, 0, 0, 0);
+  for (int k = 0; k < NZ; ++k)
+  {
+    for (int j = 0; j < NY; ++j)
+    {
+      for (int i = 0; i < NX; ++i)
+      {
+        const vtkIdType id = i + NX * (j + static_cast<vtkIdType>(NY) * k);
+        const double x = (i - 14.0) / 9.0, y = (j - 15.0) / 9.0, z = (k - 12.0) / 8.0;
+        if (x * x + y * y + z * z < 1.3)
+        {
+          const double a = 0.15 * i;
+          radiance->SetTuple3(id, 2.0 + x, 1.5, 1.0 + 0.5 * z);
+          direction->SetTuple3(id, std::cos(a), std::sin(a), 0.0);
+          multiple->SetTuple3(id, 0.5, 0.8 + 0.3 * y, 1.2);
+        }
+      }
+    }
+  }
+  return lighting;
 }
 
 vtkSmartPointer<vtkImageData> Environment()
@@ -109,6 +155,7 @@ struct Config
   bool DepthLimit = false;
   bool Environment = false;
   bool Index = false;
+  bool Lit = false;
   bool Skipping = true;
   int MaxSteps = 0;
   double Cutoff = 1e-4;
@@ -139,9 +186,10 @@ void SetCamera(vtkCamera* camera, const Config& config, vtkImageData* medium)
 void CheckConfig(const Config& config)
 {
   SCOPED_TRACE(config.Name);
-  vtkSmartPointer<vtkImageData> medium = Medium(config.Index);
+  vtkSmartPointer<vtkImageData> medium = Medium(config.Index, config.Lit);
   vtkNew<vtkRefractaViewPass> pass;
-  pass->SetRayMode(vtkRefractaViewPass::AUTO); // a uniform index: straight rays
+  // A uniform index gives straight rays; the lit medium's varying one is kept straight.
+  pass->SetRayMode(config.Lit ? vtkRefractaViewPass::STRAIGHT : vtkRefractaViewPass::AUTO);
   pass->SetMaxSteps(config.MaxSteps);
   pass->SetTransmittanceCutoff(config.Cutoff);
   pass->SetEmptySpaceSkipping(config.Skipping);
@@ -151,6 +199,10 @@ void CheckConfig(const Config& config)
     pass->SetEnvironmentMap(Environment());
   }
   ASSERT_TRUE(pass->SetMedium(medium));
+  if (config.Lit)
+  {
+    ASSERT_TRUE(pass->SetLighting(Lighting(medium)));
+  }
   vtkNew<vtkCamera> camera;
   SetCamera(camera, config, medium);
   const int w = 61, h = 43;
@@ -220,9 +272,26 @@ TEST(ViewPassLaneMarching, ThickSlabWithoutCutoff)
   CheckConfig(config);
 }
 
+TEST(ViewPassLaneMarching, LitMediumSkipping)
+{
+  Config config{ "lit: RGB extinction, single + multiple scattering, 1 / n^2, skipping" };
+  config.Lit = true;
+  CheckConfig(config);
+}
+
+TEST(ViewPassLaneMarching, LitMediumParallelDepthLimit)
+{
+  Config config{ "lit, parallel, depth limit, no skipping" };
+  config.Lit = true;
+  config.Parallel = true;
+  config.DepthLimit = true;
+  config.Skipping = false;
+  CheckConfig(config);
+}
+
 TEST(ViewPassLaneMarching, OnlyWhereItApplies)
 {
-  // A lighting volume (scattered light) or curved rays need the general kernel.
+  // Surfaces or curved rays need the general kernel.
   vtkSmartPointer<vtkImageData> medium = Medium(false);
   vtkNew<vtkRefractaViewPass> pass;
   ASSERT_TRUE(pass->SetMedium(medium));
@@ -232,15 +301,20 @@ TEST(ViewPassLaneMarching, OnlyWhereItApplies)
   ASSERT_TRUE(pass->Render(camera, 16, 16, nullptr, nullptr, hdr));
   EXPECT_TRUE(pass->GetLastLaneMarching());
 
-  auto lighting = vtkSmartPointer<vtkImageData>::New();
-  lighting->CopyStructure(medium);
-  refracta_test::AddConstant(
-    lighting, vtkRefractaLightingVolume::MultipleScatteringName(), 3, 0.1, 0.1, 0.1);
-  ASSERT_TRUE(pass->SetLighting(lighting));
+  double bounds[6];
+  medium->GetBounds(bounds);
+  vtkNew<vtkPlaneSource> floor;
+  floor->SetOrigin(bounds[0] - 1, bounds[2] - 0.1, bounds[4] - 1);
+  floor->SetPoint1(bounds[1] + 1, bounds[2] - 0.1, bounds[4] - 1);
+  floor->SetPoint2(bounds[0] - 1, bounds[2] - 0.1, bounds[5] + 1);
+  floor->Update();
+  vtkNew<vtkRefractaSurfaceSet> surfaces;
+  surfaces->AddSurface(floor->GetOutput());
+  pass->SetSurfaces(surfaces);
   ASSERT_TRUE(pass->Render(camera, 16, 16, nullptr, nullptr, hdr));
   EXPECT_FALSE(pass->GetLastLaneMarching());
+  pass->SetSurfaces(nullptr);
 
-  ASSERT_TRUE(pass->SetLighting(nullptr));
   vtkSmartPointer<vtkImageData> bending = Medium(true); // curved rays need a varying index
   vtkFloatArray::SafeDownCast(bending->GetPointData()->GetArray("RefractiveIndex"))
     ->SetValue(NX * NY * 12 + NX * 15 + 14, 1.5f);

@@ -1,13 +1,15 @@
-// view_ea.cl: the view pass for a plain emission-absorption medium on a CPU, eight rays per
-// work-item in SIMD lanes. Prepend refracta_common.cl, view_pass.cl and view_pixel.cl (the general
-// kernel's helpers); compiled only with -DREFRACTA_VIEW_EA. Documentation/Reference.md,
-// "Rendering" (the emission-absorption kernel).
+// view_lanes.cl: the view pass of straight rays on a CPU, eight rays per work-item in SIMD lanes.
+// Prepend refracta_common.cl, view_pass.cl and view_pixel.cl (the general kernel's helpers);
+// compiled only with -DREFRACTA_VIEW_LANES. Documentation/Reference.md, "Rendering" (the
+// eight-lane kernel).
 //
-// What it computes is refracta_view_pass's image for the variant it serves (straight rays, the
-// packed grey medium of REFRACTA_PACKED_MEDIUM, no scattered light, no surfaces; with or without
-// empty-space skipping): each ray takes the same steps at the same positions with the same exact
-// step integration, cutoff, step cap, depth limit and background; the image differs from the
-// general kernel's by float rounding only (test RefractaRendering.ViewPassLaneMarching).
+// What it computes is refracta_view_pass's image for the variants it serves (straight rays, no
+// surfaces; any medium, lighting volume, volume caustic, refractive index weight, environment,
+// depth limit, with or without empty-space skipping): each ray takes the same steps at the same
+// positions and evaluates the medium and its sources with the general kernel's own function
+// (refracta_view_step_medium), with the same exact step integration, cutoff, step cap, depth limit
+// and background; the image differs from the general kernel's by float rounding only (test
+// RefractaRendering.ViewPassLaneMarching).
 //
 // Why a kernel of its own: PoCL runs a work-group as a loop over its work-items and leaves it to
 // LLVM's loop vectoriser to put them in SIMD lanes, which it cannot do for work-items whose march
@@ -15,26 +17,32 @@
 // (about 200 instructions per step, its loads one after another). Here a work-item marches the
 // eight neighbouring pixels pi = 8 g .. 8 g + 7 of a row in the lanes of float8 values: the
 // stencil, the step integration and the ray's bookkeeping are computed once for eight rays, and
-// the eight rays' corner loads are independent, so that the core overlaps their cache misses. The
-// corners are still loaded per lane (vload4 of the packed float4, as in the general kernel) and
-// interpolated per lane; only the interpolated (sigma, emission) is moved into the lanes. A
-// work-item runs until its last ray ends; rays that ended earlier are masked (their lanes compute
-// but change nothing). Work-groups of 1 x 8 items cover 8 x 8 pixels, the general kernel's tile.
-// The host uses this kernel on CPU devices only: a GPU already runs each ray in a lane of its own.
+// the eight rays' loads are independent, so that the core overlaps their cache misses. The fields
+// are still read and interpolated per lane (for the packed grey medium of an emission-absorption
+// volume with vload4s of its float4 corners, else by refracta_view_step_medium with the lane's
+// stencil); only the step's extinction and source are moved into the lanes. A work-item runs
+// until its last ray ends; rays that ended earlier are masked (their lanes compute but change
+// nothing). Work-groups of 1 x 8 items cover 8 x 8 pixels, the general kernel's tile. The host
+// uses this kernel on CPU devices only: a GPU already runs each ray in a lane of its own.
 
-#ifdef REFRACTA_VIEW_EA
+#ifdef REFRACTA_VIEW_LANES
 
-#define REFRACTA_EA_LANES 8
+#define REFRACTA_LANES_LANES 8
 
 // A per-lane step for the eight lanes: MACRO(s0) .. MACRO(s7) (a vector component cannot be
 // indexed by a variable in OpenCL C).
-#define REFRACTA_EA_FOR_LANES(MACRO)                                                              \
+#define REFRACTA_LANES_FOR_LANES(MACRO)                                                           \
   MACRO(s0) MACRO(s1) MACRO(s2) MACRO(s3) MACRO(s4) MACRO(s5) MACRO(s6) MACRO(s7)
+
+// The lanes' values of a per-lane vector: component C of NAMEs0 .. NAMEs7 as a float8.
+#define REFRACTA_LANES_COMPONENT(NAME, C)                                                         \
+  ((float8)(NAME##s0.C, NAME##s1.C, NAME##s2.C, NAME##s3.C, NAME##s4.C, NAME##s5.C, NAME##s6.C,    \
+    NAME##s7.C))
 
 // refracta_step_weight (view_pass.cl) for eight lanes: w = (1 - exp(-tau)) / tau by its series
 // for tau <= 1/2 and with the library's exp and expm1 beyond (called only when a lane needs
 // them), and the step's transmittance.
-inline float8 refracta_ea_step_weight(float8 tau, float8* stepTransmittance)
+inline float8 refracta_lanes_step_weight(float8 tau, float8* stepTransmittance)
 {
   const float8 t = -tau;
   const float8 t2 = t * t;
@@ -64,19 +72,19 @@ inline float8 refracta_ea_step_weight(float8 tau, float8* stepTransmittance)
 // to the box exit and the depth limit, is jumped over in whole steps (not counted as steps
 // marched), and the next test waits until the ray has passed `recheck`. Lane by lane in scalar
 // code: a lane asks about once per macro cell it crosses.
-inline void refracta_ea_skip(int8 check, const float3* origins, const float3* directions,
+inline void refracta_lanes_skip(int8 check, const float3* origins, const float3* directions,
   const float* t0s, const float* t1s, const float* limits, float3 lo, float3 hi, float4 spacing,
   int4 cellDims, int4 activeLo, int4 activeHi, __global const uchar* occupancy, uint skipMask,
   float stepLength, int maxSteps, int8* step, float8* travelled, float8* nextCheck)
 {
-  int checks[REFRACTA_EA_LANES], steps[REFRACTA_EA_LANES];
-  float paths[REFRACTA_EA_LANES], nexts[REFRACTA_EA_LANES];
+  int checks[REFRACTA_LANES_LANES], steps[REFRACTA_LANES_LANES];
+  float paths[REFRACTA_LANES_LANES], nexts[REFRACTA_LANES_LANES];
   vstore8(check, 0, checks);
   vstore8(*step, 0, steps);
   vstore8(*travelled, 0, paths);
   vstore8(*nextCheck, 0, nexts);
   const float3 cellExtent = (float)cellDims.w * spacing.xyz;
-  for (int l = 0; l < REFRACTA_EA_LANES; ++l)
+  for (int l = 0; l < REFRACTA_LANES_LANES; ++l)
   {
     if (!checks[l])
     {
@@ -104,10 +112,10 @@ inline void refracta_ea_skip(int8 check, const float3* origins, const float3* di
 
 // The kernel's arguments are refracta_view_pass's (REFRACTA_VIEW_KERNEL_PARAMS, view_pixel.cl);
 // those of the effects this variant does not have are unused.
-__kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_ea(
+__kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_lanes(
   REFRACTA_VIEW_KERNEL_PARAMS)
 {
-  const int firstPixel = REFRACTA_EA_LANES * (int)get_global_id(0);
+  const int firstPixel = REFRACTA_LANES_LANES * (int)get_global_id(0);
   const int pj = (int)get_global_id(1);
   if (firstPixel >= width || pj >= height)
   {
@@ -118,14 +126,15 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
 
   // Each lane's ray, set up as the general kernel sets up its one ray; a lane past the image's
   // right edge or a ray that meets no medium gets zeros and is not marched.
-  float t0s[REFRACTA_EA_LANES], t1s[REFRACTA_EA_LANES], limits[REFRACTA_EA_LANES];
-  float ux[REFRACTA_EA_LANES], uy[REFRACTA_EA_LANES], uz[REFRACTA_EA_LANES];
-  float dx[REFRACTA_EA_LANES], dy[REFRACTA_EA_LANES], dz[REFRACTA_EA_LANES];
-  int marching[REFRACTA_EA_LANES];
+  float t0s[REFRACTA_LANES_LANES], t1s[REFRACTA_LANES_LANES], limits[REFRACTA_LANES_LANES];
+  float ux[REFRACTA_LANES_LANES], uy[REFRACTA_LANES_LANES], uz[REFRACTA_LANES_LANES];
+  float dx[REFRACTA_LANES_LANES], dy[REFRACTA_LANES_LANES], dz[REFRACTA_LANES_LANES];
+  float ex[REFRACTA_LANES_LANES], ey[REFRACTA_LANES_LANES], ez[REFRACTA_LANES_LANES];
+  int marching[REFRACTA_LANES_LANES];
 #ifdef REFRACTA_SKIP
-  float3 origins[REFRACTA_EA_LANES], directions[REFRACTA_EA_LANES];
+  float3 origins[REFRACTA_LANES_LANES], directions[REFRACTA_LANES_LANES];
 #endif
-  for (int l = 0; l < REFRACTA_EA_LANES; ++l)
+  for (int l = 0; l < REFRACTA_LANES_LANES; ++l)
   {
     const int pi = min(firstPixel + l, width - 1);
 #ifdef REFRACTA_HAS_DEPTH_LIMIT
@@ -155,10 +164,14 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     dx[l] = v.x;
     dy[l] = v.y;
     dz[l] = v.z;
+    ex[l] = d.x;
+    ey[l] = d.y;
+    ez[l] = d.z;
   }
   const float8 t0 = vload8(0, t0s), t1 = vload8(0, t1s), limit = vload8(0, limits);
   const float8 u0x = vload8(0, ux), u0y = vload8(0, uy), u0z = vload8(0, uz);
   const float8 dvx = vload8(0, dx), dvy = vload8(0, dy), dvz = vload8(0, dz);
+  const float8 dirX = vload8(0, ex), dirY = vload8(0, ey), dirZ = vload8(0, ez); // unit, local
   int8 alive = vload8(0, marching);
   // A ray that meets no medium sees the background unless opaque geometry stops it first.
   int8 seesBackground = alive | (limit == INFINITY);
@@ -168,7 +181,7 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
   const float8 hz = (float8)((float)(dims.z - 1));
   const int strideY = dims.x, strideZ = dims.x * dims.y;
   float8 radianceR = 0.0f, radianceG = 0.0f, radianceB = 0.0f;
-  float8 transmittance = 1.0f; // grey: the packed medium's extinction is the same in R, G, B
+  float8 transR = 1.0f, transG = 1.0f, transB = 1.0f; // the path's transmittance
   float8 travelled = t0;
   int8 count = 0;
   int8 step = 0; // each lane's step index s: lanes skip different numbers of steps
@@ -181,7 +194,7 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     const int8 check = alive & (travelled >= nextCheck);
     if (any(check))
     {
-      refracta_ea_skip(check, origins, directions, t0s, t1s, limits, lo, hi, spacing, cellDims,
+      refracta_lanes_skip(check, origins, directions, t0s, t1s, limits, lo, hi, spacing, cellDims,
         activeLo, activeHi, occupancy, skipMask, stepLength, maxSteps, &step, &travelled,
         &nextCheck);
     }
@@ -195,9 +208,10 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     const int8 blocked = travelled + len >= limit;
     len = select(len, fmax(limit - travelled, 0.0f), blocked);
     const float8 a = along + 0.5f * len;
-    const float8 cx = clamp(fma(a, dvx, u0x), (float8)(0.0f), hx);
-    const float8 cy = clamp(fma(a, dvy, u0y), (float8)(0.0f), hy);
-    const float8 cz = clamp(fma(a, dvz, u0z), (float8)(0.0f), hz);
+    const float8 mx = fma(a, dvx, u0x), my = fma(a, dvy, u0y), mz = fma(a, dvz, u0z);
+    const float8 cx = clamp(mx, (float8)(0.0f), hx);
+    const float8 cy = clamp(my, (float8)(0.0f), hy);
+    const float8 cz = clamp(mz, (float8)(0.0f), hz);
     const int8 i0 = convert_int8(cx), j0 = convert_int8(cy), k0 = convert_int8(cz); // >= 0
     const float8 fx = cx - convert_float8(i0), fy = cy - convert_float8(j0),
                  fz = cz - convert_float8(k0);
@@ -205,8 +219,11 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     const int8 offX = min(i0 + 1, dims.x - 1) - i0;
     const int8 offY = (min(j0 + 1, dims.y - 1) - j0) * strideY;
     const int8 offZ = (min(k0 + 1, dims.z - 1) - k0) * strideZ;
-    // Each lane's eight corners of (sigma, emission RGB), interpolated as refracta_view_sample4.
-#define REFRACTA_EA_SAMPLE(L)                                                                     \
+#if defined(REFRACTA_PACKED_MEDIUM) && !defined(REFRACTA_HAS_SINGLE) &&                         \
+  !defined(REFRACTA_HAS_MULTIPLE) && !defined(REFRACTA_INDEX_WEIGHT)
+    // Emission and absorption only: each lane's eight corners of (sigma, emission RGB),
+    // interpolated as refracta_view_sample4 (the lanes of rays that ended read clamped corners).
+#define REFRACTA_LANES_SAMPLE(L)                                                                  \
   float4 m##L;                                                                                     \
   {                                                                                                \
     const int c = base.L, ox = offX.L, oy = offY.L, oz = offZ.L;                                   \
@@ -217,32 +234,77 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
       mix(vload4(c + oy + oz, extinction), vload4(c + ox + oy + oz, extinction), fx.L);            \
     m##L = mix(mix(c00, c10, fy.L), mix(c01, c11, fy.L), fz.L);                                    \
   }
-    REFRACTA_EA_FOR_LANES(REFRACTA_EA_SAMPLE)
-#undef REFRACTA_EA_SAMPLE
-    const float8 sigma =
-      (float8)(ms0.x, ms1.x, ms2.x, ms3.x, ms4.x, ms5.x, ms6.x, ms7.x);
-    float8 qR = (float8)(ms0.y, ms1.y, ms2.y, ms3.y, ms4.y, ms5.y, ms6.y, ms7.y);
-    float8 qG = (float8)(ms0.z, ms1.z, ms2.z, ms3.z, ms4.z, ms5.z, ms6.z, ms7.z);
-    float8 qB = (float8)(ms0.w, ms1.w, ms2.w, ms3.w, ms4.w, ms5.w, ms6.w, ms7.w);
+    REFRACTA_LANES_FOR_LANES(REFRACTA_LANES_SAMPLE)
+#undef REFRACTA_LANES_SAMPLE
+    const float8 sigmaR = REFRACTA_LANES_COMPONENT(m, x);
+    const float8 sigmaG = sigmaR, sigmaB = sigmaR;
+    float8 qR = REFRACTA_LANES_COMPONENT(m, y);
+    float8 qG = REFRACTA_LANES_COMPONENT(m, z);
+    float8 qB = REFRACTA_LANES_COMPONENT(m, w);
 #ifdef REFRACTA_SOURCE_SCALE
     qR *= REFRACTA_SOURCE_SCALE;
     qG *= REFRACTA_SOURCE_SCALE;
     qB *= REFRACTA_SOURCE_SCALE;
 #endif
-    float8 stepT;
-    const float8 w = refracta_ea_step_weight(sigma * len, &stepT);
-    // refracta_integrate_step (view_pass.cl), grey; lanes that ended add nothing.
-    const float8 gain = select((float8)(0.0f), transmittance * (len * w), alive);
-    radianceR += gain * qR;
-    radianceG += gain * qG;
-    radianceB += gain * qB;
-    const float8 stepped = transmittance * stepT;
-    transmittance = select(transmittance, stepped, alive);
+#else
+    // Any other medium: each marching lane evaluates the step as the general kernel does, with
+    // its own stencil (refracta_view_step_medium and the 1 / n^2 weight); ended lanes read nothing.
+#define REFRACTA_LANES_MEDIUM(L)                                                                  \
+  float3 sigma##L = (float3)(0.0f), q##L = (float3)(0.0f);                                         \
+  if (alive.L)                                                                                     \
+  {                                                                                                \
+    refracta_view_stencil st;                                                                      \
+    const size_t c = (size_t)base.L, ox = (size_t)offX.L, oy = (size_t)offY.L,                     \
+                 oz = (size_t)offZ.L;                                                              \
+    st.c[0] = c;                                                                                   \
+    st.c[1] = c + ox;                                                                              \
+    st.c[2] = c + oy;                                                                              \
+    st.c[3] = c + ox + oy;                                                                         \
+    st.c[4] = c + oz;                                                                              \
+    st.c[5] = c + ox + oz;                                                                         \
+    st.c[6] = c + oy + oz;                                                                         \
+    st.c[7] = c + ox + oy + oz;                                                                    \
+    st.fx = fx.L;                                                                                  \
+    st.fy = fy.L;                                                                                  \
+    st.fz = fz.L;                                                                                  \
+    const float3 d = (float3)(dirX.L, dirY.L, dirZ.L);                                             \
+    float3 emitted;                                                                                \
+    q##L = refracta_view_step_medium(&st, (float3)(mx.L, my.L, mz.L),                              \
+             refracta_to_voxel(len.L * d, spacing), d, REFRACTA_VIEW_MEDIUM_ARGS, &sigma##L,       \
+             &emitted) *                                                                           \
+      refracta_view_source_weight(&st, refractiveIndex);                                           \
+  }
+    REFRACTA_LANES_FOR_LANES(REFRACTA_LANES_MEDIUM)
+#undef REFRACTA_LANES_MEDIUM
+    const float8 sigmaR = REFRACTA_LANES_COMPONENT(sigma, x);
+    const float8 sigmaG = REFRACTA_LANES_COMPONENT(sigma, y);
+    const float8 sigmaB = REFRACTA_LANES_COMPONENT(sigma, z);
+    const float8 qR = REFRACTA_LANES_COMPONENT(q, x);
+    const float8 qG = REFRACTA_LANES_COMPONENT(q, y);
+    const float8 qB = REFRACTA_LANES_COMPONENT(q, z);
+#endif
+    // refracta_integrate_step (view_pass.cl) per channel, once where every lane's extinction is
+    // grey; lanes that ended add nothing and keep their transmittance.
+    float8 stepR, stepG, stepB;
+    const float8 wR = refracta_lanes_step_weight(sigmaR * len, &stepR);
+    float8 wG = wR, wB = wR;
+    stepG = stepB = stepR;
+    if (!all((sigmaR == sigmaG) & (sigmaG == sigmaB)))
+    {
+      wG = refracta_lanes_step_weight(sigmaG * len, &stepG);
+      wB = refracta_lanes_step_weight(sigmaB * len, &stepB);
+    }
+    radianceR = select(radianceR, radianceR + transR * qR * (len * wR), alive);
+    radianceG = select(radianceG, radianceG + transG * qG * (len * wG), alive);
+    radianceB = select(radianceB, radianceB + transB * qB * (len * wB), alive);
+    transR = select(transR, transR * stepR, alive);
+    transG = select(transG, transG * stepG, alive);
+    transB = select(transB, transB * stepB, alive);
     travelled = select(travelled, travelled + len, alive);
     count -= alive; // true is -1
     // The general kernel's ends: the box exit (sees the background), the depth limit, the cutoff
     // and the step cap (see nothing behind).
-    const int8 opaque = stepped < cutoff;
+    const int8 opaque = fmax(transR, fmax(transG, transB)) < cutoff;
     const int8 capped = step + 1 == maxSteps;
     ++step;
     const int8 sees = ~(blocked | (~leaves & (opaque | capped)));
@@ -250,19 +312,22 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     alive &= ~(blocked | leaves | opaque | capped);
   }
 
-  float rs[REFRACTA_EA_LANES], gs[REFRACTA_EA_LANES], bs[REFRACTA_EA_LANES];
-  float ts[REFRACTA_EA_LANES];
-  int counts[REFRACTA_EA_LANES], sees[REFRACTA_EA_LANES];
+  float rs[REFRACTA_LANES_LANES], gs[REFRACTA_LANES_LANES], bs[REFRACTA_LANES_LANES];
+  float trs[REFRACTA_LANES_LANES], tgs[REFRACTA_LANES_LANES], tbs[REFRACTA_LANES_LANES];
+  int counts[REFRACTA_LANES_LANES], sees[REFRACTA_LANES_LANES];
   vstore8(radianceR, 0, rs);
   vstore8(radianceG, 0, gs);
   vstore8(radianceB, 0, bs);
-  vstore8(transmittance, 0, ts);
+  vstore8(transR, 0, trs);
+  vstore8(transG, 0, tgs);
+  vstore8(transB, 0, tbs);
   vstore8(count, 0, counts);
   vstore8(seesBackground, 0, sees);
-  for (int l = 0; l < REFRACTA_EA_LANES && firstPixel + l < width; ++l)
+  for (int l = 0; l < REFRACTA_LANES_LANES && firstPixel + l < width; ++l)
   {
     const int pi = firstPixel + l;
     const size_t pixel = (size_t)pi + (size_t)width * (size_t)pj;
+    const float3 transmittance = (float3)(trs[l], tgs[l], tbs[l]);
     float3 radianceSum = (float3)(rs[l], gs[l], bs[l]);
     if (sees[l])
     {
@@ -270,14 +335,16 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
       refracta_view_camera_ray(eye, camU, camV, camW,
         2.0f * ((float)pi + 0.5f) / (float)width - 1.0f,
         2.0f * ((float)pj + 0.5f) / (float)height - 1.0f, &origin, &d);
-      radianceSum += ts[l] *
+      radianceSum += transmittance *
         refracta_background(d, background, environment, envSize, envRight, envUp, envFront);
     }
-    const float alpha = clamp(1.0f - 3.0f * ts[l] * (1.0f / 3.0f), 0.0f, 1.0f);
+    // As refracta_view_pass writes its pixel.
+    const float alpha = clamp(
+      1.0f - (transmittance.x + transmittance.y + transmittance.z) * (1.0f / 3.0f), 0.0f, 1.0f);
     surfaceDepthOut[pixel] = INFINITY;
     vstore4((float4)(radianceSum, alpha), pixel, hdr);
     steps[pixel] = (uint)counts[l];
-    vstore4((float4)(ts[l], ts[l], ts[l], 0.0f), pixel, transmittanceOut);
+    vstore4((float4)(transmittance, 0.0f), pixel, transmittanceOut);
   }
 }
 
