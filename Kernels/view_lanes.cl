@@ -1,27 +1,30 @@
-// view_lanes.cl: the view pass of straight rays on a CPU, eight rays per work-item in SIMD lanes.
+// view_lanes.cl: the view pass on a CPU, eight rays per work-item in SIMD lanes.
 // Prepend refracta_common.cl, view_pass.cl and view_pixel.cl (the general kernel's helpers);
 // compiled only with -DREFRACTA_VIEW_LANES. Documentation/Reference.md, "Rendering" (the
 // eight-lane kernel).
 //
-// What it computes is refracta_view_pass's image for the variants it serves (straight rays, no
-// surfaces; any medium, lighting volume, volume caustic, refractive index weight, environment,
-// depth limit, with or without empty-space skipping): each ray takes the same steps at the same
-// positions and evaluates the medium and its sources with the general kernel's own function
-// (refracta_view_step_medium), with the same exact step integration, cutoff, step cap, depth limit
-// and background; the image differs from the general kernel's by float rounding only (test
-// RefractaRendering.ViewPassLaneMarching).
+// What it computes is refracta_view_pass's image for the variants it serves (no surfaces; straight
+// or curved rays, any medium, lighting volume, volume caustic, refractive index weight,
+// environment, depth limit, with or without empty-space skipping): each ray takes the same steps
+// at the same positions (curved rays: the same Stormer-Verlet steps, box clipping and exit
+// direction) and evaluates the medium and its sources with the general kernel's own function
+// (refracta_view_step_medium) and the same trilinear samples, with the same exact step
+// integration, cutoff, step cap, depth limit and background; the image differs from the general
+// kernel's by float rounding only (test RefractaRendering.ViewPassLaneMarching).
 //
 // Why a kernel of its own: PoCL runs a work-group as a loop over its work-items and leaves it to
 // LLVM's loop vectoriser to put them in SIMD lanes, which it cannot do for work-items whose march
 // loops end at different steps: the general kernel runs one ray per core at a time in scalar code
 // (about 200 instructions per step, its loads one after another). Here a work-item marches the
 // eight neighbouring pixels pi = 8 g .. 8 g + 7 of a row in the lanes of float8 values: the
-// stencil, the step integration and the ray's bookkeeping are computed once for eight rays, and
-// the eight rays' loads are independent, so that the core overlaps their cache misses. The fields
-// are still read and interpolated per lane (for the packed grey medium of an emission-absorption
-// volume with vload4s of its float4 corners, else by refracta_view_step_medium with the lane's
-// stencil); only the step's extinction and source are moved into the lanes. A work-item runs
-// until its last ray ends; rays that ended earlier are masked (their lanes compute but change
+// stencils, the step integration, a curved ray's integrator and the rays' bookkeeping are
+// computed once for eight rays, and the eight rays' loads are independent, so that the core
+// overlaps their cache misses. The fields are still read and interpolated per lane, at the lane's
+// stencil (for the packed grey medium of an emission-absorption volume with vload4s of its float4
+// corners, else by refracta_view_step_medium and refracta_view_sample1/3); only the values are
+// moved into the lanes. A curved ray's end-of-step samples of n and grad n are its next step's
+// start-of-step samples (the general kernel reads the same point twice). A work-item runs until
+// its last ray ends; rays that ended earlier are masked (their lanes compute but change
 // nothing). Work-groups of 1 x 8 items cover 8 x 8 pixels, the general kernel's tile. The host
 // uses this kernel on CPU devices only: a GPU already runs each ray in a lane of its own.
 
@@ -38,6 +41,58 @@
 #define REFRACTA_LANES_COMPONENT(NAME, C)                                                         \
   ((float8)(NAME##s0.C, NAME##s1.C, NAME##s2.C, NAME##s3.C, NAME##s4.C, NAME##s5.C, NAME##s6.C,    \
     NAME##s7.C))
+
+// The trilinear stencils of eight lanes at voxel coordinates (ux, uy, uz): each lane's first
+// corner, the offsets to the next corner along x, y, z (0 on a clamped edge) and the weights, as
+// refracta_make_stencil computes them for one point.
+typedef struct
+{
+  int8 base, offX, offY, offZ;
+  float8 fx, fy, fz;
+} refracta_lanes_stencil;
+
+inline refracta_lanes_stencil refracta_lanes_make_stencil(
+  float8 ux, float8 uy, float8 uz, int4 dims)
+{
+  const float8 cx = clamp(ux, (float8)(0.0f), (float8)((float)(dims.x - 1)));
+  const float8 cy = clamp(uy, (float8)(0.0f), (float8)((float)(dims.y - 1)));
+  const float8 cz = clamp(uz, (float8)(0.0f), (float8)((float)(dims.z - 1)));
+  const int8 i0 = convert_int8(cx), j0 = convert_int8(cy), k0 = convert_int8(cz); // floor: >= 0
+  const int strideY = dims.x, strideZ = dims.x * dims.y;
+  refracta_lanes_stencil s;
+  s.fx = cx - convert_float8(i0);
+  s.fy = cy - convert_float8(j0);
+  s.fz = cz - convert_float8(k0);
+  s.base = i0 + strideY * j0 + strideZ * k0;
+  s.offX = min(i0 + 1, dims.x - 1) - i0;
+  s.offY = (min(j0 + 1, dims.y - 1) - j0) * strideY;
+  s.offZ = (min(k0 + 1, dims.z - 1) - k0) * strideZ;
+  return s;
+}
+
+// Lane L's stencil (L one of s0 .. s7) in the general kernel's form (refracta_view_stencil).
+#define REFRACTA_LANES_VIEW_STENCIL(LS, L)                                                        \
+  refracta_lanes_view_stencil(                                                                     \
+    (LS).base.L, (LS).offX.L, (LS).offY.L, (LS).offZ.L, (LS).fx.L, (LS).fy.L, (LS).fz.L)
+
+inline refracta_view_stencil refracta_lanes_view_stencil(
+  int base, int offX, int offY, int offZ, float fx, float fy, float fz)
+{
+  const size_t c = (size_t)base, ox = (size_t)offX, oy = (size_t)offY, oz = (size_t)offZ;
+  refracta_view_stencil st;
+  st.c[0] = c;
+  st.c[1] = c + ox;
+  st.c[2] = c + oy;
+  st.c[3] = c + ox + oy;
+  st.c[4] = c + oz;
+  st.c[5] = c + ox + oz;
+  st.c[6] = c + oy + oz;
+  st.c[7] = c + ox + oy + oz;
+  st.fx = fx;
+  st.fy = fy;
+  st.fz = fz;
+  return st;
+}
 
 // refracta_step_weight (view_pass.cl) for eight lanes: w = (1 - exp(-tau)) / tau by its series
 // for tau <= 1/2 and with the library's exp and expm1 beyond (called only when a lane needs
@@ -65,6 +120,53 @@ inline float8 refracta_lanes_step_weight(float8 tau, float8* stepTransmittance)
   *stepTransmittance = stepT;
   return w;
 }
+
+#ifdef REFRACTA_CURVED
+// grad n (and, with `withIndex`, n) at grid-local positions p of the lanes in `on`, each lane's
+// samples as refracta_view_march reads them (refracta_sample3 / refracta_sample1: the same
+// stencil and interpolation); other lanes get grad n = 0 and n = 1.
+inline void refracta_lanes_index_fields(int8 on, float8 px, float8 py, float8 pz, int4 dims,
+  float4 spacing, __global const float* gradient, __global const float* refractiveIndex,
+  bool withIndex, float8* n, float8* gx, float8* gy, float8* gz)
+{
+  const refracta_lanes_stencil ls =
+    refracta_lanes_make_stencil(px / spacing.x, py / spacing.y, pz / spacing.z, dims);
+#define REFRACTA_LANES_INDEX(L)                                                                   \
+  float3 g##L = (float3)(0.0f);                                                                    \
+  float2 n##L = (float2)(1.0f);                                                                    \
+  if (on.L)                                                                                        \
+  {                                                                                                \
+    const refracta_view_stencil st = REFRACTA_LANES_VIEW_STENCIL(ls, L);                           \
+    g##L = refracta_view_sample3(gradient, &st);                                                   \
+    if (withIndex)                                                                                 \
+    {                                                                                              \
+      n##L.x = refracta_view_sample1(refractiveIndex, &st);                                        \
+    }                                                                                              \
+  }
+  REFRACTA_LANES_FOR_LANES(REFRACTA_LANES_INDEX)
+#undef REFRACTA_LANES_INDEX
+  *n = REFRACTA_LANES_COMPONENT(n, x);
+  *gx = REFRACTA_LANES_COMPONENT(g, x);
+  *gy = REFRACTA_LANES_COMPONENT(g, y);
+  *gz = REFRACTA_LANES_COMPONENT(g, z);
+}
+
+// The exit parameter of rays from (ox, oy, oz) along (dx, dy, dz) from the box [lo, hi]
+// (refracta_intersect_box lane by lane): *hit where they meet it.
+inline float8 refracta_lanes_box_exit(float8 ox, float8 oy, float8 oz, float8 dx, float8 dy,
+  float8 dz, float3 lo, float3 hi, int8* hit)
+{
+  const float8 ix = 1.0f / dx, iy = 1.0f / dy, iz = 1.0f / dz;
+  const float8 ax = (lo.x - ox) * ix, bx = (hi.x - ox) * ix;
+  const float8 ay = (lo.y - oy) * iy, by = (hi.y - oy) * iy;
+  const float8 az = (lo.z - oz) * iz, bz = (hi.z - oz) * iz;
+  const float8 enter =
+    fmax(fmax(fmin(ax, bx), fmin(ay, by)), fmax(fmin(az, bz), (float8)(0.0f)));
+  const float8 leave = fmin(fmin(fmax(ax, bx), fmax(ay, by)), fmax(az, bz));
+  *hit = leave >= enter;
+  return leave;
+}
+#endif
 
 #ifdef REFRACTA_SKIP
 // Empty-space skipping for the lanes in `check` (view_skipping.cl), as refracta_view_march does
@@ -110,6 +212,76 @@ inline void refracta_lanes_skip(int8 check, const float3* origins, const float3*
 }
 #endif
 
+#if defined(REFRACTA_CURVED) && defined(REFRACTA_SKIP)
+// The same for curved rays: from the lane's position x along its direction v / |v| (rays are
+// straight in empty cells: grad n = 0 there), clipped to the box exit and the depth limit; a
+// jump moves x along that line and re-reads n where the ray lands.
+inline void refracta_lanes_skip_curved(int8 check, const float* limits, float3 lo, float3 hi,
+  float4 spacing, int4 dims, __global const float* refractiveIndex, int4 cellDims,
+  int4 activeLo, int4 activeHi, __global const uchar* occupancy, uint skipMask, float stepLength,
+  int maxSteps, int8* step, float8* travelled, float8* nextCheck, float8* px, float8* py,
+  float8* pz, float8* vx, float8* vy, float8* vz, float8* n)
+{
+  int checks[REFRACTA_LANES_LANES], steps[REFRACTA_LANES_LANES];
+  float paths[REFRACTA_LANES_LANES], nexts[REFRACTA_LANES_LANES], ns[REFRACTA_LANES_LANES];
+  float xs[REFRACTA_LANES_LANES], ys[REFRACTA_LANES_LANES], zs[REFRACTA_LANES_LANES];
+  float us[REFRACTA_LANES_LANES], vs[REFRACTA_LANES_LANES], ws[REFRACTA_LANES_LANES];
+  vstore8(check, 0, checks);
+  vstore8(*step, 0, steps);
+  vstore8(*travelled, 0, paths);
+  vstore8(*nextCheck, 0, nexts);
+  vstore8(*n, 0, ns);
+  vstore8(*px, 0, xs);
+  vstore8(*py, 0, ys);
+  vstore8(*pz, 0, zs);
+  vstore8(*vx, 0, us);
+  vstore8(*vy, 0, vs);
+  vstore8(*vz, 0, ws);
+  const float3 cellExtent = (float)cellDims.w * spacing.xyz;
+  for (int l = 0; l < REFRACTA_LANES_LANES; ++l)
+  {
+    if (!checks[l])
+    {
+      continue;
+    }
+    const float3 xs3 = (float3)(xs[l], ys[l], zs[l]);
+    const float3 ds = normalize((float3)(us[l], vs[l], ws[l]));
+    float b0, b1;
+    const float toExit = refracta_intersect_box(xs3, ds, lo, hi, &b0, &b1) ? fmax(b1, 0.0f) : 0.0f;
+    float recheck;
+    float run = refracta_empty_run(xs3, ds, lo, hi, cellExtent, cellDims, activeLo, activeHi,
+      occupancy, skipMask, &recheck);
+    nexts[l] = paths[l] + recheck;
+    run = fmin(run, fmin(toExit, limits[l] - paths[l]));
+    const int k = min((int)floor(run / stepLength), maxSteps - 1 - steps[l]);
+    if (k > 0)
+    {
+      steps[l] += k;
+      paths[l] += (float)k * stepLength;
+      const float3 x = xs3 + ((float)k * stepLength) * ds;
+      const float nl = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
+      xs[l] = x.x;
+      ys[l] = x.y;
+      zs[l] = x.z;
+      ns[l] = nl;
+      us[l] = nl * ds.x;
+      vs[l] = nl * ds.y;
+      ws[l] = nl * ds.z;
+    }
+  }
+  *step = vload8(0, steps);
+  *travelled = vload8(0, paths);
+  *nextCheck = vload8(0, nexts);
+  *n = vload8(0, ns);
+  *px = vload8(0, xs);
+  *py = vload8(0, ys);
+  *pz = vload8(0, zs);
+  *vx = vload8(0, us);
+  *vy = vload8(0, vs);
+  *vz = vload8(0, ws);
+}
+#endif
+
 // The kernel's arguments are refracta_view_pass's (REFRACTA_VIEW_KERNEL_PARAMS, view_pixel.cl);
 // those of the effects this variant does not have are unused.
 __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_lanes(
@@ -134,6 +306,9 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
 #ifdef REFRACTA_SKIP
   float3 origins[REFRACTA_LANES_LANES], directions[REFRACTA_LANES_LANES];
 #endif
+#ifdef REFRACTA_CURVED
+  float n0s[REFRACTA_LANES_LANES]; // n at the entry point
+#endif
   for (int l = 0; l < REFRACTA_LANES_LANES; ++l)
   {
     const int pi = min(firstPixel + l, width - 1);
@@ -149,8 +324,16 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     float t0, t1;
     const bool marches = refracta_intersect_box(origin, d, lo, hi, &t0, &t1) && t0 < limits[l] &&
       firstPixel + l < width;
+#ifdef REFRACTA_CURVED
+    // Curved rays integrate their position from the entry point (grid-local, not voxels).
+    const float3 u = marches ? origin + t0 * d : (float3)(0.0f);
+    n0s[l] =
+      marches ? refracta_sample1(refractiveIndex, dims, refracta_to_voxel(u, spacing)) : 1.0f;
+    const float3 v = marches ? n0s[l] * d : d;
+#else
     const float3 u = marches ? refracta_to_voxel(origin + t0 * d, spacing) : (float3)(0.0f);
     const float3 v = marches ? refracta_to_voxel(d, spacing) : (float3)(0.0f);
+#endif
     marching[l] = marches ? -1 : 0;
 #ifdef REFRACTA_SKIP
     origins[l] = origin;
@@ -169,17 +352,27 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     ez[l] = d.z;
   }
   const float8 t0 = vload8(0, t0s), t1 = vload8(0, t1s), limit = vload8(0, limits);
+  const float8 dirX = vload8(0, ex), dirY = vload8(0, ey), dirZ = vload8(0, ez); // unit, local
+#ifdef REFRACTA_CURVED
+  // Each lane's position x (grid-local), v = n dx/ds and n (Stormer-Verlet, view_pass.cl), and the
+  // direction it leaves the box in (its background).
+  float8 posX = vload8(0, ux), posY = vload8(0, uy), posZ = vload8(0, uz);
+  float8 velX = vload8(0, dx), velY = vload8(0, dy), velZ = vload8(0, dz);
+  float8 index = vload8(0, n0s);
+  float8 exitX = dirX, exitY = dirY, exitZ = dirZ;
+  // grad n at each lane's position where known: a step's end is the next step's start, so its
+  // samples there serve twice (the general kernel reads the same point again: the same values).
+  float8 gradX = 0.0f, gradY = 0.0f, gradZ = 0.0f;
+  int8 gradKnown = 0;
+#else
+  // Straight rays: the entry point and the direction in voxel coordinates.
   const float8 u0x = vload8(0, ux), u0y = vload8(0, uy), u0z = vload8(0, uz);
   const float8 dvx = vload8(0, dx), dvy = vload8(0, dy), dvz = vload8(0, dz);
-  const float8 dirX = vload8(0, ex), dirY = vload8(0, ey), dirZ = vload8(0, ez); // unit, local
+#endif
   int8 alive = vload8(0, marching);
   // A ray that meets no medium sees the background unless opaque geometry stops it first.
   int8 seesBackground = alive | (limit == INFINITY);
 
-  const float8 hx = (float8)((float)(dims.x - 1));
-  const float8 hy = (float8)((float)(dims.y - 1));
-  const float8 hz = (float8)((float)(dims.z - 1));
-  const int strideY = dims.x, strideZ = dims.x * dims.y;
   float8 radianceR = 0.0f, radianceG = 0.0f, radianceB = 0.0f;
   float8 transR = 1.0f, transG = 1.0f, transB = 1.0f; // the path's transmittance
   float8 travelled = t0;
@@ -194,12 +387,71 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     const int8 check = alive & (travelled >= nextCheck);
     if (any(check))
     {
+#ifdef REFRACTA_CURVED
+      gradKnown &= ~check; // a lane that jumped is elsewhere
+      refracta_lanes_skip_curved(check, limits, lo, hi, spacing, dims, refractiveIndex, cellDims,
+        activeLo, activeHi, occupancy, skipMask, stepLength, maxSteps, &step, &travelled,
+        &nextCheck, &posX, &posY, &posZ, &velX, &velY, &velZ, &index);
+#else
       refracta_lanes_skip(check, origins, directions, t0s, t1s, limits, lo, hi, spacing, cellDims,
         activeLo, activeHi, occupancy, skipMask, stepLength, maxSteps, &step, &travelled,
         &nextCheck);
+#endif
     }
 #endif
     // The general kernel's step (view_pass.cl, refracta_view_march), lane by lane.
+#ifdef REFRACTA_CURVED
+    // Stormer-Verlet in the optical parameter t, dt = ds / n, re-normalised to |v| = n.
+    const int8 unknown = alive & ~gradKnown;
+    float8 unused, gX, gY, gZ;
+    if (any(unknown))
+    {
+      refracta_lanes_index_fields(unknown, posX, posY, posZ, dims, spacing, gradient,
+        refractiveIndex, false, &unused, &gX, &gY, &gZ);
+      gradX = select(gradX, gX, unknown);
+      gradY = select(gradY, gY, unknown);
+      gradZ = select(gradZ, gZ, unknown);
+    }
+    const float8 dt = stepLength / index;
+    const float8 halfX = velX + 0.5f * dt * (index * gradX);
+    const float8 halfY = velY + 0.5f * dt * (index * gradY);
+    const float8 halfZ = velZ + 0.5f * dt * (index * gradZ);
+    const float8 nextX = posX + dt * halfX, nextY = posY + dt * halfY, nextZ = posZ + dt * halfZ;
+    float8 indexNext;
+    refracta_lanes_index_fields(alive, nextX, nextY, nextZ, dims, spacing, gradient,
+      refractiveIndex, true, &indexNext, &gX, &gY, &gZ);
+    float8 velNextX = halfX + 0.5f * dt * (indexNext * gX);
+    float8 velNextY = halfY + 0.5f * dt * (indexNext * gY);
+    float8 velNextZ = halfZ + 0.5f * dt * (indexNext * gZ);
+    const float8 speed = sqrt(velNextX * velNextX + velNextY * velNextY + velNextZ * velNextZ);
+    const int8 moving = speed > 0.0f;
+    const float8 rescale = indexNext / speed;
+    velNextX = select(indexNext * dirX, velNextX * rescale, moving);
+    velNextY = select(indexNext * dirY, velNextY * rescale, moving);
+    velNextZ = select(indexNext * dirZ, velNextZ * rescale, moving);
+    const float8 stepX = nextX - posX, stepY = nextY - posY, stepZ = nextZ - posZ;
+    float8 len = sqrt(stepX * stepX + stepY * stepY + stepZ * stepZ);
+    const int8 hasLength = len > 0.0f;
+    const float8 chordX = select(dirX, stepX / len, hasLength);
+    const float8 chordY = select(dirY, stepY / len, hasLength);
+    const float8 chordZ = select(dirZ, stepZ / len, hasLength);
+    // Clip the chord to the box: the exit point is where the ray leaves the medium.
+    const int8 leaves = (nextX < lo.x) | (nextY < lo.y) | (nextZ < lo.z) | (nextX > hi.x) |
+      (nextY > hi.y) | (nextZ > hi.z);
+    if (any(leaves & alive))
+    {
+      int8 hit;
+      const float8 exit =
+        refracta_lanes_box_exit(posX, posY, posZ, chordX, chordY, chordZ, lo, hi, &hit);
+      len = select(len, select((float8)(0.0f), clamp(exit, 0.0f, len), hit), leaves);
+    }
+    const int8 blocked = travelled + len >= limit;
+    len = select(len, fmax(limit - travelled, 0.0f), blocked);
+    const float8 halfLen = 0.5f * len;
+    const float8 mx = (posX + halfLen * chordX) / spacing.x;
+    const float8 my = (posY + halfLen * chordY) / spacing.y;
+    const float8 mz = (posZ + halfLen * chordZ) / spacing.z;
+#else
     const float8 along = convert_float8(step) * stepLength;
     const float8 tA = t0 + along;
     const float8 tB = fmin(tA + stepLength, t1);
@@ -209,16 +461,9 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     len = select(len, fmax(limit - travelled, 0.0f), blocked);
     const float8 a = along + 0.5f * len;
     const float8 mx = fma(a, dvx, u0x), my = fma(a, dvy, u0y), mz = fma(a, dvz, u0z);
-    const float8 cx = clamp(mx, (float8)(0.0f), hx);
-    const float8 cy = clamp(my, (float8)(0.0f), hy);
-    const float8 cz = clamp(mz, (float8)(0.0f), hz);
-    const int8 i0 = convert_int8(cx), j0 = convert_int8(cy), k0 = convert_int8(cz); // >= 0
-    const float8 fx = cx - convert_float8(i0), fy = cy - convert_float8(j0),
-                 fz = cz - convert_float8(k0);
-    const int8 base = i0 + strideY * j0 + strideZ * k0;
-    const int8 offX = min(i0 + 1, dims.x - 1) - i0;
-    const int8 offY = (min(j0 + 1, dims.y - 1) - j0) * strideY;
-    const int8 offZ = (min(k0 + 1, dims.z - 1) - k0) * strideZ;
+    const float8 chordX = dirX, chordY = dirY, chordZ = dirZ;
+#endif
+    const refracta_lanes_stencil ls = refracta_lanes_make_stencil(mx, my, mz, dims);
 #if defined(REFRACTA_PACKED_MEDIUM) && !defined(REFRACTA_HAS_SINGLE) &&                         \
   !defined(REFRACTA_HAS_MULTIPLE) && !defined(REFRACTA_INDEX_WEIGHT)
     // Emission and absorption only: each lane's eight corners of (sigma, emission RGB),
@@ -226,13 +471,14 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
 #define REFRACTA_LANES_SAMPLE(L)                                                                  \
   float4 m##L;                                                                                     \
   {                                                                                                \
-    const int c = base.L, ox = offX.L, oy = offY.L, oz = offZ.L;                                   \
-    const float4 c00 = mix(vload4(c, extinction), vload4(c + ox, extinction), fx.L);               \
-    const float4 c10 = mix(vload4(c + oy, extinction), vload4(c + ox + oy, extinction), fx.L);     \
-    const float4 c01 = mix(vload4(c + oz, extinction), vload4(c + ox + oz, extinction), fx.L);     \
+    const int c = ls.base.L, ox = ls.offX.L, oy = ls.offY.L, oz = ls.offZ.L;                       \
+    const float fx = ls.fx.L;                                                                      \
+    const float4 c00 = mix(vload4(c, extinction), vload4(c + ox, extinction), fx);                 \
+    const float4 c10 = mix(vload4(c + oy, extinction), vload4(c + ox + oy, extinction), fx);       \
+    const float4 c01 = mix(vload4(c + oz, extinction), vload4(c + ox + oz, extinction), fx);       \
     const float4 c11 =                                                                             \
-      mix(vload4(c + oy + oz, extinction), vload4(c + ox + oy + oz, extinction), fx.L);            \
-    m##L = mix(mix(c00, c10, fy.L), mix(c01, c11, fy.L), fz.L);                                    \
+      mix(vload4(c + oy + oz, extinction), vload4(c + ox + oy + oz, extinction), fx);              \
+    m##L = mix(mix(c00, c10, ls.fy.L), mix(c01, c11, ls.fy.L), ls.fz.L);                           \
   }
     REFRACTA_LANES_FOR_LANES(REFRACTA_LANES_SAMPLE)
 #undef REFRACTA_LANES_SAMPLE
@@ -253,21 +499,8 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
   float3 sigma##L = (float3)(0.0f), q##L = (float3)(0.0f);                                         \
   if (alive.L)                                                                                     \
   {                                                                                                \
-    refracta_view_stencil st;                                                                      \
-    const size_t c = (size_t)base.L, ox = (size_t)offX.L, oy = (size_t)offY.L,                     \
-                 oz = (size_t)offZ.L;                                                              \
-    st.c[0] = c;                                                                                   \
-    st.c[1] = c + ox;                                                                              \
-    st.c[2] = c + oy;                                                                              \
-    st.c[3] = c + ox + oy;                                                                         \
-    st.c[4] = c + oz;                                                                              \
-    st.c[5] = c + ox + oz;                                                                         \
-    st.c[6] = c + oy + oz;                                                                         \
-    st.c[7] = c + ox + oy + oz;                                                                    \
-    st.fx = fx.L;                                                                                  \
-    st.fy = fy.L;                                                                                  \
-    st.fz = fz.L;                                                                                  \
-    const float3 d = (float3)(dirX.L, dirY.L, dirZ.L);                                             \
+    const refracta_view_stencil st = REFRACTA_LANES_VIEW_STENCIL(ls, L);                           \
+    const float3 d = (float3)(chordX.L, chordY.L, chordZ.L);                                       \
     float3 emitted;                                                                                \
     q##L = refracta_view_step_medium(&st, (float3)(mx.L, my.L, mz.L),                              \
              refracta_to_voxel(len.L * d, spacing), d, REFRACTA_VIEW_MEDIUM_ARGS, &sigma##L,       \
@@ -309,6 +542,29 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     ++step;
     const int8 sees = ~(blocked | (~leaves & (opaque | capped)));
     seesBackground = select(seesBackground, sees, alive);
+#ifdef REFRACTA_CURVED
+    // A ray that leaves the box sees the background in the direction of its last velocity; one
+    // that goes on moves to the step's end.
+    const int8 exits = alive & leaves & ~blocked;
+    if (any(exits))
+    {
+      const float8 inverse = rsqrt(velNextX * velNextX + velNextY * velNextY + velNextZ * velNextZ);
+      exitX = select(exitX, velNextX * inverse, exits);
+      exitY = select(exitY, velNextY * inverse, exits);
+      exitZ = select(exitZ, velNextZ * inverse, exits);
+    }
+    posX = select(posX, nextX, alive);
+    posY = select(posY, nextY, alive);
+    posZ = select(posZ, nextZ, alive);
+    velX = select(velX, velNextX, alive);
+    velY = select(velY, velNextY, alive);
+    velZ = select(velZ, velNextZ, alive);
+    index = select(index, indexNext, alive);
+    gradX = select(gradX, gX, alive);
+    gradY = select(gradY, gY, alive);
+    gradZ = select(gradZ, gZ, alive);
+    gradKnown = alive;
+#endif
     alive &= ~(blocked | leaves | opaque | capped);
   }
 
@@ -323,20 +579,22 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
   vstore8(transB, 0, tbs);
   vstore8(count, 0, counts);
   vstore8(seesBackground, 0, sees);
+#ifdef REFRACTA_CURVED
+  vstore8(exitX, 0, ex);
+  vstore8(exitY, 0, ey);
+  vstore8(exitZ, 0, ez);
+#endif
   for (int l = 0; l < REFRACTA_LANES_LANES && firstPixel + l < width; ++l)
   {
     const int pi = firstPixel + l;
     const size_t pixel = (size_t)pi + (size_t)width * (size_t)pj;
     const float3 transmittance = (float3)(trs[l], tgs[l], tbs[l]);
     float3 radianceSum = (float3)(rs[l], gs[l], bs[l]);
-    if (sees[l])
+    if (sees[l]) // in the direction the ray left the box in (or its own, when it missed it)
     {
-      float3 origin, d;
-      refracta_view_camera_ray(eye, camU, camV, camW,
-        2.0f * ((float)pi + 0.5f) / (float)width - 1.0f,
-        2.0f * ((float)pj + 0.5f) / (float)height - 1.0f, &origin, &d);
       radianceSum += transmittance *
-        refracta_background(d, background, environment, envSize, envRight, envUp, envFront);
+        refracta_background((float3)(ex[l], ey[l], ez[l]), background, environment, envSize,
+          envRight, envUp, envFront);
     }
     // As refracta_view_pass writes its pixel.
     const float alpha = clamp(

@@ -40,12 +40,12 @@
  *   grid, so the image equals the one without skipping up to float rounding. The occupancy grid is
  *   rebuilt only when the medium, the lighting volume or MacroCellSize changes.
  * - MacroCellSize: edge of a macro cell in voxels, clamped to [2, 64]; default 8.
- * - LaneMarching: on (default) or off. On a CPU device, straight rays through a scene without
- *   surfaces (any medium and lighting volume; what vtkTransferFunctionMedium makes of a
- *   vtkVolumeProperty included) are marched by a kernel of its own, eight rays per work-item in
+ * - LaneMarching: on (default) or off. On a CPU device, a scene without surfaces (any medium
+ *   and lighting volume, straight or curved rays; what vtkTransferFunctionMedium makes of a
+ *   vtkVolumeProperty included) is marched by a kernel of its own, eight rays per work-item in
  *   SIMD lanes (Kernels/view_lanes.cl), with or without skipping: the same steps and the same
- *   image up to float rounding, 2-3x faster on PoCL than the general kernel
- *   (Documentation/Benchmarks.md). Curved rays, surfaces and GPU devices use the general
+ *   image up to float rounding, 1.3-3x faster on PoCL than the general kernel
+ *   (Documentation/Reference.md, "Rendering"). Surfaces and GPU devices use the general
  *   kernel; GetLastLaneMarching() says which ran.
  *
  * The lighting volume must be on the medium's grid and carry `Radiance` (S1, RGB) with

@@ -224,7 +224,7 @@ std::string KernelOptions(const KernelVariant& v)
 //------------------------------------------------------------------------------
 bool LaneMarchingApplies(const KernelVariant& v, bool gpu, vtkIdType voxels)
 {
-  return !gpu && !v.Curved && !v.Surfaces && voxels <= std::numeric_limits<int>::max();
+  return !gpu && !v.Surfaces && voxels <= std::numeric_limits<int>::max();
 }
 
 //------------------------------------------------------------------------------

@@ -75,8 +75,8 @@ struct KernelVariant
 // The build options of a kernel variant.
 std::string KernelOptions(const KernelVariant& variant);
 
-// Whether the eight-lane kernel (Kernels/view_lanes.cl) can render `variant` (straight rays, no
-// surfaces) on a device (not a GPU: it runs its rays in lanes of its own) for a grid of `voxels`
+// Whether the eight-lane kernel (Kernels/view_lanes.cl) can render `variant` (no surfaces) on a
+// device (not a GPU: it runs its rays in lanes of its own) for a grid of `voxels`
 // voxels (its corner indices are 32-bit).
 bool LaneMarchingApplies(const KernelVariant& variant, bool gpu, vtkIdType voxels);
 

@@ -2,8 +2,8 @@
 //
 // Part 1: the view pass alone (vtkRefractaViewPass::Render, kernel + read-back) for W x W images
 // of the GlassSphereInFog scene at N^3 (default 128^3) with its photon-traced lighting volume,
-// curved rays (n varies: the sphere) and straight rays (RayMode STRAIGHT on the same medium), the
-// latter by the general kernel and by the eight-lane one in the same run.
+// curved rays (n varies: the sphere) and straight rays (RayMode STRAIGHT on the same medium), each
+// by the general kernel and by the eight-lane one in the same run.
 // Part 2: an emission-absorption-only scene (a procedural scalar field mapped by
 // vtkTransferFunctionMedium with EmissionScale 1, i.e. VTK's compositing model) at N^3 and
 // W = 512, rendered by Refracta's view pass (straight rays, one-voxel steps) and by
@@ -225,10 +225,11 @@ int main(int argc, char* argv[])
     {
       return 1;
     }
-    // Curved rays, then straight ones by the general kernel and by the eight-lane one (the
-    // default for straight rays on a CPU device).
-    const std::pair<int, bool> modes[] = { { vtkRefractaViewPass::CURVED, true },
-      { vtkRefractaViewPass::STRAIGHT, false }, { vtkRefractaViewPass::STRAIGHT, true } };
+    // Curved and straight rays, each by the general kernel and by the eight-lane one (the
+    // default on a CPU device).
+    const std::pair<int, bool> modes[] = { { vtkRefractaViewPass::CURVED, false },
+      { vtkRefractaViewPass::CURVED, true }, { vtkRefractaViewPass::STRAIGHT, false },
+      { vtkRefractaViewPass::STRAIGHT, true } };
     for (const auto& mode : modes)
     {
       pass->SetRayMode(mode.first);
@@ -250,9 +251,8 @@ int main(int argc, char* argv[])
           }
           const double median = refracta::bench::Median(seconds);
           const double steps = pass->GetLastTotalSteps();
-          const std::string rays = pass->GetLastCurved()
-            ? "curved"
-            : (pass->GetLastLaneMarching() ? "straight, 8 lanes" : "straight, general kernel");
+          const std::string rays = std::string(pass->GetLastCurved() ? "curved" : "straight") +
+            (pass->GetLastLaneMarching() ? ", 8 lanes" : ", general kernel");
           table.AddRow({ "view pass", rays, std::to_string(w) + "x" + std::to_string(w),
             skip ? (pass->GetLastSkipping() ? "on" : "on (no empty cell)") : "off",
             refracta::bench::Table::Format(pass->GetLastActiveCellFraction()),
