@@ -14,7 +14,8 @@
 //
 //   BenchmarkInteractive [--size N] [--photons P] [--width W] [--height H] [--runs R]
 //                        [--csv FILE] [--profile] [--persistent-only] [--warm-start]
-//                        [--transfers] [--fresh-scratch] [--only camera,light,material,full]
+//                        [--transfers] [--fresh-scratch] [--general-kernel]
+//                        [--only camera,light,material,full]
 // Defaults are the target configuration: 128^3, 2^20 photons, 640 x 480, 5 runs.
 // --profile times every OpenCL call of the persistent frames (vtkOpenCLKernelProfile): device_s is
 // the median device time per frame (kernels and transfers), cl_host_s the host's wall time inside
@@ -26,6 +27,8 @@
 // device copies of one lighting array from pageable, pinned and pinned-staged memory. --only runs
 // some of the interactions (camera, light, material, full). --fresh-scratch turns the photon
 // tracer's ReuseScratchBuffers off (the persistent pipeline's default is on): its A/B.
+// --general-kernel turns the view pass's LaneMarching off (the eight-lane kernel is the default on
+// a CPU device): its A/B.
 #include "RefractaBenchmark.h"
 
 #include "vtkCamera.h"
@@ -42,6 +45,7 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaViewPass.h"
 #include "vtkSmartPointer.h"
 #include "vtkTransferFunctionMedium.h"
 #include "vtkVolumeProperty.h"
@@ -70,6 +74,7 @@ struct Options
   bool WarmStart = false;
   bool Transfers = false;
   bool FreshScratch = false; // the tracer creates its scratch buffers every run (A/B)
+  bool GeneralKernel = false; // the view pass's general kernel instead of the lanes (A/B)
   std::string Only; // comma-separated first words of the interactions to run (empty: all)
 };
 
@@ -217,6 +222,7 @@ vtkSmartPointer<vtkRefractaRenderPipeline> MakePipeline(Scene& scene, const Opti
   pipeline->SetCamera(scene.Camera);
   pipeline->GetPhotonTracer()->SetNumberOfPhotons(o.Photons);
   pipeline->GetPhotonTracer()->SetReuseScratchBuffers(!o.FreshScratch);
+  pipeline->GetViewPass()->SetLaneMarching(!o.GeneralKernel);
   return pipeline;
 }
 
@@ -283,6 +289,8 @@ int main(int argc, char* argv[])
       o.Transfers = true;
     else if (arg == "--fresh-scratch")
       o.FreshScratch = true;
+    else if (arg == "--general-kernel")
+      o.GeneralKernel = true;
     else if (arg == "--only")
     {
       o.Only = next();
@@ -302,7 +310,7 @@ int main(int argc, char* argv[])
     {
       std::cerr << "usage: BenchmarkInteractive [--size N] [--photons P] [--width W] "
                    "[--height H] [--runs R] [--csv FILE] [--profile] [--persistent-only] "
-                   "[--warm-start] [--transfers] [--fresh-scratch] "
+                   "[--warm-start] [--transfers] [--fresh-scratch] [--general-kernel] "
                    "[--only camera,light,material,full]\n";
       return 2;
     }
