@@ -72,27 +72,8 @@ inline refracta_lanes_stencil refracta_lanes_make_stencil(
 
 // Lane L's stencil (L one of s0 .. s7) in the general kernel's form (refracta_view_stencil).
 #define REFRACTA_LANES_VIEW_STENCIL(LS, L)                                                        \
-  refracta_lanes_view_stencil(                                                                     \
-    (LS).base.L, (LS).offX.L, (LS).offY.L, (LS).offZ.L, (LS).fx.L, (LS).fy.L, (LS).fz.L)
-
-inline refracta_view_stencil refracta_lanes_view_stencil(
-  int base, int offX, int offY, int offZ, float fx, float fy, float fz)
-{
-  const size_t c = (size_t)base, ox = (size_t)offX, oy = (size_t)offY, oz = (size_t)offZ;
-  refracta_view_stencil st;
-  st.c[0] = c;
-  st.c[1] = c + ox;
-  st.c[2] = c + oy;
-  st.c[3] = c + ox + oy;
-  st.c[4] = c + oz;
-  st.c[5] = c + ox + oz;
-  st.c[6] = c + oy + oz;
-  st.c[7] = c + ox + oy + oz;
-  st.fx = fx;
-  st.fy = fy;
-  st.fz = fz;
-  return st;
-}
+  refracta_view_stencil_at((size_t)(LS).base.L, (size_t)(LS).offX.L, (size_t)(LS).offY.L,         \
+    (size_t)(LS).offZ.L, (LS).fx.L, (LS).fy.L, (LS).fz.L)
 
 // refracta_step_weight (view_pass.cl) for eight lanes: w = (1 - exp(-tau)) / tau by its series
 // for tau <= 1/2 and with the library's exp and expm1 beyond (called only when a lane needs

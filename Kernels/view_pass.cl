@@ -84,14 +84,11 @@ typedef struct
   float fx, fy, fz;
 } refracta_view_stencil;
 
-inline refracta_view_stencil refracta_view_make_stencil(int4 dims, float3 u)
+// The stencil whose first corner is voxel `base`, the next corners along x, y, z `dx`, `dy`, `dz`
+// further (0 on a clamped edge), with weights fx, fy, fz.
+inline refracta_view_stencil refracta_view_stencil_at(
+  size_t base, size_t dx, size_t dy, size_t dz, float fx, float fy, float fz)
 {
-  const refracta_stencil s = refracta_make_stencil(dims, u);
-  // One 64-bit index and three offsets (0 on a clamped edge) instead of eight index products.
-  const size_t base = refracta_voxel_index(dims, s.i0, s.j0, s.k0);
-  const size_t dx = (size_t)(s.i1 - s.i0);
-  const size_t dy = (size_t)(s.j1 - s.j0) * (size_t)dims.x;
-  const size_t dz = (size_t)(s.k1 - s.k0) * (size_t)dims.x * (size_t)dims.y;
   refracta_view_stencil v;
   v.c[0] = base;
   v.c[1] = base + dx;
@@ -101,10 +98,19 @@ inline refracta_view_stencil refracta_view_make_stencil(int4 dims, float3 u)
   v.c[5] = base + dx + dz;
   v.c[6] = base + dy + dz;
   v.c[7] = base + dx + dy + dz;
-  v.fx = s.fx;
-  v.fy = s.fy;
-  v.fz = s.fz;
+  v.fx = fx;
+  v.fy = fy;
+  v.fz = fz;
   return v;
+}
+
+inline refracta_view_stencil refracta_view_make_stencil(int4 dims, float3 u)
+{
+  const refracta_stencil s = refracta_make_stencil(dims, u);
+  // One 64-bit index and three offsets (0 on a clamped edge) instead of eight index products.
+  return refracta_view_stencil_at(refracta_voxel_index(dims, s.i0, s.j0, s.k0),
+    (size_t)(s.i1 - s.i0), (size_t)(s.j1 - s.j0) * (size_t)dims.x,
+    (size_t)(s.k1 - s.k0) * (size_t)dims.x * (size_t)dims.y, s.fx, s.fy, s.fz);
 }
 
 inline float refracta_view_sample1(__global const float* f, const refracta_view_stencil* s)
