@@ -409,9 +409,17 @@ int main(int argc, char* argv[])
         refracta::bench::Table::Format(vtkMedian * 1e3), "", "", "1" });
     }
     std::ostringstream line;
-    line << field.Name << " (" << image << ", " << n << "^3): 8 lanes / general kernel speed-up "
-         << medians[0] / medians[3] << "x without skipping, " << medians[1] / medians[4]
-         << "x with (active cells " << active[4] << ", occupancy built in "
+    line << field.Name << " (" << image << ", " << n << "^3): ";
+    if (lanes[3])
+    {
+      line << "8 lanes / general kernel speed-up " << medians[0] / medians[3]
+           << "x without skipping, " << medians[1] / medians[4] << "x with";
+    }
+    else
+    {
+      line << "no lanes on this device (the general kernel in every row)";
+    }
+    line << " (active cells " << active[4] << ", occupancy built in "
          << eaPass->GetOccupancySeconds() * 1e3 << " ms, max |HDR difference| " << maxDiff
          << "); vtkFixedPointVolumeRayCastMapper / Refracta time ratio " << vtkMedian / medians[3]
          << " without, " << vtkMedian / medians[4] << " with skipping (" << vtkMedian * 1e3

@@ -156,11 +156,15 @@ bool Table::WriteCsv(const std::string& path) const
     std::cerr << "cannot write " << path << "\n";
     return false;
   }
+  // A comma inside a cell is written as ';': the file stays one cell per field for the plain
+  // `awk -F,` of run_benchmarks.sh (no quoting to undo).
   auto line = [&](const std::vector<std::string>& cells)
   {
     for (size_t c = 0; c < cells.size(); ++c)
     {
-      out << (c ? "," : "") << cells[c];
+      std::string cell = cells[c];
+      std::replace(cell.begin(), cell.end(), ',', ';');
+      out << (c ? "," : "") << cell;
     }
     out << "\n";
   };

@@ -42,6 +42,7 @@ public:
   /** Add a row; values are formatted with up to 4 significant digits unless given as text. */
   void AddRow(const std::vector<std::string>& cells);
   void Print(const std::string& title) const;
+  // Writes the table as CSV (a comma inside a cell becomes ';').
   bool WriteCsv(const std::string& path) const;
   /** Format a number for a cell (4 significant digits, or plain for integers). */
   static std::string Format(double value);
