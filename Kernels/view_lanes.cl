@@ -76,21 +76,12 @@ inline refracta_lanes_stencil refracta_lanes_make_stencil(
     (size_t)(LS).offZ.L, (LS).fx.L, (LS).fy.L, (LS).fz.L)
 
 // refracta_step_weight (view_pass.cl) for eight lanes: w = (1 - exp(-tau)) / tau by its series
-// for tau <= 1/2 and with the library's exp and expm1 beyond (called only when a lane needs
-// them), and the step's transmittance.
+// (REFRACTA_STEP_WEIGHT_SERIES) for tau <= 1/2 and with the library's exp and expm1 beyond (called
+// only when a lane needs them), and the step's transmittance.
 inline float8 refracta_lanes_step_weight(float8 tau, float8* stepTransmittance)
 {
   const float8 t = -tau;
-  const float8 t2 = t * t;
-  const float8 t4 = t2 * t2;
-  const float8 a0 = fma(t, (float8)(1.0f / 2.0f), (float8)(1.0f));
-  const float8 a1 = fma(t, (float8)(1.0f / 24.0f), (float8)(1.0f / 6.0f));
-  const float8 a2 = fma(t, (float8)(1.0f / 720.0f), (float8)(1.0f / 120.0f));
-  const float8 a3 = fma(t, (float8)(1.0f / 40320.0f), (float8)(1.0f / 5040.0f));
-  const float8 a4 = fma(t, (float8)(1.0f / 3628800.0f), (float8)(1.0f / 362880.0f));
-  const float8 b0 = fma(t2, a1, a0);
-  const float8 b1 = fma(t2, a3, a2);
-  float8 w = fma(t4 * t4, a4, fma(t4, b1, b0));
+  REFRACTA_STEP_WEIGHT_SERIES(float8, t, w);
   float8 stepT = fma(t, w, (float8)(1.0f));
   const int8 thick = tau > 0.5f;
   if (any(thick))
@@ -151,115 +142,34 @@ inline float8 refracta_lanes_box_exit(float8 ox, float8 oy, float8 oz, float8 dx
 
 #ifdef REFRACTA_SKIP
 // Empty-space skipping for the lanes in `check` (view_skipping.cl), as refracta_view_march does
-// it for a straight ray: from the lane's step start, the run of empty macro cells ahead, clipped
-// to the box exit and the depth limit, is jumped over in whole steps (not counted as steps
-// marched), and the next test waits until the ray has passed `recheck`. Lane by lane in scalar
-// code: a lane asks about once per macro cell it crosses.
-inline void refracta_lanes_skip(int8 check, const float3* origins, const float3* directions,
-  const float* t0s, const float* t1s, const float* limits, float3 lo, float3 hi, float4 spacing,
-  int4 cellDims, int4 activeLo, int4 activeHi, __global const uchar* occupancy, uint skipMask,
+// it: from each lane's start point (sx, sy, sz) along its unit direction (dx, dy, dz), the run of
+// empty macro cells ahead, clipped to `toExit` (the box exit) and the depth limit, is jumped over
+// in whole steps (not counted as steps marched; *step and *travelled advance), and the next test
+// waits until the ray has passed `recheck`. Returns the steps each lane jumped (0: none). Lane by
+// lane in scalar code: a lane asks about once per macro cell it crosses.
+inline int8 refracta_lanes_skip(int8 check, float8 sx, float8 sy, float8 sz, float8 dx, float8 dy,
+  float8 dz, float8 toExit, float8 limit, float3 lo, float3 hi, float4 spacing, int4 cellDims,
+  int4 activeLo, int4 activeHi, __global const uchar* occupancy, uint skipMask,
   float stepLength, int maxSteps, int8* step, float8* travelled, float8* nextCheck)
 {
-  int checks[REFRACTA_LANES_LANES], steps[REFRACTA_LANES_LANES];
-  float paths[REFRACTA_LANES_LANES], nexts[REFRACTA_LANES_LANES];
-  vstore8(check, 0, checks);
-  vstore8(*step, 0, steps);
-  vstore8(*travelled, 0, paths);
-  vstore8(*nextCheck, 0, nexts);
   const float3 cellExtent = (float)cellDims.w * spacing.xyz;
-  for (int l = 0; l < REFRACTA_LANES_LANES; ++l)
-  {
-    if (!checks[l])
-    {
-      continue;
-    }
-    const float tS = t0s[l] + (float)steps[l] * stepLength;
-    const float toExit = fmax(t1s[l] - tS, 0.0f);
-    float recheck;
-    float run = refracta_empty_run(origins[l] + tS * directions[l], directions[l], lo, hi,
-      cellExtent, cellDims, activeLo, activeHi, occupancy, skipMask, &recheck);
-    nexts[l] = paths[l] + recheck;
-    run = fmin(run, fmin(toExit, limits[l] - paths[l]));
-    const int k = min((int)floor(run / stepLength), maxSteps - 1 - steps[l]);
-    if (k > 0)
-    {
-      steps[l] += k;
-      paths[l] += (float)k * stepLength;
-    }
+#define REFRACTA_LANES_JUMP(L)                                                                    \
+  int jump##L = 0;                                                                                 \
+  if (check.L)                                                                                     \
+  {                                                                                                \
+    float recheck;                                                                                 \
+    const float run = refracta_empty_run((float3)(sx.L, sy.L, sz.L), (float3)(dx.L, dy.L, dz.L),  \
+      lo, hi, cellExtent, cellDims, activeLo, activeHi, occupancy, skipMask, &recheck);            \
+    (*nextCheck).L = (*travelled).L + recheck;                                                     \
+    const float clipped = fmin(run, fmin(toExit.L, limit.L - (*travelled).L));                     \
+    jump##L = max(min((int)floor(clipped / stepLength), maxSteps - 1 - (*step).L), 0);             \
   }
-  *step = vload8(0, steps);
-  *travelled = vload8(0, paths);
-  *nextCheck = vload8(0, nexts);
-}
-#endif
-
-#if defined(REFRACTA_CURVED) && defined(REFRACTA_SKIP)
-// The same for curved rays: from the lane's position x along its direction v / |v| (rays are
-// straight in empty cells: grad n = 0 there), clipped to the box exit and the depth limit; a
-// jump moves x along that line and re-reads n where the ray lands.
-inline void refracta_lanes_skip_curved(int8 check, const float* limits, float3 lo, float3 hi,
-  float4 spacing, int4 dims, __global const float* refractiveIndex, int4 cellDims,
-  int4 activeLo, int4 activeHi, __global const uchar* occupancy, uint skipMask, float stepLength,
-  int maxSteps, int8* step, float8* travelled, float8* nextCheck, float8* px, float8* py,
-  float8* pz, float8* vx, float8* vy, float8* vz, float8* n)
-{
-  int checks[REFRACTA_LANES_LANES], steps[REFRACTA_LANES_LANES];
-  float paths[REFRACTA_LANES_LANES], nexts[REFRACTA_LANES_LANES], ns[REFRACTA_LANES_LANES];
-  float xs[REFRACTA_LANES_LANES], ys[REFRACTA_LANES_LANES], zs[REFRACTA_LANES_LANES];
-  float us[REFRACTA_LANES_LANES], vs[REFRACTA_LANES_LANES], ws[REFRACTA_LANES_LANES];
-  vstore8(check, 0, checks);
-  vstore8(*step, 0, steps);
-  vstore8(*travelled, 0, paths);
-  vstore8(*nextCheck, 0, nexts);
-  vstore8(*n, 0, ns);
-  vstore8(*px, 0, xs);
-  vstore8(*py, 0, ys);
-  vstore8(*pz, 0, zs);
-  vstore8(*vx, 0, us);
-  vstore8(*vy, 0, vs);
-  vstore8(*vz, 0, ws);
-  const float3 cellExtent = (float)cellDims.w * spacing.xyz;
-  for (int l = 0; l < REFRACTA_LANES_LANES; ++l)
-  {
-    if (!checks[l])
-    {
-      continue;
-    }
-    const float3 xs3 = (float3)(xs[l], ys[l], zs[l]);
-    const float3 ds = normalize((float3)(us[l], vs[l], ws[l]));
-    float b0, b1;
-    const float toExit = refracta_intersect_box(xs3, ds, lo, hi, &b0, &b1) ? fmax(b1, 0.0f) : 0.0f;
-    float recheck;
-    float run = refracta_empty_run(xs3, ds, lo, hi, cellExtent, cellDims, activeLo, activeHi,
-      occupancy, skipMask, &recheck);
-    nexts[l] = paths[l] + recheck;
-    run = fmin(run, fmin(toExit, limits[l] - paths[l]));
-    const int k = min((int)floor(run / stepLength), maxSteps - 1 - steps[l]);
-    if (k > 0)
-    {
-      steps[l] += k;
-      paths[l] += (float)k * stepLength;
-      const float3 x = xs3 + ((float)k * stepLength) * ds;
-      const float nl = refracta_sample1(refractiveIndex, dims, refracta_to_voxel(x, spacing));
-      xs[l] = x.x;
-      ys[l] = x.y;
-      zs[l] = x.z;
-      ns[l] = nl;
-      us[l] = nl * ds.x;
-      vs[l] = nl * ds.y;
-      ws[l] = nl * ds.z;
-    }
-  }
-  *step = vload8(0, steps);
-  *travelled = vload8(0, paths);
-  *nextCheck = vload8(0, nexts);
-  *n = vload8(0, ns);
-  *px = vload8(0, xs);
-  *py = vload8(0, ys);
-  *pz = vload8(0, zs);
-  *vx = vload8(0, us);
-  *vy = vload8(0, vs);
-  *vz = vload8(0, ws);
+  REFRACTA_LANES_FOR_LANES(REFRACTA_LANES_JUMP)
+#undef REFRACTA_LANES_JUMP
+  const int8 jumps = (int8)(jumps0, jumps1, jumps2, jumps3, jumps4, jumps5, jumps6, jumps7);
+  *step += jumps;
+  *travelled += convert_float8(jumps) * stepLength;
+  return jumps;
 }
 #endif
 
@@ -285,7 +195,7 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
   float ex[REFRACTA_LANES_LANES], ey[REFRACTA_LANES_LANES], ez[REFRACTA_LANES_LANES];
   int marching[REFRACTA_LANES_LANES];
 #ifdef REFRACTA_SKIP
-  float3 origins[REFRACTA_LANES_LANES], directions[REFRACTA_LANES_LANES];
+  float ox[REFRACTA_LANES_LANES], oy[REFRACTA_LANES_LANES], oz[REFRACTA_LANES_LANES];
 #endif
 #ifdef REFRACTA_CURVED
   float n0s[REFRACTA_LANES_LANES]; // n at the entry point
@@ -317,8 +227,9 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
 #endif
     marching[l] = marches ? -1 : 0;
 #ifdef REFRACTA_SKIP
-    origins[l] = origin;
-    directions[l] = d;
+    ox[l] = origin.x;
+    oy[l] = origin.y;
+    oz[l] = origin.z;
 #endif
     t0s[l] = marches ? t0 : 0.0f;
     t1s[l] = marches ? t1 : 0.0f;
@@ -361,6 +272,7 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
   int8 step = 0; // each lane's step index s: lanes skip different numbers of steps
 #ifdef REFRACTA_SKIP
   float8 nextCheck = t0; // no skip test before this path length (inside an occupied cell)
+  const float8 originX = vload8(0, ox), originY = vload8(0, oy), originZ = vload8(0, oz);
 #endif
   while (any(alive)) // every lane ends within maxSteps steps
   {
@@ -369,14 +281,42 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     if (any(check))
     {
 #ifdef REFRACTA_CURVED
-      gradKnown &= ~check; // a lane that jumped is elsewhere
-      refracta_lanes_skip_curved(check, limits, lo, hi, spacing, dims, refractiveIndex, cellDims,
-        activeLo, activeHi, occupancy, skipMask, stepLength, maxSteps, &step, &travelled,
-        &nextCheck, &posX, &posY, &posZ, &velX, &velY, &velZ, &index);
-#else
-      refracta_lanes_skip(check, origins, directions, t0s, t1s, limits, lo, hi, spacing, cellDims,
+      // From the lane's position along v / |v| (rays are straight in empty cells: grad n = 0
+      // there); a lane that jumps lands on that line, where n and grad n are read again.
+      const float8 speed = sqrt(velX * velX + velY * velY + velZ * velZ);
+      const float8 sdx = velX / speed, sdy = velY / speed, sdz = velZ / speed;
+      int8 inBox;
+      const float8 exit =
+        refracta_lanes_box_exit(posX, posY, posZ, sdx, sdy, sdz, lo, hi, &inBox);
+      const int8 jumps = refracta_lanes_skip(check, posX, posY, posZ, sdx, sdy, sdz,
+        select((float8)(0.0f), fmax(exit, 0.0f), inBox), limit, lo, hi, spacing, cellDims,
         activeLo, activeHi, occupancy, skipMask, stepLength, maxSteps, &step, &travelled,
         &nextCheck);
+      const int8 jumped = jumps > 0;
+      if (any(jumped))
+      {
+        const float8 run = convert_float8(jumps) * stepLength;
+        posX = select(posX, posX + run * sdx, jumped);
+        posY = select(posY, posY + run * sdy, jumped);
+        posZ = select(posZ, posZ + run * sdz, jumped);
+        float8 landed, gx, gy, gz;
+        refracta_lanes_index_fields(jumped, posX, posY, posZ, dims, spacing, gradient,
+          refractiveIndex, true, &landed, &gx, &gy, &gz);
+        index = select(index, landed, jumped);
+        velX = select(velX, landed * sdx, jumped);
+        velY = select(velY, landed * sdy, jumped);
+        velZ = select(velZ, landed * sdz, jumped);
+        gradX = select(gradX, gx, jumped);
+        gradY = select(gradY, gy, jumped);
+        gradZ = select(gradZ, gz, jumped);
+        gradKnown |= jumped;
+      }
+#else
+      // From the step's start on the straight line, up to the box exit.
+      const float8 tS = t0 + convert_float8(step) * stepLength;
+      refracta_lanes_skip(check, originX + tS * dirX, originY + tS * dirY, originZ + tS * dirZ,
+        dirX, dirY, dirZ, fmax(t1 - tS, 0.0f), limit, lo, hi, spacing, cellDims, activeLo,
+        activeHi, occupancy, skipMask, stepLength, maxSteps, &step, &travelled, &nextCheck);
 #endif
     }
 #endif

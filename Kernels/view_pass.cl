@@ -151,6 +151,17 @@ __attribute__((noinline)) float refracta_step_weight_thick(float tau, float* ste
   return -expm1(-tau) / tau;
 }
 
+// The series for t = -tau of type TYPE (float, or float8 in view_lanes.cl): declares w.
+#define REFRACTA_STEP_WEIGHT_SERIES(TYPE, t, w)                                                   \
+  const TYPE t2_ = t * t;                                                                          \
+  const TYPE t4_ = t2_ * t2_;                                                                      \
+  const TYPE a0_ = fma(t, (TYPE)(1.0f / 2.0f), (TYPE)(1.0f));                                      \
+  const TYPE a1_ = fma(t, (TYPE)(1.0f / 24.0f), (TYPE)(1.0f / 6.0f));                              \
+  const TYPE a2_ = fma(t, (TYPE)(1.0f / 720.0f), (TYPE)(1.0f / 120.0f));                           \
+  const TYPE a3_ = fma(t, (TYPE)(1.0f / 40320.0f), (TYPE)(1.0f / 5040.0f));                        \
+  const TYPE a4_ = fma(t, (TYPE)(1.0f / 3628800.0f), (TYPE)(1.0f / 362880.0f));                    \
+  TYPE w = fma(t4_ * t4_, a4_, fma(t4_, fma(t2_, a3_, a2_), fma(t2_, a1_, a0_)))
+
 __attribute__((always_inline)) inline float refracta_step_weight(
   float tau, float* stepTransmittance)
 {
@@ -159,16 +170,7 @@ __attribute__((always_inline)) inline float refracta_step_weight(
     return refracta_step_weight_thick(tau, stepTransmittance);
   }
   const float t = -tau;
-  const float t2 = t * t;
-  const float t4 = t2 * t2;
-  const float a0 = fma(t, 1.0f / 2.0f, 1.0f);
-  const float a1 = fma(t, 1.0f / 24.0f, 1.0f / 6.0f);
-  const float a2 = fma(t, 1.0f / 720.0f, 1.0f / 120.0f);
-  const float a3 = fma(t, 1.0f / 40320.0f, 1.0f / 5040.0f);
-  const float a4 = fma(t, 1.0f / 3628800.0f, 1.0f / 362880.0f);
-  const float b0 = fma(t2, a1, a0);
-  const float b1 = fma(t2, a3, a2);
-  const float w = fma(t4 * t4, a4, fma(t4, b1, b0));
+  REFRACTA_STEP_WEIGHT_SERIES(float, t, w);
   *stepTransmittance = fma(t, w, 1.0f);
   return w;
 }
