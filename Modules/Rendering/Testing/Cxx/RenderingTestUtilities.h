@@ -76,6 +76,18 @@ inline double MaxDiff(const std::vector<float>& a, const std::vector<float>& b)
   return m;
 }
 
+// Per-pixel depth limits (path lengths from 0 to `longest`) scattered by a pixel hash, so that
+// some rays stop before the medium, some in front of or behind an object, some inside one.
+inline std::vector<float> HashedDepthLimits(int width, int height, double longest)
+{
+  std::vector<float> depth(static_cast<size_t>(width) * height);
+  for (size_t p = 0; p < depth.size(); ++p)
+  {
+    depth[p] = static_cast<float>(longest * ((p * 2654435761u) % 1000) / 1000.0);
+  }
+  return depth;
+}
+
 inline std::string EnvOr(const char* name, const char* fallback)
 {
   const char* v = std::getenv(name);

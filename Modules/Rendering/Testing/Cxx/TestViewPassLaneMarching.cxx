@@ -211,16 +211,7 @@ void CheckConfig(const Config& config)
   vtkNew<vtkCamera> camera;
   SetCamera(camera, config, medium);
   const int w = 61, h = 43;
-  std::vector<float> depth;
-  if (config.DepthLimit)
-  {
-    // Path-length limits from 0 to 2.5 in a pixel hash: rays stop before, in and behind objects.
-    depth.resize(size_t(w) * h);
-    for (size_t q = 0; q < depth.size(); ++q)
-    {
-      depth[q] = static_cast<float>(2.5 * ((q * 2654435761u) % 1000) / 1000.0);
-    }
-  }
+  const std::vector<float> depth = refracta_test::HashedDepthLimits(w, h, 2.5);
   const float* limit = config.DepthLimit ? depth.data() : nullptr;
   std::vector<float> off, on, offT, onT;
   pass->LaneMarchingOff();

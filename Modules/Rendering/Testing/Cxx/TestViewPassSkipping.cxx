@@ -170,17 +170,7 @@ void CheckConfig(const Config& config)
   vtkNew<vtkCamera> camera;
   SetCamera(camera, config);
   const int w = 64, h = 56;
-  std::vector<float> depth;
-  if (config.DepthLimit)
-  {
-    // Path-length limits from 0 to 3 (world units) in a pixel hash: some rays stop before the
-    // grid, some in empty space in front of or behind an object, some inside one.
-    depth.resize(size_t(w) * h);
-    for (size_t p = 0; p < depth.size(); ++p)
-    {
-      depth[p] = static_cast<float>(3.0 * ((p * 2654435761u) % 1000) / 1000.0);
-    }
-  }
+  const std::vector<float> depth = refracta_test::HashedDepthLimits(w, h, 3.0);
   const float* limit = config.DepthLimit ? depth.data() : nullptr;
   std::vector<float> off, on, offT, onT;
   pass->EmptySpaceSkippingOff();
