@@ -398,6 +398,37 @@ __kernel void lbl_block_finalize(
     }
   }
 }
+
+// The inverse of lbl_block_finalize: the interface that the next launch reads, set so that each
+// interface-fed entry receives its value in the state at each of the m substeps (a state written
+// in the global layout, the coarse start's, whose inbound entries lbl_block would otherwise
+// ignore). Work layout: one work-item per voxel, global (nx, ny, nz).
+__kernel void lbl_block_seed_interfaces(
+  __global const float* state, __global float* iface, const int4 dims, const int4 nblocks)
+{
+  const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
+  if (x >= dims.x || y >= dims.y || z >= dims.z)
+  {
+    return;
+  }
+  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  const size_t v = refracta_voxel_index(dims, x, y, z);
+  #pragma unroll
+  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
+  {
+    const int nb = lbl_inbound_block(i, x, y, z, dims, nblocks);
+    if (nb >= 0)
+    {
+      const size_t base = ((size_t)(nb * 6 + i) * REFRACTA_LBL_B * REFRACTA_LBL_B +
+                            lbl_face_pos(i, x % REFRACTA_LBL_B, y % REFRACTA_LBL_B, z % REFRACTA_LBL_B)) * 3;
+      #pragma unroll
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        iface[base + ch] = state[(i * 3 + ch) * n + v] * (float)REFRACTA_LBL_SUBSTEPS;
+      }
+    }
+  }
+}
 #endif
 
 // ---------------------------------------------------------------------------------------------
@@ -477,5 +508,79 @@ __kernel void lbl_source_from_fixed(__global const long* deposits, const float r
   {
     src[c * (size_t)n + v] = (float)deposits[6 * v + c] * radianceFactor;
     src[(3 + c) * (size_t)n + v] = (float)deposits[6 * v + 3 + c] * directionFactor;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Coarse start (vtkLatticeBoltzmannSolver::CoarseStart): the source restricted to a grid of half
+// the resolution, and the coarse grid's steady state prolonged back as the fine grid's first
+// state. A coarse voxel (cx, cy, cz) covers the fine voxels (2 cx + {0, 1}, ...) that exist.
+
+// src planes (S1 RGB, then the direction sums when there are 6) -> the mean over the children.
+// One work-item per coarse voxel, global (cnx, cny, cnz).
+__kernel void lbl_restrict_source(__global const float* fine, __global float* coarse,
+  const int4 fdims, const int4 cdims, const int planes)
+{
+  const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
+  if (x >= cdims.x || y >= cdims.y || z >= cdims.z)
+  {
+    return;
+  }
+  const size_t nf = (size_t)fdims.x * (size_t)fdims.y * (size_t)fdims.z;
+  const size_t nc = (size_t)cdims.x * (size_t)cdims.y * (size_t)cdims.z;
+  const size_t vc = refracta_voxel_index(cdims, x, y, z);
+  const int x1 = min(2 * x + 2, fdims.x), y1 = min(2 * y + 2, fdims.y), z1 = min(2 * z + 2, fdims.z);
+  const float inverseCount = 1.0f / (float)((x1 - 2 * x) * (y1 - 2 * y) * (z1 - 2 * z));
+  for (int p = 0; p < planes; ++p)
+  {
+    float sum = 0.0f;
+    for (int fz = 2 * z; fz < z1; ++fz)
+    {
+      for (int fy = 2 * y; fy < y1; ++fy)
+      {
+        for (int fx = 2 * x; fx < x1; ++fx)
+        {
+          sum += fine[p * nf + refracta_voxel_index(fdims, fx, fy, fz)];
+        }
+      }
+    }
+    coarse[p * nc + vc] = sum * inverseCount;
+  }
+}
+
+// Fine state from the coarse steady state: f_i = ratio * f_i(parent). In a homogeneous medium the
+// steady state is sum_i f_i = sum_i q_i / ((1 - a) p) per voxel (the source per step over the
+// absorption per step), so the exact ratio is p_coarse / p_fine (the collision probabilities of
+// the two grids, from their coefficients: p = 1 - T); it tends to the step-length ratio
+// (maxRatio, 2) for optically thin voxels and to 1 for thick ones, to which it is clamped (a
+// vacuum voxel takes maxRatio: its density is a flux, and a coarse step lasts maxRatio fine ones).
+// The parent's value is taken as it is (trilinear interpolation measured no fewer fine steps);
+// so an entry that only the world outside a vacuum boundary streams into, which lbl_step never
+// writes, stays zero: its parent's is zero too. One work-item per fine voxel, global (nx, ny, nz).
+__kernel void lbl_prolong_state(__global const float* coarse, __global const float* coarseCoef,
+  __global float* fine, __global const float* fineCoef, const int4 fdims, const int4 cdims,
+  const float maxRatio)
+{
+  const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
+  if (x >= fdims.x || y >= fdims.y || z >= fdims.z)
+  {
+    return;
+  }
+  const size_t nf = (size_t)fdims.x * (size_t)fdims.y * (size_t)fdims.z;
+  const size_t nc = (size_t)cdims.x * (size_t)cdims.y * (size_t)cdims.z;
+  const size_t v = refracta_voxel_index(fdims, x, y, z);
+  const size_t vc = refracta_voxel_index(cdims, x / 2, y / 2, z / 2);
+  #pragma unroll
+  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
+  {
+    #pragma unroll
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      const size_t plane = (size_t)(lbl_class[i] * 3 + ch);
+      const float pFine = 1.0f - fineCoef[plane * nf + v];
+      const float pCoarse = 1.0f - coarseCoef[plane * nc + vc];
+      const float ratio = pFine > 0.0f ? clamp(pCoarse / pFine, 1.0f, maxRatio) : maxRatio;
+      fine[(i * 3 + ch) * nf + v] = ratio * coarse[(i * 3 + ch) * nc + vc];
+    }
   }
 }

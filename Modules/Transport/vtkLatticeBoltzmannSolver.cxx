@@ -220,6 +220,7 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
     return false;
   }
   this->BuiltKey[0] = -1;
+  this->RestrictMedium(dims, spacing, extinction, albedo, anisotropy);
   return this->BuildKernels() && this->ResetState();
 }
 
@@ -261,6 +262,18 @@ bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
   }
   plan->AddDeviceBuffer(grid, "probes", probes * 3 * 4 * 2, "ProbeSpacing");
   plan->AddDeviceBuffer(grid, "multiple-scattering output", 3 * v * 4, gridSetting);
+  // The coarse start's grids hold the same buffers at 1/8, 1/64, ... of the voxels.
+  double coarseShare = 0;
+  for (int d = *std::min_element(this->Dims, this->Dims + 3);
+       this->CoarseStart && d >= 2 * this->MinimumCoarseDimension; d = (d + 1) / 2)
+  {
+    coarseShare = coarseShare / 8 + 1.0 / 8;
+  }
+  if (coarseShare > 0)
+  {
+    plan->AddDeviceBuffer(
+      grid, "coarse-start grids", coarseShare * plan->GetDeviceBytes(), "CoarseStart (off)");
+  }
   // Host: the coefficients kept for the absorption sums, the state read back for the energy
   // books, the output, and the source's staging (kept between solves).
   plan->AddHostMemory(grid, "coefficient copy", static_cast<double>(planes) * v * 4, gridSetting);
@@ -402,7 +415,10 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   this->ProbeKernel = context->CreateKernel(program, "lbl_probes", this);
   this->ScatteredKernel = context->CreateKernel(program, "lbl_scattered", this);
   this->SourceKernel = context->CreateKernel(program, "lbl_source_from_fixed", this);
-  if (!this->StepKernel || !this->ProbeKernel || !this->ScatteredKernel || !this->SourceKernel)
+  this->RestrictKernel = context->CreateKernel(program, "lbl_restrict_source", this);
+  this->ProlongKernel = context->CreateKernel(program, "lbl_prolong_state", this);
+  if (!this->StepKernel || !this->ProbeKernel || !this->ScatteredKernel || !this->SourceKernel ||
+    !this->RestrictKernel || !this->ProlongKernel)
   {
     return false;
   }
@@ -410,7 +426,8 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   {
     this->BlockKernel = context->CreateKernel(program, "lbl_block", this);
     this->FinalizeKernel = context->CreateKernel(program, "lbl_block_finalize", this);
-    if (!this->BlockKernel || !this->FinalizeKernel)
+    this->SeedKernel = context->CreateKernel(program, "lbl_block_seed_interfaces", this);
+    if (!this->BlockKernel || !this->FinalizeKernel || !this->SeedKernel)
     {
       return false;
     }
@@ -464,6 +481,7 @@ bool vtkLatticeBoltzmannSolver::ResetState()
   }
   this->Current = 0;
   this->InterfaceParity = 0;
+  this->StateIsZero = true;
   this->Iterations = 0;
   this->Residual = -1.0;
   this->Converged = false;
@@ -552,6 +570,7 @@ bool vtkLatticeBoltzmannSolver::Iterate(int steps, bool wait)
   const cl_int4 dims = { { this->Dims[0], this->Dims[1], this->Dims[2], 0 } };
   const size_t global[3] = { size_t(this->Dims[0]), size_t(this->Dims[1]), size_t(this->Dims[2]) };
   const size_t local[3] = { LocalRow(this->Dims[0]), 1, 1 };
+  this->StateIsZero = this->StateIsZero && steps <= 0;
   if (this->UseBlocks())
   {
     const int m = this->StepsPerExchange;
@@ -680,6 +699,20 @@ bool vtkLatticeBoltzmannSolver::Solve()
   {
     return false;
   }
+  double progress = 0.0;
+  this->CoarseStartSteps = 0;
+  this->CoarseStartCost = 0.0;
+  if (this->CoarseStart && this->StateIsZero && !this->SourceIsZero && this->HasCoarseLevel())
+  {
+    if (!this->RunCoarseStart(progress))
+    {
+      return false;
+    }
+    if (this->Aborted)
+    {
+      return true;
+    }
+  }
   std::vector<float> values;
   if (!this->ReadProbes(values))
   {
@@ -694,7 +727,6 @@ bool vtkLatticeBoltzmannSolver::Solve()
   }
   int done = 0;
   double firstResidual = -1.0; // first finite residual, the start of the log-scale estimate
-  double progress = 0.0;
   while (done < this->MaximumIterations)
   {
     if (this->AbortSolve)
@@ -766,6 +798,10 @@ void vtkLatticeBoltzmannSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CheckInterval: " << this->CheckInterval << "\n";
   os << indent << "ProbeSpacing: " << this->ProbeSpacing << "\n";
   os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";
+  os << indent << "CoarseStart: " << (this->CoarseStart ? "on" : "off") << "\n";
+  os << indent << "MinimumCoarseDimension: " << this->MinimumCoarseDimension << "\n";
+  os << indent << "CoarseStartSteps: " << this->CoarseStartSteps << "\n";
+  os << indent << "CoarseStartCost: " << this->CoarseStartCost << "\n";
   os << indent << "Iterations: " << this->Iterations << "\n";
   os << indent << "Residual: " << this->Residual << "\n";
   os << indent << "Converged: " << this->Converged << "\n";

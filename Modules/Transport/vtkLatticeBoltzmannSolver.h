@@ -159,6 +159,41 @@ public:
   vtkGetMacro(MaximumIterations, int);
   ///@}
 
+  ///@{
+  /**
+   * Coarse start (default on): a Solve() that begins from a zero lattice state (after
+   * Initialize(), ResetState() or Restart(); not a warm start after ClearSource(), not a state
+   * that Iterate() has advanced) first solves the same problem on a grid of half the resolution
+   * and starts from that solution instead of from zero: a cascadic multigrid start. The coarse
+   * grid averages each 2x2x2 block of voxels (extinction; albedo weighted by extinction; g
+   * weighted by scattering; the source), has twice the spacing, and is itself started from a
+   * coarser grid while its every axis keeps at least MinimumCoarseDimension voxels (default 16).
+   * Its steady state is prolonged to the fine grid (each voxel takes its parent's densities,
+   * scaled by the ratio of the two grids' collision probabilities: the exact ratio of the two
+   * steady states in a homogeneous medium; Kernels/lbl.cl, lbl_prolong_state). A coarse step
+   * costs an eighth of a fine one and carries light twice as far, so the slow, smooth part of
+   * the solution, which takes the fine lattice most of its steps, is paid for at the coarse
+   * level. The fixed point does not depend on the start: the fine grid still iterates until its
+   * own residual is below Tolerance. No coarse grid is built when an axis has fewer than
+   * 2 * MinimumCoarseDimension voxels.
+   */
+  vtkSetMacro(CoarseStart, bool);
+  vtkGetMacro(CoarseStart, bool);
+  vtkBooleanMacro(CoarseStart, bool);
+  vtkSetClampMacro(MinimumCoarseDimension, int, 4, 1 << 20);
+  vtkGetMacro(MinimumCoarseDimension, int);
+  ///@}
+
+  ///@{
+  /**
+   * The last Solve()'s coarse start: lattice steps run on the coarser grids (all levels summed;
+   * 0 when none ran) and their cost in steps of this grid (a level's steps count 8^-level, as
+   * its voxels do).
+   */
+  vtkGetMacro(CoarseStartSteps, int);
+  vtkGetMacro(CoarseStartCost, double);
+  ///@}
+
   /**
    * The OpenCL context (default: vtkOpenCLContext::GetDefault()).
    */
@@ -396,6 +431,15 @@ protected:
   bool BuildKernels();
   bool ReadProbes(std::vector<float>& values);
   bool SetProbes(const std::vector<cl_uint>& extra);
+  // Coarse start (vtkLatticeBoltzmannSolverCoarseStart.cxx).
+  void RestrictMedium(const int dims[3], const double spacing[3], const float* extinction,
+    const float* albedo, const float* anisotropy);
+  bool HasCoarseLevel() const
+  {
+    return !this->CoarseExtinction.empty();
+  }
+  bool PrepareCoarseLevel();
+  bool RunCoarseStart(double& progress);
   static constexpr size_t MaxSourceProbes = 8;
   static constexpr double ProbeFloor = 1e-4;
 
@@ -414,6 +458,18 @@ protected:
   vtkIdType NumberOfThickVoxels = 0;
   double PlannedDeviceMemoryBytes = 0;
   double PlannedHostMemoryBytes = 0;
+
+  bool CoarseStart = true;
+  int MinimumCoarseDimension = 16;
+  int CoarseStartSteps = 0;
+  double CoarseStartCost = 0.0;
+  bool StateIsZero = true;
+  // The coarse grid's medium (restricted by Initialize()) and its solver, set up on first use.
+  vtkSmartPointer<vtkLatticeBoltzmannSolver> Coarse;
+  int CoarseDims[3] = { 0, 0, 0 };
+  double CoarseSpacing[3] = { 0, 0, 0 };
+  std::vector<float> CoarseExtinction, CoarseAlbedo, CoarseAnisotropy;
+  bool CoarseInitialized = false;
 
   int Iterations = 0;
   double Residual = -1.0;
@@ -453,7 +509,14 @@ protected:
   vtkOpenCLKernel ProbeKernel;
   vtkOpenCLKernel ScatteredKernel;
   vtkOpenCLKernel SourceKernel;
+  vtkOpenCLKernel RestrictKernel;
+  vtkOpenCLKernel ProlongKernel;
+  vtkOpenCLKernel SeedKernel;
   int Current = 0;
+  cl_mem CurrentState() const
+  {
+    return this->UseBlocks() ? this->State[0].Get() : this->State[this->Current].Get();
+  }
 #endif
 
 private:

@@ -66,6 +66,28 @@ double FieldValue(vtkImageData* image, const char* name)
   return a ? a->GetComponent(0, 0) : -1.0;
 }
 
+// Steps, convergence and times of the repeated solves of one configuration.
+struct SolveRuns
+{
+  std::vector<double> Seconds;
+  int Steps = 0;
+  int CoarseSteps = 0;
+  double CoarseCost = 0;
+  bool Converged = false;
+};
+
+// max |a - b| over max |b|.
+double MaxDifferenceOverPeak(const std::vector<float>& a, const std::vector<float>& b)
+{
+  double diff = 0, peak = 0;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i)
+  {
+    diff = std::max(diff, std::abs(double(a[i]) - double(b[i])));
+    peak = std::max(peak, std::abs(double(b[i])));
+  }
+  return peak > 0 ? diff / peak : diff;
+}
+
 // A directional light along +x, turned by `degrees` about z, for Table I.
 void AimTable1Light(vtkLight* light, int n, double degrees)
 {
@@ -101,20 +123,22 @@ int RunTable1(int n, int repeats, bool persistent, const std::string& csv)
   medium->GetPointData()->AddArray(alb);
   std::ofstream out(csv);
   out << "size,schedule,k,total_s,marching_s,final_solve_s,chunks,lbl_steps_during_marching,"
-         "lbl_steps_total,persistent\n";
+         "lbl_steps_total,persistent,coarse_start_cost\n";
   std::printf(
     "\n| schedule | k | total s | photon pass (+ interleaved diffusion) s | final solve s | "
-    "chunks | LBL steps during marching | LBL steps total |\n"
-    "|---|---|---|---|---|---|---|---|\n");
+    "chunks | LBL steps during marching | LBL steps total | coarse start (in full-grid steps) |\n"
+    "|---|---|---|---|---|---|---|---|---|\n");
   // With REFRACTA_PROFILE_KERNELS=1 each schedule's kernels are listed (summed over the repeats):
   // their total against the wall time says how much of Table I is host work.
   vtkOpenCLKernelProfile* profile = vtkOpenCLContext::GetDefault()->GetKernelProfile();
   std::string kernels;
   int initializations = 0; // of the last row's schedule
-  for (int k : { 0, 2, 4, 8, 16, 32, 64 })
+  // k = -1: the sequential schedule with the lattice's coarse start off (every step on the
+  // full grid), the comparison for the sequential row (k = 0) with it on (the default).
+  for (int k : { -1, 0, 2, 4, 8, 16, 32, 64 })
   {
     std::vector<double> total, marching, solve;
-    double chunks = 0, during = 0, steps = 0;
+    double chunks = 0, during = 0, steps = 0, coarseCost = 0;
     vtkSmartPointer<vtkPhotonDiffusionSchedule> schedule;
     vtkNew<vtkLight> light;
     for (int r = -1; r < repeats; ++r) // r = -1: warm-up (kernel builds), not timed
@@ -123,8 +147,9 @@ int RunTable1(int n, int repeats, bool persistent, const std::string& csv)
       {
         schedule = vtkSmartPointer<vtkPhotonDiffusionSchedule>::New();
         schedule->SetInputData(medium);
-        schedule->SetMode(k == 0 ? vtkPhotonDiffusionSchedule::SEQUENTIAL
+        schedule->SetMode(k <= 0 ? vtkPhotonDiffusionSchedule::SEQUENTIAL
                                  : vtkPhotonDiffusionSchedule::INTERLEAVED);
+        schedule->GetSolver()->SetCoarseStart(k >= 0);
         schedule->SetStepsPerChunk(std::max(k, 1));
         schedule->GetPhotonTracer()->AddLight(light);
         schedule->GetPhotonTracer()->SetNumberOfPhotons(65536);
@@ -150,22 +175,23 @@ int RunTable1(int n, int repeats, bool persistent, const std::string& csv)
       chunks = FieldValue(result, "ScheduleChunks");
       during = FieldValue(result, "ScheduleDiffusionStepsDuringMarching");
       steps = FieldValue(result, "LatticeBoltzmannIterations");
+      coarseCost = schedule->GetSolver()->GetCoarseStartCost();
     }
     initializations = schedule->GetNumberOfSolverInitializations();
-    const char* name = k == 0 ? "sequential" : "interleaved";
+    const char* name = k < 0 ? "sequential cold start" : (k == 0 ? "sequential" : "interleaved");
     if (vtkOpenCLContext::GetDefault()->GetProfileKernels())
     {
       profile->Collect();
-      kernels += std::string("\nKernels of ") + name + (k ? " k = " + std::to_string(k) : "") +
+      kernels += std::string("\nKernels of ") + name + (k > 0 ? " k = " + std::to_string(k) : "") +
         ", " + std::to_string(repeats) + " runs:\n" + profile->GetTable();
     }
-    std::printf("| %s | %s | %.4f | %.4f | %.4f | %g | %g | %g |\n", name,
-      k == 0 ? "-" : std::to_string(k).c_str(), Median(total), Median(marching), Median(solve),
-      chunks, during, steps);
+    std::printf("| %s | %s | %.4f | %.4f | %.4f | %g | %g | %g | %.1f |\n", name,
+      k <= 0 ? "-" : std::to_string(k).c_str(), Median(total), Median(marching), Median(solve),
+      chunks, during, steps, coarseCost);
     std::fflush(stdout);
     out << n << "," << name << "," << k << "," << Median(total) << "," << Median(marching) << ","
         << Median(solve) << "," << chunks << "," << during << "," << steps << ","
-        << (persistent ? 1 : 0) << "\n";
+        << (persistent ? 1 : 0) << "," << coarseCost << "\n";
   }
   if (persistent)
   {
@@ -276,6 +302,7 @@ int main(int argc, char* argv[])
   std::ofstream out(csv);
   out << "size,albedo,schedule,steps,converged,seconds,ms_per_step,mlups,effective_GBps,"
          "copy_GBps,ratio\n";
+  std::string coarseRows;
   std::printf("\n| size | albedo | schedule | steps | converged | ms/step | M updates/s | "
               "effective GB/s | copy GB/s | ratio |\n|---|---|---|---|---|---|---|---|---|---|\n");
   for (int n : sizes)
@@ -307,39 +334,55 @@ int main(int argc, char* argv[])
         {
           continue;
         }
-        std::vector<double> seconds;
-        int steps = 0;
-        bool converged = false;
-        for (int r = -1; r < repeats; ++r) // r = -1: warm-up (kernel builds), not timed
+        // Cold (CoarseStart off: every step on this grid, the bandwidth rows), then with the
+        // coarse start (the class default) against the cold answer.
+        SolveRuns cold, coarse;
+        std::vector<float> coldOutput, coarseOutput;
+        for (bool coarseStart : { false, true })
         {
-          vtkNew<vtkLatticeBoltzmannSolver> solver;
-          solver->SetBlockSize(blocked ? 4 : 0);
-          solver->SetBlockPolicy(vtkLatticeBoltzmannSolver::ALWAYS_BLOCKS);
-          solver->SetStepsPerExchange(4);
-          // The warm-up only builds the kernels (a few steps).
-          solver->SetMaximumIterations(r < 0 ? 8 : maxSteps);
-          if (isotropic)
+          SolveRuns& runs = coarseStart ? coarse : cold;
+          for (int r = -1; r < repeats; ++r) // r = -1: warm-up (kernel builds), not timed
           {
-            solver->SetSourceDistribution(vtkLatticeBoltzmannSolver::ISOTROPIC_SOURCE);
+            vtkNew<vtkLatticeBoltzmannSolver> solver;
+            solver->SetCoarseStart(coarseStart);
+            solver->SetBlockSize(blocked ? 4 : 0);
+            solver->SetBlockPolicy(vtkLatticeBoltzmannSolver::ALWAYS_BLOCKS);
+            solver->SetStepsPerExchange(4);
+            // The warm-up only builds the kernels (a few steps).
+            solver->SetMaximumIterations(r < 0 ? 8 : maxSteps);
+            if (isotropic)
+            {
+              solver->SetSourceDistribution(vtkLatticeBoltzmannSolver::ISOTROPIC_SOURCE);
+            }
+            if (!solver->Initialize(dims, spacing, ext.data(), alb.data(), g.data()) ||
+              !solver->SetSource(s1.data(), dir.data()))
+            {
+              return 1;
+            }
+            const double t0 = Now();
+            if (!solver->Solve())
+            {
+              return 1;
+            }
+            if (r >= 0)
+            {
+              runs.Seconds.push_back(Now() - t0);
+            }
+            runs.Steps = solver->GetIterations();
+            runs.CoarseSteps = solver->GetCoarseStartSteps();
+            runs.CoarseCost = solver->GetCoarseStartCost();
+            runs.Converged = solver->GetConverged();
+            std::vector<float>& output = coarseStart ? coarseOutput : coldOutput;
+            output.resize(voxels * 3);
+            if (r == repeats - 1 && !solver->ComputeMultipleScattering(output.data()))
+            {
+              return 1;
+            }
           }
-          if (!solver->Initialize(dims, spacing, ext.data(), alb.data(), g.data()) ||
-            !solver->SetSource(s1.data(), dir.data()))
-          {
-            return 1;
-          }
-          const double t0 = Now();
-          if (!solver->Solve())
-          {
-            return 1;
-          }
-          if (r >= 0)
-          {
-            seconds.push_back(Now() - t0);
-          }
-          steps = solver->GetIterations();
-          converged = solver->GetConverged();
         }
-        const double t = Median(seconds);
+        const int steps = cold.Steps;
+        const bool converged = cold.Converged;
+        const double t = Median(cold.Seconds);
         const double mlups = double(voxels) * steps / t / 1e6;
         const double effective = mlups * 1e6 * bytesPerUpdate;
         const char* schedule = blocked ? "blocks b=4 m=4" : "global";
@@ -350,9 +393,25 @@ int main(int argc, char* argv[])
         out << n << "," << albedo << "," << schedule << "," << steps << "," << converged << "," << t
             << "," << 1e3 * t / steps << "," << mlups << "," << effective / 1e9 << "," << copy / 1e9
             << "," << effective / copy << "\n";
+        const double coarseSeconds = Median(coarse.Seconds);
+        char row[512];
+        std::snprintf(row, sizeof(row),
+          "| %d^3 | %.2f | %s | %d | %.4f | %d + %d coarse (%.1f) | %s | %.4f | %.2f | %.2e |\n", n,
+          albedo, schedule, cold.Steps, t, coarse.Steps, coarse.CoarseSteps, coarse.CoarseCost,
+          coarse.Converged ? "yes" : "no", coarseSeconds, t / coarseSeconds,
+          MaxDifferenceOverPeak(coarseOutput, coldOutput));
+        coarseRows += row;
       }
     }
   }
+  std::printf(
+    "\nCoarse start (vtkLatticeBoltzmannSolver::CoarseStart, the default) against the "
+    "cold start above, same run; steps on this grid + on the coarser ones (their cost "
+    "in steps of this grid); the difference of S_ms over its peak:\n\n"
+    "| size | albedo | schedule | cold steps | cold s | coarse-start steps | converged | "
+    "s | speed-up | max S_ms difference / peak |\n|---|---|---|---|---|---|---|---|---|---|\n"
+    "%s",
+    coarseRows.c_str());
   std::printf("\nCSV written to %s\n", csv.c_str());
   return 0;
 }
