@@ -197,6 +197,9 @@ json LightPassReport(vtkRefractaRenderPipeline* pipeline, int lightCount)
         : std::string(solver->GetBlockSize() > 0 ? "global (the device has no on-chip local memory)"
                                                  : "global");
       ms["seconds"] = report.value("ScheduleFinalSolveSeconds", 0.0);
+      // The coarse start's steps (all coarser grids) and their cost in steps of the full grid.
+      ms["coarse_start_steps"] = solver->GetCoarseStartSteps();
+      ms["coarse_start_cost"] = solver->GetCoarseStartCost();
       ms["device_memory_planned_bytes"] =
         pipeline->GetLatticeSolver()->GetPlannedDeviceMemoryBytes();
     }
@@ -278,8 +281,14 @@ void PrintLightPass(const json& light)
               << ms["reason"].get<std::string>() << ")";
     if (ms.contains("iterations"))
     {
-      std::cout << "; Lattice-Boltzmann " << ms["iterations"].get<double>()
-                << " iterations, residual " << ms["residual"].get<double>()
+      std::cout << "; Lattice-Boltzmann " << ms["iterations"].get<double>() << " iterations";
+      if (ms["coarse_start_steps"].get<int>() > 0)
+      {
+        std::cout << " after a coarse start (" << ms["coarse_start_steps"].get<int>()
+                  << " steps on coarser grids, costing "
+                  << ms["coarse_start_cost"].get<double>() << " full-grid steps)";
+      }
+      std::cout << ", residual " << ms["residual"].get<double>()
                 << (ms["converged"].get<bool>() ? " (converged), " : " (NOT converged), ")
                 << ms["seconds"].get<double>() << " s, " << ms["update"].get<std::string>()
                 << " update";

@@ -92,7 +92,8 @@ public:
 
   enum ScheduleMode
   {
-    AUTOMATIC_SCHEDULE = 0, ///< interleaved on GPUs, sequential on CPU devices (see the .cxx)
+    AUTOMATIC_SCHEDULE = 0, ///< sequential, but interleaved on GPUs where the lattice's coarse
+                            ///< start does not apply (see the .cxx)
     SEQUENTIAL_SCHEDULE = 1,
     INTERLEAVED_SCHEDULE = 2
   };

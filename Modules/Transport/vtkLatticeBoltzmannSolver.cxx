@@ -264,10 +264,13 @@ bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
   plan->AddDeviceBuffer(grid, "multiple-scattering output", 3 * v * 4, gridSetting);
   // The coarse start's grids hold the same buffers at 1/8, 1/64, ... of the voxels.
   double coarseShare = 0;
-  for (int d = *std::min_element(this->Dims, this->Dims + 3);
-       this->CoarseStart && d >= 2 * this->MinimumCoarseDimension; d = (d + 1) / 2)
+  for (int d[3] = { this->Dims[0], this->Dims[1], this->Dims[2] }; this->CoarseStartApplies(d);)
   {
     coarseShare = coarseShare / 8 + 1.0 / 8;
+    for (int& e : d)
+    {
+      e = (e + 1) / 2;
+    }
   }
   if (coarseShare > 0)
   {

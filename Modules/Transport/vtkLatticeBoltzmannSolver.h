@@ -46,7 +46,8 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // for the context
 
-#include <vector> // for std::vector
+#include <algorithm> // for std::min_element
+#include <vector>    // for std::vector
 
 #ifndef __VTK_WRAP__
 #include "vtkOpenCLHandle.h" // for buffers and kernels
@@ -183,6 +184,15 @@ public:
   vtkSetClampMacro(MinimumCoarseDimension, int, 4, 1 << 20);
   vtkGetMacro(MinimumCoarseDimension, int);
   ///@}
+
+  /**
+   * Whether a Solve() from a zero state on a grid of these dimensions would start from a coarse
+   * grid with the present settings (CoarseStart on, every axis >= 2 * MinimumCoarseDimension).
+   */
+  bool CoarseStartApplies(const int dims[3]) const
+  {
+    return this->CoarseStart && *std::min_element(dims, dims + 3) >= 2 * this->MinimumCoarseDimension;
+  }
 
   ///@{
   /**

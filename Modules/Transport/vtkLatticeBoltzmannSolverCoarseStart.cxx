@@ -47,7 +47,7 @@ void vtkLatticeBoltzmannSolver::RestrictMedium(const int dims[3], const double s
   this->CoarseAlbedo.clear();
   this->CoarseAnisotropy.clear();
   this->CoarseInitialized = false;
-  if (!this->CoarseStart || *std::min_element(dims, dims + 3) < 2 * this->MinimumCoarseDimension)
+  if (!this->CoarseStartApplies(dims))
   {
     return;
   }

@@ -14,7 +14,7 @@
 //
 //   BenchmarkInteractive [--size N] [--photons P] [--width W] [--height H] [--runs R]
 //                        [--csv FILE] [--profile] [--persistent-only] [--warm-start]
-//                        [--transfers] [--fresh-scratch] [--general-kernel]
+//                        [--transfers] [--fresh-scratch] [--general-kernel] [--cold-lattice]
 //                        [--only camera,light,material,full]
 // Defaults are the target configuration: 128^3, 2^20 photons, 640 x 480, 5 runs.
 // --profile times every OpenCL call of the persistent frames (vtkOpenCLKernelProfile): device_s is
@@ -28,7 +28,8 @@
 // some of the interactions (camera, light, material, full). --fresh-scratch turns the photon
 // tracer's ReuseScratchBuffers off (the persistent pipeline's default is on): its A/B.
 // --general-kernel turns the view pass's LaneMarching off (the eight-lane kernel is the default on
-// a CPU device): its A/B.
+// a CPU device): its A/B. --cold-lattice turns the lattice's CoarseStart off (every lattice step
+// on the full grid): its A/B.
 #include "RefractaBenchmark.h"
 
 #include "vtkCamera.h"
@@ -75,6 +76,7 @@ struct Options
   bool Transfers = false;
   bool FreshScratch = false; // the tracer creates its scratch buffers every run (A/B)
   bool GeneralKernel = false; // the view pass's general kernel instead of the lanes (A/B)
+  bool ColdLattice = false;   // the lattice without its coarse start (A/B)
   std::string Only; // comma-separated first words of the interactions to run (empty: all)
 };
 
@@ -223,6 +225,7 @@ vtkSmartPointer<vtkRefractaRenderPipeline> MakePipeline(Scene& scene, const Opti
   pipeline->GetPhotonTracer()->SetNumberOfPhotons(o.Photons);
   pipeline->GetPhotonTracer()->SetReuseScratchBuffers(!o.FreshScratch);
   pipeline->GetViewPass()->SetLaneMarching(!o.GeneralKernel);
+  pipeline->GetLatticeSolver()->SetCoarseStart(!o.ColdLattice);
   return pipeline;
 }
 
@@ -291,6 +294,8 @@ int main(int argc, char* argv[])
       o.FreshScratch = true;
     else if (arg == "--general-kernel")
       o.GeneralKernel = true;
+    else if (arg == "--cold-lattice")
+      o.ColdLattice = true;
     else if (arg == "--only")
     {
       o.Only = next();
@@ -310,7 +315,7 @@ int main(int argc, char* argv[])
     {
       std::cerr << "usage: BenchmarkInteractive [--size N] [--photons P] [--width W] "
                    "[--height H] [--runs R] [--csv FILE] [--profile] [--persistent-only] "
-                   "[--warm-start] [--transfers] [--fresh-scratch] [--general-kernel] "
+                   "[--warm-start] [--transfers] [--fresh-scratch] [--general-kernel] [--cold-lattice] "
                    "[--only camera,light,material,full]\n";
       return 2;
     }
