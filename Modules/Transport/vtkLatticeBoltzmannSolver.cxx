@@ -283,6 +283,12 @@ bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
   plan->AddHostMemory(grid, "state read-back", this->Lattice * 3 * v * 4, stateSetting);
   plan->AddHostMemory(grid, "MultipleScattering", 3 * v * 4, gridSetting);
   plan->AddHostMemory(grid, "source staging", 6 * v * 4, gridSetting);
+  if (coarseShare > 0)
+  {
+    // The coarser grids' host copies, and the first one's medium (7 floats a coarse voxel).
+    plan->AddHostMemory(grid, "coarse-start grids",
+      coarseShare * plan->GetHostBytes() + 7.0 * 4 * v / 8, "CoarseStart (off)");
+  }
   this->PlannedDeviceMemoryBytes = plan->GetDeviceBytes();
   this->PlannedHostMemoryBytes = plan->GetHostBytes();
   if (!plan->Fits(this->GetContext()))

@@ -176,7 +176,8 @@ public:
    * the solution, which takes the fine lattice most of its steps, is paid for at the coarse
    * level. The fixed point does not depend on the start: the fine grid still iterates until its
    * own residual is below Tolerance. No coarse grid is built when an axis has fewer than
-   * 2 * MinimumCoarseDimension voxels.
+   * 2 * MinimumCoarseDimension voxels. Initialize() reads both settings (it builds the coarse
+   * grid's medium); switching CoarseStart off later skips the coarse start.
    */
   vtkSetMacro(CoarseStart, bool);
   vtkGetMacro(CoarseStart, bool);

@@ -24,8 +24,8 @@ bool vtkLatticeBoltzmannSolver::ReadState(std::vector<float>& state)
     return false;
   }
   state.resize(size_t(this->Lattice) * 3 * this->NumberOfVoxels);
-  cl_mem buffer = this->UseBlocks() ? this->State[0].Get() : this->State[this->Current].Get();
-  return this->GetContext()->ReadBuffer(buffer, state.size() * sizeof(float), state.data(), this);
+  return this->GetContext()->ReadBuffer(
+    this->CurrentState(), state.size() * sizeof(float), state.data(), this);
 }
 
 //------------------------------------------------------------------------------
