@@ -196,6 +196,8 @@ bool vtkLatticeBoltzmannSolver::RunCoarseStart(double& progress)
   coarse->RemoveObserver(observer);
   if (!solved)
   {
+    vtkErrorMacro("The coarse start's solve failed (see the previous message); turn CoarseStart "
+                  "off to go without.");
     return false;
   }
   this->CoarseStartSteps = coarse->Iterations + coarse->CoarseStartSteps;
