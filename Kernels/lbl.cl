@@ -349,7 +349,7 @@ __kernel __attribute__((reqd_work_group_size(REFRACTA_LBL_B, REFRACTA_LBL_B, REF
       #pragma unroll
       for (int ch = 0; ch < 3; ++ch)
       {
-        // Entries fed by the interface are rewritten by lbl_block_finalize.
+        // Entries fed by the interface are rewritten by lbl_block_state_interface.
         state[(i * 3 + ch) * n + v] = inbound[i] ? 0.0f : last[(i * 3 + ch) * LBL_B3 + lid];
       }
       const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
@@ -369,11 +369,16 @@ __kernel __attribute__((reqd_work_group_size(REFRACTA_LBL_B, REFRACTA_LBL_B, REF
   }
 }
 
-// After a launch, writes into the state's interface-fed entries the density that will stream in
-// during the next substep (1/m of the interface), so that the state reads like a global state
-// (exactly the global state for m = 1). Work layout: one work-item per voxel, global (nx, ny, nz).
-__kernel void lbl_block_finalize(
-  __global float* state, __global const float* iface, const int4 dims, const int4 nblocks)
+// Between the state's interface-fed entries and the interface the next launch reads, one
+// work-item per voxel, global (nx, ny, nz):
+// - toInterface 0, after a launch: each entry gets the density that will
+//   stream in during the next substep (1/m of the interface), so that the state reads like a
+//   global state (exactly the global state for m = 1);
+// - toInterface 1, the inverse (the coarse start's seed): the interface is set so that each entry
+//   receives its value in the state at each of the m substeps, for a state written in the global
+//   layout, whose interface-fed entries lbl_block would otherwise ignore.
+__kernel void lbl_block_state_interface(__global float* state, __global float* iface,
+  const int4 dims, const int4 nblocks, const int toInterface)
 {
   const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
   if (x >= dims.x || y >= dims.y || z >= dims.z)
@@ -393,38 +398,15 @@ __kernel void lbl_block_finalize(
       #pragma unroll
       for (int ch = 0; ch < 3; ++ch)
       {
-        state[(i * 3 + ch) * n + v] = iface[base + ch] * LBL_INV_SUBSTEPS;
-      }
-    }
-  }
-}
-
-// The inverse of lbl_block_finalize: the interface that the next launch reads, set so that each
-// interface-fed entry receives its value in the state at each of the m substeps (a state written
-// in the global layout, the coarse start's, whose inbound entries lbl_block would otherwise
-// ignore). Work layout: one work-item per voxel, global (nx, ny, nz).
-__kernel void lbl_block_seed_interfaces(
-  __global const float* state, __global float* iface, const int4 dims, const int4 nblocks)
-{
-  const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
-  if (x >= dims.x || y >= dims.y || z >= dims.z)
-  {
-    return;
-  }
-  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
-  const size_t v = refracta_voxel_index(dims, x, y, z);
-  #pragma unroll
-  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
-  {
-    const int nb = lbl_inbound_block(i, x, y, z, dims, nblocks);
-    if (nb >= 0)
-    {
-      const size_t base = ((size_t)(nb * 6 + i) * REFRACTA_LBL_B * REFRACTA_LBL_B +
-                            lbl_face_pos(i, x % REFRACTA_LBL_B, y % REFRACTA_LBL_B, z % REFRACTA_LBL_B)) * 3;
-      #pragma unroll
-      for (int ch = 0; ch < 3; ++ch)
-      {
-        iface[base + ch] = state[(i * 3 + ch) * n + v] * (float)REFRACTA_LBL_SUBSTEPS;
+        const size_t entry = (i * 3 + ch) * n + v;
+        if (toInterface)
+        {
+          iface[base + ch] = state[entry] * (float)REFRACTA_LBL_SUBSTEPS;
+        }
+        else
+        {
+          state[entry] = iface[base + ch] * LBL_INV_SUBSTEPS;
+        }
       }
     }
   }

@@ -434,9 +434,8 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   if (blocked)
   {
     this->BlockKernel = context->CreateKernel(program, "lbl_block", this);
-    this->FinalizeKernel = context->CreateKernel(program, "lbl_block_finalize", this);
-    this->SeedKernel = context->CreateKernel(program, "lbl_block_seed_interfaces", this);
-    if (!this->BlockKernel || !this->FinalizeKernel || !this->SeedKernel)
+    this->StateInterfaceKernel = context->CreateKernel(program, "lbl_block_state_interface", this);
+    if (!this->BlockKernel || !this->StateInterfaceKernel)
     {
       return false;
     }
@@ -605,12 +604,7 @@ bool vtkLatticeBoltzmannSolver::Iterate(int steps, bool wait)
       this->InterfaceParity = 1 - this->InterfaceParity;
       this->Iterations += m;
     }
-    if (launches > 0 &&
-      (!context->Check(vtkOpenCLSetKernelArgs(this->FinalizeKernel.Get(), this->State[0].Get(),
-                         this->Interface[this->InterfaceParity].Get(), dims, nblocks),
-         "clSetKernelArg(lbl_block_finalize)", this) ||
-        !context->RunKernel(
-          this->FinalizeKernel.Get(), 3, global, local, "lbl_block_finalize", this)))
+    if (launches > 0 && !this->ExchangeStateAndInterface(false))
     {
       return false;
     }
@@ -632,6 +626,24 @@ bool vtkLatticeBoltzmannSolver::Iterate(int steps, bool wait)
     }
   }
   return wait ? context->Finish(this) : true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::ExchangeStateAndInterface(bool toInterface)
+{
+  vtkOpenCLContext* context = this->GetContext();
+  const cl_int4 dims = { { this->Dims[0], this->Dims[1], this->Dims[2], 0 } };
+  const cl_int4 nblocks = { { this->NumberOfBlocks[0], this->NumberOfBlocks[1],
+    this->NumberOfBlocks[2], 0 } };
+  const size_t global[3] = { size_t(this->Dims[0]), size_t(this->Dims[1]), size_t(this->Dims[2]) };
+  const size_t local[3] = { LocalRow(this->Dims[0]), 1, 1 };
+  const cl_int direction = toInterface ? 1 : 0;
+  return context->Check(
+           vtkOpenCLSetKernelArgs(this->StateInterfaceKernel.Get(), this->State[0].Get(),
+             this->Interface[this->InterfaceParity].Get(), dims, nblocks, direction),
+           "clSetKernelArg(lbl_block_state_interface)", this) &&
+    context->RunKernel(
+      this->StateInterfaceKernel.Get(), 3, global, local, "lbl_block_state_interface", this);
 }
 
 //------------------------------------------------------------------------------

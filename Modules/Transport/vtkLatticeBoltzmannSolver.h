@@ -451,6 +451,9 @@ protected:
   }
   bool PrepareCoarseLevel();
   bool RunCoarseStart(double& progress);
+  // Blocked mode: the state's interface-fed entries from the interface the next launch reads
+  // (after a launch), or that interface from the state (toInterface: the coarse start's seed).
+  bool ExchangeStateAndInterface(bool toInterface);
   static constexpr size_t MaxSourceProbes = 8;
   static constexpr double ProbeFloor = 1e-4;
 
@@ -516,13 +519,12 @@ protected:
   vtkOpenCLBuffer ProbeValues;
   vtkOpenCLKernel StepKernel;
   vtkOpenCLKernel BlockKernel;
-  vtkOpenCLKernel FinalizeKernel;
+  vtkOpenCLKernel StateInterfaceKernel; // lbl_block_state_interface
   vtkOpenCLKernel ProbeKernel;
   vtkOpenCLKernel ScatteredKernel;
   vtkOpenCLKernel SourceKernel;
   vtkOpenCLKernel RestrictKernel;
   vtkOpenCLKernel ProlongKernel;
-  vtkOpenCLKernel SeedKernel;
   int Current = 0;
   cl_mem CurrentState() const
   {

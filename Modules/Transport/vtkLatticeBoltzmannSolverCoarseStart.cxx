@@ -221,21 +221,8 @@ bool vtkLatticeBoltzmannSolver::RunCoarseStart(double& progress)
   {
     return false;
   }
-  if (this->UseBlocks())
-  {
-    // lbl_block reads the entries fed by neighbouring blocks from the interface, not the state.
-    const cl_int4 nblocks = { { this->NumberOfBlocks[0], this->NumberOfBlocks[1],
-      this->NumberOfBlocks[2], 0 } };
-    if (!context->Check(vtkOpenCLSetKernelArgs(this->SeedKernel.Get(), this->State[0].Get(),
-                          this->Interface[this->InterfaceParity].Get(), fdims, nblocks),
-          "clSetKernelArg(lbl_block_seed_interfaces)", this) ||
-      !context->RunKernel(
-        this->SeedKernel.Get(), 3, global, local, "lbl_block_seed_interfaces", this))
-    {
-      return false;
-    }
-  }
-  if (!context->Finish(this))
+  // lbl_block reads the entries fed by neighbouring blocks from the interface, not the state.
+  if ((this->UseBlocks() && !this->ExchangeStateAndInterface(true)) || !context->Finish(this))
   {
     return false;
   }
