@@ -56,6 +56,12 @@ __constant int lbl_cy[18] = { 0, 0, 1, -1, 0, 0, 1, -1, -1, 1, 0, 0, 0, 0, 1, -1
 __constant int lbl_cz[18] = { 0, 0, 0, 0, 1, -1, 0, 0, 0, 0, 1, -1, -1, 1, 1, -1, -1, 1 };
 __constant int lbl_class[REFRACTA_LBL_Q] = REFRACTA_LBL_CLASSES;
 
+// Number of voxels of a grid of dims (x, y, z).
+inline size_t lbl_voxels(int4 dims)
+{
+  return (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+}
+
 #define LBL_COEF_ALBEDO (REFRACTA_LBL_NCLASS * 3)
 #define LBL_COEF_G (REFRACTA_LBL_NCLASS * 3 + 3)
 
@@ -144,7 +150,7 @@ __kernel void lbl_step(__global const float* fcur, __global float* fnext,
   {
     return;
   }
-  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  const size_t n = lbl_voxels(dims);
   const size_t v = refracta_voxel_index(dims, x, y, z);
   const float g = coef[LBL_COEF_G * n + v];
   float wsrc[REFRACTA_LBL_Q];
@@ -245,7 +251,7 @@ __kernel __attribute__((reqd_work_group_size(REFRACTA_LBL_B, REFRACTA_LBL_B, REF
   const bool active = x < dims.x && y < dims.y && z < dims.z;
   const int lid = lx + REFRACTA_LBL_B * (ly + REFRACTA_LBL_B * lz);
   const int blk = bx + nblocks.x * (by + nblocks.y * bz);
-  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  const size_t n = lbl_voxels(dims);
   const size_t v = active ? refracta_voxel_index(dims, x, y, z) : 0;
 
   float t[3][REFRACTA_LBL_NCLASS], a[3], q[3], wsrc[REFRACTA_LBL_Q];
@@ -385,7 +391,7 @@ __kernel void lbl_block_state_interface(__global float* state, __global float* i
   {
     return;
   }
-  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  const size_t n = lbl_voxels(dims);
   const size_t v = refracta_voxel_index(dims, x, y, z);
   #pragma unroll
   for (int i = 0; i < REFRACTA_LBL_Q; ++i)
@@ -423,7 +429,7 @@ __kernel void lbl_probes(__global const float* state, __global const uint* probe
   {
     return;
   }
-  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  const size_t n = lbl_voxels(dims);
   const size_t v = probes[p];
   #pragma unroll
   for (int ch = 0; ch < 3; ++ch)
@@ -449,7 +455,7 @@ __kernel void lbl_scattered(
   {
     return;
   }
-  const size_t n = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  const size_t n = lbl_voxels(dims);
   const size_t v = refracta_voxel_index(dims, x, y, z);
   #pragma unroll
   for (int ch = 0; ch < 3; ++ch)
@@ -508,8 +514,8 @@ __kernel void lbl_restrict_source(__global const float* fine, __global float* co
   {
     return;
   }
-  const size_t nf = (size_t)fdims.x * (size_t)fdims.y * (size_t)fdims.z;
-  const size_t nc = (size_t)cdims.x * (size_t)cdims.y * (size_t)cdims.z;
+  const size_t nf = lbl_voxels(fdims);
+  const size_t nc = lbl_voxels(cdims);
   const size_t vc = refracta_voxel_index(cdims, x, y, z);
   const int x1 = min(2 * x + 2, fdims.x), y1 = min(2 * y + 2, fdims.y), z1 = min(2 * z + 2, fdims.z);
   const float inverseCount = 1.0f / (float)((x1 - 2 * x) * (y1 - 2 * y) * (z1 - 2 * z));
@@ -548,8 +554,8 @@ __kernel void lbl_prolong_state(__global const float* coarse, __global const flo
   {
     return;
   }
-  const size_t nf = (size_t)fdims.x * (size_t)fdims.y * (size_t)fdims.z;
-  const size_t nc = (size_t)cdims.x * (size_t)cdims.y * (size_t)cdims.z;
+  const size_t nf = lbl_voxels(fdims);
+  const size_t nc = lbl_voxels(cdims);
   const size_t v = refracta_voxel_index(fdims, x, y, z);
   const size_t vc = refracta_voxel_index(cdims, x / 2, y / 2, z / 2);
   #pragma unroll
