@@ -499,6 +499,34 @@ __kernel void lbl_source_from_fixed(__global const long* deposits, const float r
   }
 }
 
+// Point arrays on the device (the photon pass's kept output: 3 floats per voxel) -> the LBL
+// source planes, the values unchanged: src[c * n + v] = s1[3 v + c], src[(3 + c) * n + v] =
+// d1[3 v + c] (0 without a direction: hasDirection 0). One work-item per voxel.
+__kernel void lbl_source_from_fields(__global const float* s1, __global const float* d1,
+  const int hasDirection, __global float* src, const uint n)
+{
+  const size_t v = get_global_id(0);
+  if (v >= n)
+  {
+    return;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    src[c * (size_t)n + v] = s1[3 * v + c];
+    src[(3 + c) * (size_t)n + v] = hasDirection ? d1[3 * v + c] : 0.0f;
+  }
+}
+
+// a[i] += b[i] (one float each; the host adds the same way, so the sums are the host's bits).
+__kernel void lbl_add(__global float* a, __global const float* b, const ulong count)
+{
+  const size_t i = get_global_id(0);
+  if (i < count)
+  {
+    a[i] += b[i];
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Coarse start (vtkLatticeBoltzmannSolver::CoarseStart): the source restricted to a grid of half
 // the resolution, and the coarse grid's steady state prolonged back as the fine grid's first

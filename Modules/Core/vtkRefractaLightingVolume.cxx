@@ -114,7 +114,7 @@ void vtkRefractaLightingVolume::ReadLatticeSource(
   vtkIdType count = 0;
   const int c = GetVolumeCausticSubdivision(lighting, &count);
   const vtkIdType voxels = static_cast<vtkIdType>(source.size() / 3);
-  if (HasPhotonMultipleScattering(lighting) || c < 2 || voxels != lighting->GetNumberOfPoints())
+  if (!LatticeSourceHasVolumeCaustic(lighting) || voxels != lighting->GetNumberOfPoints())
   {
     return;
   }
@@ -166,14 +166,30 @@ void vtkRefractaLightingVolume::AddPhotonMultipleScattering(vtkDataSet* lighting
 {
   vtkDataArray* photons =
     lighting ? lighting->GetPointData()->GetArray(MultipleScatteringName()) : nullptr;
-  if (!photons || !ms || photons == ms || photons->GetNumberOfComponents() != 3 ||
-    ms->GetNumberOfComponents() != 3 || photons->GetNumberOfTuples() != ms->GetNumberOfTuples())
+  if (photons != ms)
+  {
+    AddValues(photons, ms);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaLightingVolume::LatticeSourceHasVolumeCaustic(vtkDataSet* lighting)
+{
+  return !HasPhotonMultipleScattering(lighting) && GetVolumeCausticSubdivision(lighting) >= 2;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaLightingVolume::AddValues(vtkDataArray* addend, vtkFloatArray* to)
+{
+  if (!addend || !to || addend->GetNumberOfComponents() != to->GetNumberOfComponents() ||
+    addend->GetNumberOfTuples() != to->GetNumberOfTuples())
   {
     return;
   }
   std::vector<float> values;
-  vtkRefractaMedium::ReadArray(photons, photons->GetNumberOfTuples(), 3, 0.0f, values);
-  float* out = ms->GetPointer(0);
+  vtkRefractaMedium::ReadArray(
+    addend, addend->GetNumberOfTuples(), addend->GetNumberOfComponents(), 0.0f, values);
+  float* out = to->GetPointer(0);
   vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
     [&](vtkIdType first, vtkIdType last)
     {
@@ -182,6 +198,7 @@ void vtkRefractaLightingVolume::AddPhotonMultipleScattering(vtkDataSet* lighting
         out[i] += values[i];
       }
     });
+  to->Modified();
 }
 
 //------------------------------------------------------------------------------

@@ -37,6 +37,7 @@
 
 #include <vector> // for ReadLatticeSource
 
+class vtkDataArray;
 class vtkDataSet;
 class vtkImageData;
 class vtkFloatArray;
@@ -104,6 +105,19 @@ public:
    * to `ms`, a lattice's S_ms of the same grid: the split's two parts of S_ms made one.
    */
   static void AddPhotonMultipleScattering(vtkDataSet* lighting, vtkFloatArray* ms);
+
+  /**
+   * Whether ReadLatticeSource() folds a volume caustic's bricks into the source: the source is
+   * Radiance (no first-collision split) and `lighting` has a volume caustic of subdivision >= 2.
+   * Otherwise the lattice's source is the point arrays as they are.
+   */
+  static bool LatticeSourceHasVolumeCaustic(vtkDataSet* lighting);
+
+  /**
+   * to += addend, value by value, when both have the same number of components and tuples (the
+   * sum of the split's two parts of S_ms, in float as the lattice's device adds them).
+   */
+  static void AddValues(vtkDataArray* addend, vtkFloatArray* to);
 
   /**
    * Name of the field-data array with the surfaces' irradiance (see the class description).

@@ -56,6 +56,7 @@ vtkSmartPointer<vtkOpenCLContext>& DefaultContext()
 vtkOpenCLContext::vtkOpenCLContext()
   : DiskCache(vtkSmartPointer<vtkOpenCLBinaryCache>::New())
   , KernelProfile(vtkSmartPointer<vtkOpenCLKernelProfile>::New())
+  , DeviceArrays(vtkSmartPointer<vtkOpenCLDeviceArrays>::New())
 {
   const char* profile = std::getenv("REFRACTA_PROFILE_KERNELS");
   this->ProfileKernels = profile && std::string(profile) == "1";
@@ -74,6 +75,7 @@ vtkOpenCLContext::~vtkOpenCLContext()
     clFinish(this->Queue);
   }
   this->KernelProfile->Reset(); // its events belong to this context
+  this->DeviceArrays->Clear();  // and so do these buffers
   for (auto& entry : this->Programs)
   {
     clReleaseProgram(entry.second);
@@ -590,6 +592,12 @@ bool vtkOpenCLContext::RecordLaunch(
     clReleaseEvent(event);
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+vtkOpenCLDeviceArrays* vtkOpenCLContext::GetDeviceArrays()
+{
+  return this->DeviceArrays;
 }
 
 //------------------------------------------------------------------------------

@@ -61,11 +61,13 @@
 
 #ifndef __VTK_WRAP__
 #include "vtkOpenCLBinaryCache.h"   // for the disk cache
+#include "vtkOpenCLDeviceArrays.h"  // for the device copies
 #include "vtkOpenCLHandle.h"        // for vtkOpenCLKernel, vtkOpenCLBuffer
 #include "vtkOpenCLKernelProfile.h" // for the kernel profile
 #include "vtkSmartPointer.h"        // for the disk cache
 #endif
 
+class vtkOpenCLDeviceArrays;
 class vtkOpenCLKernelProfile;
 
 class REFRACTAOPENCL_EXPORT vtkOpenCLContext : public vtkObject
@@ -235,6 +237,12 @@ public:
   ///@}
 
   /**
+   * The device copies of host arrays that the passes in this context hand on to each other
+   * (the lighting volume, photon pass -> lattice -> view pass) instead of uploading them again.
+   */
+  vtkOpenCLDeviceArrays* GetDeviceArrays();
+
+  /**
    * The path of the disk-cache entry of a program (as GetProgram() would build it), or empty
    * when the disk cache is off. For tests and diagnostics.
    */
@@ -390,6 +398,7 @@ protected:
   static double HostClock();
   vtkSmartPointer<vtkOpenCLBinaryCache> DiskCache;
   vtkSmartPointer<vtkOpenCLKernelProfile> KernelProfile;
+  vtkSmartPointer<vtkOpenCLDeviceArrays> DeviceArrays;
   bool WarnedAboutDiskCache = false;
   std::map<std::string, cl_program> Programs;
   std::mutex ProgramsMutex;

@@ -664,6 +664,7 @@ void vtkRefractaRenderPipeline::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "MultipleScatteringSchedule: " << this->MultipleScatteringSchedule << "\n";
   os << indent << "LatticeWarmStart: " << this->LatticeWarmStart << "\n";
+  os << indent << "DeviceHandOff: " << this->DeviceHandOff << "\n";
   os << indent << "BackgroundIlluminates: " << this->BackgroundIlluminates << "\n";
   os << indent << "NumberOfPlanRuns: " << this->NumberOfPlanRuns << "\n";
   os << indent << "NumberOfLightPassRuns: " << this->NumberOfLightPassRuns << "\n";

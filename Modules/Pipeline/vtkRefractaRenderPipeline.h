@@ -288,6 +288,21 @@ public:
 
   ///@{
   /**
+   * Hand the lighting volume from pass to pass on the device (default on): the photon pass keeps
+   * its output arrays' device buffers (vtkPhotonTracer::KeepDeviceCopies), the lattice takes its
+   * source from them and keeps its S_ms the same way (vtkLatticeBoltzmannSolver::
+   * KeepDeviceCopies), and the view pass takes `Radiance`, `RadianceDirection` and
+   * `MultipleScattering` from them (vtkOpenCLDeviceArrays) instead of uploading the host arrays
+   * the passes have just read back. The image is the same to the bit either way; off, every
+   * hand-off goes through the host (the A/B of BenchmarkInteractive --host-hand-off).
+   */
+  vtkSetMacro(DeviceHandOff, bool);
+  vtkGetMacro(DeviceHandOff, bool);
+  vtkBooleanMacro(DeviceHandOff, bool);
+  ///@}
+
+  ///@{
+  /**
    * OpenCL context of every pass. Default vtkOpenCLContext::GetDefault().
    */
   void SetContext(vtkOpenCLContext* context);
@@ -390,6 +405,7 @@ protected:
   int LightUnits = RADIOMETRIC_LIGHT_UNITS;
   int MultipleScatteringSchedule = AUTOMATIC_SCHEDULE;
   bool LatticeWarmStart = false;
+  bool DeviceHandOff = true;
   bool BackgroundIlluminates = false;
   bool LastRenderAborted = false;
   bool LastScheduleInterleaved = false;

@@ -196,6 +196,8 @@ bool vtkRefractaRenderPipeline::RunLighting()
   else if (lit)
   {
     vtkPhotonTracer* tracer = in.Schedule->GetPhotonTracer();
+    tracer->SetKeepDeviceCopies(this->DeviceHandOff);
+    in.Schedule->GetSolver()->SetKeepDeviceCopies(this->DeviceHandOff);
     tracer->SetLights(in.DataLights);
     tracer->SetSurfaces(surfaces ? in.SceneSurfaces : nullptr);
     tracer->SetMediumToWorld(in.PropMatrix);

@@ -304,9 +304,19 @@ public:
    * Its volume caustic (the field arrays vtkRefractaLightingVolume::VolumeCausticBricksName(),
    * VolumeCausticRadianceName() and VolumeCausticRadianceDirectionName(), all three or none)
    * adds the focused light's S1 from the fine voxels of every voxel with a brick.
+   * `Radiance`, `RadianceDirection` and `MultipleScattering` are taken from their device copies
+   * where the light passes kept them in this context (vtkOpenCLDeviceArrays; the render
+   * pipeline's DeviceHandOff) and uploaded otherwise; the host arrays are still checked and scanned
+   * for the empty-space skipping either way.
    * Returns false after an error.
    */
   bool SetLighting(vtkImageData* lighting);
+
+  /**
+   * How many of the lighting volume's arrays the last upload of one took from their device
+   * copies instead of uploading them (0 to 3).
+   */
+  vtkGetMacro(LastLightingArraysShared, int);
 
   /**
    * Subdivision c of the volume caustic of the lighting volume last set (1: none).
@@ -488,6 +498,7 @@ protected:
   bool LastCurved = false;
   vtkIdType LastNumberOfSupersampledPixels = 0;
   int NumberOfUploads = 0;
+  int LastLightingArraysShared = 0;
   int NumberOfRenders = 0;
   int TilePixels = 65536;
   double TileSeconds = 0.1;

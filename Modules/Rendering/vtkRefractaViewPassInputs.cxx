@@ -3,9 +3,11 @@
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMediumValidator.h"
 #include "vtkOpenCLContext.h"
+#include "vtkOpenCLDeviceArrays.h"
 #include "vtkPointData.h"
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaLightingVolume.h"
@@ -250,7 +252,6 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     return false;
   }
   vtkOpenCLContext* context = in.GetContext();
-  std::vector<float> values;
   in.HasSingle = radiance != nullptr;
   in.HasMultiple = multiple != nullptr;
   in.Radiance.Reset();
@@ -258,31 +259,38 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
   in.Multiple.Reset();
   in.LightingFlags.assign(static_cast<size_t>(n), 0);
   in.OccupancyDirty = true;
-  if (in.HasSingle)
+  this->LastLightingArraysShared = 0;
+  // One field on the device: the copy a light pass kept there, else an upload (3 floats per
+  // voxel either way); `mark`: its nonzero voxels are sources for the skipping.
+  std::vector<float> values;
+  auto field = [&](vtkDataArray* array, bool mark, vtkOpenCLBuffer& buffer)
   {
-    FetchFloats(radiance, 3, values);
-    MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
-    in.Radiance = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
-      values.data(), vtkRefractaLightingVolume::RadianceName(), this);
-    // RadianceDirection is stored in the grid-local frame (vtkPhotonTracer, Physics.md).
-    FetchFloats(direction, 3, values);
-    in.RadianceDirection = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-      values.size() * 4, values.data(), vtkRefractaLightingVolume::RadianceDirectionName(), this);
-    if (!in.Radiance || !in.RadianceDirection)
+    buffer = context->GetDeviceArrays()->Share(array);
+    if (buffer) // only float arrays have device copies
     {
-      return false;
+      ++this->LastLightingArraysShared;
+      if (mark)
+      {
+        MarkNonzero(
+          vtkFloatArray::FastDownCast(array)->GetPointer(0), 3, SourceFlag, in.LightingFlags);
+      }
+      return true;
     }
-  }
-  if (in.HasMultiple)
+    FetchFloats(array, 3, values);
+    if (mark)
+    {
+      MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
+    }
+    buffer = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
+      values.data(), array->GetName(), this);
+    return static_cast<bool>(buffer);
+  };
+  // RadianceDirection is stored in the grid-local frame (vtkPhotonTracer, Physics.md).
+  if ((in.HasSingle &&
+        (!field(radiance, true, in.Radiance) || !field(direction, false, in.RadianceDirection))) ||
+    (in.HasMultiple && !field(multiple, true, in.Multiple)))
   {
-    FetchFloats(multiple, 3, values);
-    MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
-    in.Multiple = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
-      values.data(), vtkRefractaLightingVolume::MultipleScatteringName(), this);
-    if (!in.Multiple)
-    {
-      return false;
-    }
+    return false;
   }
   if (!this->SetVolumeCaustic(lighting, n))
   {

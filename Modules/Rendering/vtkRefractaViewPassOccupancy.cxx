@@ -15,7 +15,7 @@ int FloorDiv(int a, int b)
 
 // Sets `flag` in flags[i] for every tuple i of `values` (`comps` per tuple) with a nonzero value.
 void MarkNonzero(
-  const std::vector<float>& values, int comps, std::uint8_t flag, std::vector<std::uint8_t>& flags)
+  const float* values, int comps, std::uint8_t flag, std::vector<std::uint8_t>& flags)
 {
   const std::size_t n = flags.size();
   for (std::size_t i = 0; i < n; ++i)

@@ -16,7 +16,12 @@ constexpr std::uint8_t GradientFlag = 2; // grad n != 0 (only where rays may ben
 
 // Sets `flag` in flags[i] for every tuple i of `values` (`comps` per tuple) with a nonzero value.
 void MarkNonzero(
-  const std::vector<float>& values, int comps, std::uint8_t flag, std::vector<std::uint8_t>& flags);
+  const float* values, int comps, std::uint8_t flag, std::vector<std::uint8_t>& flags);
+inline void MarkNonzero(
+  const std::vector<float>& values, int comps, std::uint8_t flag, std::vector<std::uint8_t>& flags)
+{
+  MarkNonzero(values.data(), comps, flag, flags);
+}
 
 // The macro-cell occupancy of a grid of `dims` voxels for cells of b^3 voxels, with the active
 // cells' counts and bounding boxes for straight rays (mask 0: SourceFlag) and curved rays

@@ -230,7 +230,7 @@ int vtkLatticeBoltzmannLighting::RequestData(
   }
   else
   {
-    const int solved = this->Solve(solver, medium, photons, sourceDirection != nullptr, ms);
+    const int solved = this->Solve(solver, medium, photons, ms);
     if (solved <= 0)
     {
       output->Initialize();
@@ -267,8 +267,8 @@ int vtkLatticeBoltzmannLighting::RequestData(
 }
 
 //------------------------------------------------------------------------------
-int vtkLatticeBoltzmannLighting::Solve(vtkLatticeBoltzmannSolver* solver, vtkImageData* medium,
-  vtkImageData* sources, bool withDirection, vtkFloatArray* ms)
+int vtkLatticeBoltzmannLighting::Solve(
+  vtkLatticeBoltzmannSolver* solver, vtkImageData* medium, vtkImageData* sources, vtkFloatArray* ms)
 {
   if (this->Context)
   {
@@ -301,10 +301,8 @@ int vtkLatticeBoltzmannLighting::Solve(vtkLatticeBoltzmannSolver* solver, vtkIma
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AlbedoName(), 3, 0.0f);
   const std::vector<float> anisotropy =
     vtkRefractaMedium::ReadArray(medium, vtkRefractaMedium::AnisotropyName(), 1, 0.0f);
-  std::vector<float> source, dir;
-  vtkRefractaLightingVolume::ReadLatticeSource(sources, source, dir);
   if (!solver->Initialize(dims, spacing, extinction.data(), albedo.data(), anisotropy.data()) ||
-    !solver->SetSource(source.data(), withDirection ? dir.data() : nullptr) || !solver->Solve())
+    !solver->SetSourceFromLighting(sources) || !solver->Solve())
   {
     vtkErrorMacro("The Lattice-Boltzmann solver failed (see the previous message).");
     return -1;

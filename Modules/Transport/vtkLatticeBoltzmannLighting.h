@@ -129,7 +129,7 @@ protected:
   // Solves the lattice on `medium` from the source of `sources` (vtkRefractaLightingVolume::
   // LatticeSourceName) into `ms`: 1 done, 0 aborted, -1 failed (reported).
   int Solve(vtkLatticeBoltzmannSolver* solver, vtkImageData* medium, vtkImageData* sources,
-    bool withDirection, vtkFloatArray* ms);
+    vtkFloatArray* ms);
 
   int Lattice = 6;
   int BlockSize = 4;

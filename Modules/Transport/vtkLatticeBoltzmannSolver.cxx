@@ -330,22 +330,28 @@ bool vtkLatticeBoltzmannSolver::SetProbes(const std::vector<cl_uint>& extra)
 //------------------------------------------------------------------------------
 bool vtkLatticeBoltzmannSolver::UpdateSourceProbes()
 {
+  const size_t n = static_cast<size_t>(this->NumberOfVoxels);
+  std::vector<float>& planes = this->HostSource; // its first 3 n floats: S1 per channel
+  planes.resize(std::max(planes.size(), 3 * n));
+  return this->GetContext()->ReadBuffer(
+           this->Source.Get(), 3 * n * sizeof(float), planes.data(), this) &&
+    this->ChooseSourceProbes(planes.data(), n, 1);
+}
+
+//------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::ChooseSourceProbes(
+  const float* s1, size_t channelStride, size_t voxelStride)
+{
   // The sparse grid of probes can miss a small source entirely (light from a point source needs
   // as many steps as its Manhattan distance to reach a probe), which would read as "converged"
   // at once. The voxels with the strongest source are probes too; a source that is zero
   // everywhere is known to give a zero field.
   const size_t n = static_cast<size_t>(this->NumberOfVoxels);
-  std::vector<float>& planes = this->HostSource; // its first 3 n floats: S1 per channel
-  planes.resize(std::max(planes.size(), 3 * n));
-  if (!this->GetContext()->ReadBuffer(
-        this->Source.Get(), 3 * n * sizeof(float), planes.data(), this))
-  {
-    return false;
-  }
   std::vector<std::pair<float, cl_uint>> strongest;
-  for (size_t v = 0; v < n; ++v)
+  for (size_t v = 0; s1 && v < n; ++v)
   {
-    const float total = planes[v] + planes[n + v] + planes[2 * n + v];
+    const float* at = s1 + v * voxelStride;
+    const float total = at[0] + at[channelStride] + at[2 * channelStride];
     if (total > 0 && (strongest.size() < MaxSourceProbes || total > strongest.back().first))
     {
       if (strongest.size() == MaxSourceProbes)
@@ -364,7 +370,6 @@ bool vtkLatticeBoltzmannSolver::UpdateSourceProbes()
   {
     extra.push_back(e.second);
   }
-  std::vector<float> keep = this->PreviousProbes;
   if (!this->SetProbes(extra))
   {
     return false;
@@ -426,8 +431,10 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   this->SourceKernel = context->CreateKernel(program, "lbl_source_from_fixed", this);
   this->RestrictKernel = context->CreateKernel(program, "lbl_restrict_source", this);
   this->ProlongKernel = context->CreateKernel(program, "lbl_prolong_state", this);
+  this->FieldSourceKernel = context->CreateKernel(program, "lbl_source_from_fields", this);
+  this->AddKernel = context->CreateKernel(program, "lbl_add", this);
   if (!this->StepKernel || !this->ProbeKernel || !this->ScatteredKernel || !this->SourceKernel ||
-    !this->RestrictKernel || !this->ProlongKernel)
+    !this->RestrictKernel || !this->ProlongKernel || !this->FieldSourceKernel || !this->AddKernel)
   {
     return false;
   }
@@ -542,9 +549,10 @@ bool vtkLatticeBoltzmannSolver::SetSource(const float* s1, const float* directio
         }
       }
     });
+  // The probes come from the values written: no read back.
   return this->GetContext()->WriteBuffer(
            this->Source.Get(), planar.size() * sizeof(float), planar.data(), this) &&
-    this->UpdateSourceProbes();
+    this->ChooseSourceProbes(s1, 1, 3);
 }
 
 //------------------------------------------------------------------------------
@@ -820,6 +828,7 @@ void vtkLatticeBoltzmannSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ProbeSpacing: " << this->ProbeSpacing << "\n";
   os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";
   os << indent << "CoarseStart: " << (this->CoarseStart ? "on" : "off") << "\n";
+  os << indent << "KeepDeviceCopies: " << (this->KeepDeviceCopies ? "on" : "off") << "\n";
   os << indent << "MinimumCoarseDimension: " << this->MinimumCoarseDimension << "\n";
   os << indent << "CoarseStartSteps: " << this->CoarseStartSteps << "\n";
   os << indent << "CoarseStartCost: " << this->CoarseStartCost << "\n";

@@ -53,6 +53,9 @@
 #include "vtkOpenCLHandle.h" // for buffers and kernels
 #endif
 
+class vtkDataArray;
+class vtkFloatArray;
+class vtkImageData;
 class vtkOpenCLContext;
 
 class REFRACTATRANSPORT_EXPORT vtkLatticeBoltzmannSolver : public vtkObject
@@ -186,6 +189,19 @@ public:
   vtkGetMacro(MinimumCoarseDimension, int);
   ///@}
 
+  ///@{
+  /**
+   * Keep the buffer ComputeMultipleScattering(vtkFloatArray*, ...) reads its result from as the
+   * output array's device copy in the context's vtkOpenCLDeviceArrays (default off), so that the
+   * view pass takes `MultipleScattering` from the device instead of uploading it again. The copy
+   * holds 12 bytes per voxel of device memory while the array lives. vtkRefractaRenderPipeline
+   * turns it on (its DeviceHandOff).
+   */
+  vtkSetMacro(KeepDeviceCopies, bool);
+  vtkGetMacro(KeepDeviceCopies, bool);
+  vtkBooleanMacro(KeepDeviceCopies, bool);
+  ///@}
+
   /**
    * Whether a Solve() from a zero state on a grid of these dimensions would start from a coarse
    * grid with the present settings (CoarseStart on, every axis >= 2 * MinimumCoarseDimension).
@@ -299,6 +315,22 @@ public:
   bool SetSource(const float* s1, const float* direction);
 
   /**
+   * SetSource() from point arrays of 3 components and one tuple per voxel (`direction` may be
+   * null): where the context holds device copies of both (vtkOpenCLDeviceArrays, e.g. the photon
+   * pass's output with vtkPhotonTracer::KeepDeviceCopies), the source is arranged from them on
+   * the device and nothing is uploaded; otherwise the arrays are read and uploaded.
+   */
+  bool SetSourceArrays(vtkDataArray* s1, vtkDataArray* direction);
+
+  /**
+   * SetSource() from a lighting volume's lattice source: S1 (`Radiance` and
+   * `RadianceDirection`), or with the first-collision split the light the photons handed on
+   * (`MultipleScatteringSource` and its direction; vtkRefractaLightingVolume::LatticeSourceName()),
+   * with a volume caustic's bricks folded back into their voxels.
+   */
+  bool SetSourceFromLighting(vtkImageData* lighting);
+
+  /**
    * The planar source buffer (3 planes of S1, then 3 of direction when PHASE_FUNCTION_SOURCE),
    * for producers that write the source on the device (the concurrent photon schedule).
    */
@@ -316,7 +348,8 @@ public:
 
   /**
    * Re-read the source buffer and add its strongest voxels to the convergence probes; call it
-   * after writing the source on the device (SetSource() calls it).
+   * after writing the source on the device (SetSource() and SetSourceArrays() choose them from
+   * their host values instead).
    */
   bool UpdateSourceProbes();
 
@@ -397,6 +430,14 @@ public:
   bool ComputeMultipleScattering(float* out);
 
   /**
+   * ComputeMultipleScattering() into `out` (3 components, resized to one tuple per voxel), plus
+   * `addend` when given (3 components, one tuple per voxel: the photons' own S_ms of the
+   * first-collision split), added on the device when the context holds its device copy. With
+   * KeepDeviceCopies the result's buffer becomes `out`'s device copy (vtkOpenCLDeviceArrays).
+   */
+  bool ComputeMultipleScattering(vtkFloatArray* out, vtkDataArray* addend);
+
+  /**
    * Step-length class of each direction and the lengths (filled by Initialize()).
    */
   const std::vector<double>& GetClassLengths() const
@@ -442,6 +483,13 @@ protected:
   bool BuildKernels();
   bool ReadProbes(std::vector<float>& values);
   bool SetProbes(const std::vector<cl_uint>& extra);
+  // Adds the voxels with the strongest source to the probes, from host values: voxel v's RGB at
+  // s1[v * voxelStride + c * channelStride] (null: a zero source).
+  bool ChooseSourceProbes(const float* s1, size_t channelStride, size_t voxelStride);
+#ifndef __VTK_WRAP__
+  // S_ms into a new device buffer (lbl_scattered), not read back.
+  bool ComputeMultipleScatteringOnDevice(vtkOpenCLBuffer& result);
+#endif
   // Coarse start (vtkLatticeBoltzmannSolverCoarseStart.cxx).
   void RestrictMedium(const int dims[3], const double spacing[3], const float* extinction,
     const float* albedo, const float* anisotropy);
@@ -474,6 +522,7 @@ protected:
   double PlannedHostMemoryBytes = 0;
 
   bool CoarseStart = true;
+  bool KeepDeviceCopies = false;
   int MinimumCoarseDimension = 16;
   int CoarseStartSteps = 0;
   double CoarseStartCost = 0.0;
@@ -523,6 +572,8 @@ protected:
   vtkOpenCLKernel ProbeKernel;
   vtkOpenCLKernel ScatteredKernel;
   vtkOpenCLKernel SourceKernel;
+  vtkOpenCLKernel FieldSourceKernel; // lbl_source_from_fields
+  vtkOpenCLKernel AddKernel;         // lbl_add
   vtkOpenCLKernel RestrictKernel;
   vtkOpenCLKernel ProlongKernel;
   int Current = 0;

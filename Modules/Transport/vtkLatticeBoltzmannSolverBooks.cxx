@@ -102,14 +102,23 @@ bool vtkLatticeBoltzmannSolver::ComputeAbsorbedNextStep(double absorbed[3])
 //------------------------------------------------------------------------------
 bool vtkLatticeBoltzmannSolver::ComputeMultipleScattering(float* out)
 {
+  vtkOpenCLBuffer result;
+  return this->ComputeMultipleScatteringOnDevice(result) &&
+    this->GetContext()->ReadBuffer(
+      result.Get(), 3 * static_cast<size_t>(this->NumberOfVoxels) * sizeof(float), out, this);
+}
+
+//------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::ComputeMultipleScatteringOnDevice(vtkOpenCLBuffer& result)
+{
   if (!this->BuildKernels())
   {
     return false;
   }
   vtkOpenCLContext* context = this->GetContext();
   const size_t n = static_cast<size_t>(this->NumberOfVoxels);
-  vtkOpenCLBuffer result =
-    context->CreateBuffer(CL_MEM_WRITE_ONLY, 3 * n * sizeof(float), nullptr, "LBL S_ms", this);
+  result =
+    context->CreateBuffer(CL_MEM_READ_WRITE, 3 * n * sizeof(float), nullptr, "LBL S_ms", this);
   if (!result)
   {
     return false;
@@ -117,12 +126,10 @@ bool vtkLatticeBoltzmannSolver::ComputeMultipleScattering(float* out)
   const cl_int4 dims = { { this->Dims[0], this->Dims[1], this->Dims[2], 0 } };
   const size_t global[3] = { size_t(this->Dims[0]), size_t(this->Dims[1]), size_t(this->Dims[2]) };
   const size_t local[3] = { LocalRow(this->Dims[0]), 1, 1 };
-  cl_mem state = this->UseBlocks() ? this->State[0].Get() : this->State[this->Current].Get();
-  return context->Check(vtkOpenCLSetKernelArgs(this->ScatteredKernel.Get(), state,
+  return context->Check(vtkOpenCLSetKernelArgs(this->ScatteredKernel.Get(), this->CurrentState(),
                           this->Coefficients.Get(), result.Get(), dims),
            "clSetKernelArg(lbl_scattered)", this) &&
-    context->RunKernel(this->ScatteredKernel.Get(), 3, global, local, "lbl_scattered", this) &&
-    context->ReadBuffer(result.Get(), 3 * n * sizeof(float), out, this);
+    context->RunKernel(this->ScatteredKernel.Get(), 3, global, local, "lbl_scattered", this);
 }
 
 //------------------------------------------------------------------------------

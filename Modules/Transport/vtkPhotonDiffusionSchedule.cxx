@@ -67,20 +67,6 @@ void AddScalar(vtkFieldData* fd, const char* name, double value)
   a->InsertNextValue(value);
   fd->AddArray(a);
 }
-
-// The point array `name` of `image` as 3 floats per point: the array's own memory when it is a
-// float array of that shape (the tracer's output is), else a converted copy in `copy`.
-const float* ThreeFloats(vtkImageData* image, const char* name, std::vector<float>& copy)
-{
-  vtkFloatArray* floats = vtkFloatArray::FastDownCast(image->GetPointData()->GetArray(name));
-  if (floats && floats->GetNumberOfComponents() == 3 &&
-    floats->GetNumberOfTuples() == image->GetNumberOfPoints())
-  {
-    return floats->GetPointer(0);
-  }
-  copy = vtkRefractaMedium::ReadArray(image, name, 3, 0.0f);
-  return copy.data();
-}
 }
 
 //------------------------------------------------------------------------------
@@ -234,22 +220,6 @@ int vtkPhotonDiffusionSchedule::RequestData(
   // the light it handed on; the lattice continues from its state (interleaved), from the last
   // run's field (warm start) or from zero (sequential).
   const auto solveStart = std::chrono::steady_clock::now();
-  std::vector<float> s1Copy, d1Copy;
-  const float* s1 = nullptr;
-  const float* d1 = nullptr;
-  if (lighting->GetFieldData()->GetArray(vtkRefractaLightingVolume::VolumeCausticBricksName()))
-  {
-    // S1 in the volume caustic's bricks goes back into its voxels for the lattice.
-    vtkRefractaLightingVolume::ReadLatticeSource(lighting, s1Copy, d1Copy);
-    s1 = s1Copy.data();
-    d1 = d1Copy.data();
-  }
-  else
-  {
-    s1 = ThreeFloats(lighting, vtkRefractaLightingVolume::LatticeSourceName(lighting), s1Copy);
-    d1 = ThreeFloats(
-      lighting, vtkRefractaLightingVolume::LatticeSourceDirectionName(lighting), d1Copy);
-  }
   if (!interleaved && !this->LastRunWarm && !solver->ResetState())
   {
     return 0;
@@ -260,7 +230,9 @@ int vtkPhotonDiffusionSchedule::RequestData(
   solverProgress->Last = 0.99;
   const unsigned long solverObserver =
     solver->AddObserver(vtkCommand::ProgressEvent, solverProgress);
-  const bool solved = solver->SetSource(s1, d1) && solver->Solve();
+  // The source from the tracer's arrays: from their device copies when the tracer kept them
+  // (vtkPhotonTracer::KeepDeviceCopies), the volume caustic's bricks folded back in on the host.
+  const bool solved = solver->SetSourceFromLighting(lighting) && solver->Solve();
   solver->RemoveObserver(solverObserver);
   if (!solved)
   {
@@ -275,17 +247,15 @@ int vtkPhotonDiffusionSchedule::RequestData(
     this->LastRunAborted = true;
     return 1;
   }
-  const vtkIdType n = medium->GetNumberOfPoints();
   vtkNew<vtkFloatArray> ms;
   ms->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
-  ms->SetNumberOfComponents(3);
-  ms->SetNumberOfTuples(n);
-  if (!solver->ComputeMultipleScattering(ms->GetPointer(0)))
+  // The lattice's S_ms plus, with the first-collision split, the photons' own (orders up to k).
+  if (!solver->ComputeMultipleScattering(ms,
+        lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName())))
   {
     output->Initialize();
     return 0;
   }
-  vtkRefractaLightingVolume::AddPhotonMultipleScattering(lighting, ms);
   const double finalSolve = Seconds(solveStart);
   if (marching + finalSolve > 0)
   {

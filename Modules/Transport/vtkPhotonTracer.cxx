@@ -16,6 +16,7 @@
 #include "vtkMediumValidator.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenCLContext.h"
+#include "vtkOpenCLDeviceArrays.h"
 #include "vtkOpenCLMemoryPlan.h"
 #include "vtkPointData.h"
 #include "vtkRefractaHostThreads.h"
@@ -594,14 +595,22 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
   const cl_float valueFactor =
     static_cast<cl_float>(1.0 / (run.Scale * m.Spacing[0] * m.Spacing[1] * m.Spacing[2]));
   const cl_float directionFactor = static_cast<cl_float>(1.0 / run.Scale);
-  // One field: resolve it from `source` at `at`, smooth it, and read it into `out`.
+  // One field: resolve it from `source` at `at`, smooth it, and read it into `out`. A buffer
+  // kept as `out`'s device copy is a fresh one (a scratch buffer would be borrowed and
+  // overwritten by the next run while the copy still stands for this run's array).
   auto field = [&](cl_mem source, size_t at, cl_float factor, vtkFloatArray* out, bool unit)
   {
-    vtkOpenCLBuffer a = alloc.Make(CL_MEM_READ_WRITE, bytes, nullptr, out->GetName());
+    auto make = [&](bool result)
+    {
+      return result && this->KeepDeviceCopies
+        ? ctx->CreateBuffer(CL_MEM_READ_WRITE, bytes, nullptr, out->GetName(), this)
+        : alloc.Make(CL_MEM_READ_WRITE, bytes, nullptr, out->GetName());
+    };
+    vtkOpenCLBuffer a = make(!this->Smoothing);
     vtkOpenCLBuffer b;
     if (this->Smoothing)
     {
-      b = alloc.Make(CL_MEM_READ_WRITE, bytes, nullptr, out->GetName());
+      b = make(true);
     }
     const cl_ulong first = static_cast<cl_ulong>(at);
     const cl_uint strideLongs = static_cast<cl_uint>(stride);
@@ -625,7 +634,16 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
     {
       return false;
     }
-    return ctx->ReadBuffer(result, bytes, out->GetPointer(0), this);
+    if (!ctx->ReadBuffer(result, bytes, out->GetPointer(0), this))
+    {
+      return false;
+    }
+    out->Modified(); // its values are new: so is any copy of them
+    if (this->KeepDeviceCopies)
+    {
+      ctx->GetDeviceArrays()->Remember(out, result, this);
+    }
+    return true;
   };
   return field(fixed, offset, valueFactor, values, false) &&
     (!directions || field(directionFixed, directionOffset, directionFactor, directions, true));
@@ -754,6 +772,8 @@ int vtkPhotonTracer::RequestData(
   this->UsedScatteringOrders = 0;
   this->EnvironmentPhotons = 0;
   this->LastRunAborted = false;
+  // The last run's device copies of its output go before this run allocates its own.
+  this->GetContext()->GetDeviceArrays()->ForgetOwner(this);
   Internals run;
   run.Input = input;
   // The medium kept from the last run was validated then; a new one is validated now.
@@ -838,6 +858,7 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RouletteThreshold: " << this->RouletteThreshold << "\n";
   os << indent << "MaximumNumberOfSteps: " << this->MaximumNumberOfSteps << "\n";
   os << indent << "CoherentPhotonOrder: " << (this->CoherentPhotonOrder ? "On" : "Off") << "\n";
+  os << indent << "KeepDeviceCopies: " << (this->KeepDeviceCopies ? "On" : "Off") << "\n";
   os << indent << "ReuseScratchBuffers: " << (this->ReuseScratchBuffers ? "On" : "Off") << " ("
      << (this->Scratch ? this->Scratch->Entries.size() : 0) << " kept)\n";
   os << indent << "MaximumNumberOfInterfaceEvents: " << this->MaximumNumberOfInterfaceEvents

@@ -626,6 +626,21 @@ public:
   void ReleaseScratchBuffers();
   ///@}
 
+  ///@{
+  /**
+   * Keep each output point array's device buffer (the resolved and smoothed `Radiance`,
+   * `RadianceDirection` and, with the first-collision split or analog scattering,
+   * `MultipleScattering` and the lattice's source) as that array's device copy in the context's
+   * vtkOpenCLDeviceArrays, so that the lattice and the view pass take them from the device instead
+   * of uploading the arrays again (a light move at 128^3 sent 120 MiB back; Benchmarks.md). Off
+   * by default: the copies hold device memory (12 bytes per voxel and array) for as long as the
+   * output arrays live. vtkRefractaRenderPipeline turns it on (its DeviceHandOff).
+   */
+  vtkSetMacro(KeepDeviceCopies, bool);
+  vtkGetMacro(KeepDeviceCopies, bool);
+  vtkBooleanMacro(KeepDeviceCopies, bool);
+  ///@}
+
   /**
    * Whether the last run had surfaces, and whether it reused the device copy of the surface set
    * (same set, not rebuilt since, same context) instead of uploading it.
@@ -748,6 +763,7 @@ private:
   std::unique_ptr<vtkPhotonTracerDetail::ScratchPool> Scratch; // ReuseScratchBuffers
   std::unique_ptr<vtkPhotonTracerDetail::PhotonStreams> Streams; // the last run's photon order
   bool ReuseScratchBuffers = false;
+  bool KeepDeviceCopies = false;
   bool CoherentPhotonOrder = true;
   // The surface stage (vtkPhotonTracerSurfaces.cxx): build the set and the emission box; upload
   // (or take the kept) device arrays and the irradiance accumulator; set the kernels' surface

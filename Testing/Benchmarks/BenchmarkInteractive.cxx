@@ -15,7 +15,7 @@
 //   BenchmarkInteractive [--size N] [--photons P] [--width W] [--height H] [--runs R]
 //                        [--csv FILE] [--profile] [--persistent-only] [--warm-start]
 //                        [--transfers] [--fresh-scratch] [--general-kernel] [--cold-lattice]
-//                        [--only camera,light,material,full]
+//                        [--host-hand-off] [--only camera,light,material,full]
 // Defaults are the target configuration: 128^3, 2^20 photons, 640 x 480, 5 runs.
 // --profile times every OpenCL call of the persistent frames (vtkOpenCLKernelProfile): device_s is
 // the median device time per frame (kernels and transfers), cl_host_s the host's wall time inside
@@ -29,7 +29,8 @@
 // tracer's ReuseScratchBuffers off (the persistent pipeline's default is on): its A/B.
 // --general-kernel turns the view pass's LaneMarching off (the eight-lane kernel is the default on
 // a CPU device): its A/B. --cold-lattice turns the lattice's CoarseStart off (every lattice step
-// on the full grid): its A/B.
+// on the full grid): its A/B. --host-hand-off turns the pipeline's DeviceHandOff off (the lighting
+// volume goes photon pass -> host -> lattice -> host -> view pass): its A/B.
 #include "RefractaBenchmark.h"
 
 #include "vtkCamera.h"
@@ -77,6 +78,7 @@ struct Options
   bool FreshScratch = false; // the tracer creates its scratch buffers every run (A/B)
   bool GeneralKernel = false; // the view pass's general kernel instead of the lanes (A/B)
   bool ColdLattice = false;   // the lattice without its coarse start (A/B)
+  bool HostHandOff = false;   // the lighting volume handed on through the host (A/B)
   std::string Only; // comma-separated first words of the interactions to run (empty: all)
 };
 
@@ -226,6 +228,7 @@ vtkSmartPointer<vtkRefractaRenderPipeline> MakePipeline(Scene& scene, const Opti
   pipeline->GetPhotonTracer()->SetReuseScratchBuffers(!o.FreshScratch);
   pipeline->GetViewPass()->SetLaneMarching(!o.GeneralKernel);
   pipeline->GetLatticeSolver()->SetCoarseStart(!o.ColdLattice);
+  pipeline->SetDeviceHandOff(!o.HostHandOff);
   return pipeline;
 }
 
@@ -296,6 +299,8 @@ int main(int argc, char* argv[])
       o.GeneralKernel = true;
     else if (arg == "--cold-lattice")
       o.ColdLattice = true;
+    else if (arg == "--host-hand-off")
+      o.HostHandOff = true;
     else if (arg == "--only")
     {
       o.Only = next();
@@ -313,10 +318,11 @@ int main(int argc, char* argv[])
     }
     else
     {
-      std::cerr << "usage: BenchmarkInteractive [--size N] [--photons P] [--width W] "
-                   "[--height H] [--runs R] [--csv FILE] [--profile] [--persistent-only] "
-                   "[--warm-start] [--transfers] [--fresh-scratch] [--general-kernel] [--cold-lattice] "
-                   "[--only camera,light,material,full]\n";
+      std::cerr
+        << "usage: BenchmarkInteractive [--size N] [--photons P] [--width W] "
+           "[--height H] [--runs R] [--csv FILE] [--profile] [--persistent-only] "
+           "[--warm-start] [--transfers] [--fresh-scratch] [--general-kernel] [--cold-lattice] "
+           "[--host-hand-off] [--only camera,light,material,full]\n";
       return 2;
     }
   }

@@ -1,11 +1,13 @@
 // Tests of vtkOpenCLContext on the machine's OpenCL device (PoCL's CPU device in CI): an
 // embedded kernel runs and its result is checked; a broken kernel yields the build log and the
 // process survives; programs come from the memory cache and, in a new context (a new process),
-// from the disk binary cache instead of being recompiled; a bad device selection is explained.
+// from the disk binary cache instead of being recompiled; a bad device selection is explained;
+// device copies of host arrays (vtkOpenCLDeviceArrays) last exactly while their arrays do.
 #include "vtkCommand.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
+#include "vtkOpenCLDeviceArrays.h"
 #include "vtkOpenCLKernelLibrary.h"
 #include "vtkOpenCLKernelProfile.h"
 #include "vtkTestErrorObserver.h"
@@ -309,4 +311,67 @@ TEST(OpenCLContext, KernelProfileCountsLaunchesAndDeviceTime)
   profile->Reset();
   EXPECT_EQ(profile->GetNumberOfKernels(), 0);
   EXPECT_EQ(profile->GetTotalDeviceSeconds(), 0.0);
+}
+
+// A device copy stands for its array only while the array lives unmodified; the registry holds
+// (retains) the buffers it remembers and releases them when it forgets.
+TEST(OpenCLDeviceArrays, CopiesLastWhileTheirArraysDo)
+{
+  vtkOpenCLContext* context = vtkOpenCLContext::GetDefault();
+  ASSERT_TRUE(context->Initialize()) << context->GetLastErrorMessage();
+  vtkNew<vtkOpenCLDeviceArrays> copies;
+  const long long buffersBefore = vtkOpenCLLiveHandles(0);
+  auto floats = [](vtkIdType tuples)
+  {
+    auto a = vtkSmartPointer<vtkFloatArray>::New();
+    a->SetNumberOfComponents(3);
+    a->SetNumberOfTuples(tuples);
+    a->FillValue(1.0f);
+    return a;
+  };
+  auto a = floats(100);
+  auto b = floats(100);
+  {
+    vtkOpenCLBuffer buffer = context->CreateBuffer(CL_MEM_READ_WRITE, 1200, nullptr, "a", nullptr);
+    vtkOpenCLBuffer small = context->CreateBuffer(CL_MEM_READ_WRITE, 1104, nullptr, "b", nullptr);
+    ASSERT_TRUE(buffer && small);
+    copies->Remember(a, buffer.Get(), &a);
+    copies->Remember(b, small.Get(), &b); // smaller than b's values: not a copy
+    EXPECT_EQ(copies->GetNumberOfArrays(), 1);
+    EXPECT_EQ(copies->Find(a), buffer.Get());
+    EXPECT_EQ(copies->Find(b), nullptr);
+    copies->Remember(b, buffer.Get(), &b); // one buffer may hold two arrays' equal values
+  }
+  // The handles above are gone; the registry keeps the buffer alive (retained).
+  EXPECT_EQ(copies->GetNumberOfArrays(), 2);
+  EXPECT_DOUBLE_EQ(copies->GetBytes(), 2 * 1200.0);
+  vtkOpenCLBuffer shared = copies->Share(a);
+  ASSERT_TRUE(shared);
+  EXPECT_EQ(copies->GetNumberOfHits(), 2); // Find(a) and Share(a); Find(b) missed
+  std::vector<float> zeros(300, 0.0f);
+  ASSERT_TRUE(context->WriteBuffer(shared.Get(), 1200, zeros.data()));
+
+  a->SetValue(0, 2.0f); // modified on the host: its copy is stale
+  a->Modified();
+  EXPECT_EQ(copies->Find(a), nullptr);
+  EXPECT_EQ(copies->GetNumberOfArrays(), 1);
+  copies->ForgetOwner(&a); // no effect: a's copy is already gone
+  EXPECT_EQ(copies->GetNumberOfArrays(), 1);
+  copies->ForgetOwner(&b);
+  EXPECT_EQ(copies->GetNumberOfArrays(), 0);
+
+  copies->Remember(b, shared.Get());
+  b = nullptr; // deleted: its copy goes with it
+  EXPECT_EQ(copies->GetNumberOfArrays(), 0);
+  copies->Remember(a, shared.Get());
+  copies->Remember(nullptr, shared.Get());
+  copies->Remember(a, nullptr); // forgets a's copy
+  EXPECT_EQ(copies->Find(a), nullptr);
+  copies->Remember(a, shared.Get());
+  copies->Clear();
+  EXPECT_EQ(copies->GetNumberOfArrays(), 0);
+  shared.Reset();
+  EXPECT_EQ(vtkOpenCLLiveHandles(0), buffersBefore);
+  // The context's own registry is the one the passes share.
+  EXPECT_NE(context->GetDeviceArrays(), nullptr);
 }

@@ -1,7 +1,8 @@
 // vtkRefractaRenderPipeline: each stage re-runs only when something it reads changed (VTK
 // modification times), progress is monotone and complete, an abort stops the render and the next
 // render recovers, a bad medium is reported once, and the pipeline's image is the image of the
-// passes wired by hand (photon tracer -> Lattice-Boltzmann lighting -> view pass).
+// passes wired by hand (photon tracer -> Lattice-Boltzmann lighting -> view pass) and of the
+// lighting volume's hand-off through the host.
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
@@ -11,6 +12,8 @@
 #include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
+#include "vtkOpenCLContext.h"
+#include "vtkOpenCLDeviceArrays.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
 #include "vtkRefractaImageRenderer.h"
@@ -299,6 +302,79 @@ TEST(RenderPipeline, SameImageAsThePassesWiredByHand)
   }
   EXPECT_GT(maximum, 0.0);
   EXPECT_LE(difference, 1e-5 * maximum);
+}
+
+// The lighting volume handed on on the device (photon pass -> lattice -> view pass, no upload of
+// what was just read back) gives the image of the hand-off through the host, to the bit, for the
+// lattice's two sources (S1 alone; the first-collision split, whose photon S_ms is added on the
+// device), and a light move replaces the copies rather than adding to them.
+TEST(RenderPipeline, DeviceHandOffGivesTheImageOfTheHostHandOff)
+{
+  auto medium = Fog();
+  // Forward scattering: the lattice's source is spread around its direction (which an isotropic
+  // phase function would ignore).
+  vtkNew<vtkFloatArray> g;
+  g->SetName("Anisotropy");
+  g->SetNumberOfTuples(medium->GetNumberOfPoints());
+  g->FillValue(0.6f);
+  medium->GetPointData()->AddArray(g);
+  auto camera = Front();
+  vtkOpenCLDeviceArrays* copies = vtkOpenCLContext::GetDefault()->GetDeviceArrays();
+  for (const bool split : { true, false })
+  {
+    SCOPED_TRACE(split ? "first-collision split" : "lattice only");
+    auto light = Sun();
+    auto device = MakePipeline(medium, light, camera);
+    auto host = MakePipeline(medium, light, camera);
+    host->SetDeviceHandOff(false);
+    for (vtkRefractaRenderPipeline* p : { device.GetPointer(), host.GetPointer() })
+    {
+      p->SetMultipleScatteringSchedule(vtkRefractaRenderPipeline::SEQUENTIAL_SCHEDULE);
+      if (!split)
+      {
+        p->SetMultipleScatteringMethod(vtkEffectPlan::LATTICE_ONLY);
+      }
+    }
+    int held = -1;
+    for (int frame = 0; frame < 2; ++frame)
+    {
+      if (frame == 1)
+      {
+        light->SetPosition(1.5, 2.5, 0.5); // a light move: the light passes run again
+      }
+      const long long hits = copies->GetNumberOfHits();
+      ASSERT_TRUE(host->Render(24, 20));
+      EXPECT_EQ(host->GetViewPass()->GetLastLightingArraysShared(), 0);
+      EXPECT_EQ(copies->GetNumberOfHits(), hits) << "the host hand-off takes no device copy";
+      ASSERT_TRUE(device->Render(24, 20));
+      EXPECT_EQ(device->GetPhotonTracer()->GetUsedScatteringOrders() > 0, split);
+      // The view pass's three arrays, the lattice's source and its direction, and with the split
+      // the photons' S_ms added to the lattice's.
+      EXPECT_EQ(device->GetViewPass()->GetLastLightingArraysShared(), 3);
+      EXPECT_EQ(copies->GetNumberOfHits() - hits, split ? 6 : 5);
+      EXPECT_EQ(device->GetImage(), host->GetImage()) << "frame " << frame;
+      vtkDataArray* a = device->GetLighting()->GetPointData()->GetArray("MultipleScattering");
+      vtkDataArray* b = host->GetLighting()->GetPointData()->GetArray("MultipleScattering");
+      ASSERT_TRUE(a && b);
+      double largest = 0, difference = 0;
+      for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+      {
+        largest = std::max(largest, a->GetComponent(i / 3, i % 3));
+        difference = std::max(
+          difference, std::abs(a->GetComponent(i / 3, i % 3) - b->GetComponent(i / 3, i % 3)));
+      }
+      EXPECT_GT(largest, 0.0);
+      EXPECT_EQ(difference, 0.0);
+      if (held >= 0)
+      {
+        EXPECT_EQ(copies->GetNumberOfArrays(), held) << "a light move replaces the copies";
+      }
+      held = copies->GetNumberOfArrays();
+    }
+    // Radiance and its direction, S_ms; with the split also the photons' S_ms and the lattice's
+    // source and its direction.
+    EXPECT_EQ(held, split ? 6 : 3);
+  }
 }
 
 TEST(RenderPipeline, MissingInputsAreErrorsThatNameThem)

@@ -10,6 +10,7 @@
 // - the phase-function source distribution makes a directed source diffuse forward;
 // - the filter's outputs, field data and error paths.
 #include "vtkCommand.h"
+#include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -19,6 +20,7 @@
 #include "vtkLatticeBoltzmannSolver.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
+#include "vtkOpenCLDeviceArrays.h"
 #include "vtkPointData.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkSmartPointer.h"
@@ -685,6 +687,107 @@ TEST(LatticeBoltzmann, MemoryBeyondTheDeviceLimitsIsNamed)
         solver->GetPlannedDeviceMemoryBytes(), solver->GetAllocatedDeviceMemoryBytes());
     }
   }
+}
+
+// The array calls (the lighting volume's hand-off) give the pointer calls' results to the bit:
+// from the arrays' device copies (vtkOpenCLDeviceArrays) with nothing uploaded, or from host
+// arrays of any type; the photons' S_ms is added on the device or on the host; arrays of the
+// wrong shape are refused by name.
+TEST(LatticeBoltzmann, ArrayHandOffMatchesThePointerCalls)
+{
+  const Medium m = MakeRandomMedium(12, 10, 9, 0.3f, 0.9f, 11);
+  const vtkIdType n = static_cast<vtkIdType>(m.N());
+  std::vector<float> dir;
+  const std::vector<float> s = RandomSource(m.N(), 5, &dir);
+  const std::vector<float> extra = RandomSource(m.N(), 6);
+  vtkOpenCLContext* context = vtkOpenCLContext::GetDefault();
+  vtkOpenCLDeviceArrays* copies = context->GetDeviceArrays();
+  auto makeArray = [n](vtkDataArray* a, const std::vector<float>& values)
+  {
+    a->SetNumberOfComponents(3);
+    a->SetNumberOfTuples(n);
+    for (vtkIdType i = 0; i < 3 * n; ++i)
+    {
+      a->SetComponent(i / 3, i % 3, values[i]);
+    }
+  };
+  std::vector<float> reference(3 * m.N()), sum(3 * m.N());
+  {
+    auto solver = MakeSolver(m, vtkLatticeBoltzmannSolver::D3Q6, 0, 1, 0);
+    ASSERT_TRUE(solver->SetSource(s.data(), dir.data()));
+    ASSERT_TRUE(solver->Iterate(40));
+    ASSERT_TRUE(solver->ComputeMultipleScattering(reference.data()));
+  }
+  for (size_t i = 0; i < sum.size(); ++i)
+  {
+    sum[i] = reference[i] + extra[i];
+  }
+  for (const bool onDevice : { false, true })
+  {
+    SCOPED_TRACE(onDevice ? "device copies" : "host arrays");
+    vtkSmartPointer<vtkDataArray> source, direction, addend;
+    std::vector<vtkOpenCLBuffer> buffers;
+    if (onDevice)
+    {
+      source = vtkSmartPointer<vtkFloatArray>::New();
+      direction = vtkSmartPointer<vtkFloatArray>::New();
+      addend = vtkSmartPointer<vtkFloatArray>::New();
+    }
+    else
+    {
+      source = vtkSmartPointer<vtkDoubleArray>::New();
+      direction = vtkSmartPointer<vtkDoubleArray>::New();
+      addend = vtkSmartPointer<vtkDoubleArray>::New();
+    }
+    makeArray(source, s);
+    makeArray(direction, dir);
+    makeArray(addend, extra);
+    if (onDevice)
+    {
+      for (vtkDataArray* a : { source.Get(), direction.Get(), addend.Get() })
+      {
+        auto* floats = vtkFloatArray::SafeDownCast(a);
+        buffers.push_back(context->CreateBuffer(CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+          3 * n * sizeof(float), floats->GetPointer(0), "test copy", nullptr));
+        copies->Remember(floats, buffers.back().Get());
+      }
+    }
+    auto solver = MakeSolver(m, vtkLatticeBoltzmannSolver::D3Q6, 0, 1, 0);
+    solver->KeepDeviceCopiesOn();
+    const long long hits = copies->GetNumberOfHits();
+    ASSERT_TRUE(solver->SetSourceArrays(source, direction));
+    ASSERT_TRUE(solver->Iterate(40));
+    vtkNew<vtkFloatArray> out;
+    ASSERT_TRUE(solver->ComputeMultipleScattering(out, addend));
+    EXPECT_EQ(copies->GetNumberOfHits() - hits, onDevice ? 3 : 0);
+    ASSERT_EQ(out->GetNumberOfTuples(), n);
+    EXPECT_EQ(std::vector<float>(out->GetPointer(0), out->GetPointer(0) + 3 * n), sum);
+    // The result's device copy is kept only where the device holds the whole sum.
+    cl_mem copy = copies->Find(out);
+    EXPECT_EQ(copy != nullptr, onDevice);
+    if (copy)
+    {
+      std::vector<float> back(3 * m.N());
+      ASSERT_TRUE(context->ReadBuffer(copy, back.size() * sizeof(float), back.data()));
+      EXPECT_EQ(back, sum);
+    }
+  }
+
+  // Wrong shapes: refused by name, nothing run.
+  auto solver = MakeSolver(m, vtkLatticeBoltzmannSolver::D3Q6, 0, 1, 0);
+  vtkNew<vtkTest::ErrorObserver> errors;
+  solver->AddObserver(vtkCommand::ErrorEvent, errors);
+  vtkNew<vtkFloatArray> short1;
+  short1->SetName("ShortSource");
+  short1->SetNumberOfComponents(3);
+  short1->SetNumberOfTuples(n - 1);
+  EXPECT_FALSE(solver->SetSourceArrays(short1, nullptr));
+  std::string msg = errors->GetErrorMessage();
+  EXPECT_NE(msg.find("ShortSource"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(std::to_string(n)), std::string::npos) << msg;
+  vtkNew<vtkFloatArray> out;
+  EXPECT_FALSE(solver->ComputeMultipleScattering(out, short1));
+  EXPECT_NE(std::string(errors->GetErrorMessage()).find("ShortSource"), std::string::npos);
 }
 
 // Blocks run where local memory is on-chip (or when asked for on every device); on PoCL's CPU
