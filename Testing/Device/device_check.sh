@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The device side of Testing/Device/prepare.sh: on a lent GPU machine, from the checkout's root,
 # with .gpu/ carried. Runs the issue-17 measurements (relight and camera move at 1024^2 with a
-# kernel profile and the transfer rates, the lattice's warm start, Table I at 128^3 fresh and
-# persistent, the light move without the lattice's coarse start, run_benchmarks.sh's table) and then the default test suite on
+# kernel profile and the transfer rates, the light move with the lighting volume handed on
+# through the host and without the lattice's coarse start, Table I at 128^3 fresh and
+# persistent, run_benchmarks.sh's table) and then the default test suite on
 # the GPU. Writes $OUT/log.txt (everything printed), $OUT/bench.tgz and $OUT/tests.tgz. Each step
 # is bounded: the limits sum to 560 s, inside the device call's 570 s.
 set -u
@@ -25,9 +26,12 @@ step devices 20 bin/refracta-render --list-devices
 step interactive1024 80 bin/BenchmarkInteractive --width 1024 --height 1024 --runs 3 --profile \
   --persistent-only --transfers --csv $R/interactive1024.csv
 grep -E "transfers|^\| +(camera|light|material|full)" $R/interactive1024.txt
-step interactive1024-warm 40 bin/BenchmarkInteractive --width 1024 --height 1024 --runs 3 \
-  --persistent-only --warm-start --csv $R/interactive1024-warm.csv
-grep -E "^\| +(camera|light)" $R/interactive1024-warm.txt
+# The light move with the lighting volume handed on through the host (the A/B of session 18's
+# device hand-off; the warm start's A/B ran on an H200 in session 14: no change then).
+step interactive1024-host-hand-off 40 bin/BenchmarkInteractive --width 1024 --height 1024 \
+  --runs 3 --persistent-only --only light --host-hand-off --profile \
+  --csv $R/interactive1024-host-hand-off.csv
+grep -E "^\| +light|^\| \[(read|write)\]" $R/interactive1024-host-hand-off.txt
 # The light move without the lattice's coarse start (the A/B of session 17's default).
 step interactive1024-cold-lattice 40 bin/BenchmarkInteractive --width 1024 --height 1024 \
   --runs 3 --persistent-only --only light --cold-lattice --csv $R/interactive1024-cold.csv
