@@ -48,6 +48,7 @@ vtkAlgorithm* vtkRefractaRenderPipeline::PrepareLightRays(vtkPhotonTracer* trace
   lattice->SetLattice(this->GetLatticeSolver()->GetLattice());
   lattice->SetTolerance(this->GetLatticeSolver()->GetTolerance());
   lattice->SetBlockSize(this->GetLatticeSolver()->GetBlockSize());
+  lattice->SetKeepDeviceCopies(this->DeviceHandOff);
   lattice->SetInputData(in.Planned);
   lattice->SetInputConnection(1, rays->GetOutputPort());
   // The orders the photons carry (the split, or every order) still come from photons; the light

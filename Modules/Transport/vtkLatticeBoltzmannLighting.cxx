@@ -230,7 +230,9 @@ int vtkLatticeBoltzmannLighting::RequestData(
   }
   else
   {
-    const int solved = this->Solve(solver, medium, photons, ms);
+    const int solved = this->Solve(solver, medium, photons, ms,
+      split ? photons->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName())
+            : nullptr);
     if (solved <= 0)
     {
       output->Initialize();
@@ -238,7 +240,7 @@ int vtkLatticeBoltzmannLighting::RequestData(
       return solved == 0 ? 1 : 0;
     }
   }
-  if (split || everyOrder)
+  if (everyOrder)
   {
     vtkRefractaLightingVolume::AddPhotonMultipleScattering(photons, ms);
   }
@@ -267,8 +269,8 @@ int vtkLatticeBoltzmannLighting::RequestData(
 }
 
 //------------------------------------------------------------------------------
-int vtkLatticeBoltzmannLighting::Solve(
-  vtkLatticeBoltzmannSolver* solver, vtkImageData* medium, vtkImageData* sources, vtkFloatArray* ms)
+int vtkLatticeBoltzmannLighting::Solve(vtkLatticeBoltzmannSolver* solver, vtkImageData* medium,
+  vtkImageData* sources, vtkFloatArray* ms, vtkDataArray* addend)
 {
   if (this->Context)
   {
@@ -284,6 +286,7 @@ int vtkLatticeBoltzmannLighting::Solve(
   solver->SetCheckInterval(this->CheckInterval);
   solver->SetProbeSpacing(this->ProbeSpacing);
   solver->SetMaximumIterations(this->MaximumIterations);
+  solver->SetKeepDeviceCopies(this->KeepDeviceCopies);
   vtkNew<ProgressForwarder> forwarder;
   forwarder->Filter = this;
   // The solve is nearly all the work; reading the arrays and the final pass share the rest.
@@ -312,7 +315,7 @@ int vtkLatticeBoltzmannLighting::Solve(
     // An abort is not an error: empty output, the solver and its buffers go with `solver`.
     return 0;
   }
-  return solver->ComputeMultipleScattering(ms->GetPointer(0)) ? 1 : -1;
+  return solver->ComputeMultipleScattering(ms, addend) ? 1 : -1;
 }
 
 //------------------------------------------------------------------------------
@@ -326,6 +329,7 @@ void vtkLatticeBoltzmannLighting::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SourceDistribution: " << this->SourceDistribution << "\n";
   os << indent << "CollisionModel: " << this->CollisionModel << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "KeepDeviceCopies: " << this->KeepDeviceCopies << "\n";
   os << indent << "CheckInterval: " << this->CheckInterval << "\n";
   os << indent << "ProbeSpacing: " << this->ProbeSpacing << "\n";
   os << indent << "MaximumIterations: " << this->MaximumIterations << "\n";

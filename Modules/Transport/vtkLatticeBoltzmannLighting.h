@@ -107,6 +107,9 @@ public:
   vtkGetMacro(ProbeSpacing, int);
   vtkSetClampMacro(MaximumIterations, int, 0, 1 << 30);
   vtkGetMacro(MaximumIterations, int);
+  vtkSetMacro(KeepDeviceCopies, bool);
+  vtkGetMacro(KeepDeviceCopies, bool);
+  vtkBooleanMacro(KeepDeviceCopies, bool);
   ///@}
 
   /**
@@ -127,9 +130,10 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   // Solves the lattice on `medium` from the source of `sources` (vtkRefractaLightingVolume::
-  // LatticeSourceName) into `ms`: 1 done, 0 aborted, -1 failed (reported).
+  // LatticeSourceName) into `ms`, plus `addend` (the split's photon S_ms) when given: 1 done,
+  // 0 aborted, -1 failed (reported).
   int Solve(vtkLatticeBoltzmannSolver* solver, vtkImageData* medium, vtkImageData* sources,
-    vtkFloatArray* ms);
+    vtkFloatArray* ms, vtkDataArray* addend);
 
   int Lattice = 6;
   int BlockSize = 4;
@@ -141,6 +145,7 @@ protected:
   int CheckInterval = 8;
   int ProbeSpacing = 8;
   int MaximumIterations = 5000;
+  bool KeepDeviceCopies = false;
   bool LastRunAborted = false;
   vtkSmartPointer<vtkOpenCLContext> Context;
 

@@ -595,16 +595,14 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
   const cl_float valueFactor =
     static_cast<cl_float>(1.0 / (run.Scale * m.Spacing[0] * m.Spacing[1] * m.Spacing[2]));
   const cl_float directionFactor = static_cast<cl_float>(1.0 / run.Scale);
-  // One field: resolve it from `source` at `at`, smooth it, and read it into `out`. A buffer
-  // kept as `out`'s device copy is a fresh one (a scratch buffer would be borrowed and
-  // overwritten by the next run while the copy still stands for this run's array).
+  // One field: resolve it from `source` at `at`, smooth it, and read it into `out`; the buffer
+  // it is read from is kept as `out`'s device copy with KeepDeviceCopies.
   auto field = [&](cl_mem source, size_t at, cl_float factor, vtkFloatArray* out, bool unit)
   {
     auto make = [&](bool result)
     {
-      return result && this->KeepDeviceCopies
-        ? ctx->CreateBuffer(CL_MEM_READ_WRITE, bytes, nullptr, out->GetName(), this)
-        : alloc.Make(CL_MEM_READ_WRITE, bytes, nullptr, out->GetName());
+      return alloc.Make(
+        CL_MEM_READ_WRITE, bytes, nullptr, out->GetName(), result && this->KeepDeviceCopies);
     };
     vtkOpenCLBuffer a = make(!this->Smoothing);
     vtkOpenCLBuffer b;

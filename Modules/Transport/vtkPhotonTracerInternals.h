@@ -191,11 +191,14 @@ struct Allocator
   vtkObject* Reporter;
   ScratchPool* Pool = nullptr;
   double Bytes = 0;
-  vtkOpenCLBuffer Make(cl_mem_flags flags, size_t bytes, const void* data, const char* what)
+  // `kept`: the buffer outlives the run (a device copy of an output array), so it is never a
+  // borrowed scratch buffer, which the next run would overwrite.
+  vtkOpenCLBuffer Make(
+    cl_mem_flags flags, size_t bytes, const void* data, const char* what, bool kept = false)
   {
     // CreateBuffer rounds the device allocation up to 16 bytes; `data` holds exactly `bytes`.
     this->Bytes += static_cast<double>((std::max<size_t>(bytes, 1) + 15) / 16 * 16);
-    if (this->Pool && !data)
+    if (this->Pool && !data && !kept)
     {
       return this->Pool->Borrow(this->Context, flags, bytes, what, this->Reporter);
     }
