@@ -60,6 +60,8 @@ vtkOpenCLContext::vtkOpenCLContext()
 {
   const char* profile = std::getenv("REFRACTA_PROFILE_KERNELS");
   this->ProfileKernels = profile && std::string(profile) == "1";
+  const char* stagger = std::getenv("REFRACTA_STAGGER_BUFFERS");
+  this->StaggerBuffers = !stagger || std::string(stagger) != "0";
 }
 
 //------------------------------------------------------------------------------
@@ -452,14 +454,28 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
   // caller's padding never reads past its host array.
   flags &= ~static_cast<cl_mem_flags>(CL_MEM_COPY_HOST_PTR | CL_MEM_USE_HOST_PTR);
   const size_t allocated = (std::max<size_t>(bytes, 1) + 15) / 16 * 16;
+  const size_t stagger = (flags & CL_MEM_ALLOC_HOST_PTR) ? 0 : this->NextStagger(allocated);
   cl_int error = CL_SUCCESS;
   const double start = HostClock();
-  cl_mem buffer = clCreateBuffer(this->Context, flags, allocated, nullptr, &error);
+  cl_mem buffer = clCreateBuffer(this->Context, flags, allocated + stagger, nullptr, &error);
   std::ostringstream call;
   call << "clCreateBuffer(" << what << ", " << bytes << " bytes)";
   if (!this->Check(error, call.str().c_str(), reporter))
   {
     return vtkOpenCLBuffer();
+  }
+  if (stagger > 0)
+  {
+    // The buffer is the region past `stagger`; the allocation lives as long as the region does.
+    const cl_buffer_region region = { stagger, allocated };
+    const cl_mem_flags access = flags & (CL_MEM_READ_WRITE | CL_MEM_WRITE_ONLY | CL_MEM_READ_ONLY);
+    cl_mem sub = clCreateSubBuffer(buffer, access, CL_BUFFER_CREATE_TYPE_REGION, &region, &error);
+    clReleaseMemObject(buffer);
+    buffer = sub;
+    if (!this->Check(error, "clCreateSubBuffer(staggered buffer)", reporter))
+    {
+      return vtkOpenCLBuffer();
+    }
   }
   this->RecordLaunch("[create buffer]", nullptr, start);
   vtkOpenCLBuffer owned(buffer);
@@ -468,6 +484,35 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
     return vtkOpenCLBuffer();
   }
   return owned;
+}
+
+//------------------------------------------------------------------------------
+size_t vtkOpenCLContext::NextStagger(size_t bytes)
+{
+  // The device's memory is the host's: its allocator returns every large block page-aligned, so
+  // element i of every buffer falls in the same cache set and the same 4 KiB alias. A kernel that
+  // streams many buffers at once (the lattice step: two states, coefficients, source) then loses
+  // to conflict misses and to loads falsely waiting on stores 4 KiB apart. Successive buffers
+  // start at offsets that step through the 4 KiB page in the base-address alignment's units, in
+  // an order that puts consecutive allocations far apart (an odd stride through a power of two).
+  constexpr size_t Page = 4096;
+  constexpr size_t Smallest = 64 * 1024;
+  if (!this->StaggerBuffers || this->IsGPU || bytes < Smallest)
+  {
+    return 0;
+  }
+  if (this->BaseAddressAlignment == 0)
+  {
+    cl_uint bits = 0;
+    clGetDeviceInfo(this->Device, CL_DEVICE_MEM_BASE_ADDR_ALIGN, sizeof(bits), &bits, nullptr);
+    this->BaseAddressAlignment = std::max<size_t>(bits / 8, 1);
+  }
+  const size_t slots = Page / this->BaseAddressAlignment;
+  if (slots < 2 || (slots & (slots - 1)) != 0)
+  {
+    return 0;
+  }
+  return (this->NumberOfStaggeredBuffers++ * 13 % slots) * this->BaseAddressAlignment;
 }
 
 //------------------------------------------------------------------------------
@@ -634,6 +679,7 @@ void vtkOpenCLContext::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BinaryCacheDirectory: " << this->ResolveCacheDirectory()
      << (this->UseBinaryCache ? "" : " (disabled)") << "\n";
   os << indent << "ProfileKernels: " << (this->ProfileKernels ? "on" : "off") << "\n";
+  os << indent << "StaggerBuffers: " << (this->StaggerBuffers ? "on" : "off") << "\n";
   os << indent << "NumberOfSourceBuilds: " << this->NumberOfSourceBuilds << "\n";
   os << indent << "NumberOfBinaryLoads: " << this->NumberOfBinaryLoads << "\n";
   os << indent << "NumberOfMemoryCacheHits: " << this->NumberOfMemoryCacheHits << "\n";

@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -374,4 +375,75 @@ TEST(OpenCLDeviceArrays, CopiesLastWhileTheirArraysDo)
   EXPECT_EQ(vtkOpenCLLiveHandles(0), buffersBefore);
   // The context's own registry is the one the passes share.
   EXPECT_NE(context->GetDeviceArrays(), nullptr);
+}
+
+// On a CPU device, buffers of 64 KiB and more start at distinct offsets within a 4 KiB page
+// (regions of a larger allocation, aligned as the device requires); they hold, fill and return
+// data like any buffer; off, or below 64 KiB, a buffer is a plain allocation.
+TEST(OpenCLContext, StaggeredBuffersStartAtDistinctPageOffsets)
+{
+  vtkNew<vtkOpenCLContext> context;
+  ASSERT_TRUE(context->Initialize()) << context->GetLastErrorMessage();
+  context->StaggerBuffersOn();
+  cl_uint alignBits = 0;
+  clGetDeviceInfo(
+    context->GetDevice(), CL_DEVICE_MEM_BASE_ADDR_ALIGN, sizeof(alignBits), &alignBits, nullptr);
+  const size_t align = alignBits / 8;
+  const bool staggers = !context->GetIsGPU() && align > 0 && align < 4096;
+  auto offsetOf = [](cl_mem b)
+  {
+    size_t offset = 0;
+    clGetMemObjectInfo(b, CL_MEM_OFFSET, sizeof(offset), &offset, nullptr);
+    return offset;
+  };
+  const size_t bytes = 1 << 20;
+  std::vector<vtkOpenCLBuffer> buffers;
+  std::vector<size_t> offsets;
+  for (int k = 0; k < 4; ++k)
+  {
+    buffers.push_back(context->CreateBuffer(CL_MEM_READ_WRITE, bytes, nullptr, "staggered"));
+    ASSERT_TRUE(buffers.back());
+    size_t size = 0;
+    clGetMemObjectInfo(buffers.back().Get(), CL_MEM_SIZE, sizeof(size), &size, nullptr);
+    EXPECT_EQ(size, bytes);
+    offsets.push_back(offsetOf(buffers.back().Get()));
+    if (staggers)
+    {
+      EXPECT_LT(offsets.back(), 4096u);
+      EXPECT_EQ(offsets.back() % align, 0u);
+    }
+    else
+    {
+      EXPECT_EQ(offsets.back(), 0u);
+    }
+  }
+  if (staggers)
+  {
+    std::vector<size_t> sorted = offsets;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(std::unique(sorted.begin(), sorted.end()), sorted.end()) << "distinct offsets";
+  }
+  // Data in, a fill, data out: a staggered buffer is an ordinary buffer to its users.
+  std::vector<float> values(bytes / 4), back(bytes / 4);
+  for (size_t i = 0; i < values.size(); ++i)
+  {
+    values[i] = static_cast<float>(i);
+  }
+  vtkOpenCLBuffer copy =
+    context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, values.data(), "copy");
+  ASSERT_TRUE(copy);
+  ASSERT_TRUE(context->ReadBuffer(copy.Get(), bytes, back.data()));
+  EXPECT_EQ(back, values);
+  ASSERT_TRUE(context->ZeroBuffer(buffers[1].Get(), bytes));
+  ASSERT_TRUE(context->WriteBuffer(buffers[2].Get(), bytes, values.data()));
+  ASSERT_TRUE(context->ReadBuffer(buffers[1].Get(), bytes, back.data()));
+  EXPECT_EQ(back, std::vector<float>(bytes / 4, 0.0f));
+  ASSERT_TRUE(context->ReadBuffer(buffers[2].Get(), bytes, back.data()));
+  EXPECT_EQ(back, values);
+
+  vtkOpenCLBuffer small = context->CreateBuffer(CL_MEM_READ_WRITE, 4096, nullptr, "small");
+  EXPECT_EQ(offsetOf(small.Get()), 0u);
+  context->StaggerBuffersOff();
+  vtkOpenCLBuffer plain = context->CreateBuffer(CL_MEM_READ_WRITE, bytes, nullptr, "plain");
+  EXPECT_EQ(offsetOf(plain.Get()), 0u);
 }
