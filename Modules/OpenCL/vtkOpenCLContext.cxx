@@ -17,6 +17,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
 #include <unistd.h>
 
@@ -443,6 +444,21 @@ vtkOpenCLKernel vtkOpenCLContext::CreateKernel(
 vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
   cl_mem_flags flags, size_t bytes, const void* hostData, const char* what, vtkObject* reporter)
 {
+  return this->CreateStaggeredBuffer(
+    flags, bytes, hostData, what, reporter, std::numeric_limits<size_t>::max());
+}
+
+//------------------------------------------------------------------------------
+vtkOpenCLBuffer vtkOpenCLContext::CreateBufferAt(cl_mem_flags flags, size_t bytes,
+  const void* hostData, const char* what, vtkObject* reporter, size_t pageOffset)
+{
+  return this->CreateStaggeredBuffer(flags, bytes, hostData, what, reporter, pageOffset % 4096);
+}
+
+//------------------------------------------------------------------------------
+vtkOpenCLBuffer vtkOpenCLContext::CreateStaggeredBuffer(cl_mem_flags flags, size_t bytes,
+  const void* hostData, const char* what, vtkObject* reporter, size_t wanted)
+{
   if (!this->Initialize())
   {
     this->ReportError(
@@ -454,7 +470,7 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
   // caller's padding never reads past its host array.
   flags &= ~static_cast<cl_mem_flags>(CL_MEM_COPY_HOST_PTR | CL_MEM_USE_HOST_PTR);
   const size_t allocated = (std::max<size_t>(bytes, 1) + 15) / 16 * 16;
-  const size_t stagger = (flags & CL_MEM_ALLOC_HOST_PTR) ? 0 : this->NextStagger(allocated);
+  const size_t stagger = (flags & CL_MEM_ALLOC_HOST_PTR) ? 0 : this->Stagger(allocated, wanted);
   cl_int error = CL_SUCCESS;
   const double start = HostClock();
   cl_mem buffer = clCreateBuffer(this->Context, flags, allocated + stagger, nullptr, &error);
@@ -487,7 +503,7 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateBuffer(
 }
 
 //------------------------------------------------------------------------------
-size_t vtkOpenCLContext::NextStagger(size_t bytes)
+size_t vtkOpenCLContext::Stagger(size_t bytes, size_t wanted)
 {
   // The device's memory is the host's: its allocator returns every large block page-aligned, so
   // element i of every buffer falls in the same cache set and the same 4 KiB alias. A kernel that
@@ -511,6 +527,10 @@ size_t vtkOpenCLContext::NextStagger(size_t bytes)
   if (slots < 2 || (slots & (slots - 1)) != 0)
   {
     return 0;
+  }
+  if (wanted != std::numeric_limits<size_t>::max())
+  {
+    return wanted / this->BaseAddressAlignment * this->BaseAddressAlignment;
   }
   return (this->NumberOfStaggeredBuffers++ * 13 % slots) * this->BaseAddressAlignment;
 }

@@ -311,6 +311,15 @@ public:
   vtkOpenCLBuffer CreateBuffer(cl_mem_flags flags, size_t bytes, const void* hostData,
     const char* what, vtkObject* reporter = nullptr);
 
+  /**
+   * CreateBuffer() with the buffer's start placed `pageOffset` bytes into a 4 KiB page (rounded
+   * down to the device's base-address alignment) where StaggerBuffers applies, instead of the next
+   * offset of the context's sequence: for a pass whose buffers are streamed together, so that
+   * their relative placement does not depend on what was allocated before.
+   */
+  vtkOpenCLBuffer CreateBufferAt(cl_mem_flags flags, size_t bytes, const void* hostData,
+    const char* what, vtkObject* reporter, size_t pageOffset);
+
   ///@{
   /**
    * Blocking transfers and a zero fill, reporting errors; return true on success.
@@ -415,8 +424,12 @@ protected:
   bool Enqueue(const char* call, const char* label, size_t bytes, vtkObject* reporter,
     const std::function<cl_int(cl_event*)>& enqueue);
   static double HostClock();
-  // The offset of the next buffer of `bytes` within its allocation (StaggerBuffers), 0 for none.
-  size_t NextStagger(size_t bytes);
+  // The offset of a buffer of `bytes` within its allocation (StaggerBuffers): `wanted` rounded down
+  // to the base-address alignment, or the next of the context's sequence when `wanted` is
+  // SIZE_MAX; 0 for none.
+  size_t Stagger(size_t bytes, size_t wanted);
+  vtkOpenCLBuffer CreateStaggeredBuffer(cl_mem_flags flags, size_t bytes, const void* hostData,
+    const char* what, vtkObject* reporter, size_t wanted);
   vtkSmartPointer<vtkOpenCLBinaryCache> DiskCache;
   vtkSmartPointer<vtkOpenCLKernelProfile> KernelProfile;
   vtkSmartPointer<vtkOpenCLDeviceArrays> DeviceArrays;

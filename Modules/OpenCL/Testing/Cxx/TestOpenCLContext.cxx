@@ -378,8 +378,9 @@ TEST(OpenCLDeviceArrays, CopiesLastWhileTheirArraysDo)
 }
 
 // On a CPU device, buffers of 64 KiB and more start at distinct offsets within a 4 KiB page
-// (regions of a larger allocation, aligned as the device requires); they hold, fill and return
-// data like any buffer; off, or below 64 KiB, a buffer is a plain allocation.
+// (regions of a larger allocation, aligned as the device requires), or where the caller places
+// them; they hold, fill and return data like any buffer; off, or below 64 KiB, a buffer is a
+// plain allocation.
 TEST(OpenCLContext, StaggeredBuffersStartAtDistinctPageOffsets)
 {
   vtkNew<vtkOpenCLContext> context;
@@ -441,6 +442,11 @@ TEST(OpenCLContext, StaggeredBuffersStartAtDistinctPageOffsets)
   ASSERT_TRUE(context->ReadBuffer(buffers[2].Get(), bytes, back.data()));
   EXPECT_EQ(back, values);
 
+  // A placed buffer: the offset asked for, rounded down to the alignment (mod 4 KiB).
+  vtkOpenCLBuffer placed =
+    context->CreateBufferAt(CL_MEM_READ_WRITE, bytes, nullptr, "placed", nullptr, 4096 + 1000);
+  ASSERT_TRUE(placed);
+  EXPECT_EQ(offsetOf(placed.Get()), staggers ? 1000 / align * align : 0u);
   vtkOpenCLBuffer small = context->CreateBuffer(CL_MEM_READ_WRITE, 4096, nullptr, "small");
   EXPECT_EQ(offsetOf(small.Get()), 0u);
   context->StaggerBuffersOff();
