@@ -505,15 +505,18 @@ vtkOpenCLBuffer vtkOpenCLContext::CreateStaggeredBuffer(cl_mem_flags flags, size
 //------------------------------------------------------------------------------
 size_t vtkOpenCLContext::Stagger(size_t bytes, size_t wanted)
 {
-  // The device's memory is the host's: its allocator returns every large block page-aligned, so
-  // element i of every buffer falls in the same cache set and the same 4 KiB alias. A kernel that
-  // streams many buffers at once (the lattice step: two states, coefficients, source) then loses
-  // to conflict misses and to loads falsely waiting on stores 4 KiB apart. Successive buffers
-  // start at offsets that step through the 4 KiB page in the base-address alignment's units, in
-  // an order that puts consecutive allocations far apart (an odd stride through a power of two).
+  // The device's memory is the host's: its allocator returns every large block at the same
+  // offset in a page, so element i of every buffer falls in the same cache set and 4 KiB alias. A
+  // kernel that streams many buffers at once (the lattice step: two states, coefficients, source)
+  // then loses to conflict misses and to loads falsely waiting on stores 4 KiB apart. Successive
+  // buffers start at offsets that step through the 4 KiB page in the base-address alignment's
+  // units, in an order that puts consecutive allocations far apart (an odd stride through a power
+  // of two).
   constexpr size_t Page = 4096;
   constexpr size_t Smallest = 64 * 1024;
-  if (!this->StaggerBuffers || this->IsGPU || bytes < Smallest)
+  // (A buffer near the allocation limit is not staggered: its extra page might not fit.)
+  if (!this->StaggerBuffers || this->IsGPU || bytes < Smallest ||
+    static_cast<double>(bytes + Page) > this->MaxAllocationBytes)
   {
     return 0;
   }
