@@ -2,6 +2,7 @@
 
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
+#include "vtkDiscretizableColorTransferFunction.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -21,6 +22,7 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <string>
 
@@ -100,6 +102,9 @@ struct PointMapping
   double Sigma = 0.0;
   double Colour[3] = { 0, 0, 0 };
   double Index = 1.0;
+  // Held around the colour function's evaluation where that is not read-only (a
+  // vtkDiscretizableColorTransferFunction, ParaView's colour maps: GetColor() calls Build()).
+  std::mutex* ColourLock = nullptr;
 
   // True when the values are usable; otherwise false with `error` saying what is wrong and what
   // would be valid (the message is built only then: a stream per voxel cost more than the mapping).
@@ -124,6 +129,11 @@ struct PointMapping
     if (grey)
     {
       this->Colour[0] = this->Colour[1] = this->Colour[2] = grey->GetValue(s);
+    }
+    else if (this->ColourLock)
+    {
+      std::lock_guard<std::mutex> lock(*this->ColourLock);
+      colour->GetColor(s, this->Colour);
     }
     else
     {
@@ -267,9 +277,19 @@ int vtkTransferFunctionMedium::RequestData(
   // index order, as a serial loop would find it) is mapped again below to report why.
   vtkPiecewiseFunction* indexFunction = this->RefractiveIndexFunction;
   const double emissionScale = this->EmissionScale;
+  // A vtkDiscretizableColorTransferFunction rebuilds itself in GetColor() (ParaView's subclass
+  // changes its annotations there): built here once, then evaluated under a lock; two threads
+  // inside it crashed pvserver (RefractaParaView.ClientServer, session 18).
+  std::mutex colourLock;
+  const bool lockColour = vtkDiscretizableColorTransferFunction::SafeDownCast(colour) != nullptr;
+  if (lockColour)
+  {
+    colour->Build();
+  }
   auto mapRange = [&](vtkIdType begin, vtkIdType end, std::atomic<vtkIdType>& firstBad)
   {
     PointMapping point;
+    point.ColourLock = lockColour ? &colourLock : nullptr;
     // Neighbouring voxels often share a scalar (a background, a segmented label): the last
     // mapping is reused (the functions are evaluated once per run of equal scalars).
     double mapped = std::numeric_limits<double>::quiet_NaN();
