@@ -47,13 +47,13 @@ bool vtkLatticeBoltzmannSolver::SetSourceArrays(vtkDataArray* s1, vtkDataArray* 
   }
   vtkOpenCLContext* context = this->GetContext();
   vtkOpenCLDeviceArrays* copies = context->GetDeviceArrays();
-  const cl_mem deviceS1 = copies->Find(s1);
+  // (Looked up only while both may be there: a hit is an upload saved.)
   const cl_mem deviceDirection = direction ? copies->Find(direction) : nullptr;
-  std::vector<float> values;
+  const cl_mem deviceS1 = !direction || deviceDirection ? copies->Find(s1) : nullptr;
   if (!deviceS1 || (direction && !deviceDirection))
   {
     // No device copy: read the arrays and upload them.
-    std::vector<float> directions;
+    std::vector<float> values, directions;
     vtkRefractaMedium::ReadArray(s1, n, 3, 0.0f, values);
     if (direction)
     {
@@ -80,16 +80,8 @@ bool vtkLatticeBoltzmannSolver::SetSourceArrays(vtkDataArray* s1, vtkDataArray* 
   {
     return false;
   }
-  const float* host = nullptr;
-  if (vtkFloatArray* floats = vtkFloatArray::FastDownCast(s1))
-  {
-    host = floats->GetPointer(0);
-  }
-  else
-  {
-    vtkRefractaMedium::ReadArray(s1, n, 3, 0.0f, values);
-    host = values.data();
-  }
+  // Only float arrays have device copies (vtkOpenCLDeviceArrays::Remember).
+  const float* host = vtkFloatArray::FastDownCast(s1)->GetPointer(0);
   return this->ChooseSourceProbes(host, 1, 3);
 }
 
@@ -125,7 +117,12 @@ bool vtkLatticeBoltzmannSolver::SetSourceFromLighting(vtkImageData* lighting)
 bool vtkLatticeBoltzmannSolver::ComputeMultipleScattering(vtkFloatArray* out, vtkDataArray* addend)
 {
   const vtkIdType n = this->NumberOfVoxels;
-  if (!out || !HasVoxelTriples(addend, n, true, this))
+  if (!out)
+  {
+    vtkErrorMacro("ComputeMultipleScattering() needs an output array.");
+    return false;
+  }
+  if (!HasVoxelTriples(addend, n, true, this))
   {
     return false;
   }

@@ -788,6 +788,8 @@ TEST(LatticeBoltzmann, ArrayHandOffMatchesThePointerCalls)
   vtkNew<vtkFloatArray> out;
   EXPECT_FALSE(solver->ComputeMultipleScattering(out, short1));
   EXPECT_NE(std::string(errors->GetErrorMessage()).find("ShortSource"), std::string::npos);
+  EXPECT_FALSE(solver->ComputeMultipleScattering(nullptr, nullptr));
+  EXPECT_NE(std::string(errors->GetErrorMessage()).find("output array"), std::string::npos);
 }
 
 // Blocks run where local memory is on-chip (or when asked for on every device); on PoCL's CPU
