@@ -593,6 +593,18 @@ bool vtkOpenCLContext::ZeroBuffer(cl_mem buffer, size_t bytes, vtkObject* report
 }
 
 //------------------------------------------------------------------------------
+bool vtkOpenCLContext::CopyBuffer(
+  cl_mem source, cl_mem destination, size_t bytes, vtkObject* reporter)
+{
+  return bytes == 0 ||
+    this->Enqueue("clEnqueueCopyBuffer", "[copy]", bytes, reporter,
+      [&](cl_event* event) {
+        return clEnqueueCopyBuffer(
+          this->Queue, source, destination, 0, 0, bytes, 0, nullptr, event);
+      });
+}
+
+//------------------------------------------------------------------------------
 bool vtkOpenCLContext::Enqueue(const char* call, const char* label, size_t bytes,
   vtkObject* reporter, const std::function<cl_int(cl_event*)>& enqueue)
 {

@@ -436,10 +436,12 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   this->SourceKernel = context->CreateKernel(program, "lbl_source_from_fixed", this);
   this->RestrictKernel = context->CreateKernel(program, "lbl_restrict_source", this);
   this->ProlongKernel = context->CreateKernel(program, "lbl_prolong_state", this);
+  this->CorrectKernel = context->CreateKernel(program, "lbl_correct_state", this);
   this->FieldSourceKernel = context->CreateKernel(program, "lbl_source_from_fields", this);
   this->AddKernel = context->CreateKernel(program, "lbl_add", this);
   if (!this->StepKernel || !this->ProbeKernel || !this->ScatteredKernel || !this->SourceKernel ||
-    !this->RestrictKernel || !this->ProlongKernel || !this->FieldSourceKernel || !this->AddKernel)
+    !this->RestrictKernel || !this->ProlongKernel || !this->CorrectKernel ||
+    !this->FieldSourceKernel || !this->AddKernel)
   {
     return false;
   }
@@ -502,6 +504,7 @@ bool vtkLatticeBoltzmannSolver::ResetState()
   this->Current = 0;
   this->InterfaceParity = 0;
   this->StateIsZero = true;
+  this->CoarseMatchesState = false;
   this->Iterations = 0;
   this->Residual = -1.0;
   this->Converged = false;
@@ -592,6 +595,8 @@ bool vtkLatticeBoltzmannSolver::Iterate(int steps, bool wait)
   const size_t global[3] = { size_t(this->Dims[0]), size_t(this->Dims[1]), size_t(this->Dims[2]) };
   const size_t local[3] = { LocalRow(this->Dims[0]), 1, 1 };
   this->StateIsZero = this->StateIsZero && steps <= 0;
+  // Steps from outside a Solve() leave a state the coarse level knows nothing of.
+  this->CoarseMatchesState = this->CoarseMatchesState && this->InSolve;
   if (this->UseBlocks())
   {
     const int m = this->StepsPerExchange;
@@ -736,9 +741,15 @@ bool vtkLatticeBoltzmannSolver::Solve()
   double progress = 0.0;
   this->CoarseStartSteps = 0;
   this->CoarseStartCost = 0.0;
-  if (this->CoarseStart && this->StateIsZero && !this->SourceIsZero && this->HasCoarseLevel())
+  this->LastSolveCorrected = false;
+  // From zero: the coarse start. From the last Solve()'s result: its coarse correction.
+  const bool correct = !this->StateIsZero && this->CoarseWarmStart && this->CoarseMatchesState;
+  const bool coarse = this->CoarseStart && (this->StateIsZero || correct) && !this->SourceIsZero &&
+    this->HasCoarseLevel();
+  this->CoarseMatchesState = false; // until this Solve() ends with the coarse result beside it
+  if (coarse)
   {
-    if (!this->RunCoarseStart(progress))
+    if (!this->RunCoarseStart(progress, correct))
     {
       return false;
     }
@@ -747,6 +758,16 @@ bool vtkLatticeBoltzmannSolver::Solve()
       return true;
     }
   }
+  struct InSolveScope
+  {
+    bool& Flag;
+    explicit InSolveScope(bool& flag)
+      : Flag(flag)
+    {
+      this->Flag = true;
+    }
+    ~InSolveScope() { this->Flag = false; }
+  } inSolve(this->InSolve);
   std::vector<float> values;
   if (!this->ReadProbes(values))
   {
@@ -808,6 +829,7 @@ bool vtkLatticeBoltzmannSolver::Solve()
   {
     this->Aborted = true;
   }
+  this->CoarseMatchesState = coarse && !this->Aborted;
   return true;
 }
 
@@ -825,6 +847,8 @@ void vtkLatticeBoltzmannSolver::PrintSelf(ostream& os, vtkIndent indent)
      << (this->SourceDistribution == ISOTROPIC_SOURCE ? "isotropic" : "phase function") << "\n";
   os << indent << "CollisionModel: "
      << (this->CollisionModel == DIFFUSION_MATCHED ? "diffusion matched" : "exponential") << "\n";
+  os << indent << "CoarseWarmStart: " << this->CoarseWarmStart << "\n";
+  os << indent << "LastSolveCorrected: " << this->LastSolveCorrected << "\n";
   os << indent << "NumberOfThickVoxels: " << this->NumberOfThickVoxels << "\n";
   os << indent << "PlannedDeviceMemoryBytes: " << this->PlannedDeviceMemoryBytes << "\n";
   os << indent << "PlannedHostMemoryBytes: " << this->PlannedHostMemoryBytes << "\n";

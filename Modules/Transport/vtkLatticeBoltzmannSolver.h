@@ -191,6 +191,27 @@ public:
 
   ///@{
   /**
+   * Coarse correction of a warm start (default on; needs CoarseStart): a Solve() that continues
+   * from the steady state of the last Solve() (a warm start after ClearSource() and a new
+   * source, e.g. vtkPhotonDiffusionSchedule's WarmStart for a light move) first solves the coarse
+   * grid again, starting from its own last steady state, and adds the change of the coarse
+   * solution, prolonged as in the coarse start, to the fine state (clamped at zero;
+   * Kernels/lbl.cl, lbl_correct_state). The smooth part of the change is paid for at the coarse
+   * level and the fine detail of the last solution is kept, where a plain warm start carries the
+   * whole change on the fine grid and a coarse start from zero rebuilds the detail. Applies only
+   * when the state is the last Solve()'s result with the coarse grid's result beside it (not
+   * after Iterate() from outside a Solve(), ResetState() or Initialize()); the levels below
+   * correct their own warm starts the same way. The fixed point does not depend on the start.
+   * GetLastSolveCorrected() says whether the last Solve() applied it.
+   */
+  vtkSetMacro(CoarseWarmStart, bool);
+  vtkGetMacro(CoarseWarmStart, bool);
+  vtkBooleanMacro(CoarseWarmStart, bool);
+  vtkGetMacro(LastSolveCorrected, bool);
+  ///@}
+
+  ///@{
+  /**
    * Keep the buffer ComputeMultipleScattering(vtkFloatArray*, ...) reads its result from as the
    * output array's device copy in the context's vtkOpenCLDeviceArrays (default off), so that the
    * view pass takes `MultipleScattering` from the device instead of uploading it again. The copy
@@ -497,8 +518,12 @@ protected:
   {
     return !this->CoarseExtinction.empty();
   }
-  bool PrepareCoarseLevel();
-  bool RunCoarseStart(double& progress);
+  // Sets the coarse level up; `keepState` (a warm start's correction) keeps its last steady
+  // state when the level needs no new Initialize(), and is cleared otherwise.
+  bool PrepareCoarseLevel(bool& keepState);
+  // The coarse start (`correct` false: the fine state becomes the prolonged coarse solution) or
+  // the coarse correction of a warm start (`correct` true, and kept by PrepareCoarseLevel()).
+  bool RunCoarseStart(double& progress, bool correct);
   // Blocked mode: the state's interface-fed entries from the interface the next launch reads
   // (after a launch), or that interface from the state (toInterface: the coarse start's seed).
   bool ExchangeStateAndInterface(bool toInterface);
@@ -522,6 +547,12 @@ protected:
   double PlannedHostMemoryBytes = 0;
 
   bool CoarseStart = true;
+  bool CoarseWarmStart = true;
+  bool LastSolveCorrected = false;
+  // The state is the last Solve()'s result and the coarse level holds its counterpart: what a
+  // coarse correction needs (cleared by ResetState(), Initialize() and Iterate() from outside).
+  bool CoarseMatchesState = false;
+  bool InSolve = false;
   bool KeepDeviceCopies = false;
   int MinimumCoarseDimension = 16;
   int CoarseStartSteps = 0;
@@ -576,6 +607,8 @@ protected:
   vtkOpenCLKernel AddKernel;         // lbl_add
   vtkOpenCLKernel RestrictKernel;
   vtkOpenCLKernel ProlongKernel;
+  vtkOpenCLKernel CorrectKernel; // lbl_correct_state
+  vtkOpenCLBuffer CoarseBefore;  // the coarse level's last steady state, during a correction
   int Current = 0;
   cl_mem CurrentState() const
   {

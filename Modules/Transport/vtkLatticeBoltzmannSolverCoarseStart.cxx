@@ -1,7 +1,8 @@
 // vtkLatticeBoltzmannSolver: the coarse start (a cascadic multigrid start). A Solve() from a zero
 // state first solves the problem on a grid of half the resolution, then starts from that grid's
-// steady state; see CoarseStart in the header and lbl_restrict_source / lbl_prolong_state in
-// Kernels/lbl.cl.
+// steady state; a warm Solve() adds the change of the coarse grid's steady state to the last
+// one instead. See CoarseStart and CoarseWarmStart in the header and lbl_restrict_source /
+// lbl_prolong_state / lbl_correct_state in Kernels/lbl.cl.
 #include "vtkLatticeBoltzmannSolver.h"
 
 #include "vtkCommand.h"
@@ -120,7 +121,7 @@ void vtkLatticeBoltzmannSolver::RestrictMedium(const int dims[3], const double s
 }
 
 //------------------------------------------------------------------------------
-bool vtkLatticeBoltzmannSolver::PrepareCoarseLevel()
+bool vtkLatticeBoltzmannSolver::PrepareCoarseLevel(bool& keepState)
 {
   if (!this->Coarse)
   {
@@ -139,6 +140,7 @@ bool vtkLatticeBoltzmannSolver::PrepareCoarseLevel()
   coarse->SetCollisionModel(this->CollisionModel);
   coarse->SetProbeSpacing(probeSpacing);
   coarse->SetCoarseStart(this->CoarseStart);
+  coarse->SetCoarseWarmStart(this->CoarseWarmStart);
   coarse->SetMinimumCoarseDimension(this->MinimumCoarseDimension);
   coarse->SetBlockSize(this->BlockSize);
   coarse->SetBlockPolicy(this->BlockPolicy);
@@ -150,6 +152,7 @@ bool vtkLatticeBoltzmannSolver::PrepareCoarseLevel()
   coarse->SetMaximumIterations(this->MaximumIterations);
   if (initialize)
   {
+    keepState = false;
     this->CoarseInitialized = coarse->Initialize(this->CoarseDims, this->CoarseSpacing,
       this->CoarseExtinction.data(), this->CoarseAlbedo.data(), this->CoarseAnisotropy.data());
     if (!this->CoarseInitialized)
@@ -162,18 +165,47 @@ bool vtkLatticeBoltzmannSolver::PrepareCoarseLevel()
     }
     return true;
   }
+  if (keepState)
+  {
+    // A warm solve of its own: new counters, the state kept.
+    coarse->Iterations = 0;
+    coarse->Residual = -1.0;
+    coarse->Converged = false;
+    return true;
+  }
   return coarse->ResetState();
 }
 
 //------------------------------------------------------------------------------
-bool vtkLatticeBoltzmannSolver::RunCoarseStart(double& progress)
+bool vtkLatticeBoltzmannSolver::RunCoarseStart(double& progress, bool correct)
 {
-  if (!this->PrepareCoarseLevel())
+  if (!this->PrepareCoarseLevel(correct))
   {
     return false;
   }
   vtkLatticeBoltzmannSolver* coarse = this->Coarse;
   vtkOpenCLContext* context = this->GetContext();
+  // The correction needs the coarse level's last steady state after it has moved on.
+  const size_t coarseBytes =
+    size_t(coarse->Lattice) * 3 * static_cast<size_t>(coarse->NumberOfVoxels) * sizeof(float);
+  if (correct)
+  {
+    size_t have = 0;
+    if (this->CoarseBefore)
+    {
+      clGetMemObjectInfo(this->CoarseBefore.Get(), CL_MEM_SIZE, sizeof(have), &have, nullptr);
+    }
+    if (have < coarseBytes)
+    {
+      this->CoarseBefore = context->CreateBuffer(
+        CL_MEM_READ_WRITE, coarseBytes, nullptr, "LBL coarse state before the correction", this);
+    }
+    if (!this->CoarseBefore ||
+      !context->CopyBuffer(coarse->CurrentState(), this->CoarseBefore.Get(), coarseBytes, this))
+    {
+      return false;
+    }
+  }
   const cl_int4 fdims = { { this->Dims[0], this->Dims[1], this->Dims[2], 0 } };
   const cl_int4 cdims = { { this->CoarseDims[0], this->CoarseDims[1], this->CoarseDims[2], 0 } };
   const size_t cglobal[3] = { size_t(cdims.s[0]), size_t(cdims.s[1]), size_t(cdims.s[2]) };
@@ -213,14 +245,23 @@ bool vtkLatticeBoltzmannSolver::RunCoarseStart(double& progress)
   const float maxRatio = 2.0f;
   const size_t global[3] = { size_t(fdims.s[0]), size_t(fdims.s[1]), size_t(fdims.s[2]) };
   const size_t local[3] = { refracta_lbm::LocalRow(this->Dims[0]), 1, 1 };
-  if (!context->Check(vtkOpenCLSetKernelArgs(this->ProlongKernel.Get(), coarse->CurrentState(),
-                        coarse->Coefficients.Get(), this->CurrentState(), this->Coefficients.Get(),
-                        fdims, cdims, maxRatio),
-        "clSetKernelArg(lbl_prolong_state)", this) ||
-    !context->RunKernel(this->ProlongKernel.Get(), 3, global, local, "lbl_prolong_state", this))
+  const bool set = correct
+    ? context->Check(vtkOpenCLSetKernelArgs(this->CorrectKernel.Get(), coarse->CurrentState(),
+                       this->CoarseBefore.Get(), coarse->Coefficients.Get(), this->CurrentState(),
+                       this->Coefficients.Get(), fdims, cdims, maxRatio),
+        "clSetKernelArg(lbl_correct_state)", this)
+    : context->Check(vtkOpenCLSetKernelArgs(this->ProlongKernel.Get(), coarse->CurrentState(),
+                       coarse->Coefficients.Get(), this->CurrentState(), this->Coefficients.Get(),
+                       fdims, cdims, maxRatio),
+        "clSetKernelArg(lbl_prolong_state)", this);
+  cl_kernel kernel = correct ? this->CorrectKernel.Get() : this->ProlongKernel.Get();
+  if (!set ||
+    !context->RunKernel(
+      kernel, 3, global, local, correct ? "lbl_correct_state" : "lbl_prolong_state", this))
   {
     return false;
   }
+  this->LastSolveCorrected = correct;
   // lbl_block reads the entries fed by neighbouring blocks from the interface, not the state.
   if ((this->UseBlocks() && !this->ExchangeStateAndInterface(true)) || !context->Finish(this))
   {

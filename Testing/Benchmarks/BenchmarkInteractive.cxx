@@ -78,6 +78,7 @@ struct Options
   bool FreshScratch = false; // the tracer creates its scratch buffers every run (A/B)
   bool GeneralKernel = false; // the view pass's general kernel instead of the lanes (A/B)
   bool ColdLattice = false;   // the lattice without its coarse start (A/B)
+  bool PlainWarmStart = false; // a warm start without its coarse correction (A/B)
   bool HostHandOff = false;   // the lighting volume handed on through the host (A/B)
   std::string Only; // comma-separated first words of the interactions to run (empty: all)
 };
@@ -228,6 +229,7 @@ vtkSmartPointer<vtkRefractaRenderPipeline> MakePipeline(Scene& scene, const Opti
   pipeline->GetPhotonTracer()->SetReuseScratchBuffers(!o.FreshScratch);
   pipeline->GetViewPass()->SetLaneMarching(!o.GeneralKernel);
   pipeline->GetLatticeSolver()->SetCoarseStart(!o.ColdLattice);
+  pipeline->GetLatticeSolver()->SetCoarseWarmStart(!o.PlainWarmStart);
   pipeline->SetDeviceHandOff(!o.HostHandOff);
   return pipeline;
 }
@@ -299,6 +301,8 @@ int main(int argc, char* argv[])
       o.GeneralKernel = true;
     else if (arg == "--cold-lattice")
       o.ColdLattice = true;
+    else if (arg == "--plain-warm-start")
+      o.PlainWarmStart = true;
     else if (arg == "--host-hand-off")
       o.HostHandOff = true;
     else if (arg == "--only")

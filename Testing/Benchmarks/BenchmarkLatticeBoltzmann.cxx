@@ -17,7 +17,9 @@
 // sequential one (march all, then diffuse), medians of --repeats runs. Each run builds a fresh
 // schedule (medium validation, lattice coefficients, device buffers: a first render). With
 // --persistent one schedule per row serves every run and each run turns the light by 2 degrees
-// (a relight: the medium is already on the device, as in the paper's timing of the computation).
+// (a relight: the medium is already on the device, as in the paper's timing of the computation),
+// and two more rows: the sequential schedule with the lattice's warm start, plain and with its
+// coarse correction.
 //
 // Usage: BenchmarkLatticeBoltzmann [--large] [--sizes 32,64] [--repeats N] [--csv file]
 //        [--max-steps N] [--isotropic] [--global-only] [--table1 N [--persistent]]
@@ -133,10 +135,30 @@ int RunTable1(int n, int repeats, bool persistent, const std::string& csv)
   vtkOpenCLKernelProfile* profile = vtkOpenCLContext::GetDefault()->GetKernelProfile();
   std::string kernels;
   int initializations = 0; // of the last row's schedule
-  // k = -1: the sequential schedule with the lattice's coarse start off (every step on the
-  // full grid), the comparison for the sequential row (k = 0) with it on (the default).
-  for (int k : { -1, 0, 2, 4, 8, 16, 32, 64 })
+  // The sequential schedule with the lattice's coarse start off (every step on the full grid),
+  // the comparison for the sequential row with it on (the default); with --persistent also the
+  // warm starts (each run's lattice continues from the last light's field), plain and with the
+  // coarse correction (vtkLatticeBoltzmannSolver::CoarseWarmStart); then the interleaved rows.
+  struct Row
   {
+    const char* Name;
+    int K; // 0: sequential
+    bool CoarseStart, WarmStart, CoarseCorrection;
+  };
+  std::vector<Row> rows = { { "sequential cold start", 0, false, false, false },
+    { "sequential", 0, true, false, false } };
+  if (persistent)
+  {
+    rows.push_back({ "sequential warm start", 0, true, true, false });
+    rows.push_back({ "sequential warm start, coarse correction", 0, true, true, true });
+  }
+  for (int k : { 2, 4, 8, 16, 32, 64 })
+  {
+    rows.push_back({ "interleaved", k, true, false, false });
+  }
+  for (const Row& row : rows)
+  {
+    const int k = row.K;
     std::vector<double> total, marching, solve;
     double chunks = 0, during = 0, steps = 0, coarseCost = 0;
     vtkSmartPointer<vtkPhotonDiffusionSchedule> schedule;
@@ -149,7 +171,9 @@ int RunTable1(int n, int repeats, bool persistent, const std::string& csv)
         schedule->SetInputData(medium);
         schedule->SetMode(k <= 0 ? vtkPhotonDiffusionSchedule::SEQUENTIAL
                                  : vtkPhotonDiffusionSchedule::INTERLEAVED);
-        schedule->GetSolver()->SetCoarseStart(k >= 0);
+        schedule->SetWarmStart(row.WarmStart);
+        schedule->GetSolver()->SetCoarseStart(row.CoarseStart);
+        schedule->GetSolver()->SetCoarseWarmStart(row.CoarseCorrection);
         schedule->SetStepsPerChunk(std::max(k, 1));
         schedule->GetPhotonTracer()->AddLight(light);
         schedule->GetPhotonTracer()->SetNumberOfPhotons(65536);
@@ -178,7 +202,7 @@ int RunTable1(int n, int repeats, bool persistent, const std::string& csv)
       coarseCost = schedule->GetSolver()->GetCoarseStartCost();
     }
     initializations = schedule->GetNumberOfSolverInitializations();
-    const char* name = k < 0 ? "sequential cold start" : (k == 0 ? "sequential" : "interleaved");
+    const char* name = row.Name;
     if (vtkOpenCLContext::GetDefault()->GetProfileKernels())
     {
       profile->Collect();
