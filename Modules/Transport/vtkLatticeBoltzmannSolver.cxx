@@ -790,7 +790,9 @@ bool vtkLatticeBoltzmannSolver::Solve()
       return true;
     }
     const int before = this->Iterations;
-    if (!this->Iterate(std::min(interval, this->MaximumIterations - done)))
+    // Not waited for: the probes' blocking read right after waits for the same queue, and a
+    // clFinish() more per check interval is a host round trip a GPU idles through.
+    if (!this->Iterate(std::min(interval, this->MaximumIterations - done), false))
     {
       return false;
     }
