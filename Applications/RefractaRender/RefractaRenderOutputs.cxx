@@ -32,7 +32,8 @@ void WriteVti(vtkImageData* data, const std::string& file)
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetInputData(data);
   writer->SetFileName(file.c_str());
-  if (writer->Write() != 1)
+  // Write() returns 1 also when the file could not be opened; the error code says it.
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
   {
     throw std::runtime_error("cannot write '" + file + "'");
   }

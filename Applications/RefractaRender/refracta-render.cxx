@@ -261,10 +261,18 @@ bool LoadScene(const Options& options, json& scene, std::string& base)
     base = slash == std::string::npos ? "." : options.Scene.substr(0, slash);
     return true;
   }
-  catch (const json::parse_error& e)
+  catch (const json::exception& e)
   {
+    // parse_error, and out_of_range for a number beyond a double (1e999).
     const std::string source = options.Scene.empty() ? "the default scene" : options.Scene;
     std::cerr << "refracta-render: " << source << " is not valid JSON: " << e.what() << "\n";
+    return false;
+  }
+  catch (const std::exception& e)
+  {
+    // The stream's own failures (a folder named as the scene: "Is a directory").
+    std::cerr << "refracta-render: cannot read scene file '" << options.Scene << "': " << e.what()
+              << "\n";
     return false;
   }
 }
