@@ -230,7 +230,6 @@ double ProbeTowardLight(const MediumFields& fields, vtkImageData* medium, vtkLig
     vtkMath::Normalize(travel);
   }
   const bool positional = light->GetPositional() != 0;
-  const double step = 0.5 * std::min({ fields.Spacing[0], fields.Spacing[1], fields.Spacing[2] });
   const int probesPerAxis = 8;
   double worst = 0.0;
   for (int pk = 0; pk < probesPerAxis; ++pk)
@@ -261,7 +260,16 @@ double ProbeTowardLight(const MediumFields& fields, vtkImageData* medium, vtkLig
             towardLight[a] = -travel[a];
           }
         }
-        // March from the target toward the light until it or the box's face is reached.
+        // March from the target toward the light until it or the box's face is reached, half a
+        // voxel per step along the axis the ray crosses fastest in voxels: at most about twice
+        // the grid's largest dimension of steps, whatever the voxels' aspect ratio (a step of
+        // half the smallest spacing took ~1e30 steps through a grid 2e30 long).
+        double voxelsPerLength = 0.0;
+        for (int a = 0; a < 3; ++a)
+        {
+          voxelsPerLength = std::max(voxelsPerLength, std::abs(towardLight[a]) / fields.Spacing[a]);
+        }
+        const double step = voxelsPerLength > 0 ? 0.5 / voxelsPerLength : length;
         double tau = 0.0;
         for (double t = 0.5 * step; t < length; t += step)
         {

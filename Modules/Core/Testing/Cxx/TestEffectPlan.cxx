@@ -400,6 +400,29 @@ TEST(EffectPlan, SurfacesNeedThePhotonPassInAClearMedium)
   EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING));
 }
 
+// Voxels a million times longer on x than on y and z (a grid 16e6 long and 0.8 wide): the probes
+// toward the light march half a voxel per step along the axis they cross fastest, so the
+// analysis ends at once (half the smallest spacing per step took ~3e7 steps a probe) with the
+// same optical depth: sigma_t 1e-6 over 15/16 of the 16e6 length, within one step (tau 0.5).
+TEST(SceneAnalysis, ElongatedVoxelsProbeInVoxelSteps)
+{
+  auto medium = MakeMedium(16, 8, 8, 0.1,
+    [](int, int, int)
+    {
+      Voxel v;
+      v.SigmaT = 1e-6;
+      return v;
+    });
+  medium->SetSpacing(1e6, 0.1, 0.1);
+  vtkNew<vtkSceneAnalysis> analysis;
+  vtkNew<vtkEffectPlan> plan;
+  auto light = MakeDirectionalLight(1.0);
+  light->SetPosition(-1e8, 0.35, 0.35);
+  light->SetFocalPoint(0, 0.35, 0.35);
+  Plan(medium, light, plan, analysis);
+  EXPECT_NEAR(analysis->GetOpticalThicknessTowardLight(0), 1e-6 * (15.0 / 16.0) * 16e6, 0.5);
+}
+
 // A light move re-runs only the light probes: the medium's facts are reused while the medium is
 // unmodified (one scan), are identical to a fresh analysis's, and are recomputed after the medium
 // changes (Modified()) or another medium is given.
