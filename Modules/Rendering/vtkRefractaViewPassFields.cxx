@@ -123,7 +123,16 @@ bool EnvironmentToRGB(
     {
       double v = scalars->GetComponent(i, c);
       v = bytes ? v / 255.0 : v;
-      rgb[i * 3 + c] = std::isfinite(v) ? static_cast<float>(std::max(v, 0.0)) : 0.0f;
+      if (!std::isfinite(v) || v < 0)
+      {
+        // The photon tracer refuses the same texel when the environment lights the scene.
+        std::ostringstream msg;
+        msg << "The environment map's texel " << i << " (channel " << c << ") is " << v
+            << "; its radiance must be finite and >= 0.";
+        error = msg.str();
+        return false;
+      }
+      rgb[i * 3 + c] = static_cast<float>(v);
     }
   }
   size[0] = ed[0];

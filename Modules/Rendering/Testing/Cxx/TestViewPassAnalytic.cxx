@@ -26,6 +26,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -405,6 +407,21 @@ TEST(ViewPassAnalytic, BadInputsAreReported)
   EXPECT_NE(errors->GetErrorMessage().find("environment map"), std::string::npos);
   EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 0);
   errors->Clear();
+  // A NaN, an infinite and a negative texel: refused with the texel named (they used to read as
+  // black without a word).
+  env->SetDimensions(4, 4, 1);
+  for (float bad : { std::nanf(""), std::numeric_limits<float>::infinity(), -1.0f })
+  {
+    refracta_test::AddConstant(env, "colour", 3, 1, 1, 1)->SetComponent(5, 1, bad);
+    env->GetPointData()->SetActiveScalars("colour");
+    renderer->SetEnvironmentMap(env);
+    renderer->Update();
+    EXPECT_NE(errors->GetErrorMessage().find("environment map's texel 5 (channel 1)"),
+      std::string::npos)
+      << errors->GetErrorMessage();
+    EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 0);
+    errors->Clear();
+  }
 
   // And it recovers once the input is fixed.
   renderer->SetEnvironmentMap(nullptr);
