@@ -5,6 +5,7 @@
 
 #include "vtkRefractiveVolumeMapper.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
@@ -49,6 +50,12 @@ struct vtkRefractiveVolumeMapper::Internals
   std::vector<float> Depth;
   std::vector<float> Limits;
   std::string LastMessage; // said once, not on every Render
+  // The transfer-function mapping's error text, taken from its ErrorEvent so that the mapper
+  // says it (once, in its own event) instead of the filter and its executive on every Render.
+  std::string MappingError;
+  vtkNew<vtkCallbackCommand> MappingErrorCapture;
+  vtkNew<vtkCallbackCommand> MappingExecutiveErrors; // swallowed: "returned failure for request"
+
   double MeteredExposure = 1.0;
   int MeteredAt = -1; // plan + light-pass runs when the exposure was metered
   bool BlendModeWarned = false;

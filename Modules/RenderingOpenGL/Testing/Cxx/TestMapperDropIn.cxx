@@ -27,6 +27,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <string>
 
@@ -184,6 +185,20 @@ TEST(MapperDropIn, SelectScalarArrayIsHonouredAndAMissingArrayIsReportedOnce)
   const double mean = MeanBrightness(scene.Capture());
   EXPECT_GT(mean, 1.0);
   EXPECT_EQ(errors->Count, 1);
+
+  // A scalar the transfer functions cannot map (NaN): the mapping filter's own words reach the
+  // mapper's observer, once (the filter and its executive used to print on every Render, and the
+  // mapper's event only pointed at them).
+  vtkNew<vtkImageData> bad;
+  bad->DeepCopy(scene.Wavelet->GetOutput());
+  bad->GetPointData()->GetArray("RTData")->SetComponent(7, 0, std::nan(""));
+  mapper->SetInputData(bad);
+  scene.Window->Render();
+  scene.Window->Render();
+  scene.Window->Render();
+  EXPECT_EQ(errors->Count, 2) << "said once, not on every Render";
+  EXPECT_NE(errors->Message.find("Cannot map the input scalar nan at point 7"), std::string::npos)
+    << errors->Message;
 }
 
 TEST(MapperDropIn, ClippingPlanesAndCroppingCutTheMediumAway)
