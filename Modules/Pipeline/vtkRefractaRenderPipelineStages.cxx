@@ -93,11 +93,26 @@ bool vtkRefractaRenderPipeline::RunPlan()
   in.Analysis->SetSurfaces(in.SceneSurfaces);
   in.Analysis->SetEnvironmentLight(this->BackgroundIlluminates);
   in.Analysis->RemoveAllLights();
+  int index = 0;
   for (vtkLight* light : in.CurrentLightList())
   {
     if (!light->GetSwitch())
     {
+      ++index;
       continue;
+    }
+    // The passes refuse such a light; checked here too, because the plan would otherwise count a
+    // negative intensity as no light and skip the passes without a word.
+    std::string lightError;
+    if (!vtkMediumValidator::CheckLight(light, index++, lightError))
+    {
+      if (lightError != in.LastError)
+      {
+        vtkErrorMacro(<< lightError);
+        in.LastError = lightError;
+      }
+      in.Planned = nullptr;
+      return false;
     }
     vtkNew<vtkLight> copy;
     copy->DeepCopy(light);
@@ -268,8 +283,11 @@ bool vtkRefractaRenderPipeline::RunLighting()
     }
     if (!output || output->GetNumberOfPoints() == 0)
     {
-      vtkErrorMacro(
-        "The light passes (" << pass->GetClassName() << ") failed; see the error above.");
+      // The lattice on the light rays' output: name the pass that runs first as well.
+      const std::string passes = pass == in.LightRayLattice.GetPointer()
+        ? std::string(in.LightRays->GetClassName()) + " and " + pass->GetClassName()
+        : pass->GetClassName();
+      vtkErrorMacro("The light passes (" << passes << ") failed; see the error above.");
       return false;
     }
     in.Lighting = vtkSmartPointer<vtkImageData>::New();

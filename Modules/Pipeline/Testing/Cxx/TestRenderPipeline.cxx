@@ -257,6 +257,24 @@ TEST(RenderPipeline, BadMediumIsReportedOnce)
   EXPECT_EQ(errors, 1) << "the same message is not repeated on every render";
   EXPECT_NE(message.find("Extinction"), std::string::npos) << message;
   EXPECT_NE(message.find("7"), std::string::npos) << "names the voxel: " << message;
+
+  // A light of negative intensity: refused as the passes refuse it (the plan used to count it as
+  // no light and skip the passes without a word), once; a valid light renders again.
+  vtkFloatArray::SafeDownCast(medium->GetPointData()->GetArray("Extinction"))
+    ->SetComponent(7, 1, 0.5);
+  medium->Modified();
+  auto negative = Sun();
+  negative->SetIntensity(-5);
+  pipeline->RemoveAllLights();
+  pipeline->AddLight(negative);
+  EXPECT_FALSE(pipeline->Render(16, 16));
+  EXPECT_FALSE(pipeline->Render(16, 16));
+  EXPECT_EQ(errors, 2);
+  EXPECT_NE(message.find("Light 0"), std::string::npos) << message;
+  EXPECT_NE(message.find("negative intensity"), std::string::npos) << message;
+  negative->SetIntensity(5);
+  EXPECT_TRUE(pipeline->Render(16, 16));
+  EXPECT_EQ(errors, 2);
 }
 
 TEST(RenderPipeline, SameImageAsThePassesWiredByHand)
