@@ -185,16 +185,20 @@ SceneMedium VoxelizeMeshes(const json& medium, const std::string& base)
   const json grid = medium.value("grid", json::object());
   CheckKeys(grid, "scene.medium.grid",
     { "dimensions", "bounds", "padding", "supersampling", "smoothing_window", "interfaces" });
-  auto dims = Vector(grid, "dimensions", "scene.medium.grid", { 64, 64, 64 }, 3, 1, 2048);
-  voxelizer->SetDimensions(
-    static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
+  const auto dims = IntegerVector(grid, "dimensions", "scene.medium.grid", { 64, 64, 64 }, 3, 1, 2048);
+  voxelizer->SetDimensions(dims[0], dims[1], dims[2]);
   if (grid.contains("bounds"))
   {
     voxelizer->SetBounds(Bounds(grid, "bounds", "scene.medium.grid").data());
   }
   voxelizer->SetPadding(Number(grid, "padding", "scene.medium.grid", 0.0, 0.0, 1e30));
   voxelizer->SetSupersampling(Integer(grid, "supersampling", "scene.medium.grid", 4, 1, 16));
-  voxelizer->SetSmoothingWindow(Integer(grid, "smoothing_window", "scene.medium.grid", 9, 1, 63));
+  const int window = Integer(grid, "smoothing_window", "scene.medium.grid", 9, 1, 63);
+  if (window % 2 == 0)
+  {
+    Fail("scene.medium.grid.smoothing_window", "must be odd (a window centred on its voxel)");
+  }
+  voxelizer->SetSmoothingWindow(window);
   // "exact": the meshes are exact dielectric interfaces (Snell and Fresnel at the triangles);
   // "smoothed": the paper's Gaussian-smoothed index field (smoothing_window).
   const std::string interfaces =
