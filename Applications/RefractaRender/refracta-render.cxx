@@ -38,6 +38,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -239,6 +240,37 @@ int ParseOptions(int argc, char* argv[], Options& options)
   return -1;
 }
 
+struct DuplicateKey : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+// JSON with every object's keys distinct: nlohmann keeps the last of two equal keys, which would
+// drop the first block of a scene without a word. Throws DuplicateKey naming the key.
+json ParseWithoutDuplicateKeys(std::istream& in)
+{
+  std::vector<std::set<std::string>> keys; // one set per open object
+  return json::parse(in,
+    [&keys](int, json::parse_event_t event, json& parsed)
+    {
+      if (event == json::parse_event_t::object_start)
+      {
+        keys.emplace_back();
+      }
+      else if (event == json::parse_event_t::object_end && !keys.empty())
+      {
+        keys.pop_back();
+      }
+      else if (event == json::parse_event_t::key && !keys.empty() &&
+        !keys.back().insert(parsed.get<std::string>()).second)
+      {
+        throw DuplicateKey(
+          "the key '" + parsed.get<std::string>() + "' appears twice in one object");
+      }
+      return true;
+    });
+}
+
 // Reads the scene (the default one without --scene) and the folder its file names are relative
 // to; false, with the reason printed, where it cannot.
 bool LoadScene(const Options& options, json& scene, std::string& base)
@@ -256,7 +288,7 @@ bool LoadScene(const Options& options, json& scene, std::string& base)
       std::cerr << "refracta-render: cannot read scene file '" << options.Scene << "'\n";
       return false;
     }
-    scene = json::parse(in);
+    scene = ParseWithoutDuplicateKeys(in);
     const size_t slash = options.Scene.find_last_of('/');
     base = slash == std::string::npos ? "." : options.Scene.substr(0, slash);
     return true;
@@ -266,6 +298,12 @@ bool LoadScene(const Options& options, json& scene, std::string& base)
     // parse_error, and out_of_range for a number beyond a double (1e999).
     const std::string source = options.Scene.empty() ? "the default scene" : options.Scene;
     std::cerr << "refracta-render: " << source << " is not valid JSON: " << e.what() << "\n";
+    return false;
+  }
+  catch (const DuplicateKey& e)
+  {
+    std::cerr << "refracta-render: " << options.Scene << " is not a valid scene: " << e.what()
+              << "\n";
     return false;
   }
   catch (const std::exception& e)
