@@ -83,8 +83,10 @@ vtkSmartPointer<vtkCamera> ReadCamera(const json& scene, vtkImageData* medium)
   medium->GetBounds(bounds);
   const double centre[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
     0.5 * (bounds[4] + bounds[5]) };
-  const double size =
-    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  // The voxels' extent, half a voxel past the outer centres (a single voxel still has a size).
+  const double* spacing = medium->GetSpacing();
+  const double size = std::max({ bounds[1] - bounds[0] + spacing[0],
+    bounds[3] - bounds[2] + spacing[1], bounds[5] - bounds[4] + spacing[2] });
   auto fp =
     Vector(cam, "focal_point", "scene.camera", { centre[0], centre[1], centre[2] }, 3, -1e30, 1e30);
   auto pos = Vector(cam, "position", "scene.camera",
