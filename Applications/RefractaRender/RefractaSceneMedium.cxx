@@ -14,6 +14,7 @@
 #include "vtkPNGReader.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSTLReader.h"
 #include "vtkSphereSource.h"
@@ -25,6 +26,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <stdexcept>
@@ -148,6 +150,18 @@ vtkSmartPointer<vtkPolyData> ReadMeshFile(
   if (!poly || poly->GetNumberOfPolys() + poly->GetNumberOfStrips() == 0)
   {
     Fail(p, "'" + file + "' holds no polygons");
+  }
+  // A medium's mesh and a surface's alike (the voxelizer would refuse it without the key path).
+  vtkPoints* points = poly->GetPoints();
+  for (vtkIdType i = 0; points && i < points->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    points->GetPoint(i, x);
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+    {
+      Fail(
+        p, "'" + file + "' has a non-finite vertex coordinate (point " + std::to_string(i) + ")");
+    }
   }
   return poly;
 }
