@@ -564,15 +564,6 @@ __kernel void lbl_restrict_source(__global const float* fine, __global float* co
   }
 }
 
-// The ratio of a fine entry's steady state to its parent's (plane: direction class and channel).
-inline float lbl_prolong_ratio(__global const float* coarseCoef, __global const float* fineCoef,
-  size_t plane, size_t nc, size_t vc, size_t nf, size_t v, float maxRatio)
-{
-  const float pFine = 1.0f - fineCoef[plane * nf + v];
-  const float pCoarse = 1.0f - coarseCoef[plane * nc + vc];
-  return pFine > 0.0f ? clamp(pCoarse / pFine, 1.0f, maxRatio) : maxRatio;
-}
-
 // Fine state from the coarse steady state: f_i = ratio * f_i(parent). In a homogeneous medium the
 // steady state is sum_i f_i = sum_i q_i / ((1 - a) p) per voxel (the source per step over the
 // absorption per step), so the exact ratio is p_coarse / p_fine (the collision probabilities of
@@ -582,40 +573,15 @@ inline float lbl_prolong_ratio(__global const float* coarseCoef, __global const 
 // The parent's value is taken as it is (trilinear interpolation measured no fewer fine steps);
 // so an entry that only the world outside a vacuum boundary streams into, which lbl_step never
 // writes, stays zero: its parent's is zero too. One work-item per fine voxel, global (nx, ny, nz).
-__kernel void lbl_prolong_state(__global const float* coarse, __global const float* coarseCoef,
-  __global float* fine, __global const float* fineCoef, const int4 fdims, const int4 cdims,
-  const float maxRatio)
-{
-  const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
-  if (x >= fdims.x || y >= fdims.y || z >= fdims.z)
-  {
-    return;
-  }
-  const size_t nf = lbl_voxels(fdims);
-  const size_t nc = lbl_voxels(cdims);
-  const size_t v = refracta_voxel_index(fdims, x, y, z);
-  const size_t vc = refracta_voxel_index(cdims, x / 2, y / 2, z / 2);
-  #pragma unroll
-  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
-  {
-    #pragma unroll
-    for (int ch = 0; ch < 3; ++ch)
-    {
-      const size_t plane = (size_t)(lbl_class[i] * 3 + ch);
-      const float ratio = lbl_prolong_ratio(coarseCoef, fineCoef, plane, nc, vc, nf, v, maxRatio);
-      fine[(i * 3 + ch) * nf + v] = ratio * coarse[(i * 3 + ch) * nc + vc];
-    }
-  }
-}
-
-// The coarse correction of a warm start: the fine state (the last light's steady state) plus the
-// change of the coarse steady state from the last light to this one, prolonged as above. What
-// the coarse grid resolves of the change (its slow, smooth part) is then paid for at the coarse
-// level, and the fine detail of the last solution is kept; the sum is clamped at zero (a density
-// is never negative; the fixed point does not depend on the start). Global (nx, ny, nz).
-__kernel void lbl_correct_state(__global const float* coarse, __global const float* coarseBefore,
+// With `correct` (the coarse correction of a warm start) the fine state instead keeps what it holds
+// (the last light's steady state) and adds the change of the coarse steady state from
+// `coarseBefore` (the last light's) to `coarse`, prolonged the same way: what the coarse grid
+// resolves of the change (its slow, smooth part) is then paid for at the coarse level, and the
+// fine detail of the last solution is kept; the sum is clamped at zero (a density is never
+// negative; the fixed point does not depend on the start).
+__kernel void lbl_prolong_state(__global const float* coarse, __global const float* coarseBefore,
   __global const float* coarseCoef, __global float* fine, __global const float* fineCoef,
-  const int4 fdims, const int4 cdims, const float maxRatio)
+  const int4 fdims, const int4 cdims, const float maxRatio, const int correct)
 {
   const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
   if (x >= fdims.x || y >= fdims.y || z >= fdims.z)
@@ -633,10 +599,13 @@ __kernel void lbl_correct_state(__global const float* coarse, __global const flo
     for (int ch = 0; ch < 3; ++ch)
     {
       const size_t plane = (size_t)(lbl_class[i] * 3 + ch);
-      const float ratio = lbl_prolong_ratio(coarseCoef, fineCoef, plane, nc, vc, nf, v, maxRatio);
+      const float pFine = 1.0f - fineCoef[plane * nf + v];
+      const float pCoarse = 1.0f - coarseCoef[plane * nc + vc];
+      const float ratio = pFine > 0.0f ? clamp(pCoarse / pFine, 1.0f, maxRatio) : maxRatio;
       const size_t c = (i * 3 + ch) * nc + vc;
       const size_t f = (i * 3 + ch) * nf + v;
-      fine[f] = fmax(0.0f, fine[f] + ratio * (coarse[c] - coarseBefore[c]));
+      fine[f] = correct ? fmax(0.0f, fine[f] + ratio * (coarse[c] - coarseBefore[c]))
+                        : ratio * coarse[c];
     }
   }
 }

@@ -436,12 +436,10 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   this->SourceKernel = context->CreateKernel(program, "lbl_source_from_fixed", this);
   this->RestrictKernel = context->CreateKernel(program, "lbl_restrict_source", this);
   this->ProlongKernel = context->CreateKernel(program, "lbl_prolong_state", this);
-  this->CorrectKernel = context->CreateKernel(program, "lbl_correct_state", this);
   this->FieldSourceKernel = context->CreateKernel(program, "lbl_source_from_fields", this);
   this->AddKernel = context->CreateKernel(program, "lbl_add", this);
   if (!this->StepKernel || !this->ProbeKernel || !this->ScatteredKernel || !this->SourceKernel ||
-    !this->RestrictKernel || !this->ProlongKernel || !this->CorrectKernel ||
-    !this->FieldSourceKernel || !this->AddKernel)
+    !this->RestrictKernel || !this->ProlongKernel || !this->FieldSourceKernel || !this->AddKernel)
   {
     return false;
   }

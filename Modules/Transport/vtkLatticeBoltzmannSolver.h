@@ -196,7 +196,7 @@ public:
    * source, e.g. vtkPhotonDiffusionSchedule's WarmStart for a light move) first solves the coarse
    * grid again, starting from its own last steady state, and adds the change of the coarse
    * solution, prolonged as in the coarse start, to the fine state (clamped at zero;
-   * Kernels/lbl.cl, lbl_correct_state). The smooth part of the change is paid for at the coarse
+   * Kernels/lbl.cl, lbl_prolong_state). The smooth part of the change is paid for at the coarse
    * level and the fine detail of the last solution is kept, where a plain warm start carries the
    * whole change on the fine grid and a coarse start from zero rebuilds the detail. Applies only
    * when the state is the last Solve()'s result with the coarse grid's result beside it (not
@@ -607,7 +607,6 @@ protected:
   vtkOpenCLKernel AddKernel;         // lbl_add
   vtkOpenCLKernel RestrictKernel;
   vtkOpenCLKernel ProlongKernel;
-  vtkOpenCLKernel CorrectKernel; // lbl_correct_state
   vtkOpenCLBuffer CoarseBefore;  // the coarse level's last steady state, during a correction
   int Current = 0;
   cl_mem CurrentState() const

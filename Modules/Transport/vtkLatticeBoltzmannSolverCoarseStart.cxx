@@ -2,7 +2,7 @@
 // state first solves the problem on a grid of half the resolution, then starts from that grid's
 // steady state; a warm Solve() adds the change of the coarse grid's steady state to the last
 // one instead. See CoarseStart and CoarseWarmStart in the header and lbl_restrict_source /
-// lbl_prolong_state / lbl_correct_state in Kernels/lbl.cl.
+// lbl_prolong_state in Kernels/lbl.cl.
 #include "vtkLatticeBoltzmannSolver.h"
 
 #include "vtkCommand.h"
@@ -245,19 +245,13 @@ bool vtkLatticeBoltzmannSolver::RunCoarseStart(double& progress, bool correct)
   const float maxRatio = 2.0f;
   const size_t global[3] = { size_t(fdims.s[0]), size_t(fdims.s[1]), size_t(fdims.s[2]) };
   const size_t local[3] = { refracta_lbm::LocalRow(this->Dims[0]), 1, 1 };
-  const bool set = correct
-    ? context->Check(vtkOpenCLSetKernelArgs(this->CorrectKernel.Get(), coarse->CurrentState(),
-                       this->CoarseBefore.Get(), coarse->Coefficients.Get(), this->CurrentState(),
-                       this->Coefficients.Get(), fdims, cdims, maxRatio),
-        "clSetKernelArg(lbl_correct_state)", this)
-    : context->Check(vtkOpenCLSetKernelArgs(this->ProlongKernel.Get(), coarse->CurrentState(),
-                       coarse->Coefficients.Get(), this->CurrentState(), this->Coefficients.Get(),
-                       fdims, cdims, maxRatio),
-        "clSetKernelArg(lbl_prolong_state)", this);
-  cl_kernel kernel = correct ? this->CorrectKernel.Get() : this->ProlongKernel.Get();
-  if (!set ||
-    !context->RunKernel(
-      kernel, 3, global, local, correct ? "lbl_correct_state" : "lbl_prolong_state", this))
+  const cl_mem before = correct ? this->CoarseBefore.Get() : coarse->CurrentState(); // unread
+  const cl_int correction = correct ? 1 : 0;
+  if (!context->Check(vtkOpenCLSetKernelArgs(this->ProlongKernel.Get(), coarse->CurrentState(),
+                        before, coarse->Coefficients.Get(), this->CurrentState(),
+                        this->Coefficients.Get(), fdims, cdims, maxRatio, correction),
+        "clSetKernelArg(lbl_prolong_state)", this) ||
+    !context->RunKernel(this->ProlongKernel.Get(), 3, global, local, "lbl_prolong_state", this))
   {
     return false;
   }
