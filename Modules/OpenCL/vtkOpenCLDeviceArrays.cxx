@@ -60,9 +60,8 @@ void vtkOpenCLDeviceArrays::Remember(vtkFloatArray* array, cl_mem buffer, const 
     return;
   }
   const size_t bytes = static_cast<size_t>(array->GetNumberOfValues()) * sizeof(float);
-  size_t size = 0;
-  if (clGetMemObjectInfo(buffer, CL_MEM_SIZE, sizeof(size), &size, nullptr) != CL_SUCCESS ||
-    size < bytes)
+  const size_t size = vtkOpenCLBufferBytes(buffer);
+  if (size < bytes)
   {
     return;
   }

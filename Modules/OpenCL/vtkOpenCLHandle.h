@@ -102,6 +102,20 @@ using vtkOpenCLKernel = vtkOpenCLHandle<cl_kernel>;
 using vtkOpenCLEvent = vtkOpenCLHandle<cl_event>;
 
 /**
+ * The size of a buffer in bytes (CL_MEM_SIZE); 0 for a null buffer or where the query fails.
+ */
+inline size_t vtkOpenCLBufferBytes(cl_mem buffer)
+{
+  size_t bytes = 0;
+  if (!buffer ||
+    clGetMemObjectInfo(buffer, CL_MEM_SIZE, sizeof(bytes), &bytes, nullptr) != CL_SUCCESS)
+  {
+    return 0;
+  }
+  return bytes;
+}
+
+/**
  * Sets kernel arguments first, first + 1, ... from the values given (each passed by address with
  * its size; pass cl_mem for buffers). Returns the first error, or CL_SUCCESS.
  */

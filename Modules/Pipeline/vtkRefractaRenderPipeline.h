@@ -50,6 +50,7 @@
 #include "vtkObject.h"
 
 #include <memory> // for std::unique_ptr
+#include <string> // for FailPlanOnce
 #include <vector> // for std::vector
 
 class vtkAlgorithm;
@@ -395,6 +396,8 @@ protected:
 
   bool RunStages(bool view, int width, int height, const float* depthLimit);
   bool RunPlan();
+  // Reports `message` unless it was the last one reported, forgets the planned medium; false.
+  bool FailPlanOnce(const std::string& message);
   bool RunLighting();
   vtkAlgorithm* PrepareLightRays(vtkPhotonTracer* tracer, int method);
   bool RunView(int width, int height, const float* depthLimit);

@@ -63,6 +63,20 @@ vtkAlgorithm* vtkRefractaRenderPipeline::PrepareLightRays(vtkPhotonTracer* trace
 }
 
 //------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::FailPlanOnce(const std::string& message)
+{
+  // Said once: a front end re-rendering the same bad input does not repeat it.
+  Internals& in = *this->Internal;
+  if (message != in.LastError)
+  {
+    vtkErrorMacro(<< message);
+    in.LastError = message;
+  }
+  in.Planned = nullptr;
+  return false;
+}
+
+//------------------------------------------------------------------------------
 bool vtkRefractaRenderPipeline::RunPlan()
 {
   Internals& in = *this->Internal;
@@ -70,16 +84,8 @@ bool vtkRefractaRenderPipeline::RunPlan()
   vtkNew<vtkMediumValidator> validator;
   if (!validator->Validate(in.Medium))
   {
-    // Said once: a front end re-rendering the same bad medium does not repeat it.
-    const std::string message =
-      std::string("The medium is not a valid Refracta medium: ") + validator->GetErrorMessage();
-    if (message != in.LastError)
-    {
-      vtkErrorMacro(<< message);
-      in.LastError = message;
-    }
-    in.Planned = nullptr;
-    return false;
+    return this->FailPlanOnce(
+      std::string("The medium is not a valid Refracta medium: ") + validator->GetErrorMessage());
   }
 
   // The lights in the medium's data frame (the inverse of the placement).
@@ -106,13 +112,7 @@ bool vtkRefractaRenderPipeline::RunPlan()
     std::string lightError;
     if (!vtkMediumValidator::CheckLight(light, index++, lightError))
     {
-      if (lightError != in.LastError)
-      {
-        vtkErrorMacro(<< lightError);
-        in.LastError = lightError;
-      }
-      in.Planned = nullptr;
-      return false;
+      return this->FailPlanOnce(lightError);
     }
     vtkNew<vtkLight> copy;
     copy->DeepCopy(light);

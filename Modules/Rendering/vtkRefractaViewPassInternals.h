@@ -89,9 +89,7 @@ struct vtkRefractaViewPass::Internals
            &this->Multiple, &this->CausticBricks, &this->CausticRadiance, &this->CausticDirection,
            &this->EnvironmentBuffer, &this->Occupancy, &this->Dummy })
     {
-      size_t size = 0;
-      if (*b &&
-        clGetMemObjectInfo(b->Get(), CL_MEM_SIZE, sizeof(size), &size, nullptr) == CL_SUCCESS)
+      if (const size_t size = vtkOpenCLBufferBytes(b->Get()))
       {
         sizes.push_back(static_cast<double>(size));
       }

@@ -311,11 +311,7 @@ double vtkLatticeBoltzmannSolver::GetAllocatedDeviceMemoryBytes() const
     { &this->State[0], &this->State[1], &this->Interface[0], &this->Interface[1],
       &this->Coefficients, &this->Source, &this->Probes, &this->ProbeValues })
   {
-    size_t size = 0;
-    if (*b && clGetMemObjectInfo(b->Get(), CL_MEM_SIZE, sizeof(size), &size, nullptr) == CL_SUCCESS)
-    {
-      total += static_cast<double>(size);
-    }
+    total += static_cast<double>(vtkOpenCLBufferBytes(b->Get()));
   }
   return total;
 }
@@ -491,8 +487,7 @@ bool vtkLatticeBoltzmannSolver::ResetState()
     }
     if (this->Interface[k] && this->UseBlocks())
     {
-      size_t ibytes = 0;
-      clGetMemObjectInfo(this->Interface[k].Get(), CL_MEM_SIZE, sizeof(ibytes), &ibytes, nullptr);
+      const size_t ibytes = vtkOpenCLBufferBytes(this->Interface[k].Get());
       if (!context->ZeroBuffer(this->Interface[k].Get(), ibytes, this))
       {
         return false;

@@ -53,9 +53,8 @@ bool vtkLatticeBoltzmannSolver::ComputeTotalDensity(double total[3])
   {
     // The state holds 1/m of each interface value (the next substep's share); the rest is in
     // transit.
-    size_t bytes = 0;
     cl_mem iface = this->Interface[this->InterfaceParity].Get();
-    clGetMemObjectInfo(iface, CL_MEM_SIZE, sizeof(bytes), &bytes, nullptr);
+    const size_t bytes = vtkOpenCLBufferBytes(iface);
     std::vector<float> values(bytes / sizeof(float));
     if (!this->GetContext()->ReadBuffer(iface, bytes, values.data(), this))
     {

@@ -165,15 +165,8 @@ bool vtkLatticeBoltzmannSolver::PrepareCoarseLevel(bool& keepState)
     }
     return true;
   }
-  if (keepState)
-  {
-    // A warm solve of its own: new counters, the state kept.
-    coarse->Iterations = 0;
-    coarse->Residual = -1.0;
-    coarse->Converged = false;
-    return true;
-  }
-  return coarse->ResetState();
+  // A warm solve of its own keeps the state (its source is restricted anew either way).
+  return keepState ? coarse->ClearSource() : coarse->ResetState();
 }
 
 //------------------------------------------------------------------------------
@@ -190,12 +183,7 @@ bool vtkLatticeBoltzmannSolver::RunCoarseStart(double& progress, bool correct)
     size_t(coarse->Lattice) * 3 * static_cast<size_t>(coarse->NumberOfVoxels) * sizeof(float);
   if (correct)
   {
-    size_t have = 0;
-    if (this->CoarseBefore)
-    {
-      clGetMemObjectInfo(this->CoarseBefore.Get(), CL_MEM_SIZE, sizeof(have), &have, nullptr);
-    }
-    if (have < coarseBytes)
+    if (vtkOpenCLBufferBytes(this->CoarseBefore.Get()) < coarseBytes)
     {
       this->CoarseBefore = context->CreateBuffer(
         CL_MEM_READ_WRITE, coarseBytes, nullptr, "LBL coarse state before the correction", this);
