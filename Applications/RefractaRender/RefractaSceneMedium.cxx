@@ -16,6 +16,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkRefractaErrorCapture.h"
 #include "vtkSTLReader.h"
 #include "vtkSphereSource.h"
 #include "vtkTransferFunctionMedium.h"
@@ -231,13 +232,20 @@ SceneMedium VoxelizeMeshes(const json& medium, const std::string& base)
     voxelizer->AddInputData(ReadMesh(meshes[i], path, base));
     voxelizer->SetMaterial(static_cast<int>(i),
       ReadMaterial(meshes[i].value("material", json::object()), path + ".material"));
+    // The voxelizer's messages name the mesh as the scene file does.
+    const json* file = meshes[i].contains("file") ? &meshes[i]["file"] : nullptr;
+    voxelizer->SetMeshName(static_cast<int>(i),
+      file && file->is_string() ? path + " ('" + file->get<std::string>() + "')" : path);
   }
+  vtkNew<vtkRefractaErrorCapture> error;
+  error->Observe(voxelizer);
   voxelizer->Update();
   SceneMedium out;
   out.Image = voxelizer->GetOutput();
   if (!out.Image || out.Image->GetNumberOfPoints() == 0)
   {
-    throw std::runtime_error("voxelizing the meshes failed (see the error above)");
+    throw std::runtime_error("voxelizing the meshes failed: " +
+      (error->HasError() ? error->GetText() : std::string("no medium came out")));
   }
   json stages = json::object();
   for (int s = 0; s < vtkMeshVoxelizer::NUMBER_OF_STAGES; ++s)

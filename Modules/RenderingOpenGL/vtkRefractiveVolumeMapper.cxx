@@ -4,7 +4,6 @@
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkEffectPlan.h"
-#include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLatticeBoltzmannSolver.h"
@@ -143,23 +142,6 @@ vtkSmartPointer<vtkImageData> CutAway(vtkImageData* medium, vtkPlaneCollection* 
   }
   return cut;
 }
-
-// An ErrorEvent's message without vtkErrorMacro's "ERROR: In file, line N\nClass (0x...): "
-// header and trailing blank lines, into the std::string that clientData points to.
-void CaptureErrorText(vtkObject*, unsigned long, void* clientData, void* callData)
-{
-  std::string text = callData ? static_cast<const char*>(callData) : "";
-  const size_t header = text.find("): ");
-  if (text.compare(0, 6, "ERROR:") == 0 && header != std::string::npos)
-  {
-    text = text.substr(header + 3);
-  }
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
-  {
-    text.pop_back();
-  }
-  *static_cast<std::string*>(clientData) = text;
-}
 }
 
 //------------------------------------------------------------------------------
@@ -167,10 +149,7 @@ vtkRefractiveVolumeMapper::vtkRefractiveVolumeMapper()
   : Internal(new Internals)
 {
   Internals& in = *this->Internal;
-  in.MappingErrorCapture->SetCallback(CaptureErrorText);
-  in.MappingErrorCapture->SetClientData(&in.MappingError);
-  in.Mapping->AddObserver(vtkCommand::ErrorEvent, in.MappingErrorCapture);
-  in.Mapping->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, in.MappingExecutiveErrors);
+  in.MappingError->Observe(in.Mapping);
   this->Internal->Pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 18);
   // A drop-in for VTK's volume mappers: the renderer's lights are read as VTK's shading reads
   // them (see vtkRefractaRenderPipeline::SetLightUnits).
@@ -263,12 +242,13 @@ bool vtkRefractiveVolumeMapper::UpdateMedium(vtkVolume* volume)
   in.Mapping->SetRefractiveIndexFunction(in.IndexFunction);
   in.Mapping->SetAnisotropy(this->Anisotropy);
   in.Mapping->SetEmissionScale(this->EmissionScale);
-  in.MappingError.clear();
+  in.MappingError->Clear();
   in.Mapping->Update();
   if (in.Mapping->GetOutput()->GetNumberOfPoints() == 0)
   {
     this->ReportOnce("Mapping the scalar input through the volume property failed: " +
-      (in.MappingError.empty() ? std::string("no medium came out") : in.MappingError));
+      (in.MappingError->HasError() ? in.MappingError->GetText()
+                                   : std::string("no medium came out")));
     return false;
   }
   this->CutAwayClippedRegions(in.Mapping->GetOutput(), volume);

@@ -5,11 +5,11 @@
 
 #include "vtkRefractiveVolumeMapper.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkRefractaActorSurfaces.h"
+#include "vtkRefractaErrorCapture.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaRendererBackground.h"
 #include "vtkRefractiveVolumeMapperCompositing.h"
@@ -50,11 +50,9 @@ struct vtkRefractiveVolumeMapper::Internals
   std::vector<float> Depth;
   std::vector<float> Limits;
   std::string LastMessage; // said once, not on every Render
-  // The transfer-function mapping's error text, taken from its ErrorEvent so that the mapper
-  // says it (once, in its own event) instead of the filter and its executive on every Render.
-  std::string MappingError;
-  vtkNew<vtkCallbackCommand> MappingErrorCapture;
-  vtkNew<vtkCallbackCommand> MappingExecutiveErrors; // swallowed: "returned failure for request"
+  // The transfer-function mapping's error text, so that the mapper says it (once, in its own
+  // event) instead of the filter and its executive on every Render.
+  vtkNew<vtkRefractaErrorCapture> MappingError;
 
   double MeteredExposure = 1.0;
   int MeteredAt = -1; // plan + light-pass runs when the exposure was metered

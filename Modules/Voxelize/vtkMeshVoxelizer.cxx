@@ -101,6 +101,37 @@ void vtkMeshVoxelizer::SetMaterial(int connection, vtkMediumMaterial* material)
 }
 
 //------------------------------------------------------------------------------
+void vtkMeshVoxelizer::SetMeshName(int connection, const std::string& name)
+{
+  if (connection < 0 || connection >= MaxMeshes)
+  {
+    vtkErrorMacro(
+      "SetMeshName: connection " << connection << " is out of range [0, " << MaxMeshes - 1 << "]");
+    return;
+  }
+  if (static_cast<size_t>(connection) >= this->MeshNames.size())
+  {
+    this->MeshNames.resize(connection + 1);
+  }
+  if (this->MeshNames[connection] != name)
+  {
+    this->MeshNames[connection] = name;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+std::string vtkMeshVoxelizer::GetMeshName(int connection) const
+{
+  if (connection >= 0 && static_cast<size_t>(connection) < this->MeshNames.size() &&
+    !this->MeshNames[connection].empty())
+  {
+    return this->MeshNames[connection];
+  }
+  return "Input connection " + std::to_string(connection);
+}
+
+//------------------------------------------------------------------------------
 vtkMediumMaterial* vtkMeshVoxelizer::GetMaterial(int connection)
 {
   return connection >= 0 && static_cast<size_t>(connection) < this->Materials.size()
@@ -472,8 +503,8 @@ int vtkMeshVoxelizer::RequestData(
       }
       else
       {
-        vtkErrorMacro("The material of input connection "
-          << m - 1 << " has an unusable density field: " << why);
+        vtkErrorMacro(<< this->GetMeshName(static_cast<int>(m) - 1)
+                      << ": its material has an unusable density field: " << why);
       }
       return 0;
     }
@@ -486,8 +517,8 @@ int vtkMeshVoxelizer::RequestData(
   for (int c = 0; c < numMeshes; ++c)
   {
     meshes[c].reset(new PreparedMesh);
-    meshes[c]->Prepare(
-      vtkPolyData::GetData(inputVector[0], c), c, this->CheckSelfIntersections, errors, warnings);
+    meshes[c]->Prepare(vtkPolyData::GetData(inputVector[0], c), this->GetMeshName(c),
+      this->CheckSelfIntersections, errors, warnings);
   }
   for (const auto& w : warnings)
   {
@@ -657,6 +688,10 @@ void vtkMeshVoxelizer::PrintSelf(ostream& os, vtkIndent indent)
   for (size_t m = 0; m < this->Materials.size(); ++m)
   {
     os << indent << "  connection " << m << ": " << this->Materials[m].Get() << "\n";
+  }
+  for (size_t m = 0; m < this->MeshNames.size(); ++m)
+  {
+    os << indent << "MeshName " << m << ": " << this->GetMeshName(static_cast<int>(m)) << "\n";
   }
   os << indent << "SurroundingMaterial: " << this->SurroundingMaterial.Get() << "\n";
   os << indent << "SizingMode: " << (this->SizingMode == DIMENSIONS ? "DIMENSIONS" : "SPACING")

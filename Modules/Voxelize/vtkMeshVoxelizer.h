@@ -112,6 +112,16 @@ public:
 
   ///@{
   /**
+   * What the messages call the mesh on input connection `connection` (0-based): a front end's
+   * own name for it, e.g. refracta-render's key path `scene.medium.meshes[1]` and file name.
+   * Default (or empty): "Input connection <connection>".
+   */
+  void SetMeshName(int connection, const std::string& name);
+  std::string GetMeshName(int connection) const;
+  ///@}
+
+  ///@{
+  /**
    * Material outside every mesh. Default: vacuum (a default vtkMediumMaterial). Setting nullptr
    * restores vacuum.
    */
@@ -298,6 +308,7 @@ protected:
     std::string& why) const;
 
   std::vector<vtkSmartPointer<vtkMediumMaterial>> Materials;
+  std::vector<std::string> MeshNames;
   vtkSmartPointer<vtkMediumMaterial> SurroundingMaterial;
   int SizingMode = DIMENSIONS;
   int Dimensions[3] = { 64, 64, 64 };

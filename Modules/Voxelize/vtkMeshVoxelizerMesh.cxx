@@ -84,12 +84,10 @@ PreparedMesh::PreparedMesh() = default;
 PreparedMesh::~PreparedMesh() = default;
 
 //------------------------------------------------------------------------------
-bool PreparedMesh::Prepare(vtkPolyData* input, int connection, bool checkSelfIntersections,
+bool PreparedMesh::Prepare(vtkPolyData* input, const std::string& name, bool checkSelfIntersections,
   std::vector<std::string>& errors, std::vector<std::string>& warnings)
 {
-  std::ostringstream prefixStream;
-  prefixStream << "Input connection " << connection << ": ";
-  const std::string prefix = prefixStream.str();
+  const std::string prefix = name + ": ";
   auto fail = [&](const std::string& what)
   {
     errors.push_back(prefix + what);

@@ -38,11 +38,11 @@ public:
   PreparedMesh& operator=(const PreparedMesh&) = delete;
 
   /**
-   * Validate and prepare `input` (the mesh on input connection `connection`). Returns false when
-   * the mesh cannot be voxelized; `errors` then says why. `warnings` lists what was repaired
+   * Validate and prepare `input` (the mesh called `name` in messages). Returns false when the
+   * mesh cannot be voxelized; `errors` then says why. `warnings` lists what was repaired
    * (triangulated polygons, dropped collapsed faces, fixed orientation). Never throws.
    */
-  bool Prepare(vtkPolyData* input, int connection, bool checkSelfIntersections,
+  bool Prepare(vtkPolyData* input, const std::string& name, bool checkSelfIntersections,
     std::vector<std::string>& errors, std::vector<std::string>& warnings);
 
   /**

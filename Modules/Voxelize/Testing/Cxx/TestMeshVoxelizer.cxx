@@ -559,7 +559,9 @@ TEST(MeshVoxelizer, HeterogeneousMaterials)
   vtkNew<vtkTest::ErrorObserver> observer;
   vox->AddObserver(vtkCommand::ErrorEvent, observer);
   vox->Update();
-  EXPECT_EQ(observer->CheckErrorMessage("input connection 1 has an unusable density field"), 0);
+  EXPECT_EQ(
+    observer->CheckErrorMessage("Input connection 1: its material has an unusable density field"),
+    0);
   EXPECT_EQ(vox->GetOutput()->GetNumberOfPoints(), 0);
 }
 
@@ -695,7 +697,23 @@ TEST(MeshVoxelizer, InvalidMeshesGiveTheirMessages)
   }
 
   auto open = Mesh(TetPoints, { TetFaces[0], TetFaces[1], TetFaces[2] });
-  ExpectError(open, "not closed: 3 boundary edges");
+  ExpectError(open, "Input connection 0: the mesh is not closed: 3 boundary edges");
+  {
+    // A front end's own name for the mesh (refracta-render: the scene file's key path) replaces
+    // "Input connection <n>" in the messages; the material's message names it too.
+    vtkNew<vtkMeshVoxelizer> vox;
+    vtkNew<vtkTest::ErrorObserver> observer;
+    vox->AddObserver(vtkCommand::ErrorEvent, observer);
+    vox->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+    vox->AddInputData(Mesh(TetPoints, TetFaces));
+    vox->AddInputData(open);
+    vox->SetMeshName(1, "the lid");
+    EXPECT_EQ(vox->GetMeshName(0), "Input connection 0");
+    vox->SetDimensions(8, 8, 8);
+    vox->Update();
+    EXPECT_EQ(observer->CheckErrorMessage("the lid: the mesh is not closed"), 0);
+    EXPECT_EQ(vox->GetOutput()->GetNumberOfPoints(), 0);
+  }
 
   // Two overlapping cubes in one mesh.
   vtkNew<vtkAppendPolyData> append;
