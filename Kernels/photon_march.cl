@@ -45,6 +45,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   __global const float4* surfaceTriangles, __global const int4* surfaceInfo,
   __global const float* surfaceAlbedo, volatile __global long* surfaceIrradiance,
   const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon,
+  const long causticOffset,
   __global const float* anisotropy, volatile __global long* multiple,
   __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
   __global const float4* surfaceBodies, __global const int* volumeCausticBricks,
@@ -76,8 +77,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
 #if REFRACTA_SURFACES
   photon_surfaces surf;
   photon_set_surfaces(&surf, surfaceNodes, surfaceNodeCount, surfaceTriangles, surfaceInfo,
-    surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon, surfaceNormals,
-    surfaceInterfaces, tallies, counters);
+    surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon, causticOffset,
+    surfaceNormals, surfaceInterfaces, tallies, counters);
 #if REFRACTA_INTERFACES
   ps.body = photon_start_body(&surf, &ps, x, d0);
 #endif
@@ -138,6 +139,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   __global const float4* surfaceTriangles, __global const int4* surfaceInfo,
   __global const float* surfaceAlbedo, volatile __global long* surfaceIrradiance,
   const float4 frame0, const float4 frame1, const float4 frame2, const float surfaceEpsilon,
+  const long causticOffset,
   __global const float* anisotropy, volatile __global long* multiple,
   __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
   __global const float4* surfaceBodies, __global const int* volumeCausticBricks,
@@ -219,8 +221,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
 #if REFRACTA_SURFACES
   photon_surfaces surf;
   photon_set_surfaces(&surf, surfaceNodes, surfaceNodeCount, surfaceTriangles, surfaceInfo,
-    surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon, surfaceNormals,
-    surfaceInterfaces, tallies, counters);
+    surfaceAlbedo, surfaceIrradiance, frame0, frame1, frame2, surfaceEpsilon, causticOffset,
+    surfaceNormals, surfaceInterfaces, tallies, counters);
 #if REFRACTA_INTERFACES
   if (fresh)
   {

@@ -19,6 +19,7 @@ typedef struct
   volatile __global long* irradiance;
   float4 row0, row1, row2;
   float epsilon; // offset of a reflected photon from the surface (grid-local units)
+  long causticOffset; // the coarse atlas's texels: the fine caustic atlas starts after them
   __global const float4* normals;    // corner normals (dielectric shading normals)
   __global const float2* interfaces; // (index inside, index outside) per surface
   volatile __global long* tallies;   // the interface books are added at each event
@@ -28,9 +29,10 @@ typedef struct
 inline void photon_set_surfaces(photon_surfaces* s, __global const float4* nodes, int nodeCount,
   __global const float4* triangles, __global const int4* info, __global const float* albedo,
   volatile __global long* irradiance, float4 row0, float4 row1, float4 row2, float epsilon,
-  __global const float4* normals, __global const float2* interfaces,
+  long causticOffset, __global const float4* normals, __global const float2* interfaces,
   volatile __global long* tallies, volatile __global long* counters)
 {
+  s->causticOffset = causticOffset;
   s->normals = normals;
   s->interfaces = interfaces;
   s->tallies = tallies;
@@ -138,7 +140,7 @@ inline void photon_deposit_texel(volatile __global long* irradiance, long texel,
 // A caustic photon (Physics.md "Caustic atlas") meeting Lambertian triangle info at barycentric
 // (u, v) (its atlas texel `texel`) also deposits into the fine atlas, where every coarse texel is
 // cut again c x c (c = REFRACTA_CAUSTIC_SUBDIVISION): the same texel order with subdivision n c,
-// fine first texel = coarse first texel c^2, stored after the REFRACTA_CAUSTIC_OFFSET coarse
+// fine first texel = coarse first texel c^2, stored after the s->causticOffset coarse
 // texels, and counts itself in the atlas texel's caustic photon count (one long per coarse texel
 // after the fine accumulators), which tells the view pass where the fine texels are worth
 // reading. The coarse deposit stays the surface's whole flux; the fine one resolves its caustic
@@ -149,7 +151,7 @@ inline void photon_deposit_caustic(
   if (ps->caustic)
   {
     const int c = REFRACTA_CAUSTIC_SUBDIVISION;
-    const long coarse = (long)REFRACTA_CAUSTIC_OFFSET;
+    const long coarse = s->causticOffset;
     photon_deposit_texel(s->irradiance,
       coarse + (long)info.x * (c * c) + refracta_texel_index(u, v, info.y * c), ps->power);
     atom_add(s->irradiance + 3 * coarse * (1 + c * c) + texel, 1L);

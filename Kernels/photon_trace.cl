@@ -24,7 +24,8 @@
 // REFRACTA_GREY_EXTINCTION and REFRACTA_GREY_ALBEDO (the medium's sigma_t, or albedo, is the same
 // in every channel and `extinction`, or `albedo`, holds one value per voxel instead of three: a
 // third of the gathers and of the cache footprint).
-// Lengths (REFRACTA_MIN_STEP, REFRACTA_MAX_STEP, REFRACTA_CAP_STEP, REFRACTA_FIXED_STEP) are in world units; REFRACTA_EXT_STEP_LIMIT is an
+// Lengths (REFRACTA_MIN_STEP, REFRACTA_MAX_STEP, REFRACTA_CAP_STEP, REFRACTA_FIXED_STEP) are in voxels (the smallest
+// spacing; the kernel scales them, so that one program serves every grid); REFRACTA_EXT_STEP_LIMIT is an
 // optical depth (0: off); REFRACTA_ROULETTE a fraction of the initial power; REFRACTA_FIXED_SCALE the
 // fixed-point scale of refracta_atomics.cl.
 //
@@ -588,6 +589,7 @@ inline void photon_walk(photon_state* ps, float3 x0, float3 x1, float t1, int4 d
 inline float photon_step(float3 x, float3 d, __global const uchar* octree,
   __global const float* extinction, int4 dims, float4 spacing)
 {
+  const float minSpacing = fmin(fmin(spacing.x, spacing.y), spacing.z);
 #if REFRACTA_ADAPTIVE
   const float3 u = refracta_to_voxel(x, spacing);
   const int3 c = clamp(convert_int3_rte(u), (int3)(0), (int3)(dims.x - 1, dims.y - 1, dims.z - 1));
@@ -599,10 +601,10 @@ inline float photon_step(float3 x, float3 d, __global const uchar* octree,
   const float3 inv = (float3)(1.0f) / d;
   const float3 tmax = fmax((blo - x) * inv, (bhi - x) * inv);
   const float exitT = fmax(fmin(fmin(tmax.x, tmax.y), tmax.z), 0.0f);
-  const float minSpacing = fmin(fmin(spacing.x, spacing.y), spacing.z);
-  float h = clamp(exitT + 1e-3f * minSpacing, REFRACTA_MIN_STEP, (code & 0x80) ? REFRACTA_CAP_STEP : REFRACTA_MAX_STEP);
+  float h = clamp(exitT + 1e-3f * minSpacing, REFRACTA_MIN_STEP * minSpacing,
+    ((code & 0x80) ? REFRACTA_CAP_STEP : REFRACTA_MAX_STEP) * minSpacing);
 #else
-  float h = REFRACTA_FIXED_STEP;
+  float h = REFRACTA_FIXED_STEP * minSpacing;
 #endif
 #if REFRACTA_EXTINCTION
   if (REFRACTA_EXT_STEP_LIMIT > 0.0f)
@@ -611,7 +613,7 @@ inline float photon_step(float3 x, float3 d, __global const uchar* octree,
     const float m = fmax(st.x, fmax(st.y, st.z));
     if (m > 0.0f)
     {
-      h = fmax(fmin(h, REFRACTA_EXT_STEP_LIMIT / m), REFRACTA_ADAPTIVE ? REFRACTA_MIN_STEP : 0.0f);
+      h = fmax(fmin(h, REFRACTA_EXT_STEP_LIMIT / m), REFRACTA_ADAPTIVE ? REFRACTA_MIN_STEP * minSpacing : 0.0f);
     }
   }
 #endif

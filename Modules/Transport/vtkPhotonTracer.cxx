@@ -184,7 +184,6 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   Medium& m = run.M;
   vtkOpenCLContext* ctx = run.Context;
   Allocator& alloc = run.Alloc;
-  const double voxelUnit = std::min({ m.Spacing[0], m.Spacing[1], m.Spacing[2] });
   const size_t photons = run.Photons;
   vtkOpenCLBuffer& pos = run.Pos;
   vtkOpenCLBuffer& dirs = run.Dirs;
@@ -208,11 +207,10 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DREFRACTA_NODE_CUTS=" << m.NodeCuts
           << " -DREFRACTA_GREY_EXTINCTION=" << (m.ExtinctionChannels == 1)
           << " -DREFRACTA_GREY_ALBEDO=" << (m.AlbedoChannels == 1)
-          << " -DREFRACTA_MIN_STEP=" << FloatLiteral(this->MinimumStep * voxelUnit)
-          << " -DREFRACTA_MAX_STEP=" << FloatLiteral(this->MaximumStep * voxelUnit)
-          << " -DREFRACTA_CAP_STEP="
-          << FloatLiteral(std::min(this->SecondaryStepLimit, this->MaximumStep) * voxelUnit)
-          << " -DREFRACTA_FIXED_STEP=" << FloatLiteral(this->FixedStep * voxelUnit)
+          << " -DREFRACTA_MIN_STEP=" << FloatLiteral(this->MinimumStep)
+          << " -DREFRACTA_MAX_STEP=" << FloatLiteral(this->MaximumStep) << " -DREFRACTA_CAP_STEP="
+          << FloatLiteral(std::min(this->SecondaryStepLimit, this->MaximumStep))
+          << " -DREFRACTA_FIXED_STEP=" << FloatLiteral(this->FixedStep)
           << " -DREFRACTA_MAX_STEPS=" << this->MaximumNumberOfSteps
           << " -DREFRACTA_MAX_INTERFACES=" << this->MaximumNumberOfInterfaceEvents
           << " -DREFRACTA_EXT_STEP_LIMIT=" << FloatLiteral(this->ExtinctionStepLimit)
@@ -233,8 +231,7 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
     --run.Caustic; // the fine texels must fit their budget
   }
   this->LastCausticSubdivision = run.Caustic;
-  options << " -DREFRACTA_CAUSTIC_SUBDIVISION=" << run.Caustic << " -DREFRACTA_CAUSTIC_OFFSET="
-          << (run.Caustic > 1 ? run.Surfaces->GetNumberOfTexels() : 0);
+  options << " -DREFRACTA_CAUSTIC_SUBDIVISION=" << run.Caustic;
   options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0);
   this->UsesVolumeCaustic(run); // a run-time choice of the kernels (their last arguments)
   if (run.SplitOrders > 0)

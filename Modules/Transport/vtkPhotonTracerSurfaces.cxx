@@ -288,6 +288,10 @@ bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_u
     set(sizeof(cl_float4), &row);
   }
   set(sizeof(cl_float), &epsilon);
+  // The fine caustic atlas's first texel (a run-time argument: one program serves every set).
+  const cl_long causticOffset =
+    run.Caustic > 1 ? static_cast<cl_long>(run.Surfaces->GetNumberOfTexels()) : 0;
+  set(sizeof(cl_long), &causticOffset);
   const cl_mem anisotropy = run.AnisotropyBuffer.Get(), multiple = run.MultipleFixed.Get();
   set(sizeof(cl_mem), &anisotropy);
   set(sizeof(cl_mem), &multiple);

@@ -2,14 +2,18 @@
 // three channels of sigma_t (or of the albedo) are equal, the device holds one value per voxel and
 // the march gathers a third as much (REFRACTA_GREY_EXTINCTION, REFRACTA_GREY_ALBEDO). The coherent
 // photon order (vtkPhotonTracer::CoherentPhotonOrder): the same photons, marched in another order.
+#include "vtkDataArray.h"
 #include "vtkNew.h"
+#include "vtkOpenCLContext.h"
 #include "vtkPhotonTracer.h"
+#include "vtkPointData.h"
 
 #include "PhotonTestUtilities.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 using namespace photontest;
 
@@ -104,4 +108,52 @@ TEST(PhotonChannels, CoherentOrderGivesTheSameBits)
     ExpectSameBits(out[0]->GetFieldData(), out[1]->GetFieldData(), where);
     EXPECT_GT(Field(out[1], "TotalVoxelPieces"), 0);
   }
+}
+
+// The step lengths are in voxels, scaled by the grid's spacing in the kernel, and the caustic
+// atlas's offset is a kernel argument: one compiled program serves every grid and surface set
+// with the same features. The same medium on a grid of twice the spacing, with sigma_t halved
+// (the same optical depth per voxel) and the index field unchanged per voxel (its gradient
+// halved: the ray equation draws the same curves in voxel units), is the same scene in voxel
+// units: the photons take the same steps and walk the same voxel pieces, up to float rounding,
+// and no program is built or loaded for it. Step lengths left in world units would take twice
+// the steps on the coarse grid (or cost a build per spacing).
+TEST(PhotonChannels, OneProgramServesEveryVoxelSize)
+{
+  vtkNew<vtkOpenCLContext> context;
+  double counts[2][2] = { { 0, 0 }, { 0, 0 } };
+  int programs[2] = { 0, 0 };
+  for (int scaled : { 0, 1 })
+  {
+    auto medium = RefractingFog(20, 18, 16, 1.0, 0.8, { 1, 1, 1 }, { 0.8, 0.8, 0.8 });
+    if (scaled)
+    {
+      medium->SetSpacing(0.1, 0.1, 0.1);
+      vtkDataArray* extinction = medium->GetPointData()->GetArray("Extinction");
+      for (vtkIdType v = 0; v < extinction->GetNumberOfValues(); ++v)
+      {
+        extinction->SetVariantValue(v, 0.5 * extinction->GetVariantValue(v).ToDouble());
+      }
+    }
+    const double k = scaled ? 2.0 : 1.0;
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->SetContext(context);
+    tracer->AddLight(Directional({ -k, 0.3 * k, 0.2 * k }, { 0.5 * k, 0.45 * k, 0.4 * k }, 1.0));
+    tracer->SetNumberOfPhotons(1 << 13);
+    tracer->SetSeed(5);
+    tracer->SetInputData(medium);
+    tracer->Update();
+    counts[scaled][0] = Field(tracer->GetOutput(), "TotalSteps");
+    counts[scaled][1] = Field(tracer->GetOutput(), "TotalVoxelPieces");
+    programs[scaled] = context->GetNumberOfSourceBuilds() + context->GetNumberOfBinaryLoads();
+    std::printf("spacing %.2f: %.0f steps, %.0f voxel pieces, %d programs built or loaded\n",
+      0.05 * k, counts[scaled][0], counts[scaled][1], programs[scaled]);
+  }
+  ASSERT_GT(counts[0][0], 1 << 13);
+  for (int c = 0; c < 2; ++c)
+  {
+    EXPECT_NEAR(counts[1][c] / counts[0][c], 1.0, 0.002) << (c ? "voxel pieces" : "steps");
+  }
+  EXPECT_GT(programs[0], 0);
+  EXPECT_EQ(programs[1], programs[0]) << "the coarse grid needed programs of its own";
 }
