@@ -39,7 +39,7 @@ extern const char* const DefaultSceneJson;
 
 /// Reads `scene` (file names relative to `base`) and configures `renderer` with it: settings,
 /// surfaces, medium as its input, lights, camera, background. Prints the medium stage unless
-/// `quiet`. Throws SceneError for a bad scene, std::runtime_error where building the medium fails.
+/// `quiet`. Throws SceneError for a bad scene, FilterError where building the medium fails.
 Scene ReadScene(
   const json& scene, const std::string& base, vtkRefractaImageRenderer* renderer, bool quiet);
 }

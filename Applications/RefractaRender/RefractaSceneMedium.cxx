@@ -2,6 +2,7 @@
 
 #include "vtkColorTransferFunction.h"
 #include "vtkCubeSource.h"
+#include "vtkImageAlgorithm.h"
 #include "vtkJPEGReader.h"
 #include "vtkMediumMaterial.h"
 #include "vtkMediumValidator.h"
@@ -37,6 +38,22 @@ namespace RefractaRender
 {
 namespace
 {
+// ---------------------------------------------------------------------------------------------
+// Runs `filter`; an empty output throws FilterError with the filter's own message, said once
+// (without VTK's executive dump).
+vtkSmartPointer<vtkImageData> UpdateOrThrow(vtkImageAlgorithm* filter, const std::string& step)
+{
+  vtkNew<vtkRefractaErrorCapture> error;
+  error->Observe(filter);
+  filter->Update();
+  vtkImageData* image = filter->GetOutput();
+  if (!image || image->GetNumberOfPoints() == 0)
+  {
+    throw FilterError(step, error->GetText());
+  }
+  return image;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Files: a reader chosen by the file's extension.
 using ReaderFactory = vtkSmartPointer<vtkAlgorithm> (*)(const std::string&);
@@ -237,16 +254,8 @@ SceneMedium VoxelizeMeshes(const json& medium, const std::string& base)
     voxelizer->SetMeshName(static_cast<int>(i),
       file && file->is_string() ? path + " ('" + file->get<std::string>() + "')" : path);
   }
-  vtkNew<vtkRefractaErrorCapture> error;
-  error->Observe(voxelizer);
-  voxelizer->Update();
   SceneMedium out;
-  out.Image = voxelizer->GetOutput();
-  if (!out.Image || out.Image->GetNumberOfPoints() == 0)
-  {
-    throw std::runtime_error("voxelizing the meshes failed: " +
-      (error->HasError() ? error->GetText() : std::string("no medium came out")));
-  }
+  out.Image = UpdateOrThrow(voxelizer, "voxelizing the meshes");
   json stages = json::object();
   for (int s = 0; s < vtkMeshVoxelizer::NUMBER_OF_STAGES; ++s)
   {
@@ -345,13 +354,7 @@ vtkSmartPointer<vtkImageData> MapThroughTransferFunctions(const json& volume, vt
   }
   mapping->SetAnisotropy(Number(tf, "anisotropy", p, 0.0, -0.9999, 0.9999));
   mapping->SetEmissionScale(Number(tf, "emission_scale", p, 0.0, 0.0, 1e30));
-  mapping->Update();
-  vtkSmartPointer<vtkImageData> image = mapping->GetOutput();
-  if (!image || image->GetNumberOfPoints() == 0)
-  {
-    throw std::runtime_error("mapping the volume through its transfer functions failed");
-  }
-  return image;
+  return UpdateOrThrow(mapping, "mapping the volume through its transfer functions");
 }
 
 // "volume": a file with Refracta's arrays, or any volume with a "transfer_function".

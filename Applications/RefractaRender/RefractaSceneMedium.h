@@ -23,8 +23,20 @@ struct SceneMedium
   json Report;
 };
 
+/// A filter that refused to build the medium; what() is "<step> failed: <the filter's own
+/// message>", the message captured from the filter (vtkRefractaErrorCapture) instead of printed.
+struct FilterError : std::runtime_error
+{
+  FilterError(const std::string& step, const std::string& reason)
+    : std::runtime_error(step + " failed: " + (reason.empty() ? "no medium came out" : reason))
+    , Reason(reason)
+  {
+  }
+  std::string Reason; ///< the filter's message; empty when it failed without one
+};
+
 /// Builds the medium "scene.medium" describes; file names are relative to `base`. Throws
-/// SceneError for a bad description, std::runtime_error where a filter fails.
+/// SceneError for a bad description, FilterError where a filter fails.
 SceneMedium ReadMedium(const json& scene, const std::string& base);
 
 /// A triangulated sphere from {"center", "radius", "resolution"} (theta resolution; phi half

@@ -2,7 +2,7 @@
 // three channels of sigma_t (or of the albedo) are equal, the device holds one value per voxel and
 // the march gathers a third as much (REFRACTA_GREY_EXTINCTION, REFRACTA_GREY_ALBEDO). The coherent
 // photon order (vtkPhotonTracer::CoherentPhotonOrder): the same photons, marched in another order.
-#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPhotonTracer.h"
@@ -129,11 +129,15 @@ TEST(PhotonChannels, OneProgramServesEveryVoxelSize)
     if (scaled)
     {
       medium->SetSpacing(0.1, 0.1, 0.1);
-      vtkDataArray* extinction = medium->GetPointData()->GetArray("Extinction");
+      auto* extinction =
+        vtkFloatArray::SafeDownCast(medium->GetPointData()->GetArray("Extinction"));
+      ASSERT_NE(extinction, nullptr);
+      float* values = extinction->GetPointer(0);
       for (vtkIdType v = 0; v < extinction->GetNumberOfValues(); ++v)
       {
-        extinction->SetVariantValue(v, 0.5 * extinction->GetVariantValue(v).ToDouble());
+        values[v] *= 0.5f;
       }
+      extinction->Modified();
     }
     const double k = scaled ? 2.0 : 1.0;
     vtkNew<vtkPhotonTracer> tracer;
