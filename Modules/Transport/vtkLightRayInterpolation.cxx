@@ -124,6 +124,62 @@ std::array<float, 3> ScatteringAt(
   return { scattering[3 * v], scattering[3 * v + 1], scattering[3 * v + 2] };
 }
 
+// Clamps grid-local x into the box of voxel centres, where the output is evaluated. The voxel
+// model's light field is discontinuous at the medium's faces (a ray beside the medium never
+// crosses it), so a sample's light rays start inside and its gradient stays one-sided there:
+// central differences across a face, or a grid vertex half a voxel outside it, would carry the
+// unattenuated light outside into the voxels next to the faces.
+void ClampToVoxelCentres(const Medium& m, double x[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    x[a] = std::min(std::max(x[a], 0.0), (m.Dims[a] - 1) * m.Spacing[a]);
+  }
+}
+
+// One sample's record for light_rays_interpolate (phi, flux, their gradients) from the light rays
+// at its 7 points (the clamped centre, then +- each axis, clamped; a difference over the distance
+// between them, zero on an axis one voxel thick), moved to the grid vertex by the first-order
+// expansion so that eq. 4's L_j + (x - x_j).grad L_j uses the vertex as x_j.
+void MakeSampleRecord(
+  const float* points, const float* L, const float* F, const double vertex[3], cl_float4 record[8])
+{
+  double gradL[3][3] = {}, gradF[3][3] = {};
+  for (int a = 0; a < 3; ++a)
+  {
+    const int plus = 1 + 2 * a, minus = 2 + 2 * a;
+    const double span = static_cast<double>(points[4 * plus + a]) - points[4 * minus + a];
+    if (span <= 0)
+    {
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      gradL[a][c] = (L[4 * plus + c] - L[4 * minus + c]) / span;
+      gradF[a][c] = (F[4 * plus + c] - F[4 * minus + c]) / span;
+    }
+  }
+  double atVertexL[3], atVertexF[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    atVertexL[c] = L[c];
+    atVertexF[c] = F[c];
+    for (int a = 0; a < 3; ++a)
+    {
+      const double d = vertex[a] - points[a];
+      atVertexL[c] += d * gradL[a][c];
+      atVertexF[c] += d * gradF[a][c];
+    }
+  }
+  record[0] = Float4(atVertexL[0], atVertexL[1], atVertexL[2]);
+  record[1] = Float4(atVertexF[0], atVertexF[1], atVertexF[2]);
+  for (int a = 0; a < 3; ++a)
+  {
+    record[2 + a] = Float4(gradL[a][0], gradL[a][1], gradL[a][2]);
+    record[5 + a] = Float4(gradF[a][0], gradF[a][1], gradF[a][2]);
+  }
+}
+
 // The grids G1, G2, ...: CoarsestGridResolution cells along the longest axis, doubling up to the
 // finest of MaximumGridResolution and half the medium's resolution, which is always the last.
 std::vector<Level> MakeLevels(const Medium& m, int coarsest, int finest)
@@ -215,19 +271,22 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
     {
       double x[3];
       level.Position(current[j].Vertex, x);
+      ClampToVoxelCentres(m, x);
       pointOf[current[j].Vertex] = static_cast<int>(PointsPerSample * j);
       float* p = &points[4 * PointsPerSample * j];
       for (int q = 0; q < PointsPerSample; ++q)
       {
+        double y[3] = { x[0], x[1], x[2] };
+        if (q > 0)
+        {
+          const int a = (q - 1) / 2;
+          y[a] += q % 2 == 1 ? m.Spacing[a] : -m.Spacing[a];
+          ClampToVoxelCentres(m, y);
+        }
         for (int a = 0; a < 3; ++a)
         {
-          p[4 * q + a] = static_cast<float>(x[a]);
+          p[4 * q + a] = static_cast<float>(y[a]);
         }
-      }
-      for (int a = 0; a < 3; ++a)
-      {
-        p[4 * (1 + 2 * a) + a] += static_cast<float>(m.Spacing[a]);
-        p[4 * (2 + 2 * a) + a] -= static_cast<float>(m.Spacing[a]);
       }
     }
     std::vector<int> errorPoint(finest ? 0 : 6 * current.size(), -1);
@@ -250,6 +309,7 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
         {
           double y[3];
           level.Position(w, y);
+          ClampToVoxelCentres(m, y);
           pointOf[w] = static_cast<int>(points.size() / 4);
           points.insert(points.end(),
             { static_cast<float>(y[0]), static_cast<float>(y[1]), static_cast<float>(y[2]), 0.0f });
@@ -315,21 +375,11 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
     {
       const float* L = &phi[4 * PointsPerSample * j];
       const float* F = &flux[4 * PointsPerSample * j];
+      const float* centre = &points[4 * PointsPerSample * j];
       cl_float4 record[8];
-      record[0] = Float4(L[0], L[1], L[2]);
-      record[1] = Float4(F[0], F[1], F[2]);
-      for (int a = 0; a < 3; ++a)
-      {
-        const double twoDelta = 2.0 * m.Spacing[a];
-        const float* Lp = L + 4 * (1 + 2 * a);
-        const float* Lm = L + 4 * (2 + 2 * a);
-        const float* Fp = F + 4 * (1 + 2 * a);
-        const float* Fm = F + 4 * (2 + 2 * a);
-        record[2 + a] = Float4(
-          (Lp[0] - Lm[0]) / twoDelta, (Lp[1] - Lm[1]) / twoDelta, (Lp[2] - Lm[2]) / twoDelta);
-        record[5 + a] = Float4(
-          (Fp[0] - Fm[0]) / twoDelta, (Fp[1] - Fm[1]) / twoDelta, (Fp[2] - Fm[2]) / twoDelta);
-      }
+      double vertex[3];
+      level.Position(current[j].Vertex, vertex);
+      MakeSampleRecord(centre, L, F, vertex, record);
       bool split = false;
       if (!finest)
       {
@@ -342,12 +392,18 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
           {
             continue;
           }
-          const double offset = q % 2 == 0 ? radius : -radius;
-          const auto sc = ScatteringAt(m, run.Scattering, &points[4 * at]);
+          // The estimate of eq. 7 where the neighbour's light rays started (its vertex clamped
+          // into the box of voxel centres, like this sample's).
+          const float* y = &points[4 * at];
+          const auto sc = ScatteringAt(m, run.Scattering, y);
           double worst = 0;
           for (int c = 0; c < 3; ++c)
           {
-            const double estimate = L[c] + offset * record[2 + q / 2].s[c];
+            double estimate = record[0].s[c];
+            for (int a = 0; a < 3; ++a)
+            {
+              estimate += (y[a] - vertex[a]) * record[2 + a].s[c];
+            }
             worst = std::max(worst, std::fabs(estimate - phi[4 * at + c]) * sc[c]);
           }
           error += worst;
