@@ -29,7 +29,9 @@
  *
  * Method INTERPOLATED (Ren et al. 2008, sections 4 and 5): phi and the flux vector are computed by
  * light rays at sparse samples x_j with their gradient (central differences at +-Delta, Delta the
- * voxel spacing), and interpolated at every voxel by eq. 4, L(x) = sum W_j (L_j + (x - x_j).grad
+ * voxel spacing; the points are clamped into the box of voxel centres, so the difference is
+ * one-sided at the medium's faces, where the light field is discontinuous, and a vertex outside
+ * the box takes the first-order value from its clamped point), and interpolated at every voxel by eq. 4, L(x) = sum W_j (L_j + (x - x_j).grad
  * L_j) / sum W_j with W_j = R_j / |x - x_j| over the samples whose valid sphere holds x. The
  * samples come from dynamic sampling: the vertices of a 16^3 grid G1 (whose valid spheres, radius =
  * the grid interval, touch a scattering voxel) are the first set; each sample's local shading error
