@@ -154,14 +154,21 @@ void vtkMediumMaterial::GetPropertiesAtDensity(
 
 //------------------------------------------------------------------------------
 void vtkMediumMaterial::SetClampedVector(
-  double target[3], double r, double g, double b, double lo, double hi)
+  const char* property, double target[3], double r, double g, double b, double lo, double hi)
 {
   const double in[3] = { r, g, b };
+  if (!std::isfinite(r) || !std::isfinite(g) || !std::isfinite(b))
+  {
+    vtkErrorMacro("Set" << property << "(" << r << ", " << g << ", " << b
+                        << "): every channel must be a finite number (valid: " << lo << " to " << hi
+                        << "); " << property << " stays (" << target[0] << ", " << target[1] << ", "
+                        << target[2] << ")");
+    return;
+  }
   double out[3];
   for (int c = 0; c < 3; ++c)
   {
-    // NaN is not orderable; map it to the lower bound rather than letting it through.
-    out[c] = std::isnan(in[c]) ? lo : std::min(std::max(in[c], lo), hi);
+    out[c] = std::min(std::max(in[c], lo), hi);
   }
   if (out[0] != target[0] || out[1] != target[1] || out[2] != target[2])
   {
@@ -171,21 +178,51 @@ void vtkMediumMaterial::SetClampedVector(
 }
 
 //------------------------------------------------------------------------------
+void vtkMediumMaterial::SetClampedScalar(
+  const char* property, double& target, double value, double lo, double hi)
+{
+  if (!std::isfinite(value))
+  {
+    vtkErrorMacro("Set" << property << "(" << value << "): must be a finite number (valid: " << lo
+                        << " to " << hi << "); " << property << " stays " << target);
+    return;
+  }
+  const double clamped = std::min(std::max(value, lo), hi);
+  if (clamped != target)
+  {
+    target = clamped;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMediumMaterial::SetRefractiveIndex(double n)
+{
+  this->SetClampedScalar("RefractiveIndex", this->RefractiveIndex, n, 1.0, 100.0);
+}
+
+//------------------------------------------------------------------------------
+void vtkMediumMaterial::SetAnisotropy(double g)
+{
+  this->SetClampedScalar("Anisotropy", this->Anisotropy, g, -0.9999, 0.9999);
+}
+
+//------------------------------------------------------------------------------
 void vtkMediumMaterial::SetExtinction(double r, double g, double b)
 {
-  this->SetClampedVector(this->Extinction, r, g, b, 0.0, std::numeric_limits<double>::max());
+  this->SetClampedVector("Extinction", this->Extinction, r, g, b, 0.0, MaximumCoefficient);
 }
 
 //------------------------------------------------------------------------------
 void vtkMediumMaterial::SetAlbedo(double r, double g, double b)
 {
-  this->SetClampedVector(this->Albedo, r, g, b, 0.0, 1.0);
+  this->SetClampedVector("Albedo", this->Albedo, r, g, b, 0.0, 1.0);
 }
 
 //------------------------------------------------------------------------------
 void vtkMediumMaterial::SetEmission(double r, double g, double b)
 {
-  this->SetClampedVector(this->Emission, r, g, b, 0.0, std::numeric_limits<double>::max());
+  this->SetClampedVector("Emission", this->Emission, r, g, b, 0.0, MaximumCoefficient);
 }
 
 //------------------------------------------------------------------------------

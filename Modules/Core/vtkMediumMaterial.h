@@ -12,8 +12,10 @@
  * - Anisotropy: Henyey-Greenstein g in [-0.9999, 0.9999]; default 0 (isotropic).
  * - Emission: emitted radiance per world unit of path length, per channel, >= 0; default 0.
  *
- * Values outside the valid ranges are clamped by the setters (vtkSetClampMacro semantics), so a
- * material is always valid.
+ * Finite values outside the valid ranges are clamped by the setters (vtkSetClampMacro semantics;
+ * coefficients at most MaximumCoefficient, 1e30 per world unit, beyond which everything is opaque
+ * within a float's precision); a NaN or infinite value is an error (vtkErrorMacro naming the
+ * property) and leaves the property unchanged. So a material is always valid.
  *
  * **Heterogeneous materials.** A material may carry a dimensionless density field d(x) >= 0 (for
  * example a particle density), given either as a vtkImplicitFunction (DensityFunction, evaluated
@@ -49,14 +51,14 @@ public:
   /**
    * Refractive index n (dimensionless), clamped to [1, 100]. Default 1.
    */
-  vtkSetClampMacro(RefractiveIndex, double, 1.0, 100.0);
+  void SetRefractiveIndex(double n);
   vtkGetMacro(RefractiveIndex, double);
   ///@}
 
   ///@{
   /**
-   * Extinction coefficient sigma_t per RGB channel (1 / world unit), each clamped to >= 0.
-   * Default (0, 0, 0).
+   * Extinction coefficient sigma_t per RGB channel (1 / world unit), each clamped to
+   * [0, MaximumCoefficient]. Default (0, 0, 0).
    */
   void SetExtinction(double r, double g, double b);
   void SetExtinction(const double rgb[3]) { this->SetExtinction(rgb[0], rgb[1], rgb[2]); }
@@ -78,14 +80,14 @@ public:
    * Henyey-Greenstein anisotropy g, clamped to [-0.9999, 0.9999] (the phase function is a delta
    * at +-1). Positive values scatter forward. Default 0.
    */
-  vtkSetClampMacro(Anisotropy, double, -0.9999, 0.9999);
+  void SetAnisotropy(double g);
   vtkGetMacro(Anisotropy, double);
   ///@}
 
   ///@{
   /**
-   * Emitted radiance per world unit of path length per RGB channel, each clamped to >= 0.
-   * Default (0, 0, 0).
+   * Emitted radiance per world unit of path length per RGB channel, each clamped to
+   * [0, MaximumCoefficient]. Default (0, 0, 0).
    */
   void SetEmission(double r, double g, double b);
   void SetEmission(const double rgb[3]) { this->SetEmission(rgb[0], rgb[1], rgb[2]); }
@@ -96,6 +98,13 @@ public:
    * Scattering coefficient sigma_s = albedo * sigma_t per channel (1 / world unit).
    */
   void GetScattering(double rgb[3]) const;
+
+  /**
+   * The largest extinction or emission coefficient a setter keeps (1e30 per world unit): a float
+   * holds it with room for a density field up to 1e8 (vtkMeshVoxelizer rejects a medium whose
+   * coefficient times density overflows a float).
+   */
+  static constexpr double MaximumCoefficient = 1e30;
 
   ///@{
   /**
@@ -181,7 +190,9 @@ private:
   vtkMediumMaterial(const vtkMediumMaterial&) = delete;
   void operator=(const vtkMediumMaterial&) = delete;
 
-  void SetClampedVector(double target[3], double r, double g, double b, double lo, double hi);
+  void SetClampedVector(
+    const char* property, double target[3], double r, double g, double b, double lo, double hi);
+  void SetClampedScalar(const char* property, double& target, double value, double lo, double hi);
 };
 
 #endif

@@ -15,6 +15,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMediumMaterial.h"
+#include "vtkMediumValidator.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -676,8 +677,31 @@ int vtkMeshVoxelizer::RequestData(
   pd->AddArray(emArray);
   pd->AddArray(occArray);
   pd->SetActiveScalars(vtkRefractaMedium::RefractiveIndexName());
+  if (!this->CheckOutputValues(output))
+  {
+    output->Initialize();
+    return 0;
+  }
   this->UpdateProgress(1.0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMeshVoxelizer::CheckOutputValues(vtkImageData* output)
+{
+  // Every material value is finite and in range (vtkMediumMaterial's setters), but a coefficient
+  // times its density field can overflow a float. The consumers validate the same arrays, and
+  // the validator remembers arrays that passed, so this scan is not repeated downstream.
+  vtkNew<vtkMediumValidator> validator;
+  if (validator->Validate(output))
+  {
+    return true;
+  }
+  vtkErrorMacro("The voxelized medium is not valid (a material's Extinction or Emission times its "
+                "density field, or its refractive index scaled by the density, must stay finite "
+                "in a float, below 3.4e38):\n"
+    << validator->GetErrorMessage());
+  return false;
 }
 
 //------------------------------------------------------------------------------

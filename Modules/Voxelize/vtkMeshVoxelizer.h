@@ -76,7 +76,10 @@
  * self-intersections (CheckSelfIntersections, default on), zero volume. Warnings (repaired):
  * polygons and strips triangulated, faces with a repeated vertex dropped, faces oriented
  * against their neighbours flipped, inside-out meshes flipped, line/vertex cells ignored.
- * Exactly coincident points are merged silently. Each message names the input connection.
+ * Exactly coincident points are merged silently. Each message names the mesh (SetMeshName,
+ * default the input connection). The output is validated (vtkMediumValidator) before it is
+ * returned: a material coefficient times its density field that overflows a float is an error
+ * naming the array and the first bad voxel, with an empty output.
  *
  * Multi-threaded with vtkSMPTools; reports progress. Timings of the last run per stage are
  * available (GetStageTime()).
@@ -299,6 +302,7 @@ protected:
     vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+  bool CheckOutputValues(vtkImageData* output);
 
   /**
    * Grid for the given meshes' bounds (xmin, xmax, ...): dimensions, origin, spacing. Returns

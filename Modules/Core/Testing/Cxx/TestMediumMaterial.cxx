@@ -1,6 +1,8 @@
 // Tests of vtkMediumMaterial: defaults, clamping to the valid ranges, derived quantities.
+#include "vtkCommand.h"
 #include "vtkMediumMaterial.h"
 #include "vtkNew.h"
+#include "vtkTestErrorObserver.h"
 
 #include <gtest/gtest.h>
 
@@ -27,10 +29,10 @@ TEST(MediumMaterial, SettersClampToValidRanges)
   EXPECT_EQ(m->GetRefractiveIndex(), 1.0);
   m->SetRefractiveIndex(2.4);
   EXPECT_EQ(m->GetRefractiveIndex(), 2.4);
-  m->SetExtinction(-1.0, 2.0, std::numeric_limits<double>::quiet_NaN());
+  m->SetExtinction(-1.0, 2.0, 1e40);
   EXPECT_EQ(m->GetExtinction()[0], 0.0);
   EXPECT_EQ(m->GetExtinction()[1], 2.0);
-  EXPECT_EQ(m->GetExtinction()[2], 0.0);
+  EXPECT_EQ(m->GetExtinction()[2], vtkMediumMaterial::MaximumCoefficient);
   m->SetAlbedo(1.5, 0.25, -3.0);
   EXPECT_EQ(m->GetAlbedo()[0], 1.0);
   EXPECT_EQ(m->GetAlbedo()[1], 0.25);
@@ -43,6 +45,38 @@ TEST(MediumMaterial, SettersClampToValidRanges)
   m->SetEmission(-1, 0, 3);
   EXPECT_EQ(m->GetEmission()[0], 0.0);
   EXPECT_EQ(m->GetEmission()[2], 3.0);
+}
+
+// NaN or infinite values are errors that name the property and leave it unchanged (clamping NaN
+// to a bound, as before, silently turned a broken computation into a plausible material).
+TEST(MediumMaterial, NonFiniteValuesAreRejected)
+{
+  vtkNew<vtkMediumMaterial> m;
+  m->SetRefractiveIndex(1.5);
+  m->SetExtinction(1, 2, 3);
+  m->SetAnisotropy(0.3);
+  vtkNew<vtkTest::ErrorObserver> errors;
+  m->AddObserver(vtkCommand::ErrorEvent, errors);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  m->SetRefractiveIndex(nan);
+  EXPECT_EQ(m->GetRefractiveIndex(), 1.5);
+  EXPECT_NE(errors->GetErrorMessage().find("SetRefractiveIndex(nan)"), std::string::npos)
+    << errors->GetErrorMessage();
+  errors->Clear();
+  m->SetExtinction(1, inf, 3);
+  EXPECT_EQ(m->GetExtinction()[1], 2.0);
+  EXPECT_NE(errors->GetErrorMessage().find("finite"), std::string::npos);
+  errors->Clear();
+  m->SetAnisotropy(-inf);
+  EXPECT_EQ(m->GetAnisotropy(), 0.3);
+  EXPECT_TRUE(errors->GetError());
+  errors->Clear();
+  m->SetEmission(nan, 0, 0);
+  m->SetAlbedo(0, nan, 0);
+  EXPECT_NE(errors->GetErrorMessage().find("SetEmission"), std::string::npos);
+  EXPECT_NE(errors->GetErrorMessage().find("SetAlbedo"), std::string::npos);
+  EXPECT_EQ(m->GetEmission()[0], 0.0);
 }
 
 TEST(MediumMaterial, ScatteringAndCopy)

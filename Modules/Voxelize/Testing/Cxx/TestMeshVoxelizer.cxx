@@ -565,6 +565,40 @@ TEST(MeshVoxelizer, HeterogeneousMaterials)
   EXPECT_EQ(vox->GetOutput()->GetNumberOfPoints(), 0);
 }
 
+// Every material value is finite (the setters refuse NaN and infinity), but a coefficient times a
+// density overflows a float: an error naming the array, and an empty output, not Inf voxels.
+TEST(MeshVoxelizer, OverflowingDensityIsAnError)
+{
+  vtkNew<vtkImageData> rho;
+  rho->SetDimensions(2, 2, 2);
+  rho->SetOrigin(-1, -1, -1);
+  rho->SetSpacing(2, 2, 2);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("rho");
+  values->SetNumberOfTuples(8);
+  values->Fill(1e30f);
+  rho->GetPointData()->AddArray(values);
+  auto glow = Material(1.2);
+  glow->SetEmission(1e10, 1, 1);
+  glow->SetDensityImage(rho);
+  glow->SetDensityArrayName("rho");
+  vtkNew<vtkMeshVoxelizer> vox;
+  vox->AddInputData(Cube(-0.5, 0.5));
+  vox->SetMaterial(0, glow);
+  vox->SetBounds(-1, 1, -1, 1, -1, 1);
+  vox->SetDimensions(8, 8, 8);
+  vtkNew<vtkTest::ErrorObserver> observer;
+  vox->AddObserver(vtkCommand::ErrorEvent, observer);
+  vox->Update();
+  EXPECT_EQ(observer->CheckErrorMessage("'Emission'"), 0);
+  EXPECT_EQ(vox->GetOutput()->GetNumberOfPoints(), 0);
+  // Within a float the same material voxelizes.
+  glow->SetEmission(1, 1, 1);
+  vox->Update();
+  EXPECT_FALSE(observer->GetError());
+  EXPECT_EQ(vox->GetOutput()->GetNumberOfPoints(), 512);
+}
+
 TEST(MeshVoxelizer, SpacingModeAndPipeline)
 {
   vtkNew<vtkSphereSource> source;
