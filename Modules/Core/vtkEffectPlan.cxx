@@ -8,6 +8,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaSettings.h"
 #include "vtkSceneAnalysis.h"
 #include "vtkStringArray.h"
 
@@ -16,6 +17,7 @@
 #include <sstream>
 
 vtkStandardNewMacro(vtkEffectPlan);
+vtkRefractaCxxSetClampMacro(vtkEffectPlan, Tolerance, 0.0, 1.0);
 
 namespace
 {

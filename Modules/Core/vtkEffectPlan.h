@@ -77,7 +77,7 @@ public:
   /**
    * Largest relative image change an effect may cause and still be skipped. Default 0.01.
    */
-  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  void SetTolerance(double value);
   vtkGetMacro(Tolerance, double);
   ///@}
 

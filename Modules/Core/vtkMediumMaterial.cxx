@@ -6,6 +6,7 @@
 #include "vtkMatrix3x3.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkRefractaSettings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -152,77 +153,36 @@ void vtkMediumMaterial::GetPropertiesAtDensity(
   g = this->Anisotropy;
 }
 
+vtkRefractaCxxSetClampMacro(vtkMediumMaterial, RefractiveIndex, 1.0, 100.0);
+vtkRefractaCxxSetClampMacro(vtkMediumMaterial, Anisotropy, -0.9999, 0.9999);
+
 //------------------------------------------------------------------------------
-void vtkMediumMaterial::SetClampedVector(
-  const char* property, double target[3], double r, double g, double b, double lo, double hi)
+void vtkMediumMaterial::SetRGB(
+  const char* property, double target[3], double r, double g, double b, double hi)
 {
-  const double in[3] = { r, g, b };
-  if (!std::isfinite(r) || !std::isfinite(g) || !std::isfinite(b))
+  const double value[3] = { r, g, b };
+  if (vtkRefractaSettings::SetClamped3(this, property, target, value, 0.0, hi))
   {
-    vtkErrorMacro("Set" << property << "(" << r << ", " << g << ", " << b
-                        << "): every channel must be a finite number (valid: " << lo << " to " << hi
-                        << "); " << property << " stays (" << target[0] << ", " << target[1] << ", "
-                        << target[2] << ")");
-    return;
-  }
-  double out[3];
-  for (int c = 0; c < 3; ++c)
-  {
-    out[c] = std::min(std::max(in[c], lo), hi);
-  }
-  if (out[0] != target[0] || out[1] != target[1] || out[2] != target[2])
-  {
-    std::copy(out, out + 3, target);
     this->Modified();
   }
-}
-
-//------------------------------------------------------------------------------
-void vtkMediumMaterial::SetClampedScalar(
-  const char* property, double& target, double value, double lo, double hi)
-{
-  if (!std::isfinite(value))
-  {
-    vtkErrorMacro("Set" << property << "(" << value << "): must be a finite number (valid: " << lo
-                        << " to " << hi << "); " << property << " stays " << target);
-    return;
-  }
-  const double clamped = std::min(std::max(value, lo), hi);
-  if (clamped != target)
-  {
-    target = clamped;
-    this->Modified();
-  }
-}
-
-//------------------------------------------------------------------------------
-void vtkMediumMaterial::SetRefractiveIndex(double n)
-{
-  this->SetClampedScalar("RefractiveIndex", this->RefractiveIndex, n, 1.0, 100.0);
-}
-
-//------------------------------------------------------------------------------
-void vtkMediumMaterial::SetAnisotropy(double g)
-{
-  this->SetClampedScalar("Anisotropy", this->Anisotropy, g, -0.9999, 0.9999);
 }
 
 //------------------------------------------------------------------------------
 void vtkMediumMaterial::SetExtinction(double r, double g, double b)
 {
-  this->SetClampedVector("Extinction", this->Extinction, r, g, b, 0.0, MaximumCoefficient);
+  this->SetRGB("Extinction", this->Extinction, r, g, b, MaximumCoefficient);
 }
 
 //------------------------------------------------------------------------------
 void vtkMediumMaterial::SetAlbedo(double r, double g, double b)
 {
-  this->SetClampedVector("Albedo", this->Albedo, r, g, b, 0.0, 1.0);
+  this->SetRGB("Albedo", this->Albedo, r, g, b, 1.0);
 }
 
 //------------------------------------------------------------------------------
 void vtkMediumMaterial::SetEmission(double r, double g, double b)
 {
-  this->SetClampedVector("Emission", this->Emission, r, g, b, 0.0, MaximumCoefficient);
+  this->SetRGB("Emission", this->Emission, r, g, b, MaximumCoefficient);
 }
 
 //------------------------------------------------------------------------------

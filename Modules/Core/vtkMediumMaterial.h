@@ -14,8 +14,9 @@
  *
  * Finite values outside the valid ranges are clamped by the setters (vtkSetClampMacro semantics;
  * coefficients at most MaximumCoefficient, 1e30 per world unit, beyond which everything is opaque
- * within a float's precision); a NaN or infinite value is an error (vtkErrorMacro naming the
- * property) and leaves the property unchanged. So a material is always valid.
+ * within a float's precision); a NaN (or an infinite colour channel) is an error (vtkErrorMacro
+ * naming the property) and leaves the property unchanged (vtkRefractaSettings.h). So a material
+ * is always valid.
  *
  * **Heterogeneous materials.** A material may carry a dimensionless density field d(x) >= 0 (for
  * example a particle density), given either as a vtkImplicitFunction (DensityFunction, evaluated
@@ -190,9 +191,7 @@ private:
   vtkMediumMaterial(const vtkMediumMaterial&) = delete;
   void operator=(const vtkMediumMaterial&) = delete;
 
-  void SetClampedVector(
-    const char* property, double target[3], double r, double g, double b, double lo, double hi);
-  void SetClampedScalar(const char* property, double& target, double value, double lo, double hi);
+  void SetRGB(const char* property, double target[3], double r, double g, double b, double hi);
 };
 
 #endif

@@ -173,6 +173,18 @@ void vtkMediumValidator::CheckGeometry(vtkImageData* medium)
       this->AddError(msg.str());
       break;
     }
+    if (spacing[a] < MinimumSpacing || spacing[a] > MaximumSpacing)
+    {
+      // The kernels work in float: voxel volumes and per-volume deposits under- or overflow
+      // beyond these (the photon pass deposits nothing at a spacing of 1e-16).
+      std::ostringstream msg;
+      msg << "The medium spacing (" << spacing[0] << ", " << spacing[1] << ", " << spacing[2]
+          << ") is outside [" << MinimumSpacing << ", " << MaximumSpacing << "] along axis " << a
+          << ", where the passes' float arithmetic stays exact; express the grid in other units "
+             "(micrometres instead of metres, say; coefficients scale inversely).";
+      this->AddError(msg.str());
+      break;
+    }
   }
   const double* origin = medium->GetOrigin();
   if (!std::isfinite(origin[0]) || !std::isfinite(origin[1]) || !std::isfinite(origin[2]))

@@ -4,8 +4,10 @@
  *
  * Any filter that consumes a medium calls Validate() on its input before doing work. The
  * validator rejects, with one message per problem:
- * - a null or empty image, a spacing that is not finite and positive, an origin or direction
- *   matrix that is not finite (or a singular direction matrix);
+ * - a null or empty image, a spacing that is not finite and positive or lies outside
+ *   [MinimumSpacing, MaximumSpacing] (1e-12 to 1e18 world units, where the passes' float
+ *   arithmetic holds), an origin or direction matrix that is not finite (or a singular
+ *   direction matrix);
  * - an image that carries none of the medium arrays (see vtkRefractaMedium), unless
  *   RequireMediumArray is off;
  * - a medium array stored as cell data instead of point data, one that is not numeric, one with
@@ -50,6 +52,14 @@ public:
   static vtkMediumValidator* New();
   vtkTypeMacro(vtkMediumValidator, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The range of spacings a medium may have (world units).
+   */
+  static constexpr double MinimumSpacing = 1e-12;
+  static constexpr double MaximumSpacing = 1e18;
+  ///@}
 
   /**
    * Check `medium`. Returns true when it is valid; otherwise GetErrorMessage() lists every

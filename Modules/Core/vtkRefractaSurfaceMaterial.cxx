@@ -1,11 +1,15 @@
 #include "vtkRefractaSurfaceMaterial.h"
 
 #include "vtkObjectFactory.h"
+#include "vtkRefractaSettings.h"
 
 #include <algorithm>
 #include <cmath>
 
 vtkStandardNewMacro(vtkRefractaSurfaceMaterial);
+vtkRefractaCxxSetClampMacro(vtkRefractaSurfaceMaterial, IndexInside, 1.0, 100.0);
+vtkRefractaCxxSetClampMacro(vtkRefractaSurfaceMaterial, IndexOutside, 1.0, 100.0);
+vtkRefractaCxxSetClampMacro(vtkRefractaSurfaceMaterial, InsideAnisotropy, -0.9999, 0.9999);
 
 //------------------------------------------------------------------------------
 void vtkRefractaSurfaceMaterial::SetColor(double target[3], double r, double g, double b)

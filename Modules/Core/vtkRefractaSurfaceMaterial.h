@@ -121,9 +121,9 @@ public:
    * it) of a DIELECTRIC surface, each clamped to [1, 100] as vtkMediumMaterial's. Defaults 1.5
    * and 1.
    */
-  vtkSetClampMacro(IndexInside, double, 1.0, 100.0);
+  void SetIndexInside(double value);
   vtkGetMacro(IndexInside, double);
-  vtkSetClampMacro(IndexOutside, double, 1.0, 100.0);
+  void SetIndexOutside(double value);
   vtkGetMacro(IndexOutside, double);
   ///@}
 
@@ -157,7 +157,7 @@ public:
   void SetInsideAlbedo(double r, double g, double b);
   void SetInsideAlbedo(const double rgb[3]) { this->SetInsideAlbedo(rgb[0], rgb[1], rgb[2]); }
   vtkGetVector3Macro(InsideAlbedo, double);
-  vtkSetClampMacro(InsideAnisotropy, double, -0.9999, 0.9999);
+  void SetInsideAnisotropy(double value);
   vtkGetMacro(InsideAnisotropy, double);
   void SetInsideEmission(double r, double g, double b);
   void SetInsideEmission(const double rgb[3]) { this->SetInsideEmission(rgb[0], rgb[1], rgb[2]); }

@@ -12,6 +12,7 @@
 #include "vtkPolyData.h"
 #include "vtkPolygon.h"
 #include "vtkRefractaBVH.h"
+#include "vtkRefractaSettings.h"
 #include "vtkRefractaSurfaceMaterial.h"
 #include "vtkRefractaSurfaceSetInternals.h"
 #include "vtkUnsignedCharArray.h"
@@ -25,6 +26,7 @@
 #include <limits>
 
 vtkStandardNewMacro(vtkRefractaSurfaceSet);
+vtkRefractaCxxSetClampMacro(vtkRefractaSurfaceSet, TexelSize, 0.0, 1e300);
 
 using namespace vtkRefractaSurfaceSetDetail;
 

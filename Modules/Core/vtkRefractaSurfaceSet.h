@@ -126,7 +126,7 @@ public:
    * diagonal of the world bounds of the non-dielectric surfaces (those that receive deposits) /
    * 128.
    */
-  vtkSetClampMacro(TexelSize, double, 0.0, 1e300);
+  void SetTexelSize(double value);
   vtkGetMacro(TexelSize, double);
   ///@}
 

@@ -14,6 +14,7 @@
 #include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
 #include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaSettings.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTexture.h"
@@ -23,6 +24,7 @@
 #include <cmath>
 
 vtkStandardNewMacro(vtkRefractaImageRenderer);
+vtkRefractaCxxSetClampMacro(vtkRefractaImageRenderer, Exposure, 0.0, 1e30);
 
 //------------------------------------------------------------------------------
 vtkRefractaImageRenderer::vtkRefractaImageRenderer()
@@ -131,8 +133,13 @@ vtkCamera* vtkRefractaImageRenderer::GetCamera()
 
 void vtkRefractaImageRenderer::SetImageSize(int width, int height)
 {
-  width = std::min(std::max(width, 1), 16384);
-  height = std::min(std::max(height, 1), 16384);
+  if (width < 1 || height < 1 || width > MaximumImageSide || height > MaximumImageSide)
+  {
+    vtkErrorMacro("SetImageSize(" << width << ", " << height << "): each side must be 1 to "
+                                  << MaximumImageSide << " pixels; the size stays "
+                                  << this->ImageSize[0] << " x " << this->ImageSize[1]);
+    return;
+  }
   if (width != this->ImageSize[0] || height != this->ImageSize[1])
   {
     this->ImageSize[0] = width;

@@ -122,8 +122,11 @@ public:
 
   ///@{
   /**
-   * Output size in pixels, each clamped to [1, 16384]. Default 256 x 256.
+   * Output size in pixels, each side 1 to MaximumImageSide (16384). Default 256 x 256. A size
+   * outside that is an error that keeps the current size (clamping a mistyped 100000 to 16384
+   * would start a render of 268 million rays).
    */
+  static constexpr int MaximumImageSide = 16384;
   void SetImageSize(int width, int height);
   vtkGetVector2Macro(ImageSize, int);
   ///@}
@@ -151,7 +154,8 @@ public:
 
   ///@{
   /**
-   * View-pass settings; see vtkRefractaViewPass. StepSize in voxels (default 1), RayMode
+   * View-pass settings; see vtkRefractaViewPass. StepSize in voxels (default 1, clamped to
+   * [0.01, 16]; NaN is an error and keeps the step), RayMode
    * (default AUTO), TransmittanceCutoff (default 1e-4), MaxSteps (default 0 = automatic),
    * EmptySpaceSkipping (default on; same image up to float rounding, see vtkRefractaViewPass).
    */
@@ -176,7 +180,7 @@ public:
   /**
    * Exposure multiplier applied before tone mapping, >= 0. Default 1.
    */
-  vtkSetClampMacro(Exposure, double, 0.0, 1e30);
+  void SetExposure(double value);
   vtkGetMacro(Exposure, double);
   ///@}
 

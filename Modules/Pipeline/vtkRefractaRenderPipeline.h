@@ -317,7 +317,10 @@ public:
    * Run the stages that changed and render `width` x `height` pixels. `depthLimit` (nullptr or
    * width x height floats) caps each pixel's path length in world units (opaque geometry drawn
    * before the medium). Returns false after an error (a vtkErrorMacro names it, once per
-   * distinct message) or an abort.
+   * distinct message; GetImage() is then empty) or an abort (the last image is kept). Errors
+   * include a camera that cannot make rays (a non-finite position, focal point or view up, a
+   * view up along the view, a view angle outside (0, 180) or a parallel scale <= 0) and a prop
+   * matrix that cannot place the medium (not finite, singular, or not affine).
    */
   bool Render(int width, int height, const float* depthLimit = nullptr);
 

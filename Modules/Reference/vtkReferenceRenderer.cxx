@@ -20,6 +20,7 @@
 #include "vtkReferenceView.h"
 #include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaHostThreads.h"
+#include "vtkRefractaSettings.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -34,6 +35,14 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkReferenceRenderer);
+vtkRefractaCxxSetClampMacro(vtkReferenceRenderer, IntegratorTolerance, 1e-14, 1e-1);
+vtkRefractaCxxSetClampMacro(vtkReferenceRenderer, MaximumStep, 1e-4, 1e3);
+vtkRefractaCxxSetClampMacro(vtkReferenceRenderer, DirectionalLightAngularRadius, 1e-4, 45.0);
+vtkRefractaCxxSetClampMacro(vtkReferenceRenderer, LightRadius, 0.0, VTK_DOUBLE_MAX);
+vtkRefractaCxxSetClampMacro(vtkReferenceRenderer, Exposure, 0.0, VTK_DOUBLE_MAX);
+vtkRefractaCxxSetVector3Macro(vtkReferenceRenderer, BackgroundColor);
+vtkRefractaCxxSetVector3Macro(vtkReferenceRenderer, EnvironmentUp);
+vtkRefractaCxxSetVector3Macro(vtkReferenceRenderer, EnvironmentRight);
 
 namespace
 {

@@ -173,7 +173,8 @@ public:
   /**
    * Uniform background radiance (linear RGB, >= 0), seen by unscattered view rays. Default black.
    */
-  vtkSetVector3Macro(BackgroundColor, double);
+  void SetBackgroundColor(double x, double y, double z);
+  void SetBackgroundColor(const double value[3]);
   vtkGetVector3Macro(BackgroundColor, double);
   ///@}
 
@@ -191,9 +192,11 @@ public:
    * World vectors orienting the environment map (vtkRefractaEnvironmentMap): Up is the v = 1
    * pole, Right is u = 0.75. Defaults (0, 1, 0) and (1, 0, 0), as vtkRenderer and the view pass.
    */
-  vtkSetVector3Macro(EnvironmentUp, double);
+  void SetEnvironmentUp(double x, double y, double z);
+  void SetEnvironmentUp(const double value[3]);
   vtkGetVector3Macro(EnvironmentUp, double);
-  vtkSetVector3Macro(EnvironmentRight, double);
+  void SetEnvironmentRight(double x, double y, double z);
+  void SetEnvironmentRight(const double value[3]);
   vtkGetVector3Macro(EnvironmentRight, double);
   ///@}
 
@@ -266,7 +269,7 @@ public:
    * Local error tolerance of the RK5(4) integrator per step, relative to the smallest voxel
    * spacing (position) and to the largest n (v = n dx/ds). Default 1e-7.
    */
-  vtkSetClampMacro(IntegratorTolerance, double, 1e-14, 1e-1);
+  void SetIntegratorTolerance(double value);
   vtkGetMacro(IntegratorTolerance, double);
   ///@}
 
@@ -274,7 +277,7 @@ public:
   /**
    * Largest integrator step in units of the smallest voxel spacing. Default 1.
    */
-  vtkSetClampMacro(MaximumStep, double, 1e-4, 1e3);
+  void SetMaximumStep(double value);
   vtkGetMacro(MaximumStep, double);
   ///@}
 
@@ -282,7 +285,7 @@ public:
   /**
    * Angular radius of directional lights, degrees, in [1e-4, 45]. Default 0.5.
    */
-  vtkSetClampMacro(DirectionalLightAngularRadius, double, 1e-4, 45.0);
+  void SetDirectionalLightAngularRadius(double value);
   vtkGetMacro(DirectionalLightAngularRadius, double);
   ///@}
 
@@ -294,7 +297,7 @@ public:
    * and names a radius to use. Set it explicitly (e.g. 1% of the medium diagonal, the value the
    * renderer used to substitute silently) and give vtkPhotonTracer the same value to compare.
    */
-  vtkSetClampMacro(LightRadius, double, 0.0, VTK_DOUBLE_MAX);
+  void SetLightRadius(double value);
   vtkGetMacro(LightRadius, double);
   ///@}
 
@@ -312,7 +315,7 @@ public:
   /**
    * Exposure multiplying HDR before the 8-bit tone mapping (clamp, sRGB). Default 1.
    */
-  vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
+  void SetExposure(double value);
   vtkGetMacro(Exposure, double);
   ///@}
 

@@ -12,6 +12,7 @@
 #include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaHostThreads.h"
+#include "vtkRefractaSettings.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkRefractaViewPassFields.h"
 #include "vtkRefractaViewPassInternals.h"
@@ -26,6 +27,14 @@
 #include <sstream>
 
 vtkStandardNewMacro(vtkRefractaViewPass);
+vtkRefractaCxxSetClampMacro(vtkRefractaViewPass, StepSize, 0.01, 16.0);
+vtkRefractaCxxSetClampMacro(vtkRefractaViewPass, TransmittanceCutoff, 0.0, 1.0);
+vtkRefractaCxxSetClampMacro(vtkRefractaViewPass, CausticPhotonsPerFineTexel, 0.0, 1e30);
+vtkRefractaCxxSetClampMacro(vtkRefractaViewPass, DielectricGrazingCosine, 0.0, 1.0);
+vtkRefractaCxxSetClampMacro(vtkRefractaViewPass, TileSeconds, 0.0, 1e6);
+vtkRefractaCxxSetVector3Macro(vtkRefractaViewPass, BackgroundColor);
+vtkRefractaCxxSetVector3Macro(vtkRefractaViewPass, EnvironmentUp);
+vtkRefractaCxxSetVector3Macro(vtkRefractaViewPass, EnvironmentRight);
 
 using namespace vtkRefractaViewPassDetail;
 

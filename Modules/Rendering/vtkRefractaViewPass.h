@@ -15,7 +15,9 @@
  *
  * Settings (units, defaults):
  * - StepSize: view-ray step in voxels (multiples of the smallest spacing), clamped to
- *   [0.01, 16]; default 1 (one voxel, as Sun et al. argue).
+ *   [0.01, 16]; default 1 (one voxel, as Sun et al. argue). Every floating-point setting of this
+ *   class (and of every Refracta class) clamps as vtkSetClampMacro does but refuses NaN with an
+ *   error that keeps the old value (vtkRefractaSettings.h).
  * - RayMode: AUTO (default: curved rays when the medium's refractive index varies, by more than
  *   1e-6, and some sample of its gradient is non-zero: a medium voxelized with exact interfaces,
  *   whose n jumps only across the meshes, gets straight rays that refract at the surfaces),
@@ -124,7 +126,7 @@ public:
   /**
    * View-ray step in voxels (see the class description). Default 1.
    */
-  vtkSetClampMacro(StepSize, double, 0.01, 16.0);
+  void SetStepSize(double value);
   vtkGetMacro(StepSize, double);
   ///@}
 
@@ -140,7 +142,7 @@ public:
   /**
    * Transmittance below which a ray stops, [0, 1]. Default 1e-4.
    */
-  vtkSetClampMacro(TransmittanceCutoff, double, 0.0, 1.0);
+  void SetTransmittanceCutoff(double value);
   vtkGetMacro(TransmittanceCutoff, double);
   ///@}
 
@@ -183,7 +185,8 @@ public:
   /**
    * Uniform background radiance, linear RGB >= 0. Default (0, 0, 0).
    */
-  vtkSetVector3Macro(BackgroundColor, double);
+  void SetBackgroundColor(double x, double y, double z);
+  void SetBackgroundColor(const double value[3]);
   vtkGetVector3Macro(BackgroundColor, double);
   ///@}
 
@@ -194,9 +197,11 @@ public:
    */
   void SetEnvironmentMap(vtkImageData* image);
   vtkImageData* GetEnvironmentMap();
-  vtkSetVector3Macro(EnvironmentUp, double);
+  void SetEnvironmentUp(double x, double y, double z);
+  void SetEnvironmentUp(const double value[3]);
   vtkGetVector3Macro(EnvironmentUp, double);
-  vtkSetVector3Macro(EnvironmentRight, double);
+  void SetEnvironmentRight(double x, double y, double z);
+  void SetEnvironmentRight(const double value[3]);
   vtkGetVector3Macro(EnvironmentRight, double);
   ///@}
 
@@ -234,7 +239,7 @@ public:
    * optics").
    * 0 reads every caustic texel fine; a very large value never does.
    */
-  vtkSetClampMacro(CausticPhotonsPerFineTexel, double, 0.0, 1e30);
+  void SetCausticPhotonsPerFineTexel(double value);
   vtkGetMacro(CausticPhotonsPerFineTexel, double);
   ///@}
 
@@ -278,7 +283,7 @@ public:
    * through a ball at about twice the view pass's time of 0.5 (Physics.md "Glass edges:
    * supersampling"); 0 takes only silhouettes. Clamped to [0, 1].
    */
-  vtkSetClampMacro(DielectricGrazingCosine, double, 0.0, 1.0);
+  void SetDielectricGrazingCosine(double value);
   vtkGetMacro(DielectricGrazingCosine, double);
   ///@}
 
@@ -407,7 +412,7 @@ public:
    */
   vtkSetClampMacro(TilePixels, int, 1, 1 << 30);
   vtkGetMacro(TilePixels, int);
-  vtkSetClampMacro(TileSeconds, double, 0.0, 1e6);
+  void SetTileSeconds(double value);
   vtkGetMacro(TileSeconds, double);
   ///@}
 

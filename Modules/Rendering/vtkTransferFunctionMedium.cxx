@@ -12,6 +12,7 @@
 #include "vtkPointData.h"
 #include "vtkRefractaHostThreads.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaSettings.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkVersionMacros.h"
@@ -27,6 +28,8 @@
 #include <string>
 
 vtkStandardNewMacro(vtkTransferFunctionMedium);
+vtkRefractaCxxSetClampMacro(vtkTransferFunctionMedium, Anisotropy, -0.9999, 0.9999);
+vtkRefractaCxxSetClampMacro(vtkTransferFunctionMedium, EmissionScale, 0.0, 1e30);
 
 //------------------------------------------------------------------------------
 vtkTransferFunctionMedium::vtkTransferFunctionMedium()

@@ -65,7 +65,7 @@ public:
   /**
    * Henyey-Greenstein g, clamped to [-0.9999, 0.9999]. Default 0.
    */
-  vtkSetClampMacro(Anisotropy, double, -0.9999, 0.9999);
+  void SetAnisotropy(double value);
   vtkGetMacro(Anisotropy, double);
   ///@}
 
@@ -73,7 +73,7 @@ public:
   /**
    * Emission = EmissionScale * colour * sigma_t; >= 0. Default 0.
    */
-  vtkSetClampMacro(EmissionScale, double, 0.0, 1e30);
+  void SetEmissionScale(double value);
   vtkGetMacro(EmissionScale, double);
   ///@}
 

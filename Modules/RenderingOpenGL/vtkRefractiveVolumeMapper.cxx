@@ -22,6 +22,7 @@
 #include "vtkRefractaBVH.h"
 #include "vtkRefractaMedium.h"
 #include "vtkRefractaRendererBackground.h"
+#include "vtkRefractaSettings.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkRefractiveVolumeMapperCompositing.h"
@@ -46,6 +47,9 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkRefractiveVolumeMapper);
+vtkRefractaCxxSetClampMacro(vtkRefractiveVolumeMapper, Anisotropy, -0.9999, 0.9999);
+vtkRefractaCxxSetClampMacro(vtkRefractiveVolumeMapper, EmissionScale, 0.0, 1e30);
+vtkRefractaCxxSetClampMacro(vtkRefractiveVolumeMapper, Exposure, 0.0, 1e30);
 
 namespace
 {

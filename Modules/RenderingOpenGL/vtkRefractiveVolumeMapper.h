@@ -102,9 +102,9 @@ public:
    */
   void SetRefractiveIndexFunction(vtkPiecewiseFunction* function);
   vtkPiecewiseFunction* GetRefractiveIndexFunction();
-  vtkSetClampMacro(Anisotropy, double, -0.9999, 0.9999);
+  void SetAnisotropy(double value);
   vtkGetMacro(Anisotropy, double);
-  vtkSetClampMacro(EmissionScale, double, 0.0, 1e30);
+  void SetEmissionScale(double value);
   vtkGetMacro(EmissionScale, double);
   ///@}
 
@@ -200,7 +200,8 @@ public:
 
   ///@{
   /**
-   * View-pass settings (see vtkRefractaViewPass): StepSize in voxels (default 1), RayMode
+   * View-pass settings (see vtkRefractaViewPass): StepSize in voxels (default 1, clamped to
+   * [0.01, 16]; NaN is an error and keeps the step), RayMode
    * (default AUTO), TransmittanceCutoff (default 1e-4), EmptySpaceSkipping (default on; the
    * occupancy grid is rebuilt only with the medium or the light passes, and the image is the
    * same up to float rounding either way).
@@ -222,7 +223,7 @@ public:
    * Multiplier on the medium's radiance before it is drawn, >= 0. Default 1. With
    * AutomaticExposure on it multiplies the automatic exposure.
    */
-  vtkSetClampMacro(Exposure, double, 0.0, 1e30);
+  void SetExposure(double value);
   vtkGetMacro(Exposure, double);
   ///@}
 

@@ -12,6 +12,7 @@
 #include "vtkPointSet.h"
 #include "vtkPolyData.h"
 #include "vtkRefractaParticleMedium.h"
+#include "vtkRefractaSettings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,6 +20,12 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkIlluminationNetwork);
+vtkRefractaCxxSetClampMacro(vtkIlluminationNetwork, WindowPixelSize, 0.0, VTK_DOUBLE_MAX);
+vtkRefractaCxxSetClampMacro(vtkIlluminationNetwork, Tolerance, 0.0, 1.0);
+vtkRefractaCxxSetVector3Macro(vtkIlluminationNetwork, LightPosition);
+vtkRefractaCxxSetVector3Macro(vtkIlluminationNetwork, LightDirection);
+vtkRefractaCxxSetVector3Macro(vtkIlluminationNetwork, LightIntensity);
+vtkRefractaCxxSetVector3Macro(vtkIlluminationNetwork, SkyRadiance);
 
 namespace geo = vtkIlluminationNetworkGeometry;
 

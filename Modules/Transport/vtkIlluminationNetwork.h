@@ -97,7 +97,7 @@ public:
   /**
    * Side of a line bundle's pixel, world units; 0 (default): sqrt(pi) times the mean radius.
    */
-  vtkSetClampMacro(WindowPixelSize, double, 0.0, VTK_DOUBLE_MAX);
+  void SetWindowPixelSize(double value);
   vtkGetMacro(WindowPixelSize, double);
   ///@}
 
@@ -108,7 +108,7 @@ public:
    * Tolerance 0 with MaximumIterations 1 is the paper's interactive mode: one iteration per frame
    * (update), warm-started, without a warning that it did not converge.
    */
-  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  void SetTolerance(double value);
   vtkGetMacro(Tolerance, double);
   vtkSetClampMacro(CheckInterval, int, 1, 1024);
   vtkGetMacro(CheckInterval, int);
@@ -131,11 +131,14 @@ public:
    */
   vtkSetClampMacro(LightType, int, NO_LIGHT, DIRECTIONAL_LIGHT);
   vtkGetMacro(LightType, int);
-  vtkSetVector3Macro(LightPosition, double);
+  void SetLightPosition(double x, double y, double z);
+  void SetLightPosition(const double value[3]);
   vtkGetVector3Macro(LightPosition, double);
-  vtkSetVector3Macro(LightDirection, double);
+  void SetLightDirection(double x, double y, double z);
+  void SetLightDirection(const double value[3]);
   vtkGetVector3Macro(LightDirection, double);
-  vtkSetVector3Macro(LightIntensity, double);
+  void SetLightIntensity(double x, double y, double z);
+  void SetLightIntensity(const double value[3]);
   vtkGetVector3Macro(LightIntensity, double);
   ///@}
 
@@ -143,7 +146,8 @@ public:
   /**
    * Radiance entering the lines where no particle is seen (RGB). Default 0.
    */
-  vtkSetVector3Macro(SkyRadiance, double);
+  void SetSkyRadiance(double x, double y, double z);
+  void SetSkyRadiance(const double value[3]);
   vtkGetVector3Macro(SkyRadiance, double);
   ///@}
 

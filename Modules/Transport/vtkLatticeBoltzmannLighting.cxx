@@ -18,6 +18,7 @@
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaSettings.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <cmath>
@@ -25,6 +26,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkLatticeBoltzmannLighting);
+vtkRefractaCxxSetClampMacro(vtkLatticeBoltzmannLighting, Tolerance, 0.0, 1.0);
 
 namespace
 {

@@ -99,7 +99,7 @@ public:
   vtkGetMacro(SourceDistribution, int);
   vtkSetClampMacro(CollisionModel, int, 0, 1);
   vtkGetMacro(CollisionModel, int);
-  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  void SetTolerance(double value);
   vtkGetMacro(Tolerance, double);
   vtkSetClampMacro(CheckInterval, int, 1, 4096);
   vtkGetMacro(CheckInterval, int);

@@ -7,6 +7,7 @@
 #include "vtkOpenCLContext.h"
 #include "vtkOpenCLMemoryPlan.h"
 #include "vtkRefractaHostThreads.h"
+#include "vtkRefractaSettings.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <sstream>
 
 vtkStandardNewMacro(vtkLatticeBoltzmannSolver);
+vtkRefractaCxxSetClampMacro(vtkLatticeBoltzmannSolver, Tolerance, 0.0, 1.0);
 
 using refracta_lbm::Cx;
 using refracta_lbm::Cy;

@@ -153,7 +153,7 @@ public:
    * mode), probes every ProbeSpacing voxels per axis (default 8), at most MaximumIterations
    * steps (default 5000).
    */
-  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  void SetTolerance(double value);
   vtkGetMacro(Tolerance, double);
   vtkSetClampMacro(CheckInterval, int, 1, 4096);
   vtkGetMacro(CheckInterval, int);

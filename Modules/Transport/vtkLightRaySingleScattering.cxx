@@ -17,6 +17,7 @@
 #include "vtkRefractaBVH.h"
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaSettings.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
@@ -35,6 +36,10 @@ constexpr double RelativeSurfaceEpsilon = 1e-5; // as vtkPhotonTracer's shadow r
 }
 
 vtkStandardNewMacro(vtkLightRaySingleScattering);
+vtkRefractaCxxSetClampMacro(vtkLightRaySingleScattering, LightRadius, 0.0, 1e30);
+vtkRefractaCxxSetClampMacro(vtkLightRaySingleScattering, DirectionalLightAngularRadius, 0.0, 45.0);
+vtkRefractaCxxSetClampMacro(vtkLightRaySingleScattering, ErrorTolerance, 0.0, 1e30);
+vtkRefractaCxxSetVector3Macro(vtkLightRaySingleScattering, ViewPoint);
 
 //------------------------------------------------------------------------------
 vtkLightRaySingleScattering::vtkLightRaySingleScattering()

@@ -129,9 +129,9 @@ public:
    * lights are delta lights) and DirectionalLightAngularRadius (degrees, < 45, default 0).
    * LightQuadrature (default 16) directions per extended light and point.
    */
-  vtkSetClampMacro(LightRadius, double, 0.0, 1e30);
+  void SetLightRadius(double value);
   vtkGetMacro(LightRadius, double);
-  vtkSetClampMacro(DirectionalLightAngularRadius, double, 0.0, 45.0);
+  void SetDirectionalLightAngularRadius(double value);
   vtkGetMacro(DirectionalLightAngularRadius, double);
   vtkSetClampMacro(LightQuadrature, int, 1, 1024);
   vtkGetMacro(LightQuadrature, int);
@@ -143,7 +143,7 @@ public:
    * (default 0.002), the coarsest grid's resolution (default 16 cells along the longest axis) and
    * the finest (default 64; never more than half the medium's resolution).
    */
-  vtkSetClampMacro(ErrorTolerance, double, 0.0, 1e30);
+  void SetErrorTolerance(double value);
   vtkGetMacro(ErrorTolerance, double);
   vtkSetClampMacro(CoarsestGridResolution, int, 2, 4096);
   vtkGetMacro(CoarsestGridResolution, int);
@@ -156,7 +156,8 @@ public:
    * Viewer position for eq. 6's transmittance to the viewer (world units, the medium's data
    * frame). Off by default: tau = 1, samples placed for every view.
    */
-  vtkSetVector3Macro(ViewPoint, double);
+  void SetViewPoint(double x, double y, double z);
+  void SetViewPoint(const double value[3]);
   vtkGetVector3Macro(ViewPoint, double);
   vtkSetMacro(UseViewPoint, bool);
   vtkGetMacro(UseViewPoint, bool);

@@ -22,6 +22,7 @@
 #include "vtkRefractaHostThreads.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaSettings.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
@@ -39,6 +40,23 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkPhotonTracer);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, PrimaryTolerance, 0.0, 1e30);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, SecondaryTolerance, 0.0, 1e30);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, SecondaryStepLimit, 1e-3, 1e6);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, MinimumStep, 1e-3, 1e6);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, MaximumStep, 1e-3, 1e6);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, FixedStep, 1e-3, 1e6);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, ExtinctionStepLimit, 0.0, 1e30);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, RouletteThreshold, 0.0, 1.0);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, VolumeCausticPiecesPerFineVoxel, 0.0, 1e30);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, MaximumTurn, 1e-3, 2.0);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, StepTolerance, 0.0, 1.0);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, SmoothingBias, 0.0, 1e30);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, LightRadius, 0.0, 1e30);
+vtkRefractaCxxSetClampMacro(vtkPhotonTracer, DirectionalLightAngularRadius, 0.0, 45.0);
+vtkRefractaCxxSetVector3Macro(vtkPhotonTracer, BackgroundColor);
+vtkRefractaCxxSetVector3Macro(vtkPhotonTracer, EnvironmentUp);
+vtkRefractaCxxSetVector3Macro(vtkPhotonTracer, EnvironmentRight);
 
 using namespace vtkPhotonTracerDetail;
 

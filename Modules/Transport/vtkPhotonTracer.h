@@ -169,13 +169,16 @@ public:
   vtkSetMacro(BackgroundIlluminates, bool);
   vtkGetMacro(BackgroundIlluminates, bool);
   vtkBooleanMacro(BackgroundIlluminates, bool);
-  vtkSetVector3Macro(BackgroundColor, double);
+  void SetBackgroundColor(double x, double y, double z);
+  void SetBackgroundColor(const double value[3]);
   vtkGetVector3Macro(BackgroundColor, double);
   void SetEnvironmentMap(vtkImageData* image);
   vtkImageData* GetEnvironmentMap();
-  vtkSetVector3Macro(EnvironmentUp, double);
+  void SetEnvironmentUp(double x, double y, double z);
+  void SetEnvironmentUp(const double value[3]);
   vtkGetVector3Macro(EnvironmentUp, double);
-  vtkSetVector3Macro(EnvironmentRight, double);
+  void SetEnvironmentRight(double x, double y, double z);
+  void SetEnvironmentRight(const double value[3]);
   vtkGetVector3Macro(EnvironmentRight, double);
   ///@}
 
@@ -269,11 +272,11 @@ public:
    * primary eps (default 0.005): unlimited step inside the node; secondary eps' (default 0.02):
    * step capped at SecondaryStepLimit voxels (default 8). eps' <= eps disables the secondary.
    */
-  vtkSetClampMacro(PrimaryTolerance, double, 0.0, 1e30);
+  void SetPrimaryTolerance(double value);
   vtkGetMacro(PrimaryTolerance, double);
-  vtkSetClampMacro(SecondaryTolerance, double, 0.0, 1e30);
+  void SetSecondaryTolerance(double value);
   vtkGetMacro(SecondaryTolerance, double);
-  vtkSetClampMacro(SecondaryStepLimit, double, 1e-3, 1e6);
+  void SetSecondaryStepLimit(double value);
   vtkGetMacro(SecondaryStepLimit, double);
   ///@}
 
@@ -281,9 +284,9 @@ public:
   /**
    * Adaptive step bounds in voxels: MinimumStep (default 1), MaximumStep (default 64).
    */
-  vtkSetClampMacro(MinimumStep, double, 1e-3, 1e6);
+  void SetMinimumStep(double value);
   vtkGetMacro(MinimumStep, double);
-  vtkSetClampMacro(MaximumStep, double, 1e-3, 1e6);
+  void SetMaximumStep(double value);
   vtkGetMacro(MaximumStep, double);
   ///@}
 
@@ -295,7 +298,7 @@ public:
   vtkSetMacro(AdaptiveStepping, bool);
   vtkGetMacro(AdaptiveStepping, bool);
   vtkBooleanMacro(AdaptiveStepping, bool);
-  vtkSetClampMacro(FixedStep, double, 1e-3, 1e6);
+  void SetFixedStep(double value);
   vtkGetMacro(FixedStep, double);
   ///@}
 
@@ -305,7 +308,7 @@ public:
    * step; 0 (default) is off. Attenuation is integrated voxel by voxel whatever the step, so
    * this only shortens steps; see the README for whether it helps.
    */
-  vtkSetClampMacro(ExtinctionStepLimit, double, 0.0, 1e30);
+  void SetExtinctionStepLimit(double value);
   vtkGetMacro(ExtinctionStepLimit, double);
   ///@}
 
@@ -315,7 +318,7 @@ public:
    * below it a photon survives with probability power / threshold and is boosted to the
    * threshold. Default 0.001; 0 disables roulette.
    */
-  vtkSetClampMacro(RouletteThreshold, double, 0.0, 1.0);
+  void SetRouletteThreshold(double value);
   vtkGetMacro(RouletteThreshold, double);
   ///@}
 
@@ -419,7 +422,7 @@ public:
    * voxel needs VolumeCausticPiecesPerFineVoxel x c^3 from the pilot's estimate). Lower values
    * put bricks where fewer caustic photons pass and make their fine voxels noisier.
    */
-  vtkSetClampMacro(VolumeCausticPiecesPerFineVoxel, double, 0.0, 1e30);
+  void SetVolumeCausticPiecesPerFineVoxel(double value);
   vtkGetMacro(VolumeCausticPiecesPerFineVoxel, double);
   ///@}
 
@@ -436,7 +439,7 @@ public:
    * Largest change of v = n dx/ds in one step, as a fraction of n (default 0.5): a steep index
    * step turns a ray over a few steps instead of throwing it out of the grid.
    */
-  vtkSetClampMacro(MaximumTurn, double, 1e-3, 2.0);
+  void SetMaximumTurn(double value);
   vtkGetMacro(MaximumTurn, double);
   ///@}
 
@@ -450,7 +453,7 @@ public:
    * shrink only at steep index changes; there the control keeps light beyond the critical angle
    * from leaking through an interface (Documentation/Physics.md, "Step control").
    */
-  vtkSetClampMacro(StepTolerance, double, 0.0, 1.0);
+  void SetStepTolerance(double value);
   vtkGetMacro(StepTolerance, double);
   ///@}
 
@@ -478,7 +481,7 @@ public:
    * value; 1e30 (the maximum) gives the plain filter everywhere. Physics.md, "Smoothing of the
    * photon deposits".
    */
-  vtkSetClampMacro(SmoothingBias, double, 0.0, 1e30);
+  void SetSmoothingBias(double value);
   vtkGetMacro(SmoothingBias, double);
   ///@}
 
@@ -491,9 +494,9 @@ public:
    * same irradiance on a plane facing them. These are vtkReferenceRenderer's extended lights, so
    * both renderers see the same lights (soft shadows, caustics blurred by the source's size).
    */
-  vtkSetClampMacro(LightRadius, double, 0.0, 1e30);
+  void SetLightRadius(double value);
   vtkGetMacro(LightRadius, double);
-  vtkSetClampMacro(DirectionalLightAngularRadius, double, 0.0, 45.0);
+  void SetDirectionalLightAngularRadius(double value);
   vtkGetMacro(DirectionalLightAngularRadius, double);
   ///@}
 

@@ -20,6 +20,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRefractaMedium.h"
+#include "vtkRefractaSettings.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
@@ -34,6 +35,8 @@
 #include <sstream>
 
 vtkStandardNewMacro(vtkMeshVoxelizer);
+vtkRefractaCxxSetClampMacro(vtkMeshVoxelizer, Padding, 0.0, VTK_DOUBLE_MAX);
+vtkRefractaCxxSetClampMacro(vtkMeshVoxelizer, SmoothingSigma, 0.0, VTK_DOUBLE_MAX);
 
 namespace
 {

@@ -173,7 +173,7 @@ public:
    * when Bounds is valid. A margin of at least half the smoothing window keeps the smoothed
    * interface inside the grid.
    */
-  vtkSetClampMacro(Padding, double, 0.0, VTK_DOUBLE_MAX);
+  void SetPadding(double value);
   vtkGetMacro(Padding, double);
   ///@}
 
@@ -218,7 +218,7 @@ public:
   /**
    * Standard deviation of the Gaussian in voxels (>= 0); default 0, meaning window / 6.
    */
-  vtkSetClampMacro(SmoothingSigma, double, 0.0, VTK_DOUBLE_MAX);
+  void SetSmoothingSigma(double value);
   vtkGetMacro(SmoothingSigma, double);
   ///@}
 

@@ -47,8 +47,9 @@ TEST(MediumMaterial, SettersClampToValidRanges)
   EXPECT_EQ(m->GetEmission()[2], 3.0);
 }
 
-// NaN or infinite values are errors that name the property and leave it unchanged (clamping NaN
-// to a bound, as before, silently turned a broken computation into a plausible material).
+// NaN values (and infinite colour channels) are errors that name the property and leave it
+// unchanged (clamping NaN to a bound, as before, silently turned a broken computation into a
+// plausible material).
 TEST(MediumMaterial, NonFiniteValuesAreRejected)
 {
   vtkNew<vtkMediumMaterial> m;
@@ -68,9 +69,13 @@ TEST(MediumMaterial, NonFiniteValuesAreRejected)
   EXPECT_EQ(m->GetExtinction()[1], 2.0);
   EXPECT_NE(errors->GetErrorMessage().find("finite"), std::string::npos);
   errors->Clear();
-  m->SetAnisotropy(-inf);
+  m->SetAnisotropy(nan);
   EXPECT_EQ(m->GetAnisotropy(), 0.3);
   EXPECT_TRUE(errors->GetError());
+  errors->Clear();
+  m->SetAnisotropy(-inf); // a range's end: clamped, as vtkSetClampMacro does
+  EXPECT_EQ(m->GetAnisotropy(), -0.9999);
+  EXPECT_FALSE(errors->GetError());
   errors->Clear();
   m->SetEmission(nan, 0, 0);
   m->SetAlbedo(0, nan, 0);

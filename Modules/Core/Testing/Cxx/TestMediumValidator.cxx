@@ -255,6 +255,13 @@ TEST(MediumValidator, RejectsDegenerateGrids)
   EXPECT_TRUE(Contains(Validate(image), "axis 2"));
   image->SetSpacing(1.0, 1.0, std::numeric_limits<double>::quiet_NaN());
   EXPECT_TRUE(Contains(Validate(image), "finite and > 0"));
+  // Outside the float arithmetic's range (the photon pass deposited nothing at 1e-16).
+  image->SetSpacing(1e-16, 1e-16, 1e-16);
+  EXPECT_TRUE(Contains(Validate(image), "other units"));
+  image->SetSpacing(1.0, 1e19, 1.0);
+  EXPECT_TRUE(Contains(Validate(image), "axis 1"));
+  image->SetSpacing(1e-12, 1e-12, 1e-12);
+  Validate(image, true);
   image->SetSpacing(1.0, 1.0, 1.0);
   image->SetOrigin(0.0, std::numeric_limits<double>::infinity(), 0.0);
   EXPECT_TRUE(Contains(Validate(image), "origin"));

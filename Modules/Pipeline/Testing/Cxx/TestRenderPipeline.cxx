@@ -11,6 +11,7 @@
 #include "vtkImageData.h"
 #include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLight.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
 #include "vtkOpenCLDeviceArrays.h"
@@ -24,6 +25,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -415,4 +417,80 @@ TEST(RenderPipeline, MissingInputsAreErrorsThatNameThem)
   EXPECT_NE(messages[2].find("0 x 16"), std::string::npos) << messages[2];
   EXPECT_TRUE(pipeline->GetImage().empty());
   EXPECT_TRUE(pipeline->Render(16, 16)) << "usable once the inputs are there";
+}
+
+// A camera or a prop matrix that cannot make view rays or place the medium is an error naming
+// what is wrong, not a black or NaN image (a vtkVolume scaled by zero on one axis, a camera whose
+// position was computed from NaN).
+TEST(RenderPipeline, UnusableCameraAndPropMatrixAreErrors)
+{
+  std::vector<std::string> messages;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&messages);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
+    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
+  vtkNew<vtkRefractaRenderPipeline> pipeline;
+  pipeline->AddObserver(vtkCommand::ErrorEvent, onError);
+  pipeline->SetMedium(Fog());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto fails = [&](const char* expected)
+  {
+    messages.clear();
+    EXPECT_FALSE(pipeline->Render(16, 16)) << expected;
+    ASSERT_EQ(messages.size(), 1u) << expected;
+    EXPECT_NE(messages[0].find(expected), std::string::npos) << messages[0];
+    EXPECT_TRUE(pipeline->GetImage().empty());
+  };
+  vtkSmartPointer<vtkCamera> camera = Front();
+  pipeline->SetCamera(camera);
+  camera->SetPosition(nan, 0, 0);
+  fails("must be finite");
+  camera = Front();
+  pipeline->SetCamera(camera);
+  camera->SetViewUp(camera->GetDirectionOfProjection());
+  fails("view up");
+  pipeline->SetCamera(Front());
+  EXPECT_TRUE(pipeline->Render(16, 16));
+
+  vtkNew<vtkMatrix4x4> squashed;
+  squashed->SetElement(1, 1, 0.0);
+  pipeline->SetPropMatrix(squashed);
+  fails("singular");
+  squashed->SetElement(1, 1, 1.0);
+  squashed->SetElement(0, 3, nan);
+  fails("not finite");
+  squashed->SetElement(0, 3, 0.5);
+  EXPECT_TRUE(pipeline->Render(16, 16)) << "a translated medium renders";
+}
+
+// The front end's settings refuse what would render nothing: a NaN step size or exposure (which
+// vtkSetClampMacro lets through) and an image size outside 1 to 16384 pixels are errors, seen by
+// an observer on the renderer, that keep the previous value.
+TEST(RenderPipeline, ImageRendererRefusesUnusableSettings)
+{
+  vtkNew<vtkRefractaImageRenderer> renderer;
+  std::vector<std::string> messages;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&messages);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
+    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
+  renderer->AddObserver(vtkCommand::ErrorEvent, onError);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  renderer->SetStepSize(0.5);
+  renderer->SetStepSize(nan);
+  EXPECT_EQ(renderer->GetStepSize(), 0.5);
+  renderer->SetExposure(nan);
+  EXPECT_EQ(renderer->GetExposure(), 1.0);
+  renderer->SetImageSize(64, 48);
+  renderer->SetImageSize(0, 48);
+  renderer->SetImageSize(100000, 100000);
+  EXPECT_EQ(renderer->GetImageSize()[0], 64);
+  EXPECT_EQ(renderer->GetImageSize()[1], 48);
+  ASSERT_EQ(messages.size(), 4u);
+  EXPECT_NE(messages[0].find("SetStepSize(nan)"), std::string::npos) << messages[0];
+  EXPECT_NE(messages[1].find("SetExposure(nan)"), std::string::npos) << messages[1];
+  EXPECT_NE(messages[2].find("1 to 16384"), std::string::npos) << messages[2];
+  renderer->SetStepSize(-1); // finite values are clamped, as vtkSetClampMacro does
+  EXPECT_EQ(renderer->GetStepSize(), 0.01);
+  EXPECT_EQ(messages.size(), 4u);
 }
