@@ -18,6 +18,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkRefractaErrorCapture.h"
+#include "vtkRefractaMedium.h"
 #include "vtkSTLReader.h"
 #include "vtkSphereSource.h"
 #include "vtkTransferFunctionMedium.h"
@@ -111,7 +112,8 @@ vtkSmartPointer<vtkMediumMaterial> ReadMaterial(const json& m, const std::string
 {
   CheckKeys(m, path, { "refractive_index", "extinction", "albedo", "anisotropy", "emission" });
   auto material = vtkSmartPointer<vtkMediumMaterial>::New();
-  material->SetRefractiveIndex(Number(m, "refractive_index", path, 1.0, 1.0, 100.0));
+  material->SetRefractiveIndex(
+    Number(m, "refractive_index", path, 1.0, 1.0, vtkRefractaMedium::MaximumRefractiveIndex));
   auto e = Vector(m, "extinction", path, { 0, 0, 0 }, 3, 0.0, 1e9);
   material->SetExtinction(e.data());
   auto a = Vector(m, "albedo", path, { 0, 0, 0 }, 3, 0.0, 1.0);
@@ -342,9 +344,9 @@ vtkSmartPointer<vtkImageData> MapThroughTransferFunctions(const json& volume, vt
   vtkNew<vtkPiecewiseFunction> index;
   for (auto& q : ri)
   {
-    if (q[1] < 1)
+    if (!(q[1] >= 1 && q[1] <= vtkRefractaMedium::MaximumRefractiveIndex))
     {
-      Fail(p + ".refractive_index", "indices must be >= 1");
+      Fail(p + ".refractive_index", "indices must be in [1, 100]");
     }
     index->AddPoint(q[0], q[1]);
   }

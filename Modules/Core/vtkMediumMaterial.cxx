@@ -6,6 +6,7 @@
 #include "vtkMatrix3x3.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkRefractaMedium.h"
 #include "vtkRefractaSettings.h"
 
 #include <algorithm>
@@ -153,7 +154,8 @@ void vtkMediumMaterial::GetPropertiesAtDensity(
   g = this->Anisotropy;
 }
 
-vtkRefractaCxxSetClampMacro(vtkMediumMaterial, RefractiveIndex, 1.0, 100.0);
+vtkRefractaCxxSetClampMacro(
+  vtkMediumMaterial, RefractiveIndex, 1.0, vtkRefractaMedium::MaximumRefractiveIndex);
 vtkRefractaCxxSetClampMacro(vtkMediumMaterial, Anisotropy, -0.9999, 0.9999);
 
 //------------------------------------------------------------------------------

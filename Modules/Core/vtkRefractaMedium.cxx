@@ -30,7 +30,7 @@ constexpr double Inf = std::numeric_limits<double>::infinity();
 
 // One row per vtkRefractaMedium::ArrayId, in enum order.
 const ArrayConvention Conventions[vtkRefractaMedium::NUMBER_OF_ARRAYS] = {
-  { "RefractiveIndex", 1, 1.0, 1.0, Inf, "finite and >= 1" },
+  { "RefractiveIndex", 1, 1.0, 1.0, vtkRefractaMedium::MaximumRefractiveIndex, "in [1, 100]" },
   { "RefractiveIndexGradient", 3, 0.0, -Inf, Inf, "finite" },
   { "Extinction", 3, 0.0, 0.0, Inf, "finite and >= 0" },
   { "Albedo", 3, 0.0, 0.0, 1.0, "in [0, 1]" },

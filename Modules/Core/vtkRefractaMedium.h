@@ -86,6 +86,13 @@ public:
   static const char* InterfaceIndicesName() { return "InterfaceIndices"; }
   static const char* InterfaceMaterialsName() { return "InterfaceMaterials"; }
   static constexpr int InterfaceMaterialComponents = 11;
+
+  /**
+   * The largest refractive index a medium, a material or a surface may have (100; every real
+   * material at optical wavelengths is below 5). Beyond it the index gradient and the Fresnel
+   * terms lose their float precision.
+   */
+  static constexpr double MaximumRefractiveIndex = 100.0;
   ///@}
 
   /**

@@ -1,14 +1,17 @@
 #include "vtkRefractaSurfaceMaterial.h"
 
 #include "vtkObjectFactory.h"
+#include "vtkRefractaMedium.h"
 #include "vtkRefractaSettings.h"
 
 #include <algorithm>
 #include <cmath>
 
 vtkStandardNewMacro(vtkRefractaSurfaceMaterial);
-vtkRefractaCxxSetClampMacro(vtkRefractaSurfaceMaterial, IndexInside, 1.0, 100.0);
-vtkRefractaCxxSetClampMacro(vtkRefractaSurfaceMaterial, IndexOutside, 1.0, 100.0);
+vtkRefractaCxxSetClampMacro(
+  vtkRefractaSurfaceMaterial, IndexInside, 1.0, vtkRefractaMedium::MaximumRefractiveIndex);
+vtkRefractaCxxSetClampMacro(
+  vtkRefractaSurfaceMaterial, IndexOutside, 1.0, vtkRefractaMedium::MaximumRefractiveIndex);
 vtkRefractaCxxSetClampMacro(vtkRefractaSurfaceMaterial, InsideAnisotropy, -0.9999, 0.9999);
 
 //------------------------------------------------------------------------------

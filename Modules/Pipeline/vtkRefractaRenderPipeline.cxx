@@ -33,7 +33,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cmath>
 #include <string>
 
 vtkStandardNewMacro(vtkRefractaRenderPipeline);
@@ -50,88 +49,6 @@ constexpr std::array<double, vtkRefractaRenderPipeline::NUMBER_OF_STAGES> Defaul
 double SecondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-bool Finite3(const double v[3])
-{
-  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
-}
-
-// Why the camera cannot make view rays (empty: it can): every ray would be NaN, or the image
-// black, without a word.
-std::string CameraProblem(vtkCamera* camera)
-{
-  double position[3], focal[3], up[3];
-  camera->GetPosition(position);
-  camera->GetFocalPoint(focal);
-  camera->GetViewUp(up);
-  if (!Finite3(position) || !Finite3(focal) || !Finite3(up) ||
-    !Finite3(camera->GetDirectionOfProjection()))
-  {
-    return "its position, focal point and view up must be finite";
-  }
-  // (vtkCamera keeps the focal point off the position, and the direction unit.)
-  const double* forward = camera->GetDirectionOfProjection();
-  double side[3];
-  vtkMath::Cross(forward, up, side);
-  if (!(vtkMath::Norm(side) > 1e-12 * vtkMath::Norm(up)))
-  {
-    return "its view up is zero or parallel to the direction of view";
-  }
-  if (camera->GetParallelProjection())
-  {
-    const double scale = camera->GetParallelScale();
-    if (!(std::isfinite(scale) && scale > 0.0))
-    {
-      return "its parallel scale must be finite and positive";
-    }
-  }
-  else
-  {
-    const double angle = camera->GetViewAngle();
-    if (!(angle > 0.0 && angle < 180.0))
-    {
-      return "its view angle must be in (0, 180) degrees";
-    }
-  }
-  return {};
-}
-
-// Why the prop matrix cannot place the medium (empty: it can): its inverse takes world points
-// into the medium's grid, so it must be finite and invertible.
-std::string PropMatrixProblem(vtkMatrix4x4* matrix)
-{
-  for (int i = 0; i < 4; ++i)
-  {
-    for (int j = 0; j < 4; ++j)
-    {
-      if (!std::isfinite(matrix->GetElement(i, j)))
-      {
-        return "it has an element that is not finite";
-      }
-    }
-  }
-  double columns[3][3], largest = 0;
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      columns[j][i] = matrix->GetElement(i, j);
-      largest = std::max(largest, std::fabs(columns[j][i]));
-    }
-  }
-  const double det = vtkMath::Determinant3x3(columns[0], columns[1], columns[2]);
-  if (!(std::fabs(det) > 1e-12 * largest * largest * largest))
-  {
-    return "its 3 x 3 part is singular (a zero scale, or axes in one plane), so world points "
-           "have no place in the medium";
-  }
-  const double* last = matrix->GetData() + 12;
-  if (last[0] != 0.0 || last[1] != 0.0 || last[2] != 0.0 || last[3] != 1.0)
-  {
-    return "its last row must be (0, 0, 0, 1): a vtkProp3D's matrix is affine";
-  }
-  return {};
 }
 }
 
@@ -627,25 +544,14 @@ bool vtkRefractaRenderPipeline::RunStages(
     vtkErrorMacro("The image size " << width << " x " << height << " has no pixels.");
     return false;
   }
-  if (withView)
+  // Checked before the light passes, which place the medium by the same matrix.
+  const std::string why = withView
+    ? vtkRefractaViewPass::GetRayFrameProblem(in.Camera, in.PropMatrix)
+    : vtkRefractaViewPass::GetPropMatrixProblem(in.PropMatrix);
+  if (!why.empty())
   {
-    const std::string why = CameraProblem(in.Camera);
-    if (!why.empty())
-    {
-      vtkErrorMacro("The camera cannot render: " << why << ".");
-      return false;
-    }
-  }
-  if (in.PropMatrix)
-  {
-    const std::string why = PropMatrixProblem(in.PropMatrix);
-    if (!why.empty())
-    {
-      vtkErrorMacro("The prop matrix (SetPropMatrix, the volume's placement in the world) cannot "
-                    "place the medium: "
-        << why << ".");
-      return false;
-    }
+    vtkErrorMacro(<< why);
+    return false;
   }
   const bool refractionForcedOff =
     in.Plan->GetEffectMode(vtkEffectPlan::REFRACTION) == vtkEffectPlan::FORCE_OFF;

@@ -131,7 +131,7 @@ bool vtkRefractaViewPass::GetMediumIsRefractive() const
 bool vtkRefractaViewPass::ComputeRayFrame(vtkCamera* camera, vtkImageData* medium,
   vtkMatrix4x4* propMatrix, int width, int height, RayFrame& frame)
 {
-  if (!camera || !medium || width < 1 || height < 1)
+  if (!medium || width < 1 || height < 1 || !GetRayFrameProblem(camera, propMatrix).empty())
   {
     return false;
   }
@@ -140,15 +140,9 @@ bool vtkRefractaViewPass::ComputeRayFrame(vtkCamera* camera, vtkImageData* mediu
   camera->GetFocalPoint(fp);
   camera->GetViewUp(up);
   vtkMath::Subtract(fp, pos, w);
-  if (vtkMath::Normalize(w) == 0.0)
-  {
-    return false;
-  }
+  vtkMath::Normalize(w);
   vtkMath::Cross(w, up, r);
-  if (vtkMath::Normalize(r) == 0.0)
-  {
-    return false;
-  }
+  vtkMath::Normalize(r);
   vtkMath::Cross(r, w, u);
   const double aspect = static_cast<double>(width) / height;
   double halfW, halfH;
@@ -236,23 +230,19 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     vtkErrorMacro("Render() needs a valid medium (SetMedium() failed or was not called).");
     return false;
   }
-  if (!camera)
-  {
-    vtkErrorMacro("No camera: call SetCamera() with a vtkCamera.");
-    return false;
-  }
   if (width < 1 || height < 1)
   {
     vtkErrorMacro("Image size " << width << " x " << height << " is invalid; both must be >= 1.");
     return false;
   }
-  RayFrame frame;
-  if (!ComputeRayFrame(camera, in.Medium, propMatrix, width, height, frame))
+  const std::string why = GetRayFrameProblem(camera, propMatrix);
+  if (!why.empty())
   {
-    vtkErrorMacro("The camera is degenerate (position equals focal point, or view-up parallel "
-                  "to the view direction).");
+    vtkErrorMacro(<< why);
     return false;
   }
+  RayFrame frame;
+  ComputeRayFrame(camera, in.Medium, propMatrix, width, height, frame);
   for (int c = 0; c < 3; ++c)
   {
     if (!std::isfinite(this->BackgroundColor[c]) || this->BackgroundColor[c] < 0)

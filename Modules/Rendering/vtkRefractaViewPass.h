@@ -85,6 +85,7 @@
 #endif
 
 #include <memory> // for std::unique_ptr
+#include <string> // for the problem sentences
 #include <vector> // for std::vector
 
 class vtkCamera;
@@ -456,6 +457,19 @@ public:
    */
   bool GetMediumIsRefractive() const;
 
+  ///@{
+  /**
+   * Why a camera and a prop matrix (nullptr: identity) cannot make view rays, as a sentence for
+   * an error message; empty when they can. The camera needs a finite position, focal point and
+   * view up, a view up off the direction of view, a view angle in (0, 180) degrees (perspective)
+   * or a finite parallel scale > 0; the prop matrix must be finite, affine (last row 0 0 0 1)
+   * and invertible. Render() and the render pipeline report these; GetPropMatrixProblem() is the
+   * matrix's part alone (the light passes place the medium by it too).
+   */
+  static std::string GetRayFrameProblem(vtkCamera* camera, vtkMatrix4x4* propMatrix);
+  static std::string GetPropMatrixProblem(vtkMatrix4x4* propMatrix);
+  ///@}
+
 #ifndef __VTK_WRAP__
   /**
    * A camera's rays in the grid-local frame of a medium, computed in double precision.
@@ -471,6 +485,7 @@ public:
     bool Parallel;
     double WorldToLocal[4][4]; // affine map from world points to grid-local points
   };
+  // False when GetRayFrameProblem() is not empty, or without a medium or pixels.
   static bool ComputeRayFrame(vtkCamera* camera, vtkImageData* medium, vtkMatrix4x4* propMatrix,
     int width, int height, RayFrame& frame);
 #endif

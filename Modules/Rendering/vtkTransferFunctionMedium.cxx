@@ -167,11 +167,13 @@ struct PointMapping
     {
       const double value = index->GetValue(s);
       this->Index = std::max(1.0, value);
-      if (!(value <= FLT_MAX)) // NaN, +Inf, or beyond a float
+      if (!(value <=
+            vtkRefractaMedium::MaximumRefractiveIndex)) // NaN, +Inf, or beyond the media's range
       {
         std::ostringstream why;
         why << "the refractive index function gives " << value << " at scalar " << s
-            << "; indices must be finite numbers >= 1";
+            << "; indices must be finite numbers in [1, "
+            << vtkRefractaMedium::MaximumRefractiveIndex << "] (below 1 they are raised to 1)";
         return fail(why);
       }
     }
@@ -216,14 +218,6 @@ bool vtkTransferFunctionMedium::CheckInputs(vtkImageData* input, vtkDataArray* s
   {
     vtkErrorMacro("The volume property's ScalarOpacityUnitDistance is "
       << unit << "; it must be finite and > 0 (world units).");
-    return false;
-  }
-  // The clamping setters pass NaN through.
-  if (std::isnan(this->Anisotropy) || std::isnan(this->EmissionScale))
-  {
-    vtkErrorMacro("Anisotropy (" << this->Anisotropy << ") and EmissionScale ("
-                                 << this->EmissionScale
-                                 << ") must be numbers: g in [-0.9999, 0.9999], scale >= 0.");
     return false;
   }
   return true;

@@ -404,8 +404,7 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   if (!vtkRefractaViewPass::ComputeRayFrame(
         camera, in.Medium, volume->GetMatrix(), width, height, frame))
   {
-    this->ReportOnce("The renderer's camera is degenerate (position equals focal point, or the "
-                     "view up is parallel to the view direction).");
+    this->ReportOnce(vtkRefractaViewPass::GetRayFrameProblem(camera, volume->GetMatrix()));
     return;
   }
   // The renderer's opaque actors as surfaces (rebuilt only where they changed).

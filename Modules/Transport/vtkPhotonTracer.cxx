@@ -770,10 +770,6 @@ int vtkPhotonTracer::RequestData(
     return 0;
   }
   output->Initialize();
-  if (!this->CheckSettingsAreNumbers())
-  {
-    return 0;
-  }
   this->OctreeSeconds = this->GenerationSeconds = this->MarchingSeconds = 0;
   this->SmoothingSeconds = this->PeakDeviceMemoryBytes = 0;
   this->PlannedDeviceMemoryBytes = this->PlannedHostMemoryBytes = 0;

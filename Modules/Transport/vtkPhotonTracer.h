@@ -753,9 +753,6 @@ protected:
   bool ComputedGradient = false;
 
 private:
-  // False (after vtkErrorMacro naming it) when a floating-point setting is NaN.
-  bool CheckSettingsAreNumbers();
-
   vtkPhotonTracer(const vtkPhotonTracer&) = delete;
   void operator=(const vtkPhotonTracer&) = delete;
   struct Internals;

@@ -867,31 +867,3 @@ bool vtkPhotonTracer::BuildOctreeStage(Internals& run)
   this->OctreeSeconds = Seconds(start);
   return this->ReportProgress(run, ProgressOctree);
 }
-
-//------------------------------------------------------------------------------
-bool vtkPhotonTracer::CheckSettingsAreNumbers()
-{
-  // vtkSetClampMacro keeps a NaN (every comparison with it is false), which would reach the
-  // kernels as a step, a tolerance or a smoothing weight: refuse it by name.
-  const std::pair<const char*, double> settings[] = { { "PrimaryTolerance", this->PrimaryTolerance },
-    { "SecondaryTolerance", this->SecondaryTolerance },
-    { "SecondaryStepLimit", this->SecondaryStepLimit }, { "MinimumStep", this->MinimumStep },
-    { "MaximumStep", this->MaximumStep }, { "FixedStep", this->FixedStep },
-    { "ExtinctionStepLimit", this->ExtinctionStepLimit },
-    { "RouletteThreshold", this->RouletteThreshold }, { "MaximumTurn", this->MaximumTurn },
-    { "StepTolerance", this->StepTolerance }, { "SmoothingBias", this->SmoothingBias },
-    { "LightRadius", this->LightRadius },
-    { "VolumeCausticPiecesPerFineVoxel", this->VolumeCausticPiecesPerFineVoxel },
-    { "DirectionalLightAngularRadius", this->DirectionalLightAngularRadius } };
-  for (const auto& setting : settings)
-  {
-    if (std::isnan(setting.second))
-    {
-      vtkErrorMacro(<< setting.first
-                    << " is NaN; it must be a number (its range and default are in "
-                       "vtkPhotonTracer.h).");
-      return false;
-    }
-  }
-  return true;
-}

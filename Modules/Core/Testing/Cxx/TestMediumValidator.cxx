@@ -106,6 +106,8 @@ TEST(RefractaMedium, ConventionsMatchSpec)
   EXPECT_TRUE(vtkRefractaMedium::IsValueValid(vtkRefractaMedium::ANISOTROPY, 0.999));
   EXPECT_TRUE(vtkRefractaMedium::IsValueValid(vtkRefractaMedium::ALBEDO, 1.0));
   EXPECT_FALSE(vtkRefractaMedium::IsValueValid(vtkRefractaMedium::REFRACTIVE_INDEX, 0.99));
+  EXPECT_TRUE(vtkRefractaMedium::IsValueValid(vtkRefractaMedium::REFRACTIVE_INDEX, 100.0));
+  EXPECT_FALSE(vtkRefractaMedium::IsValueValid(vtkRefractaMedium::REFRACTIVE_INDEX, 100.5));
 }
 
 TEST(MediumValidator, AcceptsGoodMedium)
@@ -181,7 +183,8 @@ TEST(MediumValidator, RejectsOutOfRangeValues)
   const Case cases[] = {
     { "Extinction", 0, -0.5, ">= 0" },
     { "Emission", 1, -1e-3, ">= 0" },
-    { "RefractiveIndex", 0, 0.9, ">= 1" },
+    { "RefractiveIndex", 0, 0.9, "[1, 100]" },
+    { "RefractiveIndex", 0, 1e30, "[1, 100]" },
     { "Albedo", 1, 1.2, "[0, 1]" },
     { "Albedo", 0, -0.1, "[0, 1]" },
     { "Anisotropy", 0, 1.0, "(-1, 1)" },

@@ -121,9 +121,16 @@ TEST(TransferFunctionMedium, NaNFromTheFunctionsIsRejected)
     f.ExpectError("the refractive index function gives nan");
   }
   {
-    Fixture f;
+    Fixture f; // refused by the setter, which keeps g
+    f.Mapping->SetAnisotropy(0.25);
     f.Mapping->SetAnisotropy(NaN);
-    f.ExpectError("must be numbers: g in [-0.9999, 0.9999]");
+    EXPECT_EQ(f.Observer->CheckErrorMessage("SetAnisotropy(nan): must be a number in [-0.9999"), 0);
+    EXPECT_EQ(f.Mapping->GetAnisotropy(), 0.25);
+  }
+  {
+    Fixture f;
+    f.Index->AddPoint(0.5, 1e30);
+    f.ExpectError("indices must be finite numbers in [1, 100]");
   }
 }
 
