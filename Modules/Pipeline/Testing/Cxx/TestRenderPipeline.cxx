@@ -31,6 +31,24 @@
 
 namespace
 {
+// Every error message `object` reports, in order (the observer lives as long as the object).
+struct ErrorCollector : public vtkCommand
+{
+  static ErrorCollector* New() { return new ErrorCollector; }
+  void Execute(vtkObject*, unsigned long, void* call) override
+  {
+    this->Messages.push_back(static_cast<const char*>(call));
+  }
+  std::vector<std::string> Messages;
+};
+
+ErrorCollector* CollectErrors(vtkObject* object)
+{
+  vtkNew<ErrorCollector> collector;
+  object->AddObserver(vtkCommand::ErrorEvent, collector);
+  return collector; // the object holds the observer
+}
+
 // A 24^3 fog (sigma_t 3, albedo 0.8) with a denser, slightly refractive ball in the middle.
 vtkSmartPointer<vtkImageData> Fog()
 {
@@ -399,13 +417,8 @@ TEST(RenderPipeline, DeviceHandOffGivesTheImageOfTheHostHandOff)
 
 TEST(RenderPipeline, MissingInputsAreErrorsThatNameThem)
 {
-  std::vector<std::string> messages;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&messages);
-  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
-    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
   vtkNew<vtkRefractaRenderPipeline> pipeline;
-  pipeline->AddObserver(vtkCommand::ErrorEvent, onError);
+  std::vector<std::string>& messages = CollectErrors(pipeline)->Messages;
   EXPECT_FALSE(pipeline->Render(16, 16));
   pipeline->SetMedium(Fog());
   EXPECT_FALSE(pipeline->Render(16, 16));
@@ -424,13 +437,8 @@ TEST(RenderPipeline, MissingInputsAreErrorsThatNameThem)
 // position was computed from NaN).
 TEST(RenderPipeline, UnusableCameraAndPropMatrixAreErrors)
 {
-  std::vector<std::string> messages;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&messages);
-  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
-    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
   vtkNew<vtkRefractaRenderPipeline> pipeline;
-  pipeline->AddObserver(vtkCommand::ErrorEvent, onError);
+  std::vector<std::string>& messages = CollectErrors(pipeline)->Messages;
   pipeline->SetMedium(Fog());
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const auto fails = [&](const char* expected)
@@ -469,12 +477,7 @@ TEST(RenderPipeline, UnusableCameraAndPropMatrixAreErrors)
 TEST(RenderPipeline, ImageRendererRefusesUnusableSettings)
 {
   vtkNew<vtkRefractaImageRenderer> renderer;
-  std::vector<std::string> messages;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&messages);
-  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
-    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
-  renderer->AddObserver(vtkCommand::ErrorEvent, onError);
+  std::vector<std::string>& messages = CollectErrors(renderer)->Messages;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   renderer->SetStepSize(0.5);
   renderer->SetStepSize(nan);
