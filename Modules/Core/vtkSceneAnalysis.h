@@ -171,6 +171,17 @@ public:
   vtkGetMacro(EnvironmentLight, bool);
   ///@}
 
+  ///@{
+  /**
+   * Whether the background view rays see behind the medium has structure (an environment map or
+   * the procedural checker; set by the pipeline from its view pass; default off, a uniform
+   * colour). Then a view ray's deflection shows as a shift of that structure, which vtkEffectPlan
+   * weighs by its angle (see its refraction estimate), not only by the voxels a ray moves.
+   */
+  vtkSetMacro(BackgroundHasStructure, bool);
+  vtkGetMacro(BackgroundHasStructure, bool);
+  ///@}
+
   /**
    * Number of surfaces (of SetSurfaces) with at least one polygon or triangle strip.
    */
@@ -229,6 +240,7 @@ protected:
   int NumberOfPoweredLights = 0;
   int NumberOfLightsInsideMedium = 0;
   bool EnvironmentLight = false;
+  bool BackgroundHasStructure = false;
   int NumberOfSurfaces = 0;
   int NumberOfInterfaceSurfaces = 0;
   vtkIdType NumberOfDepositedParticles = 0;

@@ -458,6 +458,7 @@ bool vtkRefractaRenderPipeline::PlanIsStale()
     in.CurrentLightList() != in.LightList || this->GetLightsMTime() > planTime ||
     (in.PropMatrix && in.PropMatrix->GetMTime() > planTime) ||
     in.Analysis->GetSurfaces() != in.SceneSurfaces ||
+    in.Analysis->GetBackgroundHasStructure() != (in.ViewPass->GetEnvironmentMap() != nullptr) ||
     Internals::CountSurfaces(in.SceneSurfaces) != in.PlannedSurfaces;
 }
 

@@ -98,6 +98,7 @@ bool vtkRefractaRenderPipeline::RunPlan()
   in.Analysis->SetMedium(in.Medium);
   in.Analysis->SetSurfaces(in.SceneSurfaces);
   in.Analysis->SetEnvironmentLight(this->BackgroundIlluminates);
+  in.Analysis->SetBackgroundHasStructure(in.ViewPass->GetEnvironmentMap() != nullptr);
   in.Analysis->RemoveAllLights();
   int index = 0;
   for (vtkLight* light : in.CurrentLightList())
