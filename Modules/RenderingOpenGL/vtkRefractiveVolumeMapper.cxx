@@ -31,6 +31,7 @@
 #include "vtkTimeStamp.h"
 #include "vtkTransferFunctionMedium.h"
 #include "vtkVolume.h"
+#include "vtkVolumeCollection.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
@@ -299,9 +300,33 @@ void vtkRefractiveVolumeMapper::CutAwayClippedRegions(vtkImageData* medium, vtkV
 }
 
 //------------------------------------------------------------------------------
-void vtkRefractiveVolumeMapper::WarnAboutUnsupportedModes()
+void vtkRefractiveVolumeMapper::WarnAboutUnsupportedModes(vtkRenderer* renderer, vtkVolume* volume)
 {
   Internals& in = *this->Internal;
+  // This mapper replaces the pixels its medium covers (the view pass's radiance holds what is
+  // seen through it) and writes no depth, so two volumes in one renderer cannot composite: the
+  // one drawn later erases or ignores the other, by the order of the renderer's props.
+  const char* other = nullptr;
+  vtkVolumeCollection* volumes = renderer->GetVolumes();
+  vtkCollectionSimpleIterator it;
+  volumes->InitTraversal(it);
+  while (vtkVolume* v = volumes->GetNextVolume(it))
+  {
+    if (v != volume && v->GetVisibility() && v->GetMapper())
+    {
+      other = v->GetMapper()->GetClassName();
+    }
+  }
+  if (other && !in.OtherVolumesWarned)
+  {
+    vtkWarningMacro("The renderer draws another visible volume (mapper "
+      << other
+      << ") besides this one. vtkRefractiveVolumeMapper replaces the pixels its medium covers and "
+         "writes no depth, so where the two overlap one erases or hides the other, depending on "
+         "the order VTK draws them. Put the media in one vtkImageData (vtkImageAppend, or "
+         "resample them onto one grid), or draw the other volume in another renderer layer.");
+  }
+  in.OtherVolumesWarned = other != nullptr;
   if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND && !in.BlendModeWarned)
   {
     vtkWarningMacro("BlendMode " << this->BlendMode
@@ -381,7 +406,7 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
       (renderer->GetRenderWindow() ? renderer->GetRenderWindow()->GetClassName() : "none"));
     return;
   }
-  this->WarnAboutUnsupportedModes();
+  this->WarnAboutUnsupportedModes(renderer, volume);
   if (!this->UpdateMedium(volume))
   {
     return;

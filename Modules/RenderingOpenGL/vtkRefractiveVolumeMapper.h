@@ -54,8 +54,10 @@
  *   front of it hides it;
  * - every other pixel keeps what VTK drew (surfaces are drawn by VTK where no medium covers
  *   them, with VTK's shading).
- * Translucent geometry is ignored. The mapper writes no depth. Values are clamped to [0, 1] as
- * VTK's own shading is (no tone curve).
+ * Translucent geometry is ignored. The mapper writes no depth, so it cannot composite with
+ * another volume in the same renderer (it warns once when one is visible there): put several
+ * media in one vtkImageData, or the other volume in another renderer layer. Values are clamped to
+ * [0, 1] as VTK's own shading is (no tone curve).
  */
 #ifndef vtkRefractiveVolumeMapper_h
 #define vtkRefractiveVolumeMapper_h
@@ -316,7 +318,7 @@ protected:
 
   bool UpdateMedium(vtkVolume* volume);
   void CutAwayClippedRegions(vtkImageData* medium, vtkVolume* volume);
-  void WarnAboutUnsupportedModes();
+  void WarnAboutUnsupportedModes(vtkRenderer* renderer, vtkVolume* volume);
   void ReportOnce(const std::string& message);
   bool UpdateActiveBox();
   void ClassifyPixels(vtkRenderer* renderer, vtkCamera* camera,

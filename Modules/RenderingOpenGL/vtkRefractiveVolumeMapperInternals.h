@@ -57,6 +57,7 @@ struct vtkRefractiveVolumeMapper::Internals
   double MeteredExposure = 1.0;
   int MeteredAt = -1; // plan + light-pass runs when the exposure was metered
   bool BlendModeWarned = false;
+  bool OtherVolumesWarned = false; // another visible volume shares the renderer
 };
 
 #endif

@@ -272,3 +272,38 @@ TEST(MapperDropIn, UnsupportedBlendModeIsRefusedOnce)
   EXPECT_EQ(warnings->Count, 1);
   EXPECT_NE(warnings->Message.find("COMPOSITE"), std::string::npos) << warnings->Message;
 }
+
+// Two volumes in one renderer cannot composite with this mapper (it replaces the pixels its
+// medium covers and writes no depth: found erasing an emitting volume drawn before it, or
+// ignoring an absorbing one drawn after). That is said once, naming the other mapper, and again
+// only after the other volume went away and came back.
+TEST(MapperDropIn, AnotherVolumeInTheRendererIsWarnedAboutOnce)
+{
+  WaveletScene scene;
+  vtkNew<vtkRefractiveVolumeMapper> mapper;
+  mapper->SetNumberOfPhotons(1 << 12);
+  scene.Use(mapper);
+  vtkNew<EventCounter> warnings;
+  mapper->AddObserver(vtkCommand::WarningEvent, warnings);
+  scene.Window->Render();
+  EXPECT_EQ(warnings->Count, 0);
+  vtkNew<vtkVolume> other;
+  vtkNew<vtkRefractiveVolumeMapper> otherMapper;
+  otherMapper->SetNumberOfPhotons(1 << 12);
+  otherMapper->SetInputConnection(scene.Wavelet->GetOutputPort());
+  other->SetMapper(otherMapper);
+  other->SetProperty(scene.Volume->GetProperty());
+  other->SetPosition(25, 0, 0);
+  scene.Renderer->AddVolume(other);
+  scene.Window->Render();
+  scene.Window->Render();
+  EXPECT_EQ(warnings->Count, 1);
+  EXPECT_NE(warnings->Message.find("another visible volume (mapper vtkRefractiveVolumeMapper)"),
+    std::string::npos)
+    << warnings->Message;
+  other->VisibilityOff();
+  scene.Window->Render();
+  other->VisibilityOn();
+  scene.Window->Render();
+  EXPECT_EQ(warnings->Count, 2);
+}
