@@ -33,6 +33,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <string>
 
 vtkStandardNewMacro(vtkRefractaRenderPipeline);
@@ -49,6 +50,26 @@ constexpr std::array<double, vtkRefractaRenderPipeline::NUMBER_OF_STAGES> Defaul
 double SecondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Whether two ray frames give the same rays to a millionth of the image's half-width: a camera
+// copied by vtkWindowToImageFilter's re-render rounds its view angle at 3e-8.
+bool SameRays(const vtkRefractaViewPass::RayFrame& a, const vtkRefractaViewPass::RayFrame& b)
+{
+  const auto near = [](const double* x, const double* y, int n)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      if (!(std::fabs(x[i] - y[i]) <= 1e-6 * (1.0 + std::fabs(x[i]))))
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  return a.Parallel == b.Parallel && near(a.Eye, b.Eye, 3) && near(a.U, b.U, 3) &&
+    near(a.V, b.V, 3) && near(a.W, b.W, 3) &&
+    near(&a.WorldToLocal[0][0], &b.WorldToLocal[0][0], 16);
 }
 }
 
@@ -643,11 +664,11 @@ bool vtkRefractaRenderPipeline::RunStages(
   const bool depthChanged = depthLimit ? in.ViewDepth.size() != pixels ||
       !std::equal(in.ViewDepth.begin(), in.ViewDepth.end(), depthLimit)
                                        : !in.ViewDepth.empty();
-  const bool view = light || !in.ViewDone || in.Camera != in.ViewCamera ||
-    in.Camera->GetMTime() > viewTime || in.ViewPass->GetMTime() > viewTime ||
-    (env && env->GetMTime() > viewTime) ||
-    (in.PropMatrix && in.PropMatrix->GetMTime() > viewTime) || width != in.ViewSize[0] ||
-    height != in.ViewSize[1] || depthChanged;
+  vtkRefractaViewPass::RayFrame frame;
+  vtkRefractaViewPass::ComputeRayFrame(in.Camera, in.Medium, in.PropMatrix, width, height, frame);
+  const bool view = light || !in.ViewDone || !SameRays(frame, in.ViewFrame) ||
+    in.ViewPass->GetMTime() > viewTime || (env && env->GetMTime() > viewTime) ||
+    width != in.ViewSize[0] || height != in.ViewSize[1] || depthChanged;
   if (!view)
   {
     this->ReportProgress(VIEW, 1.0);

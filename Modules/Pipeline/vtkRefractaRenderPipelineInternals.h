@@ -71,7 +71,9 @@ struct vtkRefractaRenderPipeline::Internals
   vtkImageData* PlannedFrom = nullptr;
   std::vector<vtkLight*> LightList;
   std::array<bool, vtkEffectPlan::NUMBER_OF_EFFECTS> Decisions{};
-  vtkCamera* ViewCamera = nullptr;
+  // The rays of the last view (camera, prop matrix and grid): a camera whose MTime moved without
+  // moving a ray (a clipping range reset, vtkWindowToImageFilter's re-render) keeps the image.
+  vtkRefractaViewPass::RayFrame ViewFrame = {};
   int ViewSize[2] = { 0, 0 };
   std::vector<float> ViewDepth;
   bool PlanDone = false;

@@ -153,6 +153,16 @@ TEST(RenderPipeline, StagesRerunOnlyWhatChanged)
   ExpectCounts(pipeline, { 1, 1, 1, 1 }, "nothing changed");
   EXPECT_FALSE(pipeline->GetStageRan(vtkRefractaRenderPipeline::VIEW));
 
+  // What matters is the rays, not the camera's MTime or identity: a clipping range reset, or
+  // a copy of the camera (vtkWindowToImageFilter renders with one), keeps the image.
+  camera->SetClippingRange(0.01, 123.0);
+  vtkNew<vtkCamera> copy;
+  copy->DeepCopy(camera);
+  pipeline->SetCamera(copy);
+  ASSERT_TRUE(pipeline->Render(32, 32));
+  ExpectCounts(pipeline, { 1, 1, 1, 1 }, "the same rays from another camera object");
+  pipeline->SetCamera(camera);
+
   camera->Azimuth(10);
   ASSERT_TRUE(pipeline->Render(32, 32));
   ExpectCounts(pipeline, { 1, 1, 2, 1 }, "camera move: view only");
