@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 vtkStandardNewMacro(vtkEffectPlan);
@@ -235,7 +236,9 @@ bool vtkEffectPlan::Decide(vtkSceneAnalysis* analysis)
   const double tauS = analysis->GetMaximumScatteringThickness();
   // Scattered light can be all the camera sees (a lit fog on black): without the camera and the
   // background there is nothing to compare it with, so any scattering of a powered light counts.
-  const double single = (lit && analysis->GetHasScattering() && tauS > 0.0) ? 1.0 : 0.0;
+  // (Below the smallest normal float the kernels, which flush denormals, scatter nothing.)
+  const double single =
+    (lit && analysis->GetHasScattering() && tauS > std::numeric_limits<float>::min()) ? 1.0 : 0.0;
 
   // Absorption off drops the extinction, and with it every scattered photon: its change is the
   // attenuation or, when the medium scatters light that would be simulated, that light (a thin
