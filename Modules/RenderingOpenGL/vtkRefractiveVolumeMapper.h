@@ -121,7 +121,8 @@ public:
 
   ///@{
   /**
-   * Light-pass quality: photons traced (default 2^18) and the seed (default 1); the photon
+   * Light-pass quality: photons traced (default 2^18, clamped to [1, 2^28] as
+   * vtkPhotonTracer::SetNumberOfPhotons does) and the seed (default 1); the photon
    * tracer's other knobs through GetPipeline()->GetPhotonTracer().
    */
   void SetNumberOfPhotons(int photons);
