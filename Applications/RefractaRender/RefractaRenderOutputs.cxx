@@ -10,6 +10,9 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace RefractaRender
 {
 void WritePng(vtkImageData* image, const std::string& file)
@@ -60,6 +63,31 @@ void WriteReport(const json& report, const std::string& file)
   if (!out)
   {
     throw std::runtime_error("cannot write '" + file + "'");
+  }
+}
+
+void CheckOutputFolders(const std::vector<std::string>& files)
+{
+  for (const std::string& file : files)
+  {
+    if (file.empty())
+    {
+      continue;
+    }
+    const size_t slash = file.find_last_of('/');
+    const std::string folder =
+      slash == std::string::npos ? "." : (slash == 0 ? "/" : file.substr(0, slash));
+    struct stat info;
+    if (stat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
+    {
+      throw std::runtime_error(
+        "cannot write '" + file + "': the folder '" + folder + "' does not exist");
+    }
+    if (access(folder.c_str(), W_OK) != 0)
+    {
+      throw std::runtime_error(
+        "cannot write '" + file + "': the folder '" + folder + "' is not writable");
+    }
   }
 }
 }

@@ -7,6 +7,7 @@
 #include "RefractaSceneJson.h"
 
 #include <string>
+#include <vector>
 
 class vtkImageData;
 
@@ -23,6 +24,11 @@ void WriteRadianceVolume(vtkImageData* medium, vtkImageData* lighting, const std
 
 /// Writes the report as indented JSON.
 void WriteReport(const json& report, const std::string& file);
+
+/// Throws, naming the file, when the folder of one of `files` (empty names skipped) does not
+/// exist or cannot be written: checked before the render, which it would otherwise waste (and
+/// VTK's writers would say "Ran out of disk space" first).
+void CheckOutputFolders(const std::vector<std::string>& files);
 }
 
 #endif

@@ -102,6 +102,7 @@ struct Options
 // Renders a scene; throws SceneError for bad scenes, std::runtime_error for failed stages.
 int Render(const json& scene, const std::string& base, const Options& options)
 {
+  CheckOutputFolders({ options.Output, options.Hdr, options.Radiance, options.Report });
   Timer total;
   json seconds = json::object();
   // One render pipeline does the work (vtkRefractaRenderPipeline, through the image renderer
