@@ -375,7 +375,7 @@ TEST(LatticeBoltzmannLong, PointSourceFollowsDiffusionGreensFunction)
 // at the cap, unconverged, with finite values.
 TEST(LatticeBoltzmann, HighAlbedoStopsCleanly)
 {
-  const int n = 24;
+  const int n = 24, Cap = 1500;
   for (double albedo : { 0.999, 1.0 })
   {
     for (int boundary : { 0, 1 })
@@ -385,7 +385,7 @@ TEST(LatticeBoltzmann, HighAlbedoStopsCleanly)
       m.Albedo.assign(m.N() * 3, static_cast<float>(albedo));
       m.G.assign(m.N(), 0.0f);
       vtkNew<vtkLatticeBoltzmannSolver> solver = MakeSolver(m, 6, 4, 4, boundary);
-      solver->SetMaximumIterations(3000);
+      solver->SetMaximumIterations(Cap); // the vacuum cases converge in 632 and 664 steps
       const std::vector<float> s = RandomSource(m.N(), 9);
       ASSERT_TRUE(solver->SetSource(s.data(), nullptr));
       ASSERT_TRUE(solver->Solve());
@@ -405,12 +405,12 @@ TEST(LatticeBoltzmann, HighAlbedoStopsCleanly)
       if (boundary == 0)
       {
         EXPECT_TRUE(solver->GetConverged());
-        EXPECT_LT(solver->GetIterations(), 3000);
+        EXPECT_LT(solver->GetIterations(), Cap);
       }
       else if (albedo == 1.0)
       {
         EXPECT_FALSE(solver->GetConverged());
-        EXPECT_EQ(solver->GetIterations(), 3000);
+        EXPECT_EQ(solver->GetIterations(), Cap);
       }
     }
   }
