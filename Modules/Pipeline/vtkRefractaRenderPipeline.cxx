@@ -685,6 +685,7 @@ bool vtkRefractaRenderPipeline::RunStages(
   in.Ran[VIEW] = true;
   if (ok)
   {
+    in.ViewFrame = frame; // the rays this image was made with
     in.LastSeconds[VIEW] = in.Seconds[VIEW];
     this->ReportProgress(VIEW, 1.0);
   }

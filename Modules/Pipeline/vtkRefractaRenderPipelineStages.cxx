@@ -320,8 +320,6 @@ bool vtkRefractaRenderPipeline::RunView(int width, int height, const float* dept
   const size_t pixels = static_cast<size_t>(width) * height;
   in.ViewDepth.assign(
     depthLimit ? depthLimit : nullptr, depthLimit ? depthLimit + pixels : nullptr);
-  vtkRefractaViewPass::ComputeRayFrame(
-    in.Camera, in.Medium, in.PropMatrix, width, height, in.ViewFrame);
   in.ViewSize[0] = width;
   in.ViewSize[1] = height;
   in.ViewDone = true;

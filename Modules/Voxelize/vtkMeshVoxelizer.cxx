@@ -700,9 +700,8 @@ bool vtkMeshVoxelizer::CheckOutputValues(vtkImageData* output)
   {
     return true;
   }
-  vtkErrorMacro("The voxelized medium is not valid (a material's Extinction or Emission times its "
-                "density field, or its refractive index scaled by the density, must stay finite "
-                "in a float, below 3.4e38):\n"
+  vtkErrorMacro("The voxelized medium is not valid (a material's value times its density field "
+                "left the range a medium allows):\n"
     << validator->GetErrorMessage());
   return false;
 }

@@ -73,6 +73,19 @@ vtkSmartPointer<vtkImageData> MakeMedium(
   return image;
 }
 
+// A uniform fog of n^3 voxels.
+vtkSmartPointer<vtkImageData> UniformFog(int n, double spacing, double sigmaT, double albedo)
+{
+  return MakeMedium(n, n, n, spacing,
+    [=](int, int, int)
+    {
+      Voxel v;
+      v.SigmaT = sigmaT;
+      v.Albedo = albedo;
+      return v;
+    });
+}
+
 vtkSmartPointer<vtkLight> MakeDirectionalLight(double intensity)
 {
   auto light = vtkSmartPointer<vtkLight>::New();
@@ -200,14 +213,7 @@ TEST(EffectPlan, RefractionCountsTheShiftOfAStructuredBackground)
 TEST(EffectPlan, MultipleScatteringSwitchesAtItsThreshold)
 {
   // Fog: sigma_t = 0.1, albedo 0.9 over 2 units: tau = 0.2, tau_s = 0.18.
-  auto fog = MakeMedium(20, 20, 20, 0.1,
-    [](int, int, int)
-    {
-      Voxel v;
-      v.SigmaT = 0.1;
-      v.Albedo = 0.9;
-      return v;
-    });
+  auto fog = UniformFog(20, 0.1, 0.1, 0.9);
   const double q = 0.9 * (1.0 - std::exp(-0.2));
   const double multiple = q; // about 0.163
   vtkNew<vtkSceneAnalysis> analysis;
@@ -276,14 +282,7 @@ TEST(EffectPlan, QualityPresetsSelectTheirPassSettings)
 
 TEST(EffectPlan, ScatteringNeedsAPoweredLight)
 {
-  auto fog = MakeMedium(8, 8, 8, 0.25,
-    [](int, int, int)
-    {
-      Voxel v;
-      v.SigmaT = 1.0;
-      v.Albedo = 0.8;
-      return v;
-    });
+  auto fog = UniformFog(8, 0.25, 1.0, 0.8);
   vtkNew<vtkSceneAnalysis> analysis;
   vtkNew<vtkEffectPlan> plan;
   Plan(fog, nullptr, plan, analysis);
@@ -309,14 +308,7 @@ TEST(EffectPlan, ScatteringNeedsAPoweredLight)
 // off, tau alone decides again.
 TEST(EffectPlan, AbsorptionStaysOnWhileAThinHazeScatters)
 {
-  auto haze = MakeMedium(8, 8, 8, 0.25,
-    [](int, int, int)
-    {
-      Voxel v;
-      v.SigmaT = 0.004;
-      v.Albedo = 1.0;
-      return v;
-    });
+  auto haze = UniformFog(8, 0.25, 0.004, 1.0);
   vtkNew<vtkSceneAnalysis> analysis;
   vtkNew<vtkEffectPlan> plan;
   Plan(haze, MakeDirectionalLight(1.0), plan, analysis);
@@ -561,14 +553,7 @@ TEST(SceneAnalysis, MediumFactsAreReusedUntilTheMediumChanges)
 // order; the choice is recorded with its reason.
 TEST(EffectPlan, MultipleScatteringMethodFollowsTheToleranceAndTheLattice)
 {
-  auto fog = MakeMedium(10, 10, 10, 0.1,
-    [](int, int, int)
-    {
-      Voxel v;
-      v.SigmaT = 2.0;
-      v.Albedo = 0.95;
-      return v;
-    });
+  auto fog = UniformFog(10, 0.1, 2.0, 0.95);
   vtkNew<vtkSceneAnalysis> analysis;
   vtkNew<vtkEffectPlan> plan;
   auto outside = MakeDirectionalLight(1.0);
