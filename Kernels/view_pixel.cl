@@ -153,11 +153,11 @@ inline bool refracta_view_footprint_aliases(__global const float4* nodes, const 
   REFRACTA_VIEW_LEG_PARAMS, const float4 background, __global const float *environment,          \
     const int2 envSize, const float4 envRight, const float4 envUp, const float4 envFront,         \
     __global const int *triInfo, __global const float *surfaceAlbedo,                            \
-    __global const float *surfaceIrradiance, __global const float4 *triNormals,                  \
-    __global const float2 *interfaces
+    __global const float *surfaceIrradiance, __global const float *surfaceCorners,               \
+    __global const float4 *triNormals, __global const float2 *interfaces
 #define REFRACTA_VIEW_PATH_ARGS                                                                   \
   REFRACTA_VIEW_LEG_ARGS, background, environment, envSize, envRight, envUp, envFront, triInfo,  \
-    surfaceAlbedo, surfaceIrradiance, triNormals, interfaces
+    surfaceAlbedo, surfaceIrradiance, surfaceCorners, triNormals, interfaces
 
 // One path's result: its radiance, the RGB transmittance of the legs that end in the background,
 // the path length to the first surface its primary ray meets (INFINITY: none) and its steps.
@@ -255,8 +255,8 @@ inline refracta_view_sample refracta_view_path(
       else
 #endif
       {
-        float3 ls = refracta_view_surface_radiance(
-          triInfo, surfaceAlbedo, surfaceIrradiance, leg.surfaceTri, leg.surfaceU, leg.surfaceV);
+        float3 ls = refracta_view_surface_radiance(triInfo, surfaceAlbedo, surfaceIrradiance,
+          surfaceCorners, leg.surfaceTri, leg.surfaceU, leg.surfaceV);
         // Basic radiance: a surface inside the medium is seen divided by n^2 (1 outside the box).
         const bool inBox = all(leg.surfacePoint >= lo) && all(leg.surfacePoint <= hi);
 #ifdef REFRACTA_INDEX_WEIGHT
@@ -313,7 +313,8 @@ inline refracta_view_sample refracta_view_path(
     const int4 activeHi, const uint skipMask, __global const float4* nodes,                        \
     const int nodeCount, __global const float4* triangles, __global const int* triInfo,            \
     __global const float* surfaceAlbedo, __global const float* surfaceIrradiance,                  \
-    __global const float4* triNormals, __global const float2* interfaces,                          \
+    __global const float* surfaceCorners, __global const float4* triNormals,                       \
+    __global const float2* interfaces,                                                             \
     const float4 toSurface0, const float4 toSurface1, const float4 toSurface2,                     \
     __global float* hdr, __global uint* steps, __global float* transmittanceOut,                   \
     __global float* surfaceDepthOut, __global const float4* bodies,                                \

@@ -15,10 +15,15 @@
 // between values at the texel's three corners, each corner's value the mean of the texels of the
 // same triangle that touch it (up to 6). Around an interior lattice vertex those texels' centroids
 // lie symmetrically, so a linear irradiance is reproduced exactly there; the reconstruction is
-// continuous inside a triangle and averages ~6 texels per corner (less photon noise). Corners on
-// the triangle's edges average one-sidedly (no adjacency across triangles): a first-order bias of
-// about a third of a texel times the gradient there. -DREFRACTA_SURFACE_NEAREST instead reads the
-// hit texel alone. The albedo is the hit texel's (never blurred: checker edges stay sharp).
+// continuous inside a triangle and averages ~6 texels per corner (less photon noise). At the
+// triangle's own three corners the value is the host's (surfaceCorners, 9 floats per triangle):
+// the area-weighted mean of the corner texels of every triangle of the mesh sharing that point
+// within 30 degrees (vtkRefractaSurfaceSet::ComputeCornerIrradiance), so a mesh finer than its
+// texels (one texel per triangle) is shaded continuously across triangles from ~6 of them per
+// corner instead of piecewise constant from one. Lattice vertices on a triangle's edges between
+// its corners average one-sidedly: a first-order bias of about a third of a texel times the
+// gradient there. -DREFRACTA_SURFACE_NEAREST instead reads the hit texel alone. The albedo is the
+// hit texel's (never blurred: checker edges stay sharp).
 
 #ifdef REFRACTA_HAS_SURFACES
 
@@ -69,10 +74,27 @@ inline float3 refracta_view_vertex_irradiance(
   return count > 0 ? sum / (float)count : sum;
 }
 
+// Value at lattice vertex (p, q): at the triangle's own corners the host's shared value (when
+// `corners`, the triangle's 9 floats, is given), elsewhere refracta_view_vertex_irradiance.
+inline float3 refracta_view_lattice_irradiance(__global const float* irradiance,
+  __global const float* corners, int first, int n, int p, int q)
+{
+  if (corners && q == 0 && (p == 0 || p == n))
+  {
+    return vload3(p == 0 ? 0 : 1, corners);
+  }
+  if (corners && p == 0 && q == n)
+  {
+    return vload3(2, corners);
+  }
+  return refracta_view_vertex_irradiance(irradiance, first, n, p, q);
+}
+
 // Irradiance at barycentric (u, v) of a triangle's texels (first texel `first`, subdivision n;
-// see the file comment).
-inline float3 refracta_view_atlas_irradiance(
-  __global const float* irradiance, int first, int n, float u, float v)
+// its shared corner values `corners`, or 0 to keep the corners to this triangle's texels; see the
+// file comment).
+inline float3 refracta_view_atlas_irradiance(__global const float* irradiance,
+  __global const float* corners, int first, int n, float u, float v)
 {
 #ifdef REFRACTA_SURFACE_NEAREST
   return vload3(first + refracta_texel_index(u, v, n), irradiance);
@@ -97,16 +119,18 @@ inline float3 refracta_view_atlas_irradiance(
     // Corners (i, j), (i + 1, j), (i, j + 1).
     const float wa = clamp(a - (float)i, 0.0f, 1.0f);
     const float wb = clamp(b - (float)j, 0.0f, 1.0f - wa);
-    return (1.0f - wa - wb) * refracta_view_vertex_irradiance(irradiance, first, n, i, j) +
-      wa * refracta_view_vertex_irradiance(irradiance, first, n, i + 1, j) +
-      wb * refracta_view_vertex_irradiance(irradiance, first, n, i, j + 1);
+    return (1.0f - wa - wb) *
+      refracta_view_lattice_irradiance(irradiance, corners, first, n, i, j) +
+      wa * refracta_view_lattice_irradiance(irradiance, corners, first, n, i + 1, j) +
+      wb * refracta_view_lattice_irradiance(irradiance, corners, first, n, i, j + 1);
   }
   // Corners (i + 1, j), (i, j + 1), (i + 1, j + 1).
   const float wa = clamp((float)(i + 1) - a, 0.0f, 1.0f); // weight of (i, j + 1)
   const float wb = clamp((float)(j + 1) - b, 0.0f, 1.0f - wa); // weight of (i + 1, j)
-  return wa * refracta_view_vertex_irradiance(irradiance, first, n, i, j + 1) +
-    wb * refracta_view_vertex_irradiance(irradiance, first, n, i + 1, j) +
-    (1.0f - wa - wb) * refracta_view_vertex_irradiance(irradiance, first, n, i + 1, j + 1);
+  return wa * refracta_view_lattice_irradiance(irradiance, corners, first, n, i, j + 1) +
+    wb * refracta_view_lattice_irradiance(irradiance, corners, first, n, i + 1, j) +
+    (1.0f - wa - wb) *
+    refracta_view_lattice_irradiance(irradiance, corners, first, n, i + 1, j + 1);
 #endif
 }
 
@@ -114,17 +138,19 @@ inline float3 refracta_view_atlas_irradiance(
 // (REFRACTA_CAUSTIC_SUBDIVISION c > 1, Physics.md "Caustic atlas") the caustic light of the
 // texels that the host chose to show fine, reconstructed the same way at subdivision n c (fine
 // first texel REFRACTA_CAUSTIC_OFFSET + c^2 first; the host took that light out of the atlas).
-inline float3 refracta_view_surface_irradiance(
-  __global const int* triInfo, __global const float* irradiance, int tri, float u, float v)
+inline float3 refracta_view_surface_irradiance(__global const int* triInfo,
+  __global const float* irradiance, __global const float* corners, int tri, float u, float v)
 {
   const int first = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_TEXEL];
   const int n = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_SUBDIVISION];
-  const float3 e = refracta_view_atlas_irradiance(irradiance, first, n, u, v);
+  const float3 e =
+    refracta_view_atlas_irradiance(irradiance, corners + 9 * (long)tri, first, n, u, v);
 #if defined(REFRACTA_CAUSTIC_SUBDIVISION) && REFRACTA_CAUSTIC_SUBDIVISION > 1
+  // The fine texels' caustic light stays within its triangle (0: no shared corners).
   const int c = REFRACTA_CAUSTIC_SUBDIVISION;
   return e +
-    refracta_view_atlas_irradiance(irradiance + 3 * (long)REFRACTA_CAUSTIC_OFFSET, c * c * first,
-      c * n, u, v);
+    refracta_view_atlas_irradiance(irradiance + 3 * (long)REFRACTA_CAUSTIC_OFFSET, 0,
+      c * c * first, c * n, u, v);
 #else
   return e;
 #endif
@@ -132,12 +158,13 @@ inline float3 refracta_view_surface_irradiance(
 
 // Outgoing radiance E rho / pi of the surface hit (triangle tri, barycentrics u, v).
 inline float3 refracta_view_surface_radiance(__global const int* triInfo,
-  __global const float* albedo, __global const float* irradiance, int tri, float u, float v)
+  __global const float* albedo, __global const float* irradiance, __global const float* corners,
+  int tri, float u, float v)
 {
   const int first = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_TEXEL];
   const int n = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_SUBDIVISION];
   const float3 rho = vload3(first + refracta_texel_index(u, v, n), albedo);
-  const float3 e = refracta_view_surface_irradiance(triInfo, irradiance, tri, u, v);
+  const float3 e = refracta_view_surface_irradiance(triInfo, irradiance, corners, tri, u, v);
   return fmax(e, (float3)(0.0f)) * rho * (1.0f / REFRACTA_PI);
 }
 

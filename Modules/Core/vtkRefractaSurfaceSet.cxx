@@ -474,13 +474,18 @@ bool vtkRefractaSurfaceSet::Build()
     this->TriangleNormals.clear();
     this->SurfaceInterfaces.clear();
     this->SurfaceBodies.clear();
+    this->CornerOffsets.assign(1, 0);
+    this->CornerTexels.clear();
     this->DielectricTriangles = 0;
     return false;
   }
   impl.BVH->Build(impl.World.data(), triangles);
   this->LayOutAtlas();
   this->BakeAlbedo();
+  impl.Shared.Build(this, impl.BVH, impl.Sources);
   this->DescribeInterfaces();
+  this->LinkCorners();
+  impl.Shared.Clear();
   impl.World.clear();
   impl.World.shrink_to_fit();
   this->Built = true;

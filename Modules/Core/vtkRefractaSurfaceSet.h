@@ -34,7 +34,13 @@
  *    area-weighted mean of the world normals of the surface's faces sharing the mesh point, kept
  *    where within 30 degrees of the face normal, else the face normal) and the surface's
  *    (IndexInside, IndexOutside) (GetSurfaceInterfaces()), and its inside medium when it has one
- *    (GetSurfaceBodies(); Documentation/Physics.md "Glass bodies").
+ *    (GetSurfaceBodies(); Documentation/Physics.md "Glass bodies");
+ * 7. links the corners of the Lambertian triangles that share a mesh point (GetCornerTexels()):
+ *    the view pass reconstructs the irradiance at a triangle's corner from the corner texels of
+ *    every triangle of the same surface at that point whose face is within 30 degrees of its own
+ *    (ComputeCornerIrradiance()), so a mesh finer than its texels is shaded continuously across
+ *    its triangles, as VTK's Gouraud shading would, while a cube's edges stay sharp. Meshes
+ *    whose triangles do not share point ids (unmerged points) keep each corner to its own texel.
  *
  * A pass deposits photon flux per texel; irradiance (W / m^2, per RGB channel) = flux / texel
  * area (GetTexelAreas()). The flattened arrays follow Kernels/refracta_surfaces.cl.
@@ -228,6 +234,29 @@ public:
   {
     return this->TexelAreas;
   }
+
+  /**
+   * Per triangle corner (BVH order, three per triangle; build step 7): the atlas texels whose
+   * irradiance the view pass averages at that corner are GetCornerTexels()[i] for i from
+   * GetCornerOffsets()[3 t + c] to GetCornerOffsets()[3 t + c + 1] (none for a dielectric
+   * triangle). GetCornerOffsets() has 3 triangles + 1 entries.
+   */
+  const std::vector<vtkIdType>& GetCornerOffsets() const
+  {
+    return this->CornerOffsets;
+  }
+  const std::vector<int>& GetCornerTexels() const
+  {
+    return this->CornerTexels;
+  }
+
+  /**
+   * The irradiance at every triangle corner (3 RGB floats per triangle, BVH order) from the
+   * atlas's per-texel irradiance (3 floats per texel, GetNumberOfTexels() texels): the mean over
+   * the corner's linked texels weighted by their areas (total flux over total area), 0 for
+   * dielectric triangles.
+   */
+  void ComputeCornerIrradiance(const float* irradiance, std::vector<float>& corners) const;
 #endif
 
   /**
@@ -265,6 +294,8 @@ protected:
   std::vector<float> TriangleNormals;
   std::vector<float> SurfaceInterfaces;
   std::vector<float> SurfaceBodies;
+  std::vector<vtkIdType> CornerOffsets;
+  std::vector<int> CornerTexels;
 
 private:
   vtkRefractaSurfaceSet(const vtkRefractaSurfaceSet&) = delete;
@@ -277,6 +308,8 @@ private:
   // Build() step 6: kinds, corner normals and the interface table.
   void DescribeInterfaces();
   bool IsDielectric(int surface) const;
+  // Build() step 7: the Lambertian corners' linked texels.
+  void LinkCorners();
   // AddMediumInterfaces's checks of the optional InterfaceMaterials array (errors name it).
   bool CheckInterfaceMaterials(vtkDataArray* bodies, vtkIdType triangles);
 };

@@ -191,53 +191,8 @@ void vtkRefractaSurfaceSet::DescribeInterfaces()
   }
   const vtkRefractaBVH* bvh = this->Impl->BVH;
   const vtkIdType triangles = bvh->GetNumberOfTriangles();
-  const std::vector<double>& tri = bvh->GetTriangles();
   const std::vector<vtkIdType>& order = bvh->GetTriangleOrder();
-  // The triangles at each mesh point of the smooth surfaces (CSR: offsets per point, then ids).
-  std::vector<std::vector<vtkIdType>> offsets(surfaces), adjacent(surfaces);
-  for (int s = 0; s < surfaces; ++s)
-  {
-    if (smooth[s])
-    {
-      offsets[s].assign(size_t(this->GetSurface(s)->GetNumberOfPoints()) + 1, 0);
-    }
-  }
-  for (int pass = 0; pass < 2; ++pass)
-  {
-    std::vector<std::vector<vtkIdType>> fill(surfaces);
-    for (int s = 0; s < surfaces && pass == 1; ++s)
-    {
-      for (size_t p = 1; p < offsets[s].size(); ++p)
-      {
-        offsets[s][p] += offsets[s][p - 1];
-      }
-      adjacent[s].resize(offsets[s].empty() ? 0 : size_t(offsets[s].back()));
-      fill[s].assign(offsets[s].begin(), offsets[s].end());
-    }
-    for (vtkIdType k = 0; k < triangles; ++k)
-    {
-      const SourceTriangle& source = this->Impl->Sources[order[k]];
-      for (vtkIdType p : source.Points)
-      {
-        if (smooth[source.Surface] && pass == 0)
-        {
-          ++offsets[source.Surface][p + 1];
-        }
-        else if (smooth[source.Surface])
-        {
-          adjacent[source.Surface][fill[source.Surface][p]++] = k;
-        }
-      }
-    }
-  }
-  // Unit face normals and doubled areas in BVH order.
-  std::vector<double> faces(3 * size_t(triangles)), areas(triangles);
-  for (vtkIdType k = 0; k < triangles; ++k)
-  {
-    Cross(&tri[9 * k], &faces[3 * k]);
-    areas[k] = DoubledArea(&tri[9 * k]);
-    Normalize(&faces[3 * k]);
-  }
+  const SharedPoints& shared = this->Impl->Shared;
   this->DielectricTriangles = 0;
   this->TriangleNormals.assign(REFRACTA_TRIANGLE_NORMAL_FLOATS * size_t(triangles), 0.0f);
   for (vtkIdType k = 0; k < triangles; ++k)
@@ -247,7 +202,7 @@ void vtkRefractaSurfaceSet::DescribeInterfaces()
     this->TriangleInfo[REFRACTA_TRIANGLE_INFO_INTS * k + REFRACTA_TRIANGLE_INFO_KIND] =
       dielectric ? REFRACTA_SURFACE_DIELECTRIC : REFRACTA_SURFACE_LAMBERTIAN;
     this->DielectricTriangles += dielectric ? 1 : 0;
-    const double* face = &faces[3 * k];
+    const double* face = &shared.Faces[3 * k];
     for (int corner = 0; corner < 3; ++corner)
     {
       double n[3] = { face[0], face[1], face[2] };
@@ -255,21 +210,15 @@ void vtkRefractaSurfaceSet::DescribeInterfaces()
       {
         // The area-weighted mean over the point's faces within the feature angle of this face:
         // a 45-degree edge of a prism stays sharp on both sides.
-        const vtkIdType p = source.Points[corner];
-        const auto& o = offsets[source.Surface];
         double mean[3] = { 0, 0, 0 };
-        for (vtkIdType i = o[p]; i < o[p + 1]; ++i)
-        {
-          const vtkIdType j = adjacent[source.Surface][i];
-          const double* f = &faces[3 * j];
-          if (f[0] * face[0] + f[1] * face[1] + f[2] * face[2] >= SmoothNormalCosine)
+        shared.ForSmoothNeighbours(source.Surface, source.Points[corner], k,
+          [&](vtkIdType j)
           {
             for (int a = 0; a < 3; ++a)
             {
-              mean[a] += areas[j] * f[a];
+              mean[a] += shared.Areas[j] * shared.Faces[3 * j + a];
             }
-          }
-        }
+          });
         Normalize(mean);
         std::copy(mean, mean + 3, n);
       }

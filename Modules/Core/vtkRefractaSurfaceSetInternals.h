@@ -60,6 +60,36 @@ inline void Normalize(double c[3])
     c[2] /= l;
   }
 }
+
+// What smoothing across the triangles that share a mesh point needs (the glass's corner normals,
+// the Lambertian corners' irradiance): per surface, the triangles (BVH order) at each of its mesh
+// points (CSR), and every triangle's unit face normal and doubled area (BVH order).
+struct SharedPoints
+{
+  std::vector<std::vector<vtkIdType>> Offsets, Triangles;
+  std::vector<double> Faces, Areas;
+
+  void Build(vtkRefractaSurfaceSet* set, const vtkRefractaBVH* bvh,
+    const std::vector<SourceTriangle>& sources);
+  void Clear() { *this = SharedPoints(); }
+
+  // Calls f(j) for each triangle j at mesh point p of surface s (triangle k among them) whose
+  // face is within the smoothing angle of k's.
+  template <class F>
+  void ForSmoothNeighbours(int s, vtkIdType p, vtkIdType k, F f) const
+  {
+    const double* face = &this->Faces[3 * k];
+    for (vtkIdType i = this->Offsets[s][p]; i < this->Offsets[s][p + 1]; ++i)
+    {
+      const vtkIdType j = this->Triangles[s][i];
+      const double* g = &this->Faces[3 * j];
+      if (g[0] * face[0] + g[1] * face[1] + g[2] * face[2] >= SmoothNormalCosine)
+      {
+        f(j);
+      }
+    }
+  }
+};
 } // namespace vtkRefractaSurfaceSetDetail
 
 //------------------------------------------------------------------------------
@@ -77,6 +107,7 @@ struct vtkRefractaSurfaceSet::Internals
   // Build scratch: world triangles (9 doubles each) and where they came from.
   std::vector<double> World;
   std::vector<vtkRefractaSurfaceSetDetail::SourceTriangle> Sources;
+  vtkRefractaSurfaceSetDetail::SharedPoints Shared;
 };
 
 #endif

@@ -482,10 +482,11 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       env ? in.EnvironmentBuffer.Get() : in.Dummy.Get(), envSize, envRight, envUp, envFront,
       buf(depthBuffer), skipping ? in.Occupancy.Get() : in.Dummy.Get(), cellDims, activeLo,
       activeHi, skipMask, buf(surf.Nodes), nodeCount, buf(surf.Triangles), buf(surf.TriangleInfo),
-      buf(surf.Albedo), buf(surf.Irradiance), buf(surf.Normals), buf(surf.Interfaces), toSurface[0],
-      toSurface[1], toSurface[2], hdrBuffer.Get(), stepBuffer.Get(), transmittanceBuffer.Get(),
-      surfaceDepthBuffer.Get(), buf(surf.Bodies), buf(in.CausticBricks), buf(in.CausticRadiance),
-      buf(in.CausticDirection), causticSub, supersampling, grazingCosine, supersampledBuffer.Get());
+      buf(surf.Albedo), buf(surf.Irradiance), buf(surf.Corners), buf(surf.Normals),
+      buf(surf.Interfaces), toSurface[0], toSurface[1], toSurface[2], hdrBuffer.Get(),
+      stepBuffer.Get(), transmittanceBuffer.Get(), surfaceDepthBuffer.Get(), buf(surf.Bodies),
+      buf(in.CausticBricks), buf(in.CausticRadiance), buf(in.CausticDirection), causticSub,
+      supersampling, grazingCosine, supersampledBuffer.Get());
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
       !this->RunTiles(context, launch, width, rows, row0, height, rowsPerTile))
     {

@@ -76,6 +76,7 @@ bool SurfaceBuffers::Update(vtkRefractaSurfaceSet* set, vtkOpenCLContext* contex
     this->TriangleInfo.Reset();
     this->Albedo.Reset();
     this->Irradiance.Reset();
+    this->Corners.Reset();
     this->Normals.Reset();
     this->Interfaces.Reset();
     this->Bodies.Reset();
@@ -222,9 +223,21 @@ bool SurfaceBuffers::PrepareIrradiance(
       return false;
     }
   }
+  // The corners' irradiance from the atlas as the kernel reads it (less the caustic light its
+  // fine texels show, which is reconstructed within each triangle).
+  std::vector<float> corners;
+  this->Set->ComputeCornerIrradiance(values.data(), corners);
+  if (corners.empty())
+  {
+    corners.assign(3, 0.0f); // no triangles: a buffer of one value, never read
+  }
   this->Irradiance = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
     values.size() * sizeof(float), values.data(), "surface irradiance", owner);
-  if (!this->Irradiance)
+  this->Corners = this->Irradiance
+    ? context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, corners.size() * sizeof(float),
+        corners.data(), "surface corner irradiance", owner)
+    : vtkOpenCLBuffer();
+  if (!this->Irradiance || !this->Corners)
   {
     return false;
   }

@@ -60,6 +60,9 @@ public:
   vtkIdType GetNumberOfTexels() const { return this->Texels; }
 
   vtkOpenCLBuffer Nodes, Triangles, TriangleInfo, Albedo, Irradiance;
+  // The irradiance at each triangle's three corners, averaged over the triangles sharing the mesh
+  // point (vtkRefractaSurfaceSet::ComputeCornerIrradiance; 9 floats per triangle).
+  vtkOpenCLBuffer Corners;
   // Corner normals (float4 per corner), (IndexInside, IndexOutside) per surface and the glass
   // bodies' inside media (vtkRefractaSurfaceSet::GetSurfaceBodies()).
   vtkOpenCLBuffer Normals, Interfaces, Bodies;

@@ -8,6 +8,7 @@
 #include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkFloatArray.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
@@ -342,4 +343,110 @@ TEST(RefractaSurfaceSet, MatricesAndCaching)
   ASSERT_TRUE(set->Build());
   EXPECT_EQ(set->GetNumberOfBuilds(), 3);
   EXPECT_FLOAT_EQ(set->GetTexelAlbedo()[1], 0.2f);
+}
+
+//------------------------------------------------------------------------------
+// Build step 7: each Lambertian corner averages the corner texels of the triangles of its surface
+// that share the mesh point within 30 degrees, weighted by area. Checked against a brute-force
+// search by world position and face normal: on a flat 4 x 4 plane (an interior point links the 6
+// triangles around it), on a box whose 8 points every face shares (the 90-degree edges must keep
+// the faces apart) and on a sphere, where the faces that meet at a point do not all lie within 30
+// degrees of each other.
+TEST(RefractaSurfaceSet, CornersAverageTheTrianglesSharingAPoint)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(5, 0, 0);
+  sphere->SetThetaResolution(10);
+  sphere->SetPhiResolution(6);
+  sphere->Update();
+  const double lo[3] = { 2, 0, 0 }, hi[3] = { 3, 1, 2 };
+  // The meshes, and the most texels a corner links on each: 6 on the plane, the 2 of a box face,
+  // at least 3 on the sphere (0 here: checked as a lower bound).
+  const std::pair<vtkSmartPointer<vtkPolyData>, int> meshes[] = { { Plane(1.0, 4), 6 },
+    { surface_test::ClosedBox(lo, hi), 2 }, { sphere->GetOutput(), 0 } };
+  for (const auto& entry : meshes)
+  {
+    vtkPolyData* mesh = entry.first;
+    vtkNew<vtkRefractaSurfaceSet> set;
+    set->AddSurface(mesh);
+    set->SetTexelSize(0.2); // some triangles subdivided, some not
+    ASSERT_TRUE(set->Build());
+    const vtkIdType triangles = set->GetNumberOfTriangles();
+    const std::vector<int>& info = set->GetTriangleInfo();
+    const std::vector<double>& areas = set->GetTexelAreas();
+    ASSERT_EQ(set->GetCornerOffsets().size(), size_t(3 * triangles + 1));
+    // Irradiance that differs per texel: E = texel index + 1 in red, 2 in green, 0 in blue.
+    std::vector<float> e(3 * areas.size());
+    for (size_t t = 0; t < areas.size(); ++t)
+    {
+      e[3 * t] = static_cast<float>(t + 1);
+      e[3 * t + 1] = 2.0f;
+      e[3 * t + 2] = 0.0f;
+    }
+    std::vector<float> corners;
+    set->ComputeCornerIrradiance(e.data(), corners);
+    ASSERT_EQ(corners.size(), size_t(9 * triangles));
+    auto face = [&](vtkIdType k, double n[3])
+    {
+      double p[3][3];
+      PointOnTriangle(set->GetBVH(), k, 0, 0, p[0]);
+      PointOnTriangle(set->GetBVH(), k, 1, 0, p[1]);
+      PointOnTriangle(set->GetBVH(), k, 0, 1, p[2]);
+      double e1[3], e2[3];
+      vtkMath::Subtract(p[1], p[0], e1);
+      vtkMath::Subtract(p[2], p[0], e2);
+      vtkMath::Cross(e1, e2, n);
+      vtkMath::Normalize(n);
+    };
+    int maxLinks = 0;
+    for (vtkIdType k = 0; k < triangles; ++k)
+    {
+      double nk[3];
+      face(k, nk);
+      const double corner[3][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 } };
+      for (int c = 0; c < 3; ++c)
+      {
+        double x[3];
+        PointOnTriangle(set->GetBVH(), k, corner[c][0], corner[c][1], x);
+        double sum = 0, area = 0;
+        int links = 0;
+        for (vtkIdType j = 0; j < triangles; ++j)
+        {
+          double nj[3];
+          face(j, nj);
+          for (int cj = 0; cj < 3; ++cj)
+          {
+            double y[3];
+            PointOnTriangle(set->GetBVH(), j, corner[cj][0], corner[cj][1], y);
+            if (vtkMath::Distance2BetweenPoints(x, y) < 1e-18 && vtkMath::Dot(nk, nj) >= 0.866)
+            {
+              const int n = info[4 * j + 1];
+              const int texel =
+                info[4 * j] + vtkRefractaSurfaceSet::TexelIndex(corner[cj][0], corner[cj][1], n);
+              sum += areas[texel] * (texel + 1);
+              area += areas[texel];
+              ++links;
+            }
+          }
+        }
+        ASSERT_GE(links, 1);
+        maxLinks = std::max(maxLinks, links);
+        EXPECT_EQ(
+          set->GetCornerOffsets()[3 * k + c + 1] - set->GetCornerOffsets()[3 * k + c], links)
+          << "triangle " << k << " corner " << c;
+        EXPECT_NEAR(corners[9 * k + 3 * c], sum / area, 1e-5 * sum / area);
+        EXPECT_FLOAT_EQ(corners[9 * k + 3 * c + 1], 2.0f) << "a uniform irradiance stays uniform";
+        EXPECT_EQ(corners[9 * k + 3 * c + 2], 0.0f);
+      }
+    }
+    std::cout << triangles << " triangles, up to " << maxLinks << " texels per corner\n";
+    if (entry.second > 0)
+    {
+      EXPECT_EQ(maxLinks, entry.second);
+    }
+    else
+    {
+      EXPECT_GE(maxLinks, 3);
+    }
+  }
 }
