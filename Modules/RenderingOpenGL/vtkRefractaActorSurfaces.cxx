@@ -187,11 +187,12 @@ void vtkRefractaActorSurfaces::Update(vtkRenderer* renderer, vtkProp* exclude)
       ++this->NumberOfForeignProps;
     }
   }
-  const std::vector<double> signature = this->Signature();
-  if (signature != this->BuiltSignature)
+  if (this->Signature() != this->BuiltSignature)
   {
     this->Rebuild();
-    this->BuiltSignature = signature;
+    // Taken after the rebuild: mapping an actor's scalars may touch its mapper or lookup table
+    // (a default table created, its range set), which must not count as a change next time.
+    this->BuiltSignature = this->Signature();
   }
 }
 

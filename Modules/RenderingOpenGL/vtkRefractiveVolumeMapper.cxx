@@ -312,7 +312,9 @@ void vtkRefractiveVolumeMapper::WarnAboutUnsupportedModes(vtkRenderer* renderer,
   volumes->InitTraversal(it);
   while (vtkVolume* v = volumes->GetNextVolume(it))
   {
-    if (v != volume && v->GetVisibility() && v->GetMapper())
+    // A prop that draws through this very mapper is this volume (ParaView's vtkPVLODVolume
+    // hands the mapper an internal vtkVolume of its own).
+    if (v != volume && v->GetVisibility() && v->GetMapper() && v->GetMapper() != this)
     {
       other = v->GetMapper()->GetClassName();
     }

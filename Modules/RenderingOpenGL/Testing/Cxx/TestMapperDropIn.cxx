@@ -287,6 +287,15 @@ TEST(MapperDropIn, AnotherVolumeInTheRendererIsWarnedAboutOnce)
   mapper->AddObserver(vtkCommand::WarningEvent, warnings);
   scene.Window->Render();
   EXPECT_EQ(warnings->Count, 0);
+  // A prop drawing through this same mapper is this volume, not another: ParaView's
+  // vtkPVLODVolume sits in the renderer and hands the mapper an internal vtkVolume.
+  vtkNew<vtkVolume> wrapper;
+  wrapper->SetMapper(mapper);
+  wrapper->SetProperty(scene.Volume->GetProperty());
+  scene.Renderer->AddVolume(wrapper);
+  scene.Window->Render();
+  EXPECT_EQ(warnings->Count, 0) << warnings->Message;
+  scene.Renderer->RemoveVolume(wrapper);
   vtkNew<vtkVolume> other;
   vtkNew<vtkRefractiveVolumeMapper> otherMapper;
   otherMapper->SetNumberOfPhotons(1 << 12);

@@ -336,6 +336,16 @@ TEST(MapperSurfaces, MovingAnActorRelightsWithoutRebuildingTheMedium)
   Scene scene;
   vtkNew<vtkActor> plane;
   AddSplitPlane(scene.Renderer, plane);
+  // And a plain actor (no scalars) out of view: the set's own mapping of its colours creates
+  // its mapper's default lookup table, which used to count as a change on the next render.
+  vtkNew<vtkSphereSource> ball;
+  ball->SetCenter(5, 5, -1);
+  ball->SetRadius(0.1);
+  vtkNew<vtkPolyDataMapper> ballMapper;
+  ballMapper->SetInputConnection(ball->GetOutputPort());
+  vtkNew<vtkActor> plain;
+  plain->SetMapper(ballMapper);
+  scene.Renderer->AddActor(plain);
   UseParallelCamera(scene.Renderer);
   AddLightAlongView(scene.Renderer);
   scene.Window->Render();
@@ -364,6 +374,7 @@ TEST(MapperSurfaces, MovingAnActorRelightsWithoutRebuildingTheMedium)
 
   // Translucent: no longer a surface (the scene then has none, which re-plans).
   plane->GetProperty()->SetOpacity(0.5);
+  plain->GetProperty()->SetOpacity(0.5);
   scene.Window->Render();
   EXPECT_EQ(actors->GetNumberOfActors(), 0);
   EXPECT_EQ(scene.Mapper->GetPipeline()->GetSurfaces(), nullptr);
