@@ -444,12 +444,14 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   const bool boxChanged = this->UpdateActiveBox();
   const bool surfacesChanged = surfaces != in.ClassifiedWith ||
     (surfaces && surfaces->GetMTime() > in.ClassifiedTime.GetMTime());
-  if (boxChanged || surfacesChanged || depth != in.Depth || in.Limits.size() != pixels)
+  if (boxChanged || surfacesChanged || depth != in.Depth || in.Limits.size() != pixels ||
+    in.ClassifiedEverywhere != this->ShadeActorsEverywhere)
   {
     in.Limits = this->DepthToPathLengths(renderer, camera, frame, width, height, depth);
     in.Depth = std::move(depth);
     this->ClassifyPixels(renderer, camera, frame, surfaces, width, height);
     in.ClassifiedWith = surfaces;
+    in.ClassifiedEverywhere = this->ShadeActorsEverywhere;
     in.ClassifiedTime.Modified();
   }
 
@@ -506,8 +508,9 @@ void vtkRefractiveVolumeMapper::ClassifyPixels(vtkRenderer* renderer, vtkCamera*
     for (int i = 0; i < width; ++i)
     {
       const size_t p = i + static_cast<size_t>(width) * j;
-      if (std::isfinite(in.Limits[p]) &&
-        (!foreignProps || (bvh && rays->HitsSurface(bvh, i, j, width, height, in.Depth[p]))))
+      const bool surface = std::isfinite(in.Limits[p]) &&
+        (!foreignProps || (bvh && rays->HitsSurface(bvh, i, j, width, height, in.Depth[p])));
+      if (surface)
       {
         in.Limits[p] = std::numeric_limits<float>::infinity();
       }
@@ -515,7 +518,8 @@ void vtkRefractiveVolumeMapper::ClassifyPixels(vtkRenderer* renderer, vtkCamera*
       {
         in.Kinds[p] = FOREIGN;
       }
-      else if (RayCrossesBox(frame, i, j, width, height, in.ActiveBox, in.Limits[p]))
+      else if ((surface && this->ShadeActorsEverywhere) ||
+        RayCrossesBox(frame, i, j, width, height, in.ActiveBox, in.Limits[p]))
       {
         in.Kinds[p] = COVERED;
       }
@@ -574,6 +578,7 @@ void vtkRefractiveVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutomaticExposure: " << this->AutomaticExposure << "\n";
   os << indent << "LastExposure: " << this->LastExposure << "\n";
   os << indent << "ActorSurfaces: " << this->ActorSurfaces << "\n";
+  os << indent << "ShadeActorsEverywhere: " << this->ShadeActorsEverywhere << "\n";
   os << indent << "BackgroundIlluminates: " << this->Internal->Pipeline->GetBackgroundIlluminates()
      << "\n";
   os << indent << "Pipeline:\n";

@@ -6,7 +6,8 @@
 //   the mapper does not take). The view ray stops at that depth and the pixel is blended as
 //   before surfaces existed: pixel = E L + T pixel_before (T the path's RGB transmittance).
 // - COVERED: the pixel's straight camera ray crosses the medium's active box (the bounding box
-//   of the voxels where n != 1 or extinction or emission is non-zero, grown by two voxels): the
+//   of the voxels where n != 1 or extinction or emission is non-zero, grown by two voxels), or
+//   its depth is one of the pipeline's surfaces (with the mapper's ShadeActorsEverywhere): the
 //   view pass's result, which already holds the surfaces and the background seen along the bent
 //   ray, replaces the pixel: pixel = E L.
 // - CLEAR: neither: VTK's own drawing of the pixel stays.

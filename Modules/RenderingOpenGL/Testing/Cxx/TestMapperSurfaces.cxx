@@ -510,3 +510,94 @@ TEST(MapperSurfaces, EnvironmentTextureReachesTheViewPassUnchanged)
   double c1[3], c2[3];
   EXPECT_TRUE(vtkRefractaEnvironmentMap::GetChecker(checker, squares, c1, c2));
 }
+
+// An opaque block (extinction 60 per unit over 0.6: optical depth 36) floats above a floor actor
+// under a light straight down, seen obliquely so that its shadow on the floor lies outside the
+// block's screen footprint. With ShadeActorsEverywhere (default) the floor is shaded by the light
+// passes wherever it is drawn: the shadow shows (the floor's pixels there are dark) and the lit
+// floor matches VTK's own diffuse shading on both sides of the footprint's outline (directional
+// light in VTK units: E rho / pi = I rho cos theta). Off: VTK's shading stays outside the
+// footprint, and the shadow is not shown.
+TEST(MapperSurfaces, TheMediumsShadowOnAnActorShowsOutsideItsFootprint)
+{
+  const double origin[3] = { -0.3, -0.3, 0.9 };
+  auto block = refracta_test::MakeGrid(13, 13, 13, 0.05, origin);
+  refracta_test::AddConstant(block, "Extinction", 3, 60.0, 60.0, 60.0);
+  Scene scene(block);
+  vtkNew<vtkPlaneSource> floor;
+  floor->SetOrigin(-2, -2, 0);
+  floor->SetPoint1(2, -2, 0);
+  floor->SetPoint2(-2, 2, 0);
+  vtkNew<vtkPolyDataMapper> floorMapper;
+  floorMapper->SetInputConnection(floor->GetOutputPort());
+  vtkNew<vtkActor> floorActor;
+  floorActor->SetMapper(floorMapper);
+  floorActor->GetProperty()->SetDiffuseColor(0.8, 0.8, 0.8);
+  floorActor->GetProperty()->SetAmbient(0.0);
+  floorActor->GetProperty()->SetSpecular(0.0);
+  scene.Renderer->AddActor(floorActor);
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetPosition(0, 0, 5);
+  light->SetFocalPoint(0, 0, 0);
+  light->SetIntensity(0.9);
+  scene.Renderer->AutomaticLightCreationOff();
+  scene.Renderer->RemoveAllLights();
+  scene.Renderer->AddLight(light);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(1.2);
+  camera->SetFocalPoint(0, 0, 0.6);
+  camera->SetPosition(0, -4, 4.6); // looking down at 45 degrees from -y
+  camera->SetViewUp(0, 1, 1);
+  camera->SetClippingRange(0.5, 12);
+  scene.Mapper->SetNumberOfPhotons(1 << 18);
+
+  // The floor points' pixels (0, 0, 0): in the shadow; (0.9, 0, 0) and (-0.9, 0, 0): lit.
+  auto pixelOf = [&](double x, double y, double z)
+  {
+    scene.Renderer->SetWorldPoint(x, y, z, 1.0);
+    scene.Renderer->WorldToDisplay();
+    const double* d = scene.Renderer->GetDisplayPoint();
+    return std::make_pair(static_cast<int>(d[0]), static_cast<int>(d[1]));
+  };
+  auto grey = [&](vtkImageData* image, std::pair<int, int> at)
+  {
+    // The mean over 5 x 5 pixels (photon noise).
+    double sum = 0;
+    for (int dj = -2; dj <= 2; ++dj)
+    {
+      for (int di = -2; di <= 2; ++di)
+      {
+        sum += Pixel(image, at.first + di, at.second + dj)[1];
+      }
+    }
+    return sum / 25.0;
+  };
+  for (bool everywhere : { true, false })
+  {
+    scene.Mapper->SetShadeActorsEverywhere(everywhere);
+    vtkSmartPointer<vtkImageData> image = scene.Capture();
+    const auto shadow = pixelOf(0, 0, 0), left = pixelOf(-0.9, 0, 0), right = pixelOf(0.9, 0, 0);
+    ASSERT_GT(shadow.second, 8);
+    ASSERT_LT(shadow.second, Size - 8);
+    // The block's footprint: the shadow's pixel sees the floor, not the block.
+    const auto blockLow = pixelOf(0, -0.3, 0.9);
+    ASSERT_GT(blockLow.second, shadow.second + 4) << "the block is drawn above the shadow";
+    const double lit = 0.5 * (grey(image, left) + grey(image, right));
+    const double dark = grey(image, shadow);
+    const double vtkShading = 255 * 0.9 * 0.8; // I rho cos(0)
+    std::cout << (everywhere ? "everywhere" : "where covered") << ": shadow " << dark
+              << ", lit floor " << lit << " (VTK's shading " << vtkShading << ")\n";
+    EXPECT_NEAR(lit, vtkShading, 0.08 * vtkShading) << "the lit floor as VTK shades it";
+    if (everywhere)
+    {
+      EXPECT_LT(dark, 0.05 * lit) << "the shadow shows outside the medium's footprint";
+    }
+    else
+    {
+      EXPECT_GT(dark, 0.9 * lit) << "VTK's own shading outside the footprint";
+    }
+  }
+}
