@@ -74,7 +74,8 @@ colour.Discretize = 0
 opacity = simple.GetOpacityTransferFunction("RTData")
 opacity.Points = [40.0, 0.0, 0.5, 0.0, 150.0, 0.1, 0.5, 0.0, 280.0, 0.7, 0.5, 0.0]
 tf = simple.RefractaTransferFunctionMedium(Input=wavelet)
-tf.Scalars = ["POINTS", "RTData"]
+# Scalars left unset: made before the wavelet ran, the proxy's array name is empty, which means
+# the input's active point scalars (RTData).
 tf.ColorTransferFunction = colour
 tf.ScalarOpacityFunction = opacity
 tf.ScalarOpacityUnitDistance = 1.0

@@ -184,11 +184,18 @@ int vtkRefractaPluginTransferFunctionMedium::RequestData(
   }
   int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
+  vtkInformation* info = this->GetInputArrayInformation(0);
+  const char* name =
+    info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : "";
+  if (!scalars && (!name || !*name))
+  {
+    // No array chosen (a proxy made from Python before its input's arrays were known leaves the
+    // name empty): the input's active point scalars, as documented.
+    scalars = input->GetPointData()->GetScalars();
+    association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  }
   if (!scalars || association != vtkDataObject::FIELD_ASSOCIATION_POINTS)
   {
-    vtkInformation* info = this->GetInputArrayInformation(0);
-    const char* name =
-      info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : "";
     vtkErrorMacro("The input has no point array '"
       << (name ? name : "") << "' to map (" << (scalars ? "it is cell data" : "not found")
       << "); select a point-data scalar array (values at voxel centres), e.g. after Cell Data to "
