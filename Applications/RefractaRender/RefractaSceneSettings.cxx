@@ -2,11 +2,13 @@
 
 #include "vtkEffectPlan.h"
 #include "vtkLatticeBoltzmannSolver.h"
+#include "vtkNew.h"
 #include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaViewPass.h"
 
+#include <algorithm>
 #include <iterator>
 #include <tuple>
 
@@ -138,6 +140,31 @@ void ReadEffects(const json& scene, const RenderSettings& s, vtkEffectPlan* plan
     plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, vtkEffectPlan::FORCE_OFF);
   }
 }
+}
+
+int RequestedPhotons(const json& quality)
+{
+  if (!quality.is_object())
+  {
+    return 1 << 18;
+  }
+  const auto photons = quality.find("photons");
+  if (photons != quality.end() && photons->is_number_integer())
+  {
+    return static_cast<int>(std::min<long long>(photons->get<long long>(), 1 << 28));
+  }
+  const auto preset = quality.find("preset");
+  for (const auto& entry : Presets)
+  {
+    if (preset != quality.end() && preset->is_string() &&
+      entry.first == preset->get<std::string>() && entry.second != NoPreset)
+    {
+      vtkNew<vtkEffectPlan> plan;
+      plan->SetQuality(entry.second);
+      return plan->GetRecommendedNumberOfPhotons();
+    }
+  }
+  return 1 << 18;
 }
 
 RenderSettings ReadSettings(const json& scene, vtkRefractaRenderPipeline* pipeline)

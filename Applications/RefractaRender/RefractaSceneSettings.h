@@ -48,6 +48,10 @@ struct RenderSettings
 /// (keys given explicitly win). The plan's tolerance and effect modes are set here.
 RenderSettings ReadSettings(const json& scene, vtkRefractaRenderPipeline* pipeline);
 
+/// The photons a "quality" block asks for: its "photons", else its preset's recommendation,
+/// else 2^18 (what ReadSettings would read; a malformed block gives 2^18, ReadSettings reports it).
+int RequestedPhotons(const json& quality);
+
 /// Hands the settings to the renderer, its pipeline and their passes.
 void ApplySettings(const RenderSettings& settings, vtkRefractaImageRenderer* renderer);
 

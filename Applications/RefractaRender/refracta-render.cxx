@@ -1,7 +1,7 @@
 // refracta-render: Refracta's command-line renderer.
 //
 //   refracta-render                          render the embedded default scene to refracta.png
-//   refracta-render --scene FILE.json        render a scene described in JSON (README: schema)
+//   refracta-render --scene FILE.json        render a scene described in JSON (SceneFile.md)
 //   options: --output FILE.png, --hdr FILE.vti (HDR image), --radiance FILE.vti (medium +
 //   lighting volume), --report FILE.json, --preview (a cheaper version of the same scene),
 //   --print-default-scene, --list-devices,
@@ -71,7 +71,8 @@ void MakePreview(json& scene)
   }
   if (quality.is_object())
   {
-    quality["photons"] = std::max(4096, quality.value("photons", 1 << 18) / 4);
+    // A quarter of what the block asks for, its preset's photons included.
+    quality["photons"] = std::max(4096, RequestedPhotons(quality) / 4);
   }
   if (scene.contains("medium") && scene["medium"].is_object() && scene["medium"].contains("grid") &&
     scene["medium"]["grid"].is_object() && scene["medium"]["grid"].contains("dimensions") &&
@@ -177,9 +178,9 @@ void PrintUsage(std::ostream& os)
         "       refracta-render --print-default-scene | --list-devices | --device-check | --help\n"
         "  Without --scene, renders the embedded default scene (a glass sphere in fog over a\n"
         "  checkered floor, lit by a spot light) to refracta.png. The scene format is documented\n"
-        "  in the README. --preview: half the image size and grid resolution, a quarter of the\n"
-        "  photons. Each stage is printed as it starts and ends, with a progress bar on a "
-        "terminal;\n"
+        "  in Documentation/SceneFile.md. --preview: half the image size and grid resolution, a\n"
+        "  quarter of the photons (of the preset's, with a quality preset). Each stage is\n"
+        "  printed as it starts and ends, with a progress bar on a terminal;\n"
         "  --quiet prints the final report only. --profile-kernels adds each OpenCL kernel's\n"
         "  launches and device time to the report (also REFRACTA_PROFILE_KERNELS=1).\n"
         "  The OpenCL device is chosen by\n"

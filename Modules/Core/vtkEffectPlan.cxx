@@ -81,9 +81,10 @@ void vtkEffectPlan::SetQuality(int quality)
         << quality << "; use DRAFT (0), INTERACTIVE (1) or PRODUCTION (2).");
       return;
   }
-  if (this->Quality != quality)
+  if (this->Quality != quality || !this->QualityApplied)
   {
     this->Quality = quality;
+    this->QualityApplied = true;
     this->Modified();
   }
 }
@@ -437,8 +438,9 @@ void vtkEffectPlan::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Tolerance: " << this->Tolerance << "\n";
   static const char* const qualities[] = { "draft", "interactive", "production" };
-  os << indent << "Quality: " << qualities[this->Quality] << " (photons "
-     << this->GetRecommendedNumberOfPhotons() << ", photon min step "
+  os << indent << "Quality: " << qualities[this->Quality]
+     << (this->QualityApplied ? "" : " (the default, not applied: the tolerance is its own)")
+     << " (photons " << this->GetRecommendedNumberOfPhotons() << ", photon min step "
      << this->GetRecommendedPhotonMinimumStep() << ", octree eps "
      << this->GetRecommendedOctreeTolerance() << ", lattice tolerance "
      << this->GetRecommendedLatticeTolerance() << ", lattice block "

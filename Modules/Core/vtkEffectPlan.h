@@ -84,10 +84,13 @@ public:
   /**
    * Choose a quality preset: it sets the tolerance (DRAFT 0.05, INTERACTIVE 0.02, PRODUCTION
    * 0.005) and the pass settings below, which BenchmarkAccuracyTime chose from its measured
-   * Pareto front of error against time (README, "Accuracy and time"). Default INTERACTIVE.
+   * Pareto front of error against time (README, "Accuracy and time"). Default INTERACTIVE for
+   * the recommendations (GetRecommended*), but not applied: until SetQuality() is called the
+   * tolerance keeps its own default, 0.01 (GetQualityApplied() says which; PrintSelf too).
    */
   void SetQuality(int quality);
   vtkGetMacro(Quality, int);
+  vtkGetMacro(QualityApplied, bool);
 
   ///@{
   /**
@@ -265,6 +268,7 @@ protected:
 
   double Tolerance = 0.01;
   int Quality = INTERACTIVE;
+  bool QualityApplied = false; // whether SetQuality() has set the tolerance
   int Modes[NUMBER_OF_EFFECTS] = { AUTOMATIC, AUTOMATIC, AUTOMATIC, AUTOMATIC, AUTOMATIC,
     AUTOMATIC };
   bool Enabled[NUMBER_OF_EFFECTS] = { true, true, true, true, true, true };

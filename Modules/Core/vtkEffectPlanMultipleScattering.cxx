@@ -69,7 +69,20 @@ void vtkEffectPlan::DecideMultipleScatteringMethod(vtkSceneAnalysis* analysis)
     // multiple scattering").
     this->ChosenMultipleMethod = PHOTONS_EVERY_ORDER;
     this->ChosenOrders = -1;
-    this->MultipleReason = "lit surfaces: the lattice knows none, the photons carry every order";
+    why << "lit surfaces: the lattice knows none, the photons carry every order";
+    // Say so when that overrides a request (as the single-scattering method's reason does).
+    if (this->MultipleScatteringMethod != AUTOMATIC_MULTIPLE_METHOD &&
+      this->MultipleScatteringMethod != PHOTONS_EVERY_ORDER)
+    {
+      why << " (" << GetMultipleScatteringMethodName(this->MultipleScatteringMethod)
+          << " forced, but it would leave the surfaces unlit)";
+    }
+    else if (this->ScatteringOrders > 0)
+    {
+      why << " (k = " << this->ScatteringOrders
+          << " forced, but the lattice would leave the surfaces unlit)";
+    }
+    this->MultipleReason = why.str();
     return;
   }
   const int method = this->MultipleScatteringMethod;

@@ -1,5 +1,6 @@
 #include "vtkRefractaSurfaceMaterial.h"
 
+#include "vtkMediumMaterial.h"
 #include "vtkObjectFactory.h"
 #include "vtkRefractaMedium.h"
 #include "vtkRefractaSettings.h"
@@ -15,35 +16,24 @@ vtkRefractaCxxSetClampMacro(
 vtkRefractaCxxSetClampMacro(vtkRefractaSurfaceMaterial, InsideAnisotropy, -0.9999, 0.9999);
 
 //------------------------------------------------------------------------------
-void vtkRefractaSurfaceMaterial::SetColor(double target[3], double r, double g, double b)
+// Colours clamp to [0, 1], coefficients to [0, vtkMediumMaterial::MaximumCoefficient]; a NaN or
+// infinite component is an error naming the setter that keeps the value (vtkRefractaSettings).
+void vtkRefractaSurfaceMaterial::SetColor(
+  const char* name, double target[3], double r, double g, double b)
 {
-  const double in[3] = { r, g, b };
-  bool changed = false;
-  for (int c = 0; c < 3; ++c)
-  {
-    // NaN goes to 0: std::clamp would keep it.
-    const double v = in[c] >= 0.0 ? std::min(in[c], 1.0) : 0.0;
-    changed = changed || v != target[c];
-    target[c] = v;
-  }
-  if (changed)
+  const double value[3] = { r, g, b };
+  if (vtkRefractaSettings::SetClamped3(this, name, target, value, 0.0, 1.0))
   {
     this->Modified();
   }
 }
 
-//------------------------------------------------------------------------------
-void vtkRefractaSurfaceMaterial::SetNonNegative(double target[3], double r, double g, double b)
+void vtkRefractaSurfaceMaterial::SetNonNegative(
+  const char* name, double target[3], double r, double g, double b)
 {
-  const double in[3] = { r, g, b };
-  bool changed = false;
-  for (int c = 0; c < 3; ++c)
-  {
-    const double v = in[c] >= 0.0 && std::isfinite(in[c]) ? in[c] : 0.0; // NaN, Inf, < 0: 0
-    changed = changed || v != target[c];
-    target[c] = v;
-  }
-  if (changed)
+  const double value[3] = { r, g, b };
+  if (vtkRefractaSettings::SetClamped3(
+        this, name, target, value, 0.0, vtkMediumMaterial::MaximumCoefficient))
   {
     this->Modified();
   }
@@ -51,35 +41,35 @@ void vtkRefractaSurfaceMaterial::SetNonNegative(double target[3], double r, doub
 
 void vtkRefractaSurfaceMaterial::SetInsideExtinction(double r, double g, double b)
 {
-  this->SetNonNegative(this->InsideExtinction, r, g, b);
+  this->SetNonNegative("InsideExtinction", this->InsideExtinction, r, g, b);
 }
 
 void vtkRefractaSurfaceMaterial::SetInsideAlbedo(double r, double g, double b)
 {
-  this->SetColor(this->InsideAlbedo, r, g, b);
+  this->SetColor("InsideAlbedo", this->InsideAlbedo, r, g, b);
 }
 
 void vtkRefractaSurfaceMaterial::SetInsideEmission(double r, double g, double b)
 {
-  this->SetNonNegative(this->InsideEmission, r, g, b);
+  this->SetNonNegative("InsideEmission", this->InsideEmission, r, g, b);
 }
 
 //------------------------------------------------------------------------------
 void vtkRefractaSurfaceMaterial::SetAlbedo(double r, double g, double b)
 {
-  this->SetColor(this->Albedo, r, g, b);
+  this->SetColor("Albedo", this->Albedo, r, g, b);
 }
 
 //------------------------------------------------------------------------------
 void vtkRefractaSurfaceMaterial::SetCheckerColor1(double r, double g, double b)
 {
-  this->SetColor(this->CheckerColor1, r, g, b);
+  this->SetColor("CheckerColor1", this->CheckerColor1, r, g, b);
 }
 
 //------------------------------------------------------------------------------
 void vtkRefractaSurfaceMaterial::SetCheckerColor2(double r, double g, double b)
 {
-  this->SetColor(this->CheckerColor2, r, g, b);
+  this->SetColor("CheckerColor2", this->CheckerColor2, r, g, b);
 }
 
 //------------------------------------------------------------------------------

@@ -142,7 +142,8 @@ public:
   /**
    * The homogeneous medium inside a DIELECTRIC surface (see the class description). Off
    * (default): the passes sample the grid inside it. Extinction in 1 / world unit (each clamped
-   * to >= 0, NaN to 0), albedo in [0, 1], anisotropy g in [-0.9999, 0.9999], emission in radiance
+   * to [0, 1e30]; NaN or Inf is an error that keeps the value, as for every setter here), albedo
+   * in [0, 1], anisotropy g in [-0.9999, 0.9999], emission in radiance
    * per world unit (>= 0): vtkMediumMaterial's units. Defaults: 0, 0, 0 and 0 (clear glass).
    */
   vtkSetMacro(UseInsideMedium, bool);
@@ -197,8 +198,8 @@ protected:
 private:
   vtkRefractaSurfaceMaterial(const vtkRefractaSurfaceMaterial&) = delete;
   void operator=(const vtkRefractaSurfaceMaterial&) = delete;
-  void SetColor(double target[3], double r, double g, double b);
-  void SetNonNegative(double target[3], double r, double g, double b);
+  void SetColor(const char* name, double target[3], double r, double g, double b);
+  void SetNonNegative(const char* name, double target[3], double r, double g, double b);
 };
 
 #endif

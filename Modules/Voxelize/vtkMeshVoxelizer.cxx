@@ -38,6 +38,23 @@ vtkStandardNewMacro(vtkMeshVoxelizer);
 vtkRefractaCxxSetClampMacro(vtkMeshVoxelizer, Padding, 0.0, VTK_DOUBLE_MAX);
 vtkRefractaCxxSetClampMacro(vtkMeshVoxelizer, SmoothingSigma, 0.0, VTK_DOUBLE_MAX);
 
+void vtkMeshVoxelizer::SetSmoothingWindow(int value)
+{
+  const int window = std::min(std::max(value, 1), 63);
+  if (window % 2 == 0)
+  {
+    vtkErrorMacro("SetSmoothingWindow(" << value << "): the window must be odd (1, 3, ..., 63; "
+                                        << "1 disables smoothing); it stays "
+                                        << this->SmoothingWindow << ".");
+    return;
+  }
+  if (window != this->SmoothingWindow)
+  {
+    this->SmoothingWindow = window;
+    this->Modified();
+  }
+}
+
 namespace
 {
 using namespace refracta_voxelize;
@@ -655,7 +672,7 @@ int vtkMeshVoxelizer::RequestData(
 
   // ---- Gaussian smoothing of n (separable), and its gradient. ----
   t0 = Clock::now();
-  const int window = this->SmoothingWindow | 1; // odd
+  const int window = this->SmoothingWindow;
   if (window > 1 && !this->WroteInterfaces)
   {
     SmoothIndex(nArray->GetPointer(0), g, window, this->SmoothingSigma);

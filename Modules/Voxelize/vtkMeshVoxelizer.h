@@ -207,10 +207,11 @@ public:
 
   ///@{
   /**
-   * Width of the Gaussian smoothing window of n in voxels, odd, in [1, 63]; default 9. An even
-   * value is used as the next odd one. 1 disables smoothing.
+   * Width of the Gaussian smoothing window of n in voxels, odd, in [1, 63]; default 9. Values
+   * outside are clamped; an even value is an error that keeps the window (as the scene file
+   * refuses it). 1 disables smoothing.
    */
-  vtkSetClampMacro(SmoothingWindow, int, 1, 63);
+  void SetSmoothingWindow(int value);
   vtkGetMacro(SmoothingWindow, int);
   ///@}
 

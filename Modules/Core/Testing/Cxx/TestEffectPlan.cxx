@@ -692,6 +692,10 @@ TEST(EffectPlan, MultipleScatteringMethodFollowsTheToleranceAndTheLattice)
   Plan(fog, sun, plan, analysis);
   EXPECT_EQ(plan->GetChosenMultipleScatteringMethod(), vtkEffectPlan::PHOTONS_EVERY_ORDER);
   EXPECT_EQ(plan->GetChosenScatteringOrders(), -1);
+  // The forced split is overridden, and the reason says so.
+  EXPECT_NE(
+    std::string(plan->GetMultipleScatteringMethodReason()).find("forced, but"), std::string::npos)
+    << plan->GetMultipleScatteringMethodReason();
   vtkNew<vtkFieldData> fd;
   plan->RecordInFieldData(fd);
   auto* recorded =

@@ -303,13 +303,21 @@ TEST(RefractaSurfaceSet, BakesCheckerAndScalarColours)
   ASSERT_TRUE(set->Build());
   EXPECT_TRUE(warnings->GetWarning());
   EXPECT_NEAR(AlbedoAt(set, 0.5, 0.5)[2], 0.9, 1e-6);
-  // Colours are clamped to [0, 1].
-  scalars->SetAlbedo(2.0, -1.0, std::nan(""));
+  // Colours are clamped to [0, 1]; a NaN is an error naming the setter that keeps the colour.
+  scalars->SetAlbedo(2.0, -1.0, 0.5);
   double a[3];
   scalars->GetAlbedo(a);
   EXPECT_EQ(a[0], 1.0);
   EXPECT_EQ(a[1], 0.0);
-  EXPECT_EQ(a[2], 0.0);
+  EXPECT_EQ(a[2], 0.5);
+  vtkNew<vtkTest::ErrorObserver> errors;
+  scalars->AddObserver(vtkCommand::ErrorEvent, errors);
+  scalars->SetAlbedo(0.1, 0.2, std::nan(""));
+  EXPECT_EQ(errors->CheckErrorMessage("SetAlbedo"), 0);
+  scalars->GetAlbedo(a);
+  EXPECT_EQ(a[2], 0.5);
+  scalars->SetInsideExtinction(1.0, std::numeric_limits<double>::infinity(), 1.0);
+  EXPECT_EQ(errors->CheckErrorMessage("SetInsideExtinction"), 0);
 }
 
 TEST(RefractaSurfaceSet, MatricesAndCaching)

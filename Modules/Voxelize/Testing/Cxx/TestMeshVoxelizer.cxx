@@ -599,6 +599,24 @@ TEST(MeshVoxelizer, OverflowingDensityIsAnError)
   EXPECT_EQ(vox->GetOutput()->GetNumberOfPoints(), 512);
 }
 
+// The smoothing window is odd (a centred stencil): an even one is an error that keeps the window,
+// as refracta-render refuses it, rather than being used silently as the next odd one.
+TEST(MeshVoxelizer, EvenSmoothingWindowIsAnError)
+{
+  vtkNew<vtkMeshVoxelizer> vox;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  vox->AddObserver(vtkCommand::ErrorEvent, observer);
+  vox->SetSmoothingWindow(5);
+  EXPECT_FALSE(observer->GetError());
+  const vtkMTimeType before = vox->GetMTime();
+  vox->SetSmoothingWindow(8);
+  EXPECT_EQ(observer->CheckErrorMessage("must be odd"), 0);
+  EXPECT_EQ(vox->GetSmoothingWindow(), 5);
+  EXPECT_EQ(vox->GetMTime(), before);
+  vox->SetSmoothingWindow(1000); // clamped to 63, odd
+  EXPECT_EQ(vox->GetSmoothingWindow(), 63);
+}
+
 TEST(MeshVoxelizer, SpacingModeAndPipeline)
 {
   vtkNew<vtkSphereSource> source;
