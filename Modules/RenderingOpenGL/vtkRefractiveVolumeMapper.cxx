@@ -54,30 +54,6 @@ vtkRefractaCxxSetClampMacro(vtkRefractiveVolumeMapper, Exposure, 0.0, 1e30);
 
 namespace
 {
-// The multiplier that draws the 99th percentile of the luminance of the pixels where the medium
-// shows at 0.8 (see AutomaticExposure); 1 when nothing shows.
-double MeterExposure(const std::vector<float>& image, const std::vector<float>& transmittance)
-{
-  std::vector<double> luminance;
-  for (size_t p = 0; 4 * p + 3 < image.size() && 4 * p + 3 < transmittance.size(); ++p)
-  {
-    const double t =
-      (transmittance[4 * p] + transmittance[4 * p + 1] + transmittance[4 * p + 2]) / 3.0;
-    const double y = 0.2126 * image[4 * p] + 0.7152 * image[4 * p + 1] + 0.0722 * image[4 * p + 2];
-    if (t < 0.98 && std::isfinite(y))
-    {
-      luminance.push_back(y);
-    }
-  }
-  if (luminance.empty())
-  {
-    return 1.0;
-  }
-  auto at = luminance.begin() + static_cast<std::ptrdiff_t>(0.99 * (luminance.size() - 1));
-  std::nth_element(luminance.begin(), at, luminance.end());
-  return *at > 0.0 ? 0.8 / *at : 1.0;
-}
-
 // Whether the voxel at data point `p` is kept by the cropping regions (VTK's 27 regions: index
 // i + 3 j + 9 k, each of i, j, k 0 below the lower plane, 1 between, 2 above; bit set = kept).
 bool KeptByCropping(const double p[3], const double planes[6], int flags)
@@ -535,13 +511,20 @@ void vtkRefractiveVolumeMapper::Composite(
   vtkRefractaRenderPipeline* pipeline = in.Pipeline;
   const std::vector<float>& image = pipeline->GetImage();
   const std::vector<float>& transmittanceImage = pipeline->GetTransmittance();
+  // A uniform background seen through the medium is VTK's background, not the scene's light:
+  // kept out of the exposure (vtkRefractiveVolumeMapperCompositing.h).
+  const double* uniformBackground =
+    in.Background->GetLastSource() == vtkRefractaRendererBackground::SOLID_COLOR
+    ? pipeline->GetViewPass()->GetBackgroundColor()
+    : nullptr;
   double exposureValue = this->Exposure;
   if (this->AutomaticExposure)
   {
     const int recomputed = pipeline->GetNumberOfPlanRuns() + pipeline->GetNumberOfLightPassRuns();
     if (recomputed != in.MeteredAt)
     {
-      in.MeteredExposure = MeterExposure(image, transmittanceImage);
+      in.MeteredExposure = vtkRefractiveVolumeMapperDetail::MeterExposure(
+        image, transmittanceImage, uniformBackground);
       in.MeteredAt = recomputed;
     }
     exposureValue *= in.MeteredExposure;
@@ -551,8 +534,8 @@ void vtkRefractiveVolumeMapper::Composite(
   // Per-channel compositing in two blended draws: first dst *= M (blend ZERO, SRC_COLOR), then
   // dst += A (blend ONE, ONE), M and A per pixel kind (vtkRefractiveVolumeMapperCompositing.h).
   std::vector<float> multiply, add;
-  vtkRefractiveVolumeMapperDetail::CompositingImages(
-    image, transmittanceImage, in.Kinds, static_cast<float>(exposureValue), multiply, add);
+  vtkRefractiveVolumeMapperDetail::CompositingImages(image, transmittanceImage, in.Kinds,
+    static_cast<float>(exposureValue), uniformBackground, multiply, add);
   vtkOpenGLState* state = window->GetState();
   vtkOpenGLState::ScopedglBlendFuncSeparate blendSaver(state);
   vtkOpenGLState::ScopedglEnableDisable blendEnable(state, GL_BLEND);

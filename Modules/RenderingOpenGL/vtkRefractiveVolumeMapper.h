@@ -228,7 +228,9 @@ public:
   ///@{
   /**
    * Multiplier on the medium's radiance before it is drawn, >= 0. Default 1. With
-   * AutomaticExposure on it multiplies the automatic exposure.
+   * AutomaticExposure on it multiplies the automatic exposure. A uniform background colour seen
+   * through the medium is not multiplied (it stays VTK's background; see
+   * vtkRefractiveVolumeMapperCompositing.h).
    */
   void SetExposure(double value);
   vtkGetMacro(Exposure, double);
@@ -237,15 +239,16 @@ public:
   ///@{
   /**
    * Automatic exposure (default on): the radiance is scaled so that the 99th percentile of the
-   * luminance over the pixels where the medium shows (mean transmittance below 0.98) is drawn at
-   * 0.8, like a camera's metering. Why: VTK's volume mappers draw the transfer function's colour
-   * as if it glowed (unshaded compositing is physically a medium under unit ambient light), while
-   * this mapper computes the light the scene's lights actually scatter, which for the same lights
-   * is several times dimmer (measured 0.25x on VTK's wavelet with the default headlight, in
-   * VTK light units; 1.07x with metering); metering makes the mapper a drop-in that shows a
-   * comparably exposed image. The exposure is metered again only when the medium or the lighting
-   * was recomputed, never on a camera move, so brightness stays comparable while the view changes.
-   * Turn it off for radiometrically calibrated output (then pixel = Exposure x radiance).
+   * luminance over the pixels where the medium shows (mean transmittance below 0.98; a uniform
+   * background's part left out) is drawn at 0.8, like a camera's metering. Why: VTK's volume
+   * mappers draw the transfer function's colour as if it glowed (unshaded compositing is physically
+   * a medium under unit ambient light), while this mapper computes the light the scene's lights
+   * actually scatter, which for the same lights is several times dimmer (measured 0.25x on VTK's
+   * wavelet with the default headlight, in VTK light units; 1.07x with metering); metering makes
+   * the mapper a drop-in that shows a comparably exposed image. The exposure is metered again only
+   * when the medium or the lighting was recomputed, never on a camera move, so brightness stays
+   * comparable while the view changes. Turn it off for radiometrically calibrated output (then
+   * pixel = Exposure x radiance).
    */
   vtkSetMacro(AutomaticExposure, bool);
   vtkGetMacro(AutomaticExposure, bool);

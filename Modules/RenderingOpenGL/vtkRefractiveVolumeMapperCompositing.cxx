@@ -154,9 +154,44 @@ bool DepthRays::HitsSurface(
   return bvh->IntersectRay(origin, direction, 1.01, hit) >= 0;
 }
 
+void BackgroundPart(
+  const std::vector<float>& transmittance, size_t pixel, const double* colour, float rgb[3])
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    rgb[c] = colour ? transmittance[4 * pixel + c] * static_cast<float>(colour[c]) : 0.0f;
+  }
+}
+
+double MeterExposure(const std::vector<float>& image, const std::vector<float>& transmittance,
+  const double* uniformBackground)
+{
+  std::vector<double> luminance;
+  for (size_t p = 0; 4 * p + 3 < image.size() && 4 * p + 3 < transmittance.size(); ++p)
+  {
+    const double t =
+      (transmittance[4 * p] + transmittance[4 * p + 1] + transmittance[4 * p + 2]) / 3.0;
+    float b[3];
+    BackgroundPart(transmittance, p, uniformBackground, b);
+    const double y = 0.2126 * (image[4 * p] - b[0]) + 0.7152 * (image[4 * p + 1] - b[1]) +
+      0.0722 * (image[4 * p + 2] - b[2]);
+    if (t < 0.98 && std::isfinite(y))
+    {
+      luminance.push_back(y);
+    }
+  }
+  if (luminance.empty())
+  {
+    return 1.0;
+  }
+  auto at = luminance.begin() + static_cast<std::ptrdiff_t>(0.99 * (luminance.size() - 1));
+  std::nth_element(luminance.begin(), at, luminance.end());
+  return *at > 0.0 ? 0.8 / *at : 1.0;
+}
+
 void CompositingImages(const std::vector<float>& image, const std::vector<float>& transmittance,
-  const std::vector<std::uint8_t>& kinds, float exposure, std::vector<float>& multiply,
-  std::vector<float>& add)
+  const std::vector<std::uint8_t>& kinds, float exposure, const double* uniformBackground,
+  std::vector<float>& multiply, std::vector<float>& add)
 {
   const size_t pixels = kinds.size();
   multiply.assign(4 * pixels, 1.0f);
@@ -168,9 +203,12 @@ void CompositingImages(const std::vector<float>& image, const std::vector<float>
     {
       continue;
     }
+    // A FOREIGN pixel's legs end at the geometry, not the background: nothing to keep apart.
+    float b[3];
+    BackgroundPart(transmittance, p, kinds[p] == COVERED ? uniformBackground : nullptr, b);
     for (int c = 0; c < 3; ++c)
     {
-      add[4 * p + c] = clamp01(exposure * image[4 * p + c]);
+      add[4 * p + c] = clamp01(exposure * std::max(image[4 * p + c] - b[c], 0.0f) + b[c]);
       multiply[4 * p + c] = kinds[p] == COVERED ? 0.0f : clamp01(transmittance[4 * p + c]);
     }
   }

@@ -70,12 +70,28 @@ private:
   vtkNew<vtkMatrix4x4> Inverse; // normalized device -> world
 };
 
+/// The part of the view pass's radiance `image` (RGBA per pixel) that is the renderer's uniform
+/// background `colour` seen through the medium, T C (T the RGB transmittance of the legs that
+/// end in the background, `transmittance`), into `rgb`; 0 where `colour` is null (a background
+/// that is not uniform: gradient, texture, environment).
+void BackgroundPart(
+  const std::vector<float>& transmittance, size_t pixel, const double* colour, float rgb[3]);
+
+/// The exposure that puts the 99th percentile of the luminance of the scene's light (the image
+/// less its background part, over pixels with mean transmittance below 0.98) at 0.8; 1 where
+/// there is none.
+double MeterExposure(const std::vector<float>& image, const std::vector<float>& transmittance,
+  const double* uniformBackground);
+
 /// The RGBA images the mapper draws for the kinds above: `multiply` (blended with ZERO,
 /// SRC_COLOR: 0 where COVERED, T where FOREIGN, 1 where CLEAR) and `add` (ONE, ONE: E L where
-/// COVERED or FOREIGN, 0 where CLEAR); RGB clamped to [0, 1].
+/// COVERED or FOREIGN, 0 where CLEAR); RGB clamped to [0, 1]. With a `uniformBackground` colour,
+/// its part of a COVERED pixel (BackgroundPart) is not exposed: E (L - T C) + T C, so the
+/// background seen through a clear part of the medium equals VTK's around it whatever the
+/// exposure.
 void CompositingImages(const std::vector<float>& image, const std::vector<float>& transmittance,
-  const std::vector<std::uint8_t>& kinds, float exposure, std::vector<float>& multiply,
-  std::vector<float>& add);
+  const std::vector<std::uint8_t>& kinds, float exposure, const double* uniformBackground,
+  std::vector<float>& multiply, std::vector<float>& add);
 }
 
 #endif

@@ -186,6 +186,60 @@ TEST(RefractiveVolumeMapper, CompositesWithGeometryByDepth)
   EXPECT_TRUE(refracta_test::MatchesBaseline(image, "MapperCompositing"));
 }
 
+// Automatic exposure scales the scene's light, not VTK's background: with a glowing corner in
+// the absorbing cube (exposure far from 1), the white background seen through the rest of the
+// cube is still 255 exp(-sigma depth), as VTK's background dimmed by the medium, within 3/255.
+TEST(RefractiveVolumeMapper, AutomaticExposureLeavesTheBackgroundAsVTKDrawsIt)
+{
+  Scene scene;
+  auto medium = AbsorbingCube();
+  vtkFloatArray* emission = refracta_test::AddConstant(medium, "Emission", 3, 0.0);
+  int dims[3];
+  medium->GetDimensions(dims);
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        const vtkIdType p = i + dims[0] * (j + static_cast<vtkIdType>(dims[1]) * (dims[2] - 1 - k));
+        emission->SetTuple3(p, 40.0, 40.0, 40.0); // the top corner at x, y < 0.2
+      }
+    }
+  }
+  scene.Mapper->SetInputData(medium);
+  scene.Mapper->AutomaticExposureOn();
+  scene.Inner->VisibilityOff();
+  scene.Front->VisibilityOff();
+  vtkSmartPointer<vtkImageData> image = scene.Capture();
+  const double exposure = scene.Mapper->GetLastExposure();
+  std::cout << "automatic exposure " << exposure << "\n";
+  EXPECT_GT(std::abs(exposure - 1.0), 0.5) << "the test needs an exposure far from 1";
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  const double h = 1.2 / Size;
+  int checked = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      double x, y;
+      PixelXY(i, j, x, y);
+      const double lo = -0.5 / 15 + 2 * h, hi = Top - 2 * h;
+      if (x < lo || x > hi || y < lo || y > hi || (x < 0.35 && y < 0.35))
+      {
+        continue; // outside the box, its edges, or near the glowing corner
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        EXPECT_NEAR(rgb->GetValue(3 * (i + Size * j) + c), 255.0 * std::exp(-Sigma[c] * Depth), 3.0)
+          << "pixel " << i << "," << j << " channel " << c;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, Size * Size / 3);
+}
+
 TEST(RefractiveVolumeMapper, CacheRunsOnlyWhatChanged)
 {
   Scene scene;
