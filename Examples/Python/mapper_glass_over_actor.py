@@ -7,9 +7,10 @@ The ball (n = 1.5) is the only thing in the medium; the floor is a plain vtkPlan
 with VTK's default material, lit by a spot light from above. vtkRefractiveVolumeMapper takes the
 actor as a surface of its light and view passes: the ball focuses the spot into a caustic on the
 floor, ringed by its shadow, both well outside the ball's own screen footprint, and the floor is
-seen bent through the ball. ShadeActorsEverywhere (default on) lets the whole floor show the light
-passes' shading, so there is no seam at the medium's outline; the renderer's uniform background
-seen through the ball stays VTK's colour whatever the automatic exposure.
+seen bent through the ball. ShadeActorsEverywhere (off by default: VTK's own shading away from
+the medium) lets the whole floor show the light passes' shading, so the caustic shows and there is
+no seam at the medium's outline; the renderer's uniform background seen through the ball stays
+VTK's colour whatever the automatic exposure.
 
 Smoke check: the caustic under the ball is much brighter than the lit floor beside the shadow,
 which is darker than both; the background around and through the medium is VTK's own.
@@ -38,6 +39,7 @@ medium = refracta.vtkMeshVoxelizer()                 # the ball alone, in a box 
 medium.AddInputConnection(ball.GetOutputPort()); medium.SetMaterial(0, glass)
 medium.SetDimensions(40, 40, 40); medium.SetBounds(-0.4, 0.4, -0.4, 0.4, 0.4, 1.2)
 mapper = refracta.vtkRefractiveVolumeMapper(); mapper.SetInputConnection(medium.GetOutputPort())
+mapper.ShadeActorsEverywhereOn()    # the actors lit by the light passes everywhere, not only under the ball
 volume = vtkVolume(); volume.SetMapper(mapper)
 
 floor = vtkPlaneSource(); floor.SetOrigin(-2, -2, 0); floor.SetPoint1(2, -2, 0); floor.SetPoint2(-2, 2, 0)

@@ -524,7 +524,7 @@ void vtkRefractiveVolumeMapper::Composite(
     if (recomputed != in.MeteredAt)
     {
       in.MeteredExposure = vtkRefractiveVolumeMapperDetail::MeterExposure(
-        image, transmittanceImage, uniformBackground);
+        image, transmittanceImage, in.Kinds, uniformBackground);
       in.MeteredAt = recomputed;
     }
     exposureValue *= in.MeteredExposure;

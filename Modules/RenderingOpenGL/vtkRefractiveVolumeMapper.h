@@ -52,12 +52,11 @@
  *   **blended**: pixel = Exposure * L_medium + T * pixel_before, T the path's RGB
  *   transmittance, so such geometry behind the medium is dimmed but not bent, and geometry in
  *   front of it hides it;
- * - a pixel whose depth is one of the pipeline's surfaces is **replaced** too wherever it is
- *   (ShadeActorsEverywhere, default on), so the actors are shaded by the light passes across the
- *   whole image: the medium's shadows and caustics show wherever they fall, with no seam at the
- *   medium's outline;
- * - every other pixel keeps what VTK drew (the background, and with ShadeActorsEverywhere off
- *   the actors where no medium covers them, with VTK's shading).
+ * - with ShadeActorsEverywhere (default off), a pixel whose depth is one of the pipeline's
+ *   surfaces is **replaced** too wherever it is, so the actors are shaded by the light passes
+ *   across the whole image: the medium's shadows and caustics show wherever they fall;
+ * - every other pixel keeps what VTK drew (the background, and by default the actors where no
+ *   medium covers them, with VTK's shading).
  * Translucent geometry is ignored. The mapper writes no depth, so it cannot composite with
  * another volume in the same renderer (it warns once when one is visible there): put several
  * media in one vtkImageData, or the other volume in another renderer layer. Values are clamped to
@@ -270,11 +269,14 @@ public:
   ///@{
   /**
    * Where the taken actors show the pipeline's shading (their photon-lit irradiance, with the
-   * medium's shadows and caustics) instead of VTK's. On (default): every pixel where a taken
-   * actor is drawn, so a shadow or caustic the medium casts outside its own screen footprint is
-   * seen and the actors' shading has no seam at the medium's outline. Off: only where the medium
-   * covers the pixel; elsewhere VTK's own shading stays (the light the medium sends there is
-   * then not shown).
+   * medium's shadows and caustics) instead of VTK's. Off (default, the drop-in behaviour): only
+   * where the medium covers the pixel; elsewhere VTK draws them as without the mapper (its
+   * shading, textures, specular highlights), so a shadow or caustic the medium casts outside its
+   * own screen footprint is not shown, and the two shadings can meet in a seam at its outline.
+   * On: every pixel where a taken actor is drawn: the medium's light on the actors shows
+   * wherever it falls and there is no seam, at the cost of the photon estimate's noise, the
+   * atlas's texel size and the loss of textures and highlights over the whole of every actor
+   * (Reference.md, "Compositing rule").
    */
   vtkSetMacro(ShadeActorsEverywhere, bool);
   vtkGetMacro(ShadeActorsEverywhere, bool);
@@ -357,7 +359,7 @@ protected:
   bool AutomaticExposure = true;
   double LastExposure = 1.0;
   bool ActorSurfaces = true;
-  bool ShadeActorsEverywhere = true;
+  bool ShadeActorsEverywhere = false;
 
 private:
   vtkRefractiveVolumeMapper(const vtkRefractiveVolumeMapper&) = delete;

@@ -164,15 +164,17 @@ void BackgroundPart(
 }
 
 double MeterExposure(const std::vector<float>& image, const std::vector<float>& transmittance,
-  const double* uniformBackground)
+  const std::vector<std::uint8_t>& kinds, const double* uniformBackground)
 {
   std::vector<double> luminance;
   for (size_t p = 0; 4 * p + 3 < image.size() && 4 * p + 3 < transmittance.size(); ++p)
   {
     const double t =
       (transmittance[4 * p] + transmittance[4 * p + 1] + transmittance[4 * p + 2]) / 3.0;
+    // A FOREIGN pixel's transmittance is that of the legs ending at its geometry: no background.
     float b[3];
-    BackgroundPart(transmittance, p, uniformBackground, b);
+    const bool foreign = p < kinds.size() && kinds[p] == FOREIGN;
+    BackgroundPart(transmittance, p, foreign ? nullptr : uniformBackground, b);
     const double y = 0.2126 * (image[4 * p] - b[0]) + 0.7152 * (image[4 * p + 1] - b[1]) +
       0.0722 * (image[4 * p + 2] - b[2]);
     if (t < 0.98 && std::isfinite(y))
@@ -186,7 +188,14 @@ double MeterExposure(const std::vector<float>& image, const std::vector<float>& 
   }
   auto at = luminance.begin() + static_cast<std::ptrdiff_t>(0.99 * (luminance.size() - 1));
   std::nth_element(luminance.begin(), at, luminance.end());
-  return *at > 0.0 ? 0.8 / *at : 1.0;
+  // Where the medium shows only the background (a clear glass ball: L - T C is float round-off)
+  // there is no light of the scene's to meter: metering it would amplify the round-off (an
+  // outside review measured an exposure of 6e7). The scene's light must reach a thousandth of
+  // the background's luminance to be metered.
+  const double background = uniformBackground
+    ? 0.2126 * uniformBackground[0] + 0.7152 * uniformBackground[1] + 0.0722 * uniformBackground[2]
+    : 0.0;
+  return *at > 1e-3 * background && *at > 0.0 ? 0.8 / *at : 1.0;
 }
 
 void CompositingImages(const std::vector<float>& image, const std::vector<float>& transmittance,

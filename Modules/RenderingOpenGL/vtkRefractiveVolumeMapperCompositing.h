@@ -78,10 +78,11 @@ void BackgroundPart(
   const std::vector<float>& transmittance, size_t pixel, const double* colour, float rgb[3]);
 
 /// The exposure that puts the 99th percentile of the luminance of the scene's light (the image
-/// less its background part, over pixels with mean transmittance below 0.98) at 0.8; 1 where
-/// there is none.
+/// less its background part where the pixel is not FOREIGN, over pixels with mean transmittance
+/// below 0.98) at 0.8; 1 where there is none, or where it stays below a thousandth of the
+/// uniform background's luminance (a clear medium shows only the background: nothing to meter).
 double MeterExposure(const std::vector<float>& image, const std::vector<float>& transmittance,
-  const double* uniformBackground);
+  const std::vector<std::uint8_t>& kinds, const double* uniformBackground);
 
 /// The RGBA images the mapper draws for the kinds above: `multiply` (blended with ZERO,
 /// SRC_COLOR: 0 where COVERED, T where FOREIGN, 1 where CLEAR) and `add` (ONE, ONE: E L where

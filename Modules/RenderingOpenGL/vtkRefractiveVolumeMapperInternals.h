@@ -38,7 +38,7 @@ struct vtkRefractiveVolumeMapper::Internals
   vtkNew<vtkRefractaRendererBackground> Background;
   vtkNew<vtkRefractaActorSurfaces> Actors;
   vtkRefractaSurfaceSet* ClassifiedWith = nullptr; // the surfaces the pixel kinds were made for
-  bool ClassifiedEverywhere = true; // ShadeActorsEverywhere at the last classification
+  bool ClassifiedEverywhere = false; // ShadeActorsEverywhere at the last classification
   vtkTimeStamp ClassifiedTime;
   // The medium's active box (see vtkRefractiveVolumeMapperCompositing.h) and what it was
   // computed from.

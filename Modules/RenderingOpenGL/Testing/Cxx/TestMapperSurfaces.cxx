@@ -601,3 +601,21 @@ TEST(MapperSurfaces, TheMediumsShadowOnAnActorShowsOutsideItsFootprint)
     }
   }
 }
+
+// A clear glass ball (voxelized with exact interfaces: Fresnel-split legs) over a uniform
+// background shows nothing but that background: the scene's light left after taking out the
+// background's part is float round-off. Automatic exposure must stay 1 (metering the round-off
+// gave 6e7, the ball drawn as speckle) and the ball's centre is the background.
+TEST(MapperSurfaces, AClearGlassBallMetersNoExposure)
+{
+  Scene scene(ExactBallLens());
+  UseParallelCamera(scene.Renderer);
+  AddLightAlongView(scene.Renderer);
+  scene.Renderer->SetBackground(0.1, 0.1, 0.15);
+  scene.Mapper->AutomaticExposureOn();
+  vtkSmartPointer<vtkImageData> image = scene.Capture();
+  EXPECT_EQ(scene.Mapper->GetLastExposure(), 1.0);
+  const unsigned char* centre = Pixel(image, Size / 2, Size / 2);
+  EXPECT_NEAR(centre[0], 25.5, 1.5);
+  EXPECT_NEAR(centre[2], 38.25, 1.5);
+}
