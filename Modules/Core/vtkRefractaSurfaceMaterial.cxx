@@ -1,7 +1,10 @@
 #include "vtkRefractaSurfaceMaterial.h"
 
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
 #include "vtkMediumMaterial.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkRefractaMedium.h"
 #include "vtkRefractaSettings.h"
 
@@ -94,6 +97,104 @@ void vtkRefractaSurfaceMaterial::EvaluateChecker(double u, double v, double rgb[
   std::copy(color, color + 3, rgb);
 }
 
+vtkRefractaSurfaceMaterial::vtkRefractaSurfaceMaterial() = default;
+vtkRefractaSurfaceMaterial::~vtkRefractaSurfaceMaterial() = default;
+
+//------------------------------------------------------------------------------
+void vtkRefractaSurfaceMaterial::SetTexture(vtkImageData* image)
+{
+  if (this->Texture != image)
+  {
+    this->Texture = image;
+    this->Modified();
+  }
+}
+
+vtkImageData* vtkRefractaSurfaceMaterial::GetTexture() const
+{
+  return this->Texture;
+}
+
+vtkMTimeType vtkRefractaSurfaceMaterial::GetMTime()
+{
+  const vtkMTimeType own = this->Superclass::GetMTime();
+  return this->Texture ? std::max(own, this->Texture->GetMTime()) : own;
+}
+
+namespace
+{
+// Texture coordinate t (in pixels, pixel centres at i + 0.5) -> pixel index in [0, n), wrapped
+// (repeat) or clamped.
+int TexturePixel(long long i, int n, bool repeat)
+{
+  if (repeat)
+  {
+    const long long m = i % n;
+    return static_cast<int>(m < 0 ? m + n : m);
+  }
+  return static_cast<int>(std::min<long long>(std::max<long long>(i, 0), n - 1));
+}
+
+// The colour of pixel (i, j) of `scalars` (an image `width` wide), in [0, 1].
+void TexturePixelColour(vtkDataArray* scalars, int width, int i, int j, double rgb[3])
+{
+  const vtkIdType p = i + static_cast<vtkIdType>(width) * j;
+  const int nc = scalars->GetNumberOfComponents();
+  const double scale = scalars->GetDataType() == VTK_UNSIGNED_CHAR ? 1.0 / 255.0 : 1.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    const double v = scalars->GetComponent(p, nc >= 3 ? c : 0) * scale;
+    rgb[c] = v >= 0.0 ? std::min(v, 1.0) : 0.0;
+  }
+}
+}
+
+bool vtkRefractaSurfaceMaterial::EvaluateTexture(double u, double v, double rgb[3]) const
+{
+  vtkImageData* image = this->Texture;
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  int dims[3] = { 0, 0, 0 };
+  if (image)
+  {
+    image->GetDimensions(dims);
+  }
+  if (!scalars || dims[0] < 1 || dims[1] < 1 ||
+    scalars->GetNumberOfTuples() < static_cast<vtkIdType>(dims[0]) * dims[1] || !std::isfinite(u) ||
+    !std::isfinite(v))
+  {
+    return false;
+  }
+  const double x = u * dims[0], y = v * dims[1]; // in pixels
+  if (!this->TextureInterpolate)
+  {
+    TexturePixelColour(scalars, dims[0],
+      TexturePixel(static_cast<long long>(std::floor(x)), dims[0], this->TextureRepeat),
+      TexturePixel(static_cast<long long>(std::floor(y)), dims[1], this->TextureRepeat), rgb);
+    return true;
+  }
+  // Bilinear between the four pixel centres around (x, y).
+  const double fx = x - 0.5, fy = y - 0.5;
+  const long long i0 = static_cast<long long>(std::floor(fx)),
+                  j0 = static_cast<long long>(std::floor(fy));
+  const double wx = fx - i0, wy = fy - j0;
+  rgb[0] = rgb[1] = rgb[2] = 0.0;
+  for (int dj = 0; dj < 2; ++dj)
+  {
+    for (int di = 0; di < 2; ++di)
+    {
+      double c[3];
+      TexturePixelColour(scalars, dims[0], TexturePixel(i0 + di, dims[0], this->TextureRepeat),
+        TexturePixel(j0 + dj, dims[1], this->TextureRepeat), c);
+      const double w = (di ? wx : 1.0 - wx) * (dj ? wy : 1.0 - wy);
+      for (int k = 0; k < 3; ++k)
+      {
+        rgb[k] += w * c[k];
+      }
+    }
+  }
+  return true;
+}
+
 //------------------------------------------------------------------------------
 void vtkRefractaSurfaceMaterial::DeepCopy(vtkRefractaSurfaceMaterial* other)
 {
@@ -116,6 +217,9 @@ void vtkRefractaSurfaceMaterial::DeepCopy(vtkRefractaSurfaceMaterial* other)
   this->SetInsideAlbedo(other->InsideAlbedo);
   this->SetInsideAnisotropy(other->InsideAnisotropy);
   this->SetInsideEmission(other->InsideEmission);
+  this->SetTexture(other->Texture);
+  this->SetTextureRepeat(other->TextureRepeat);
+  this->SetTextureInterpolate(other->TextureInterpolate);
 }
 
 //------------------------------------------------------------------------------
@@ -132,6 +236,9 @@ void vtkRefractaSurfaceMaterial::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CheckerColor2: (" << this->CheckerColor2[0] << ", " << this->CheckerColor2[1]
      << ", " << this->CheckerColor2[2] << ")\n";
   os << indent << "UseScalarColors: " << this->UseScalarColors << "\n";
+  os << indent << "Texture: " << static_cast<void*>(this->Texture.Get()) << "\n";
+  os << indent << "TextureRepeat: " << this->TextureRepeat << "\n";
+  os << indent << "TextureInterpolate: " << this->TextureInterpolate << "\n";
   os << indent << "Kind: " << (this->Kind == DIELECTRIC ? "DIELECTRIC" : "LAMBERTIAN") << "\n";
   os << indent << "IndexInside: " << this->IndexInside << "\n";
   os << indent << "IndexOutside: " << this->IndexOutside << "\n";

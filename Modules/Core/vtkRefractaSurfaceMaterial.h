@@ -5,19 +5,21 @@
  *
  * Surfaces are two-sided Lambertian reflectors: a photon that meets one deposits its flux and is
  * reflected diffusely with probability equal to the albedo (per RGB channel, as a weight), the
- * rest is absorbed. The albedo of a point comes from one of three sources, in this order:
+ * rest is absorbed. The albedo of a point comes from one of four sources, in this order:
  *
  * 1. UseScalarColors (default off) and the polydata carries colour scalars (point or cell
  *    scalars that are unsigned char 0-255 with 3 or 4 components, or float/double in [0, 1] with
  *    3 or 4 components; alpha is ignored): those colours, as the VTK mapper would map them. A
  *    mesh without such scalars falls back to the next source (vtkRefractaSurfaceSet warns).
- * 2. UseChecker (default off): a checkerboard of CheckerSquares (default 8 x 8) squares over the
+ * 2. Texture (default none): an image sampled at the texture coordinates (below), times Albedo,
+ *    as VTK modulates an actor's texture by its colour (see SetTexture).
+ * 3. UseChecker (default off): a checkerboard of CheckerSquares (default 8 x 8) squares over the
  *    texture coordinates (u, v) in [0, 1]: square (floor(u Su), floor(v Sv)) takes CheckerColor1
  *    (default (0.9, 0.9, 0.9)) when the sum of its indices is even, CheckerColor2 (default
  *    (0.1, 0.1, 0.1)) when odd. Texture coordinates are the polydata's TCoords when present
  *    (first two components), else planar: the mesh's own (untransformed) points projected on the
  *    two axes of its largest bounding-box extents, scaled to [0, 1] over that box.
- * 3. Albedo (default (0.8, 0.8, 0.8)).
+ * 4. Albedo (default (0.8, 0.8, 0.8)).
  *
  * All colours are linear RGB, clamped to [0, 1] by the setters (an albedo above 1 would create
  * energy). vtkRefractaSurfaceSet bakes the chosen source into one albedo per texel, so every
@@ -42,6 +44,9 @@
 
 #include "RefractaCoreModule.h" // for export macro
 #include "vtkObject.h"
+#include "vtkSmartPointer.h" // for the texture
+
+class vtkImageData;
 
 class REFRACTACORE_EXPORT vtkRefractaSurfaceMaterial : public vtkObject
 {
@@ -165,10 +170,42 @@ public:
   vtkGetVector3Macro(InsideEmission, double);
   ///@}
 
+  ///@{
+  /**
+   * A texture (source 2 of the class description): a vtkImageData whose point scalars are colours
+   * (unsigned char 0-255 or float/double in [0, 1]; 3 or 4 components, alpha ignored; 1 or 2:
+   * grey), pixel (i, j) covering u in [i, i + 1) / width and v in [j, j + 1) / height of the
+   * texture coordinates, as vtkTexture maps it. TextureRepeat (default on, vtkTexture's default):
+   * coordinates outside [0, 1] wrap; off: clamped to the edge. TextureInterpolate (default off,
+   * vtkTexture's default): the nearest pixel; on: bilinear between pixel centres. Kept by
+   * reference (its MTime is the material's). nullptr (default): none. An image without usable
+   * scalars is ignored (EvaluateTexture returns false).
+   */
+  void SetTexture(vtkImageData* image);
+  vtkImageData* GetTexture() const;
+  vtkSetMacro(TextureRepeat, bool);
+  vtkGetMacro(TextureRepeat, bool);
+  vtkBooleanMacro(TextureRepeat, bool);
+  vtkSetMacro(TextureInterpolate, bool);
+  vtkGetMacro(TextureInterpolate, bool);
+  vtkBooleanMacro(TextureInterpolate, bool);
+  ///@}
+
+  /**
+   * The texture's colour at texture coordinates (u, v), in [0, 1] (not yet times Albedo); false
+   * (rgb untouched) without a usable texture.
+   */
+  bool EvaluateTexture(double u, double v, double rgb[3]) const;
+
   /**
    * The checker colour at texture coordinates (u, v) (whatever UseChecker says).
    */
   void EvaluateChecker(double u, double v, double rgb[3]) const;
+
+  /**
+   * Modification time including the texture's.
+   */
+  vtkMTimeType GetMTime() override;
 
   /**
    * Copies every setting of `other` (nullptr: nothing).
@@ -176,8 +213,8 @@ public:
   void DeepCopy(vtkRefractaSurfaceMaterial* other);
 
 protected:
-  vtkRefractaSurfaceMaterial() = default;
-  ~vtkRefractaSurfaceMaterial() override = default;
+  vtkRefractaSurfaceMaterial();
+  ~vtkRefractaSurfaceMaterial() override;
 
   double Albedo[3] = { 0.8, 0.8, 0.8 };
   bool UseChecker = false;
@@ -194,6 +231,9 @@ protected:
   double InsideAlbedo[3] = { 0.0, 0.0, 0.0 };
   double InsideAnisotropy = 0.0;
   double InsideEmission[3] = { 0.0, 0.0, 0.0 };
+  vtkSmartPointer<vtkImageData> Texture;
+  bool TextureRepeat = true;
+  bool TextureInterpolate = false;
 
 private:
   vtkRefractaSurfaceMaterial(const vtkRefractaSurfaceMaterial&) = delete;

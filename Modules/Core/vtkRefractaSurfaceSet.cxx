@@ -43,13 +43,14 @@ struct ColorSource
   {
     ALBEDO,
     CHECKER,
+    TEXTURE,
     POINT_SCALARS,
     CELL_SCALARS
   };
   Kind Type = ALBEDO;
   vtkDataArray* Scalars = nullptr;
   double ScalarScale = 1.0;          // 1/255 for unsigned char colours
-  std::vector<double> TextureCoords; // per point (u, v) for the checker
+  std::vector<double> TextureCoords; // per point (u, v) for the texture or the checker
   vtkRefractaSurfaceMaterial* Material = nullptr;
 };
 
@@ -602,7 +603,13 @@ std::vector<ColorSource> PrepareColorSources(
         continue;
       }
     }
-    if (c.Material->GetUseChecker())
+    double probe[3];
+    if (c.Material->EvaluateTexture(0.5, 0.5, probe))
+    {
+      c.Type = ColorSource::TEXTURE;
+      c.TextureCoords = TextureCoordinates(mesh);
+    }
+    else if (c.Material->GetUseChecker())
     {
       c.Type = ColorSource::CHECKER;
       c.TextureCoords = TextureCoordinates(mesh);
@@ -635,6 +642,7 @@ void EvaluateColor(const ColorSource& c, const SourceTriangle& t, double u, doub
       }
       break;
     case ColorSource::CHECKER:
+    case ColorSource::TEXTURE:
     {
       double tu = 0, tv = 0;
       for (int k = 0; k < 3; ++k)
@@ -642,7 +650,19 @@ void EvaluateColor(const ColorSource& c, const SourceTriangle& t, double u, doub
         tu += w[k] * c.TextureCoords[2 * t.Points[k]];
         tv += w[k] * c.TextureCoords[2 * t.Points[k] + 1];
       }
-      c.Material->EvaluateChecker(tu, tv, rgb);
+      if (c.Type == ColorSource::CHECKER)
+      {
+        c.Material->EvaluateChecker(tu, tv, rgb);
+        break;
+      }
+      // Modulated by the albedo, as VTK modulates an actor's texture by its colour.
+      double albedo[3];
+      c.Material->GetAlbedo(albedo);
+      c.Material->EvaluateTexture(tu, tv, rgb);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        rgb[ch] *= albedo[ch];
+      }
       break;
     }
     default:

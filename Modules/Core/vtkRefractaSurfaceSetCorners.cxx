@@ -87,23 +87,23 @@ void vtkRefractaSurfaceSet::LinkCorners()
   {
     const SourceTriangle& source = this->Impl->Sources[order[k]];
     const bool lambertian = info(k, REFRACTA_TRIANGLE_INFO_KIND) == REFRACTA_SURFACE_LAMBERTIAN;
-    for (int corner = 0; corner < 3 && lambertian; ++corner)
+    for (int corner = 0; corner < 3; ++corner)
     {
       // The corner texel of every triangle of this surface at this point (this one included)
-      // whose face is within the smoothing angle: a cube's edges keep their sides apart.
+      // whose face is within the smoothing angle: a cube's edges keep their sides apart. A
+      // dielectric triangle's corners link nothing.
       const vtkIdType p = source.Points[corner];
-      shared.ForSmoothNeighbours(source.Surface, p, k,
-        [&](vtkIdType j)
-        {
-          const SourceTriangle& other = this->Impl->Sources[order[j]];
-          const int c = other.Points[0] == p ? 0 : (other.Points[1] == p ? 1 : 2);
-          this->CornerTexels.push_back(info(j, REFRACTA_TRIANGLE_INFO_TEXEL) +
-            CornerTexel(c, info(j, REFRACTA_TRIANGLE_INFO_SUBDIVISION)));
-        });
-      this->CornerOffsets.push_back(static_cast<vtkIdType>(this->CornerTexels.size()));
-    }
-    for (int corner = 0; corner < 3 && !lambertian; ++corner)
-    {
+      if (lambertian)
+      {
+        shared.ForSmoothNeighbours(source.Surface, p, k,
+          [&](vtkIdType j)
+          {
+            const SourceTriangle& other = this->Impl->Sources[order[j]];
+            const int c = other.Points[0] == p ? 0 : (other.Points[1] == p ? 1 : 2);
+            this->CornerTexels.push_back(info(j, REFRACTA_TRIANGLE_INFO_TEXEL) +
+              CornerTexel(c, info(j, REFRACTA_TRIANGLE_INFO_SUBDIVISION)));
+          });
+      }
       this->CornerOffsets.push_back(static_cast<vtkIdType>(this->CornerTexels.size()));
     }
   }

@@ -6,6 +6,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -18,6 +19,7 @@
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
+#include "vtkTexture.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkVolume.h"
 
@@ -61,6 +63,24 @@ vtkSmartPointer<vtkUnsignedCharArray> MappedColours(
   return colours;
 }
 
+// The image of `actor`'s texture where it has one and its input texture coordinates to map it
+// with; nullptr otherwise.
+vtkImageData* TextureImage(vtkActor* actor)
+{
+  vtkTexture* texture = actor->GetTexture();
+  auto* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper());
+  vtkPolyData* input = mapper ? mapper->GetInput() : nullptr;
+  if (!texture || !input || !input->GetPointData()->GetTCoords())
+  {
+    return nullptr;
+  }
+  if (vtkAlgorithm* producer = texture->GetInputAlgorithm())
+  {
+    producer->Update();
+  }
+  return texture->GetInput();
+}
+
 // The surface of one taken actor: its mesh (structure, texture coordinates and, where it shows
 // scalars, its colours as the only scalars) and its material.
 void AddActor(vtkRefractaSurfaceSet* set, vtkActor* actor, vtkPolyData* input)
@@ -71,6 +91,13 @@ void AddActor(vtkRefractaSurfaceSet* set, vtkActor* actor, vtkPolyData* input)
   mesh->GetPointData()->SetTCoords(input->GetPointData()->GetTCoords());
   auto material = vtkSmartPointer<vtkRefractaSurfaceMaterial>::New();
   material->SetAlbedo(actor->GetProperty()->GetDiffuseColor());
+  if (vtkImageData* image = TextureImage(actor))
+  {
+    // Sampled at the mesh's texture coordinates as vtkTexture maps them, times the colour.
+    material->SetTexture(image);
+    material->SetTextureRepeat(actor->GetTexture()->GetRepeat());
+    material->SetTextureInterpolate(actor->GetTexture()->GetInterpolate());
+  }
   int cellFlag = 0;
   if (vtkSmartPointer<vtkUnsignedCharArray> colours = MappedColours(mapper, input, cellFlag))
   {
@@ -147,6 +174,10 @@ std::vector<double> vtkRefractaActorSurfaces::Signature() const
     signature.push_back(static_cast<double>(actor->GetProperty()->GetMTime()));
     signature.push_back(
       static_cast<double>(mapper->GetLookupTable() ? mapper->GetLookupTable()->GetMTime() : 0));
+    vtkTexture* texture = actor->GetTexture();
+    signature.push_back(static_cast<double>(texture ? texture->GetMTime() : 0));
+    signature.push_back(
+      static_cast<double>(texture && texture->GetInput() ? texture->GetInput()->GetMTime() : 0));
   }
   return signature;
 }

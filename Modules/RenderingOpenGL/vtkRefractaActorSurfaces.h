@@ -14,10 +14,13 @@
  * - the mapper's mapped scalar colours (mapper->MapScalars(1.0): RGBA per point or per cell, as
  *   VTK colours it) where the mapper shows scalars (ScalarVisibility on and scalars present;
  *   with InterpolateScalarsBeforeMapping the lookup table is applied per point instead),
+ * - otherwise, where the actor has a texture (vtkActor::GetTexture(), its input image) and its
+ *   input texture coordinates, the texture sampled there as vtkTexture maps it (its Repeat and
+ *   Interpolate) times the property's diffuse colour (vtkRefractaSurfaceMaterial::SetTexture),
  * - otherwise the property's diffuse colour (its Diffuse, Ambient and Specular coefficients are
  *   not used: a surface is Lambertian with that albedo).
- * A texture is not sampled: a textured actor is taken with its colour as above, and an actor
- * with texture coordinates but no texture uses its colour too.
+ * The surface set bakes the colour per atlas texel (the mean of four samples), so a texture
+ * finer than the texels is seen averaged over them.
  *
  * **Not taken** (left to VTK's drawing and composited by depth, see vtkRefractiveVolumeMapper):
  * invisible actors, translucent actors (opacity < 1 or translucent colours/texture), actors whose

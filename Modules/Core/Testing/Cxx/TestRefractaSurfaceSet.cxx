@@ -8,6 +8,7 @@
 #include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPlaneSource.h"
@@ -457,4 +458,60 @@ TEST(RefractaSurfaceSet, CornersAverageTheTrianglesSharingAPoint)
       EXPECT_GE(maxLinks, 3);
     }
   }
+}
+
+//------------------------------------------------------------------------------
+// A texture is sampled at the texture coordinates as vtkTexture maps them (pixel (i, j) covers
+// u in [i, i + 1) / width), nearest by default and bilinear with TextureInterpolate, wrapped or
+// clamped outside [0, 1], times the albedo; a new image rebuilds the set.
+TEST(RefractaSurfaceSet, TexturesAreSampledAtTheTextureCoordinates)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(2, 2, 1);
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetNumberOfComponents(3);
+  colours->InsertNextTuple3(255, 0, 0);     // (0, 0): red
+  colours->InsertNextTuple3(0, 255, 0);     // (1, 0): green
+  colours->InsertNextTuple3(0, 0, 255);     // (0, 1): blue
+  colours->InsertNextTuple3(255, 255, 255); // (1, 1): white
+  image->GetPointData()->SetScalars(colours);
+  vtkNew<vtkRefractaSurfaceMaterial> material;
+  material->SetAlbedo(0.5, 1.0, 1.0);
+  material->SetTexture(image);
+  double rgb[3];
+  ASSERT_TRUE(material->EvaluateTexture(0.2, 0.7, rgb)); // nearest: pixel (0, 1), blue
+  EXPECT_EQ(rgb[2], 1.0);
+  EXPECT_EQ(rgb[0], 0.0);
+  ASSERT_TRUE(material->EvaluateTexture(1.2, -0.3, rgb)); // wraps to (0.2, 0.7)
+  EXPECT_EQ(rgb[2], 1.0);
+  material->TextureRepeatOff();
+  ASSERT_TRUE(material->EvaluateTexture(1.2, -0.3, rgb)); // clamped: pixel (1, 0), green
+  EXPECT_EQ(rgb[1], 1.0);
+  EXPECT_EQ(rgb[2], 0.0);
+  material->TextureInterpolateOn();
+  ASSERT_TRUE(material->EvaluateTexture(0.5, 0.25, rgb)); // between red and green at v's centre
+  EXPECT_NEAR(rgb[0], 0.5, 1e-12);
+  EXPECT_NEAR(rgb[1], 0.5, 1e-12);
+  material->TextureInterpolateOff();
+  material->TextureRepeatOn();
+
+  // Through the set on a unit plane (vtkPlaneSource's texture coordinates are x and y).
+  vtkNew<vtkRefractaSurfaceSet> set;
+  set->AddSurface(Plane(1.0), material);
+  set->SetTexelSize(0.05);
+  ASSERT_TRUE(set->Build());
+  const float* red = AlbedoAt(set, 0.25, 0.25);
+  const float* white = AlbedoAt(set, 0.75, 0.75);
+  ASSERT_NE(red, nullptr);
+  ASSERT_NE(white, nullptr);
+  EXPECT_NEAR(red[0], 0.5, 1e-6) << "red times the albedo's 0.5";
+  EXPECT_NEAR(red[1], 0.0, 1e-6);
+  EXPECT_NEAR(white[0], 0.5, 1e-6);
+  EXPECT_NEAR(white[2], 1.0, 1e-6);
+  const int builds = set->GetNumberOfBuilds();
+  colours->SetTuple3(3, 0, 0, 0);
+  colours->Modified();
+  ASSERT_TRUE(set->Build());
+  EXPECT_EQ(set->GetNumberOfBuilds(), builds + 1) << "the texture's change rebuilds";
+  EXPECT_NEAR(AlbedoAt(set, 0.75, 0.75)[2], 0.0, 1e-6);
 }

@@ -50,6 +50,7 @@
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaRendererBackground.h"
+#include "vtkRefractaSurfaceMaterial.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkRefractiveVolumeMapper.h"
@@ -618,4 +619,50 @@ TEST(MapperSurfaces, AClearGlassBallMetersNoExposure)
   const unsigned char* centre = Pixel(image, Size / 2, Size / 2);
   EXPECT_NEAR(centre[0], 25.5, 1.5);
   EXPECT_NEAR(centre[2], 38.25, 1.5);
+}
+
+// A textured actor's surface takes its texture (sampled at its texture coordinates, vtkTexture's
+// Repeat and Interpolate), and a new texture image rebuilds the actor set.
+TEST(MapperSurfaces, ATexturedActorTakesItsTexture)
+{
+  Scene scene;
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-1.5, -1.5, PlaneZ);
+  plane->SetPoint1(1.5, -1.5, PlaneZ);
+  plane->SetPoint2(-1.5, 1.5, PlaneZ);
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(2, 1, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* pixels = static_cast<unsigned char*>(image->GetScalarPointer());
+  const unsigned char values[6] = { 255, 0, 0, 0, 0, 255 }; // red | blue
+  std::copy(values, values + 6, pixels);
+  vtkNew<vtkTexture> texture;
+  texture->SetInputData(image);
+  texture->RepeatOff();
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->SetTexture(texture);
+  scene.Renderer->AddActor(actor);
+  UseParallelCamera(scene.Renderer);
+  AddLightAlongView(scene.Renderer);
+  scene.Window->Render();
+  vtkRefractaActorSurfaces* actors = scene.Mapper->GetActorSurfaceCollector();
+  ASSERT_EQ(actors->GetNumberOfActors(), 1);
+  vtkRefractaSurfaceMaterial* material = actors->GetSurfaces()->GetMaterial(0);
+  EXPECT_EQ(material->GetTexture(), image.GetPointer());
+  EXPECT_FALSE(material->GetTextureRepeat());
+  double rgb[3];
+  ASSERT_TRUE(material->EvaluateTexture(0.25, 0.5, rgb));
+  EXPECT_EQ(rgb[0], 1.0);
+  ASSERT_TRUE(material->EvaluateTexture(0.75, 0.5, rgb));
+  EXPECT_EQ(rgb[2], 1.0);
+  const int rebuilds = actors->GetNumberOfRebuilds();
+  scene.Window->Render();
+  EXPECT_EQ(actors->GetNumberOfRebuilds(), rebuilds) << "nothing changed";
+  pixels[0] = 0;
+  image->Modified();
+  scene.Window->Render();
+  EXPECT_EQ(actors->GetNumberOfRebuilds(), rebuilds + 1) << "a new texture image";
 }
