@@ -7,8 +7,9 @@
 // written to slot offset + w, where photonStream[offset + w] = offset + i (the host's order):
 //   directional light: a rectangle perpendicular to the travel direction covering the box's
 //     projection; photon power = E * (rectangle area) / N;
-//   point/spot light: a spherical cap of directions (the cone around the box's bounding sphere,
-//     or the spot cone when that is narrower, or the whole sphere when the light is inside);
+//   point/spot light: a spherical cap of directions (the narrower of the cone around the box's
+//     bounding sphere and the cone towards its centre through its farthest corner, or the spot
+//     cone when that is narrower, or the whole sphere when the light is inside the box);
 //     photon power = I(direction) * (cap solid angle) / N, with I = I0 cos^e(theta) inside a
 //     spot's cone and 0 outside.
 // Extended lights (extent > 0): a directional light's direction is tilted uniformly over the

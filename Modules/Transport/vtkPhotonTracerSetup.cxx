@@ -533,6 +533,31 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
           capAxis[c] = toBox[c] / distance;
         }
       }
+      if (!inside && this->LightRadius == 0.0 && distance > 0.0)
+      {
+        // The cone towards the box's centre through its farthest corner: it holds the box (the
+        // box is the convex hull of its corners, and a cone narrower than a hemisphere is
+        // convex) and is often far narrower than the bounding sphere's cone, or than the whole
+        // sphere when the light is inside that sphere (a light over a wide floor): the photons
+        // that would miss the box are not generated.
+        const double towards[3] = { toBox[0] / distance, toBox[1] / distance, toBox[2] / distance };
+        double cosMin = 1.0;
+        for (int corner = 0; corner < 8; ++corner)
+        {
+          double d[3] = { ((corner & 1) ? emitHi[0] : emitLo[0]) - p[0],
+            ((corner & 2) ? emitHi[1] : emitLo[1]) - p[1],
+            ((corner & 4) ? emitHi[2] : emitLo[2]) - p[2] };
+          const double length = std::sqrt(Dot(d, d));
+          cosMin = std::min(cosMin, length > 0.0 ? Dot(d, towards) / length : -1.0);
+        }
+        // Slightly wider than exact, so that rounding never loses a corner's photons.
+        const double cornerOmc = 1.0 - cosMin + 1e-9;
+        if (cosMin > 0.0 && cornerOmc < ls.OneMinusCos)
+        {
+          ls.OneMinusCos = cornerOmc;
+          std::copy(towards, towards + 3, capAxis);
+        }
+      }
       if (isSpot)
       {
         const double half = vtkMath::RadiansFromDegrees(light->GetConeAngle());
