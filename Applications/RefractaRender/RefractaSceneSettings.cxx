@@ -8,8 +8,8 @@
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaViewPass.h"
 
-#include <algorithm>
 #include <iterator>
+#include <stdexcept>
 #include <tuple>
 
 namespace RefractaRender
@@ -17,6 +17,7 @@ namespace RefractaRender
 namespace
 {
 const int NoPreset = -1;
+const int DefaultPhotons = 1 << 18; // without a preset
 
 const ChoiceTable<int> Presets = { { "none", NoPreset }, { "draft", vtkEffectPlan::DRAFT },
   { "interactive", vtkEffectPlan::INTERACTIVE }, { "production", vtkEffectPlan::PRODUCTION } };
@@ -86,8 +87,8 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
     pipeline->SetQuality(preset);
   }
   vtkEffectPlan* plan = pipeline->GetEffectPlan();
-  s.Photons = Integer(
-    quality, "photons", q, hasPreset ? plan->GetRecommendedNumberOfPhotons() : 1 << 18, 1, 1 << 28);
+  s.Photons = Integer(quality, "photons", q,
+    hasPreset ? plan->GetRecommendedNumberOfPhotons() : DefaultPhotons, 1, 1 << 28);
   s.Seed = Integer(quality, "seed", q, 1, 0, 2147483647);
   s.ViewStep =
     Number(quality, "view_step", q, hasPreset ? plan->GetRecommendedViewStep() : 1.0, 0.01, 16.0);
@@ -144,27 +145,22 @@ void ReadEffects(const json& scene, const RenderSettings& s, vtkEffectPlan* plan
 
 int RequestedPhotons(const json& quality)
 {
-  if (!quality.is_object())
+  // ReadQuality's own reading, without its errors: ReadSettings reports those.
+  try
   {
-    return 1 << 18;
-  }
-  const auto photons = quality.find("photons");
-  if (photons != quality.end() && photons->is_number_integer())
-  {
-    return static_cast<int>(std::min<long long>(photons->get<long long>(), 1 << 28));
-  }
-  const auto preset = quality.find("preset");
-  for (const auto& entry : Presets)
-  {
-    if (preset != quality.end() && preset->is_string() &&
-      entry.first == preset->get<std::string>() && entry.second != NoPreset)
+    const int preset = Choice(quality, "preset", "scene.quality", "none", Presets).second;
+    vtkNew<vtkEffectPlan> plan;
+    if (preset != NoPreset)
     {
-      vtkNew<vtkEffectPlan> plan;
-      plan->SetQuality(entry.second);
-      return plan->GetRecommendedNumberOfPhotons();
+      plan->SetQuality(preset);
     }
+    return Integer(quality, "photons", "scene.quality",
+      preset != NoPreset ? plan->GetRecommendedNumberOfPhotons() : DefaultPhotons, 1, 1 << 28);
   }
-  return 1 << 18;
+  catch (const std::exception&)
+  {
+    return DefaultPhotons;
+  }
 }
 
 RenderSettings ReadSettings(const json& scene, vtkRefractaRenderPipeline* pipeline)

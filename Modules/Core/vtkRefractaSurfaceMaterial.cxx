@@ -149,7 +149,7 @@ void TexturePixelColour(vtkDataArray* scalars, int width, int i, int j, double r
 }
 }
 
-bool vtkRefractaSurfaceMaterial::EvaluateTexture(double u, double v, double rgb[3]) const
+bool vtkRefractaSurfaceMaterial::HasUsableTexture() const
 {
   vtkImageData* image = this->Texture;
   vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
@@ -158,12 +158,20 @@ bool vtkRefractaSurfaceMaterial::EvaluateTexture(double u, double v, double rgb[
   {
     image->GetDimensions(dims);
   }
-  if (!scalars || dims[0] < 1 || dims[1] < 1 ||
-    scalars->GetNumberOfTuples() < static_cast<vtkIdType>(dims[0]) * dims[1] || !std::isfinite(u) ||
-    !std::isfinite(v))
+  return scalars && dims[0] >= 1 && dims[1] >= 1 && dims[2] == 1 &&
+    scalars->GetNumberOfTuples() == static_cast<vtkIdType>(dims[0]) * dims[1] &&
+    scalars->GetNumberOfComponents() <= 4;
+}
+
+bool vtkRefractaSurfaceMaterial::EvaluateTexture(double u, double v, double rgb[3]) const
+{
+  if (!this->HasUsableTexture() || !std::isfinite(u) || !std::isfinite(v))
   {
     return false;
   }
+  vtkDataArray* scalars = this->Texture->GetPointData()->GetScalars();
+  int dims[3];
+  this->Texture->GetDimensions(dims);
   const double x = u * dims[0], y = v * dims[1]; // in pixels
   if (!this->TextureInterpolate)
   {

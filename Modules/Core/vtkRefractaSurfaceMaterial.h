@@ -178,8 +178,9 @@ public:
    * texture coordinates, as vtkTexture maps it. TextureRepeat (default on, vtkTexture's default):
    * coordinates outside [0, 1] wrap; off: clamped to the edge. TextureInterpolate (default off,
    * vtkTexture's default): the nearest pixel; on: bilinear between pixel centres. Kept by
-   * reference (its MTime is the material's). nullptr (default): none. An image without usable
-   * scalars is ignored (EvaluateTexture returns false).
+   * reference (its MTime is the material's). nullptr (default): none. A texture that is not
+   * usable (HasUsableTexture(): a 2D image, one slice thick, with one scalar tuple of at most 4
+   * components per pixel) is ignored, and vtkRefractaSurfaceSet warns.
    */
   void SetTexture(vtkImageData* image);
   vtkImageData* GetTexture() const;
@@ -196,6 +197,11 @@ public:
    * (rgb untouched) without a usable texture.
    */
   bool EvaluateTexture(double u, double v, double rgb[3]) const;
+
+  /**
+   * Whether the texture can be sampled (see SetTexture).
+   */
+  bool HasUsableTexture() const;
 
   /**
    * The checker colour at texture coordinates (u, v) (whatever UseChecker says).

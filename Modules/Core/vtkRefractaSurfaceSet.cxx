@@ -571,7 +571,7 @@ namespace
 {
 // The colour source of each surface, prepared once per build.
 std::vector<ColorSource> PrepareColorSources(
-  vtkRefractaSurfaceSet* self, std::vector<int>& missingScalars)
+  vtkRefractaSurfaceSet* self, std::vector<int>& missingScalars, std::vector<int>& unusableTextures)
 {
   std::vector<ColorSource> sources(self->GetNumberOfSurfaces());
   for (int s = 0; s < self->GetNumberOfSurfaces(); ++s)
@@ -603,8 +603,11 @@ std::vector<ColorSource> PrepareColorSources(
         continue;
       }
     }
-    double probe[3];
-    if (c.Material->EvaluateTexture(0.5, 0.5, probe))
+    if (c.Material->GetTexture() && !c.Material->HasUsableTexture())
+    {
+      unusableTextures.push_back(s);
+    }
+    if (c.Material->HasUsableTexture())
     {
       c.Type = ColorSource::TEXTURE;
       c.TextureCoords = TextureCoordinates(mesh);
@@ -678,8 +681,14 @@ void EvaluateColor(const ColorSource& c, const SourceTriangle& t, double u, doub
 //------------------------------------------------------------------------------
 void vtkRefractaSurfaceSet::BakeAlbedo()
 {
-  std::vector<int> missing;
-  const std::vector<ColorSource> colors = PrepareColorSources(this, missing);
+  std::vector<int> missing, unusable;
+  const std::vector<ColorSource> colors = PrepareColorSources(this, missing, unusable);
+  for (int s : unusable)
+  {
+    vtkWarningMacro("Surface " << s << " has a texture that cannot be sampled (a 2D image, one "
+                               << "slice thick, with one colour tuple of 1 to 4 components per "
+                               << "pixel is needed); its checker or albedo is used instead.");
+  }
   for (int s : missing)
   {
     vtkWarningMacro("Surface " << s << " asks for scalar colours (UseScalarColors) but has no "

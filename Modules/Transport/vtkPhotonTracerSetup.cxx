@@ -34,6 +34,15 @@ void CopyArray(
 {
   vtkRefractaMedium::ReadArray(array, static_cast<vtkIdType>(voxels), comps, fallback, out);
 }
+
+// Corner `corner` (bit a: the upper bound along axis a) of the box [lo, hi].
+void BoxCorner(int corner, const double lo[3], const double hi[3], double q[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    q[a] = (corner >> a) & 1 ? hi[a] : lo[a];
+  }
+}
 }
 
 vtkOpenCLBuffer ScratchPool::Borrow(
@@ -482,8 +491,8 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
       double umin = 1e300, umax = -1e300, wmin = 1e300, wmax = -1e300, dmin = 1e300;
       for (int corner = 0; corner < 8; ++corner)
       {
-        const double q[3] = { (corner & 1) ? emitHi[0] : emitLo[0],
-          (corner & 2) ? emitHi[1] : emitLo[1], (corner & 4) ? emitHi[2] : emitLo[2] };
+        double q[3];
+        BoxCorner(corner, emitLo, emitHi, q);
         umin = std::min(umin, Dot(q, b1));
         umax = std::max(umax, Dot(q, b1));
         wmin = std::min(wmin, Dot(q, b2));
@@ -544,9 +553,9 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
         double cosMin = 1.0;
         for (int corner = 0; corner < 8; ++corner)
         {
-          double d[3] = { ((corner & 1) ? emitHi[0] : emitLo[0]) - p[0],
-            ((corner & 2) ? emitHi[1] : emitLo[1]) - p[1],
-            ((corner & 4) ? emitHi[2] : emitLo[2]) - p[2] };
+          double d[3];
+          BoxCorner(corner, emitLo, emitHi, d);
+          vtkMath::Subtract(d, p, d);
           const double length = std::sqrt(Dot(d, d));
           cosMin = std::min(cosMin, length > 0.0 ? Dot(d, towards) / length : -1.0);
         }

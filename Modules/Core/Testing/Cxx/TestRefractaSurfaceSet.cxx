@@ -514,4 +514,19 @@ TEST(RefractaSurfaceSet, TexturesAreSampledAtTheTextureCoordinates)
   ASSERT_TRUE(set->Build());
   EXPECT_EQ(set->GetNumberOfBuilds(), builds + 1) << "the texture's change rebuilds";
   EXPECT_NEAR(AlbedoAt(set, 0.75, 0.75)[2], 0.0, 1e-6);
+
+  // A texture that cannot be sampled (a volume, or scalars that do not fit the pixels) is a
+  // warning naming the surface, and the albedo is used.
+  vtkNew<vtkImageData> volume;
+  volume->SetDimensions(2, 2, 2);
+  volume->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  material->SetTexture(volume);
+  EXPECT_FALSE(material->HasUsableTexture());
+  EXPECT_FALSE(material->EvaluateTexture(0.5, 0.5, rgb));
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  set->AddObserver(vtkCommand::WarningEvent, warnings);
+  ASSERT_TRUE(set->Build());
+  EXPECT_EQ(warnings->CheckWarningMessage("Surface 0 has a texture that cannot be sampled"), 0);
+  EXPECT_NEAR(AlbedoAt(set, 0.75, 0.75)[0], 0.5, 1e-6);
+  EXPECT_NEAR(AlbedoAt(set, 0.75, 0.75)[1], 1.0, 1e-6);
 }
