@@ -511,11 +511,13 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     const size_t pixel = (size_t)pi + (size_t)width * (size_t)pj;
     const float3 transmittance = (float3)(trs[l], tgs[l], tbs[l]);
     float3 radianceSum = (float3)(rs[l], gs[l], bs[l]);
+    float3 seen = (float3)(0.0f);
     if (sees[l]) // in the direction the ray left the box in (or its own, when it missed it)
     {
-      radianceSum += transmittance *
+      seen = transmittance *
         refracta_background((float3)(ex[l], ey[l], ez[l]), background, environment, envSize,
           envRight, envUp, envFront);
+      radianceSum += seen;
     }
     // As refracta_view_pass writes its pixel.
     const float alpha = clamp(
@@ -524,6 +526,7 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
     vstore4((float4)(radianceSum, alpha), pixel, hdr);
     steps[pixel] = (uint)counts[l];
     vstore4((float4)(transmittance, 0.0f), pixel, transmittanceOut);
+    vstore4((float4)(seen, 0.0f), pixel, backgroundOut);
   }
 }
 

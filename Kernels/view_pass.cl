@@ -23,7 +23,9 @@
 // Work layout: one work-item per pixel, global size (width, height); pixel (i, j) has row j = 0 at
 // the bottom (VTK's image convention). Output: hdr[4 * (i + width * j)] = (R, G, B, A) with
 // A = 1 - mean transmittance of the path; steps[i + width * j] = number of steps marched;
-// transmittanceOut[4 * (i + width * j)] = the path's RGB transmittance (w = 0), for compositing.
+// transmittanceOut[4 * (i + width * j)] = the path's RGB transmittance (w = 0), for compositing;
+// backgroundOut[4 * (i + width * j)] = the part of the RGB radiance that is the background seen
+// through the path (T_exit L_bg(d_exit) summed over its legs, w = 0), kept out of an exposure.
 //
 // Options (-D): REFRACTA_CURVED, REFRACTA_PARALLEL (parallel projection), REFRACTA_HAS_SINGLE
 // (Radiance + RadianceDirection + Anisotropy given), REFRACTA_HAS_MULTIPLE (MultipleScattering

@@ -160,10 +160,11 @@ inline bool refracta_view_footprint_aliases(__global const float4* nodes, const 
     surfaceAlbedo, surfaceIrradiance, surfaceCorners, triNormals, interfaces
 
 // One path's result: its radiance, the RGB transmittance of the legs that end in the background,
-// the path length to the first surface its primary ray meets (INFINITY: none) and its steps.
+// the part of the radiance that is the background seen through them, the path length to the
+// first surface its primary ray meets (INFINITY: none) and its steps.
 typedef struct
 {
-  float3 radiance, transmittance;
+  float3 radiance, transmittance, background;
   float firstDepth;
   uint count;
 } refracta_view_sample;
@@ -177,6 +178,7 @@ inline refracta_view_sample refracta_view_path(
   refracta_view_sample out;
   out.radiance = (float3)(0.0f);
   out.transmittance = (float3)(0.0f); // of the legs that end in the background
+  out.background = (float3)(0.0f);
   out.firstDepth = INFINITY;
   out.count = 0;
   // The depth-first stack of legs still to follow; the primary ray first. The depth limit (opaque
@@ -277,8 +279,10 @@ inline refracta_view_sample refracta_view_path(
     {
       if (leg.seesBackground)
       {
-        out.radiance += w *
+        const float3 seen = w *
           refracta_background(leg.d, background, environment, envSize, envRight, envUp, envFront);
+        out.radiance += seen;
+        out.background += seen;
       }
       out.transmittance += w; // what shows through: the background, or geometry behind the limit
     }
@@ -317,9 +321,10 @@ inline refracta_view_sample refracta_view_path(
     __global const float2* interfaces,                                                             \
     const float4 toSurface0, const float4 toSurface1, const float4 toSurface2,                     \
     __global float* hdr, __global uint* steps, __global float* transmittanceOut,                   \
-    __global float* surfaceDepthOut, __global const float4* bodies,                                \
-    __global const int* causticBricks, __global const float* causticRadiance,                      \
-    __global const float* causticDirection, const int causticSub, const int supersampling,         \
+    __global float* backgroundOut, __global float* surfaceDepthOut,                                \
+    __global const float4* bodies, __global const int* causticBricks,                              \
+    __global const float* causticRadiance, __global const float* causticDirection,                 \
+    const int causticSub, const int supersampling,                                                 \
     const float grazingCosine, volatile __global int* supersampledPixels
 
 __kernel void refracta_view_pass(REFRACTA_VIEW_KERNEL_PARAMS)
@@ -342,6 +347,7 @@ __kernel void refracta_view_pass(REFRACTA_VIEW_KERNEL_PARAMS)
   const refracta_view_sample centre = refracta_view_path(REFRACTA_VIEW_PATH_ARGS, origin, d, limit);
   float3 radianceSum = centre.radiance;
   float3 transmittance = centre.transmittance;
+  float3 backgroundSum = centre.background;
   uint count = centre.count;
 #ifdef REFRACTA_DIELECTRIC
   if (supersampling > 1 &&
@@ -350,7 +356,7 @@ __kernel void refracta_view_pass(REFRACTA_VIEW_KERNEL_PARAMS)
   {
     // The mean over an n x n grid of the footprint; with n odd its middle point is the centre ray.
     const int n = supersampling;
-    radianceSum = transmittance = (float3)(0.0f);
+    radianceSum = transmittance = backgroundSum = (float3)(0.0f);
     for (int b = 0; b < n; ++b)
     {
       for (int a = 0; a < n; ++a)
@@ -359,6 +365,7 @@ __kernel void refracta_view_pass(REFRACTA_VIEW_KERNEL_PARAMS)
         {
           radianceSum += centre.radiance;
           transmittance += centre.transmittance;
+          backgroundSum += centre.background;
           continue;
         }
         refracta_view_camera_ray(eye, camU, camV, camW,
@@ -368,11 +375,13 @@ __kernel void refracta_view_pass(REFRACTA_VIEW_KERNEL_PARAMS)
           refracta_view_path(REFRACTA_VIEW_PATH_ARGS, origin, d, limit);
         radianceSum += s.radiance;
         transmittance += s.transmittance;
+        backgroundSum += s.background;
         count += s.count;
       }
     }
     radianceSum /= (float)(n * n);
     transmittance /= (float)(n * n);
+    backgroundSum /= (float)(n * n);
     atomic_inc(supersampledPixels);
   }
 #endif
@@ -384,4 +393,5 @@ __kernel void refracta_view_pass(REFRACTA_VIEW_KERNEL_PARAMS)
   vstore4((float4)(radianceSum, alpha), pixel, hdr);
   steps[pixel] = count;
   vstore4((float4)(transmittance, 0.0f), pixel, transmittanceOut);
+  vstore4((float4)(backgroundSum, 0.0f), pixel, backgroundOut);
 }

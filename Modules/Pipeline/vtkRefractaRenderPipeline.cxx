@@ -397,6 +397,11 @@ const std::vector<float>& vtkRefractaRenderPipeline::GetTransmittance() const
   return this->Internal->Transmittance;
 }
 
+const std::vector<float>& vtkRefractaRenderPipeline::GetBackgroundPart() const
+{
+  return this->Internal->BackgroundPart;
+}
+
 vtkImageData* vtkRefractaRenderPipeline::GetPlannedMedium()
 {
   return this->Internal->Planned;
@@ -530,6 +535,7 @@ bool vtkRefractaRenderPipeline::Render(int width, int height, const float* depth
     Internals& in = *this->Internal;
     in.Image.clear();
     in.Transmittance.clear();
+    in.BackgroundPart.clear();
     in.ViewDone = false;
   }
   return false;

@@ -334,11 +334,13 @@ public:
   ///@{
   /**
    * The last image: width x height RGBA floats, linear radiance with A = 1 - mean transmittance
-   * (GetImage), and the path's RGB transmittance with A = 0 (GetTransmittance). Row 0 at the
-   * bottom.
+   * (GetImage), the path's RGB transmittance with A = 0 (GetTransmittance), and the part of the
+   * image's RGB that is the background seen through the path, A = 0 (GetBackgroundPart; see
+   * vtkRefractaViewPass::Render). Row 0 at the bottom.
    */
   const std::vector<float>& GetImage() const;
   const std::vector<float>& GetTransmittance() const;
+  const std::vector<float>& GetBackgroundPart() const;
   ///@}
 
   /**

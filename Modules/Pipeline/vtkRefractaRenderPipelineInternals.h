@@ -63,6 +63,7 @@ struct vtkRefractaRenderPipeline::Internals
   vtkSmartPointer<vtkImageData> Lighting;
   std::vector<float> Image;
   std::vector<float> Transmittance;
+  std::vector<float> BackgroundPart; // of Image, for an exposure to leave alone
 
   // What each stage saw when it last completed.
   vtkTimeStamp PlanTime;

@@ -311,8 +311,8 @@ bool vtkRefractaRenderPipeline::RunView(int width, int height, const float* dept
   Internals& in = *this->Internal;
   in.ViewDone = false;
   in.ViewPass->SetSurfaces(in.SceneSurfaces);
-  if (!in.ViewPass->Render(
-        in.Camera, width, height, in.PropMatrix, depthLimit, in.Image, &in.Transmittance))
+  if (!in.ViewPass->Render(in.Camera, width, height, in.PropMatrix, depthLimit, in.Image,
+        &in.Transmittance, nullptr, &in.BackgroundPart))
   {
     this->LastRenderAborted = in.ViewPass->GetLastRenderAborted();
     return false;

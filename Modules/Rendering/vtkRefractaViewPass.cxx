@@ -219,7 +219,7 @@ bool vtkRefractaViewPass::ComputeRayFrame(vtkCamera* camera, vtkImageData* mediu
 //------------------------------------------------------------------------------
 bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMatrix4x4* propMatrix,
   const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance,
-  std::vector<float>* surfaceDepth)
+  std::vector<float>* surfaceDepth, std::vector<float>* background)
 {
   this->LastRenderAborted = false;
   this->LastNumberOfTiles = 0;
@@ -254,8 +254,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   }
   vtkOpenCLContext* context = in.GetContext();
   int bufferRows = height;
-  if (!this->PlanImageMemory(
-        context, width, height, depthLimit != nullptr, transmittance != nullptr, bufferRows))
+  const int hostImages = (transmittance ? 1 : 0) + (background ? 1 : 0); // of RGBA floats
+  if (!this->PlanImageMemory(context, width, height, depthLimit != nullptr, hostImages, bufferRows))
   {
     return false;
   }
@@ -383,7 +383,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     ? this->MaxSteps
     : static_cast<cl_int>(std::ceil(4.0 * (in.Dims[0] + in.Dims[1] + in.Dims[2]) / this->StepSize));
   const cl_float cutoff = static_cast<float>(this->TransmittanceCutoff);
-  const cl_float4 background = Float4(this->BackgroundColor);
+  const cl_float4 backgroundColor = Float4(this->BackgroundColor);
 
   // Environment basis (vtkRefractaEnvironmentMap) in the grid-local frame.
   double basis[3][3];
@@ -414,10 +414,12 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   // (every pixel of every buffer is written by the kernel, so reused memory need not be cleared)
   std::vector<float>& image = in.ImageScratch;
   std::vector<float>& transmittanceImage = in.TransmittanceScratch;
+  std::vector<float>& backgroundImage = in.BackgroundScratch;
   std::vector<float>& surfaceDepthImage = in.SurfaceDepthScratch;
   std::vector<cl_uint>& steps = in.StepScratch;
   image.resize(pixels * 4);
   transmittanceImage.resize(transmittance ? pixels * 4 : 0);
+  backgroundImage.resize(background ? pixels * 4 : 0);
   surfaceDepthImage.resize(surfaceDepth ? pixels : 0);
   steps.resize(pixels);
   int rowsPerTile = std::max(1, std::min(height, this->TilePixels / width));
@@ -442,6 +444,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       context->CreateBuffer(CL_MEM_WRITE_ONLY, slice * 4, nullptr, "step counts", this);
     vtkOpenCLBuffer transmittanceBuffer =
       context->CreateBuffer(CL_MEM_WRITE_ONLY, slice * 16, nullptr, "transmittance image", this);
+    vtkOpenCLBuffer backgroundBuffer =
+      context->CreateBuffer(CL_MEM_WRITE_ONLY, slice * 16, nullptr, "background image", this);
     vtkOpenCLBuffer surfaceDepthBuffer =
       context->CreateBuffer(CL_MEM_WRITE_ONLY, slice * 4, nullptr, "surface depth", this);
     vtkOpenCLBuffer depthBuffer;
@@ -450,8 +454,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       depthBuffer = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, slice * 4,
         depthLimit + static_cast<size_t>(width) * row0, "depth limits", this);
     }
-    if (!hdrBuffer || !stepBuffer || !transmittanceBuffer || !surfaceDepthBuffer ||
-      (depthLimit && !depthBuffer))
+    if (!hdrBuffer || !stepBuffer || !transmittanceBuffer || !backgroundBuffer ||
+      !surfaceDepthBuffer || (depthLimit && !depthBuffer))
     {
       return false;
     }
@@ -478,15 +482,15 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
     const cl_int status = vtkOpenCLSetKernelArgs(kernel.Get(), dims, spacing, buf(in.Extinction),
       buf(in.Emission), buf(in.Anisotropy), buf(in.Index), buf(in.Gradient), buf(in.Radiance),
       buf(in.RadianceDirection), buf(in.Multiple), Float4(part.Eye), Float4(part.U), Float4(part.V),
-      Float4(part.W), w, h, stepLength, maxSteps, cutoff, background,
+      Float4(part.W), w, h, stepLength, maxSteps, cutoff, backgroundColor,
       env ? in.EnvironmentBuffer.Get() : in.Dummy.Get(), envSize, envRight, envUp, envFront,
       buf(depthBuffer), skipping ? in.Occupancy.Get() : in.Dummy.Get(), cellDims, activeLo,
       activeHi, skipMask, buf(surf.Nodes), nodeCount, buf(surf.Triangles), buf(surf.TriangleInfo),
       buf(surf.Albedo), buf(surf.Irradiance), buf(surf.Corners), buf(surf.Normals),
       buf(surf.Interfaces), toSurface[0], toSurface[1], toSurface[2], hdrBuffer.Get(),
-      stepBuffer.Get(), transmittanceBuffer.Get(), surfaceDepthBuffer.Get(), buf(surf.Bodies),
-      buf(in.CausticBricks), buf(in.CausticRadiance), buf(in.CausticDirection), causticSub,
-      supersampling, grazingCosine, supersampledBuffer.Get());
+      stepBuffer.Get(), transmittanceBuffer.Get(), backgroundBuffer.Get(), surfaceDepthBuffer.Get(),
+      buf(surf.Bodies), buf(in.CausticBricks), buf(in.CausticRadiance), buf(in.CausticDirection),
+      causticSub, supersampling, grazingCosine, supersampledBuffer.Get());
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
       !this->RunTiles(context, launch, width, rows, row0, height, rowsPerTile))
     {
@@ -498,6 +502,9 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       (transmittance &&
         !context->ReadBuffer(
           transmittanceBuffer.Get(), slice * 16, transmittanceImage.data() + 4 * first, this)) ||
+      (background &&
+        !context->ReadBuffer(
+          backgroundBuffer.Get(), slice * 16, backgroundImage.data() + 4 * first, this)) ||
       (surfaceDepth &&
         !context->ReadBuffer(
           surfaceDepthBuffer.Get(), slice * 4, surfaceDepthImage.data() + first, this)))
@@ -520,6 +527,10 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   {
     surfaceDepth->swap(surfaceDepthImage);
   }
+  if (background)
+  {
+    background->swap(backgroundImage);
+  }
   this->LastSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   double total = 0;
@@ -536,11 +547,11 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
 
 //------------------------------------------------------------------------------
 bool vtkRefractaViewPass::PlanImageMemory(
-  vtkOpenCLContext* context, int width, int height, bool depth, bool transmittance, int& bufferRows)
+  vtkOpenCLContext* context, int width, int height, bool depth, int hostImages, int& bufferRows)
 {
-  // Per pixel on the device: HDR (4 floats), transmittance (4 floats), step count, surface depth,
-  // depth limit;
-  // on the host: the HDR image, the step counts and (when asked for) the transmittance image.
+  // Per pixel on the device: HDR, transmittance and background (4 floats each), step count,
+  // surface depth, depth limit; on the host: the HDR image, the step counts and `hostImages`
+  // RGBA float images asked for (transmittance, background).
   const double row = static_cast<double>(width);
   const double perAllocation = context->GetMaximumAllocationBytes();
   bufferRows = height;
@@ -561,6 +572,7 @@ bool vtkRefractaViewPass::PlanImageMemory(
   plan->Reset("view pass");
   plan->AddDeviceBuffer(subject.str(), "HDR buffer", slice * 16, "the image size");
   plan->AddDeviceBuffer(subject.str(), "transmittance buffer", slice * 16, "the image size");
+  plan->AddDeviceBuffer(subject.str(), "background buffer", slice * 16, "the image size");
   plan->AddDeviceBuffer(subject.str(), "step counts", slice * 4, "the image size");
   plan->AddDeviceBuffer(subject.str(), "surface depth", slice * 4, "the image size");
   if (depth)
@@ -575,9 +587,10 @@ bool vtkRefractaViewPass::PlanImageMemory(
   const double pixels = row * height;
   plan->AddHostMemory(subject.str(), "HDR image", pixels * 16, "the image size");
   plan->AddHostMemory(subject.str(), "step counts", pixels * 4, "the image size");
-  if (transmittance)
+  if (hostImages > 0)
   {
-    plan->AddHostMemory(subject.str(), "transmittance image", pixels * 16, "the image size");
+    plan->AddHostMemory(subject.str(), "transmittance and background images",
+      hostImages * pixels * 16, "the image size");
   }
   this->PlannedDeviceMemoryBytes = plan->GetDeviceBytes();
   if (!plan->Fits(context))

@@ -342,9 +342,12 @@ public:
    * floats) caps each pixel's path length in the medium's world units (opaque geometry).
    * Fills `hdr` with W H RGBA floats (A = 1 - mean transmittance) and, when given,
    * `transmittance` with W H RGBA floats (the path's RGB transmittance, A = 0; 0 where a surface
-   * is hit), and `surfaceDepth` with W H floats: the path length from the ray's origin to the
+   * is hit), `surfaceDepth` with W H floats: the path length from the ray's origin to the
    * surface it meets, in the units of `depthLimit` (grid-local, along the possibly curved path),
-   * +infinity where it meets none. Returns false
+   * +infinity where it meets none, and `background` with W H RGBA floats: the part of `hdr`'s RGB
+   * that is the background (BackgroundColor or EnvironmentMap) seen through the path, the sum
+   * over its legs that escape of T L_bg(d_exit) (A = 0), which an exposure leaves alone (see
+   * vtkRefractiveVolumeMapper). Returns false
    * after an error, or without a message when aborted (see SetAbortRender()).
    *
    * Progress and abort: the image is rendered in tiles of whole rows (see TilePixels)
@@ -355,7 +358,7 @@ public:
    */
   bool Render(vtkCamera* camera, int width, int height, vtkMatrix4x4* propMatrix,
     const float* depthLimit, std::vector<float>& hdr, std::vector<float>* transmittance = nullptr,
-    std::vector<float>* surfaceDepth = nullptr);
+    std::vector<float>* surfaceDepth = nullptr, std::vector<float>* background = nullptr);
 
   ///@{
   /**
@@ -536,8 +539,8 @@ private:
   struct Internals;
   std::unique_ptr<Internals> Internal;
 
-  bool PlanImageMemory(vtkOpenCLContext* context, int width, int height, bool depth,
-    bool transmittance, int& bufferRows);
+  bool PlanImageMemory(
+    vtkOpenCLContext* context, int width, int height, bool depth, int hostImages, int& bufferRows);
   // Checks and uploads the volume caustic's field arrays of `lighting` (`voxels` voxels); none is
   // not an error.
   bool SetVolumeCaustic(vtkImageData* lighting, vtkIdType voxels);

@@ -77,7 +77,7 @@ struct vtkRefractaViewPass::Internals
   // Host images of the render in progress. Render() swaps them with the caller's vectors at the
   // end, so the next render writes into memory that is already mapped (a fresh 1024^2 HDR image
   // costs 4096 page faults, more than the kernel at that size).
-  std::vector<float> ImageScratch, TransmittanceScratch, SurfaceDepthScratch;
+  std::vector<float> ImageScratch, TransmittanceScratch, BackgroundScratch, SurfaceDepthScratch;
   std::vector<cl_uint> StepScratch;
 
   // Device bytes of each uploaded buffer (medium, lighting, environment, occupancy).

@@ -20,7 +20,9 @@
  * nearest to them). The result is baked into an equirectangular map with the default basis
  * (EquirectangularWidth x its half, default 512 x 256, bilinear), rebuilt only when the camera,
  * the renderer's background settings or the texture change. Unbent rays therefore see what VTK
- * draws there, up to the map's resolution (0.7 degrees per texel by default).
+ * draws there, up to the map's resolution (0.7 degrees per texel by default). A parallel
+ * camera's rays all share one direction, so they would all see the viewport centre's colour:
+ * vtkRefractiveVolumeMapper then takes the background VTK drew at each pixel instead (unbent).
  *
  * Colours and texels are used as stored (unsigned char / 255, floating types as they are): the
  * framebuffer's values, so that glass in front of the background shows the colour VTK drew.

@@ -443,7 +443,7 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     return;
   }
   in.LastMessage.clear();
-  this->Composite(window, x0, y0, width, height);
+  this->Composite(window, camera, x0, y0, width, height);
 }
 
 //------------------------------------------------------------------------------
@@ -505,18 +505,15 @@ void vtkRefractiveVolumeMapper::ClassifyPixels(vtkRenderer* renderer, vtkCamera*
 
 //------------------------------------------------------------------------------
 void vtkRefractiveVolumeMapper::Composite(
-  vtkOpenGLRenderWindow* window, int x0, int y0, int width, int height)
+  vtkOpenGLRenderWindow* window, vtkCamera* camera, int x0, int y0, int width, int height)
 {
   Internals& in = *this->Internal;
   vtkRefractaRenderPipeline* pipeline = in.Pipeline;
   const std::vector<float>& image = pipeline->GetImage();
   const std::vector<float>& transmittanceImage = pipeline->GetTransmittance();
-  // A uniform background seen through the medium is VTK's background, not the scene's light:
-  // kept out of the exposure (vtkRefractiveVolumeMapperCompositing.h).
-  const double* uniformBackground =
-    in.Background->GetLastSource() == vtkRefractaRendererBackground::SOLID_COLOR
-    ? pipeline->GetViewPass()->GetBackgroundColor()
-    : nullptr;
+  // The background seen through the medium is VTK's background, not the scene's light: kept out
+  // of the exposure (vtkRefractiveVolumeMapperCompositing.h).
+  const std::vector<float>& backgroundPart = pipeline->GetBackgroundPart();
   double exposureValue = this->Exposure;
   if (this->AutomaticExposure)
   {
@@ -524,7 +521,7 @@ void vtkRefractiveVolumeMapper::Composite(
     if (recomputed != in.MeteredAt)
     {
       in.MeteredExposure = vtkRefractiveVolumeMapperDetail::MeterExposure(
-        image, transmittanceImage, in.Kinds, uniformBackground);
+        image, transmittanceImage, backgroundPart, in.Kinds);
       in.MeteredAt = recomputed;
     }
     exposureValue *= in.MeteredExposure;
@@ -533,9 +530,16 @@ void vtkRefractiveVolumeMapper::Composite(
 
   // Per-channel compositing in two blended draws: first dst *= M (blend ZERO, SRC_COLOR), then
   // dst += A (blend ONE, ONE), M and A per pixel kind (vtkRefractiveVolumeMapperCompositing.h).
+  // A screen-space background has no direction of its own; through a parallel camera every ray
+  // would see the viewport centre's colour, so VTK's own drawing of it is used, unbent.
+  const int source = in.Background->GetLastSource();
+  const bool unbentBackground = camera->GetParallelProjection() &&
+    (source == vtkRefractaRendererBackground::GRADIENT ||
+      source == vtkRefractaRendererBackground::BACKGROUND_TEXTURE);
   std::vector<float> multiply, add;
-  vtkRefractiveVolumeMapperDetail::CompositingImages(image, transmittanceImage, in.Kinds,
-    static_cast<float>(exposureValue), uniformBackground, multiply, add);
+  vtkRefractiveVolumeMapperDetail::CompositingImages(image, transmittanceImage, backgroundPart,
+    in.Kinds, static_cast<float>(exposureValue), unbentBackground ? &in.Depth : nullptr, multiply,
+    add);
   vtkOpenGLState* state = window->GetState();
   vtkOpenGLState::ScopedglBlendFuncSeparate blendSaver(state);
   vtkOpenGLState::ScopedglEnableDisable blendEnable(state, GL_BLEND);

@@ -45,11 +45,13 @@
  * - a pixel whose straight camera ray crosses the medium's active box (the voxels with n != 1,
  *   extinction or emission, grown by two voxels) and whose depth, if any, is one of the
  *   pipeline's surfaces is **replaced** by the view pass's radiance, which holds the medium, the
- *   surfaces and the background seen along the bent ray: pixel = Exposure * L;
+ *   surfaces and the background seen along the bent ray: pixel = Exposure * (L - B) + B, B the
+ *   part of L that is the background seen through the medium (not exposed: VTK's background,
+ *   whether a colour, a gradient or a texture, looks the same through clear medium as around it);
  * - a pixel whose depth is drawn by a prop that is not a surface (a translucent-free prop that
  *   vtkRefractaActorSurfaces does not take, or any actor with ActorSurfaces off) stops the view
  *   ray at that depth (converted to a path length, exact for straight rays only) and is
- *   **blended**: pixel = Exposure * L_medium + T * pixel_before, T the path's RGB
+ *   **blended**: pixel = Exposure * (L - B) + B + T * pixel_before, T the path's RGB
  *   transmittance, so such geometry behind the medium is dimmed but not bent, and geometry in
  *   front of it hides it;
  * - with ShadeActorsEverywhere (default off), a pixel whose depth is one of the pipeline's
@@ -227,9 +229,9 @@ public:
   ///@{
   /**
    * Multiplier on the medium's radiance before it is drawn, >= 0. Default 1. With
-   * AutomaticExposure on it multiplies the automatic exposure. A uniform background colour seen
-   * through the medium is not multiplied (it stays VTK's background; see
-   * vtkRefractiveVolumeMapperCompositing.h).
+   * AutomaticExposure on it multiplies the automatic exposure. The background seen through the
+   * medium (a colour, a gradient, a background texture or an environment) is not multiplied: it
+   * stays VTK's background (see vtkRefractiveVolumeMapperCompositing.h).
    */
   void SetExposure(double value);
   vtkGetMacro(Exposure, double);
@@ -238,7 +240,7 @@ public:
   ///@{
   /**
    * Automatic exposure (default on): the radiance is scaled so that the 99th percentile of the
-   * luminance over the pixels where the medium shows (mean transmittance below 0.98; a uniform
+   * luminance over the pixels where the medium shows (mean transmittance below 0.98; the
    * background's part left out) is drawn at 0.8, like a camera's metering. Why: VTK's volume
    * mappers draw the transfer function's colour as if it glowed (unshaded compositing is physically
    * a medium under unit ambient light), while this mapper computes the light the scene's lights
@@ -348,7 +350,8 @@ protected:
   void ClassifyPixels(vtkRenderer* renderer, vtkCamera* camera,
     const vtkRefractaViewPass::RayFrame& frame, vtkRefractaSurfaceSet* surfaces, int width,
     int height);
-  void Composite(vtkOpenGLRenderWindow* window, int x0, int y0, int width, int height);
+  void Composite(
+    vtkOpenGLRenderWindow* window, vtkCamera* camera, int x0, int y0, int width, int height);
   static std::vector<float> DepthToPathLengths(vtkRenderer* renderer, vtkCamera* camera,
     const vtkRefractaViewPass::RayFrame& frame, int width, int height,
     const std::vector<float>& depth);

@@ -154,29 +154,29 @@ bool DepthRays::HitsSurface(
   return bvh->IntersectRay(origin, direction, 1.01, hit) >= 0;
 }
 
-void BackgroundPart(
-  const std::vector<float>& transmittance, size_t pixel, const double* colour, float rgb[3])
-{
-  for (int c = 0; c < 3; ++c)
-  {
-    rgb[c] = colour ? transmittance[4 * pixel + c] * static_cast<float>(colour[c]) : 0.0f;
-  }
-}
-
 double MeterExposure(const std::vector<float>& image, const std::vector<float>& transmittance,
-  const std::vector<std::uint8_t>& kinds, const double* uniformBackground)
+  const std::vector<float>& backgroundPart, const std::vector<std::uint8_t>& kinds)
 {
   std::vector<double> luminance;
+  double background = 0.0; // the brightest background seen through the medium
+  const bool hasBackground = backgroundPart.size() >= image.size();
   for (size_t p = 0; 4 * p + 3 < image.size() && 4 * p + 3 < transmittance.size(); ++p)
   {
+    if (p < kinds.size() && kinds[p] == CLEAR)
+    {
+      continue;
+    }
+    const float* b = hasBackground ? backgroundPart.data() + 4 * p : nullptr;
     const double t =
       (transmittance[4 * p] + transmittance[4 * p + 1] + transmittance[4 * p + 2]) / 3.0;
-    // A FOREIGN pixel's transmittance is that of the legs ending at its geometry: no background.
-    float b[3];
-    const bool foreign = p < kinds.size() && kinds[p] == FOREIGN;
-    BackgroundPart(transmittance, p, foreign ? nullptr : uniformBackground, b);
-    const double y = 0.2126 * (image[4 * p] - b[0]) + 0.7152 * (image[4 * p + 1] - b[1]) +
-      0.0722 * (image[4 * p + 2] - b[2]);
+    const double weight[3] = { 0.2126, 0.7152, 0.0722 }; // luminance of linear RGB
+    double y = 0.0, yb = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      y += weight[c] * (image[4 * p + c] - (b ? b[c] : 0.0f));
+      yb += weight[c] * (b ? b[c] : 0.0f);
+    }
+    background = std::max(background, yb);
     if (t < 0.98 && std::isfinite(y))
     {
       luminance.push_back(y);
@@ -188,37 +188,40 @@ double MeterExposure(const std::vector<float>& image, const std::vector<float>& 
   }
   auto at = luminance.begin() + static_cast<std::ptrdiff_t>(0.99 * (luminance.size() - 1));
   std::nth_element(luminance.begin(), at, luminance.end());
-  // Where the medium shows only the background (a clear glass ball: L - T C is float round-off)
+  // Where the medium shows only the background (a clear glass ball: L - B is float round-off)
   // there is no light of the scene's to meter: metering it would amplify the round-off (an
   // outside review measured an exposure of 6e7). The scene's light must reach a thousandth of
   // the background's luminance to be metered.
-  const double background = uniformBackground
-    ? 0.2126 * uniformBackground[0] + 0.7152 * uniformBackground[1] + 0.0722 * uniformBackground[2]
-    : 0.0;
   return *at > 1e-3 * background && *at > 0.0 ? 0.8 / *at : 1.0;
 }
 
 void CompositingImages(const std::vector<float>& image, const std::vector<float>& transmittance,
-  const std::vector<std::uint8_t>& kinds, float exposure, const double* uniformBackground,
-  std::vector<float>& multiply, std::vector<float>& add)
+  const std::vector<float>& backgroundPart, const std::vector<std::uint8_t>& kinds, float exposure,
+  const std::vector<float>* unbentBackgroundDepth, std::vector<float>& multiply,
+  std::vector<float>& add)
 {
   const size_t pixels = kinds.size();
   multiply.assign(4 * pixels, 1.0f);
   add.assign(4 * pixels, 0.0f);
   auto clamp01 = [](float v) { return std::min(std::max(v, 0.0f), 1.0f); };
+  const bool hasBackground = backgroundPart.size() >= 4 * pixels;
   for (size_t p = 0; p < pixels; ++p)
   {
     if (kinds[p] == CLEAR)
     {
       continue;
     }
-    // A FOREIGN pixel's legs end at the geometry, not the background: nothing to keep apart.
-    float b[3];
-    BackgroundPart(transmittance, p, kinds[p] == COVERED ? uniformBackground : nullptr, b);
+    // VTK's background drawn at this very pixel, seen unbent through T, instead of the view
+    // pass's part (a screen-space background through a parallel camera).
+    const bool fromFrame = kinds[p] == COVERED && unbentBackgroundDepth &&
+      p < unbentBackgroundDepth->size() && (*unbentBackgroundDepth)[p] >= 1.0f;
     for (int c = 0; c < 3; ++c)
     {
-      add[4 * p + c] = clamp01(exposure * std::max(image[4 * p + c] - b[c], 0.0f) + b[c]);
-      multiply[4 * p + c] = kinds[p] == COVERED ? 0.0f : clamp01(transmittance[4 * p + c]);
+      const float b = hasBackground ? backgroundPart[4 * p + c] : 0.0f;
+      const float scene = exposure * std::max(image[4 * p + c] - b, 0.0f);
+      add[4 * p + c] = clamp01(fromFrame ? scene : scene + b);
+      multiply[4 * p + c] =
+        kinds[p] == COVERED && !fromFrame ? 0.0f : clamp01(transmittance[4 * p + c]);
     }
   }
 }

@@ -4,12 +4,13 @@
 // Every pixel is one of three kinds:
 // - FOREIGN: the depth buffer holds geometry that is not one of the pipeline's surfaces (a prop
 //   the mapper does not take). The view ray stops at that depth and the pixel is blended as
-//   before surfaces existed: pixel = E L + T pixel_before (T the path's RGB transmittance).
+//   before surfaces existed: pixel = E (L - B) + B + T pixel_before (T the path's RGB
+//   transmittance, B the background seen through the path, which is not exposed).
 // - COVERED: the pixel's straight camera ray crosses the medium's active box (the bounding box
 //   of the voxels where n != 1 or extinction or emission is non-zero, grown by two voxels), or
 //   its depth is one of the pipeline's surfaces (with the mapper's ShadeActorsEverywhere): the
 //   view pass's result, which already holds the surfaces and the background seen along the bent
-//   ray, replaces the pixel: pixel = E L.
+//   ray, replaces the pixel: pixel = E (L - B) + B.
 // - CLEAR: neither: VTK's own drawing of the pixel stays.
 #ifndef vtkRefractiveVolumeMapperCompositing_h
 #define vtkRefractiveVolumeMapperCompositing_h
@@ -70,29 +71,29 @@ private:
   vtkNew<vtkMatrix4x4> Inverse; // normalized device -> world
 };
 
-/// The part of the view pass's radiance `image` (RGBA per pixel) that is the renderer's uniform
-/// background `colour` seen through the medium, T C (T the RGB transmittance of the legs that
-/// end in the background, `transmittance`), into `rgb`; 0 where `colour` is null (a background
-/// that is not uniform: gradient, texture, environment).
-void BackgroundPart(
-  const std::vector<float>& transmittance, size_t pixel, const double* colour, float rgb[3]);
-
 /// The exposure that puts the 99th percentile of the luminance of the scene's light (the image
-/// less its background part where the pixel is not FOREIGN, over pixels with mean transmittance
-/// below 0.98) at 0.8; 1 where there is none, or where it stays below a thousandth of the
-/// uniform background's luminance (a clear medium shows only the background: nothing to meter).
+/// less its `backgroundPart`, the background seen through the medium, over pixels that are not
+/// CLEAR with mean transmittance below 0.98) at 0.8; 1 where there is none, or where it stays
+/// below a thousandth of the brightest background part's luminance (a clear medium shows only
+/// the background: nothing to meter).
 double MeterExposure(const std::vector<float>& image, const std::vector<float>& transmittance,
-  const std::vector<std::uint8_t>& kinds, const double* uniformBackground);
+  const std::vector<float>& backgroundPart, const std::vector<std::uint8_t>& kinds);
 
 /// The RGBA images the mapper draws for the kinds above: `multiply` (blended with ZERO,
-/// SRC_COLOR: 0 where COVERED, T where FOREIGN, 1 where CLEAR) and `add` (ONE, ONE: E L where
-/// COVERED or FOREIGN, 0 where CLEAR); RGB clamped to [0, 1]. With a `uniformBackground` colour,
-/// its part of a COVERED pixel (BackgroundPart) is not exposed: E (L - T C) + T C, so the
-/// background seen through a clear part of the medium equals VTK's around it whatever the
-/// exposure.
+/// SRC_COLOR: 0 where COVERED, T where FOREIGN, 1 where CLEAR) and `add` (ONE, ONE:
+/// E (L - B) + B where COVERED or FOREIGN, 0 where CLEAR); RGB clamped to [0, 1]. B, the
+/// background part of L (`backgroundPart`, RGBA per pixel; vtkRefractaViewPass::Render), is not
+/// exposed: whatever the renderer's background (colour, gradient, texture) and the exposure E,
+/// the background seen through a clear part of the medium equals what VTK draws around it.
+/// With `unbentBackgroundDepth` (the depth buffer VTK drew), a COVERED pixel whose depth is 1
+/// (VTK drew the background there) takes that background from the frame, unbent and dimmed by
+/// T, instead of B: multiply T, add E (L - B). For a screen-space background (gradient,
+/// texture) seen through a parallel camera, whose rays share one direction and so would all
+/// see the viewport centre's colour in B.
 void CompositingImages(const std::vector<float>& image, const std::vector<float>& transmittance,
-  const std::vector<std::uint8_t>& kinds, float exposure, const double* uniformBackground,
-  std::vector<float>& multiply, std::vector<float>& add);
+  const std::vector<float>& backgroundPart, const std::vector<std::uint8_t>& kinds, float exposure,
+  const std::vector<float>* unbentBackgroundDepth, std::vector<float>& multiply,
+  std::vector<float>& add);
 }
 
 #endif

@@ -21,6 +21,8 @@
 // thick slab; the lit medium with skipping (perspective) and without (parallel, depth limit);
 // curved rays through the lit medium (its varying n) with skipping and an environment, in parallel
 // with a depth limit, and from inside with a step cap (bound 1e-4: the bending carries rounding).
+// Both kernels' background part (Render's `background`) agrees the same way, and is exactly what
+// the background adds: the image less it equals the render against a black background.
 // Breaking the kernel's bookkeeping (e.g. not masking ended lanes, or taking the background for
 // rays stopped by the cap) fails these by O(0.1). Scenes the lane kernel cannot render (lighting,
 // curved rays) must use the general kernel.
@@ -213,14 +215,14 @@ void CheckConfig(const Config& config)
   const int w = 61, h = 43;
   const std::vector<float> depth = refracta_test::HashedDepthLimits(w, h, 2.5);
   const float* limit = config.DepthLimit ? depth.data() : nullptr;
-  std::vector<float> off, on, offT, onT;
+  std::vector<float> off, on, offT, onT, offB, onB;
   pass->LaneMarchingOff();
-  ASSERT_TRUE(pass->Render(camera, w, h, nullptr, limit, off, &offT));
+  ASSERT_TRUE(pass->Render(camera, w, h, nullptr, limit, off, &offT, nullptr, &offB));
   EXPECT_FALSE(pass->GetLastLaneMarching());
   EXPECT_EQ(pass->GetLastCurved(), config.Curved);
   const double stepsOff = pass->GetLastTotalSteps();
   pass->LaneMarchingOn();
-  ASSERT_TRUE(pass->Render(camera, w, h, nullptr, limit, on, &onT));
+  ASSERT_TRUE(pass->Render(camera, w, h, nullptr, limit, on, &onT, nullptr, &onB));
   EXPECT_TRUE(pass->GetLastLaneMarching());
   EXPECT_EQ(pass->GetLastSkipping(), config.Skipping);
   const double stepsOn = pass->GetLastTotalSteps();
@@ -228,6 +230,7 @@ void CheckConfig(const Config& config)
   const double scale = refracta_test::MaxAbs(off);
   const double diff = refracta_test::MaxDiff(on, off);
   const double diffT = refracta_test::MaxDiff(onT, offT);
+  const double diffB = refracta_test::MaxDiff(onB, offB);
   std::cout << config.Name << ": max |lanes - general| = " << diff << " (image max " << scale
             << "), transmittance " << diffT << ", steps " << stepsOn << " vs " << stepsOff << "\n";
   EXPECT_GT(scale, 0.3); // the scene is visible
@@ -237,6 +240,30 @@ void CheckConfig(const Config& config)
   const double tolerance = config.Curved ? 1e-4 : 1e-5;
   EXPECT_LE(diff, tolerance * scale + 1e-7);
   EXPECT_LE(diffT, tolerance + 1e-7);
+  EXPECT_LE(diffB, tolerance * scale + 1e-7);
+
+  // The background part is exactly what the background adds: the same render against a black
+  // background (no environment) is the image less that part, and has none.
+  pass->SetBackgroundColor(0, 0, 0);
+  pass->SetEnvironmentMap(nullptr);
+  std::vector<float> black, blackB;
+  ASSERT_TRUE(pass->Render(camera, w, h, nullptr, limit, black, nullptr, nullptr, &blackB));
+  EXPECT_EQ(refracta_test::MaxAbs(blackB), 0.0);
+  double seen = 0.0, worst = 0.0;
+  for (size_t p = 0; p < black.size(); p += 4)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      seen = std::max(seen, static_cast<double>(onB[p + c]));
+      worst = std::max(worst, std::abs(double(on[p + c]) - onB[p + c] - black[p + c]));
+    }
+  }
+  std::cout << "  background part up to " << seen << ", |L - B - L_black| <= " << worst << "\n";
+  if (config.MaxSteps == 0) // (a step cap stops every ray before the background)
+  {
+    EXPECT_GT(seen, 0.05); // the background shows
+  }
+  EXPECT_LE(worst, tolerance * scale + 1e-6);
 }
 }
 

@@ -20,6 +20,7 @@
 #include "vtkEffectPlan.h"
 #include "vtkExecutive.h"
 #include "vtkLight.h"
+#include "vtkMath.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -186,12 +187,10 @@ TEST(RefractiveVolumeMapper, CompositesWithGeometryByDepth)
   EXPECT_TRUE(refracta_test::MatchesBaseline(image, "MapperCompositing"));
 }
 
-// Automatic exposure scales the scene's light, not VTK's background: with a glowing corner in
-// the absorbing cube (exposure far from 1), the white background seen through the rest of the
-// cube is still 255 exp(-sigma depth), as VTK's background dimmed by the medium, within 3/255.
-TEST(RefractiveVolumeMapper, AutomaticExposureLeavesTheBackgroundAsVTKDrawsIt)
+// The absorbing cube with a glowing top corner (x, y < 0.2): the automatic exposure is then
+// far from 1 (set by the corner), while the rest of the cube only dims the background.
+static vtkSmartPointer<vtkImageData> CubeWithAGlowingCorner()
 {
-  Scene scene;
   auto medium = AbsorbingCube();
   vtkFloatArray* emission = refracta_test::AddConstant(medium, "Emission", 3, 0.0);
   int dims[3];
@@ -203,11 +202,20 @@ TEST(RefractiveVolumeMapper, AutomaticExposureLeavesTheBackgroundAsVTKDrawsIt)
       for (int i = 0; i < 3; ++i)
       {
         const vtkIdType p = i + dims[0] * (j + static_cast<vtkIdType>(dims[1]) * (dims[2] - 1 - k));
-        emission->SetTuple3(p, 40.0, 40.0, 40.0); // the top corner at x, y < 0.2
+        emission->SetTuple3(p, 40.0, 40.0, 40.0);
       }
     }
   }
-  scene.Mapper->SetInputData(medium);
+  return medium;
+}
+
+// Automatic exposure scales the scene's light, not VTK's background: with a glowing corner in
+// the absorbing cube (exposure far from 1), the white background seen through the rest of the
+// cube is still 255 exp(-sigma depth), as VTK's background dimmed by the medium, within 3/255.
+TEST(RefractiveVolumeMapper, AutomaticExposureLeavesTheBackgroundAsVTKDrawsIt)
+{
+  Scene scene;
+  scene.Mapper->SetInputData(CubeWithAGlowingCorner());
   scene.Mapper->AutomaticExposureOn();
   scene.Inner->VisibilityOff();
   scene.Front->VisibilityOff();
@@ -238,6 +246,82 @@ TEST(RefractiveVolumeMapper, AutomaticExposureLeavesTheBackgroundAsVTKDrawsIt)
     }
   }
   EXPECT_GT(checked, Size * Size / 3);
+}
+
+// The same for a background that is not one colour (a gradient): through the cube VTK's own
+// gradient, captured without the volume, times exp(-sigma l), l the ray's path through the box,
+// within 3/255 (8-bit rounding; with a perspective camera also the gradient baked into a
+// 512 x 256 map, vtkRefractaRendererBackground). A perspective camera sees it through the view
+// pass's background part; a parallel one, whose rays share one direction, through VTK's own
+// drawing of the pixel. The uniform-colour rule alone left this background exposed (0.12x
+// here), and a parallel camera showed the viewport centre's colour across the cube.
+static void CheckGradientThroughTheCube(bool parallel)
+{
+  Scene scene;
+  scene.Renderer->GradientBackgroundOn();
+  scene.Renderer->SetBackground(0.1, 0.3, 0.9);  // bottom
+  scene.Renderer->SetBackground2(1.0, 0.9, 0.6); // top
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->SetParallelProjection(parallel);
+  camera->SetViewAngle(30);
+  scene.Mapper->SetInputData(CubeWithAGlowingCorner());
+  scene.Mapper->AutomaticExposureOn();
+  scene.Inner->VisibilityOff();
+  scene.Front->VisibilityOff();
+  scene.Volume->VisibilityOff();
+  vtkSmartPointer<vtkImageData> gradient = scene.Capture();
+  scene.Volume->VisibilityOn();
+  vtkSmartPointer<vtkImageData> image = scene.Capture();
+  const double exposure = scene.Mapper->GetLastExposure();
+  std::cout << (parallel ? "parallel" : "perspective") << ": automatic exposure " << exposure
+            << "\n";
+  EXPECT_GT(std::abs(exposure - 1.0), 0.5) << "the test needs an exposure far from 1";
+  auto* before = vtkUnsignedCharArray::SafeDownCast(gradient->GetPointData()->GetScalars());
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  const double lo = -0.5 / 15, hi = Top, eyeZ = 4.0;
+  const double tanHalf = parallel ? 0.0 : std::tan(vtkMath::RadiansFromDegrees(15.0));
+  int checked = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      // The pixel's ray (from (ox, oy, eyeZ) along (dx, dy, -1)) enters through the top face and
+      // leaves through the bottom one, away from the side faces and the glowing corner.
+      double ox = 0.5, oy = 0.5;
+      if (parallel)
+      {
+        PixelXY(i, j, ox, oy);
+      }
+      const double dx = tanHalf * (2.0 * (i + 0.5) / Size - 1.0);
+      const double dy = tanHalf * (2.0 * (j + 0.5) / Size - 1.0);
+      bool inside = true;
+      for (double z : { hi, lo })
+      {
+        const double x = ox + dx * (eyeZ - z), y = oy + dy * (eyeZ - z);
+        inside = inside && x > lo + 0.03 && x < hi - 0.03 && y > lo + 0.03 && y < hi - 0.03 &&
+          !(x < 0.35 && y < 0.35);
+      }
+      if (!inside)
+      {
+        continue;
+      }
+      const double l = Depth * std::sqrt(1.0 + dx * dx + dy * dy);
+      for (int c = 0; c < 3; ++c)
+      {
+        const vtkIdType v = 3 * (i + Size * j) + c;
+        EXPECT_NEAR(rgb->GetValue(v), before->GetValue(v) * std::exp(-Sigma[c] * l), 3.0)
+          << "pixel " << i << "," << j << " channel " << c;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, Size * Size / 6);
+}
+
+TEST(RefractiveVolumeMapper, AutomaticExposureLeavesAGradientBackgroundAsVTKDrawsIt)
+{
+  CheckGradientThroughTheCube(false);
+  CheckGradientThroughTheCube(true);
 }
 
 TEST(RefractiveVolumeMapper, CacheRunsOnlyWhatChanged)
