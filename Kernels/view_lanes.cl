@@ -499,7 +499,8 @@ __kernel __attribute__((reqd_work_group_size(1, 8, 1))) void refracta_view_pass_
   vstore8(transG, 0, tgs);
   vstore8(transB, 0, tbs);
   vstore8(count, 0, counts);
-  vstore8(seesBackground, 0, sees);
+  // Opaque geometry ends a ray that left the box too: the background shows only without it.
+  vstore8(seesBackground & (limit == INFINITY), 0, sees);
 #ifdef REFRACTA_CURVED
   vstore8(exitX, 0, ex);
   vstore8(exitY, 0, ey);

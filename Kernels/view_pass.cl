@@ -629,9 +629,11 @@ inline refracta_view_leg refracta_view_march(
       }
     }
   }
-  else if (limit < INFINITY)
+  if (limit < INFINITY)
   {
-    seesBackground = false; // the ray meets opaque geometry before the medium
+    // Opaque geometry ends the ray, before the medium or after it left the box: it shows there
+    // (the compositing's T pixel_before), the background does not.
+    seesBackground = false;
   }
   refracta_view_leg leg;
   leg.radiance = radianceSum;

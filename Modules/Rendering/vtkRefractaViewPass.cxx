@@ -213,6 +213,15 @@ bool vtkRefractaViewPass::ComputeRayFrame(vtkCamera* camera, vtkImageData* mediu
   vector(r, halfW, frame.U);
   vector(u, halfH, frame.V);
   vector(w, 1.0, frame.W);
+  // The window centre (vtkCamera::SetWindowCenter; tiled rendering, vtkRenderLargeImage) shifts
+  // the frustum: pixel (sx, sy) of the view looks where (sx + cx, sy + cy) of the centred one
+  // would, so the shift moves the eye (parallel) or the central direction (perspective).
+  const double* centre = camera->GetWindowCenter();
+  double* shifted = frame.Parallel ? frame.Eye : frame.W;
+  for (int a = 0; a < 3; ++a)
+  {
+    shifted[a] += centre[0] * frame.U[a] + centre[1] * frame.V[a];
+  }
   return true;
 }
 

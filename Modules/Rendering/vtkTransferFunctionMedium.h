@@ -7,7 +7,11 @@
  * - **Extinction** (RGB, equal channels) from the scalar opacity function a(s), read as VTK reads
  *   it: the opacity of a slab ScalarOpacityUnitDistance d thick. So
  *   sigma_t = -ln(1 - a) / d, with a clamped to 1 - 1e-6 (sigma_t <= 13.8 / d). An image made with
- *   vtkGPUVolumeRayCastMapper and the same property therefore has the same transmittance.
+ *   vtkGPUVolumeRayCastMapper and the same property therefore has the same transmittance per
+ *   unit length; Refracta's box reaches half a voxel beyond the outer grid points (its voxels
+ *   are centred on them, Documentation/Physics.md "Geometry"), so a ray across N points runs N
+ *   spacings, not VTK's N - 1: exp(-sigma N h) against exp(-sigma (N - 1) h), a difference that
+ *   shows on small grids (measured 0.475 against 0.490 across 21 points).
  * - **Albedo** (RGB) = the colour transfer function (or the grey function) at s, clamped to
  *   [0, 1]: what fraction of the extinguished light is scattered, per channel.
  * - **Anisotropy** (Henyey-Greenstein g) = the Anisotropy knob, default 0. (VTK 9.1's

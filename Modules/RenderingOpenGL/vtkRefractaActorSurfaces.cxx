@@ -19,6 +19,7 @@
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
+#include "vtkSkybox.h"
 #include "vtkTexture.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkVolume.h"
@@ -202,9 +203,9 @@ void vtkRefractaActorSurfaces::Update(vtkRenderer* renderer, vtkProp* exclude)
   props->InitTraversal(it);
   while (vtkProp* prop = props->GetNextProp(it))
   {
-    if (prop == exclude)
+    if (prop == exclude || vtkSkybox::SafeDownCast(prop))
     {
-      continue;
+      continue; // a skybox is a vtkActor, but it is the background, not a surface
     }
     auto* actor = vtkActor::SafeDownCast(prop);
     if (actor && IsTaken(actor))

@@ -26,7 +26,9 @@
  * invisible actors, translucent actors (opacity < 1 or translucent colours/texture), actors whose
  * mapper is not a vtkPolyDataMapper (composite datasets, glyph mappers of other kinds, images,
  * other volumes) and any prop that is not a vtkActor (assemblies, image actors). Those visible
- * props with opaque geometry are counted by GetNumberOfForeignProps().
+ * props with opaque geometry are counted by GetNumberOfForeignProps(). A vtkSkybox is neither:
+ * it is the background (drawn at the far plane, seen through the medium as the renderer's
+ * environment, see vtkRefractaRendererBackground), not a surface in the scene.
  *
  * Cache: the surface set is rebuilt (its meshes and materials replaced) only when the list of
  * taken actors or the MTime of an actor's mapper, input, property or lookup table changes;

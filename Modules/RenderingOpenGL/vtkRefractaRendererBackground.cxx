@@ -76,8 +76,10 @@ void DirectionToViewport(vtkCamera* camera, double aspect, const double d[3], do
   const double length = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
   const double ahead = std::max(-c[2], 1e-9 * length); // behind the camera: towards the edges
   const double t = std::tan(0.5 * vtkMath::RadiansFromDegrees(camera->GetViewAngle()));
-  xy[0] = std::min(std::max(c[0] / (ahead * t * aspect), -1.0), 1.0);
-  xy[1] = std::min(std::max(c[1] / (ahead * t), -1.0), 1.0);
+  // The window centre shifts the frustum, not the screen-space background drawn over it.
+  const double* centre = camera->GetWindowCenter();
+  xy[0] = std::min(std::max(c[0] / (ahead * t * aspect) - centre[0], -1.0), 1.0);
+  xy[1] = std::min(std::max(c[1] / (ahead * t) - centre[1], -1.0), 1.0);
 }
 }
 
@@ -165,6 +167,8 @@ bool vtkRefractaRendererBackground::ScreenBackgroundIsStale(
     }
   }
   key.push_back(camera->GetViewAngle());
+  key.push_back(camera->GetWindowCenter()[0]);
+  key.push_back(camera->GetWindowCenter()[1]);
   key.push_back(aspect);
   key.push_back(this->EquirectangularWidth);
   const bool stale = !this->Baked || key != this->BakedKey;

@@ -27,7 +27,10 @@
  * Colours and texels are used as stored (unsigned char / 255, floating types as they are): the
  * framebuffer's values, so that glass in front of the background shows the colour VTK drew.
  * A cube-map environment texture is not converted: an error is reported once, and rule 2-4
- * applies.
+ * applies. The rules read the renderer's settings, not a vtkSkybox (which is how VTK draws an
+ * environment): with image-based lighting and no skybox VTK draws the rule 2-4 background
+ * around the medium while bent rays see the environment; a skybox is seen through the medium
+ * only when its texture is also the renderer's EnvironmentTexture.
  */
 #ifndef vtkRefractaRendererBackground_h
 #define vtkRefractaRendererBackground_h

@@ -52,13 +52,17 @@
  *   vtkRefractaActorSurfaces does not take, or any actor with ActorSurfaces off) stops the view
  *   ray at that depth (converted to a path length, exact for straight rays only) and is
  *   **blended**: pixel = Exposure * (L - B) + B + T * pixel_before, T the path's RGB
- *   transmittance, so such geometry behind the medium is dimmed but not bent, and geometry in
- *   front of it hides it;
+ *   transmittance, so such geometry behind the medium is dimmed but not bent (a ray that leaves
+ *   the medium before it sees no background), and geometry in front of it hides it;
  * - with ShadeActorsEverywhere (default off), a pixel whose depth is one of the pipeline's
  *   surfaces is **replaced** too wherever it is, so the actors are shaded by the light passes
  *   across the whole image: the medium's shadows and caustics show wherever they fall;
  * - every other pixel keeps what VTK drew (the background, and by default the actors where no
  *   medium covers them, with VTK's shading).
+ * In a transparent renderer (a layer above 0) the layers below show through the medium, dimmed
+ * and unbent, in place of the renderer's own background, which VTK does not draw there. The
+ * camera's WindowCenter (tiled rendering: vtkRenderLargeImage) shifts the view rays as VTK's
+ * frustum.
  * Translucent geometry is ignored. The mapper writes no depth, so it cannot composite with
  * another volume in the same renderer (it warns once when one is visible there): put several
  * media in one vtkImageData, or the other volume in another renderer layer. Values are clamped to
@@ -351,7 +355,7 @@ protected:
     const vtkRefractaViewPass::RayFrame& frame, vtkRefractaSurfaceSet* surfaces, int width,
     int height);
   void Composite(
-    vtkOpenGLRenderWindow* window, vtkCamera* camera, int x0, int y0, int width, int height);
+    vtkOpenGLRenderWindow* window, vtkRenderer* renderer, int x0, int y0, int width, int height);
   static std::vector<float> DepthToPathLengths(vtkRenderer* renderer, vtkCamera* camera,
     const vtkRefractaViewPass::RayFrame& frame, int width, int height,
     const std::vector<float>& depth);

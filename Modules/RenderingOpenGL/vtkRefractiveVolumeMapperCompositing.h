@@ -87,9 +87,10 @@ double MeterExposure(const std::vector<float>& image, const std::vector<float>& 
 /// the background seen through a clear part of the medium equals what VTK draws around it.
 /// With `unbentBackgroundDepth` (the depth buffer VTK drew), a COVERED pixel whose depth is 1
 /// (VTK drew the background there) takes that background from the frame, unbent and dimmed by
-/// T, instead of B: multiply T, add E (L - B). For a screen-space background (gradient,
-/// texture) seen through a parallel camera, whose rays share one direction and so would all
-/// see the viewport centre's colour in B.
+/// T, instead of B: multiply T, add E (L - B). For a transparent renderer (a layer above 0,
+/// over what the layers below drew) and for a screen-space background (gradient, texture) seen
+/// through a parallel camera, whose rays share one direction and so would all see the viewport
+/// centre's colour in B.
 void CompositingImages(const std::vector<float>& image, const std::vector<float>& transmittance,
   const std::vector<float>& backgroundPart, const std::vector<std::uint8_t>& kinds, float exposure,
   const std::vector<float>* unbentBackgroundDepth, std::vector<float>& multiply,

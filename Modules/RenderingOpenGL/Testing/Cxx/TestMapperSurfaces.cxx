@@ -57,6 +57,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
+#include "vtkSkybox.h"
 #include "vtkSphereSource.h"
 #include "vtkTexture.h"
 #include "vtkUnsignedCharArray.h"
@@ -665,4 +666,30 @@ TEST(MapperSurfaces, ATexturedActorTakesItsTexture)
   image->Modified();
   scene.Window->Render();
   EXPECT_EQ(actors->GetNumberOfRebuilds(), rebuilds + 1) << "a new texture image";
+}
+
+// A vtkSkybox is a vtkActor with an opaque quad, but it is the background: neither a surface
+// the passes light (an outside review saw it drawn as a grey quad at the medium's back face)
+// nor foreign geometry; the plane beside it is taken.
+TEST(MapperSurfaces, ASkyboxIsTheBackgroundNotASurface)
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkSkybox> sky;
+  const double white[3] = { 1, 1, 1 }, black[3] = { 0, 0, 0 };
+  vtkNew<vtkTexture> texture;
+  texture->SetInputData(vtkRefractaEnvironmentMap::MakeChecker(8, 4, white, black));
+  sky->SetTexture(texture);
+  sky->SetProjectionToSphere();
+  renderer->AddActor(sky);
+  vtkNew<vtkPlaneSource> plane;
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  mapper->Update();
+  vtkNew<vtkActor> floor;
+  floor->SetMapper(mapper);
+  renderer->AddActor(floor);
+  vtkNew<vtkRefractaActorSurfaces> actors;
+  actors->Update(renderer, nullptr);
+  EXPECT_EQ(actors->GetNumberOfActors(), 1);
+  EXPECT_EQ(actors->GetNumberOfForeignProps(), 0);
 }

@@ -324,6 +324,132 @@ TEST(RefractiveVolumeMapper, AutomaticExposureLeavesAGradientBackgroundAsVTKDraw
   CheckGradientThroughTheCube(true);
 }
 
+// Opaque geometry behind the medium (an actor the mapper composites by depth) shows through it
+// dimmed, with nothing of the background (white here) added: a ray that leaves the box before
+// its depth limit ends at that geometry. Both view kernels (the eight-lane one applies to this
+// emission-absorption medium). The old kernels added T x background: +88/255 in red.
+TEST(RefractiveVolumeMapper, GeometryBehindTheMediumShowsNoBackground)
+{
+  Scene scene;
+  scene.Mapper->SetInputData(AbsorbingCube());
+  scene.Inner->VisibilityOff();
+  scene.Front->VisibilityOff();
+  vtkNew<vtkActor> behind;
+  scene.AddSphere(behind, 0.25, 0.75, -0.6, 0.15, 0.9, 0.9, 0.2);
+  const double colour[3] = { 0.9, 0.9, 0.2 }, h = 1.2 / Size;
+  for (bool lanes : { true, false })
+  {
+    scene.Mapper->GetViewPass()->SetLaneMarching(lanes);
+    vtkSmartPointer<vtkImageData> image = scene.Capture();
+    auto* rgb = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+    int checked = 0;
+    for (int j = 0; j < Size; ++j)
+    {
+      for (int i = 0; i < Size; ++i)
+      {
+        double x, y;
+        PixelXY(i, j, x, y);
+        if (std::hypot(x - 0.25, y - 0.75) > 0.15 - 2 * h)
+        {
+          continue;
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          EXPECT_NEAR(rgb->GetValue(3 * (i + Size * j) + c),
+            255.0 * colour[c] * std::exp(-Sigma[c] * Depth), 3.0)
+            << (lanes ? "lanes" : "general") << " pixel " << i << "," << j << " channel " << c;
+        }
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 200);
+  }
+}
+
+// vtkCamera::SetWindowCenter (what vtkRenderLargeImage and vtkWindowToImageFilter's scale tile
+// with) shifts the medium exactly as it shifts VTK's actors: every pixel of the shifted view is
+// the pixel (Size / 4, -Size / 8) away in the centred one, within 3/255, for both projections.
+// The ray frame ignored it before: the medium stayed while the actors moved.
+TEST(RefractiveVolumeMapper, WindowCenterShiftsTheMediumWithTheActors)
+{
+  for (bool parallel : { true, false })
+  {
+    Scene scene;
+    scene.Mapper->SetInputData(AbsorbingCube());
+    vtkCamera* camera = scene.Renderer->GetActiveCamera();
+    camera->SetParallelProjection(parallel);
+    camera->SetViewAngle(30);
+    vtkSmartPointer<vtkImageData> centred = scene.Capture();
+    camera->SetWindowCenter(0.5, -0.25);
+    vtkSmartPointer<vtkImageData> shifted = scene.Capture();
+    camera->SetWindowCenter(0, 0);
+    auto* a = vtkUnsignedCharArray::SafeDownCast(centred->GetPointData()->GetScalars());
+    auto* b = vtkUnsignedCharArray::SafeDownCast(shifted->GetPointData()->GetScalars());
+    const int di = Size / 4, dj = -Size / 8;
+    int compared = 0, differing = 0;
+    for (int j = std::max(0, -dj); j < Size - std::max(0, dj); ++j)
+    {
+      for (int i = 0; i + di < Size; ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          const int got = b->GetValue(3 * (i + Size * j) + c);
+          const int want = a->GetValue(3 * (i + di + Size * (j + dj)) + c);
+          differing += std::abs(got - want) > 3;
+        }
+        ++compared;
+      }
+    }
+    std::cout << (parallel ? "parallel" : "perspective") << ": " << differing << " of "
+              << 3 * compared << " channels differ by more than 3\n";
+    EXPECT_GT(compared, Size * Size / 2);
+    EXPECT_EQ(differing, 0);
+  }
+}
+
+// A volume in a transparent renderer (layer 1 over layer 0) shows the layers below through the
+// medium, dimmed: its own background (magenta here) is never drawn by VTK and must not show.
+TEST(RefractiveVolumeMapper, ATransparentLayerShowsTheLayersBelow)
+{
+  Scene scene;
+  scene.Mapper->SetInputData(AbsorbingCube());
+  scene.Inner->VisibilityOff();
+  scene.Front->VisibilityOff();
+  vtkNew<vtkRenderer> below;
+  below->SetBackground(0.2, 0.6, 0.9);
+  below->SetActiveCamera(scene.Renderer->GetActiveCamera());
+  below->SetLayer(0);
+  scene.Renderer->SetLayer(1);
+  scene.Renderer->SetBackground(1, 0, 1);
+  scene.Window->SetNumberOfLayers(2);
+  scene.Window->AddRenderer(below);
+  vtkSmartPointer<vtkImageData> image = scene.Capture();
+  scene.Window->RemoveRenderer(below);
+  scene.Window->SetNumberOfLayers(1);
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  const double background[3] = { 0.2, 0.6, 0.9 }, h = 1.2 / Size;
+  const double lo = -0.5 / 15 + 2 * h, hi = Top - 2 * h;
+  int checked = 0;
+  for (int j = 0; j < Size; ++j)
+  {
+    for (int i = 0; i < Size; ++i)
+    {
+      double x, y;
+      PixelXY(i, j, x, y);
+      const bool inside = x > lo && x < hi && y > lo && y < hi;
+      const bool outside = x < lo - 4 * h || x > hi + 4 * h || y < lo - 4 * h || y > hi + 4 * h;
+      for (int c = 0; c < 3 && (inside || outside); ++c)
+      {
+        const double expected = 255.0 * background[c] * (inside ? std::exp(-Sigma[c] * Depth) : 1);
+        EXPECT_NEAR(rgb->GetValue(3 * (i + Size * j) + c), expected, 3.0)
+          << "pixel " << i << "," << j << " channel " << c;
+      }
+      checked += inside;
+    }
+  }
+  EXPECT_GT(checked, Size * Size / 3);
+}
+
 TEST(RefractiveVolumeMapper, CacheRunsOnlyWhatChanged)
 {
   Scene scene;
