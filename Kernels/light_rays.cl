@@ -129,9 +129,17 @@ inline float lr_sphere_distance(float3 x, float3 q, float3 p, float r)
   return disc > 0.0f ? fmax(b - sqrt(disc), 0.0f) : fmax(b, 0.0f);
 }
 
-// Fluence (RGB) of one light at x and its travel direction there.
-inline float3 lr_light_fluence(
-  const lr_scene* s, __global const float4* light, float3 x, float minDistance, float3* travel)
+// The weight of light arriving along unit direction q (towards the light): 1 for fluence (normal
+// 0), |n . q| for the irradiance on a two-sided surface of unit normal n.
+inline float lr_cosine(float3 normal, float3 q)
+{
+  return any(normal != (float3)(0.0f)) ? fabs(dot(normal, q)) : 1.0f;
+}
+
+// Fluence (RGB) of one light at x and its travel direction there; with a unit `normal`, the
+// irradiance on a two-sided surface there instead (each direction weighted by lr_cosine).
+inline float3 lr_light_fluence(const lr_scene* s, __global const float4* light, float3 x,
+  float minDistance, float3* travel, float3 normal)
 {
   const float4 p0 = light[0], p1 = light[1], p2 = light[2], p3 = light[3];
   const int count = max((int)p3.y, 1);
@@ -144,7 +152,7 @@ inline float3 lr_light_fluence(
     const float3 toLight = -p1.xyz;
     if (!(p3.x > 0.0f) || count == 1)
     {
-      return colour * lr_transmittance(s, x, toLight, INFINITY);
+      return colour * lr_cosine(normal, toLight) * lr_transmittance(s, x, toLight, INFINITY);
     }
     const float sinD = p3.x;
     const float cosD = sqrt(fmax(0.0f, 1.0f - sinD * sinD));
@@ -152,7 +160,8 @@ inline float3 lr_light_fluence(
     float3 sum = (float3)(0.0f);
     for (int q = 0; q < count; ++q)
     {
-      sum += lr_transmittance(s, x, lr_cap_direction(toLight, cosD, q, count), INFINITY);
+      const float3 dir = lr_cap_direction(toLight, cosD, q, count);
+      sum += lr_cosine(normal, dir) * lr_transmittance(s, x, dir, INFINITY);
     }
     return colour * sum * weight;
   }
@@ -175,7 +184,8 @@ inline float3 lr_light_fluence(
   {
     // A delta light (or a point inside the sphere light, where the near field is taken as the
     // delta light's): I / d^2.
-    return colour * (falloff / (d * d)) * lr_transmittance(s, x, toLight, length(w));
+    return colour * (falloff / (d * d)) * lr_cosine(normal, toLight) *
+      lr_transmittance(s, x, toLight, length(w));
   }
   // A sphere of radius r with radiance I / (pi r^2) seen under a cap of 2 pi (1 - cos theta).
   const float sinT = r / d;
@@ -186,7 +196,7 @@ inline float3 lr_light_fluence(
   for (int q = 0; q < count; ++q)
   {
     const float3 dir = lr_cap_direction(toLight, cosT, q, count);
-    sum += lr_transmittance(s, x, dir, lr_sphere_distance(x, dir, p0.xyz, r));
+    sum += lr_cosine(normal, dir) * lr_transmittance(s, x, dir, lr_sphere_distance(x, dir, p0.xyz, r));
   }
   return colour * sum * weight;
 }
@@ -200,7 +210,8 @@ inline float3 lr_evaluate(const lr_scene* s, __global const float4* lights, int 
   for (int l = 0; l < lightCount; ++l)
   {
     float3 travel;
-    const float3 e = lr_light_fluence(s, lights + LR_LIGHT_FLOAT4S * l, x, minDistance, &travel);
+    const float3 e = lr_light_fluence(
+      s, lights + LR_LIGHT_FLOAT4S * l, x, minDistance, &travel, (float3)(0.0f));
     phi += e;
     f += (e.x + e.y + e.z) * travel;
   }
@@ -292,6 +303,30 @@ __kernel void light_rays_points(LR_SCENE_ARGS, __global const float4* points, co
   const float3 phi = lr_evaluate(&s, lights, lightCount, points[p].xyz, minDistance, &flux);
   phiOut[p] = (float4)(phi, 0.0f);
   fluxOut[p] = (float4)(flux, 0.0f);
+}
+
+// The direct irradiance (RGB) on surfaces: at each grid-local point with its unit normal, the
+// light of every light that reaches it along a straight ray, weighted by |n . q| (two-sided
+// Lambertian texels, as the photons' atlas counts them). vtkLightRaySingleScattering::
+// ComputeSurfaceIrradiance.
+__kernel void light_rays_surface_points(LR_SCENE_ARGS, __global const float4* points,
+  __global const float4* normals, const int pointCount, __global const float4* lights,
+  const int lightCount, const float minDistance, __global float4* irradianceOut)
+{
+  const int p = (int)get_global_id(0);
+  if (p >= pointCount)
+  {
+    return;
+  }
+  const lr_scene s = LR_MAKE_SCENE();
+  float3 e = (float3)(0.0f);
+  for (int l = 0; l < lightCount; ++l)
+  {
+    float3 travel;
+    e += lr_light_fluence(
+      &s, lights + LR_LIGHT_FLOAT4S * l, points[p].xyz, minDistance, &travel, normals[p].xyz);
+  }
+  irradianceOut[p] = (float4)(e, 0.0f);
 }
 
 // Gradient-based interpolation (Ren et al. 2008, eq. 4) at every voxel that scatters:

@@ -180,10 +180,18 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
     return -1;
   }
   const int texel = info.x + refracta_texel_index(h.u, h.v, info.y);
-  photon_deposit_texel(s->irradiance, texel, ps->power);
-#if REFRACTA_CAUSTIC_SUBDIVISION > 1
-  photon_deposit_caustic(s, ps, info, texel, h.u, h.v);
+#if REFRACTA_SKIP_DIRECT
+  // Direct light (a photon from a light that met no surface, no glass and no scattering) is
+  // computed without noise by light rays (vtkLightRaySingleScattering::ComputeSurfaceIrradiance)
+  // and added on the host: such a photon deposits nothing, and goes on as any other.
+  if (ps->hits > 0 || ps->order > 0 || ps->caustic)
 #endif
+  {
+    photon_deposit_texel(s->irradiance, texel, ps->power);
+#if REFRACTA_CAUSTIC_SUBDIVISION > 1
+    photon_deposit_caustic(s, ps, info, texel, h.u, h.v);
+#endif
+  }
   ps->hits++;
   const float3 a = clamp(vload3(texel, s->albedo), 0.0f, 1.0f);
   const float3 reflected = ps->power * a;

@@ -126,6 +126,9 @@
 #ifndef REFRACTA_ANALOG
 #define REFRACTA_ANALOG 0
 #endif
+#ifndef REFRACTA_SKIP_DIRECT
+#define REFRACTA_SKIP_DIRECT 0 /* 1: direct surface light left to light rays (photon_surfaces.cl) */
+#endif
 #ifndef REFRACTA_STEP_TOLERANCE
 #define REFRACTA_STEP_TOLERANCE 0.02f
 #endif

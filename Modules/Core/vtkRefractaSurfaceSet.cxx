@@ -264,6 +264,25 @@ bool vtkRefractaSurfaceSet::GetTexelCorners(int texel, int n, double corners[6])
   return true;
 }
 
+bool vtkRefractaSurfaceSet::GetTexelSamplePoints(int texel, int n, double points[8])
+{
+  double c[6];
+  if (!GetTexelCorners(texel, n, c))
+  {
+    return false;
+  }
+  // The centroid and the centroids of the three corner sub-triangles.
+  const double weights[4][3] = { { 1 / 3., 1 / 3., 1 / 3. }, { 4 / 6., 1 / 6., 1 / 6. },
+    { 1 / 6., 4 / 6., 1 / 6. }, { 1 / 6., 1 / 6., 4 / 6. } };
+  for (int q = 0; q < 4; ++q)
+  {
+    const double* w = weights[q];
+    points[2 * q] = w[0] * c[0] + w[1] * c[2] + w[2] * c[4];
+    points[2 * q + 1] = w[0] * c[1] + w[1] * c[3] + w[2] * c[5];
+  }
+  return true;
+}
+
 namespace
 {
 // World points of a surface (model points through its matrix); false if any is not finite.
@@ -706,18 +725,13 @@ void vtkRefractaSurfaceSet::BakeAlbedo()
     const ColorSource& color = colors[source.Surface];
     for (int texel = 0; texel < n * n; ++texel)
     {
-      double c[6];
-      GetTexelCorners(texel, n, c);
-      // The centroid and the centroids of the three corner sub-triangles, equally weighted.
-      const double weights[4][3] = { { 1 / 3., 1 / 3., 1 / 3. }, { 4 / 6., 1 / 6., 1 / 6. },
-        { 1 / 6., 4 / 6., 1 / 6. }, { 1 / 6., 1 / 6., 4 / 6. } };
+      double uv[8];
+      GetTexelSamplePoints(texel, n, uv);
       double mean[3] = { 0, 0, 0 };
-      for (const auto& w : weights)
+      for (int q = 0; q < 4; ++q)
       {
-        const double u = w[0] * c[0] + w[1] * c[2] + w[2] * c[4];
-        const double v = w[0] * c[1] + w[1] * c[3] + w[2] * c[5];
         double rgb[3];
-        EvaluateColor(color, source, u, v, rgb);
+        EvaluateColor(color, source, uv[2 * q], uv[2 * q + 1], rgb);
         for (int ch = 0; ch < 3; ++ch)
         {
           mean[ch] += 0.25 * rgb[ch];

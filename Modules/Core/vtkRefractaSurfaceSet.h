@@ -272,6 +272,14 @@ public:
    */
   static bool GetTexelCorners(int texel, int n, double corners[6]);
 
+  /**
+   * Barycentric (u, v) of the four equally weighted points that stand for a texel's area (its
+   * centroid and the centroids of its three corner sub-triangles; u0 v0 ... u3 v3): the albedo
+   * bake's points, and vtkLightRaySingleScattering's for the direct irradiance. False for a
+   * texel out of range.
+   */
+  static bool GetTexelSamplePoints(int texel, int n, double points[8]);
+
 protected:
   vtkRefractaSurfaceSet();
   ~vtkRefractaSurfaceSet() override;

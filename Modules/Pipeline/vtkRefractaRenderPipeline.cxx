@@ -716,6 +716,8 @@ void vtkRefractaRenderPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MultipleScatteringSchedule: " << this->MultipleScatteringSchedule << "\n";
   os << indent << "LatticeWarmStart: " << this->LatticeWarmStart << "\n";
   os << indent << "DeviceHandOff: " << this->DeviceHandOff << "\n";
+  os << indent << "DirectSurfaceLightByRays: " << this->DirectSurfaceLightByRays << " (last "
+     << this->LastDirectSurfaceLightByRays << ")\n";
   os << indent << "BackgroundIlluminates: " << this->BackgroundIlluminates << "\n";
   os << indent << "NumberOfPlanRuns: " << this->NumberOfPlanRuns << "\n";
   os << indent << "NumberOfLightPassRuns: " << this->NumberOfLightPassRuns << "\n";

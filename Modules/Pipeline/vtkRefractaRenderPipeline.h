@@ -307,6 +307,23 @@ public:
 
   ///@{
   /**
+   * The direct light on lit surfaces by straight light rays (default on): where the photons fly
+   * straight and only the lights (not the sky) light the scene, the photon pass leaves the
+   * light that reaches a surface first out of its atlas (vtkPhotonTracer::SkipDirectSurfaceLight)
+   * and vtkLightRaySingleScattering::ComputeSurfaceIrradiance adds it without noise (shadows of
+   * the medium's absorption and of the surfaces, glass included, whose light the photons still
+   * carry: caustics, light bounced between surfaces, light the medium scattered).
+   * GetLastDirectSurfaceLightByRays() says whether the last light stage did. Off: photons
+   * carry all of it (Documentation/Physics.md, "Direct light on surfaces").
+   */
+  vtkSetMacro(DirectSurfaceLightByRays, bool);
+  vtkGetMacro(DirectSurfaceLightByRays, bool);
+  vtkBooleanMacro(DirectSurfaceLightByRays, bool);
+  vtkGetMacro(LastDirectSurfaceLightByRays, bool);
+  ///@}
+
+  ///@{
+  /**
    * OpenCL context of every pass. Default vtkOpenCLContext::GetDefault().
    */
   void SetContext(vtkOpenCLContext* context);
@@ -405,6 +422,10 @@ protected:
   bool FailPlanOnce(const std::string& message);
   bool RunLighting();
   vtkAlgorithm* PrepareLightRays(vtkPhotonTracer* tracer, int method);
+  // The light rays see the lights, surfaces, placement and light extents the photons saw.
+  void ConfigureLightRays(vtkPhotonTracer* tracer);
+  // Adds the direct surface light the photons left out to in.Lighting's SurfaceIrradiance.
+  bool AddDirectSurfaceLight(vtkPhotonTracer* tracer);
   bool RunView(int width, int height, const float* depthLimit);
   bool PlanIsStale();
   bool BackgroundIsNewerThan(vtkMTimeType time);
@@ -417,6 +438,8 @@ protected:
   int MultipleScatteringSchedule = AUTOMATIC_SCHEDULE;
   bool LatticeWarmStart = false;
   bool DeviceHandOff = true;
+  bool DirectSurfaceLightByRays = true;
+  bool LastDirectSurfaceLightByRays = false;
   bool BackgroundIlluminates = false;
   bool LastRenderAborted = false;
   bool LastScheduleInterleaved = false;

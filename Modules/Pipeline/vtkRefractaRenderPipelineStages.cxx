@@ -5,10 +5,14 @@
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkLatticeBoltzmannSolver.h"
+#include "vtkLightRaySingleScattering.h"
 #include "vtkMath.h"
 #include "vtkMediumValidator.h"
+#include "vtkNew.h"
 #include "vtkPhotonTracer.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 
 #include <algorithm>
@@ -21,20 +25,74 @@ constexpr int LightIndependentEffects[] = { vtkEffectPlan::REFRACTION, vtkEffect
 }
 
 //------------------------------------------------------------------------------
+void vtkRefractaRenderPipeline::ConfigureLightRays(vtkPhotonTracer* tracer)
+{
+  Internals& in = *this->Internal;
+  vtkLightRaySingleScattering* rays = in.LightRays;
+  rays->SetContext(in.GetContext());
+  rays->SetLights(in.DataLights);
+  rays->SetSurfaces(in.SceneSurfaces);
+  rays->SetMediumToWorld(in.PropMatrix);
+  rays->SetLightRadius(tracer->GetLightRadius());
+  rays->SetDirectionalLightAngularRadius(tracer->GetDirectionalLightAngularRadius());
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaRenderPipeline::AddDirectSurfaceLight(vtkPhotonTracer* tracer)
+{
+  Internals& in = *this->Internal;
+  vtkLightRaySingleScattering* rays = in.LightRays;
+  this->ConfigureLightRays(tracer);
+  rays->SetAbortExecute(0);
+  std::vector<float> direct;
+  if (!rays->ComputeSurfaceIrradiance(in.Planned, direct))
+  {
+    this->LastRenderAborted = in.Abort || rays->GetAbortExecute();
+    rays->SetAbortExecute(0);
+    if (!this->LastRenderAborted)
+    {
+      vtkErrorMacro("The direct light on the surfaces (vtkLightRaySingleScattering) failed; see "
+                    "the error above.");
+    }
+    return false;
+  }
+  const char* name = vtkRefractaLightingVolume::SurfaceIrradianceName();
+  vtkDataArray* photons = in.Lighting->GetFieldData()->GetArray(name);
+  const vtkIdType texels = static_cast<vtkIdType>(direct.size() / 3);
+  if (!photons || photons->GetNumberOfTuples() != texels || photons->GetNumberOfComponents() != 3)
+  {
+    vtkErrorMacro("The photon pass's '" << name << "' does not match the surfaces' " << texels
+                                        << " texels; the direct light cannot be added.");
+    return false;
+  }
+  // A new array: the photon pass's own output keeps what it computed.
+  vtkNew<vtkFloatArray> sum;
+  sum->SetName(name);
+  sum->SetNumberOfComponents(3);
+  sum->SetNumberOfTuples(texels);
+  for (vtkIdType t = 0; t < texels; ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      sum->SetTypedComponent(
+        t, c, static_cast<float>(photons->GetComponent(t, c)) + direct[3 * t + c]);
+    }
+  }
+  in.Lighting->GetFieldData()->AddArray(sum);
+  this->LastDirectSurfaceLightByRays = true;
+  return true;
+}
+
+//------------------------------------------------------------------------------
 // Straight light: the light-ray pass (and the lattice on its output when multiple scattering is
 // on), with the photon tracer's light extents so that both methods see the same lights.
 vtkAlgorithm* vtkRefractaRenderPipeline::PrepareLightRays(vtkPhotonTracer* tracer, int method)
 {
   Internals& in = *this->Internal;
   vtkLightRaySingleScattering* rays = in.LightRays;
-  rays->SetContext(in.GetContext());
+  this->ConfigureLightRays(tracer);
   rays->SetMethod(method == vtkEffectPlan::INTERPOLATED ? vtkLightRaySingleScattering::INTERPOLATED
                                                         : vtkLightRaySingleScattering::LIGHT_RAYS);
-  rays->SetLights(in.DataLights);
-  rays->SetSurfaces(in.SceneSurfaces);
-  rays->SetMediumToWorld(in.PropMatrix);
-  rays->SetLightRadius(tracer->GetLightRadius());
-  rays->SetDirectionalLightAngularRadius(tracer->GetDirectionalLightAngularRadius());
   rays->SetInputData(in.Planned);
   // An abort reaches the light rays through their progress observer; a new render clears it
   // (the lattice's, when the lattice runs, is cleared with the pass's after the abort).
@@ -201,6 +259,7 @@ bool vtkRefractaRenderPipeline::RunLighting()
   Internals& in = *this->Internal;
   in.LightDone = in.ViewDone = false;
   in.Lighting = nullptr;
+  this->LastDirectSurfaceLightByRays = false;
   // Surfaces need the photon pass even where nothing in the medium scatters (a caustic of a
   // clear glass ball on a floor).
   const bool surfaces = in.Plan->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING);
@@ -217,6 +276,7 @@ bool vtkRefractaRenderPipeline::RunLighting()
     in.Schedule->GetSolver()->SetKeepDeviceCopies(this->DeviceHandOff);
     tracer->SetLights(in.DataLights);
     tracer->SetSurfaces(surfaces ? in.SceneSurfaces : nullptr);
+    tracer->SetSkipDirectSurfaceLight(this->DirectSurfaceLightByRays);
     tracer->SetMediumToWorld(in.PropMatrix);
     // The background the view pass shows is the one that lights the scene.
     tracer->SetBackgroundIlluminates(this->BackgroundIlluminates);
@@ -293,6 +353,11 @@ bool vtkRefractaRenderPipeline::RunLighting()
     }
     in.Lighting = vtkSmartPointer<vtkImageData>::New();
     in.Lighting->ShallowCopy(output);
+    if (tracer->GetLastSkippedDirectSurfaceLight() && !this->AddDirectSurfaceLight(tracer))
+    {
+      in.Lighting = nullptr;
+      return false;
+    }
     ++this->NumberOfLightPassRuns;
   }
   if (!in.ViewPass->SetLighting(in.Lighting))

@@ -197,10 +197,18 @@ int vtkLightRaySingleScattering::RequestData(
       std::fill_n(a->GetPointer(0), values, 0.0f);
     }
   }
-  else if (!this->Upload(run) ||
-    !(this->Method == INTERPOLATED ? this->RunInterpolation(run) : this->RunLightRays(run)))
+  else
   {
-    return 0;
+    for (vtkFloatArray* a : { run.Radiance.Get(), run.Direction.Get() })
+    {
+      a->SetNumberOfComponents(3);
+      a->SetNumberOfTuples(static_cast<vtkIdType>(run.M.Voxels));
+    }
+    if (!this->Upload(run) ||
+      !(this->Method == INTERPOLATED ? this->RunInterpolation(run) : this->RunLightRays(run)))
+    {
+      return 0;
+    }
   }
   if (run.Aborted || this->GetAbortExecute())
   {
@@ -397,8 +405,12 @@ bool vtkLightRaySingleScattering::SetUpSurfaces(Internals& run)
   const double* frameOrigin = this->Surfaces->GetBVH()->GetFrameOrigin();
   for (int r = 0; r < 3; ++r)
   {
-    run.Frame[r] =
-      Float4(l2w[4 * r], l2w[4 * r + 1], l2w[4 * r + 2], l2w[4 * r + 3] - frameOrigin[r]);
+    for (int c = 0; c < 4; ++c)
+    {
+      run.SurfaceFrame[r][c] = l2w[4 * r + c] - (c == 3 ? frameOrigin[r] : 0.0);
+    }
+    run.Frame[r] = Float4(run.SurfaceFrame[r][0], run.SurfaceFrame[r][1], run.SurfaceFrame[r][2],
+      run.SurfaceFrame[r][3]);
   }
   double b[6], size = 0;
   this->Surfaces->GetBounds(b);
@@ -453,11 +465,6 @@ bool vtkLightRaySingleScattering::Upload(Internals& run)
     run.Nodes = ctx->CreateBuffer(CL_MEM_READ_ONLY, 16, nullptr, "surface BVH (none)", this);
     run.Triangles =
       ctx->CreateBuffer(CL_MEM_READ_ONLY, 16, nullptr, "surface triangles (none)", this);
-  }
-  for (vtkFloatArray* a : { run.Radiance.Get(), run.Direction.Get() })
-  {
-    a->SetNumberOfComponents(3);
-    a->SetNumberOfTuples(static_cast<vtkIdType>(m.Voxels));
   }
   return run.Extinction && run.ScatteringBuffer && run.MacroBuffer && run.LightBuffer &&
     run.Nodes && run.Triangles;
@@ -618,4 +625,6 @@ void vtkLightRaySingleScattering::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TotalSeconds: " << this->TotalSeconds << "\n";
   os << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n";
   os << indent << "NumberOfEvaluatedPoints: " << this->NumberOfEvaluatedPoints << "\n";
+  os << indent << "SurfaceSeconds: " << this->SurfaceSeconds << "\n";
+  os << indent << "NumberOfSurfacePoints: " << this->NumberOfSurfacePoints << "\n";
 }

@@ -192,6 +192,25 @@ public:
   vtkDoubleArray* GetSamplePositions();
   vtkIntArray* GetSampleLevels();
 
+  /**
+   * The direct irradiance on the Lambertian texels of GetSurfaces() (built here if needed) lit
+   * by GetLights() through `medium` along straight rays: per texel, the mean over its four
+   * sample points (vtkRefractaSurfaceSet::GetTexelSamplePoints) of sum over lights of
+   * E_l T_l V_l |n . q_l| (T the medium's transmittance, V 0 where a surface, glass included,
+   * blocks the ray, n the triangle's normal: two-sided, as the photons' atlas counts it;
+   * extended lights by their quadrature directions). Irradiance in the units of
+   * vtkPhotonTracer's SurfaceIrradiance, 3 floats per texel into `irradiance` (0 on glass
+   * texels): with vtkPhotonTracer::SkipDirectSurfaceLight the photons leave exactly this part out,
+   * and the sum of both is their whole irradiance without its noise. Uses MediumToWorld,
+   * LightRadius, DirectionalLightAngularRadius, LightQuadrature and the context as RequestData
+   * does. Returns false after an error (an invalid medium, no surfaces, a bad light).
+   */
+  bool ComputeSurfaceIrradiance(vtkImageData* medium, std::vector<float>& irradiance);
+
+  /// Seconds of the last ComputeSurfaceIrradiance() and the points it marched (4 per texel).
+  vtkGetMacro(SurfaceSeconds, double);
+  vtkGetMacro(NumberOfSurfacePoints, long long);
+
   struct Internals;
 
 protected:
@@ -208,6 +227,8 @@ protected:
   bool Upload(Internals& run);
   bool RunLightRays(Internals& run);
   bool RunInterpolation(Internals& run);
+  // The four sample points (grid-local) and triangle normals of every Lambertian texel.
+  void MakeTexelSamples(Internals& run, std::vector<float>& points, std::vector<float>& normals);
   bool EvaluatePoints(Internals& run, const std::vector<float>& points, const void* lights,
     int lightCount, std::vector<float>& phi, std::vector<float>& flux);
   void WriteOutput(Internals& run, vtkImageData* output);
@@ -236,6 +257,8 @@ protected:
   int NumberOfSamples = 0;
   long long NumberOfEvaluatedPoints = 0;
   int NumberOfUncoveredVoxels = 0;
+  double SurfaceSeconds = 0;
+  long long NumberOfSurfacePoints = 0;
   bool LastRunAborted = false;
   std::vector<int> SamplesPerLevel;
   vtkSmartPointer<vtkDoubleArray> SamplePositions;

@@ -1,6 +1,6 @@
 // Private to vtkLightRaySingleScattering (not installed): the per-run state that
-// vtkLightRaySingleScattering.cxx (set-up, light rays) and vtkLightRayInterpolation.cxx (dynamic
-// sampling, eq. 4) share.
+// vtkLightRaySingleScattering.cxx (set-up, light rays), vtkLightRayInterpolation.cxx (dynamic
+// sampling, eq. 4) and vtkLightRaySurfaceIrradiance.cxx (texels' direct light) share.
 #ifndef vtkLightRaySingleScatteringInternals_h
 #define vtkLightRaySingleScatteringInternals_h
 
@@ -28,6 +28,7 @@ struct vtkLightRaySingleScattering::Internals
   vtkOpenCLBuffer Extinction, MacroBuffer, ScatteringBuffer, LightBuffer, Nodes, Triangles;
   int NodeCount = 0;
   cl_float4 Frame[3];
+  double SurfaceFrame[3][4] = {}; // grid-local -> surface frame, the rows of Frame in double
   float SurfaceEpsilon = 0;
   vtkNew<vtkFloatArray> Radiance, Direction;
   bool Aborted = false; // AbortExecute was seen: stop, empty output, no error

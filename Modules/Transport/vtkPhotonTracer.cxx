@@ -238,6 +238,13 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   this->LastCausticSubdivision = run.Caustic;
   options << " -DREFRACTA_CAUSTIC_SUBDIVISION=" << run.Caustic;
   options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0);
+  // Direct surface light left to straight light rays: only where photons fly straight and every
+  // light is one the rays carry (not the sky).
+  const bool sky =
+    std::any_of(lights.begin(), lights.end(), [](const LightSetup& l) { return l.Environment; });
+  this->LastSkippedDirectSurfaceLight =
+    this->SkipDirectSurfaceLight && run.Surfaces && !m.Curved && !sky;
+  options << " -DREFRACTA_SKIP_DIRECT=" << (this->LastSkippedDirectSurfaceLight ? 1 : 0);
   this->UsesVolumeCaustic(run); // a run-time choice of the kernels (their last arguments)
   if (run.SplitOrders > 0)
   {
@@ -553,6 +560,7 @@ int vtkPhotonTracer::RequestData(
   this->UsedOctree = this->ComputedGradient = false;
   this->UsedSurfaces = this->LastRunReusedSurfaces = this->UsedEnvironment = false;
   this->UsedAnalogScattering = false;
+  this->LastSkippedDirectSurfaceLight = false;
   this->UsedScatteringOrders = 0;
   this->EnvironmentPhotons = 0;
   this->LastRunAborted = false;
@@ -664,6 +672,8 @@ void vtkPhotonTracer::PrintSelf(ostream& os, vtkIndent indent)
      << ", reused " << this->LastRunReusedSurfaces << ")\n";
   os << indent << "AnalogScattering: " << this->AnalogScattering << " (used "
      << this->UsedAnalogScattering << ")\n";
+  os << indent << "SkipDirectSurfaceLight: " << this->SkipDirectSurfaceLight << " (last run "
+     << this->LastSkippedDirectSurfaceLight << ")\n";
   os << indent << "ScatteringOrders: " << this->ScatteringOrders << " (used "
      << this->UsedScatteringOrders << ")\n";
   os << indent << "Stage seconds (octree, generation, marching, smoothing): " << this->OctreeSeconds

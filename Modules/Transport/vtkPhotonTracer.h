@@ -208,6 +208,23 @@ public:
 
   ///@{
   /**
+   * Leave the direct light on the surfaces out of `SurfaceIrradiance` (default off): a photon
+   * that meets a Lambertian surface before any other surface, any glass and any scattering
+   * deposits nothing there (it is reflected and goes on as before, and the books do not change),
+   * so that a caller adds that part without noise from straight light rays
+   * (vtkLightRaySingleScattering::ComputeSurfaceIrradiance; vtkRefractaRenderPipeline does).
+   * It takes effect only where those rays give the same light: photons that fly straight (no
+   * refraction in the medium) and no environment light (light rays carry only the lights);
+   * GetLastSkippedDirectSurfaceLight() says whether the last run left it out.
+   */
+  vtkSetMacro(SkipDirectSurfaceLight, bool);
+  vtkGetMacro(SkipDirectSurfaceLight, bool);
+  vtkBooleanMacro(SkipDirectSurfaceLight, bool);
+  vtkGetMacro(LastSkippedDirectSurfaceLight, bool);
+  ///@}
+
+  ///@{
+  /**
    * First-collision split (issue 14; default 0: off). With k = ScatteringOrders > 0 and a medium
    * that scatters, the photons carry the first k scattering orders themselves, with the analog
    * scattering described above (also without surfaces), and hand the rest to the
@@ -732,6 +749,8 @@ protected:
   bool LastRunReusedSurfaces = false;
   bool AnalogScattering = false;
   bool UsedAnalogScattering = false;
+  bool SkipDirectSurfaceLight = false;
+  bool LastSkippedDirectSurfaceLight = false;
   int ScatteringOrders = 0;
   int UsedScatteringOrders = 0;
 #ifndef __VTK_WRAP__

@@ -5,7 +5,7 @@
 // --runs runs.
 //
 // Usage: BenchmarkSurfaces [--quick] [--runs 3] [--rays 200000] [--csv surfaces_benchmark.csv]
-//                          [--texel-sweep]
+//                          [--texel-sweep] [--direct-light]
 //   --quick: only the 10k mesh, 20000 rays, one run (the smoke test).
 //   --texel-sweep: instead, the irradiance atlas's resolution against the photon count (the
 //     justification of the automatic texel size): a black 20 x 20 plane under a point light of
@@ -14,6 +14,10 @@
 //     0.5; photon counts 2^18, 2^20, 2^22; per texel within rho < 5 of the axis, the relative
 //     error of E against I h / (h^2 + rho^2)^(3/2) at the texel's centre: RMS (noise and blur) and
 //     mean (the blur's bias).
+//   --direct-light: instead, on that plane at texels 0.22 and 2^16, 2^18, 2^20 photons, the
+//     same errors and seconds with photons alone and with the direct light from light rays
+//     (vtkPhotonTracer::SkipDirectSurfaceLight + vtkLightRaySingleScattering::
+//     ComputeSurfaceIrradiance, what the pipeline does), in one run.
 #include "RefractaBenchmark.h"
 
 #include "vtkCellArray.h"
@@ -21,6 +25,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkLightRaySingleScattering.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPhotonTracer.h"
@@ -100,100 +105,180 @@ void MakeRays(int count, const double* frame, std::vector<float>& origins, std::
 }
 }
 
+// Per texel of `set` within rho < 5 of the light's axis, the relative error of `e` against the
+// point light's I h / (h^2 + rho^2)^(3/2) at the texel's centre: RMS and mean.
+void PlaneErrors(vtkRefractaSurfaceSet* set, vtkDataArray* e, double h, double intensity,
+  long& count, double& rms, double& mean)
+{
+  vtkRefractaBVH* bvh = set->GetBVH();
+  const auto& info = set->GetTriangleInfo();
+  double sum2 = 0, sum = 0;
+  count = 0;
+  for (vtkIdType k = 0; k < set->GetNumberOfTriangles(); ++k)
+  {
+    const double* t = &bvh->GetTriangles()[9 * k];
+    const int first = info[4 * k], n = info[4 * k + 1];
+    for (int i = 0; i < n * n; ++i)
+    {
+      double c[6];
+      vtkRefractaSurfaceSet::GetTexelCorners(i, n, c);
+      const double u = (c[0] + c[2] + c[4]) / 3, v = (c[1] + c[3] + c[5]) / 3;
+      double x[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        x[a] = (1 - u - v) * t[a] + u * t[3 + a] + v * t[6 + a] + bvh->GetFrameOrigin()[a];
+      }
+      const double rho = std::hypot(x[0], x[1]);
+      if (rho >= 5)
+      {
+        continue;
+      }
+      const double expected = intensity * h / std::pow(h * h + rho * rho, 1.5);
+      const double r = e->GetComponent(first + i, 0) / expected - 1;
+      sum += r;
+      sum2 += r * r;
+      ++count;
+    }
+  }
+  rms = count > 0 ? std::sqrt(sum2 / count) : 0.0;
+  mean = count > 0 ? sum / count : 0.0;
+}
+
+// The sweeps' scene: a black 20 x 20 plane at z = 0 under a point light of intensity 2 at
+// height 5, and a small vacuum box around the light (the photon pass needs a medium).
+struct LitPlane
+{
+  const double H = 5.0, Intensity = 2.0;
+  vtkNew<vtkImageData> Medium;
+  vtkNew<vtkPlaneSource> Plane;
+  vtkNew<vtkRefractaSurfaceMaterial> Black;
+  vtkNew<vtkLight> Light;
+
+  LitPlane()
+  {
+    this->Medium->SetDimensions(8, 8, 8);
+    this->Medium->SetSpacing(0.5, 0.5, 0.5);
+    this->Medium->SetOrigin(-1.75, -1.75, this->H - 1.75);
+    for (const char* name :
+      { vtkRefractaMedium::ExtinctionName(), vtkRefractaMedium::AlbedoName() })
+    {
+      vtkNew<vtkFloatArray> a;
+      a->SetName(name);
+      a->SetNumberOfComponents(3);
+      a->SetNumberOfTuples(this->Medium->GetNumberOfPoints());
+      a->Fill(0.0);
+      this->Medium->GetPointData()->AddArray(a);
+    }
+    this->Plane->SetOrigin(-10, -10, 0);
+    this->Plane->SetPoint1(10, -10, 0);
+    this->Plane->SetPoint2(-10, 10, 0);
+    this->Plane->Update();
+    this->Black->SetAlbedo(0, 0, 0);
+    this->Light->SetPositional(true);
+    this->Light->SetPosition(0, 0, this->H);
+    this->Light->SetFocalPoint(0, 0, 0);
+    this->Light->SetConeAngle(180);
+    this->Light->SetIntensity(this->Intensity);
+  }
+
+  // The plane's irradiance with texels of `size` from `photons` photons, with the direct light
+  // from light rays instead when `rays`; its errors (PlaneErrors) and seconds. False on failure.
+  bool Run(
+    double size, int photons, bool rays, long& count, double& rms, double& mean, double& seconds)
+  {
+    vtkNew<vtkRefractaSurfaceSet> set;
+    set->AddSurface(this->Plane->GetOutput(), this->Black);
+    set->SetTexelSize(size);
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->SetInputData(this->Medium);
+    tracer->SetSurfaces(set);
+    tracer->AddLight(this->Light);
+    tracer->SetNumberOfPhotons(photons);
+    tracer->SetSkipDirectSurfaceLight(rays);
+    const auto start = std::chrono::steady_clock::now();
+    tracer->Update();
+    vtkDataArray* e = tracer->GetOutput()->GetFieldData()->GetArray(
+      vtkRefractaLightingVolume::SurfaceIrradianceName());
+    if (!e)
+    {
+      std::cerr << "no irradiance: the photon pass failed\n";
+      return false;
+    }
+    vtkNew<vtkFloatArray> sum;
+    sum->DeepCopy(e);
+    if (rays)
+    {
+      vtkNew<vtkLightRaySingleScattering> direct;
+      direct->AddLight(this->Light);
+      direct->SetSurfaces(set);
+      std::vector<float> irradiance;
+      if (!direct->ComputeSurfaceIrradiance(this->Medium, irradiance))
+      {
+        std::cerr << "the direct light failed\n";
+        return false;
+      }
+      for (size_t i = 0; i < irradiance.size(); ++i)
+      {
+        sum->SetValue(
+          static_cast<vtkIdType>(i), sum->GetValue(static_cast<vtkIdType>(i)) + irradiance[i]);
+      }
+    }
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    PlaneErrors(set, sum, this->H, this->Intensity, count, rms, mean);
+    return true;
+  }
+};
+
 // The texel-size x photon-count sweep (see the header). Returns the process status.
 int TexelSweep(const std::string& csv)
 {
-  const double h = 5.0, intensity = 2.0;
-  // A small vacuum box around the light: the photon pass needs a medium.
-  vtkNew<vtkImageData> medium;
-  medium->SetDimensions(8, 8, 8);
-  medium->SetSpacing(0.5, 0.5, 0.5);
-  medium->SetOrigin(-1.75, -1.75, h - 1.75);
-  for (const char* name : { vtkRefractaMedium::ExtinctionName(), vtkRefractaMedium::AlbedoName() })
-  {
-    vtkNew<vtkFloatArray> a;
-    a->SetName(name);
-    a->SetNumberOfComponents(3);
-    a->SetNumberOfTuples(medium->GetNumberOfPoints());
-    a->Fill(0.0);
-    medium->GetPointData()->AddArray(a);
-  }
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(-10, -10, 0);
-  plane->SetPoint1(10, -10, 0);
-  plane->SetPoint2(-10, 10, 0);
-  plane->Update();
-  vtkNew<vtkRefractaSurfaceMaterial> black;
-  black->SetAlbedo(0, 0, 0);
-  vtkNew<vtkLight> light;
-  light->SetPositional(true);
-  light->SetPosition(0, 0, h);
-  light->SetFocalPoint(0, 0, 0);
-  light->SetConeAngle(180);
-  light->SetIntensity(intensity);
+  LitPlane scene;
   refracta::bench::Table table(
     { "texel_size", "photons", "texels_rho<5", "rms_error", "mean_error", "seconds" });
   for (double size : { 0.1, 0.22, 0.5 })
   {
     for (int log2 : { 18, 20, 22 })
     {
-      vtkNew<vtkRefractaSurfaceSet> set;
-      set->AddSurface(plane->GetOutput(), black);
-      set->SetTexelSize(size);
-      vtkNew<vtkPhotonTracer> tracer;
-      tracer->SetInputData(medium);
-      tracer->SetSurfaces(set);
-      tracer->AddLight(light);
-      tracer->SetNumberOfPhotons(1 << log2);
-      const auto start = std::chrono::steady_clock::now();
-      tracer->Update();
-      const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      vtkDataArray* e = tracer->GetOutput()->GetFieldData()->GetArray(
-        vtkRefractaLightingVolume::SurfaceIrradianceName());
-      if (!e)
-      {
-        std::cerr << "no irradiance: the photon pass failed\n";
-        return 1;
-      }
-      vtkRefractaBVH* bvh = set->GetBVH();
-      const auto& info = set->GetTriangleInfo();
-      double sum2 = 0, sum = 0;
       long count = 0;
-      for (vtkIdType k = 0; k < set->GetNumberOfTriangles(); ++k)
+      double rms = 0, mean = 0, seconds = 0;
+      if (!scene.Run(size, 1 << log2, false, count, rms, mean, seconds))
       {
-        const double* t = &bvh->GetTriangles()[9 * k];
-        const int first = info[4 * k], n = info[4 * k + 1];
-        for (int i = 0; i < n * n; ++i)
-        {
-          double c[6];
-          vtkRefractaSurfaceSet::GetTexelCorners(i, n, c);
-          const double u = (c[0] + c[2] + c[4]) / 3, v = (c[1] + c[3] + c[5]) / 3;
-          double x[3];
-          for (int a = 0; a < 3; ++a)
-          {
-            x[a] = (1 - u - v) * t[a] + u * t[3 + a] + v * t[6 + a] + bvh->GetFrameOrigin()[a];
-          }
-          const double rho = std::hypot(x[0], x[1]);
-          if (rho >= 5)
-          {
-            continue;
-          }
-          const double expected = intensity * h / std::pow(h * h + rho * rho, 1.5);
-          const double r = e->GetComponent(first + i, 0) / expected - 1;
-          sum += r;
-          sum2 += r * r;
-          ++count;
-        }
+        return 1;
       }
       table.AddRow(
         { refracta::bench::Table::Format(size), refracta::bench::Table::Format(double(1 << log2)),
-          refracta::bench::Table::Format(double(count)),
-          refracta::bench::Table::Format(std::sqrt(sum2 / count)),
-          refracta::bench::Table::Format(sum / count), refracta::bench::Table::Format(seconds) });
+          refracta::bench::Table::Format(double(count)), refracta::bench::Table::Format(rms),
+          refracta::bench::Table::Format(mean), refracta::bench::Table::Format(seconds) });
     }
   }
   table.Print("Irradiance atlas: texel size x photons, black 20 x 20 plane, point light at h = 5");
+  return table.WriteCsv(csv) ? 0 : 1;
+}
+
+// Photons alone against light rays for the direct light (vtkRefractaRenderPipeline's
+// DirectSurfaceLightByRays) at the automatic texel size, same run. Returns the process status.
+int DirectLightComparison(const std::string& csv)
+{
+  LitPlane scene;
+  refracta::bench::Table table(
+    { "direct_light", "photons", "texels_rho<5", "rms_error", "mean_error", "seconds" });
+  for (int log2 : { 16, 18, 20 })
+  {
+    for (bool rays : { false, true })
+    {
+      long count = 0;
+      double rms = 0, mean = 0, seconds = 0;
+      if (!scene.Run(0.22, 1 << log2, rays, count, rms, mean, seconds))
+      {
+        return 1;
+      }
+      table.AddRow(
+        { rays ? "light_rays" : "photons", refracta::bench::Table::Format(double(1 << log2)),
+          refracta::bench::Table::Format(double(count)), refracta::bench::Table::Format(rms),
+          refracta::bench::Table::Format(mean), refracta::bench::Table::Format(seconds) });
+    }
+  }
+  table.Print("Direct light on a black 20 x 20 plane, point light at h = 5, texels 0.22");
   return table.WriteCsv(csv) ? 0 : 1;
 }
 
@@ -204,6 +289,7 @@ int main(int argc, char* argv[])
   int rays = 200000;
   std::string csv = "surfaces_benchmark.csv";
   bool texelSweep = false;
+  bool directLight = false;
   for (int a = 1; a < argc; ++a)
   {
     const std::string arg = argv[a];
@@ -228,12 +314,20 @@ int main(int argc, char* argv[])
     {
       texelSweep = true;
     }
+    else if (arg == "--direct-light")
+    {
+      directLight = true;
+    }
     else
     {
       std::cerr << "usage: BenchmarkSurfaces [--quick] [--runs n] [--rays n] [--csv file] "
-                   "[--texel-sweep]\n";
+                   "[--texel-sweep] [--direct-light]\n";
       return 2;
     }
+  }
+  if (directLight)
+  {
+    return DirectLightComparison(csv);
   }
   if (texelSweep)
   {

@@ -2,6 +2,9 @@
 // pass only because of the floor (the plan turns SurfaceLighting on and says why; without the
 // floor no light pass runs); moving the floor re-runs the light passes and the view, never the
 // plan's medium stage; removing the surfaces re-plans and drops the photon pass again.
+// The direct light on surfaces by light rays (DirectSurfaceLightByRays): exact under an
+// absorbing cube's shadow, the floor's flux unchanged under a glass ball (its caustic stays the
+// photons'), and photons alone where the medium refracts.
 #include "vtkCamera.h"
 #include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
@@ -13,14 +16,20 @@
 #include "vtkPhotonTracer.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
+#include "vtkRefractaBVH.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaRenderPipeline.h"
+#include "vtkRefractaSurfaceMaterial.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <iostream>
 #include <string>
 
 namespace
@@ -116,4 +125,222 @@ TEST(PipelineSurfaces, FloorTurnsOnPhotonsAndMovingItKeepsThePlan)
   EXPECT_EQ(pipeline->GetNumberOfPlanRuns(), plans + 1);
   EXPECT_FALSE(pipeline->GetEffectPlan()->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING));
   EXPECT_EQ(pipeline->GetNumberOfLightPassRuns(), 2);
+}
+
+namespace
+{
+// An absorbing, non-scattering cube (sigma_t = (1, 2, 3) per unit, 24^3 voxels of 1/23: the box
+// is 24/23 high) over a floor at y = -0.2 under a sun shining straight down (E = 1): the floor's
+// direct irradiance is exp(-sigma 24/23) in the cube's shadow and 1 outside it.
+struct ShadowScene
+{
+  vtkNew<vtkRefractaRenderPipeline> Pipeline;
+  vtkNew<vtkRefractaSurfaceSet> Surfaces;
+  vtkNew<vtkLight> Sun;
+  vtkNew<vtkCamera> Camera;
+
+  ShadowScene()
+  {
+    const int n = 24;
+    auto cube = vtkSmartPointer<vtkImageData>::New();
+    cube->SetDimensions(n, n, n);
+    cube->SetSpacing(1.0 / (n - 1), 1.0 / (n - 1), 1.0 / (n - 1));
+    vtkNew<vtkFloatArray> extinction;
+    extinction->SetName("Extinction");
+    extinction->SetNumberOfComponents(3);
+    extinction->SetNumberOfTuples(cube->GetNumberOfPoints());
+    for (vtkIdType id = 0; id < cube->GetNumberOfPoints(); ++id)
+    {
+      extinction->SetTuple3(id, 1.0, 2.0, 3.0);
+    }
+    cube->GetPointData()->AddArray(extinction);
+    this->Pipeline->SetMedium(cube);
+    this->Sun->SetLightTypeToSceneLight();
+    this->Sun->SetPositional(false);
+    this->Sun->SetPosition(0.5, 3.0, 0.5);
+    this->Sun->SetFocalPoint(0.5, 0.5, 0.5);
+    this->Pipeline->AddLight(this->Sun);
+    this->Camera->SetPosition(0.5, 1.5, 3.0);
+    this->Camera->SetFocalPoint(0.5, 0.3, 0.5);
+    this->Pipeline->SetCamera(this->Camera);
+    vtkNew<vtkPlaneSource> plane;
+    plane->SetOrigin(-1, -0.2, -1);
+    plane->SetPoint1(2, -0.2, -1);
+    plane->SetPoint2(-1, -0.2, 2);
+    plane->Update();
+    this->Surfaces->AddSurface(plane->GetOutput());
+    this->Surfaces->SetTexelSize(0.05);
+    this->Pipeline->SetSurfaces(this->Surfaces);
+  }
+
+  // The floor's texels: irradiance (RGB) and centroid (x, z), from the pipeline's lighting.
+  void Texels(std::vector<std::array<double, 5>>& texels)
+  {
+    vtkDataArray* irradiance = this->Pipeline->GetLighting()->GetFieldData()->GetArray(
+      vtkRefractaLightingVolume::SurfaceIrradianceName());
+    ASSERT_NE(irradiance, nullptr);
+    const std::vector<int>& info = this->Surfaces->GetTriangleInfo();
+    const std::vector<double>& tri = this->Surfaces->GetBVH()->GetTriangles();
+    const double* origin = this->Surfaces->GetBVH()->GetFrameOrigin();
+    texels.clear();
+    for (size_t k = 0; 4 * k < info.size(); ++k)
+    {
+      const int first = info[4 * k], n = info[4 * k + 1];
+      const double* v = &tri[9 * k];
+      for (int t = 0; t < n * n; ++t)
+      {
+        double uv[8];
+        vtkRefractaSurfaceSet::GetTexelSamplePoints(t, n, uv);
+        std::array<double, 5> row;
+        for (int c = 0; c < 3; ++c)
+        {
+          row[c] = irradiance->GetComponent(first + t, c);
+        }
+        for (int a : { 0, 2 })
+        {
+          row[3 + a / 2] = origin[a] + v[a] + uv[0] * (v[3 + a] - v[a]) + uv[1] * (v[6 + a] - v[a]);
+        }
+        texels.push_back(row);
+      }
+    }
+  }
+};
+
+// Whether the floor point (x, z) is in the cube's shadow (+1), out of it (-1), or within `m` of
+// its edge (0).
+int InShadow(double x, double z, double m)
+{
+  const double lo = -0.5 / 23, hi = 1.0 + 0.5 / 23;
+  if (x > lo + m && x < hi - m && z > lo + m && z < hi - m)
+  {
+    return 1;
+  }
+  return (x < lo - m || x > hi + m || z < lo - m || z > hi + m) ? -1 : 0;
+}
+}
+
+// Straight light: the photons leave the floor's direct light out and the light rays add it, so
+// every texel is the analytic irradiance (to float rounding: nothing else lights a lone floor),
+// where photons alone scatter around it.
+TEST(PipelineSurfaces, DirectLightOnSurfacesIsExactByLightRays)
+{
+  ShadowScene scene;
+  scene.Pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 16);
+  ASSERT_TRUE(scene.Pipeline->Render(32, 24));
+  EXPECT_TRUE(scene.Pipeline->GetDirectSurfaceLightByRays());
+  EXPECT_TRUE(scene.Pipeline->GetLastDirectSurfaceLightByRays());
+  EXPECT_TRUE(scene.Pipeline->GetPhotonTracer()->GetLastSkippedDirectSurfaceLight());
+  std::vector<std::array<double, 5>> texels;
+  scene.Texels(texels);
+  const double sigma[3] = { 1, 2, 3 }, depth = 24.0 / 23;
+  int shadowed = 0, lit = 0;
+  double worst = 0;
+  for (const auto& t : texels)
+  {
+    const int where = InShadow(t[3], t[4], 0.06);
+    for (int c = 0; c < 3 && where != 0; ++c)
+    {
+      const double expected = where > 0 ? std::exp(-sigma[c] * depth) : 1.0;
+      worst = std::max(worst, std::abs(t[c] - expected) / expected);
+    }
+    shadowed += where > 0;
+    lit += where < 0;
+  }
+  std::cout << texels.size() << " texels, " << shadowed << " in the shadow, " << lit
+            << " lit: worst relative error " << worst << "\n";
+  EXPECT_GT(shadowed, 100);
+  EXPECT_GT(lit, 1000);
+  EXPECT_LT(worst, 1e-4);
+
+  // Photons alone: the same means within their noise, texel by texel far from it.
+  scene.Pipeline->DirectSurfaceLightByRaysOff();
+  ASSERT_TRUE(scene.Pipeline->Render(32, 24));
+  EXPECT_FALSE(scene.Pipeline->GetLastDirectSurfaceLightByRays());
+  scene.Texels(texels);
+  double litSum = 0, litSquares = 0;
+  for (const auto& t : texels)
+  {
+    if (InShadow(t[3], t[4], 0.06) < 0)
+    {
+      litSum += t[1];
+      litSquares += t[1] * t[1];
+    }
+  }
+  const double mean = litSum / lit, spread = std::sqrt(litSquares / lit - mean * mean);
+  std::cout << "photons alone, lit floor: mean " << mean << ", texel spread " << spread << "\n";
+  EXPECT_NEAR(mean, 1.0, 0.02);
+  EXPECT_GT(spread, 0.05); // what the light rays remove
+}
+
+// Glass between the light and the floor: the light rays stop at it (its light is the photons'
+// caustic), so the split must give the floor the photons' total flux, within their noise.
+TEST(PipelineSurfaces, DirectLightByRaysKeepsTheFloorsFluxUnderGlass)
+{
+  ShadowScene scene;
+  vtkNew<vtkSphereSource> ball;
+  ball->SetCenter(0.5, 1.6, 0.5);
+  ball->SetRadius(0.3);
+  ball->SetThetaResolution(48);
+  ball->SetPhiResolution(24);
+  ball->Update();
+  vtkNew<vtkRefractaSurfaceMaterial> glass;
+  glass->SetKindToDielectric();
+  glass->SetIndexInside(1.5);
+  scene.Surfaces->AddSurface(ball->GetOutput(), glass);
+  scene.Pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 18);
+  double flux[2] = { 0, 0 };
+  for (int split = 1; split >= 0; --split)
+  {
+    scene.Pipeline->SetDirectSurfaceLightByRays(split != 0);
+    ASSERT_TRUE(scene.Pipeline->Render(32, 24));
+    EXPECT_EQ(scene.Pipeline->GetLastDirectSurfaceLightByRays(), split != 0);
+    vtkDataArray* irradiance = scene.Pipeline->GetLighting()->GetFieldData()->GetArray(
+      vtkRefractaLightingVolume::SurfaceIrradianceName());
+    const std::vector<double>& areas = scene.Surfaces->GetTexelAreas();
+    const std::vector<int>& info = scene.Surfaces->GetTriangleInfo();
+    for (size_t k = 0; 4 * k < info.size(); ++k)
+    {
+      if (info[4 * k + 3] != 0)
+      {
+        continue; // glass texels hold nothing
+      }
+      for (int t = 0; t < info[4 * k + 1] * info[4 * k + 1]; ++t)
+      {
+        flux[split] += irradiance->GetComponent(info[4 * k] + t, 0) * areas[info[4 * k] + t];
+      }
+    }
+  }
+  std::cout << "floor flux (red): photons " << flux[0] << ", rays + photons " << flux[1] << "\n";
+  EXPECT_GT(flux[0], 1.0);
+  EXPECT_NEAR(flux[1] / flux[0], 1.0, 0.01);
+}
+
+// Curved photons (a refracting medium) do not fly along the light rays: photons carry it all.
+TEST(PipelineSurfaces, RefractingMediumKeepsDirectLightWithThePhotons)
+{
+  vtkNew<vtkRefractaRenderPipeline> pipeline;
+  pipeline->SetMedium(GlassBall());
+  vtkNew<vtkLight> sun;
+  sun->SetLightTypeToSceneLight();
+  sun->SetPositional(false);
+  sun->SetPosition(0.5, 3.0, 0.5);
+  sun->SetFocalPoint(0.5, 0.5, 0.5);
+  pipeline->AddLight(sun);
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0.5, 1.5, 3.0);
+  camera->SetFocalPoint(0.5, 0.3, 0.5);
+  pipeline->SetCamera(camera);
+  pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 14);
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-1, -0.2, -1);
+  plane->SetPoint1(2, -0.2, -1);
+  plane->SetPoint2(-1, -0.2, 2);
+  plane->Update();
+  vtkNew<vtkRefractaSurfaceSet> surfaces;
+  surfaces->AddSurface(plane->GetOutput());
+  pipeline->SetSurfaces(surfaces);
+  ASSERT_TRUE(pipeline->Render(32, 24));
+  EXPECT_TRUE(pipeline->GetPhotonTracer()->GetUsedCurvedRays());
+  EXPECT_FALSE(pipeline->GetPhotonTracer()->GetLastSkippedDirectSurfaceLight());
+  EXPECT_FALSE(pipeline->GetLastDirectSurfaceLightByRays());
 }
