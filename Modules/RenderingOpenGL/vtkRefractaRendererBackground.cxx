@@ -8,9 +8,11 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPropCollection.h"
 #include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkRenderer.h"
+#include "vtkSkybox.h"
 #include "vtkTexture.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -125,25 +127,69 @@ int vtkRefractaRendererBackground::ScreenBackgroundSource(vtkRenderer* renderer)
 }
 
 //------------------------------------------------------------------------------
-vtkImageData* vtkRefractaRendererBackground::EnvironmentImage(vtkRenderer* renderer)
+vtkSkybox* vtkRefractaRendererBackground::VisibleSkybox(vtkRenderer* renderer)
 {
-  vtkTexture* texture = renderer->GetEnvironmentTexture();
-  if (!renderer->GetUseImageBasedLighting() || !texture)
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
   {
-    return nullptr;
+    auto* sky = vtkSkybox::SafeDownCast(prop);
+    if (sky && sky->GetVisibility() && sky->GetTexture())
+    {
+      return sky;
+    }
   }
+  return nullptr;
+}
+
+//------------------------------------------------------------------------------
+vtkImageData* vtkRefractaRendererBackground::EquirectangularImage(
+  vtkTexture* texture, const char* what)
+{
   if (texture->GetCubeMap())
   {
     if (!this->CubeMapReported)
     {
-      vtkErrorMacro("The renderer's environment texture is a cube map; bent rays see only "
-                    "equirectangular (2D) environment textures, so they see the renderer's "
-                    "background instead.");
+      vtkErrorMacro(<< what
+                    << " is a cube map; bent rays see only equirectangular (2D) textures, so "
+                       "they see the renderer's background instead.");
       this->CubeMapReported = true;
     }
     return nullptr;
   }
   return TextureImage(texture);
+}
+
+//------------------------------------------------------------------------------
+vtkImageData* vtkRefractaRendererBackground::EnvironmentImage(
+  vtkRenderer* renderer, double up[3], double right[3])
+{
+  // What VTK draws behind everything first: a skybox (its Sphere projection is the
+  // equirectangular image about its floor plane's normal and FloorRight).
+  if (vtkSkybox* sky = VisibleSkybox(renderer))
+  {
+    if (sky->GetProjection() != vtkSkybox::Sphere)
+    {
+      return nullptr; // cube, floor and stereo projections are not converted
+    }
+    const float* plane = sky->GetFloorPlane();
+    const float* floorRight = sky->GetFloorRight();
+    for (int a = 0; a < 3; ++a)
+    {
+      up[a] = plane[a];
+      right[a] = floorRight[a];
+    }
+    return this->EquirectangularImage(sky->GetTexture(), "The skybox's texture");
+  }
+  vtkTexture* texture = renderer->GetEnvironmentTexture();
+  if (!renderer->GetUseImageBasedLighting() || !texture)
+  {
+    return nullptr;
+  }
+  renderer->GetEnvironmentUp(up);
+  renderer->GetEnvironmentRight(right);
+  return this->EquirectangularImage(texture, "The renderer's environment texture");
 }
 
 //------------------------------------------------------------------------------
@@ -211,12 +257,13 @@ void vtkRefractaRendererBackground::Apply(
 {
   const double* colour = renderer->GetBackground();
   pass->SetBackgroundColor(colour[0], colour[1], colour[2]);
-  vtkImageData* environment = this->EnvironmentImage(renderer);
+  double up[3], right[3];
+  vtkImageData* environment = this->EnvironmentImage(renderer, up, right);
   if (environment)
   {
-    this->LastSource = ENVIRONMENT_TEXTURE;
-    pass->SetEnvironmentUp(renderer->GetEnvironmentUp());
-    pass->SetEnvironmentRight(renderer->GetEnvironmentRight());
+    this->LastSource = VisibleSkybox(renderer) ? SKYBOX : ENVIRONMENT_TEXTURE;
+    pass->SetEnvironmentUp(up);
+    pass->SetEnvironmentRight(right);
   }
   else if (this->ScreenBackgroundSource(renderer) != SOLID_COLOR)
   {

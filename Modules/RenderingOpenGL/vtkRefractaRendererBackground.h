@@ -5,6 +5,11 @@
  *
  * vtkRefractiveVolumeMapper hands the renderer's background to its view pass through this class
  * (the one place that converts it). The rules, first match wins:
+ * 0. A visible vtkSkybox with a texture (what VTK draws behind everything): with the Sphere
+ *    projection and a 2D texture with an input image, that image, equirectangular about the
+ *    skybox's floor plane normal (up) and FloorRight, as VTK's skybox shader reads it; with
+ *    another projection (cube, floor, stereo) or a cube map, nothing (rule 2-4; a cube map is
+ *    reported once).
  * 1. UseImageBasedLighting on and an EnvironmentTexture that is a 2D (not cube-map) texture with
  *    an input image: that image, equirectangular, oriented by the renderer's EnvironmentUp and
  *    EnvironmentRight (the vtkRefractaEnvironmentMap convention, VTK's own).
@@ -27,10 +32,10 @@
  * Colours and texels are used as stored (unsigned char / 255, floating types as they are): the
  * framebuffer's values, so that glass in front of the background shows the colour VTK drew.
  * A cube-map environment texture is not converted: an error is reported once, and rule 2-4
- * applies. The rules read the renderer's settings, not a vtkSkybox (which is how VTK draws an
- * environment): with image-based lighting and no skybox VTK draws the rule 2-4 background
- * around the medium while bent rays see the environment; a skybox is seen through the medium
- * only when its texture is also the renderer's EnvironmentTexture.
+ * applies. With image-based lighting and no skybox, VTK draws the rule 2-4 background around the
+ * medium while bent rays see the environment (rule 1: the environment that lights the scene, see
+ * vtkRefractaRenderPipeline::BackgroundIlluminates, is the one they see). A skybox's
+ * GammaCorrect is not applied.
  */
 #ifndef vtkRefractaRendererBackground_h
 #define vtkRefractaRendererBackground_h
@@ -45,6 +50,7 @@ class vtkCamera;
 class vtkImageData;
 class vtkRenderer;
 class vtkRefractaViewPass;
+class vtkSkybox;
 class vtkTexture;
 
 class REFRACTARENDERINGOPENGL_EXPORT vtkRefractaRendererBackground : public vtkObject
@@ -60,7 +66,8 @@ public:
     SOLID_COLOR = 0,
     ENVIRONMENT_TEXTURE = 1,
     BACKGROUND_TEXTURE = 2,
-    GRADIENT = 3
+    GRADIENT = 3,
+    SKYBOX = 4
   };
 
   ///@{
@@ -103,7 +110,11 @@ private:
   vtkRefractaRendererBackground(const vtkRefractaRendererBackground&) = delete;
   void operator=(const vtkRefractaRendererBackground&) = delete;
 
-  vtkImageData* EnvironmentImage(vtkRenderer* renderer);
+  // Rules 0 and 1: the equirectangular image and its basis, or nullptr.
+  vtkImageData* EnvironmentImage(vtkRenderer* renderer, double up[3], double right[3]);
+  // The texture's image, or nullptr (and one error) for a cube map; `what` names it.
+  vtkImageData* EquirectangularImage(vtkTexture* texture, const char* what);
+  static vtkSkybox* VisibleSkybox(vtkRenderer* renderer);
   void BakeScreenBackground(vtkRenderer* renderer, vtkCamera* camera, double aspect);
   bool ScreenBackgroundIsStale(vtkRenderer* renderer, vtkCamera* camera, double aspect);
 

@@ -693,3 +693,44 @@ TEST(MapperSurfaces, ASkyboxIsTheBackgroundNotASurface)
   EXPECT_EQ(actors->GetNumberOfActors(), 1);
   EXPECT_EQ(actors->GetNumberOfForeignProps(), 0);
 }
+
+// A visible vtkSkybox (Sphere projection) is what VTK draws behind everything: its texture is
+// what bent rays see, about its floor plane's normal and FloorRight, before the renderer's
+// environment texture (before session 23 a skybox without image-based lighting was not seen).
+TEST(MapperSurfaces, BentRaysSeeTheSkybox)
+{
+  const double white[3] = { 1, 1, 1 }, black[3] = { 0, 0, 0 };
+  vtkSmartPointer<vtkImageData> skyImage =
+    vtkRefractaEnvironmentMap::MakeChecker(8, 4, white, black);
+  vtkSmartPointer<vtkImageData> other = vtkRefractaEnvironmentMap::MakeChecker(4, 2, black, white);
+  vtkNew<vtkTexture> skyTexture, environment;
+  skyTexture->SetInputData(skyImage);
+  environment->SetInputData(other);
+  vtkNew<vtkRenderer> renderer;
+  renderer->UseImageBasedLightingOn();
+  renderer->SetEnvironmentTexture(environment);
+  vtkNew<vtkSkybox> sky;
+  sky->SetTexture(skyTexture);
+  sky->SetProjectionToSphere();
+  sky->SetFloorPlane(0, 0, 1, 0);
+  sky->SetFloorRight(0, 1, 0);
+  renderer->AddActor(sky);
+  vtkNew<vtkCamera> camera;
+  vtkNew<vtkRefractaViewPass> pass;
+  vtkNew<vtkRefractaRendererBackground> background;
+  background->Apply(renderer, camera, pass);
+  EXPECT_EQ(background->GetLastSource(), vtkRefractaRendererBackground::SKYBOX);
+  EXPECT_EQ(pass->GetEnvironmentMap(), skyImage.Get());
+  EXPECT_EQ(pass->GetEnvironmentUp()[2], 1.0);
+  EXPECT_EQ(pass->GetEnvironmentRight()[1], 1.0);
+  // Hidden, or with a projection that is not converted: the environment texture again.
+  sky->VisibilityOff();
+  background->Apply(renderer, camera, pass);
+  EXPECT_EQ(background->GetLastSource(), vtkRefractaRendererBackground::ENVIRONMENT_TEXTURE);
+  EXPECT_EQ(pass->GetEnvironmentMap(), other.Get());
+  sky->VisibilityOn();
+  sky->SetProjectionToCube();
+  background->Apply(renderer, camera, pass);
+  EXPECT_NE(background->GetLastSource(), vtkRefractaRendererBackground::SKYBOX);
+  EXPECT_NE(pass->GetEnvironmentMap(), skyImage.Get());
+}
