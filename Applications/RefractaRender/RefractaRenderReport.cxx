@@ -6,6 +6,7 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkLatticeBoltzmannSolver.h"
+#include "vtkLightRaySingleScattering.h"
 #include "vtkOpenCLContext.h"
 #include "vtkOpenCLKernelProfile.h"
 #include "vtkOpenCLMemoryPlan.h"
@@ -174,6 +175,17 @@ json LightPassReport(vtkRefractaRenderPipeline* pipeline, int lightCount)
   report["photon_seconds"] = pipeline->GetStageSeconds(vtkRefractaRenderPipeline::LIGHTING);
   report["volume_caustic"] = { { "subdivision", tracer->GetLastVolumeCausticSubdivision() },
     { "bricks", tracer->GetLastNumberOfVolumeCausticBricks() } };
+  if (tracer->GetUsedSurfaces())
+  {
+    // Where the lit surfaces' direct light came from (photons where they curve or the sky
+    // lights the scene, whatever was asked).
+    report["direct_surface_light"] = {
+      { "method", pipeline->GetLastDirectSurfaceLightByRays() ? "light_rays" : "photons" },
+      { "seconds",
+        pipeline->GetLastDirectSurfaceLightByRays() ? pipeline->GetLightRays()->GetSurfaceSeconds()
+                                                    : 0.0 }
+    };
+  }
   if (plan->IsEnabled(vtkEffectPlan::MULTIPLE_SCATTERING))
   {
     // The plan's method, the orders the photons carried (0 none, k, -1 every order) and, where
@@ -260,6 +272,15 @@ void PrintLightPass(const json& light)
             << (light.value("curved_rays", false) ? "curved" : "straight") << " paths, "
             << light.value("TotalSteps", 0.0) << " steps, " << light.value("photon_seconds", 0.0)
             << " s\n";
+  if (light.contains("direct_surface_light"))
+  {
+    const json& direct = light["direct_surface_light"];
+    std::cout << "  direct    surfaces' direct light by "
+              << (direct["method"] == "light_rays" ? "light rays (" +
+                       std::to_string(direct["seconds"].get<double>()) + " s), photons for the rest"
+                                                   : std::string("photons"))
+              << "\n";
+  }
   const json volumeCaustic = light.value("volume_caustic", json::object());
   if (volumeCaustic.value("subdivision", 1) > 1)
   {

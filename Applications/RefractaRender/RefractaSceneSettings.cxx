@@ -33,6 +33,9 @@ const ChoiceTable<int> SingleScatteringMethods = { { "auto", vtkEffectPlan::AUTO
   { "photons", vtkEffectPlan::PHOTONS }, { "light_rays", vtkEffectPlan::LIGHT_RAYS },
   { "interpolated", vtkEffectPlan::INTERPOLATED } };
 
+// quality.direct_surface_light: vtkRefractaRenderPipeline::DirectSurfaceLightByRays.
+const ChoiceTable<int> DirectSurfaceLights = { { "light_rays", 1 }, { "photons", 0 } };
+
 const ChoiceTable<int> EffectModes = { { "auto", vtkEffectPlan::AUTOMATIC },
   { "on", vtkEffectPlan::FORCE_ON }, { "off", vtkEffectPlan::FORCE_OFF } };
 
@@ -78,7 +81,7 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
       "photon_min_step", "octree_tolerance", "photon_smoothing", "multiple_scattering",
       "multiple_scattering_tolerance", "multiple_scattering_block_size",
       "multiple_scattering_method", "scattering_orders", "tolerance", "single_scattering_method",
-      "volume_caustic", "glass_supersampling", "glass_grazing_cosine" });
+      "volume_caustic", "glass_supersampling", "glass_grazing_cosine", "direct_surface_light" });
   int preset;
   std::tie(s.Preset, preset) = Choice(quality, "preset", q, "none", Presets);
   const bool hasPreset = preset != NoPreset;
@@ -121,6 +124,11 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
   std::tie(s.SingleScatteringMethodName, method) =
     Choice(quality, "single_scattering_method", q, "auto", SingleScatteringMethods);
   pipeline->SetSingleScatteringMethod(method);
+  // The lit surfaces' direct light: light rays (noise-free, where photons fly straight) or photons.
+  int rays;
+  std::tie(s.DirectSurfaceLightName, rays) =
+    Choice(quality, "direct_surface_light", q, "light_rays", DirectSurfaceLights);
+  pipeline->SetDirectSurfaceLightByRays(rays != 0);
   // The relative image change an effect may cause and still be skipped.
   plan->SetTolerance(
     Number(quality, "tolerance", q, hasPreset ? plan->GetTolerance() : 0.01, 0.0, 1.0));
@@ -210,6 +218,7 @@ json QualityReport(const RenderSettings& s)
     { "glass_grazing_cosine", s.GlassGrazingCosine },
     { "multiple_scattering", s.MultipleScattering },
     { "single_scattering_method", s.SingleScatteringMethodName },
+    { "direct_surface_light", s.DirectSurfaceLightName },
     { "multiple_scattering_tolerance", s.LatticeTolerance },
     { "multiple_scattering_block_size", s.LatticeBlockSize },
     { "multiple_scattering_method", s.MultipleScatteringMethodName },

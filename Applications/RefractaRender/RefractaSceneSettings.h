@@ -27,6 +27,7 @@ struct RenderSettings
   double ViewStep = 1.0;
   std::string RayModeName;
   std::string SingleScatteringMethodName; // quality.single_scattering_method
+  std::string DirectSurfaceLightName;     // quality.direct_surface_light
   int RayMode = 0;
   double TransmittanceCutoff = 1e-4;
   double PhotonMinStep = 1.0;
