@@ -33,7 +33,8 @@
  * framebuffer's values, so that glass in front of the background shows the colour VTK drew.
  * A cube-map environment texture is not converted: an error is reported once, and rule 2-4
  * applies. With image-based lighting and no skybox, VTK draws the rule 2-4 background around the
- * medium while bent rays see the environment (rule 1: the environment that lights the scene, see
+ * medium while bent rays see the environment, as VTK's PBR actors reflect it in front of a plain
+ * background (rule 1: the environment that lights the scene, see
  * vtkRefractaRenderPipeline::BackgroundIlluminates, is the one they see). A skybox's
  * GammaCorrect is not applied.
  */
