@@ -318,13 +318,19 @@ __kernel void light_rays_surface_points(LR_SCENE_ARGS, __global const float4* po
   {
     return;
   }
-  const lr_scene s = LR_MAKE_SCENE();
   float3 e = (float3)(0.0f);
+  const float3 normal = normals[p].xyz;
+  if (all(normal == (float3)(0.0f)))
+  {
+    irradianceOut[p] = (float4)(e, 0.0f); // glass or a degenerate triangle: nothing to light
+    return;
+  }
+  const lr_scene s = LR_MAKE_SCENE();
   for (int l = 0; l < lightCount; ++l)
   {
     float3 travel;
     e += lr_light_fluence(
-      &s, lights + LR_LIGHT_FLOAT4S * l, points[p].xyz, minDistance, &travel, normals[p].xyz);
+      &s, lights + LR_LIGHT_FLOAT4S * l, points[p].xyz, minDistance, &travel, normal);
   }
   irradianceOut[p] = (float4)(e, 0.0f);
 }

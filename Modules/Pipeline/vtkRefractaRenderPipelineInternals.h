@@ -25,6 +25,7 @@
 #include "vtkTimeStamp.h"
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -117,6 +118,27 @@ struct vtkRefractaRenderPipeline::Internals
   bool UpdateSceneSurfaces(bool withInterfaces);
 
   // Surfaces with something to hit (the plan depends on their presence only).
+  // Whether `matrix` (nullptr: identity) is a rotation and translation (1e-6 relative).
+  static bool IsRigid(vtkMatrix4x4* matrix)
+  {
+    for (int r = 0; matrix && r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        double dot = 0;
+        for (int k = 0; k < 3; ++k)
+        {
+          dot += matrix->GetElement(k, r) * matrix->GetElement(k, c);
+        }
+        if (std::abs(dot - (r == c ? 1.0 : 0.0)) > 1e-6)
+        {
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
   static int CountSurfaces(vtkRefractaSurfaceSet* set)
   {
     return set ? set->GetNumberOfNonEmptySurfaces() : 0;

@@ -43,9 +43,12 @@ bool vtkRefractaRenderPipeline::AddDirectSurfaceLight(vtkPhotonTracer* tracer)
   Internals& in = *this->Internal;
   vtkLightRaySingleScattering* rays = in.LightRays;
   this->ConfigureLightRays(tracer);
-  rays->SetAbortExecute(0);
+  rays->SetAbortExecute(in.Abort ? 1 : 0);
   std::vector<float> direct;
-  if (!rays->ComputeSurfaceIrradiance(in.Planned, direct))
+  in.Running = rays; // AbortRender() reaches it
+  const bool computed = rays->ComputeSurfaceIrradiance(in.Planned, direct);
+  in.Running = nullptr;
+  if (!computed)
   {
     this->LastRenderAborted = in.Abort || rays->GetAbortExecute();
     rays->SetAbortExecute(0);
@@ -276,7 +279,10 @@ bool vtkRefractaRenderPipeline::RunLighting()
     in.Schedule->GetSolver()->SetKeepDeviceCopies(this->DeviceHandOff);
     tracer->SetLights(in.DataLights);
     tracer->SetSurfaces(surfaces ? in.SceneSurfaces : nullptr);
-    tracer->SetSkipDirectSurfaceLight(this->DirectSurfaceLightByRays);
+    // The split's halves share their units only under a rigid placement, the passes' documented
+    // frame (a volume scaled by s put them s^2 apart).
+    tracer->SetSkipDirectSurfaceLight(
+      this->DirectSurfaceLightByRays && Internals::IsRigid(in.PropMatrix));
     tracer->SetMediumToWorld(in.PropMatrix);
     // The background the view pass shows is the one that lights the scene.
     tracer->SetBackgroundIlluminates(this->BackgroundIlluminates);
@@ -353,7 +359,10 @@ bool vtkRefractaRenderPipeline::RunLighting()
     }
     in.Lighting = vtkSmartPointer<vtkImageData>::New();
     in.Lighting->ShallowCopy(output);
-    if (tracer->GetLastSkippedDirectSurfaceLight() && !this->AddDirectSurfaceLight(tracer))
+    // Only when the photons lit surfaces in this stage: the flag is the tracer's last run's, and
+    // the light rays' stage (no lit surfaces) does not run the tracer.
+    if (surfaces && tracer->GetLastSkippedDirectSurfaceLight() &&
+      !this->AddDirectSurfaceLight(tracer))
     {
       in.Lighting = nullptr;
       return false;

@@ -238,12 +238,19 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   this->LastCausticSubdivision = run.Caustic;
   options << " -DREFRACTA_CAUSTIC_SUBDIVISION=" << run.Caustic;
   options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0);
-  // Direct surface light left to straight light rays: only where photons fly straight and every
-  // light is one the rays carry (not the sky).
+  // Direct surface light left to straight light rays: only where they give what the photons
+  // would: photons that fly straight, through voxels walked whole (node-plane cuts change the
+  // optical depth the rays do not cut), from delta lights the rays sample exactly (not the sky,
+  // whose photons the rays do not carry, nor extended lights, whose penumbra a fixed quadrature
+  // would band), onto Lambertian triangles.
   const bool sky =
     std::any_of(lights.begin(), lights.end(), [](const LightSetup& l) { return l.Environment; });
+  const bool extended =
+    std::any_of(lights.begin(), lights.end(), [](const LightSetup& l) { return l.Extent > 0.0; });
+  const bool lambertian = run.Surfaces &&
+    run.Surfaces->GetNumberOfTriangles() > run.Surfaces->GetNumberOfDielectricTriangles();
   this->LastSkippedDirectSurfaceLight =
-    this->SkipDirectSurfaceLight && run.Surfaces && !m.Curved && !sky;
+    this->SkipDirectSurfaceLight && lambertian && !m.Curved && !m.NodeCuts && !sky && !extended;
   options << " -DREFRACTA_SKIP_DIRECT=" << (this->LastSkippedDirectSurfaceLight ? 1 : 0);
   this->UsesVolumeCaustic(run); // a run-time choice of the kernels (their last arguments)
   if (run.SplitOrders > 0)
