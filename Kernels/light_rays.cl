@@ -22,6 +22,9 @@
 #define LR_MACRO 8 /* voxels per macro-cell edge: empty-space skipping */
 #define LR_DEEP 40.0f /* optical depth past which a ray is dark (e^-40) */
 #define LR_GOLDEN_ANGLE 2.39996323f
+#ifndef LR_NODE_CUTS
+#define LR_NODE_CUTS 0 /* 1: pieces cut at node planes (set from the medium, as for photons) */
+#endif
 
 typedef struct
 {
@@ -39,6 +42,9 @@ typedef struct
 
 // Optical depth (RGB) along o + t d, t in [0, tMax], d unit: voxel piece by voxel piece, whole
 // macro cells at a time where their largest sigma_t (over the cell grown by one voxel) is 0.
+// With LR_NODE_CUTS (where sigma_t bends steeply at nodes, as the photon walk's
+// REFRACTA_NODE_CUTS) the pieces are cut at the node planes too, half voxels: the photon pass's
+// optical depth, piece for piece.
 inline float3 lr_optical_depth(const lr_scene* s, float3 o, float3 d, float tMax)
 {
   float t0, t1;
@@ -52,7 +58,7 @@ inline float3 lr_optical_depth(const lr_scene* s, float3 o, float3 d, float tMax
   const float nudge = 1e-4f * h;
   const float3 inv = (float3)(1.0f) / d;
   const int3 dims = s->dims.xyz;
-  const int cap = 4 * (dims.x + dims.y + dims.z) + 16; // never a hang
+  const int cap = (LR_NODE_CUTS ? 8 : 4) * (dims.x + dims.y + dims.z) + 16; // never a hang
   float t = t0;
   for (int step = 0; step < cap && t < t1; ++step)
   {
@@ -61,10 +67,19 @@ inline float3 lr_optical_depth(const lr_scene* s, float3 o, float3 d, float tMax
     const int3 mv = v / LR_MACRO;
     const float m =
       s->macro[mv.x + s->macroDims.x * (mv.y + s->macroDims.y * (size_t)mv.z)];
+#if LR_NODE_CUTS
+    // Half-voxel cells (node planes lie at the voxels' middles), 2 per voxel along an axis.
+    const int3 halves = clamp(convert_int3(floor(2.0f * u)), (int3)(0), 2 * dims - 1);
+    const int3 cellLo = m > 0.0f ? halves : 2 * mv * LR_MACRO;
+    const int3 cellHi = m > 0.0f ? halves + 1 : 2 * min((mv + 1) * LR_MACRO, dims);
+    const float3 bound = s->lo +
+      convert_float3(select(cellLo, cellHi, d > (float3)(0.0f))) * (0.5f * s->spacing.xyz);
+#else
     const int3 cellLo = m > 0.0f ? v : mv * LR_MACRO;
     const int3 cellHi = m > 0.0f ? v + 1 : min((mv + 1) * LR_MACRO, dims);
     const float3 bound = s->lo +
       convert_float3(select(cellLo, cellHi, d > (float3)(0.0f))) * s->spacing.xyz;
+#endif
     const float3 te = select((bound - o) * inv, (float3)(INFINITY), d == (float3)(0.0f));
     float exitT = fmin(fmin(te.x, te.y), te.z);
     exitT = fmin(fmax(exitT, t + nudge), t1);

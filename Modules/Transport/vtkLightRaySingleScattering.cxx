@@ -435,8 +435,10 @@ bool vtkLightRaySingleScattering::Upload(Internals& run)
     return false;
   }
   run.Context = ctx;
-  run.Program =
-    ctx->GetProgram({ "refracta_common.cl", "refracta_surfaces.cl", "light_rays.cl" }, "", this);
+  // Node-plane cuts where the photon pass makes them (LoadMedium decides for both): the same
+  // optical depths.
+  run.Program = ctx->GetProgram({ "refracta_common.cl", "refracta_surfaces.cl", "light_rays.cl" },
+    run.M.NodeCuts ? "-DLR_NODE_CUTS=1" : "", this);
   if (!run.Program)
   {
     return false;

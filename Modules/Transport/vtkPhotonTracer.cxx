@@ -239,8 +239,8 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   options << " -DREFRACTA_CAUSTIC_SUBDIVISION=" << run.Caustic;
   options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0);
   // Direct surface light left to straight light rays: only where they give what the photons
-  // would: photons that fly straight, through voxels walked whole (node-plane cuts change the
-  // optical depth the rays do not cut), from delta lights the rays sample exactly (not the sky,
+  // would: photons that fly straight (the rays cut voxels at node planes as the photons do,
+  // LR_NODE_CUTS), from delta lights the rays sample exactly (not the sky,
   // whose photons the rays do not carry, nor extended lights, whose penumbra a fixed quadrature
   // would band), onto Lambertian triangles.
   const bool sky =
@@ -250,7 +250,7 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   const bool lambertian = run.Surfaces &&
     run.Surfaces->GetNumberOfTriangles() > run.Surfaces->GetNumberOfDielectricTriangles();
   this->LastSkippedDirectSurfaceLight =
-    this->SkipDirectSurfaceLight && lambertian && !m.Curved && !m.NodeCuts && !sky && !extended;
+    this->SkipDirectSurfaceLight && lambertian && !m.Curved && !sky && !extended;
   options << " -DREFRACTA_SKIP_DIRECT=" << (this->LastSkippedDirectSurfaceLight ? 1 : 0);
   this->UsesVolumeCaustic(run); // a run-time choice of the kernels (their last arguments)
   if (run.SplitOrders > 0)

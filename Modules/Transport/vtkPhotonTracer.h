@@ -214,11 +214,10 @@ public:
    * so that a caller adds that part without noise from straight light rays
    * (vtkLightRaySingleScattering::ComputeSurfaceIrradiance; vtkRefractaRenderPipeline does).
    * It takes effect only where those rays give the same light: photons that fly straight (no
-   * refraction in the medium) through whole voxels (no node-plane cuts, GetUsedNodePlaneCuts()),
-   * delta lights only (no environment light, which light rays do not carry, and LightRadius and
-   * DirectionalLightAngularRadius 0: a fixed quadrature would band their penumbrae), and
-   * Lambertian triangles to light; GetLastSkippedDirectSurfaceLight() says whether the last run
-   * left it out.
+   * refraction in the medium), delta lights only (no environment light, which light rays do not
+   * carry, and LightRadius and DirectionalLightAngularRadius 0: a fixed quadrature would band their
+   * penumbrae), and Lambertian triangles to light; GetLastSkippedDirectSurfaceLight() says whether
+   * the last run left it out.
    */
   vtkSetMacro(SkipDirectSurfaceLight, bool);
   vtkGetMacro(SkipDirectSurfaceLight, bool);
