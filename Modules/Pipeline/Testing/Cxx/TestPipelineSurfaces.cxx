@@ -342,31 +342,13 @@ TEST(PipelineSurfaces, DirectLightByRaysKeepsTheFloorsFluxUnderGlass)
 // Curved photons (a refracting medium) do not fly along the light rays: photons carry it all.
 TEST(PipelineSurfaces, RefractingMediumKeepsDirectLightWithThePhotons)
 {
-  vtkNew<vtkRefractaRenderPipeline> pipeline;
-  pipeline->SetMedium(GlassBall());
-  vtkNew<vtkLight> sun;
-  sun->SetLightTypeToSceneLight();
-  sun->SetPositional(false);
-  sun->SetPosition(0.5, 3.0, 0.5);
-  sun->SetFocalPoint(0.5, 0.5, 0.5);
-  pipeline->AddLight(sun);
-  vtkNew<vtkCamera> camera;
-  camera->SetPosition(0.5, 1.5, 3.0);
-  camera->SetFocalPoint(0.5, 0.3, 0.5);
-  pipeline->SetCamera(camera);
-  pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 14);
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(-1, -0.2, -1);
-  plane->SetPoint1(2, -0.2, -1);
-  plane->SetPoint2(-1, -0.2, 2);
-  plane->Update();
-  vtkNew<vtkRefractaSurfaceSet> surfaces;
-  surfaces->AddSurface(plane->GetOutput());
-  pipeline->SetSurfaces(surfaces);
-  ASSERT_TRUE(pipeline->Render(32, 24));
-  EXPECT_TRUE(pipeline->GetPhotonTracer()->GetUsedCurvedRays());
-  EXPECT_FALSE(pipeline->GetPhotonTracer()->GetLastSkippedDirectSurfaceLight());
-  EXPECT_FALSE(pipeline->GetLastDirectSurfaceLightByRays());
+  ShadowScene scene;
+  scene.Pipeline->SetMedium(GlassBall());
+  scene.Pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 14);
+  ASSERT_TRUE(scene.Pipeline->Render(32, 24));
+  EXPECT_TRUE(scene.Pipeline->GetPhotonTracer()->GetUsedCurvedRays());
+  EXPECT_FALSE(scene.Pipeline->GetPhotonTracer()->GetLastSkippedDirectSurfaceLight());
+  EXPECT_FALSE(scene.Pipeline->GetLastDirectSurfaceLightByRays());
 }
 
 // Where the split would not give the photons' light it is not made: a volume placed with a
