@@ -299,36 +299,18 @@ bool vtkLightRaySingleScattering::SetUpLights(Internals& run)
     {
       continue;
     }
+    LocalLight local;
     std::string lightError;
-    if (!vtkMediumValidator::CheckLight(light, index, lightError))
+    if (!ReadLocalLight(light, index, grid, local, lightError))
     {
       vtkErrorMacro(<< lightError);
       return false;
     }
-    double pw[3], fw[3], colour[3];
-    light->GetTransformedPosition(pw);
-    light->GetTransformedFocalPoint(fw);
-    light->GetDiffuseColor(colour);
-    const double intensity = light->GetIntensity();
-    const bool positional = light->GetPositional();
-    const bool spot = positional && light->GetConeAngle() < 90.0;
-    double p[3], axisWorld[3] = { fw[0] - pw[0], fw[1] - pw[1], fw[2] - pw[2] }, axis[3];
-    grid->WorldToLocalPoint(pw, p);
-    grid->WorldToLocalVector(axisWorld, axis);
-    if ((!positional || spot) && !Normalize(axis))
-    {
-      vtkErrorMacro("Light " << index
-                             << " is directional or a spot but its position equals its focal "
-                                "point; they must differ to give a direction.");
-      return false;
-    }
-    if (spot && !(light->GetConeAngle() > 0.0))
-    {
-      vtkErrorMacro("Light " << index << " has cone angle " << light->GetConeAngle()
-                             << "; a spot needs (0, 90) degrees, a point light >= 90.");
-      return false;
-    }
-    if (intensity * std::max({ colour[0], colour[1], colour[2] }) <= 0.0)
+    const double* p = local.Position;
+    const double* axis = local.Axis;
+    const double* colour = local.Colour; // x intensity
+    const bool positional = local.Positional, spot = local.Spot;
+    if (std::max({ colour[0], colour[1], colour[2] }) <= 0.0)
     {
       continue;
     }
@@ -362,8 +344,8 @@ bool vtkLightRaySingleScattering::SetUpLights(Internals& run)
     const double half = vtkMath::RadiansFromDegrees(light->GetConeAngle());
     run.Lights.push_back(Float4(p, positional ? 1.0 : 0.0));
     run.Lights.push_back(Float4(axis, spot ? std::cos(half) : -2.0));
-    run.Lights.push_back(Float4(colour[0] * intensity, colour[1] * intensity, colour[2] * intensity,
-      spot ? light->GetExponent() : 0.0));
+    run.Lights.push_back(
+      Float4(colour[0], colour[1], colour[2], spot ? light->GetExponent() : 0.0));
     run.Lights.push_back(Float4(extent, extent > 0 ? this->LightQuadrature : 1, 0, 0));
     ++run.LightCount;
   }

@@ -22,6 +22,8 @@
 #include <vector>
 
 class vtkImageData;
+class vtkLight;
+class vtkRefractaGridFrame;
 class vtkRefractaSurfaceSet;
 
 namespace vtkPhotonTracerDetail
@@ -247,6 +249,25 @@ const std::vector<float>& DeviceChannels(
 // attenuate (sigma_t > 0) and scatter (sigma_t albedo > 0): the kernel variant must include them
 // even where the grid does neither (vtkPhotonTracerSurfaces.cxx).
 void BodyMedia(vtkRefractaSurfaceSet* set, bool& attenuates, bool& scatters);
+
+// A vtkLight in the grid-local frame as every light pass reads it (the one conversion):
+// colour x intensity, position, the unit axis from position to focal point (directional and spot
+// lights; 0 for point lights), whether it is positional and a spot (positional, cone < 90).
+struct LocalLight
+{
+  bool Positional = false;
+  bool Spot = false;
+  double Position[3] = { 0, 0, 0 };
+  double Axis[3] = { 0, 0, 0 };
+  double Colour[3] = { 0, 0, 0 };
+};
+
+// Reads `light` (number `index` of its collection) through `grid` (vtkPhotonTracer.cxx's light
+// conventions, Documentation/Physics.md "Lights"); false with `error` for an invalid light
+// (vtkMediumValidator::CheckLight; a directional or spot light whose position equals its focal
+// point; a spot cone outside (0, 90) degrees).
+bool ReadLocalLight(
+  vtkLight* light, int index, vtkRefractaGridFrame* grid, LocalLight& out, std::string& error);
 
 bool Run1D(vtkOpenCLContext* ctx, cl_kernel kernel, size_t count, const char* label, vtkObject* r);
 

@@ -31,6 +31,46 @@ void BoxCorner(int corner, const double lo[3], const double hi[3], double q[3])
 
 using namespace vtkPhotonTracerDetail;
 
+namespace vtkPhotonTracerDetail
+{
+bool ReadLocalLight(
+  vtkLight* light, int index, vtkRefractaGridFrame* grid, LocalLight& out, std::string& error)
+{
+  if (!vtkMediumValidator::CheckLight(light, index, error))
+  {
+    return false;
+  }
+  double pw[3], fw[3], colour[3];
+  light->GetTransformedPosition(pw);
+  light->GetTransformedFocalPoint(fw);
+  light->GetDiffuseColor(colour);
+  const double intensity = light->GetIntensity();
+  out.Positional = light->GetPositional() != 0;
+  out.Spot = out.Positional && light->GetConeAngle() < 90.0;
+  const double axisWorld[3] = { fw[0] - pw[0], fw[1] - pw[1], fw[2] - pw[2] };
+  grid->WorldToLocalPoint(pw, out.Position);
+  grid->WorldToLocalVector(axisWorld, out.Axis);
+  for (int c = 0; c < 3; ++c)
+  {
+    out.Colour[c] = colour[c] * intensity;
+  }
+  std::ostringstream why;
+  if ((!out.Positional || out.Spot) && !Normalize(out.Axis))
+  {
+    why << "Light " << index
+        << " is directional or a spot but its position equals its focal point; they must differ "
+           "to give a direction.";
+  }
+  else if (out.Spot && !(light->GetConeAngle() > 0.0))
+  {
+    why << "Light " << index << " has cone angle " << light->GetConeAngle()
+        << "; a spot needs (0, 90) degrees, a point light >= 90.";
+  }
+  error = why.str();
+  return error.empty();
+}
+}
+
 //------------------------------------------------------------------------------
 // Lights, converted to the grid-local frame in double precision.
 bool vtkPhotonTracer::SetUpLights(Internals& run)
@@ -54,8 +94,6 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
   const double* emitHi = run.EmitHi;
   vtkNew<vtkRefractaGridFrame> grid;
   grid->SetImage(input);
-  auto toLocalPoint = [&](const double p[3], double out[3]) { grid->WorldToLocalPoint(p, out); };
-  auto toLocalVector = [&](const double d[3], double out[3]) { grid->WorldToLocalVector(d, out); };
   const double boxCentre[3] = { 0.5 * (emitLo[0] + emitHi[0]), 0.5 * (emitLo[1] + emitHi[1]),
     0.5 * (emitLo[2] + emitHi[2]) };
   const double halfDiag[3] = { 0.5 * (emitHi[0] - emitLo[0]), 0.5 * (emitHi[1] - emitLo[1]),
@@ -72,42 +110,19 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
     {
       continue;
     }
+    LocalLight local;
     std::string lightError;
-    if (!vtkMediumValidator::CheckLight(light, lightIndex, lightError))
+    if (!ReadLocalLight(light, lightIndex, grid, local, lightError))
     {
       vtkErrorMacro(<< lightError);
       return false;
     }
-    double pw[3], fw[3], colour[3];
-    light->GetTransformedPosition(pw);
-    light->GetTransformedFocalPoint(fw);
-    light->GetDiffuseColor(colour);
-    const double intensity = light->GetIntensity();
     LightSetup ls;
-    ls.Positional = light->GetPositional();
-    for (int c = 0; c < 3; ++c)
-    {
-      ls.Colour[c] = colour[c] * intensity;
-    }
-    double p[3], f[3], axisWorld[3] = { fw[0] - pw[0], fw[1] - pw[1], fw[2] - pw[2] };
-    toLocalPoint(pw, p);
-    toLocalPoint(fw, f);
-    double axis[3];
-    toLocalVector(axisWorld, axis);
-    const bool isSpot = ls.Positional && light->GetConeAngle() < 90.0;
-    if ((!ls.Positional || isSpot) && !Normalize(axis))
-    {
-      vtkErrorMacro("Light " << lightIndex
-                             << " is directional or a spot but its position equals its focal "
-                                "point; they must differ to give a direction.");
-      return false;
-    }
-    if (isSpot && !(light->GetConeAngle() > 0.0))
-    {
-      vtkErrorMacro("Light " << lightIndex << " has cone angle " << light->GetConeAngle()
-                             << "; a spot needs (0, 90) degrees, a point light >= 90.");
-      return false;
-    }
+    ls.Positional = local.Positional;
+    std::copy(local.Colour, local.Colour + 3, ls.Colour);
+    const double* p = local.Position;
+    const double* axis = local.Axis;
+    const bool isSpot = local.Spot;
     const double maxColour = std::max({ ls.Colour[0], ls.Colour[1], ls.Colour[2] });
     if (!ls.Positional)
     {
