@@ -283,6 +283,9 @@ void vtkRefractaRendererBackground::Apply(
   }
   this->Handed = environment;
   pass->SetEnvironmentMap(environment);
+  this->LastShowsFramePixels = renderer->Transparent() ||
+    (camera->GetParallelProjection() &&
+      (this->LastSource == GRADIENT || this->LastSource == BACKGROUND_TEXTURE));
 }
 
 //------------------------------------------------------------------------------
@@ -291,5 +294,6 @@ void vtkRefractaRendererBackground::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "EquirectangularWidth: " << this->EquirectangularWidth << "\n";
   os << indent << "LastSource: " << this->LastSource << "\n";
+  os << indent << "LastShowsFramePixels: " << this->LastShowsFramePixels << "\n";
   os << indent << "EnvironmentMap: " << this->Handed.Get() << "\n";
 }

@@ -90,6 +90,16 @@ public:
   /// The rule of the last Apply() (see Source).
   vtkGetMacro(LastSource, int);
 
+  /**
+   * Whether, at the last Apply(), what shows behind the medium is the frame's own pixel rather
+   * than anything a direction can look up: in a transparent renderer (a layer above 0, over
+   * what the layers below drew; its own background is never drawn), and for a screen-space
+   * background (rules 2, 3) seen through a parallel camera, whose rays share one direction and
+   * would all see the viewport centre's colour. vtkRefractiveVolumeMapper then takes VTK's pixel,
+   * unbent (vtkRefractiveVolumeMapperCompositing.h).
+   */
+  vtkGetMacro(LastShowsFramePixels, bool);
+
   /// The environment image handed over by the last Apply() (nullptr for a solid colour).
   vtkImageData* GetEnvironmentMap();
 
@@ -106,6 +116,7 @@ protected:
 
   int EquirectangularWidth = 512;
   int LastSource = SOLID_COLOR;
+  bool LastShowsFramePixels = false;
 
 private:
   vtkRefractaRendererBackground(const vtkRefractaRendererBackground&) = delete;

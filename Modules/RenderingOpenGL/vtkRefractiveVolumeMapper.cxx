@@ -443,7 +443,7 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     return;
   }
   in.LastMessage.clear();
-  this->Composite(window, renderer, x0, y0, width, height);
+  this->Composite(window, x0, y0, width, height);
 }
 
 //------------------------------------------------------------------------------
@@ -505,7 +505,7 @@ void vtkRefractiveVolumeMapper::ClassifyPixels(vtkRenderer* renderer, vtkCamera*
 
 //------------------------------------------------------------------------------
 void vtkRefractiveVolumeMapper::Composite(
-  vtkOpenGLRenderWindow* window, vtkRenderer* renderer, int x0, int y0, int width, int height)
+  vtkOpenGLRenderWindow* window, int x0, int y0, int width, int height)
 {
   Internals& in = *this->Internal;
   vtkRefractaRenderPipeline* pipeline = in.Pipeline;
@@ -530,16 +530,9 @@ void vtkRefractiveVolumeMapper::Composite(
 
   // Per-channel compositing in two blended draws: first dst *= M (blend ZERO, SRC_COLOR), then
   // dst += A (blend ONE, ONE), M and A per pixel kind (vtkRefractiveVolumeMapperCompositing.h).
-  // Where the frame's pixel, not the renderer's background, is what shows behind the medium,
-  // VTK's own drawing of it is used, unbent: in a transparent renderer (a layer above 0: the
-  // layers below show through, its own background is never drawn), and for a screen-space
-  // background through a parallel camera (no direction of its own: every ray would see the
-  // viewport centre's colour).
-  const int source = in.Background->GetLastSource();
-  const bool unbentBackground = renderer->Transparent() ||
-    (renderer->GetActiveCamera()->GetParallelProjection() &&
-      (source == vtkRefractaRendererBackground::GRADIENT ||
-        source == vtkRefractaRendererBackground::BACKGROUND_TEXTURE));
+  // Where the frame's pixel is what shows behind the medium, VTK's own drawing of it is used,
+  // unbent (vtkRefractaRendererBackground::GetLastShowsFramePixels).
+  const bool unbentBackground = in.Background->GetLastShowsFramePixels();
   std::vector<float> multiply, add;
   vtkRefractiveVolumeMapperDetail::CompositingImages(image, transmittanceImage, backgroundPart,
     in.Kinds, static_cast<float>(exposureValue), unbentBackground ? &in.Depth : nullptr, multiply,

@@ -354,8 +354,7 @@ protected:
   void ClassifyPixels(vtkRenderer* renderer, vtkCamera* camera,
     const vtkRefractaViewPass::RayFrame& frame, vtkRefractaSurfaceSet* surfaces, int width,
     int height);
-  void Composite(
-    vtkOpenGLRenderWindow* window, vtkRenderer* renderer, int x0, int y0, int width, int height);
+  void Composite(vtkOpenGLRenderWindow* window, int x0, int y0, int width, int height);
   static std::vector<float> DepthToPathLengths(vtkRenderer* renderer, vtkCamera* camera,
     const vtkRefractaViewPass::RayFrame& frame, int width, int height,
     const std::vector<float>& depth);

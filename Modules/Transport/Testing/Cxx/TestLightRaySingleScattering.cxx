@@ -481,3 +481,41 @@ TEST(LightRays, BadInput)
     EXPECT_LT(sum, 1e-12);
   }
 }
+
+// ComputeSurfaceIrradiance refuses what it cannot light, with the reason: no medium, an invalid
+// one, no surfaces, a bad light; each leaves the result empty.
+TEST(LightRays, SurfaceIrradianceBadInput)
+{
+  auto medium =
+    MakeMedium(8, 8, 8, 1.0, [&](double, double, double) { return Homogeneous(0.1, 0.5); });
+  vtkNew<vtkPlaneSource> plane;
+  plane->Update();
+  vtkNew<vtkRefractaSurfaceSet> floor;
+  floor->AddSurface(plane->GetOutput());
+  vtkNew<vtkImageData> notAMedium;
+  notAMedium->SetDimensions(4, 4, 4);
+  struct Case
+  {
+    vtkImageData* Medium;
+    vtkRefractaSurfaceSet* Surfaces;
+    bool SpotWithoutAxis;
+    const char* Expected;
+  };
+  const Case cases[] = { { nullptr, floor, false, "none given" },
+    { notAMedium, floor, false, "valid Refracta medium" }, { medium, nullptr, false, "surfaces" },
+    { medium, floor, true, "focal" } };
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkLightRaySingleScattering> pass;
+    vtkNew<vtkTest::ErrorObserver> errors;
+    pass->AddObserver(vtkCommand::ErrorEvent, errors);
+    pass->AddLight(c.SpotWithoutAxis ? Positional({ 1, 1, 1 }, { 1, 1, 1 }, 30.0, 1.0, 1.0)
+                                     : Directional({ 0, 0, -1 }, { 0, 0, 0 }, 1.0));
+    pass->SetSurfaces(c.Surfaces);
+    std::vector<float> irradiance(3, 1.0f);
+    EXPECT_FALSE(pass->ComputeSurfaceIrradiance(c.Medium, irradiance)) << c.Expected;
+    EXPECT_NE(errors->GetErrorMessage().find(c.Expected), std::string::npos)
+      << errors->GetErrorMessage();
+    EXPECT_TRUE(irradiance.empty());
+  }
+}
