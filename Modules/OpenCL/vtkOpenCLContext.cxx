@@ -166,6 +166,10 @@ std::string vtkOpenCLContext::ResolveCacheDirectory() const
       return dir;
     }
   }
+  if (this->GetDriverCachesPrograms())
+  {
+    return std::string();
+  }
   if (const char* xdg = std::getenv("XDG_CACHE_HOME"))
   {
     if (*xdg)
@@ -181,6 +185,31 @@ std::string vtkOpenCLContext::ResolveCacheDirectory() const
     }
   }
   return std::string();
+}
+
+//------------------------------------------------------------------------------
+bool vtkOpenCLContext::GetDriverCachesPrograms() const
+{
+  if (this->PlatformName.find("Portable Computing Language") == std::string::npos)
+  {
+    return false;
+  }
+  // PoCL's kernel cache is on unless POCL_KERNEL_CACHE=0, and lives in POCL_CACHE_DIR, else
+  // $XDG_CACHE_HOME/pocl, else ~/.cache/pocl: with none of them set it has nowhere to write.
+  const char* switchVariable = std::getenv("POCL_KERNEL_CACHE");
+  if (switchVariable && std::string(switchVariable) == "0")
+  {
+    return false;
+  }
+  for (const char* variable : { "POCL_CACHE_DIR", "XDG_CACHE_HOME", "HOME" })
+  {
+    const char* value = std::getenv(variable);
+    if (value && *value)
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 //------------------------------------------------------------------------------
@@ -713,6 +742,8 @@ void vtkOpenCLContext::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GlobalMemoryMiB: " << this->GetGlobalMemoryMiB() << "\n";
   os << indent << "BinaryCacheDirectory: " << this->ResolveCacheDirectory()
      << (this->UseBinaryCache ? "" : " (disabled)") << "\n";
+  os << indent << "DriverCachesPrograms: " << (this->GetDriverCachesPrograms() ? "yes" : "no")
+     << "\n";
   os << indent << "ProfileKernels: " << (this->ProfileKernels ? "on" : "off") << "\n";
   os << indent << "StaggerBuffers: " << (this->StaggerBuffers ? "on" : "off") << "\n";
   os << indent << "NumberOfSourceBuilds: " << this->NumberOfSourceBuilds << "\n";

@@ -1,8 +1,9 @@
 // Tests of vtkOpenCLContext on the machine's OpenCL device (PoCL's CPU device in CI): an
 // embedded kernel runs and its result is checked; a broken kernel yields the build log and the
 // process survives; programs come from the memory cache and, in a new context (a new process),
-// from the disk binary cache instead of being recompiled; a bad device selection is explained;
-// device copies of host arrays (vtkOpenCLDeviceArrays) last exactly while their arrays do.
+// from the disk binary cache instead of being recompiled (on PoCL only where a folder is named); a
+// bad device selection is explained; device copies of host arrays (vtkOpenCLDeviceArrays) last
+// exactly while their arrays do.
 #include "vtkCommand.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -188,6 +190,51 @@ TEST(OpenCLContext, ProgramsAreCachedInMemoryAndOnDisk)
     third->SetBinaryCacheDirectory(cacheDir.c_str());
     EXPECT_NE(third->GetProgram(files, "-DREFRACTA_FIXED_SCALE=1024.0f"), nullptr);
     EXPECT_EQ(third->GetNumberOfSourceBuilds(), 1);
+  }
+}
+
+// On PoCL, which keeps compiled programs in its own disk cache, Refracta's binary cache stays off
+// unless a folder is named: saving a PoCL binary costs code generation for every kernel of the
+// program. With PoCL's cache switched off (POCL_KERNEL_CACHE=0), or a folder named, it is on.
+TEST(OpenCLContext, BinaryCacheDefersToTheDriversOwn)
+{
+  vtkNew<vtkOpenCLContext> probe;
+  ASSERT_TRUE(probe->Initialize());
+  std::ostringstream printed;
+  probe->PrintSelf(printed, vtkIndent());
+  const bool pocl = Contains(printed.str(), "Portable Computing Language");
+  if (!pocl)
+  {
+    EXPECT_FALSE(probe->GetDriverCachesPrograms());
+    GTEST_SKIP() << "not PoCL: the binary cache is always on";
+  }
+  const std::vector<std::string> files = { "refracta_atomics.cl", "selftest.cl" };
+  const char* named = std::getenv("REFRACTA_KERNEL_CACHE_DIR");
+  const std::string keep = named ? named : "";
+  unsetenv("REFRACTA_KERNEL_CACHE_DIR");
+  {
+    vtkNew<vtkOpenCLContext> context;
+    ASSERT_NE(context->GetProgram(files, "-DREFRACTA_FIXED_SCALE=512.0f"), nullptr);
+    EXPECT_TRUE(context->GetDriverCachesPrograms());
+    EXPECT_EQ(context->GetBinaryCachePath(files, "-DREFRACTA_FIXED_SCALE=512.0f"), "");
+    EXPECT_EQ(context->GetNumberOfSourceBuilds(), 1);
+
+    // A named folder is used whatever the driver does.
+    const std::string dir = FreshCacheDirectory("binary-cache-named");
+    context->SetBinaryCacheDirectory(dir.c_str());
+    EXPECT_EQ(context->GetBinaryCachePath(files, "").rfind(dir, 0), 0u);
+  }
+  setenv("POCL_KERNEL_CACHE", "0", 1);
+  {
+    vtkNew<vtkOpenCLContext> context;
+    ASSERT_TRUE(context->Initialize());
+    EXPECT_FALSE(context->GetDriverCachesPrograms());
+    EXPECT_NE(context->GetBinaryCachePath(files, ""), "");
+  }
+  unsetenv("POCL_KERNEL_CACHE");
+  if (named)
+  {
+    setenv("REFRACTA_KERNEL_CACHE_DIR", keep.c_str(), 1);
   }
 }
 

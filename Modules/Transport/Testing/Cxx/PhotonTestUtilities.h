@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <stdexcept>
 #include <string>
 
 namespace photontest
@@ -149,18 +150,29 @@ inline std::array<double, 3> Energy(vtkImageData* image, const char* name)
   return { Field(image, name, 0), Field(image, name, 1), Field(image, name, 2) };
 }
 
+// The output's float array `name`. A pass that failed (a kernel that did not build, a rejected
+// input) leaves no such array: the test then fails with this message instead of crashing on a
+// null pointer (GoogleTest reports the exception as the test's failure).
+inline const float* FloatPointer(vtkImageData* image, const char* name)
+{
+  vtkFloatArray* array =
+    image ? vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray(name)) : nullptr;
+  if (!array)
+  {
+    throw std::runtime_error(std::string("the pass's output has no float array '") + name +
+      "' (it failed: see the error above)");
+  }
+  return array->GetPointer(0);
+}
+
 inline const float* Radiance(vtkImageData* image)
 {
-  return vtkFloatArray::SafeDownCast(
-    image->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()))
-    ->GetPointer(0);
+  return FloatPointer(image, vtkRefractaLightingVolume::RadianceName());
 }
 
 inline const float* Direction(vtkImageData* image)
 {
-  return vtkFloatArray::SafeDownCast(
-    image->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName()))
-    ->GetPointer(0);
+  return FloatPointer(image, vtkRefractaLightingVolume::RadianceDirectionName());
 }
 }
 
