@@ -123,6 +123,29 @@ vtkSmartPointer<vtkImageData> CutAway(vtkImageData* medium, vtkPlaneCollection* 
   }
   return cut;
 }
+
+// Everything the pixels' path-length limits and kinds depend on besides the depth buffer, the
+// surfaces and the medium's box: the rays (eye, pixel axes, grid placement) and the projection
+// that turns depth into points. Camera moves, a shared mapper drawing another viewport and
+// vtkRenderLargeImage's tiles change it while the depth buffer (all background) may not.
+std::vector<double> ViewSignature(
+  vtkRenderer* renderer, vtkCamera* camera, const vtkRefractaViewPass::RayFrame& frame)
+{
+  std::vector<double> view;
+  for (const double* part : { frame.Eye, frame.U, frame.V, frame.W })
+  {
+    view.insert(view.end(), part, part + 3);
+  }
+  view.push_back(frame.Parallel ? 1.0 : 0.0);
+  for (const auto& row : frame.WorldToLocal)
+  {
+    view.insert(view.end(), row, row + 4);
+  }
+  vtkMatrix4x4* projection =
+    camera->GetCompositeProjectionTransformMatrix(renderer->GetTiledAspectRatio(), -1, 1);
+  view.insert(view.end(), projection->GetData(), projection->GetData() + 16);
+  return view;
+}
 }
 
 //------------------------------------------------------------------------------
@@ -400,7 +423,8 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   const size_t pixels = static_cast<size_t>(width) * height;
 
   // Depth of the opaque geometry drawn so far -> path-length limits and the pixels' kinds; the
-  // conversion runs only when the depth buffer, the view or the medium's active box changed.
+  // conversion runs only when the depth buffer, the view (ViewSignature), the surfaces or the
+  // medium's active box changed.
   std::vector<float> depth(pixels, 1.0f);
   window->GetZbufferData(x0, y0, x0 + width - 1, y0 + height - 1, depth.data());
   vtkRefractaViewPass::RayFrame frame;
@@ -420,14 +444,16 @@ void vtkRefractiveVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   const bool boxChanged = this->UpdateActiveBox();
   const bool surfacesChanged = surfaces != in.ClassifiedWith ||
     (surfaces && surfaces->GetMTime() > in.ClassifiedTime.GetMTime());
+  std::vector<double> view = ViewSignature(renderer, camera, frame);
   if (boxChanged || surfacesChanged || depth != in.Depth || in.Limits.size() != pixels ||
-    in.ClassifiedEverywhere != this->ShadeActorsEverywhere)
+    in.ClassifiedEverywhere != this->ShadeActorsEverywhere || view != in.ClassifiedView)
   {
     in.Limits = this->DepthToPathLengths(renderer, camera, frame, width, height, depth);
     in.Depth = std::move(depth);
     this->ClassifyPixels(renderer, camera, frame, surfaces, width, height);
     in.ClassifiedWith = surfaces;
     in.ClassifiedEverywhere = this->ShadeActorsEverywhere;
+    in.ClassifiedView = std::move(view);
     in.ClassifiedTime.Modified();
   }
 

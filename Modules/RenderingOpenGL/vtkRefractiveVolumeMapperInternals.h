@@ -39,6 +39,7 @@ struct vtkRefractiveVolumeMapper::Internals
   vtkNew<vtkRefractaActorSurfaces> Actors;
   vtkRefractaSurfaceSet* ClassifiedWith = nullptr; // the surfaces the pixel kinds were made for
   bool ClassifiedEverywhere = false; // ShadeActorsEverywhere at the last classification
+  std::vector<double> ClassifiedView; // the view (ray frame, projection) it was made for
   vtkTimeStamp ClassifiedTime;
   // The medium's active box (see vtkRefractiveVolumeMapperCompositing.h) and what it was
   // computed from.

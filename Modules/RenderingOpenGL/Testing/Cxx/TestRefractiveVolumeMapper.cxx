@@ -40,6 +40,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace
@@ -405,6 +406,74 @@ TEST(RefractiveVolumeMapper, WindowCenterShiftsTheMediumWithTheActors)
     EXPECT_GT(compared, Size * Size / 2);
     EXPECT_EQ(differing, 0);
   }
+}
+
+// Channels of `a` and `b` (RGB captures of one size) that differ by more than 3/255.
+int DifferingChannels(vtkImageData* a, vtkImageData* b)
+{
+  auto* x = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
+  auto* y = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetScalars());
+  EXPECT_EQ(x->GetNumberOfValues(), y->GetNumberOfValues());
+  int differing = 0;
+  for (vtkIdType v = 0; v < std::min(x->GetNumberOfValues(), y->GetNumberOfValues()); ++v)
+  {
+    differing += std::abs(int(x->GetValue(v)) - int(y->GetValue(v))) > 3;
+  }
+  return differing;
+}
+
+// The image depends on the current view only, not on what was drawn before: with nothing but
+// the medium in the renderer the depth buffer stays all background, and the pixels' kinds
+// (covered by the medium or clear) were kept from the first view: moving the camera into the
+// cube left the old footprint's outside clear (the white background undimmed), switching the
+// projection lost the edge pixels, and vtkWindowToImageFilter's tiles (SetScale) reused the first
+// tile's footprint: black seams. Each view must equal the same view drawn by a new mapper.
+TEST(RefractiveVolumeMapper, TheImageDependsOnlyOnTheCurrentView)
+{
+  auto cube = AbsorbingCube();
+  auto setView = [](vtkCamera* camera, int view)
+  {
+    camera->SetParallelProjection(view == 2);
+    camera->SetViewAngle(30);
+    camera->SetPosition(0.5, 0.5, view == 1 ? 0.45 : 5.0);
+    camera->SetFocalPoint(0.45, 0.5, -1.0);
+    camera->SetClippingRange(0.01, 8);
+  };
+  auto sceneWithCube = [&](Scene& scene)
+  {
+    scene.Inner->VisibilityOff();
+    scene.Front->VisibilityOff();
+    scene.Mapper->SetInputData(cube);
+  };
+  // 0: outside, perspective; 1: inside the cube; 2: outside, parallel.
+  for (int view : { 1, 2 })
+  {
+    Scene moved;
+    sceneWithCube(moved);
+    setView(moved.Renderer->GetActiveCamera(), 0);
+    moved.Capture();
+    setView(moved.Renderer->GetActiveCamera(), view);
+    vtkSmartPointer<vtkImageData> after = moved.Capture();
+    Scene fresh;
+    sceneWithCube(fresh);
+    setView(fresh.Renderer->GetActiveCamera(), view);
+    EXPECT_EQ(DifferingChannels(after, fresh.Capture()), 0) << "view " << view;
+  }
+
+  // Four tiles of a half-size window against the full-size window.
+  Scene tiled;
+  sceneWithCube(tiled);
+  setView(tiled.Renderer->GetActiveCamera(), 0);
+  vtkSmartPointer<vtkImageData> direct = tiled.Capture();
+  tiled.Window->SetSize(Size / 2, Size / 2);
+  vtkNew<vtkWindowToImageFilter> tiles;
+  tiles->SetInput(tiled.Window);
+  tiles->SetScale(2);
+  tiles->SetInputBufferTypeToRGB();
+  tiles->ReadFrontBufferOff();
+  tiles->Update();
+  tiled.Window->SetSize(Size, Size);
+  EXPECT_EQ(DifferingChannels(tiles->GetOutput(), direct), 0);
 }
 
 // A volume in a transparent renderer (layer 1 over layer 0) shows the layers below through the
