@@ -153,8 +153,11 @@ vtkPolyData* vtkRefractaActorSurfaces::ActorInput(vtkActor* actor)
 
 bool vtkRefractaActorSurfaces::IsTaken(vtkActor* actor)
 {
+  // A wireframe or point representation draws edges or vertices, not the polygons' area: it is
+  // VTK's drawing (composited by depth), not a surface that hides and reflects.
   return actor && actor->GetVisibility() && actor->GetProperty()->GetOpacity() >= 1.0 &&
-    ActorInput(actor) && !actor->HasTranslucentPolygonalGeometry();
+    actor->GetProperty()->GetRepresentation() == VTK_SURFACE && ActorInput(actor) &&
+    !actor->HasTranslucentPolygonalGeometry();
 }
 
 bool vtkRefractaActorSurfaces::IsForeign(vtkProp* prop)

@@ -8,7 +8,8 @@
  * - its mapper is a vtkPolyDataMapper (or a subclass) whose input is a vtkPolyData with
  *   polygons or strips (verts and lines are no surfaces and are ignored),
  * - it is opaque: property opacity 1 and no translucent geometry
- *   (!HasTranslucentPolygonalGeometry(): no alpha < 1 in its mapped colours or texture).
+ *   (!HasTranslucentPolygonalGeometry(): no alpha < 1 in its mapped colours or texture),
+ * - it is drawn as a surface (property representation VTK_SURFACE).
  * Its placement is the actor's matrix (actor->GetMatrix(): position, orientation, scale, origin
  * and user matrix), its albedo
  * - the mapper's mapped scalar colours (mapper->MapScalars(1.0): RGBA per point or per cell, as
@@ -23,7 +24,8 @@
  * finer than the texels is seen averaged over them.
  *
  * **Not taken** (left to VTK's drawing and composited by depth, see vtkRefractiveVolumeMapper):
- * invisible actors, translucent actors (opacity < 1 or translucent colours/texture), actors whose
+ * invisible actors, translucent actors (opacity < 1 or translucent colours/texture), actors drawn
+ * as wireframe or points (a cage drawn around a volume hides nothing), actors whose
  * mapper is not a vtkPolyDataMapper (composite datasets, glyph mappers of other kinds, images,
  * other volumes) and any prop that is not a vtkActor (assemblies, image actors). Those visible
  * props with opaque geometry are counted by GetNumberOfForeignProps(). A vtkSkybox is neither:

@@ -18,6 +18,7 @@
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
+#include "vtkPropCollection.h"
 #include "vtkRefractaActorSurfaces.h"
 #include "vtkRefractaBVH.h"
 #include "vtkRefractaMedium.h"
@@ -328,6 +329,29 @@ void vtkRefractiveVolumeMapper::WarnAboutUnsupportedModes(vtkRenderer* renderer,
          "resample them onto one grid), or draw the other volume in another renderer layer.");
   }
   in.OtherVolumesWarned = other != nullptr;
+  // Translucent geometry is drawn by VTK before the volumes and written over where the medium
+  // covers a pixel (this mapper composites by depth with opaque geometry only).
+  const char* translucent = nullptr;
+  vtkPropCollection* props = renderer->GetViewProps();
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (!vtkVolume::SafeDownCast(prop) && prop->GetVisibility() &&
+      prop->HasTranslucentPolygonalGeometry())
+    {
+      translucent = prop->GetClassName();
+    }
+  }
+  if (translucent && !in.TranslucentPropsWarned)
+  {
+    vtkWarningMacro("The renderer draws translucent geometry (a "
+      << translucent
+      << " with opacity below 1 or translucent colours). vtkRefractiveVolumeMapper composites "
+         "with opaque geometry only: where the medium covers a pixel, translucent geometry is not "
+         "seen. Make it opaque (it then becomes a surface the light and the view rays meet), or "
+         "draw it in another renderer layer.");
+  }
+  in.TranslucentPropsWarned = translucent != nullptr;
   if (this->BlendMode != vtkVolumeMapper::COMPOSITE_BLEND && !in.BlendModeWarned)
   {
     vtkWarningMacro("BlendMode " << this->BlendMode

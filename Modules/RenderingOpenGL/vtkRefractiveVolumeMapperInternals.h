@@ -60,6 +60,7 @@ struct vtkRefractiveVolumeMapper::Internals
   int MeteredAt = -1; // plan + light-pass runs when the exposure was metered
   bool BlendModeWarned = false;
   bool OtherVolumesWarned = false; // another visible volume shares the renderer
+  bool TranslucentPropsWarned = false; // translucent geometry shares the renderer
 };
 
 #endif

@@ -694,6 +694,28 @@ TEST(MapperSurfaces, ASkyboxIsTheBackgroundNotASurface)
   EXPECT_EQ(actors->GetNumberOfForeignProps(), 0);
 }
 
+// An actor drawn as wireframe or points (a cage around a volume) is VTK's drawing, composited by
+// depth, not a surface: taken as one it hid the whole medium inside it (outside review).
+TEST(MapperSurfaces, WireframeAndPointsActorsAreNotSurfaces)
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkPlaneSource> plane;
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> cage;
+  cage->SetMapper(mapper);
+  renderer->AddActor(cage);
+  vtkNew<vtkRefractaActorSurfaces> actors;
+  for (int representation : { VTK_WIREFRAME, VTK_POINTS, VTK_SURFACE })
+  {
+    cage->GetProperty()->SetRepresentation(representation);
+    actors->Update(renderer, nullptr);
+    const bool surface = representation == VTK_SURFACE;
+    EXPECT_EQ(actors->GetNumberOfActors(), surface ? 1 : 0) << representation;
+    EXPECT_EQ(actors->GetNumberOfForeignProps(), surface ? 0 : 1) << representation;
+  }
+}
+
 // A visible vtkSkybox (Sphere projection) is what VTK draws behind everything: its texture is
 // what bent rays see, about its floor plane's normal and FloorRight, before the renderer's
 // environment texture (before session 23 a skybox without image-based lighting was not seen).

@@ -476,6 +476,32 @@ TEST(RefractiveVolumeMapper, TheImageDependsOnlyOnTheCurrentView)
   EXPECT_EQ(DifferingChannels(tiles->GetOutput(), direct), 0);
 }
 
+// Translucent geometry is drawn by VTK before the volume and covered where the medium is: the
+// mapper says so once (not on every render) and again after it was gone and came back.
+TEST(RefractiveVolumeMapper, TranslucentGeometryIsNamedOnce)
+{
+  Scene scene;
+  scene.Mapper->SetInputData(AbsorbingCube());
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  scene.Mapper->AddObserver(vtkCommand::WarningEvent, warnings);
+  scene.Capture();
+  EXPECT_FALSE(warnings->GetWarning()) << warnings->GetWarningMessage();
+  scene.Front->GetProperty()->SetOpacity(0.5);
+  scene.Capture();
+  ASSERT_TRUE(warnings->GetWarning());
+  EXPECT_NE(warnings->GetWarningMessage().find("translucent geometry"), std::string::npos)
+    << warnings->GetWarningMessage();
+  EXPECT_NE(warnings->GetWarningMessage().find("Actor"), std::string::npos); // vtkOpenGLActor
+  warnings->Clear();
+  scene.Capture();
+  EXPECT_FALSE(warnings->GetWarning());
+  scene.Front->GetProperty()->SetOpacity(1.0);
+  scene.Capture();
+  scene.Front->GetProperty()->SetOpacity(0.5);
+  scene.Capture();
+  EXPECT_TRUE(warnings->GetWarning());
+}
+
 // A volume in a transparent renderer (layer 1 over layer 0) shows the layers below through the
 // medium, dimmed: its own background (magenta here) is never drawn by VTK and must not show.
 TEST(RefractiveVolumeMapper, ATransparentLayerShowsTheLayersBelow)
