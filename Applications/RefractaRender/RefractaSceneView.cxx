@@ -36,9 +36,10 @@ vtkSmartPointer<vtkLight> ReadLight(const json& l, const std::string& p)
   light->SetLightTypeToSceneLight();
   auto pos = Vector(l, "position", p, {}, 3, -1e30, 1e30);
   auto fp = Vector(l, "focal_point", p, { 0, 0, 0 }, 3, -1e30, 1e30);
-  if (pos == fp)
+  if (pos == fp && type != "point") // a point light shines everywhere: no direction to give
   {
-    Fail(p + ".focal_point", "must differ from the position");
+    Fail(p + ".focal_point",
+      "must differ from the position (it gives the " + type + " light's direction)");
   }
   light->SetPosition(pos.data());
   light->SetFocalPoint(fp.data());

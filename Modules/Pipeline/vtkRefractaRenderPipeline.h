@@ -249,7 +249,9 @@ public:
    * irradiance E = pi I. So a directional light becomes irradiance pi I, and a positional light
    * (which VTK does not attenuate with distance by default) becomes the radiant intensity
    * pi I d^2 that gives the same irradiance at the distance d from the light to the medium's
-   * centre. vtkRefractiveVolumeMapper uses VTK_LIGHT_UNITS.
+   * centre, d at least the distance from the centre to the box's nearest face (a light inside
+   * the medium near its centre would otherwise go dark: pi I d^2 -> 0; lights outside the box
+   * are always that far). vtkRefractiveVolumeMapper uses VTK_LIGHT_UNITS.
    */
   vtkSetClampMacro(LightUnits, int, RADIOMETRIC_LIGHT_UNITS, VTK_LIGHT_UNITS);
   vtkGetMacro(LightUnits, int);

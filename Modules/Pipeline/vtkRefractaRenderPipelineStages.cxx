@@ -16,6 +16,8 @@
 #include "vtkRefractaMedium.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace
 {
@@ -192,14 +194,23 @@ bool vtkRefractaRenderPipeline::RunPlan()
       double scale = vtkMath::Pi();
       if (light->GetPositional())
       {
+        // Matched at the medium's centre; a light nearer the centre than the box's nearest face
+        // (only a light inside can be) is matched at that face's distance instead, so that a
+        // lamp at the centre of a cloud does not go dark as d -> 0.
         double bounds[6], centre[3], position[3];
+        double nearestFace = std::numeric_limits<double>::infinity();
         in.Medium->GetBounds(bounds);
         copy->GetPosition(position);
         for (int a = 0; a < 3; ++a)
         {
           centre[a] = 0.5 * (bounds[2 * a] + bounds[2 * a + 1]);
+          const double half = 0.5 * (bounds[2 * a + 1] - bounds[2 * a]);
+          nearestFace = half > 0.0 ? std::min(nearestFace, half) : nearestFace;
         }
-        scale *= std::max(vtkMath::Distance2BetweenPoints(position, centre), 1e-300);
+        nearestFace = std::isfinite(nearestFace) ? nearestFace : 0.0;
+        scale *= std::max(
+          std::max(vtkMath::Distance2BetweenPoints(position, centre), nearestFace * nearestFace),
+          1e-300);
       }
       copy->SetIntensity(light->GetIntensity() * scale);
     }

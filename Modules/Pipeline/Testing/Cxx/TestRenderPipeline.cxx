@@ -11,6 +11,8 @@
 #include "vtkImageData.h"
 #include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
@@ -201,6 +203,37 @@ TEST(RenderPipeline, StagesRerunOnlyWhatChanged)
   pipeline->GetEffectPlan()->SetTolerance(0.02);
   ASSERT_TRUE(pipeline->Render(40, 30));
   ExpectCounts(pipeline, { 4, 5, 8, 3 }, "plan setting: everything");
+}
+
+// VTK_LIGHT_UNITS: a positional light of intensity I becomes the radiant intensity pi I d^2, d
+// its distance to the medium's centre but at least the centre's distance to the nearest face
+// (0.5 for the unit fog): a lamp at the centre went dark (pi I 1e-300; outside review).
+TEST(RenderPipeline, VTKLightUnitsKeepALampAtTheCentreLit)
+{
+  for (double z : { 0.5, 0.6, 3.0 })
+  {
+    auto lamp = vtkSmartPointer<vtkLight>::New();
+    lamp->SetLightTypeToSceneLight();
+    lamp->SetPositional(true);
+    lamp->SetConeAngle(180);
+    lamp->SetPosition(0.5, 0.5, z);
+    lamp->SetFocalPoint(0.5, 0.5, 0.0);
+    lamp->SetIntensity(2.0);
+    auto pipeline = MakePipeline(Fog(), lamp, Front());
+    pipeline->SetLightUnits(vtkRefractaRenderPipeline::VTK_LIGHT_UNITS);
+    ASSERT_TRUE(pipeline->Render(16, 16));
+    vtkLightCollection* used = pipeline->GetPhotonTracer()->GetLights();
+    ASSERT_EQ(used->GetNumberOfItems(), 1);
+    used->InitTraversal();
+    const double d = std::max(std::abs(z - 0.5), 0.5);
+    EXPECT_NEAR(used->GetNextItem()->GetIntensity(), vtkMath::Pi() * 2.0 * d * d, 1e-9) << z;
+    double mean = 0;
+    for (float v : pipeline->GetImage())
+    {
+      mean += v / pipeline->GetImage().size();
+    }
+    EXPECT_GT(mean, 1e-3) << z;
+  }
 }
 
 TEST(RenderPipeline, ProgressIsMonotoneAndStagesAreAnnounced)
