@@ -36,7 +36,8 @@ __kernel void photon_generate(__global float4* photonPos, __global float4* photo
   const uint count, const int positional,
   const float4 origin, const float4 axis, const float4 basis1, const float4 basis2,
   const float4 spot, const float4 params, const float4 intensity, const float4 boxLo,
-  const float4 boxHi, const uint rotation1, const uint rotation2, const float extent)
+  const float4 boxHi, const uint rotation1, const uint rotation2, const float extent,
+  const float lead)
 {
   const uint w = (uint)get_global_id(0);
   if (w >= count)
@@ -76,8 +77,13 @@ __kernel void photon_generate(__global float4* photonPos, __global float4* photo
     const float cosT = 1.0f - oneMinusCos;
     const float sinT = sqrt(fmax(0.0f, oneMinusCos * (2.0f - oneMinusCos)));
     const float phi = 2.0f * REFRACTA_PI * xi2;
-    dir = normalize(cosT * axis.xyz + sinT * (cos(phi) * basis1.xyz + sin(phi) * basis2.xyz));
-    start = origin.xyz;
+    const float3 across = cos(phi) * basis1.xyz + sin(phi) * basis2.xyz;
+    dir = normalize(cosT * axis.xyz + sinT * across);
+    // A distant light starts its photons `lead` along their rays, short of the box's bounding
+    // sphere: origin + lead axis comes from the host in double, and lead (dir - axis) is formed
+    // from 1 - cos and sin, which keep their precision, so a light 1e8 away still meets a box
+    // of size 1 (from the light's own float position the box was lost in rounding).
+    start = origin.xyz + lead * (sinT * across - oneMinusCos * axis.xyz);
     if (extent > 0.0f)
     {
       // A sphere of radius `extent`: rays in direction dir leave it uniformly over its projected

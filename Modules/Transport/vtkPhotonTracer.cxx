@@ -326,7 +326,8 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
             run.Streams.Get(), offset, count, positional, Float4(ls.Origin), Float4(ls.Axis),
             Float4(ls.Basis1), Float4(ls.Basis2), Float4(ls.SpotAxis, ls.SpotCos), params,
             Float4(ls.Colour[0] / unit, ls.Colour[1] / unit, ls.Colour[2] / unit),
-            Float4(run.EmitLo), Float4(run.EmitHi), r1, r2, static_cast<cl_float>(ls.Extent)),
+            Float4(run.EmitLo), Float4(run.EmitHi), r1, r2, static_cast<cl_float>(ls.Extent),
+            static_cast<cl_float>(ls.Lead)),
           "clSetKernelArg(photon_generate)", this) ||
       !Run1D(ctx, generate.Get(), count, "photon_generate", this))
     {

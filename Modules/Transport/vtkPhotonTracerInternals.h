@@ -143,6 +143,9 @@ struct LightSetup
   double Colour[3];
   double Bound = 0.0;  // largest channel of the power sent towards the box
   double Extent = 0.0; // sphere radius (positional, local units) or sin(angular radius)
+  // Positional: how far along their rays the photons start (short of the box's bounding sphere;
+  // Origin is then the light's position + Lead Axis).
+  double Lead = 0.0;
   unsigned int Photons = 0;
   bool Environment = false; // the environment light (vtkPhotonTracer::Internals::Env*)
 };

@@ -224,6 +224,14 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
       std::copy(capAxis, capAxis + 3, ls.Axis);
       Basis(ls.Axis, ls.Basis1, ls.Basis2);
       ls.Measure = 2.0 * vtkMath::Pi() * ls.OneMinusCos;
+      // No ray from the light comes within `reach` of the box's centre before distance - reach:
+      // the photons start there (photon_generate), in float near the box instead of at a
+      // far light's position, where rounding lost the box (a light 1e8 away emitted nothing).
+      ls.Lead = inside ? 0.0 : std::max(0.0, distance - reach);
+      for (int c = 0; c < 3; ++c)
+      {
+        ls.Origin[c] = p[c] + ls.Lead * ls.Axis[c];
+      }
     }
     ls.Bound = maxColour * ls.Measure;
     if (ls.Bound > 0)

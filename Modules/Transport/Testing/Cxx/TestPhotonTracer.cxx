@@ -339,6 +339,19 @@ TEST(PhotonTracer, EmittedPowerOfLights)
     auto out2 = Trace(tracer, medium);
     EXPECT_EQ(Field(out2, "EnergyEmitted"), Field(out, "EnergyEmitted"));
   }
+  // A point light far along -z (1e3 to 1e9 away, I = E D^2) sends the box the power of a
+  // directional light of irradiance E on its -z face, E 1.0 x 0.8, within the 1/d^2 variation
+  // over the box (1 + 2 x 0.6 / D): photons started at the light's float position lost the box
+  // in rounding beyond ~1e7 (nothing emitted; outside review).
+  for (double D : { 1e3, 1e6, 1e8, 1e9 })
+  {
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->SetNumberOfPhotons(N);
+    const double E = 2.0;
+    tracer->AddLight(Positional({ 0.45, 0.35, 0.25 - D }, { 0.45, 0.35, 0.25 }, 180, 1, E * D * D));
+    auto out = Trace(tracer, medium);
+    EXPECT_NEAR(Field(out, "EnergyEmitted") / (E * 1.0 * 0.8), 1.0, 2e-3 + 1.2 / D) << D;
+  }
   // A point light at the centre: 4 pi I, every photon emitted.
   {
     vtkNew<vtkPhotonTracer> tracer;
