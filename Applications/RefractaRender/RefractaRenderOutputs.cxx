@@ -7,6 +7,7 @@
 #include "vtkPointData.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
@@ -66,13 +67,23 @@ void WriteReport(const json& report, const std::string& file)
   }
 }
 
-void CheckOutputFolders(const std::vector<std::string>& files)
+void CheckOutputs(const std::vector<OutputFile>& outputs, const std::string& sceneFile)
 {
-  for (const std::string& file : files)
+  struct stat scene;
+  const bool haveScene = !sceneFile.empty() && stat(sceneFile.c_str(), &scene) == 0;
+  for (size_t i = 0; i < outputs.size(); ++i)
   {
+    const std::string& file = outputs[i].File;
     if (file.empty())
     {
       continue;
+    }
+    const std::string what = outputs[i].Option + " '" + file + "'";
+    const std::string& suffix = outputs[i].Suffix;
+    if (file.size() <= suffix.size() ||
+      file.compare(file.size() - suffix.size(), suffix.size(), suffix) != 0)
+    {
+      throw std::runtime_error(what + ": the file name must end in " + suffix + " (its format)");
     }
     const size_t slash = file.find_last_of('/');
     const std::string folder =
@@ -88,6 +99,34 @@ void CheckOutputFolders(const std::vector<std::string>& files)
       throw std::runtime_error(
         "cannot write '" + file + "': the folder '" + folder + "' is not writable");
     }
+    if (stat(file.c_str(), &info) == 0)
+    {
+      if (!S_ISREG(info.st_mode))
+      {
+        throw std::runtime_error("cannot write " + what + ": it exists and is " +
+          (S_ISDIR(info.st_mode) ? "a folder" : "not a regular file"));
+      }
+      if (haveScene && info.st_dev == scene.st_dev && info.st_ino == scene.st_ino)
+      {
+        throw std::runtime_error(what + " is the scene file: it would be overwritten");
+      }
+    }
+    for (size_t j = 0; j < i; ++j)
+    {
+      if (outputs[j].File == file)
+      {
+        throw std::runtime_error(
+          what + " is also the file of " + outputs[j].Option + ": give each output its own file");
+      }
+    }
+  }
+}
+
+void RemoveOutputs(const std::vector<std::string>& written)
+{
+  for (const std::string& file : written)
+  {
+    std::remove(file.c_str());
   }
 }
 }

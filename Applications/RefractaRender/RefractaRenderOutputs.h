@@ -25,10 +25,25 @@ void WriteRadianceVolume(vtkImageData* medium, vtkImageData* lighting, const std
 /// Writes the report as indented JSON.
 void WriteReport(const json& report, const std::string& file);
 
-/// Throws, naming the file, when the folder of one of `files` (empty names skipped) does not
-/// exist or cannot be written: checked before the render, which it would otherwise waste (and
-/// VTK's writers would say "Ran out of disk space" first).
-void CheckOutputFolders(const std::vector<std::string>& files);
+/// One output file of a render: the option that names it, the file (empty: not asked for) and
+/// the suffix its format needs (".png", ".vti", ".json").
+struct OutputFile
+{
+  std::string Option;
+  std::string File;
+  std::string Suffix;
+};
+
+/// Throws, naming the option and the file, when an output cannot or must not be written: its
+/// name lacks its format's suffix (a PNG named .jpg), its folder does not exist or cannot be
+/// written, it is a folder or another non-regular file (/dev/full), it is the scene file
+/// `sceneFile`, or two outputs name the same file. Checked before the render, which it would
+/// otherwise waste (and VTK's writers would say "Ran out of disk space" first).
+void CheckOutputs(const std::vector<OutputFile>& outputs, const std::string& sceneFile);
+
+/// Deletes the files of `outputs` named in `written` (after a later output failed: no partial
+/// set of results, and no truncated file, is left behind).
+void RemoveOutputs(const std::vector<std::string>& written);
 }
 
 #endif

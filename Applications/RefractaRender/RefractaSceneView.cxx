@@ -136,8 +136,17 @@ bool ReadBackground(const json& scene, const std::string& base, vtkRefractaImage
     {
       Fail("scene.background.environment", "must be an image file name");
     }
-    renderer->SetEnvironmentMap(ReadImageFile(
-      Resolve(base, bg["environment"].get<std::string>()), "scene.background.environment"));
+    const std::string file = Resolve(base, bg["environment"].get<std::string>());
+    vtkSmartPointer<vtkImageData> map = ReadImageFile(file, "scene.background.environment");
+    // Checked now, not after the light passes that would run first.
+    std::vector<double> radiance;
+    int size[2];
+    std::string error;
+    if (!vtkRefractaEnvironmentMap::ReadRadiance(map, radiance, size, error))
+    {
+      Fail("scene.background.environment", "'" + file + "': " + error);
+    }
+    renderer->SetEnvironmentMap(map);
   }
   if (bg.contains("checker"))
   {
@@ -153,6 +162,14 @@ bool ReadBackground(const json& scene, const std::string& base, vtkRefractaImage
   }
   auto up = Vector(bg, "up", "scene.background", { 0, 1, 0 }, 3, -1e30, 1e30);
   auto right = Vector(bg, "right", "scene.background", { 1, 0, 0 }, 3, -1e30, 1e30);
+  double basis[3][3];
+  if (!vtkRefractaEnvironmentMap::ComputeBasis(
+        up.data(), right.data(), basis[0], basis[1], basis[2]))
+  {
+    Fail("scene.background.up",
+      "must not be zero nor parallel to scene.background.right (the "
+      "two orient the environment)");
+  }
   renderer->SetEnvironmentUp(up[0], up[1], up[2]);
   renderer->SetEnvironmentRight(right[0], right[1], right[2]);
   const bool illuminates = Boolean(bg, "illuminates", "scene.background", false);

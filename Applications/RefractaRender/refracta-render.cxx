@@ -36,11 +36,14 @@
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
+#include <new>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 using namespace RefractaRender;
 
@@ -103,7 +106,10 @@ struct Options
 // Renders a scene; throws SceneError for bad scenes, std::runtime_error for failed stages.
 int Render(const json& scene, const std::string& base, const Options& options)
 {
-  CheckOutputFolders({ options.Output, options.Hdr, options.Radiance, options.Report });
+  CheckOutputs(
+    { { "--output", options.Output, ".png" }, { "--hdr", options.Hdr, ".vti" },
+      { "--radiance", options.Radiance, ".vti" }, { "--report", options.Report, ".json" } },
+    options.Scene);
   Timer total;
   json seconds = json::object();
   // One render pipeline does the work (vtkRefractaRenderPipeline, through the image renderer
@@ -129,16 +135,32 @@ int Render(const json& scene, const std::string& base, const Options& options)
   }
   AddStageSeconds(renderer, seconds);
 
-  // The outputs.
+  // The outputs. A failed write (a full disk) removes what this render wrote: no truncated
+  // file and no partial set of results is left.
   Timer writeTimer;
-  WritePng(result, options.Output);
+  std::vector<std::string> written;
+  auto write = [&written](const std::string& file, const std::function<void()>& writer)
+  {
+    written.push_back(file);
+    try
+    {
+      writer();
+    }
+    catch (...)
+    {
+      RemoveOutputs(written);
+      throw;
+    }
+  };
+  write(options.Output, [&] { WritePng(result, options.Output); });
   if (!options.Hdr.empty())
   {
-    WriteVti(result, options.Hdr);
+    write(options.Hdr, [&] { WriteVti(result, options.Hdr); });
   }
   if (!options.Radiance.empty())
   {
-    WriteRadianceVolume(medium.Image, pipeline->GetLighting(), options.Radiance);
+    write(options.Radiance,
+      [&] { WriteRadianceVolume(medium.Image, pipeline->GetLighting(), options.Radiance); });
   }
   seconds["write"] = writeTimer.Seconds();
   seconds["total"] = total.Seconds();
@@ -165,7 +187,7 @@ int Render(const json& scene, const std::string& base, const Options& options)
   PrintSummary(report);
   if (!options.Report.empty())
   {
-    WriteReport(report, options.Report);
+    write(options.Report, [&] { WriteReport(report, options.Report); });
   }
   return 0;
 }
@@ -197,6 +219,7 @@ int ParseOptions(int argc, char* argv[], Options& options)
   const std::map<std::string, bool Options::*> flags = { { "--preview", &Options::Preview },
     { "--quiet", &Options::Quiet }, { "-q", &Options::Quiet },
     { "--profile-kernels", &Options::ProfileKernels } };
+  std::vector<std::string Options::*> given; // member pointers have == but no order
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -225,12 +248,22 @@ int ParseOptions(int argc, char* argv[], Options& options)
     }
     else if (values.count(arg))
     {
-      if (i + 1 >= argc)
+      // "--output --quiet" wrote an image named --quiet; "--scene a --scene b" rendered b.
+      const std::string value = i + 1 < argc ? argv[i + 1] : "";
+      if (value.empty() || (value.size() > 1 && value[0] == '-'))
       {
-        std::cerr << "refracta-render: option '" << arg << "' needs a value\n";
+        std::cerr << "refracta-render: option '" << arg << "' needs a value"
+                  << (value.empty() ? std::string() : ", got the option '" + value + "'") << "\n";
         return 2;
       }
-      options.*values.at(arg) = argv[++i];
+      if (std::find(given.begin(), given.end(), values.at(arg)) != given.end())
+      {
+        std::cerr << "refracta-render: option '" << arg << "' is given twice\n";
+        return 2;
+      }
+      given.push_back(values.at(arg));
+      options.*values.at(arg) = value;
+      ++i;
     }
     else
     {
@@ -365,6 +398,13 @@ int main(int argc, char* argv[])
   catch (const SceneError& e)
   {
     std::cerr << "refracta-render: bad scene (" << source << "): " << e.what() << "\n";
+    return 1;
+  }
+  catch (const std::bad_alloc&)
+  {
+    std::cerr << "refracta-render: rendering " << source
+              << " failed: out of memory. Lower what sizes the render: image.width and "
+                 "image.height, medium.grid.dimensions, quality.photons.\n";
     return 1;
   }
   catch (const std::exception& e)

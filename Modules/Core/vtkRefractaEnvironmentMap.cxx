@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 vtkStandardNewMacro(vtkRefractaEnvironmentMap);
 
@@ -170,6 +171,60 @@ vtkSmartPointer<vtkImageData> vtkRefractaEnvironmentMap::MakeChecker(
   image->GetFieldData()->AddArray(squares);
   image->GetFieldData()->AddArray(colors);
   return image;
+}
+
+//------------------------------------------------------------------------------
+double vtkRefractaEnvironmentMap::NormalizingScale(vtkDataArray* scalars)
+{
+  const int type = scalars ? scalars->GetDataType() : VTK_VOID;
+  return type == VTK_UNSIGNED_CHAR ? 1.0 / 255.0
+                                   : (type == VTK_UNSIGNED_SHORT ? 1.0 / 65535.0 : 1.0);
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaEnvironmentMap::ReadRadiance(
+  vtkImageData* image, std::vector<double>& rgb, int size[2], std::string& error)
+{
+  int dims[3] = { 0, 0, 0 };
+  if (image)
+  {
+    image->GetDimensions(dims);
+  }
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  const int components = scalars ? scalars->GetNumberOfComponents() : 0;
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] != 1 || components < 1 || components > 4 ||
+    scalars->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1])
+  {
+    std::ostringstream msg;
+    msg << "The environment map must be a 2D vtkImageData (W x H x 1) with grey, grey + alpha, "
+           "RGB or RGBA point scalars (1 to 4 components); got "
+        << dims[0] << " x " << dims[1] << " x " << dims[2] << " with " << components
+        << " scalar components.";
+    error = msg.str();
+    return false;
+  }
+  const double scale = NormalizingScale(scalars);
+  const int colours = components < 3 ? 1 : 3; // grey (+ alpha): one value for R, G and B
+  rgb.resize(3 * static_cast<size_t>(dims[0]) * dims[1]);
+  for (vtkIdType t = 0; t < scalars->GetNumberOfTuples(); ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double v = scale * scalars->GetComponent(t, colours == 1 ? 0 : c);
+      if (!std::isfinite(v) || v < 0)
+      {
+        std::ostringstream msg;
+        msg << "The environment map's texel " << t << " (channel " << c << ") is " << v
+            << "; its radiance must be finite and >= 0.";
+        error = msg.str();
+        return false;
+      }
+      rgb[3 * t + c] = v;
+    }
+  }
+  size[0] = dims[0];
+  size[1] = dims[1];
+  return true;
 }
 
 //------------------------------------------------------------------------------

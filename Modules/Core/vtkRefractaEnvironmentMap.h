@@ -44,6 +44,10 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // for MakeChecker
 
+#include <string> // for ReadRadiance
+#include <vector> // for ReadRadiance
+
+class vtkDataArray;
 class vtkImageData;
 
 class REFRACTACORE_EXPORT vtkRefractaEnvironmentMap : public vtkObject
@@ -96,6 +100,23 @@ public:
    */
   static vtkSmartPointer<vtkImageData> MakeChecker(
     int squaresU, int squaresV, const double color1[3], const double color2[3]);
+
+  /**
+   * The radiance of an environment image, the one conversion every pass uses: a W x H x 1
+   * vtkImageData with point scalars of 1 (grey), 2 (grey, alpha), 3 (RGB) or 4 (RGBA)
+   * components; unsigned char and unsigned short scalars are normalised to [0, 1] (divided by
+   * 255 and 65535, as VTK's textures read them: an 8- or 16-bit PNG), other types are radiance
+   * as stored. Fills `rgb` with W H x 3 values (texel i + W j) and `size` with W and H. False,
+   * with `error` saying why, for another shape or a texel that is not finite and >= 0.
+   */
+  static bool ReadRadiance(
+    vtkImageData* image, std::vector<double>& rgb, int size[2], std::string& error);
+
+  /**
+   * What ReadRadiance multiplies stored values by: 1 / 255 for unsigned char, 1 / 65535 for
+   * unsigned short scalars, else 1.
+   */
+  static double NormalizingScale(vtkDataArray* scalars);
 
   /**
    * Whether `map` describes a procedural checkerboard (made by MakeChecker, with a valid

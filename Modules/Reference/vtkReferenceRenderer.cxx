@@ -325,37 +325,15 @@ bool vtkReferenceRenderer::BuildScene(vtkImageData* medium, Scene& scene, View& 
   if (this->EnvironmentMap)
   {
     vtkImageData* env = this->EnvironmentMap;
-    int dims[3];
-    env->GetDimensions(dims);
-    vtkDataArray* s = env->GetPointData()->GetScalars();
-    if (dims[0] < 1 || dims[1] < 1 || dims[2] != 1 || !s ||
-      (s->GetNumberOfComponents() != 3 && s->GetNumberOfComponents() != 4) ||
-      s->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1])
+    int size[2];
+    std::string error;
+    if (!vtkRefractaEnvironmentMap::ReadRadiance(env, scene.Env.Rgb, size, error))
     {
-      vtkErrorMacro("EnvironmentMap must be a 2D vtkImageData (W x H x 1) with point scalars of 3 "
-                    "or 4 components (RGB or RGBA); got dimensions "
-        << dims[0] << " x " << dims[1] << " x " << dims[2] << " and "
-        << (s ? s->GetNumberOfComponents() : 0) << "-component scalars.");
+      vtkErrorMacro("EnvironmentMap: " << error);
       return false;
     }
-    const double scale = s->GetDataType() == VTK_UNSIGNED_CHAR ? 1.0 / 255.0 : 1.0;
-    scene.Env.W = dims[0];
-    scene.Env.H = dims[1];
-    scene.Env.Rgb.resize(3 * static_cast<size_t>(dims[0]) * dims[1]);
-    for (vtkIdType i = 0; i < s->GetNumberOfTuples(); ++i)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        const double v = s->GetComponent(i, c) * scale;
-        if (!std::isfinite(v) || v < 0)
-        {
-          vtkErrorMacro("EnvironmentMap pixel " << i << " component " << c << " is " << v
-                                                << "; radiance must be finite and >= 0.");
-          return false;
-        }
-        scene.Env.Rgb[3 * i + c] = v;
-      }
-    }
+    scene.Env.W = size[0];
+    scene.Env.H = size[1];
     if (!vtkRefractaEnvironmentMap::GetChecker(
           env, scene.Env.CheckerSquares, scene.Env.Checker1, scene.Env.Checker2))
     {

@@ -101,42 +101,12 @@ bool EnvironmentToRGB(
     rgb.insert(rgb.end(), color2, color2 + 3);
     return true;
   }
-  int ed[3];
-  image->GetDimensions(ed);
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (!scalars || ed[2] != 1 || ed[0] < 1 || ed[1] < 1 ||
-    (scalars->GetNumberOfComponents() != 3 && scalars->GetNumberOfComponents() != 4))
+  std::vector<double> radiance;
+  if (!vtkRefractaEnvironmentMap::ReadRadiance(image, radiance, size, error))
   {
-    std::ostringstream msg;
-    msg << "The environment map must be a 2D vtkImageData (W x H x 1) with RGB or RGBA point "
-           "scalars; got "
-        << ed[0] << " x " << ed[1] << " x " << ed[2] << " with "
-        << (scalars ? scalars->GetNumberOfComponents() : 0) << " scalar components.";
-    error = msg.str();
     return false;
   }
-  const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
-  rgb.assign(static_cast<size_t>(ed[0]) * ed[1] * 3, 0.0f);
-  for (vtkIdType i = 0; i < static_cast<vtkIdType>(ed[0]) * ed[1]; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      double v = scalars->GetComponent(i, c);
-      v = bytes ? v / 255.0 : v;
-      if (!std::isfinite(v) || v < 0)
-      {
-        // The photon tracer refuses the same texel when the environment lights the scene.
-        std::ostringstream msg;
-        msg << "The environment map's texel " << i << " (channel " << c << ") is " << v
-            << "; its radiance must be finite and >= 0.";
-        error = msg.str();
-        return false;
-      }
-      rgb[i * 3 + c] = static_cast<float>(v);
-    }
-  }
-  size[0] = ed[0];
-  size[1] = ed[1];
+  rgb.assign(radiance.begin(), radiance.end());
   return true;
 }
 

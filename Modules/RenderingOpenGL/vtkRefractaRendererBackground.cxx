@@ -14,7 +14,6 @@
 #include "vtkRenderer.h"
 #include "vtkSkybox.h"
 #include "vtkTexture.h"
-#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
@@ -41,14 +40,14 @@ vtkImageData* TextureImage(vtkTexture* texture)
 }
 
 // Bilinear, edge-clamped lookup of a 2D image's scalars at (u, v) in [0, 1]^2 (texel centres at
-// (i + 0.5) / W), as stored: unsigned char divided by 255.
+// (i + 0.5) / W), normalised as VTK's textures are (vtkRefractaEnvironmentMap::NormalizingScale).
 void SampleClamped(vtkImageData* image, double u, double v, double rgb[3])
 {
   int dims[3];
   image->GetDimensions(dims);
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
   const int nc = scalars->GetNumberOfComponents();
-  const double scale = vtkUnsignedCharArray::SafeDownCast(scalars) ? 1.0 / 255.0 : 1.0;
+  const double scale = vtkRefractaEnvironmentMap::NormalizingScale(scalars);
   const double x = std::min(std::max(u * dims[0] - 0.5, 0.0), dims[0] - 1.0);
   const double y = std::min(std::max(v * dims[1] - 0.5, 0.0), dims[1] - 1.0);
   const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);

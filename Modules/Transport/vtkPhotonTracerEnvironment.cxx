@@ -4,14 +4,12 @@
 #include "vtkPhotonTracer.h"
 #include "vtkPhotonTracerInternals.h"
 
-#include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
 #include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaGridFrame.h"
-#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
@@ -64,29 +62,11 @@ bool vtkPhotonTracer::ReadEnvironmentRadiance(std::vector<double>& rgb, int size
   }
   else
   {
-    int dims[3];
-    image->GetDimensions(dims);
-    vtkDataArray* scalars = image->GetPointData()->GetScalars();
-    const int components = scalars ? scalars->GetNumberOfComponents() : 0;
-    if (dims[0] < 1 || dims[1] < 1 || dims[2] != 1 || (components != 3 && components != 4) ||
-      scalars->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1])
+    std::string error;
+    if (!vtkRefractaEnvironmentMap::ReadRadiance(image, rgb, size, error))
     {
-      vtkErrorMacro("EnvironmentMap must be a W x H x 1 image with 3 or 4 component point scalars "
-                    "(got dimensions "
-        << dims[0] << " x " << dims[1] << " x " << dims[2] << ", " << components
-        << " components); the environment cannot light the scene.");
+      vtkErrorMacro("EnvironmentMap: " << error << " The environment cannot light the scene.");
       return false;
-    }
-    size[0] = dims[0];
-    size[1] = dims[1];
-    const double scale = vtkUnsignedCharArray::SafeDownCast(scalars) ? 1.0 / 255.0 : 1.0;
-    rgb.resize(3 * static_cast<size_t>(size[0]) * size[1]);
-    for (vtkIdType t = 0; t < scalars->GetNumberOfTuples(); ++t)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        rgb[3 * t + c] = scale * scalars->GetComponent(t, c);
-      }
     }
   }
   for (size_t k = 0; k < rgb.size(); ++k)

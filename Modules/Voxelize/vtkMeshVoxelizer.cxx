@@ -30,7 +30,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
+#include <new>
 #include <numeric>
 #include <sstream>
 
@@ -67,12 +69,22 @@ double Seconds(Clock::time_point a, Clock::time_point b)
   return std::chrono::duration<double>(b - a).count();
 }
 
+// A medium array of `tuples` tuples, or nullptr when the memory cannot be had. Allocated here
+// and handed to the array (freed by it): VTK's own allocation path aborts the process when an
+// allocation fails under a process memory limit.
 vtkSmartPointer<vtkFloatArray> NewArray(int id, vtkIdType tuples)
 {
+  const int components = vtkRefractaMedium::GetNumberOfComponents(id);
+  const size_t values = static_cast<size_t>(tuples) * components;
+  auto* data = static_cast<float*>(std::malloc(std::max<size_t>(values, 1) * sizeof(float)));
+  if (!data)
+  {
+    return nullptr;
+  }
   auto a = vtkSmartPointer<vtkFloatArray>::New();
   a->SetName(vtkRefractaMedium::GetArrayName(id));
-  a->SetNumberOfComponents(vtkRefractaMedium::GetNumberOfComponents(id));
-  a->SetNumberOfTuples(tuples);
+  a->SetNumberOfComponents(components);
+  a->SetArray(data, static_cast<vtkIdType>(values), 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
   return a;
 }
 
@@ -588,13 +600,42 @@ int vtkMeshVoxelizer::RequestData(
   output->SetSpacing(g.S);
 
   t0 = Clock::now();
-  auto nArray = NewArray(vtkRefractaMedium::REFRACTIVE_INDEX, numVoxels);
-  auto gradArray = NewArray(vtkRefractaMedium::REFRACTIVE_INDEX_GRADIENT, numVoxels);
-  auto extArray = NewArray(vtkRefractaMedium::EXTINCTION, numVoxels);
-  auto albArray = NewArray(vtkRefractaMedium::ALBEDO, numVoxels);
-  auto gArray = NewArray(vtkRefractaMedium::ANISOTROPY, numVoxels);
-  auto emArray = NewArray(vtkRefractaMedium::EMISSION, numVoxels);
-  auto occArray = NewArray(vtkRefractaMedium::OCCUPANCY, numVoxels);
+  // The big allocations (60 bytes per voxel in the arrays, 2 in the labels) happen here, on this
+  // thread, where a failure is caught and named: a grid too large for the memory or for a
+  // process limit (ulimit -v) aborted inside VTK before.
+  vtkSmartPointer<vtkFloatArray> nArray, gradArray, extArray, albArray, gArray, emArray, occArray;
+  Rasterizer raster(meshes, g, this->Supersampling, this->SupersampleSurfaceOnly);
+  bool allocated = true;
+  try
+  {
+    nArray = NewArray(vtkRefractaMedium::REFRACTIVE_INDEX, numVoxels);
+    gradArray = NewArray(vtkRefractaMedium::REFRACTIVE_INDEX_GRADIENT, numVoxels);
+    extArray = NewArray(vtkRefractaMedium::EXTINCTION, numVoxels);
+    albArray = NewArray(vtkRefractaMedium::ALBEDO, numVoxels);
+    gArray = NewArray(vtkRefractaMedium::ANISOTROPY, numVoxels);
+    emArray = NewArray(vtkRefractaMedium::EMISSION, numVoxels);
+    occArray = NewArray(vtkRefractaMedium::OCCUPANCY, numVoxels);
+    raster.Labels.assign(numVoxels, 0);
+  }
+  catch (const std::bad_alloc&)
+  {
+    allocated = false;
+  }
+  for (vtkFloatArray* a : { nArray.Get(), gradArray.Get(), extArray.Get(), albArray.Get(),
+         gArray.Get(), emArray.Get(), occArray.Get() })
+  {
+    allocated = allocated && a && a->GetNumberOfTuples() == numVoxels;
+  }
+  if (!allocated)
+  {
+    vtkErrorMacro("Cannot allocate the medium of the grid "
+      << g.N[0] << " x " << g.N[1] << " x " << g.N[2] << " (" << numVoxels * 62.0 / (1 << 30)
+      << " GiB at 62 bytes per voxel): not enough memory. Use fewer voxels (smaller grid "
+         "dimensions "
+         "or a larger spacing).");
+    output->Initialize(); // an empty output, not a grid without arrays
+    return 0;
+  }
   // First touch in parallel, in one place: the kernel's page faults on a fresh 60 bytes per
   // voxel would otherwise be charged to whichever stage writes a page first.
   for (vtkFloatArray* a : { nArray.Get(), gradArray.Get(), extArray.Get(), albArray.Get(),
@@ -605,8 +646,6 @@ int vtkMeshVoxelizer::RequestData(
     vtkSMPTools::For(0, a->GetNumberOfValues(),
       [data](vtkIdType begin, vtkIdType end) { std::fill(data + begin, data + end, 0.0f); });
   }
-  Rasterizer raster(meshes, g, this->Supersampling, this->SupersampleSurfaceOnly);
-  raster.Labels.assign(numVoxels, 0);
   this->StageTimes[STAGE_ALLOCATION] = Seconds(t0, Clock::now());
 
   Mixer mixer;

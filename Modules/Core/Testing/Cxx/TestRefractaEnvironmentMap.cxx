@@ -1,10 +1,15 @@
 // vtkRefractaEnvironmentMap: VTK's skybox convention (front = up x right, u = 0.5 at front).
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
 #include "vtkMath.h"
+#include "vtkPointData.h"
 #include "vtkRefractaEnvironmentMap.h"
+#include "vtkSmartPointer.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 TEST(RefractaEnvironmentMap, DefaultConvention)
@@ -70,4 +75,60 @@ TEST(RefractaEnvironmentMap, SampleAndNearestTexel)
   // Wraps in u: halfway between the last and the first texel.
   vtkRefractaEnvironmentMap::Sample(rgb.data(), w, h, 0.0, 0.5 / h, out);
   EXPECT_NEAR(out[0], 0.5 * (w - 1 + 0), 1e-12);
+}
+
+// ReadRadiance, the one conversion of an environment image: 8- and 16-bit integers normalised as
+// VTK's textures read them (a 16-bit PNG was taken as radiance 0..65535: a white image), grey and
+// grey + alpha images spread over R, G and B (they were refused, after the light passes had run),
+// other types as stored; a wrong shape and a negative or non-finite texel refused with the reason.
+TEST(RefractaEnvironmentMap, ReadRadianceNormalisesAndExpands)
+{
+  auto image = [](int type, int components, std::vector<double> values)
+  {
+    auto map = vtkSmartPointer<vtkImageData>::New();
+    map->SetDimensions(static_cast<int>(values.size()) / components, 1, 1);
+    vtkSmartPointer<vtkDataArray> scalars;
+    scalars.TakeReference(vtkDataArray::CreateDataArray(type));
+    scalars->SetNumberOfComponents(components);
+    scalars->SetNumberOfTuples(static_cast<vtkIdType>(values.size()) / components);
+    for (size_t v = 0; v < values.size(); ++v)
+    {
+      scalars->SetComponent(static_cast<vtkIdType>(v) / components, v % components, values[v]);
+    }
+    map->GetPointData()->SetScalars(scalars);
+    return map;
+  };
+  std::vector<double> rgb;
+  int size[2];
+  std::string error;
+  ASSERT_TRUE(vtkRefractaEnvironmentMap::ReadRadiance(
+    image(VTK_UNSIGNED_SHORT, 3, { 65535, 0, 32768 }), rgb, size, error))
+    << error;
+  EXPECT_EQ(size[0], 1);
+  EXPECT_NEAR(rgb[0], 1.0, 1e-12);
+  EXPECT_NEAR(rgb[2], 32768.0 / 65535.0, 1e-12);
+  ASSERT_TRUE(vtkRefractaEnvironmentMap::ReadRadiance(
+    image(VTK_UNSIGNED_CHAR, 4, { 255, 51, 0, 128 }), rgb, size, error));
+  EXPECT_NEAR(rgb[1], 0.2, 1e-12);
+  ASSERT_TRUE(vtkRefractaEnvironmentMap::ReadRadiance(
+    image(VTK_UNSIGNED_CHAR, 2, { 51, 255, 102, 0 }), rgb, size, error));
+  ASSERT_EQ(size[0], 2);
+  const std::vector<double> grey = { 0.2, 0.2, 0.2, 0.4, 0.4, 0.4 };
+  for (size_t k = 0; k < grey.size(); ++k)
+  {
+    EXPECT_NEAR(rgb[k], grey[k], 1e-12) << k;
+  }
+  ASSERT_TRUE(
+    vtkRefractaEnvironmentMap::ReadRadiance(image(VTK_FLOAT, 1, { 7.5 }), rgb, size, error));
+  EXPECT_EQ(rgb[2], 7.5);
+
+  EXPECT_FALSE(
+    vtkRefractaEnvironmentMap::ReadRadiance(image(VTK_FLOAT, 3, { 1, -1, 0 }), rgb, size, error));
+  EXPECT_NE(error.find("texel 0 (channel 1) is -1"), std::string::npos) << error;
+  auto volume = vtkSmartPointer<vtkImageData>::New();
+  volume->SetDimensions(2, 2, 2);
+  volume->AllocateScalars(VTK_FLOAT, 3);
+  EXPECT_FALSE(vtkRefractaEnvironmentMap::ReadRadiance(volume, rgb, size, error));
+  EXPECT_NE(error.find("2 x 2 x 2"), std::string::npos) << error;
+  EXPECT_FALSE(vtkRefractaEnvironmentMap::ReadRadiance(nullptr, rgb, size, error));
 }

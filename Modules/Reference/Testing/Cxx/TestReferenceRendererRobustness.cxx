@@ -300,7 +300,7 @@ TEST(ReferenceRenderer, BadInputsGiveClearErrors)
   {
     vtkNew<vtkImageData> env;
     env->SetDimensions(4, 2, 1);
-    env->AllocateScalars(VTK_FLOAT, 2);
+    env->AllocateScalars(VTK_FLOAT, 5); // 1 to 4 components (grey to RGBA) are maps
     vtkNew<vtkReferenceRenderer> r;
     r->SetInputData(medium);
     r->SetCamera(ParallelCamera(focal, dop, up, 1.0));

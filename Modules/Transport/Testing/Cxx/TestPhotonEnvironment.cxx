@@ -226,11 +226,11 @@ TEST(PhotonEnvironment, BadEnvironmentIsReported)
   EXPECT_NE(observer->GetErrorMessage().find("BackgroundColor"), std::string::npos);
   EXPECT_EQ(tracer->GetOutput()->GetNumberOfPoints(), 0);
   observer->Clear();
-  // A map with 2 components.
-  vtkNew<vtkImageData> twoComponents;
-  twoComponents->SetDimensions(4, 2, 1);
-  twoComponents->AllocateScalars(VTK_FLOAT, 2);
-  tracer->SetEnvironmentMap(twoComponents);
+  // A map with 5 components (1 to 4, grey to RGBA, are maps).
+  vtkNew<vtkImageData> fiveComponents;
+  fiveComponents->SetDimensions(4, 2, 1);
+  fiveComponents->AllocateScalars(VTK_FLOAT, 5);
+  tracer->SetEnvironmentMap(fiveComponents);
   tracer->Update();
   EXPECT_TRUE(observer->GetError());
   EXPECT_NE(observer->GetErrorMessage().find("EnvironmentMap"), std::string::npos);
