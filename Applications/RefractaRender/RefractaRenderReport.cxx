@@ -328,6 +328,16 @@ void PrintLightPass(const json& light)
               << " (relative difference " << (emitted > 0 ? (out - emitted) / emitted : 0.0)
               << ")\n";
   }
+  // Photons stopped by the step cap (light trapped by total internal reflection in many nested
+  // bodies, say) took their power out of the image: say how many, not only in the report.
+  const double capped = light.value("TerminatedStepCap", 0.0);
+  const double marched = light.value("PhotonsMarched", 0.0);
+  if (capped > 0 && marched > 0 && capped >= 0.001 * marched)
+  {
+    std::cout << "  warning   " << capped << " photons (" << 100.0 * capped / marched
+              << "% of those marched) stopped at the step cap; their power is not in the image "
+                 "(it is booked as remaining)\n";
+  }
 }
 
 // "surfaces" line: how many of each kind, the triangles; nothing without surfaces.

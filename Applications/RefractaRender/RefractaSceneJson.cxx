@@ -18,7 +18,8 @@ std::string Join(const std::set<std::string>& names)
   return list;
 }
 
-// A number that must be finite and in [lo, hi].
+// A number that must be finite and in [lo, hi] (printed exactly: [1, 268435456], not
+// [1, 2.68435e+08]).
 double CheckedNumber(const json& v, const std::string& path, double lo, double hi)
 {
   if (!v.is_number())
@@ -28,11 +29,36 @@ double CheckedNumber(const json& v, const std::string& path, double lo, double h
   const double d = v.get<double>();
   if (!std::isfinite(d) || d < lo || d > hi)
   {
-    std::ostringstream os;
-    os << "value " << d << " is out of range [" << lo << ", " << hi << "]";
-    Fail(path, os.str());
+    auto print = [](double x)
+    {
+      std::ostringstream os;
+      if (std::abs(x) < 1e15 && x == std::floor(x))
+      {
+        os << static_cast<long long>(x);
+      }
+      else
+      {
+        os << x;
+      }
+      return os.str();
+    };
+    Fail(path, "value " + print(d) + " is out of range [" + print(lo) + ", " + print(hi) + "]");
   }
   return d;
+}
+
+// Whether `v` is an integer: written as one (96) or as a number with no fractional part (96.0).
+bool IsInteger(const json& v)
+{
+  return v.is_number_integer() ||
+    (v.is_number_float() && std::isfinite(v.get<double>()) &&
+      v.get<double>() == std::floor(v.get<double>()));
+}
+
+// `text` for a message: at most 80 characters (a 1 MB string was echoed whole).
+std::string Quoted(const std::string& text)
+{
+  return "'" + (text.size() > 80 ? text.substr(0, 77) + "..." : text) + "'";
 }
 }
 
@@ -69,7 +95,7 @@ double Number(const json& object, const std::string& key, const std::string& pat
 int Integer(
   const json& object, const std::string& key, const std::string& path, int fallback, int lo, int hi)
 {
-  if (object.contains(key) && !object[key].is_number_integer())
+  if (object.contains(key) && object[key].is_number() && !IsInteger(object[key]))
   {
     Fail(path + "." + key, "must be an integer");
   }
@@ -107,7 +133,7 @@ std::vector<int> IntegerVector(const json& object, const std::string& key, const
   std::vector<int> out;
   for (size_t i = 0; i < size; ++i)
   {
-    if (!object[key][i].is_number_integer())
+    if (!IsInteger(object[key][i]))
     {
       Fail(path + "." + key + "[" + std::to_string(i) + "]", "must be an integer");
     }
@@ -143,7 +169,7 @@ std::string String(const json& object, const std::string& key, const std::string
   const std::string s = object[key].get<std::string>();
   if (!choices.empty() && !choices.count(s))
   {
-    Fail(path + "." + key, "'" + s + "' is not one of: " + Join(choices));
+    Fail(path + "." + key, Quoted(s) + " is not one of: " + Join(choices));
   }
   return s;
 }

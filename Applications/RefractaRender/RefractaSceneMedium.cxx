@@ -1,8 +1,10 @@
 #include "RefractaSceneMedium.h"
 
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCubeSource.h"
 #include "vtkImageAlgorithm.h"
+#include "vtkImageData.h"
 #include "vtkJPEGReader.h"
 #include "vtkMediumMaterial.h"
 #include "vtkMediumValidator.h"
@@ -102,7 +104,13 @@ vtkSmartPointer<vtkAlgorithm> ReadFile(const ReaderTable& readers, const std::st
     Fail(path, "'" + file + "' has an unsupported extension (use " + supported + ")");
   }
   vtkSmartPointer<vtkAlgorithm> reader = it->second(file);
+  vtkNew<vtkRefractaErrorCapture> error;
+  error->Observe(reader);
   reader->Update();
+  if (error->HasError())
+  {
+    Fail(path, "'" + file + "' could not be read: " + error->GetText());
+  }
   return reader;
 }
 
@@ -372,12 +380,18 @@ SceneMedium ReadVolume(const json& medium, const std::string& base)
   {
     Fail("scene.medium.volume.file", "missing (a .vti, .mha, .mhd, .nrrd or .nhdr file)");
   }
-  auto input =
-    ReadImageFile(Resolve(base, volume["file"].get<std::string>()), "scene.medium.volume.file");
+  const std::string file = Resolve(base, volume["file"].get<std::string>());
+  auto input = ReadImageFile(file, "scene.medium.volume.file");
   SceneMedium out;
+  vtkNew<vtkMediumValidator> validator;
   if (volume.contains("transfer_function"))
   {
     out.Image = MapThroughTransferFunctions(volume, input);
+    // The mapped medium keeps the file's grid: a bad spacing or direction is the file's.
+    if (!validator->Validate(out.Image))
+    {
+      Fail("scene.medium.volume.file", "'" + file + "': " + validator->GetErrorMessage());
+    }
     out.Report["source"] = "volume with transfer functions";
     return out;
   }
@@ -385,11 +399,10 @@ SceneMedium ReadVolume(const json& medium, const std::string& base)
   {
     Fail("scene.medium.volume.array", "only used with a transfer_function");
   }
-  vtkNew<vtkMediumValidator> validator;
   if (!validator->Validate(input))
   {
     Fail("scene.medium.volume.file",
-      std::string("is not a Refracta medium and no transfer_function is given: ") +
+      "'" + file + "' is not a Refracta medium and no transfer_function is given: " +
         validator->GetErrorMessage());
   }
   out.Image = input;
@@ -427,9 +440,10 @@ vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& file, const std::
   {
     image->ShallowCopy(out);
   }
-  if (image->GetNumberOfPoints() == 0)
+  if (image->GetNumberOfPoints() == 0 ||
+    image->GetPointData()->GetNumberOfArrays() + image->GetCellData()->GetNumberOfArrays() == 0)
   {
-    Fail(path, "'" + file + "' could not be read as an image");
+    Fail(path, "'" + file + "' could not be read as an image (no points or no data arrays)");
   }
   return image;
 }

@@ -96,7 +96,7 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
   s.ViewStep =
     Number(quality, "view_step", q, hasPreset ? plan->GetRecommendedViewStep() : 1.0, 0.01, 16.0);
   std::tie(s.RayModeName, s.RayMode) = Choice(quality, "ray_mode", q, "auto", RayModes);
-  s.TransmittanceCutoff = Number(quality, "transmittance_cutoff", q, 1e-4, 0.0, 1.0);
+  s.TransmittanceCutoff = Number(quality, "transmittance_cutoff", q, 1e-4, 0.0, 0.5);
   s.PhotonMinStep = Number(quality, "photon_min_step", q,
     hasPreset ? plan->GetRecommendedPhotonMinimumStep() : 1.0, 1e-3, 1e6);
   s.OctreeTolerance = Number(quality, "octree_tolerance", q,
