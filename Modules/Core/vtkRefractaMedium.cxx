@@ -3,11 +3,13 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -178,4 +180,83 @@ void vtkRefractaMedium::PrintSelf(ostream& os, vtkIndent indent)
     os << indent << Conventions[id].Name << ": " << Conventions[id].Components << " component(s), "
        << Conventions[id].RangeDescription << ", default " << Conventions[id].Default << "\n";
   }
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkRefractaMedium::FillAlbedoWithoutExtinction(vtkImageData* medium)
+{
+  vtkDataArray* extinction = medium ? medium->GetPointData()->GetArray(ExtinctionName()) : nullptr;
+  vtkDataArray* albedo = medium ? medium->GetPointData()->GetArray(AlbedoName()) : nullptr;
+  const vtkIdType points = medium ? medium->GetNumberOfPoints() : 0;
+  if (!extinction || !albedo || extinction->GetNumberOfComponents() != 3 ||
+    albedo->GetNumberOfComponents() != 3 || extinction->GetNumberOfTuples() != points ||
+    albedo->GetNumberOfTuples() != points)
+  {
+    return 0;
+  }
+  int dims[3];
+  medium->GetDimensions(dims);
+  std::vector<float> sigma, a;
+  ReadArray(extinction, points, 3, 0.0f, sigma);
+  ReadArray(albedo, points, 3, 1.0f, a);
+  if (*std::max_element(sigma.begin(), sigma.end()) <= 0.0f)
+  {
+    return 0; // no extinction anywhere: albedo means nothing
+  }
+  std::vector<float> filled(a);
+  std::atomic<vtkIdType> changed(0);
+  auto index = [&dims](int i, int j, int k)
+  { return i + static_cast<vtkIdType>(dims[0]) * (j + static_cast<vtkIdType>(dims[1]) * k); };
+  vtkSMPTools::For(0, dims[2],
+    [&](vtkIdType kBegin, vtkIdType kEnd)
+    {
+      vtkIdType local = 0;
+      for (int k = static_cast<int>(kBegin); k < kEnd; ++k)
+      {
+        for (int j = 0; j < dims[1]; ++j)
+        {
+          for (int i = 0; i < dims[0]; ++i)
+          {
+            const vtkIdType v = index(i, j, k);
+            for (int c = 0; c < 3; ++c)
+            {
+              if (sigma[3 * v + c] > 0.0f)
+              {
+                continue;
+              }
+              double weight = 0.0, sum = 0.0;
+              for (int z = std::max(k - 1, 0); z <= std::min(k + 1, dims[2] - 1); ++z)
+              {
+                for (int y = std::max(j - 1, 0); y <= std::min(j + 1, dims[1] - 1); ++y)
+                {
+                  for (int x = std::max(i - 1, 0); x <= std::min(i + 1, dims[0] - 1); ++x)
+                  {
+                    const vtkIdType n = index(x, y, z);
+                    weight += sigma[3 * n + c];
+                    sum += sigma[3 * n + c] * a[3 * n + c];
+                  }
+                }
+              }
+              if (weight > 0.0 && static_cast<float>(sum / weight) != a[3 * v + c])
+              {
+                filled[3 * v + c] = static_cast<float>(sum / weight);
+                ++local;
+              }
+            }
+          }
+        }
+      }
+      changed += local;
+    });
+  const vtkIdType count = changed;
+  if (count > 0)
+  {
+    vtkNew<vtkFloatArray> copy;
+    copy->SetName(AlbedoName());
+    copy->SetNumberOfComponents(3);
+    copy->SetNumberOfTuples(points);
+    std::copy(filled.begin(), filled.end(), copy->GetPointer(0));
+    medium->GetPointData()->AddArray(copy); // replaces the array of the same name
+  }
+  return count;
 }

@@ -162,6 +162,20 @@ public:
   static bool IsGrey(const std::vector<float>& rgb);
 #endif
 
+  /**
+   * Gives every voxel without extinction (in a channel) the albedo of its neighbours that have
+   * some: their mean over the 26-neighbourhood, weighted by their extinction. Such a voxel's
+   * albedo means nothing by itself, but the passes interpolate albedo and extinction separately,
+   * so between clear glass (extinction 0, albedo 0 by default) and a white fog (albedo 1) the
+   * interpolated albedo fell below 1 where the interpolated extinction is not 0: the fog's rim
+   * absorbed light it cannot absorb (0.3 to 0.8% of an albedo-1 scene's power). After
+   * the fill the interpolated albedo there is the fog's, as sigma_s / sigma_t interpolated would
+   * be. The albedo array is replaced by a filled copy (the input's array is never written);
+   * nothing changes without Extinction and Albedo arrays of 3 components, or where no voxel
+   * needs it. Returns the number of voxel channels filled.
+   */
+  static vtkIdType FillAlbedoWithoutExtinction(vtkImageData* medium);
+
 protected:
   vtkRefractaMedium() = default;
   ~vtkRefractaMedium() override = default;

@@ -245,6 +245,9 @@ bool vtkRefractaRenderPipeline::RunPlan()
   {
     auto planned = vtkSmartPointer<vtkImageData>::New();
     in.Plan->ApplyToMedium(in.Medium, planned);
+    // Clear voxels next to scattering ones take their albedo, so that interpolation does not
+    // absorb at the rim of a white fog (vtkRefractaMedium::FillAlbedoWithoutExtinction).
+    vtkRefractaMedium::FillAlbedoWithoutExtinction(planned);
     in.Planned = planned;
     if (!in.ViewPass->SetMedium(in.Planned))
     {

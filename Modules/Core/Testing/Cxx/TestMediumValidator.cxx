@@ -110,6 +110,47 @@ TEST(RefractaMedium, ConventionsMatchSpec)
   EXPECT_FALSE(vtkRefractaMedium::IsValueValid(vtkRefractaMedium::REFRACTIVE_INDEX, 100.5));
 }
 
+// A clear voxel (no extinction) next to scattering ones takes their extinction-weighted albedo,
+// per channel, in a new array (the input's is not written); a clear voxel with no scattering
+// neighbour, and every voxel with extinction, keeps its own.
+TEST(RefractaMedium, FillAlbedoWithoutExtinction)
+{
+  vtkNew<vtkImageData> medium;
+  medium->SetDimensions(4, 1, 1);
+  vtkNew<vtkFloatArray> sigma, albedo;
+  sigma->SetName(vtkRefractaMedium::ExtinctionName());
+  albedo->SetName(vtkRefractaMedium::AlbedoName());
+  for (vtkFloatArray* a : { sigma.Get(), albedo.Get() })
+  {
+    a->SetNumberOfComponents(3);
+    a->SetNumberOfTuples(4);
+    medium->GetPointData()->AddArray(a);
+  }
+  // Voxels 0, 1 clear; 2: sigma 2, albedo 1; 3: sigma 6, albedo 0.5. Channel 2 of voxel 2 clear.
+  const float s[4][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 2, 2, 0 }, { 6, 6, 6 } };
+  const float a[4][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 1, 1, 1 }, { 0.5f, 0.5f, 0.5f } };
+  for (int v = 0; v < 4; ++v)
+  {
+    sigma->SetTypedTuple(v, s[v]);
+    albedo->SetTypedTuple(v, a[v]);
+  }
+  EXPECT_EQ(vtkRefractaMedium::FillAlbedoWithoutExtinction(medium), 3);
+  auto* filled =
+    vtkFloatArray::SafeDownCast(medium->GetPointData()->GetArray(vtkRefractaMedium::AlbedoName()));
+  ASSERT_NE(filled, albedo.Get());
+  EXPECT_EQ(albedo->GetValue(3), 0.0f);               // the input's array is untouched
+  EXPECT_EQ(filled->GetComponent(0, 0), 0.0);         // no scattering neighbour
+  EXPECT_NEAR(filled->GetComponent(1, 0), 1.0, 1e-7); // voxel 2 alone
+  EXPECT_NEAR(filled->GetComponent(2, 2), 0.5, 1e-7); // voxel 3 alone (channel 2)
+  EXPECT_NEAR(filled->GetComponent(2, 0), 1.0, 1e-7); // has extinction: its own
+  EXPECT_NEAR(filled->GetComponent(3, 1), 0.5, 1e-7);
+  // Nothing to do: a second call changes nothing, nor does a medium without extinction.
+  EXPECT_EQ(vtkRefractaMedium::FillAlbedoWithoutExtinction(medium), 0);
+  sigma->Fill(0.0);
+  EXPECT_EQ(vtkRefractaMedium::FillAlbedoWithoutExtinction(medium), 0);
+  EXPECT_EQ(vtkRefractaMedium::FillAlbedoWithoutExtinction(nullptr), 0);
+}
+
 TEST(MediumValidator, AcceptsGoodMedium)
 {
   auto image = MakeMedium();

@@ -23,6 +23,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -428,4 +429,42 @@ TEST(PipelineSingleScattering, FirstCollisionSplitWorksWithLightRays)
       std::fabs(s1Rays->GetVariantValue(i).ToDouble() - s1Photons->GetVariantValue(i).ToDouble());
   }
   EXPECT_GT(differs, 0.0) << "S1 comes from the light rays, not the photons";
+}
+
+// A white fog (albedo 1) around a clear ball (no extinction, albedo 0 as a voxelized glass body
+// has it): nothing can absorb, so the photons must book no absorption. Interpolating the albedo
+// between the ball's 0 and the fog's 1 made the fog's rim absorb 0.3% of the power before the
+// pipeline gave clear voxels their neighbours' albedo (vtkRefractaMedium::
+// FillAlbedoWithoutExtinction; outside review).
+TEST(PipelineSingleScattering, AWhiteFogAroundClearGlassAbsorbsNothing)
+{
+  auto medium = Haze(false);
+  auto* ext = vtkFloatArray::SafeDownCast(medium->GetPointData()->GetArray("Extinction"));
+  auto* alb = vtkFloatArray::SafeDownCast(medium->GetPointData()->GetArray("Albedo"));
+  for (vtkIdType id = 0; id < medium->GetNumberOfPoints(); ++id)
+  {
+    double p[3];
+    medium->GetPoint(id, p);
+    const double r = std::sqrt((p[0] - 0.475) * (p[0] - 0.475) + (p[1] - 0.475) * (p[1] - 0.475) +
+      (p[2] - 0.475) * (p[2] - 0.475));
+    const bool ball = r < 0.25;
+    for (int c = 0; c < 3; ++c)
+    {
+      ext->SetComponent(id, c, ball ? 0.0 : 4.0);
+      alb->SetComponent(id, c, ball ? 0.0 : 1.0);
+    }
+  }
+  auto pipeline = Pipeline(medium, vtkEffectPlan::PHOTONS);
+  ASSERT_TRUE(pipeline->Render(16, 16));
+  vtkImageData* photons = pipeline->GetPhotonTracer()->GetOutput();
+  vtkDataArray* emitted = photons->GetFieldData()->GetArray("EnergyEmitted");
+  vtkDataArray* absorbed = photons->GetFieldData()->GetArray("EnergyAbsorbed");
+  ASSERT_TRUE(emitted && absorbed);
+  std::cout << "absorbed / emitted " << absorbed->GetComponent(0, 0) / emitted->GetComponent(0, 0)
+            << "\n";
+  EXPECT_GT(emitted->GetComponent(0, 0), 0.0);
+  EXPECT_LT(absorbed->GetComponent(0, 0), 1e-6 * emitted->GetComponent(0, 0));
+  // The input's albedo is not written.
+  EXPECT_EQ(
+    alb->GetComponent(medium->ComputePointId(std::array<int, 3>{ 9, 9, 9 }.data()), 0), 0.0);
 }
