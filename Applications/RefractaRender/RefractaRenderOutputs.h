@@ -41,7 +41,7 @@ struct OutputFile
 /// otherwise waste (and VTK's writers would say "Ran out of disk space" first).
 void CheckOutputs(const std::vector<OutputFile>& outputs, const std::string& sceneFile);
 
-/// Deletes the files of `outputs` named in `written` (after a later output failed: no partial
+/// Deletes the files named in `written` (after an output failed: no partial
 /// set of results, and no truncated file, is left behind).
 void RemoveOutputs(const std::vector<std::string>& written);
 }

@@ -133,7 +133,10 @@ json PlanReport(vtkRefractaRenderPipeline* pipeline)
   vtkEffectPlan* plan = pipeline->GetEffectPlan();
   json report;
   report["summary"] = plan->GetSummary();
-  report["analysis"] = pipeline->GetSceneAnalysis()->GetSummary();
+  vtkSceneAnalysis* analysis = pipeline->GetSceneAnalysis();
+  report["analysis"] = analysis->GetSummary();
+  report["voxel_optical_depth"] = analysis->GetMaximumVoxelOpticalDepth();
+  report["under_resolved"] = analysis->IsUnderResolved();
   report["tolerance"] = plan->GetTolerance();
   for (int e = 0; e < vtkEffectPlan::NUMBER_OF_EFFECTS; ++e)
   {
@@ -382,6 +385,14 @@ void PrintSummary(const json& report)
             << image["height"].get<int>() << " -> " << report["output"].get<std::string>() << " on "
             << report["device"].get<std::string>() << "\n";
   std::cout << "  plan      " << report["plan"]["summary"].get<std::string>() << "\n";
+  if (report["plan"].value("under_resolved", false))
+  {
+    std::cout << "  warning   a voxel's optical depth reaches "
+              << report["plan"]["voxel_optical_depth"].get<double>()
+              << " in a scattering medium: dense parts scatter their light within a fraction of a "
+                 "voxel of their surface, which the grid does not resolve, so it is "
+                 "underestimated; a finer grid (medium.grid.dimensions) resolves it\n";
+  }
   const json& method = report["plan"]["single_scattering_method"];
   std::cout << "  single    " << method["chosen"].get<std::string>() << " ("
             << method["reason"].get<std::string>() << ")\n";

@@ -138,6 +138,7 @@ struct VoxelFacts
   double AlbedoMin = std::numeric_limits<double>::max();
   double AlbedoMax = std::numeric_limits<double>::lowest();
   double EmissionMax = 0.0;
+  double SigmaTMax = 0.0;
   bool Scatters = false;
   vtkIdType Occupied = 0;
 };
@@ -316,6 +317,7 @@ struct vtkSceneAnalysis::MediumCache
   double AxisOpticalThickness[3] = { 0.0, 0.0, 0.0 };
   double MaximumOpticalThickness = 0.0;
   double MaximumScatteringThickness = 0.0;
+  double MaximumVoxelOpticalDepth = 0.0;
   double MaximumBendingAngle = 0.0;
   double MaximumDisplacementInVoxels = 0.0;
 
@@ -396,6 +398,7 @@ void vtkSceneAnalysis::Reset()
   this->MaximumBendingAngle = this->MaximumDisplacementInVoxels = 0.0;
   std::fill(this->AxisOpticalThickness, this->AxisOpticalThickness + 3, 0.0);
   this->MaximumOpticalThickness = this->MaximumScatteringThickness = 0.0;
+  this->MaximumVoxelOpticalDepth = 0.0;
   this->LightOpticalThickness.assign(this->Lights.size(), 0.0);
   this->AlbedoRange[0] = this->AlbedoRange[1] = 0.0;
   this->HasScattering = this->HasEmission = false;
@@ -474,6 +477,7 @@ bool vtkSceneAnalysis::Analyze()
   this->OccupiedFraction = cache.OccupiedFraction;
   this->MaximumOpticalThickness = cache.MaximumOpticalThickness;
   this->MaximumScatteringThickness = cache.MaximumScatteringThickness;
+  this->MaximumVoxelOpticalDepth = cache.MaximumVoxelOpticalDepth;
   this->MaximumBendingAngle = cache.MaximumBendingAngle;
   this->MaximumDisplacementInVoxels = cache.MaximumDisplacementInVoxels;
 
@@ -540,6 +544,7 @@ bool vtkSceneAnalysis::ScanMedium()
             occupied = true;
           }
           facts.EmissionMax = std::max(facts.EmissionMax, emission);
+          facts.SigmaTMax = std::max(facts.SigmaTMax, sigmaT);
           occupied = occupied || emission > 0.0;
         }
         facts.Occupied += occupied ? 1 : 0;
@@ -553,6 +558,7 @@ bool vtkSceneAnalysis::ScanMedium()
     all.AlbedoMin = std::min(all.AlbedoMin, f.AlbedoMin);
     all.AlbedoMax = std::max(all.AlbedoMax, f.AlbedoMax);
     all.EmissionMax = std::max(all.EmissionMax, f.EmissionMax);
+    all.SigmaTMax = std::max(all.SigmaTMax, f.SigmaTMax);
     all.Scatters = all.Scatters || f.Scatters;
     all.Occupied += f.Occupied;
   }
@@ -582,6 +588,8 @@ bool vtkSceneAnalysis::ScanMedium()
   }
   cache.MaximumDisplacementInVoxels =
     cache.MaximumBendingAngle * std::sqrt(diagonal2) / minimumSpacing;
+  cache.MaximumVoxelOpticalDepth =
+    all.SigmaTMax * std::max({ fields.Spacing[0], fields.Spacing[1], fields.Spacing[2] });
 
   // The light probes need only the extinction: free the rest.
   std::vector<float>().swap(fields.N);
@@ -675,10 +683,12 @@ std::string vtkSceneAnalysis::GetSummary() const
   s << "n in [" << this->RefractiveIndexRange[0] << ", " << this->RefractiveIndexRange[1]
     << "], bending <= " << this->MaximumBendingAngle << " rad ("
     << this->MaximumDisplacementInVoxels << " voxels), tau <= " << this->MaximumOpticalThickness
-    << ", tau_s <= " << this->MaximumScatteringThickness << ", albedo in [" << this->AlbedoRange[0]
-    << ", " << this->AlbedoRange[1] << "], emission " << (this->HasEmission ? "yes" : "no")
-    << ", occupied " << 100.0 * this->OccupiedFraction << "%, " << this->NumberOfPoweredLights
-    << " powered light(s), " << this->NumberOfSurfaces << " surface(s)";
+    << ", tau_s <= " << this->MaximumScatteringThickness
+    << ", voxel tau <= " << this->MaximumVoxelOpticalDepth << ", albedo in ["
+    << this->AlbedoRange[0] << ", " << this->AlbedoRange[1] << "], emission "
+    << (this->HasEmission ? "yes" : "no") << ", occupied " << 100.0 * this->OccupiedFraction
+    << "%, " << this->NumberOfPoweredLights << " powered light(s), " << this->NumberOfSurfaces
+    << " surface(s)";
   if (this->NumberOfInterfaceSurfaces > 0)
   {
     s << " (" << this->NumberOfInterfaceSurfaces << " dielectric)";

@@ -122,6 +122,24 @@ public:
   vtkGetMacro(MaximumScatteringThickness, double);
 
   /**
+   * Largest optical depth of one voxel: the largest sigma_t (any channel) times the largest
+   * spacing. Above a few, light is scattered within a fraction of a voxel of a dense region's
+   * surface, which the passes' voxel samples do not resolve: the light scattered there is
+   * underestimated (by about 2x at 4; light rays sample exp(-tau / 2) at a voxel's centre where
+   * the voxel's mean is (1 - exp(-tau)) / tau). IsUnderResolved() says when.
+   */
+  vtkGetMacro(MaximumVoxelOpticalDepth, double);
+
+  /**
+   * Whether the medium scatters and MaximumVoxelOpticalDepth exceeds 4: its dense parts need a
+   * finer grid for their scattered light (refracta-render prints a warning).
+   */
+  bool IsUnderResolved() const
+  {
+    return this->HasScattering && this->MaximumVoxelOpticalDepth > 4.0;
+  }
+
+  /**
    * Largest optical thickness along probe rays from light `i` through the volume (0 for a
    * light without power or out of range).
    */
@@ -231,6 +249,7 @@ protected:
   double AxisOpticalThickness[3] = { 0.0, 0.0, 0.0 };
   double MaximumOpticalThickness = 0.0;
   double MaximumScatteringThickness = 0.0;
+  double MaximumVoxelOpticalDepth = 0.0;
   std::vector<double> LightOpticalThickness;
   double AlbedoRange[2] = { 0.0, 0.0 };
   bool HasScattering = false;

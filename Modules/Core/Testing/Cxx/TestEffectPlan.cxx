@@ -143,6 +143,26 @@ TEST(SceneAnalysis, PureAbsorption)
   EXPECT_FALSE(plan->IsEnabled(vtkEffectPlan::EMISSION));
 }
 
+// A voxel's optical depth: the largest sigma_t times the largest spacing. A scattering medium
+// denser than 4 per voxel is under-resolved (its surface glow is lost in the voxel samples; an
+// outside review's sigma 1000 on 32^3 rendered black); absorption alone is not.
+TEST(SceneAnalysis, VoxelOpticalDepthFlagsUnderResolvedScattering)
+{
+  vtkNew<vtkSceneAnalysis> analysis;
+  vtkNew<vtkEffectPlan> plan;
+  auto light = MakeDirectionalLight(1.0);
+  Plan(UniformFog(8, 0.1, 30.0, 0.9), light, plan, analysis);
+  EXPECT_NEAR(analysis->GetMaximumVoxelOpticalDepth(), 3.0, 1e-5);
+  EXPECT_FALSE(analysis->IsUnderResolved());
+  Plan(UniformFog(8, 0.1, 100.0, 0.9), light, plan, analysis);
+  EXPECT_NEAR(analysis->GetMaximumVoxelOpticalDepth(), 10.0, 1e-4);
+  EXPECT_TRUE(analysis->IsUnderResolved());
+  EXPECT_NE(analysis->GetSummary().find("voxel tau <= 10"), std::string::npos)
+    << analysis->GetSummary();
+  Plan(UniformFog(8, 0.1, 100.0, 0.0), light, plan, analysis);
+  EXPECT_FALSE(analysis->IsUnderResolved());
+}
+
 TEST(SceneAnalysis, LinearIndexGradientBendsRays)
 {
   // n = 1 + a y with a = 0.2 per unit, on 11^3 voxels of spacing 0.1 (y in [0, 1]).
