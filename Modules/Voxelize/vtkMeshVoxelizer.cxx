@@ -631,8 +631,7 @@ int vtkMeshVoxelizer::RequestData(
     vtkErrorMacro("Cannot allocate the medium of the grid "
       << g.N[0] << " x " << g.N[1] << " x " << g.N[2] << " (" << numVoxels * 62.0 / (1 << 30)
       << " GiB at 62 bytes per voxel): not enough memory. Use fewer voxels (smaller grid "
-         "dimensions "
-         "or a larger spacing).");
+         "dimensions or a larger spacing).");
     output->Initialize(); // an empty output, not a grid without arrays
     return 0;
   }
