@@ -4,14 +4,16 @@
 #                    [TIMEOUT <s>] [ENVIRONMENT <vars...>] [NEEDS_RENDER_WINDOW])
 # builds one GoogleTest executable and registers it as one ctest test. NEEDS_RENDER_WINDOW: the
 # program skips its tests where no render window can be opened (MapperTestUtilities.h), and
-# ctest then reports it as skipped rather than passed. Every test gets a private
-# PoCL kernel cache inside the build tree, so timings and results never depend on a warm home
-# directory (on PoCL, Refracta's own binary cache is off unless a test names a folder:
-# vtkOpenCLContext::GetDriverCachesPrograms).
+# ctest then reports it as skipped rather than passed. Every test gets private kernel caches
+# inside the build tree (PoCL's in POCL_CACHE_DIR; Refracta's binary cache in XDG_CACHE_HOME's
+# refracta/kernels, used on drivers without a cache of their own: on PoCL it stays off unless a
+# test names a folder, vtkOpenCLContext::GetDriverCachesPrograms), so timings and results never
+# depend on a warm home directory.
 include(GoogleTest)
 
 set(REFRACTA_TEST_ENVIRONMENT
   "POCL_CACHE_DIR=${CMAKE_BINARY_DIR}/Testing/pocl-cache"
+  "XDG_CACHE_HOME=${CMAKE_BINARY_DIR}/Testing/cache"
   "REFRACTA_DATA_DIR=${CMAKE_SOURCE_DIR}/Data"
   "REFRACTA_TEST_OUTPUT_DIR=${CMAKE_BINARY_DIR}/Testing/Temporary"
   "REFRACTA_BASELINE_DIR=${CMAKE_SOURCE_DIR}/Testing/Baselines")

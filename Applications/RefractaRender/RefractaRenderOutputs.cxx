@@ -7,6 +7,8 @@
 #include "vtkPointData.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -67,6 +69,28 @@ void WriteReport(const json& report, const std::string& file)
   }
 }
 
+namespace
+{
+// The folder of `file` ("." without one).
+std::string Folder(const std::string& file)
+{
+  const size_t slash = file.find_last_of('/');
+  return slash == std::string::npos ? "." : (slash == 0 ? "/" : file.substr(0, slash));
+}
+
+// Whether two output names are one file: the same name in the same folder (out/a.vti and
+// ./out/a.vti), the folders compared by identity.
+bool SameFile(const std::string& a, const std::string& b)
+{
+  const size_t sa = a.find_last_of('/'), sb = b.find_last_of('/');
+  const std::string nameA = sa == std::string::npos ? a : a.substr(sa + 1);
+  const std::string nameB = sb == std::string::npos ? b : b.substr(sb + 1);
+  struct stat fa, fb;
+  return nameA == nameB && stat(Folder(a).c_str(), &fa) == 0 && stat(Folder(b).c_str(), &fb) == 0 &&
+    fa.st_dev == fb.st_dev && fa.st_ino == fb.st_ino;
+}
+}
+
 void CheckOutputs(const std::vector<OutputFile>& outputs, const std::string& sceneFile)
 {
   struct stat scene;
@@ -80,14 +104,15 @@ void CheckOutputs(const std::vector<OutputFile>& outputs, const std::string& sce
     }
     const std::string what = outputs[i].Option + " '" + file + "'";
     const std::string& suffix = outputs[i].Suffix;
-    if (file.size() <= suffix.size() ||
-      file.compare(file.size() - suffix.size(), suffix.size(), suffix) != 0)
+    std::string ending =
+      file.size() > suffix.size() ? file.substr(file.size() - suffix.size()) : "";
+    std::transform(ending.begin(), ending.end(), ending.begin(),
+      [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ending != suffix)
     {
       throw std::runtime_error(what + ": the file name must end in " + suffix + " (its format)");
     }
-    const size_t slash = file.find_last_of('/');
-    const std::string folder =
-      slash == std::string::npos ? "." : (slash == 0 ? "/" : file.substr(0, slash));
+    const std::string folder = Folder(file);
     struct stat info;
     if (stat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
     {
@@ -110,10 +135,14 @@ void CheckOutputs(const std::vector<OutputFile>& outputs, const std::string& sce
       {
         throw std::runtime_error(what + " is the scene file: it would be overwritten");
       }
+      if (access(file.c_str(), W_OK) != 0)
+      {
+        throw std::runtime_error("cannot write " + what + ": the file is not writable");
+      }
     }
     for (size_t j = 0; j < i; ++j)
     {
-      if (outputs[j].File == file)
+      if (SameFile(outputs[j].File, file))
       {
         throw std::runtime_error(
           what + " is also the file of " + outputs[j].Option + ": give each output its own file");

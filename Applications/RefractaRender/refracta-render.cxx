@@ -34,6 +34,7 @@
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -83,9 +84,11 @@ void MakePreview(json& scene)
   {
     for (auto& d : scene["medium"]["grid"]["dimensions"])
     {
-      if (d.is_number_integer())
+      // 64 and 64.0 alike (the scene reader takes both as integers).
+      if (d.is_number() && d.get<double>() == std::floor(d.get<double>()) &&
+        std::abs(d.get<double>()) < 1e9)
       {
-        d = std::max(8, d.get<int>() / 2);
+        d = std::max(8, static_cast<int>(d.get<double>()) / 2);
       }
     }
   }
@@ -250,7 +253,9 @@ int ParseOptions(int argc, char* argv[], Options& options)
     {
       // "--output --quiet" wrote an image named --quiet; "--scene a --scene b" rendered b.
       const std::string value = i + 1 < argc ? argv[i + 1] : "";
-      if (value.empty() || (value.size() > 1 && value[0] == '-'))
+      const bool isOption =
+        values.count(value) || flags.count(value) || value.rfind("--", 0) == 0 || value == "-h";
+      if (value.empty() || isOption)
       {
         std::cerr << "refracta-render: option '" << arg << "' needs a value"
                   << (value.empty() ? std::string() : ", got the option '" + value + "'") << "\n";

@@ -203,59 +203,68 @@ vtkIdType vtkRefractaMedium::FillAlbedoWithoutExtinction(vtkImageData* medium)
   {
     return 0; // no extinction anywhere: albedo means nothing
   }
-  std::vector<float> filled(a);
-  std::atomic<vtkIdType> changed(0);
+  // One sweep counts the voxel channels to fill (nothing is allocated when there are none); a
+  // second writes them into the new array.
   auto index = [&dims](int i, int j, int k)
   { return i + static_cast<vtkIdType>(dims[0]) * (j + static_cast<vtkIdType>(dims[1]) * k); };
-  vtkSMPTools::For(0, dims[2],
-    [&](vtkIdType kBegin, vtkIdType kEnd)
-    {
-      vtkIdType local = 0;
-      for (int k = static_cast<int>(kBegin); k < kEnd; ++k)
+  auto sweep = [&](float* out)
+  {
+    std::atomic<vtkIdType> changed(0);
+    vtkSMPTools::For(0, dims[2],
+      [&](vtkIdType kBegin, vtkIdType kEnd)
       {
-        for (int j = 0; j < dims[1]; ++j)
+        vtkIdType local = 0;
+        for (int k = static_cast<int>(kBegin); k < kEnd; ++k)
         {
-          for (int i = 0; i < dims[0]; ++i)
+          for (int j = 0; j < dims[1]; ++j)
           {
-            const vtkIdType v = index(i, j, k);
-            for (int c = 0; c < 3; ++c)
+            for (int i = 0; i < dims[0]; ++i)
             {
-              if (sigma[3 * v + c] > 0.0f)
+              const vtkIdType v = index(i, j, k);
+              for (int c = 0; c < 3; ++c)
               {
-                continue;
-              }
-              double weight = 0.0, sum = 0.0;
-              for (int z = std::max(k - 1, 0); z <= std::min(k + 1, dims[2] - 1); ++z)
-              {
-                for (int y = std::max(j - 1, 0); y <= std::min(j + 1, dims[1] - 1); ++y)
+                if (sigma[3 * v + c] > 0.0f)
                 {
-                  for (int x = std::max(i - 1, 0); x <= std::min(i + 1, dims[0] - 1); ++x)
+                  continue;
+                }
+                double weight = 0.0, sum = 0.0;
+                for (int z = std::max(k - 1, 0); z <= std::min(k + 1, dims[2] - 1); ++z)
+                {
+                  for (int y = std::max(j - 1, 0); y <= std::min(j + 1, dims[1] - 1); ++y)
                   {
-                    const vtkIdType n = index(x, y, z);
-                    weight += sigma[3 * n + c];
-                    sum += sigma[3 * n + c] * a[3 * n + c];
+                    for (int x = std::max(i - 1, 0); x <= std::min(i + 1, dims[0] - 1); ++x)
+                    {
+                      const vtkIdType n = index(x, y, z);
+                      weight += sigma[3 * n + c];
+                      sum += sigma[3 * n + c] * a[3 * n + c];
+                    }
                   }
                 }
-              }
-              if (weight > 0.0 && static_cast<float>(sum / weight) != a[3 * v + c])
-              {
-                filled[3 * v + c] = static_cast<float>(sum / weight);
-                ++local;
+                if (weight > 0.0 && static_cast<float>(sum / weight) != a[3 * v + c])
+                {
+                  ++local;
+                  if (out)
+                  {
+                    out[3 * v + c] = static_cast<float>(sum / weight);
+                  }
+                }
               }
             }
           }
         }
-      }
-      changed += local;
-    });
-  const vtkIdType count = changed;
+        changed += local;
+      });
+    return static_cast<vtkIdType>(changed);
+  };
+  const vtkIdType count = sweep(nullptr);
   if (count > 0)
   {
     vtkNew<vtkFloatArray> copy;
     copy->SetName(AlbedoName());
     copy->SetNumberOfComponents(3);
     copy->SetNumberOfTuples(points);
-    std::copy(filled.begin(), filled.end(), copy->GetPointer(0));
+    std::copy(a.begin(), a.end(), copy->GetPointer(0));
+    sweep(copy->GetPointer(0));
     medium->GetPointData()->AddArray(copy); // replaces the array of the same name
   }
   return count;

@@ -544,7 +544,10 @@ bool vtkSceneAnalysis::ScanMedium()
             occupied = true;
           }
           facts.EmissionMax = std::max(facts.EmissionMax, emission);
-          facts.SigmaTMax = std::max(facts.SigmaTMax, sigmaT);
+          if (albedo > 0.0)
+          {
+            facts.SigmaTMax = std::max(facts.SigmaTMax, sigmaT); // of scattering voxels only
+          }
           occupied = occupied || emission > 0.0;
         }
         facts.Occupied += occupied ? 1 : 0;

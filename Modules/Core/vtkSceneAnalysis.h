@@ -122,16 +122,16 @@ public:
   vtkGetMacro(MaximumScatteringThickness, double);
 
   /**
-   * Largest optical depth of one voxel: the largest sigma_t (any channel) times the largest
-   * spacing. Above a few, light is scattered within a fraction of a voxel of a dense region's
-   * surface, which the passes' voxel samples do not resolve: the light scattered there is
-   * underestimated (by about 2x at 4; light rays sample exp(-tau / 2) at a voxel's centre where
-   * the voxel's mean is (1 - exp(-tau)) / tau). IsUnderResolved() says when.
+   * Largest optical depth of one scattering voxel: the largest sigma_t (any channel with an
+   * albedo above 0) times the largest spacing. Above a few, light is scattered within a fraction of
+   * a voxel of a dense region's surface, which the passes' voxel samples do not resolve: the light
+   * scattered there is underestimated (by about 2x at 4; light rays sample exp(-tau / 2) at a
+   * voxel's centre where the voxel's mean is (1 - exp(-tau)) / tau). IsUnderResolved() says when.
    */
   vtkGetMacro(MaximumVoxelOpticalDepth, double);
 
   /**
-   * Whether the medium scatters and MaximumVoxelOpticalDepth exceeds 4: its dense parts need a
+   * Whether MaximumVoxelOpticalDepth exceeds 4: the medium's dense scattering parts need a
    * finer grid for their scattered light (refracta-render prints a warning).
    */
   bool IsUnderResolved() const

@@ -194,10 +194,11 @@ bool vtkOpenCLContext::GetDriverCachesPrograms() const
   {
     return false;
   }
-  // PoCL's kernel cache is on unless POCL_KERNEL_CACHE=0, and lives in POCL_CACHE_DIR, else
-  // $XDG_CACHE_HOME/pocl, else ~/.cache/pocl: with none of them set it has nowhere to write.
+  // PoCL's kernel cache is on when POCL_KERNEL_CACHE is unset or, as PoCL reads its switches,
+  // starts with '1'; it lives in POCL_CACHE_DIR, else $XDG_CACHE_HOME/pocl, else ~/.cache/pocl:
+  // with none of them set it has nowhere to write.
   const char* switchVariable = std::getenv("POCL_KERNEL_CACHE");
-  if (switchVariable && std::string(switchVariable) == "0")
+  if (switchVariable && switchVariable[0] != '1')
   {
     return false;
   }

@@ -216,7 +216,8 @@ public:
   /**
    * True when the device's driver keeps compiled programs on disk itself, so that the binary
    * cache is off unless a directory was named (SetBinaryCacheDirectory() or
-   * REFRACTA_KERNEL_CACHE_DIR): PoCL with its kernel cache on (POCL_KERNEL_CACHE not 0) and a
+   * REFRACTA_KERNEL_CACHE_DIR): PoCL with its kernel cache on (POCL_KERNEL_CACHE unset or
+   * starting with 1, as PoCL reads it) and a
    * folder to keep it in (POCL_CACHE_DIR, XDG_CACHE_HOME or HOME set). Both caches would only
    * cost time there: asking PoCL for a program's binary makes it generate machine code for every
    * kernel of the program, used or not, and the launches then generate it again for their

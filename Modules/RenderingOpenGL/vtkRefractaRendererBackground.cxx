@@ -55,7 +55,7 @@ void SampleClamped(vtkImageData* image, double u, double v, double rgb[3])
   const double fx = x - x0, fy = y - y0;
   for (int c = 0; c < 3; ++c)
   {
-    const int k = std::min(c, nc - 1); // grey images: the one channel for R, G and B
+    const int k = nc < 3 ? 0 : c; // grey (+ alpha) images: the grey channel for R, G and B
     auto at = [&](int i, int j) { return scalars->GetComponent(i + dims[0] * j, k); };
     rgb[c] = scale *
       ((1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x1, y0)) +

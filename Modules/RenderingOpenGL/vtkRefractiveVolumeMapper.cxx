@@ -18,6 +18,7 @@
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
+#include "vtkProp3D.h"
 #include "vtkPropCollection.h"
 #include "vtkRefractaActorSurfaces.h"
 #include "vtkRefractaBVH.h"
@@ -336,7 +337,8 @@ void vtkRefractiveVolumeMapper::WarnAboutUnsupportedModes(vtkRenderer* renderer,
   props->InitTraversal(it);
   while (vtkProp* prop = props->GetNextProp(it))
   {
-    if (!vtkVolume::SafeDownCast(prop) && prop->GetVisibility() &&
+    // 3D props only: 2D overlays are drawn after the volume, over it.
+    if (vtkProp3D::SafeDownCast(prop) && !vtkVolume::SafeDownCast(prop) && prop->GetVisibility() &&
       prop->HasTranslucentPolygonalGeometry())
     {
       translucent = prop->GetClassName();

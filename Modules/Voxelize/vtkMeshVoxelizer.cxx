@@ -76,7 +76,8 @@ vtkSmartPointer<vtkFloatArray> NewArray(int id, vtkIdType tuples)
 {
   const int components = vtkRefractaMedium::GetNumberOfComponents(id);
   const size_t values = static_cast<size_t>(tuples) * components;
-  auto* data = static_cast<float*>(std::malloc(std::max<size_t>(values, 1) * sizeof(float)));
+  std::unique_ptr<float, decltype(&std::free)> data(
+    static_cast<float*>(std::malloc(std::max<size_t>(values, 1) * sizeof(float))), &std::free);
   if (!data)
   {
     return nullptr;
@@ -84,7 +85,8 @@ vtkSmartPointer<vtkFloatArray> NewArray(int id, vtkIdType tuples)
   auto a = vtkSmartPointer<vtkFloatArray>::New();
   a->SetName(vtkRefractaMedium::GetArrayName(id));
   a->SetNumberOfComponents(components);
-  a->SetArray(data, static_cast<vtkIdType>(values), 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+  a->SetArray(
+    data.release(), static_cast<vtkIdType>(values), 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
   return a;
 }
 

@@ -161,6 +161,19 @@ TEST(SceneAnalysis, VoxelOpticalDepthFlagsUnderResolvedScattering)
     << analysis->GetSummary();
   Plan(UniformFog(8, 0.1, 100.0, 0.0), light, plan, analysis);
   EXPECT_FALSE(analysis->IsUnderResolved());
+  // Dense tinted glass (no albedo) beside a thin scattering haze: nothing dense scatters.
+  auto mixed = MakeMedium(8, 8, 8, 0.1,
+    [](int i, int, int)
+    {
+      Voxel v;
+      v.SigmaT = i < 4 ? 50.0 : 0.2;
+      v.Albedo = i < 4 ? 0.0 : 0.9;
+      return v;
+    });
+  Plan(mixed, light, plan, analysis);
+  EXPECT_TRUE(analysis->GetHasScattering());
+  EXPECT_NEAR(analysis->GetMaximumVoxelOpticalDepth(), 0.02, 1e-6);
+  EXPECT_FALSE(analysis->IsUnderResolved());
 }
 
 TEST(SceneAnalysis, LinearIndexGradientBendsRays)

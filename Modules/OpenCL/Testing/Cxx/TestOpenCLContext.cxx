@@ -208,10 +208,36 @@ TEST(OpenCLContext, BinaryCacheDefersToTheDriversOwn)
     EXPECT_FALSE(probe->GetDriverCachesPrograms());
     GTEST_SKIP() << "not PoCL: the binary cache is always on";
   }
+  // Environment variables this test changes, restored at the end.
+  struct SavedVariable
+  {
+    std::string Name, Value;
+    bool Set;
+    explicit SavedVariable(const char* name)
+      : Name(name)
+      , Value(std::getenv(name) ? std::getenv(name) : "")
+      , Set(std::getenv(name) != nullptr)
+    {
+    }
+    ~SavedVariable()
+    {
+      if (this->Set)
+      {
+        setenv(this->Name.c_str(), this->Value.c_str(), 1);
+      }
+      else
+      {
+        unsetenv(this->Name.c_str());
+      }
+    }
+  };
+  SavedVariable savedDirectory("REFRACTA_KERNEL_CACHE_DIR"), savedSwitch("POCL_KERNEL_CACHE"),
+    savedPoclDirectory("POCL_CACHE_DIR");
   const std::vector<std::string> files = { "refracta_atomics.cl", "selftest.cl" };
-  const char* named = std::getenv("REFRACTA_KERNEL_CACHE_DIR");
-  const std::string keep = named ? named : "";
   unsetenv("REFRACTA_KERNEL_CACHE_DIR");
+  unsetenv("POCL_KERNEL_CACHE");
+  const std::string poclCache = FreshCacheDirectory("binary-cache-pocl");
+  setenv("POCL_CACHE_DIR", poclCache.c_str(), 1);
   {
     vtkNew<vtkOpenCLContext> context;
     ASSERT_NE(context->GetProgram(files, "-DREFRACTA_FIXED_SCALE=512.0f"), nullptr);
@@ -224,17 +250,14 @@ TEST(OpenCLContext, BinaryCacheDefersToTheDriversOwn)
     context->SetBinaryCacheDirectory(dir.c_str());
     EXPECT_EQ(context->GetBinaryCachePath(files, "").rfind(dir, 0), 0u);
   }
-  setenv("POCL_KERNEL_CACHE", "0", 1);
+  // PoCL reads a switch as on only when it starts with '1': "0", "false" and "" turn its cache off.
+  for (const char* off : { "0", "false", "" })
   {
+    setenv("POCL_KERNEL_CACHE", off, 1);
     vtkNew<vtkOpenCLContext> context;
     ASSERT_TRUE(context->Initialize());
-    EXPECT_FALSE(context->GetDriverCachesPrograms());
-    EXPECT_NE(context->GetBinaryCachePath(files, ""), "");
-  }
-  unsetenv("POCL_KERNEL_CACHE");
-  if (named)
-  {
-    setenv("REFRACTA_KERNEL_CACHE_DIR", keep.c_str(), 1);
+    EXPECT_FALSE(context->GetDriverCachesPrograms()) << "'" << off << "'";
+    EXPECT_NE(context->GetBinaryCachePath(files, ""), "") << "'" << off << "'";
   }
 }
 
