@@ -283,8 +283,10 @@ int vtkTransferFunctionMedium::RequestData(
   {
     colour->Build();
   }
+  std::atomic<vtkIdType> missing(0); // NaN scalars: no data, mapped to empty space
   auto mapRange = [&](vtkIdType begin, vtkIdType end, std::atomic<vtkIdType>& firstBad)
   {
+    vtkIdType localMissing = 0;
     PointMapping point;
     point.ColourLock = lockColour ? &colourLock : nullptr;
     // Neighbouring voxels often share a scalar (a background, a segmented label): the last
@@ -294,6 +296,22 @@ int vtkTransferFunctionMedium::RequestData(
     for (vtkIdType i = begin; i < end; ++i)
     {
       const double s = scalars->GetComponent(i, 0);
+      if (std::isnan(s))
+      {
+        // Missing data (NaN, as NetCDF fill values often become): empty space, n = 1.
+        std::fill_n(extinction->GetPointer(3 * i), 3, 0.0f);
+        std::fill_n(albedo->GetPointer(3 * i), 3, 0.0f);
+        if (emission)
+        {
+          std::fill_n(emission->GetPointer(3 * i), 3, 0.0f);
+        }
+        if (index)
+        {
+          index->SetValue(i, 1.0f);
+        }
+        ++localMissing;
+        continue;
+      }
       if (!(s == mapped) &&
         (!std::isfinite(s) ||
           !point.Map(s, opacity, colour, greyFunction, indexFunction, unit, emissionScale, why)))
@@ -322,6 +340,7 @@ int vtkTransferFunctionMedium::RequestData(
         index->SetValue(i, static_cast<float>(point.Index));
       }
     }
+    missing += localMissing;
   };
   std::atomic<vtkIdType> firstBad(n);
   const vtkIdType progressStep = 1 << 18; // voxels between progress reports
@@ -336,7 +355,7 @@ int vtkTransferFunctionMedium::RequestData(
     const vtkIdType i = firstBad.load();
     const double s = scalars->GetComponent(i, 0);
     PointMapping point;
-    std::string why = "every scalar must be finite";
+    std::string why = "every scalar must be finite (or NaN: missing data, empty space)";
     if (std::isfinite(s))
     {
       point.Map(s, opacity, colour, greyFunction, indexFunction, unit, emissionScale, why);
@@ -344,6 +363,12 @@ int vtkTransferFunctionMedium::RequestData(
     vtkErrorMacro("Cannot map the input scalar " << s << " at point " << i << ": " << why << ".");
     output->Initialize();
     return 0;
+  }
+  if (missing.load() > 0)
+  {
+    vtkWarningMacro(<< missing.load() << " of " << n
+                    << " input scalars are NaN (missing data): those voxels are empty space (no "
+                       "extinction, no emission, refractive index 1).");
   }
   this->UpdateProgress(1.0);
   return 1;

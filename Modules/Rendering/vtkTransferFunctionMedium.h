@@ -25,10 +25,11 @@
  *
  * Output: a medium on the input's grid (origin, spacing and direction matrix copied) with the
  * arrays above. Errors (no property, no point scalars, more than one component, a scalar count
- * other than the point count or an empty image, non-finite scalars, a unit distance that is not
+ * other than the point count or an empty image, infinite scalars, a unit distance that is not
  * finite and > 0, NaN Anisotropy or EmissionScale, transfer functions that give NaN, or values
  * beyond the float range): vtkErrorMacro naming the problem and what would be valid,
- * RequestData returns 0, the output is empty.
+ * RequestData returns 0, the output is empty. A NaN scalar is missing data: its voxel is empty
+ * space (no extinction or emission, n = 1), and one warning says how many there were.
  */
 #ifndef vtkTransferFunctionMedium_h
 #define vtkTransferFunctionMedium_h

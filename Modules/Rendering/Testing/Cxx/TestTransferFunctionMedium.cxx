@@ -134,12 +134,45 @@ TEST(TransferFunctionMedium, NaNFromTheFunctionsIsRejected)
   }
 }
 
-TEST(TransferFunctionMedium, NonFiniteScalarsAreRejected)
+TEST(TransferFunctionMedium, InfiniteScalarsAreRejected)
+{
+  Fixture f;
+  vtkDataArray* scalars = f.Image->GetPointData()->GetScalars();
+  scalars->SetComponent(3, 0, std::numeric_limits<double>::infinity());
+  f.ExpectError("Cannot map the input scalar inf at point 3: every scalar must be finite");
+}
+
+// A NaN scalar is missing data: its voxel is empty space (extinction, albedo and emission 0,
+// n = 1), the others map as before, and one warning counts them (one NaN blanked the whole
+// volume with an error before; an outside review).
+TEST(TransferFunctionMedium, NaNScalarsAreEmptySpace)
 {
   Fixture f;
   vtkDataArray* scalars = f.Image->GetPointData()->GetScalars();
   scalars->SetComponent(3, 0, NaN);
-  f.ExpectError("Cannot map the input scalar nan at point 3: every scalar must be finite");
+  scalars->SetComponent(5, 0, NaN);
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  f.Mapping->AddObserver(vtkCommand::WarningEvent, warnings);
+  f.Mapping->Update();
+  vtkImageData* out = f.Mapping->GetOutput();
+  ASSERT_EQ(out->GetNumberOfPoints(), f.Image->GetNumberOfPoints());
+  ASSERT_TRUE(warnings->GetWarning());
+  EXPECT_NE(warnings->GetWarningMessage().find("2 of"), std::string::npos)
+    << warnings->GetWarningMessage();
+  EXPECT_NE(warnings->GetWarningMessage().find("are NaN (missing data)"), std::string::npos);
+  vtkDataArray* extinction = out->GetPointData()->GetArray("Extinction");
+  vtkDataArray* albedo = out->GetPointData()->GetArray("Albedo");
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_EQ(extinction->GetComponent(3, c), 0.0);
+    EXPECT_EQ(albedo->GetComponent(5, c), 0.0);
+  }
+  if (vtkDataArray* index = out->GetPointData()->GetArray("RefractiveIndex"))
+  {
+    EXPECT_EQ(index->GetComponent(3, 0), 1.0);
+  }
+  // A neighbour with a finite scalar keeps its mapping.
+  EXPECT_GT(extinction->GetComponent(4, 0) + extinction->GetComponent(2, 0), 0.0);
 }
 
 // The mapping runs in parallel blocks: with two bad scalars far apart, the error still names the
@@ -152,10 +185,10 @@ TEST(TransferFunctionMedium, TheFirstBadScalarIsReported)
   s->SetName("density");
   s->SetNumberOfTuples(64 * 64 * 64);
   s->Fill(0.5);
-  s->SetValue(200000, NaN);
-  s->SetValue(50000, NaN);
+  s->SetValue(200000, -std::numeric_limits<double>::infinity());
+  s->SetValue(50000, std::numeric_limits<double>::infinity());
   f.Image->GetPointData()->SetScalars(s);
-  f.ExpectError("Cannot map the input scalar nan at point 50000: every scalar must be finite");
+  f.ExpectError("Cannot map the input scalar inf at point 50000: every scalar must be finite");
 }
 
 // Neighbours with equal scalars reuse one evaluation of the functions: every voxel must still

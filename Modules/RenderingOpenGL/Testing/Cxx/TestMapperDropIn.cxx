@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <string>
 
 namespace
@@ -186,18 +187,19 @@ TEST(MapperDropIn, SelectScalarArrayIsHonouredAndAMissingArrayIsReportedOnce)
   EXPECT_GT(mean, 1.0);
   EXPECT_EQ(errors->Count, 1);
 
-  // A scalar the transfer functions cannot map (NaN): the mapping filter's own words reach the
-  // mapper's observer, once (the filter and its executive used to print on every Render, and the
-  // mapper's event only pointed at them).
+  // A scalar the transfer functions cannot map (infinite): the mapping filter's own words reach
+  // the mapper's observer, once (the filter and its executive used to print on every Render, and
+  // the mapper's event only pointed at them).
   vtkNew<vtkImageData> bad;
   bad->DeepCopy(scene.Wavelet->GetOutput());
-  bad->GetPointData()->GetArray("RTData")->SetComponent(7, 0, std::nan(""));
+  bad->GetPointData()->GetArray("RTData")->SetComponent(
+    7, 0, std::numeric_limits<double>::infinity());
   mapper->SetInputData(bad);
   scene.Window->Render();
   scene.Window->Render();
   scene.Window->Render();
   EXPECT_EQ(errors->Count, 2) << "said once, not on every Render";
-  EXPECT_NE(errors->Message.find("Cannot map the input scalar nan at point 7"), std::string::npos)
+  EXPECT_NE(errors->Message.find("Cannot map the input scalar inf at point 7"), std::string::npos)
     << errors->Message;
 }
 
