@@ -1,5 +1,7 @@
 #include "RefractaRenderOutputs.h"
 
+#include "RefractaSceneMedium.h"
+
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -7,8 +9,6 @@
 #include "vtkPointData.h"
 #include "vtkXMLImageDataWriter.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -104,11 +104,7 @@ void CheckOutputs(const std::vector<OutputFile>& outputs, const std::string& sce
     }
     const std::string what = outputs[i].Option + " '" + file + "'";
     const std::string& suffix = outputs[i].Suffix;
-    std::string ending =
-      file.size() > suffix.size() ? file.substr(file.size() - suffix.size()) : "";
-    std::transform(ending.begin(), ending.end(), ending.begin(),
-      [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ending != suffix)
+    if ("." + Extension(file) != suffix)
     {
       throw std::runtime_error(what + ": the file name must end in " + suffix + " (its format)");
     }

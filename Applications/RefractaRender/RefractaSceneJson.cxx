@@ -47,19 +47,18 @@ double CheckedNumber(const json& v, const std::string& path, double lo, double h
   return d;
 }
 
-// Whether `v` is an integer: written as one (96) or as a number with no fractional part (96.0).
-bool IsInteger(const json& v)
-{
-  return v.is_number_integer() ||
-    (v.is_number_float() && std::isfinite(v.get<double>()) &&
-      v.get<double>() == std::floor(v.get<double>()));
-}
-
 // `text` for a message: at most 80 characters (a 1 MB string was echoed whole).
 std::string Quoted(const std::string& text)
 {
   return "'" + (text.size() > 80 ? text.substr(0, 77) + "..." : text) + "'";
 }
+}
+
+bool IsInteger(const json& v)
+{
+  return v.is_number_integer() ||
+    (v.is_number_float() && std::isfinite(v.get<double>()) &&
+      v.get<double>() == std::floor(v.get<double>()));
 }
 
 [[noreturn]] void Fail(const std::string& path, const std::string& what)

@@ -21,6 +21,9 @@ struct SceneError : std::runtime_error
   using std::runtime_error::runtime_error;
 };
 
+/// Whether `v` is an integer: written as one (96) or as a number with no fractional part (96.0).
+bool IsInteger(const json& v);
+
 /// Throws SceneError("PATH: WHAT").
 [[noreturn]] void Fail(const std::string& path, const std::string& what);
 

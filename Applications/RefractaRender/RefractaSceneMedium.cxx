@@ -80,15 +80,6 @@ const ReaderTable ImageReaders = { { "vti", &NewReader<vtkXMLImageDataReader> },
   { "png", &NewReader<vtkPNGReader> }, { "jpg", &NewReader<vtkJPEGReader> },
   { "jpeg", &NewReader<vtkJPEGReader> } };
 
-std::string Extension(const std::string& file)
-{
-  const size_t dot = file.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : file.substr(dot + 1);
-  std::transform(
-    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
 // Runs the reader `readers` has for the file's extension; failures name the scene key `path`
 // and, for an unknown extension, the `supported` ones.
 vtkSmartPointer<vtkAlgorithm> ReadFile(const ReaderTable& readers, const std::string& file,
@@ -446,6 +437,15 @@ vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& file, const std::
     Fail(path, "'" + file + "' could not be read as an image (no points or no data arrays)");
   }
   return image;
+}
+
+std::string Extension(const std::string& file)
+{
+  const size_t dot = file.find_last_of('.');
+  std::string ext = dot == std::string::npos ? "" : file.substr(dot + 1);
+  std::transform(
+    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
 }
 
 std::string Resolve(const std::string& base, const std::string& file)

@@ -55,6 +55,9 @@ vtkSmartPointer<vtkPolyData> ReadMeshFile(
 /// the scene key `path`.
 vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& file, const std::string& path);
 
+/// The extension of `file` in lower case, without the dot ("" without one).
+std::string Extension(const std::string& file);
+
 /// `file` relative to the folder `base` (unchanged where absolute or where base is empty).
 std::string Resolve(const std::string& base, const std::string& file);
 }

@@ -85,8 +85,7 @@ void MakePreview(json& scene)
     for (auto& d : scene["medium"]["grid"]["dimensions"])
     {
       // 64 and 64.0 alike (the scene reader takes both as integers).
-      if (d.is_number() && d.get<double>() == std::floor(d.get<double>()) &&
-        std::abs(d.get<double>()) < 1e9)
+      if (IsInteger(d) && std::abs(d.get<double>()) < 1e9)
       {
         d = std::max(8, static_cast<int>(d.get<double>()) / 2);
       }
