@@ -145,14 +145,15 @@ inline float lr_sphere_distance(float3 x, float3 q, float3 p, float r)
 }
 
 // The weight of light arriving along unit direction q (towards the light): 1 for fluence (normal
-// 0), |n . q| for the irradiance on a two-sided surface of unit normal n.
+// 0), max(n . q, 0) for the irradiance on the side of a surface that unit normal n faces.
 inline float lr_cosine(float3 normal, float3 q)
 {
-  return any(normal != (float3)(0.0f)) ? fabs(dot(normal, q)) : 1.0f;
+  return any(normal != (float3)(0.0f)) ? fmax(dot(normal, q), 0.0f) : 1.0f;
 }
 
 // Fluence (RGB) of one light at x and its travel direction there; with a unit `normal`, the
-// irradiance on a two-sided surface there instead (each direction weighted by lr_cosine).
+// irradiance on the side of a surface there that the normal faces instead (each direction
+// weighted by lr_cosine; a direction of weight 0 is not traced).
 inline float3 lr_light_fluence(const lr_scene* s, __global const float4* light, float3 x,
   float minDistance, float3* travel, float3 normal)
 {
@@ -167,7 +168,8 @@ inline float3 lr_light_fluence(const lr_scene* s, __global const float4* light, 
     const float3 toLight = -p1.xyz;
     if (!(p3.x > 0.0f) || count == 1)
     {
-      return colour * lr_cosine(normal, toLight) * lr_transmittance(s, x, toLight, INFINITY);
+      const float c = lr_cosine(normal, toLight);
+      return c > 0.0f ? colour * c * lr_transmittance(s, x, toLight, INFINITY) : (float3)(0.0f);
     }
     const float sinD = p3.x;
     const float cosD = sqrt(fmax(0.0f, 1.0f - sinD * sinD));
@@ -176,7 +178,8 @@ inline float3 lr_light_fluence(const lr_scene* s, __global const float4* light, 
     for (int q = 0; q < count; ++q)
     {
       const float3 dir = lr_cap_direction(toLight, cosD, q, count);
-      sum += lr_cosine(normal, dir) * lr_transmittance(s, x, dir, INFINITY);
+      const float c = lr_cosine(normal, dir);
+      sum += c > 0.0f ? c * lr_transmittance(s, x, dir, INFINITY) : (float3)(0.0f);
     }
     return colour * sum * weight;
   }
@@ -199,8 +202,10 @@ inline float3 lr_light_fluence(const lr_scene* s, __global const float4* light, 
   {
     // A delta light (or a point inside the sphere light, where the near field is taken as the
     // delta light's): I / d^2.
-    return colour * (falloff / (d * d)) * lr_cosine(normal, toLight) *
-      lr_transmittance(s, x, toLight, length(w));
+    const float c = lr_cosine(normal, toLight);
+    return c > 0.0f
+      ? colour * (falloff * c / (d * d)) * lr_transmittance(s, x, toLight, length(w))
+      : (float3)(0.0f);
   }
   // A sphere of radius r with radiance I / (pi r^2) seen under a cap of 2 pi (1 - cos theta).
   const float sinT = r / d;
@@ -211,7 +216,9 @@ inline float3 lr_light_fluence(const lr_scene* s, __global const float4* light, 
   for (int q = 0; q < count; ++q)
   {
     const float3 dir = lr_cap_direction(toLight, cosT, q, count);
-    sum += lr_cosine(normal, dir) * lr_transmittance(s, x, dir, lr_sphere_distance(x, dir, p0.xyz, r));
+    const float c = lr_cosine(normal, dir);
+    sum += c > 0.0f ? c * lr_transmittance(s, x, dir, lr_sphere_distance(x, dir, p0.xyz, r))
+                    : (float3)(0.0f);
   }
   return colour * sum * weight;
 }
@@ -321,9 +328,10 @@ __kernel void light_rays_points(LR_SCENE_ARGS, __global const float4* points, co
 }
 
 // The direct irradiance (RGB) on surfaces: at each grid-local point with its unit normal, the
-// light of every light that reaches it along a straight ray, weighted by |n . q| (two-sided
-// Lambertian texels, as the photons' atlas counts them). vtkLightRaySingleScattering::
-// ComputeSurfaceIrradiance.
+// light of every light that reaches it along a straight ray, on each side of the surface:
+// weighted by max(n . q, 0) on the front (irradianceOut[2 p]), by max(-n . q, 0) on the back
+// (irradianceOut[2 p + 1]), as the photons' atlas keeps the sides apart. A direction lights one
+// side only, so each is traced once. vtkLightRaySingleScattering::ComputeSurfaceIrradiance.
 __kernel void light_rays_surface_points(LR_SCENE_ARGS, __global const float4* points,
   __global const float4* normals, const int pointCount, __global const float4* lights,
   const int lightCount, const float minDistance, __global float4* irradianceOut)
@@ -333,21 +341,22 @@ __kernel void light_rays_surface_points(LR_SCENE_ARGS, __global const float4* po
   {
     return;
   }
-  float3 e = (float3)(0.0f);
+  float3 front = (float3)(0.0f);
+  float3 back = (float3)(0.0f);
   const float3 normal = normals[p].xyz;
-  if (all(normal == (float3)(0.0f)))
+  if (any(normal != (float3)(0.0f))) // else glass or a degenerate triangle: nothing to light
   {
-    irradianceOut[p] = (float4)(e, 0.0f); // glass or a degenerate triangle: nothing to light
-    return;
+    const lr_scene s = LR_MAKE_SCENE();
+    for (int l = 0; l < lightCount; ++l)
+    {
+      __global const float4* light = lights + LR_LIGHT_FLOAT4S * l;
+      float3 travel;
+      front += lr_light_fluence(&s, light, points[p].xyz, minDistance, &travel, normal);
+      back += lr_light_fluence(&s, light, points[p].xyz, minDistance, &travel, -normal);
+    }
   }
-  const lr_scene s = LR_MAKE_SCENE();
-  for (int l = 0; l < lightCount; ++l)
-  {
-    float3 travel;
-    e += lr_light_fluence(
-      &s, lights + LR_LIGHT_FLOAT4S * l, points[p].xyz, minDistance, &travel, normal);
-  }
-  irradianceOut[p] = (float4)(e, 0.0f);
+  irradianceOut[2 * p] = (float4)(front, 0.0f);
+  irradianceOut[2 * p + 1] = (float4)(back, 0.0f);
 }
 
 // Gradient-based interpolation (Ren et al. 2008, eq. 4) at every voxel that scatters:

@@ -7,8 +7,9 @@
 
 #if REFRACTA_SURFACES
 // The surfaces a photon can meet: the BVH and atlas of refracta_surfaces.cl, the irradiance
-// accumulators (fixed point, 3 per texel) and the affine map grid-local -> surface frame
-// (rows of [R | T]; R is a rotation, so lengths and ray parameters are kept).
+// accumulators (fixed point, 3 per texel side: refracta_sided_texel) and the affine map
+// grid-local -> surface frame (rows of [R | T]; R is a rotation, so lengths and ray parameters
+// are kept).
 typedef struct
 {
   __global const float4* nodes;
@@ -19,7 +20,7 @@ typedef struct
   volatile __global long* irradiance;
   float4 row0, row1, row2;
   float epsilon; // offset of a reflected photon from the surface (grid-local units)
-  long causticOffset; // the coarse atlas's texels: the fine caustic atlas starts after them
+  long causticOffset; // the coarse atlas's sided texels: the fine caustic atlas starts after them
   __global const float4* normals;    // corner normals (dielectric shading normals)
   __global const float2* interfaces; // (index inside, index outside) per surface
   volatile __global long* tallies;   // the interface books are added at each event
@@ -128,33 +129,34 @@ inline int photon_start_body(const photon_surfaces* s, const photon_state* ps, f
     : -1;
 }
 
-// Deposits the photon's power into the fixed-point accumulators of `texel` (3 per texel).
-inline void photon_deposit_texel(volatile __global long* irradiance, long texel, float3 power)
+// Deposits the photon's power into the fixed-point accumulators of sided texel `sided`
+// (refracta_sided_texel; 3 per sided texel).
+inline void photon_deposit_texel(volatile __global long* irradiance, long sided, float3 power)
 {
-  refracta_atomic_add_fixed(irradiance + 3 * texel, power.x);
-  refracta_atomic_add_fixed(irradiance + 3 * texel + 1, power.y);
-  refracta_atomic_add_fixed(irradiance + 3 * texel + 2, power.z);
+  refracta_atomic_add_fixed(irradiance + 3 * sided, power.x);
+  refracta_atomic_add_fixed(irradiance + 3 * sided + 1, power.y);
+  refracta_atomic_add_fixed(irradiance + 3 * sided + 2, power.z);
 }
 
 #if REFRACTA_CAUSTIC_SUBDIVISION > 1
 // A caustic photon (Physics.md "Caustic atlas") meeting Lambertian triangle info at barycentric
-// (u, v) (its atlas texel `texel`) also deposits into the fine atlas, where every coarse texel is
-// cut again c x c (c = REFRACTA_CAUSTIC_SUBDIVISION): the same texel order with subdivision n c,
-// fine first texel = coarse first texel c^2, stored after the s->causticOffset coarse
-// texels, and counts itself in the atlas texel's caustic photon count (one long per coarse texel
-// after the fine accumulators), which tells the view pass where the fine texels are worth
-// reading. The coarse deposit stays the surface's whole flux; the fine one resolves its caustic
-// part.
-inline void photon_deposit_caustic(
-  const photon_surfaces* s, const photon_state* ps, int4 info, int texel, float u, float v)
+// (u, v) on `side` (its atlas texel `texel`) also deposits into the fine atlas, where every coarse
+// texel is cut again c x c (c = REFRACTA_CAUSTIC_SUBDIVISION): the same texel order with
+// subdivision n c, fine first texel = coarse first texel c^2, sided like the coarse ones and
+// stored after the s->causticOffset coarse sided texels, and counts itself in the sided texel's
+// caustic photon count (one long per coarse sided texel after the fine accumulators), which tells
+// the view pass where the fine texels are worth reading. The coarse deposit stays the surface's
+// whole flux; the fine one resolves its caustic part.
+inline void photon_deposit_caustic(const photon_surfaces* s, const photon_state* ps, int4 info,
+  int texel, int side, float u, float v)
 {
   if (ps->caustic)
   {
     const int c = REFRACTA_CAUSTIC_SUBDIVISION;
     const long coarse = s->causticOffset;
-    photon_deposit_texel(s->irradiance,
-      coarse + (long)info.x * (c * c) + refracta_texel_index(u, v, info.y * c), ps->power);
-    atom_add(s->irradiance + 3 * coarse * (1 + c * c) + texel, 1L);
+    const long fine = (long)info.x * (c * c) + refracta_texel_index(u, v, info.y * c);
+    photon_deposit_texel(s->irradiance, coarse + refracta_sided_texel(fine, side), ps->power);
+    atom_add(s->irradiance + 3 * coarse * (1 + c * c) + refracta_sided_texel(texel, side), 1L);
   }
 }
 #endif
@@ -180,6 +182,10 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
     return -1;
   }
   const int texel = info.x + refracta_texel_index(h.u, h.v, info.y);
+  // The normal in the grid-local frame (R^T n): the photon lands on the side it comes from.
+  const float3 ng = refracta_triangle_normal(s->triangles, h.triangle);
+  float3 n = normalize(ng.x * s->row0.xyz + ng.y * s->row1.xyz + ng.z * s->row2.xyz);
+  const int side = dot(n, d) > 0.0f ? 1 : 0;
 #if REFRACTA_SKIP_DIRECT
   // Direct light (a photon from a light that met no surface, no glass and no scattering) is
   // computed without noise by light rays (vtkLightRaySingleScattering::ComputeSurfaceIrradiance)
@@ -187,9 +193,9 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
   if (ps->hits > 0 || ps->order > 0 || ps->caustic)
 #endif
   {
-    photon_deposit_texel(s->irradiance, texel, ps->power);
+    photon_deposit_texel(s->irradiance, refracta_sided_texel(texel, side), ps->power);
 #if REFRACTA_CAUSTIC_SUBDIVISION > 1
-    photon_deposit_caustic(s, ps, info, texel, h.u, h.v);
+    photon_deposit_caustic(s, ps, info, texel, side, h.u, h.v);
 #endif
   }
   ps->hits++;
@@ -209,10 +215,8 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
   ps->power = boosted;
   ps->order = 0; // a new beam: its first scattering is S1 again
   ps->caustic = 0;
-  // The normal in the grid-local frame (R^T n), turned towards the side the photon came from.
-  const float3 ns = refracta_triangle_normal(s->triangles, h.triangle);
-  float3 n = normalize(ns.x * s->row0.xyz + ns.y * s->row1.xyz + ns.z * s->row2.xyz);
-  n = dot(n, d) > 0.0f ? -n : n;
+  // The normal turned towards the side the photon came from.
+  n = side ? -n : n;
   // Cosine-weighted direction about n (Malley's method).
   const float u1 = refracta_rng_uniform(&ps->rng);
   const float phi = 2.0f * REFRACTA_PI * refracta_rng_uniform(&ps->rng);

@@ -26,6 +26,9 @@
 //              surface without one (0) leaves the passes on the grid's medium inside it.
 //   albedo     float[3 * texels]: RGB albedo in [0, 1] of each texel.
 //   texel area float[texels] (world units^2), for irradiance = flux / area on the host.
+//   irradiance per texel side: the passes keep the two sides of a Lambertian texel apart (light
+//              that arrives against the winding normal lands on the front, side 0, the rest on
+//              the back, side 1) at the sided texel 2 texel + side (refracta_sided_texel).
 //
 // Texel index: triangle t with subdivision n is cut into n^2 equal-area sub-triangles. With the
 // barycentric weights (u, v) of v1 and v2, a = n u and b = n v; cell (i, j) = (floor a, floor b)
@@ -45,6 +48,7 @@
 #define REFRACTA_TRIANGLE_INFO_KIND 3
 #define REFRACTA_SURFACE_LAMBERTIAN 0 /* opaque two-sided Lambertian reflector */
 #define REFRACTA_SURFACE_DIELECTRIC 1 /* transparent interface between two indices */
+#define REFRACTA_SURFACE_SIDES 2 /* front, back: vtkRefractaLightingVolume::SurfaceSide */
 #define REFRACTA_TRIANGLE_NORMAL_FLOATS 12 /* floats per triangle in normals (3 float4) */
 #define REFRACTA_SURFACE_INTERFACE_FLOATS 2 /* floats per surface in interfaces */
 #define REFRACTA_SURFACE_BODY_FLOATS 12 /* floats per surface in bodies (3 float4) */
@@ -56,6 +60,12 @@
 #ifdef cl_khr_fp64
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #endif
+
+// The irradiance slot of `side` (0 front, 1 back) of a texel (see the layout above).
+inline long refracta_sided_texel(long texel, int side)
+{
+  return REFRACTA_SURFACE_SIDES * texel + side;
+}
 
 // A ray prepared for the watertight test of Woop, Benthin and Wald (2013, JCGT 2(1)): kz is the
 // axis of the direction's largest component, (kx, ky) the other two (swapped when d[kz] < 0 to

@@ -19,6 +19,15 @@ typedef struct
   int body;  // the glass body it travels in, or -1 (the grid's medium)
 } refracta_view_branch;
 
+#ifdef REFRACTA_HAS_SURFACES
+// Surface-frame vector -> grid-local normal: the map grid-local -> surface frame has linear part
+// M (rows m0..m2); normals transform with M^T.
+inline float3 refracta_view_normal_to_local(float3 n, float4 m0, float4 m1, float4 m2)
+{
+  return normalize(n.x * m0.xyz + n.y * m1.xyz + n.z * m2.xyz);
+}
+#endif
+
 #ifdef REFRACTA_DIELECTRIC
 // Dielectric interfaces (Documentation/Physics.md, "Glass in the view pass"): at a triangle of
 // kind REFRACTA_SURFACE_DIELECTRIC the path splits into the Fresnel-reflected and the refracted
@@ -36,13 +45,6 @@ typedef struct
 #ifndef REFRACTA_MAX_INTERFACES
 #define REFRACTA_MAX_INTERFACES 16
 #endif
-
-// Surface-frame vector -> grid-local normal: the map grid-local -> surface frame has linear part
-// M (rows m0..m2); normals transform with M^T.
-inline float3 refracta_view_normal_to_local(float3 n, float4 m0, float4 m1, float4 m2)
-{
-  return normalize(n.x * m0.xyz + n.y * m1.xyz + n.z * m2.xyz);
-}
 
 // Both legs at a dielectric hit: the incident unit direction d meets triangle tri at (u, v). Out:
 // the reflected and (when *refracts) the refracted unit directions, the reflectance R, and the
@@ -257,8 +259,10 @@ inline refracta_view_sample refracta_view_path(
       else
 #endif
       {
+        const float3 normal = refracta_view_normal_to_local(
+          refracta_triangle_normal(triangles, leg.surfaceTri), toSurface0, toSurface1, toSurface2);
         float3 ls = refracta_view_surface_radiance(triInfo, surfaceAlbedo, surfaceIrradiance,
-          surfaceCorners, leg.surfaceTri, leg.surfaceU, leg.surfaceV);
+          surfaceCorners, leg.surfaceTri, leg.surfaceU, leg.surfaceV, leg.d, normal);
         // Basic radiance: a surface inside the medium is seen divided by n^2 (1 outside the box).
         const bool inBox = all(leg.surfacePoint >= lo) && all(leg.surfacePoint <= hi);
 #ifdef REFRACTA_INDEX_WEIGHT

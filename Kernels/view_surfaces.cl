@@ -9,7 +9,9 @@
 // hit parameter is the same fraction of the local segment whatever the map's scale.
 //
 // Shading (Documentation/Physics.md, "Surfaces in the view pass"): a Lambertian surface with
-// irradiance E and albedo rho sends the radiance L = E rho / pi in every direction (both sides).
+// irradiance E and albedo rho sends the radiance L = E rho / pi in every direction of the side E
+// arrived on (the atlas keeps the sides apart: refracta_sided_texel; a view ray sees the side it
+// comes from).
 // E comes from the photon pass per texel (flux / texel area, a piecewise-constant and noisy
 // estimate); it is reconstructed at the hit point by linear interpolation within the hit texel
 // between values at the texel's three corners, each corner's value the mean of the texels of the
@@ -34,8 +36,15 @@ inline int refracta_view_texel(int i, int j, int n, int inverted)
   return j * (2 * n - j) + 2 * i + inverted;
 }
 
-// Mean irradiance of the texels of one triangle (first texel `first`, subdivision n) that touch
-// lattice vertex (p, q), p + q <= n.
+// Irradiance of `texel` on one side: `sided` is the irradiance buffer offset by that side's
+// first value (refracta_view_side_irradiance), whose texels hold their sides side by side.
+inline float3 refracta_view_texel_irradiance(__global const float* sided, long texel)
+{
+  return vload3(refracta_sided_texel(texel, 0), sided);
+}
+
+// Mean irradiance (on one side, see refracta_view_texel_irradiance) of the texels of one
+// triangle (first texel `first`, subdivision n) that touch lattice vertex (p, q), p + q <= n.
 inline float3 refracta_view_vertex_irradiance(
   __global const float* irradiance, int first, int n, int p, int q)
 {
@@ -43,32 +52,32 @@ inline float3 refracta_view_vertex_irradiance(
   int count = 0;
   if (p + q <= n - 1)
   {
-    sum += vload3(first + refracta_view_texel(p, q, n, 0), irradiance); // corner (0, 0)
+    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p, q, n, 0)); // corner (0, 0)
     ++count;
   }
   if (p >= 1 && p - 1 + q <= n - 1)
   {
-    sum += vload3(first + refracta_view_texel(p - 1, q, n, 0), irradiance); // corner (1, 0)
+    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p - 1, q, n, 0)); // corner (1, 0)
     ++count;
   }
   if (q >= 1)
   {
-    sum += vload3(first + refracta_view_texel(p, q - 1, n, 0), irradiance); // corner (0, 1)
+    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p, q - 1, n, 0)); // corner (0, 1)
     ++count;
   }
   if (p >= 1 && p - 1 + q <= n - 2)
   {
-    sum += vload3(first + refracta_view_texel(p - 1, q, n, 1), irradiance);
+    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p - 1, q, n, 1));
     ++count;
   }
   if (q >= 1 && p + q - 1 <= n - 2)
   {
-    sum += vload3(first + refracta_view_texel(p, q - 1, n, 1), irradiance);
+    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p, q - 1, n, 1));
     ++count;
   }
   if (p >= 1 && q >= 1 && p + q - 2 <= n - 2)
   {
-    sum += vload3(first + refracta_view_texel(p - 1, q - 1, n, 1), irradiance);
+    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p - 1, q - 1, n, 1));
     ++count;
   }
   return count > 0 ? sum / (float)count : sum;
@@ -97,7 +106,7 @@ inline float3 refracta_view_atlas_irradiance(__global const float* irradiance,
   __global const float* corners, int first, int n, float u, float v)
 {
 #ifdef REFRACTA_SURFACE_NEAREST
-  return vload3(first + refracta_texel_index(u, v, n), irradiance);
+  return refracta_view_texel_irradiance(irradiance, first + refracta_texel_index(u, v, n));
 #else
   // The hit texel's cell (i, j) and orientation: refracta_texel_index's arithmetic, step for
   // step, so that the cell is the texel whose albedo is read.
@@ -134,37 +143,43 @@ inline float3 refracta_view_atlas_irradiance(__global const float* irradiance,
 #endif
 }
 
-// Irradiance at barycentric (u, v) of triangle `tri`: the atlas, plus with the caustic atlas
-// (REFRACTA_CAUSTIC_SUBDIVISION c > 1, Physics.md "Caustic atlas") the caustic light of the
-// texels that the host chose to show fine, reconstructed the same way at subdivision n c (fine
-// first texel REFRACTA_CAUSTIC_OFFSET + c^2 first; the host took that light out of the atlas).
+// Irradiance at barycentric (u, v) of triangle `tri` on `side` (0 front, 1 back): the atlas,
+// plus with the caustic atlas (REFRACTA_CAUSTIC_SUBDIVISION c > 1, Physics.md "Caustic atlas")
+// the caustic light of the texels that the host chose to show fine, reconstructed the same way at
+// subdivision n c (fine first texel REFRACTA_CAUSTIC_OFFSET + c^2 first; the host took that
+// light out of the atlas). The corners hold 9 floats per triangle and side, the front's first.
 inline float3 refracta_view_surface_irradiance(__global const int* triInfo,
-  __global const float* irradiance, __global const float* corners, int tri, float u, float v)
+  __global const float* irradiance, __global const float* corners, int tri, int side, float u,
+  float v)
 {
   const int first = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_TEXEL];
   const int n = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_SUBDIVISION];
-  const float3 e =
-    refracta_view_atlas_irradiance(irradiance, corners + 9 * (long)tri, first, n, u, v);
+  __global const float* sided = irradiance + 3 * side;
+  const float3 e = refracta_view_atlas_irradiance(
+    sided, corners + 9 * refracta_sided_texel(tri, side), first, n, u, v);
 #if defined(REFRACTA_CAUSTIC_SUBDIVISION) && REFRACTA_CAUSTIC_SUBDIVISION > 1
   // The fine texels' caustic light stays within its triangle (0: no shared corners).
   const int c = REFRACTA_CAUSTIC_SUBDIVISION;
   return e +
-    refracta_view_atlas_irradiance(irradiance + 3 * (long)REFRACTA_CAUSTIC_OFFSET, 0,
-      c * c * first, c * n, u, v);
+    refracta_view_atlas_irradiance(
+      sided + 3 * refracta_sided_texel(REFRACTA_CAUSTIC_OFFSET, 0), 0, c * c * first, c * n, u, v);
 #else
   return e;
 #endif
 }
 
-// Outgoing radiance E rho / pi of the surface hit (triangle tri, barycentrics u, v).
+// Outgoing radiance E rho / pi of the surface hit (triangle tri, barycentrics u, v) towards a
+// view ray that met it along grid-local direction d; `normal`, the triangle's winding normal in
+// the same frame, tells the side it sees.
 inline float3 refracta_view_surface_radiance(__global const int* triInfo,
   __global const float* albedo, __global const float* irradiance, __global const float* corners,
-  int tri, float u, float v)
+  int tri, float u, float v, float3 d, float3 normal)
 {
   const int first = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_TEXEL];
   const int n = triInfo[REFRACTA_TRIANGLE_INFO_INTS * tri + REFRACTA_TRIANGLE_INFO_SUBDIVISION];
   const float3 rho = vload3(first + refracta_texel_index(u, v, n), albedo);
-  const float3 e = refracta_view_surface_irradiance(triInfo, irradiance, corners, tri, u, v);
+  const int side = dot(d, normal) > 0.0f ? 1 : 0;
+  const float3 e = refracta_view_surface_irradiance(triInfo, irradiance, corners, tri, side, u, v);
   return fmax(e, (float3)(0.0f)) * rho * (1.0f / REFRACTA_PI);
 }
 

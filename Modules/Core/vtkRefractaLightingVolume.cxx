@@ -202,6 +202,23 @@ void vtkRefractaLightingVolume::AddValues(vtkDataArray* addend, vtkFloatArray* t
 }
 
 //------------------------------------------------------------------------------
+double vtkRefractaLightingVolume::GetSurfaceSideValue(
+  vtkDataArray* array, vtkIdType tuple, int side, int component, int perSide)
+{
+  if (!array || tuple < 0 || tuple >= array->GetNumberOfTuples() || side < 0 ||
+    side >= NUMBER_OF_SURFACE_SIDES || component < 0 || component >= perSide)
+  {
+    return 0.0;
+  }
+  const int components = array->GetNumberOfComponents();
+  if (components == NUMBER_OF_SURFACE_SIDES * perSide)
+  {
+    return array->GetComponent(tuple, side * perSide + component);
+  }
+  return components == perSide ? array->GetComponent(tuple, component) : 0.0;
+}
+
+//------------------------------------------------------------------------------
 void vtkRefractaLightingVolume::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -22,10 +22,13 @@
  *
  * Surfaces (vtkRefractaSurfaceSet) are lit in the same passes. Their irradiance is not a point
  * array but a field-data array of the lighting volume, SurfaceIrradianceName(): a vtkFloatArray
- * with 3 components and one tuple per texel of the surface set's atlas (in the set's texel order),
- * the irradiance E on the texel in power per unit area (RGB, >= 0; the flux that arrived on the
- * texel from either side divided by its area). Every stage that copies a lighting volume passes
- * it through.
+ * with 6 components and one tuple per texel of the surface set's atlas (in the set's texel order),
+ * the irradiance E on each side of the texel in power per unit area: RGB on the front (the side
+ * the triangle's winding normal points to), then RGB on the back (>= 0; the flux that arrived on
+ * that side divided by the texel's area). A side sees only its own light: a lamp inside a closed
+ * box lights the inner faces, not the outer ones. Readers also take 3 components (one irradiance
+ * for both sides, as a hand-made lighting volume may have; GetSurfaceSideValue()). Every stage
+ * that copies a lighting volume passes it through.
  *
  * Only static methods are used; New() exists so that it can be wrapped and printed.
  */
@@ -125,8 +128,30 @@ public:
   static const char* SurfaceIrradianceName() { return "SurfaceIrradiance"; }
 
   /**
+   * The two sides of a surface texel, in the order of the per-side arrays' components: FRONT_SIDE
+   * faces where the triangle's winding normal points (counter-clockwise corners seen from there),
+   * BACK_SIDE the other way. Light arriving along direction d meets the front when d . n < 0.
+   */
+  enum SurfaceSide
+  {
+    FRONT_SIDE = 0,
+    BACK_SIDE = 1,
+    NUMBER_OF_SURFACE_SIDES = 2
+  };
+
+  /**
+   * Component `component` (< perSide) of `tuple` on `side` of a per-side surface array
+   * (SurfaceIrradianceName() and its caustic arrays): the array holds perSide components per side,
+   * the front's first (2 perSide in all), or perSide for one value shared by both sides. 0 for any
+   * other shape or a tuple out of range.
+   */
+  static double GetSurfaceSideValue(
+    vtkDataArray* array, vtkIdType tuple, int side, int component, int perSide);
+
+  /**
    * Name of the field-data array with the surfaces' caustic irradiance (vtkPhotonTracer's
-   * CausticSubdivision c > 1 and dielectric surfaces only): 3 components and c^2 tuples per texel
+   * CausticSubdivision c > 1 and dielectric surfaces only): 6 components (front RGB, back RGB, as
+   * SurfaceIrradianceName()) and c^2 tuples per texel
    * of the atlas, every triangle's texels cut again c x c (a triangle of subdivision n and first
    * texel t has the fine texels c^2 t onwards in the texel order of subdivision n c, each inside
    * one of its atlas texels, with 1 / c^2 of its area), the irradiance that caustic photons (an
@@ -139,10 +164,11 @@ public:
 
   /**
    * Name of the field-data array with the number of caustic photons that landed in each atlas
-   * texel (1 component, integer, one tuple per texel of the atlas; present with
-   * SurfaceCausticIrradianceName()). The view pass reads a texel's caustic light from its fine
-   * texels only where enough caustic photons landed there (vtkRefractaViewPass::
-   * CausticPhotonsPerFineTexel), so that broad, dim refracted light stays as smooth as the atlas.
+   * texel and side (2 components, front then back, integer, one tuple per texel of the atlas;
+   * present with SurfaceCausticIrradianceName()). The view pass reads a texel side's caustic
+   * light from its fine texels only where enough caustic photons landed there
+   * (vtkRefractaViewPass::CausticPhotonsPerFineTexel), so that broad, dim refracted light stays as
+   * smooth as the atlas.
    */
   static const char* SurfaceCausticPhotonsName() { return "SurfaceCausticPhotons"; }
 

@@ -63,8 +63,10 @@ bool vtkRefractaRenderPipeline::AddDirectSurfaceLight(vtkPhotonTracer* tracer)
   }
   const char* name = vtkRefractaLightingVolume::SurfaceIrradianceName();
   vtkDataArray* photons = in.Lighting->GetFieldData()->GetArray(name);
-  const vtkIdType texels = static_cast<vtkIdType>(direct.size() / 3);
-  if (!photons || photons->GetNumberOfTuples() != texels || photons->GetNumberOfComponents() != 3)
+  constexpr int components = 3 * vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES;
+  const vtkIdType texels = static_cast<vtkIdType>(direct.size() / components);
+  if (!photons || photons->GetNumberOfTuples() != texels ||
+    photons->GetNumberOfComponents() != components)
   {
     vtkErrorMacro("The photon pass's '" << name << "' does not match the surfaces' " << texels
                                         << " texels; the direct light cannot be added.");
@@ -73,14 +75,14 @@ bool vtkRefractaRenderPipeline::AddDirectSurfaceLight(vtkPhotonTracer* tracer)
   // A new array: the photon pass's own output keeps what it computed.
   vtkNew<vtkFloatArray> sum;
   sum->SetName(name);
-  sum->SetNumberOfComponents(3);
+  sum->SetNumberOfComponents(components);
   sum->SetNumberOfTuples(texels);
   for (vtkIdType t = 0; t < texels; ++t)
   {
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < components; ++c)
     {
       sum->SetTypedComponent(
-        t, c, static_cast<float>(photons->GetComponent(t, c)) + direct[3 * t + c]);
+        t, c, static_cast<float>(photons->GetComponent(t, c)) + direct[components * t + c]);
     }
   }
   in.Lighting->GetFieldData()->AddArray(sum);

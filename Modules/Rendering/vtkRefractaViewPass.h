@@ -245,8 +245,9 @@ public:
   ///@}
 
   /**
-   * After a Render() with a caustic atlas: the atlas texels that showed their caustic light from
-   * their c x c fine texels (0 without a caustic atlas, or where none had enough photons).
+   * After a Render() with a caustic atlas: the atlas texel sides (front and back count apart)
+   * that showed their caustic light from their c x c fine texels (0 without a caustic atlas, or
+   * where none had enough photons).
    */
   vtkIdType GetLastNumberOfFineCausticTexels() const;
 

@@ -27,16 +27,21 @@ void ReportError(vtkObject* owner, const std::string& message)
   vtkErrorWithObjectMacro(owner, << message);
 }
 
-// Checks a lighting field array: `components` components, every value finite and >= 0.
+constexpr int Sides = vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES;
+static_assert(Sides == REFRACTA_SURFACE_SIDES, "the kernels' texel sides are the arrays' sides");
+
+// Checks a per-side lighting field array: perSide components for each side (front first) or
+// perSide for both (vtkRefractaLightingVolume::GetSurfaceSideValue), every value finite and >= 0.
 bool CheckArray(
-  vtkDataArray* array, int components, const char* name, const char* meaning, vtkObject* owner)
+  vtkDataArray* array, int perSide, const char* name, const char* meaning, vtkObject* owner)
 {
-  if (array->GetNumberOfComponents() != components)
+  const int components = array->GetNumberOfComponents();
+  if (components != Sides * perSide && components != perSide)
   {
     std::ostringstream msg;
-    msg << "The lighting volume's field array '" << name << "' has "
-        << array->GetNumberOfComponents() << " components; it needs " << components << " ("
-        << meaning << ").";
+    msg << "The lighting volume's field array '" << name << "' has " << components
+        << " components; it needs " << Sides * perSide << " (" << meaning
+        << ", on the front side then the back side) or " << perSide << " (one for both sides).";
     ReportError(owner, msg.str());
     return false;
   }
@@ -203,7 +208,12 @@ bool SurfaceBuffers::PrepareIrradiance(
   }
   this->Caustic = 1;
   this->FineCausticTexels = 0;
-  std::vector<float> values(static_cast<size_t>(this->Texels) * 3, 0.0f);
+  // Each side's irradiance (3 per texel, then its fine caustic texels) and corner values.
+  std::vector<float> planes[Sides], planeCorners[Sides];
+  for (int side = 0; side < Sides; ++side)
+  {
+    planes[side].assign(static_cast<size_t>(this->Texels) * 3, 0.0f);
+  }
   if (vtkDataArray* array = this->Lighting.Irradiance)
   {
     if (!this->CheckTuples(
@@ -211,22 +221,47 @@ bool SurfaceBuffers::PrepareIrradiance(
     {
       return false;
     }
-    for (vtkIdType i = 0; i < this->Texels; ++i)
+    for (int side = 0; side < Sides; ++side)
     {
-      for (int c = 0; c < 3; ++c)
+      for (vtkIdType i = 0; i < this->Texels; ++i)
       {
-        values[3 * i + c] = static_cast<float>(array->GetComponent(i, c));
+        for (int c = 0; c < 3; ++c)
+        {
+          planes[side][3 * i + c] = static_cast<float>(
+            vtkRefractaLightingVolume::GetSurfaceSideValue(array, i, side, c, 3));
+        }
       }
-    }
-    if (this->Lighting.Caustic && !this->SplitCaustic(values, photonsPerFineTexel, owner))
-    {
-      return false;
+      if (this->Lighting.Caustic &&
+        !this->SplitCaustic(planes[side], side, photonsPerFineTexel, owner))
+      {
+        return false;
+      }
     }
   }
   // The corners' irradiance from the atlas as the kernel reads it (less the caustic light its
   // fine texels show, which is reconstructed within each triangle).
-  std::vector<float> corners;
-  this->Set->ComputeCornerIrradiance(values.data(), corners);
+  for (int side = 0; side < Sides; ++side)
+  {
+    this->Set->ComputeCornerIrradiance(planes[side].data(), planeCorners[side]);
+  }
+  // The kernel's layout (view_surfaces.cl): a texel's sides side by side (front RGB, back RGB),
+  // and a triangle's 9 corner floats of the front, then the back's.
+  std::vector<float> values(Sides * planes[0].size());
+  for (size_t i = 0; i < planes[0].size() / 3; ++i)
+  {
+    for (int side = 0; side < Sides; ++side)
+    {
+      std::copy_n(&planes[side][3 * i], 3, &values[3 * (Sides * i + side)]);
+    }
+  }
+  std::vector<float> corners(Sides * planeCorners[0].size());
+  for (size_t t = 0; t < planeCorners[0].size() / 9; ++t)
+  {
+    for (int side = 0; side < Sides; ++side)
+    {
+      std::copy_n(&planeCorners[side][9 * t], 9, &corners[9 * (Sides * t + side)]);
+    }
+  }
   if (corners.empty())
   {
     corners.assign(3, 0.0f); // no triangles: a buffer of one value, never read
@@ -248,7 +283,7 @@ bool SurfaceBuffers::PrepareIrradiance(
 
 //------------------------------------------------------------------------------
 bool SurfaceBuffers::SplitCaustic(
-  std::vector<float>& values, double photonsPerFineTexel, vtkObject* owner)
+  std::vector<float>& values, int side, double photonsPerFineTexel, vtkObject* owner)
 {
   vtkDataArray* caustic = this->Lighting.Caustic;
   vtkDataArray* photons = this->Lighting.CausticPhotons;
@@ -272,7 +307,9 @@ bool SurfaceBuffers::SplitCaustic(
     return false;
   }
   // The atlas keeps all of a texel's light; where the fine texels are read, their sum (the
-  // caustic part) leaves the atlas value, so each photon is shown once.
+  // caustic part) leaves the atlas value, so each photon is shown once. Each side on its own.
+  auto photonsOf = [photons, side](vtkIdType texel)
+  { return vtkRefractaLightingVolume::GetSurfaceSideValue(photons, texel, side, 0, 1); };
   const vtkIdType c2 = static_cast<vtkIdType>(c) * c;
   const double needed = photonsPerFineTexel * static_cast<double>(c2);
   std::vector<float> fineValues(static_cast<size_t>(fine) * 3, 0.0f);
@@ -287,7 +324,7 @@ bool SurfaceBuffers::SplitCaustic(
     bool any = false; // most triangles have no texel to read fine: no table needed
     for (int t = 0; t < n * n && !any; ++t)
     {
-      any = photons->GetComponent(first + t, 0) >= needed;
+      any = photonsOf(first + t) >= needed;
     }
     if (!any)
     {
@@ -302,21 +339,22 @@ bool SurfaceBuffers::SplitCaustic(
     for (size_t f = 0; f < coarseOf.size(); ++f)
     {
       const vtkIdType coarse = first + coarseOf[f];
-      if (photons->GetComponent(coarse, 0) < needed)
+      if (photonsOf(coarse) < needed)
       {
         continue;
       }
       const vtkIdType index = c2 * first + static_cast<vtkIdType>(f);
       for (int ch = 0; ch < 3; ++ch)
       {
-        const double e = caustic->GetComponent(index, ch);
+        const double e =
+          vtkRefractaLightingVolume::GetSurfaceSideValue(caustic, index, side, ch, 3);
         fineValues[3 * index + ch] = static_cast<float>(e);
         removed[3 * coarseOf[f] + ch] += e / static_cast<double>(c2);
       }
     }
     for (int t = 0; t < n * n; ++t)
     {
-      this->FineCausticTexels += photons->GetComponent(first + t, 0) >= needed ? 1 : 0;
+      this->FineCausticTexels += photonsOf(first + t) >= needed ? 1 : 0;
       for (int ch = 0; ch < 3; ++ch)
       {
         float& e = values[3 * static_cast<size_t>(first + t) + ch];

@@ -30,15 +30,16 @@ public:
   bool Update(vtkRefractaSurfaceSet* set, vtkOpenCLContext* context, vtkObject* owner);
 
   // Takes the lighting volume's surface irradiance (nullptr, or a lighting volume without the
-  // array: none, surfaces are then unlit). Checks it (3 components, finite, >= 0); false after an
-  // error naming the problem. The upload happens in PrepareIrradiance().
+  // array: none, surfaces are then unlit). Checks it (6 components, front and back RGB, or 3 for
+  // both sides; finite, >= 0); false after an error naming the problem. The upload happens in
+  // PrepareIrradiance().
   bool SetLighting(vtkImageData* lighting, vtkObject* owner);
 
-  // Uploads the irradiance for the current build (zeros when the lighting has none). With the
-  // caustic atlas, the buffer holds the atlas less the caustic light shown by the fine texels,
-  // then the fine texels of the atlas texels where at least photonsPerFineTexel c^2 caustic
-  // photons landed (zeros elsewhere). False, with an error, when the tuples do not match the
-  // set's texels.
+  // Uploads the irradiance for the current build (zeros when the lighting has none), both sides
+  // of each texel side by side (front RGB, back RGB). With the caustic atlas, the buffer holds
+  // the atlas less the caustic light shown by the fine texels, then the fine texels of the atlas
+  // texel sides where at least photonsPerFineTexel c^2 caustic photons landed (zeros elsewhere).
+  // False, with an error, when the tuples do not match the set's texels.
   bool PrepareIrradiance(vtkOpenCLContext* context, double photonsPerFineTexel, vtkObject* owner);
 
   // Whether there is anything to hit.
@@ -55,13 +56,14 @@ public:
   // The caustic atlas's subdivision c in the uploaded irradiance (1: none), and the number of
   // atlas texels before its fine texels in that buffer.
   int GetCausticSubdivision() const { return this->Caustic; }
-  // How many atlas texels show their caustic light from their fine texels.
+  // How many atlas texel sides show their caustic light from their fine texels.
   vtkIdType GetNumberOfFineCausticTexels() const { return this->FineCausticTexels; }
   vtkIdType GetNumberOfTexels() const { return this->Texels; }
 
   vtkOpenCLBuffer Nodes, Triangles, TriangleInfo, Albedo, Irradiance;
   // The irradiance at each triangle's three corners, averaged over the triangles sharing the mesh
-  // point (vtkRefractaSurfaceSet::ComputeCornerIrradiance; 9 floats per triangle).
+  // point (vtkRefractaSurfaceSet::ComputeCornerIrradiance; 9 floats per triangle and side, the
+  // front's first).
   vtkOpenCLBuffer Corners;
   // Corner normals (float4 per corner), (IndexInside, IndexOutside) per surface and the glass
   // bodies' inside media (vtkRefractaSurfaceSet::GetSurfaceBodies()).
@@ -97,9 +99,10 @@ private:
         now.CausticPhotons == o.CausticPhotons && std::equal(now.Times, now.Times + 3, o.Times);
     }
   };
-  // Moves the caustic light of the texels read fine from `values` (the atlas) into the fine
-  // texels appended to it; sets Caustic.
-  bool SplitCaustic(std::vector<float>& values, double photonsPerFineTexel, vtkObject* owner);
+  // Moves the caustic light of the texels read fine from `values` (one side of the atlas, 3 per
+  // texel) into the fine texels of that side appended to it; sets Caustic.
+  bool SplitCaustic(
+    std::vector<float>& values, int side, double photonsPerFineTexel, vtkObject* owner);
   // For subdivision n and caustic subdivision c: the atlas texel of each fine texel.
   static void FineToCoarseTexels(int n, int c, std::vector<int>& coarseOf);
   bool CheckTuples(

@@ -196,10 +196,11 @@ public:
    * The direct irradiance on the Lambertian texels of GetSurfaces() (built here if needed) lit
    * by GetLights() through `medium` along straight rays: per texel, the mean over its four
    * sample points (vtkRefractaSurfaceSet::GetTexelSamplePoints) of sum over lights of
-   * E_l T_l V_l |n . q_l| (T the medium's transmittance, V 0 where a surface, glass included,
-   * blocks the ray, n the triangle's normal: two-sided, as the photons' atlas counts it;
-   * extended lights by their quadrature directions). Irradiance in the units of
-   * vtkPhotonTracer's SurfaceIrradiance, 3 floats per texel into `irradiance` (0 on glass
+   * E_l T_l V_l max(+-n . q_l, 0) (T the medium's transmittance, V 0 where a surface, glass
+   * included, blocks the ray, n the triangle's winding normal: + for the front side, - for the
+   * back, as the photons' atlas counts them; extended lights by their quadrature directions).
+   * Irradiance in the units of vtkPhotonTracer's SurfaceIrradiance, 6 floats per texel (front
+   * RGB, back RGB; vtkRefractaLightingVolume::SurfaceSide) into `irradiance` (0 on glass
    * texels): with vtkPhotonTracer::SkipDirectSurfaceLight the photons leave exactly this part out,
    * and the sum of both is their whole irradiance without its noise. Uses MediumToWorld,
    * LightRadius, DirectionalLightAngularRadius, LightQuadrature and the context as RequestData

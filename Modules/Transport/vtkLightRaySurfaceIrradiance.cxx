@@ -9,6 +9,7 @@
 #include "vtkMatrix3x3.h"
 #include "vtkMediumValidator.h"
 #include "vtkRefractaBVH.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaSurfaceSet.h"
 
 #include "refracta_surfaces.cl" // the triangle info layout, shared with the kernels
@@ -115,7 +116,8 @@ bool vtkLightRaySingleScattering::ComputeSurfaceIrradiance(
     return false;
   }
   const vtkIdType texels = this->Surfaces->GetNumberOfTexels();
-  irradiance.assign(3 * static_cast<size_t>(texels), 0.0f);
+  constexpr int sides = vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES;
+  irradiance.assign(3 * sides * static_cast<size_t>(texels), 0.0f);
   if (run.LightCount == 0 || texels == 0 || run.NodeCount == 0)
   {
     return true; // no light, or nothing to light
@@ -133,12 +135,13 @@ bool vtkLightRaySingleScattering::ComputeSurfaceIrradiance(
   vtkOpenCLBuffer pointBuffer = ctx->CreateBuffer(in, bytes, points.data(), "texel points", this);
   vtkOpenCLBuffer normalBuffer =
     ctx->CreateBuffer(in, bytes, normals.data(), "texel normals", this);
+  // One float4 per point and side.
   vtkOpenCLBuffer out =
-    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, bytes, nullptr, "texel irradiance", this);
+    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, sides * bytes, nullptr, "texel irradiance", this);
   vtkOpenCLKernel kernel = ctx->CreateKernel(run.Program, "light_rays_surface_points", this);
   const cl_int pointCount = static_cast<cl_int>(count);
   const float minDistance = static_cast<float>(run.MinimumDistance);
-  std::vector<float> values(points.size());
+  std::vector<float> values(sides * points.size());
   if (!pointBuffer || !normalBuffer || !out || !kernel ||
     !ctx->Check(run.SetArgs(kernel.Get(), pointBuffer.Get(), normalBuffer.Get(), pointCount,
                   run.LightBuffer.Get(), run.LightCount, minDistance, out.Get()),
@@ -152,17 +155,19 @@ bool vtkLightRaySingleScattering::ComputeSurfaceIrradiance(
     irradiance.clear();
     return false; // an abort: no result, no message
   }
-  if (!ctx->ReadBuffer(out.Get(), bytes, values.data(), this))
+  if (!ctx->ReadBuffer(out.Get(), values.size() * sizeof(float), values.data(), this))
   {
     return false;
   }
-  // A texel's irradiance: the mean of its four points (float4 each).
+  // A texel side's irradiance: the mean of its four points (a float4 per point and side).
+  constexpr size_t perPoint = 4 * sides;
   for (size_t t = 0; t < static_cast<size_t>(texels); ++t)
   {
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < 3 * sides; ++c)
     {
-      const float* v = &values[16 * t + c];
-      irradiance[3 * t + c] = 0.25f * (v[0] + v[4] + v[8] + v[12]);
+      const float* v = &values[4 * perPoint * t + 4 * (c / 3) + c % 3];
+      irradiance[3 * sides * t + c] =
+        0.25f * (v[0] + v[perPoint] + v[2 * perPoint] + v[3 * perPoint]);
     }
   }
   this->NumberOfSurfacePoints = static_cast<long long>(count);

@@ -28,11 +28,12 @@
  * triangles anywhere in the scene, inside, around or outside the medium's box. Lights then emit
  * towards the union of the medium's (proxy) box and the surfaces' bounds; photons fly in straight
  * lines outside the box and curved inside it, and every step or flight is tested against the
- * surfaces' BVH. A photon that meets a surface adds its power to the hit texel's irradiance, loses
- * (1 - albedo) of it to the surface and is reflected diffusely (cosine-weighted, Russian roulette
- * on the albedo) or ends there; reflected photons go on depositing in-scattered power in the
- * medium. Output: the field-data array vtkRefractaLightingVolume::SurfaceIrradianceName()
- * (3 components, one tuple per texel of the set's atlas: irradiance, power per unit area, RGB),
+ * surfaces' BVH. A photon that meets a surface adds its power to the irradiance of the hit
+ * texel's side it arrived on, loses (1 - albedo) of it to the surface and is reflected diffusely
+ * on that side (cosine-weighted, Russian roulette on the albedo) or ends there; reflected photons
+ * go on depositing in-scattered power in the medium. Output: the field-data array
+ * vtkRefractaLightingVolume::SurfaceIrradianceName() (6 components, one tuple per texel of the
+ * set's atlas: irradiance, power per unit area, RGB on the front then on the back),
  * `EnergySurface` (RGB, absorbed by surfaces), `SurfaceHits` and `TerminatedSurface` (photons
  * that ended on a surface). With surfaces the books read Emitted = Absorbed + Surface + Escaped +
  * Scattered + Remaining. The set's device arrays (BVH, triangles, texel albedo) are uploaded once
@@ -376,9 +377,9 @@ public:
    * SurfaceCausticPhotonsName() beside SurfaceIrradianceName(), which keeps the whole flux (the
    * fine array resolves its caustic part; the view pass reads it where enough photons landed).
    * Scenes without dielectric surfaces have no caustic photons: nothing is allocated and the
-   * output is unchanged. Memory: 24 c^2 + 8 bytes per atlas texel on the device while tracing,
-   * 12 c^2 + 8 in the output; c is lowered for a run until the fine texels fit in
-   * MaximumNumberOfCausticTexels (GetLastCausticSubdivision()).
+   * output is unchanged. Memory (both sides of every texel): 48 c^2 + 16 bytes per atlas texel
+   * on the device while tracing, 24 c^2 + 16 in the output; c is lowered for a run until the
+   * fine texels fit in MaximumNumberOfCausticTexels (GetLastCausticSubdivision()).
    */
   vtkSetClampMacro(CausticSubdivision, int, 1, 16);
   vtkGetMacro(CausticSubdivision, int);
@@ -386,7 +387,7 @@ public:
 
   ///@{
   /**
-   * Most fine texels of the caustic atlas (default 2^22: 100 MB on the device while tracing).
+   * Most fine texels of the caustic atlas (default 2^22: 200 MB on the device while tracing).
    * A run whose atlas has T texels uses the largest c' <= CausticSubdivision with T c'^2 within
    * it (no caustic atlas if that is 1).
    */

@@ -166,16 +166,18 @@ namespace
 void ResolveTexels(double scale, const cl_long* fixed, vtkIdType count, vtkIdType perCoarse,
   const std::vector<double>& coarseAreas, vtkFloatArray* out, const char* name)
 {
+  // Front RGB, back RGB per texel, as the kernel's sided texels 2 t + side hold them.
+  constexpr int components = 3 * vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES;
   out->SetName(name);
-  out->SetNumberOfComponents(3);
+  out->SetNumberOfComponents(components);
   out->SetNumberOfTuples(count);
   for (vtkIdType t = 0; t < count; ++t)
   {
     const double area = coarseAreas[t / perCoarse] / static_cast<double>(perCoarse);
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < components; ++c)
     {
       // Deposited flux / texel area; rounding of the fixed point can leave a tiny negative.
-      const double flux = static_cast<double>(fixed[3 * t + c]) / scale;
+      const double flux = static_cast<double>(fixed[components * t + c]) / scale;
       out->SetTypedComponent(t, c, static_cast<float>(std::max(flux, 0.0) / area));
     }
   }
@@ -247,11 +249,13 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
       alloc.Make(in, bodies.size() * sizeof(float), bodies.data(), "surface body media");
   }
   this->KeptSurfaces.reset();
-  // The caustic atlas's c^2 fine texels per coarse texel follow the coarse ones, then one
-  // caustic photon count per coarse texel.
+  // Three accumulators per texel side (photon_surfaces.cl's sided texels); the caustic atlas's
+  // c^2 fine texels per coarse texel follow the coarse ones, then one caustic photon count per
+  // coarse texel side.
   const size_t c2 = static_cast<size_t>(run.Caustic) * run.Caustic;
-  const size_t texels = static_cast<size_t>(set->GetNumberOfTexels());
-  const size_t accumulators = run.Caustic > 1 ? texels * (3 + 3 * c2 + 1) : 3 * texels;
+  const size_t sided = static_cast<size_t>(set->GetNumberOfTexels()) *
+    vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES;
+  const size_t accumulators = run.Caustic > 1 ? sided * (3 + 3 * c2 + 1) : 3 * sided;
   run.SurfIrradiance = alloc.Make(
     CL_MEM_READ_WRITE, accumulators * sizeof(cl_long), nullptr, "surface irradiance accumulator");
   run.SurfIrradianceBytes = accumulators * sizeof(cl_long);
@@ -288,9 +292,12 @@ bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_u
     set(sizeof(cl_float4), &row);
   }
   set(sizeof(cl_float), &epsilon);
-  // The fine caustic atlas's first texel (a run-time argument: one program serves every set).
-  const cl_long causticOffset =
-    run.Caustic > 1 ? static_cast<cl_long>(run.Surfaces->GetNumberOfTexels()) : 0;
+  // The fine caustic atlas's first sided texel (a run-time argument: one program serves every
+  // set).
+  const cl_long causticOffset = run.Caustic > 1
+    ? static_cast<cl_long>(run.Surfaces->GetNumberOfTexels()) *
+      vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES
+    : 0;
   set(sizeof(cl_long), &causticOffset);
   const cl_mem anisotropy = run.AnisotropyBuffer.Get(), multiple = run.MultipleFixed.Get();
   set(sizeof(cl_mem), &anisotropy);
@@ -310,11 +317,12 @@ bool vtkPhotonTracer::ResolveSurfaces(Internals& run)
   {
     return true;
   }
+  constexpr int sides = vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES;
   const vtkIdType texels = run.Surfaces->GetNumberOfTexels();
   const vtkIdType c2 = static_cast<vtkIdType>(run.Caustic) * run.Caustic;
   const vtkIdType fine = run.Caustic > 1 ? texels * c2 : 0;
-  const vtkIdType counts = run.Caustic > 1 ? texels : 0;
-  std::vector<cl_long> fixed(3 * static_cast<size_t>(texels + fine) + counts);
+  const vtkIdType counts = run.Caustic > 1 ? sides * texels : 0;
+  std::vector<cl_long> fixed(3 * sides * static_cast<size_t>(texels + fine) + counts);
   if (!run.Context->ReadBuffer(
         run.SurfIrradiance.Get(), fixed.size() * sizeof(cl_long), fixed.data(), this))
   {
@@ -327,13 +335,14 @@ bool vtkPhotonTracer::ResolveSurfaces(Internals& run)
   {
     // A triangle's texels all have one area, and its fine texels (from its first texel c^2 on,
     // subdivision n c) 1 / c^2 of it: fine texel f has the area of coarse texel f / c^2 over c^2.
-    ResolveTexels(run.Scale, fixed.data() + 3 * texels, fine, c2, areas, run.CausticIrradiance,
-      vtkRefractaLightingVolume::SurfaceCausticIrradianceName());
+    ResolveTexels(run.Scale, fixed.data() + 3 * sides * texels, fine, c2, areas,
+      run.CausticIrradiance, vtkRefractaLightingVolume::SurfaceCausticIrradianceName());
     vtkIdTypeArray* photons = run.CausticPhotons;
     photons->SetName(vtkRefractaLightingVolume::SurfaceCausticPhotonsName());
+    photons->SetNumberOfComponents(sides);
     photons->SetNumberOfTuples(texels);
-    const cl_long* count = fixed.data() + 3 * (texels + fine);
-    std::copy(count, count + texels, photons->GetPointer(0));
+    const cl_long* count = fixed.data() + 3 * sides * (texels + fine);
+    std::copy(count, count + counts, photons->GetPointer(0));
   }
   return true;
 }

@@ -134,7 +134,12 @@ void PlaneErrors(vtkRefractaSurfaceSet* set, vtkDataArray* e, double h, double i
         continue;
       }
       const double expected = intensity * h / std::pow(h * h + rho * rho, 1.5);
-      const double r = e->GetComponent(first + i, 0) / expected - 1;
+      // The light reaches one side; the other stays dark, so both sides together are that side.
+      const double both = vtkRefractaLightingVolume::GetSurfaceSideValue(
+                            e, first + i, vtkRefractaLightingVolume::FRONT_SIDE, 0, 3) +
+        vtkRefractaLightingVolume::GetSurfaceSideValue(
+          e, first + i, vtkRefractaLightingVolume::BACK_SIDE, 0, 3);
+      const double r = both / expected - 1;
       sum += r;
       sum2 += r * r;
       ++count;

@@ -4,8 +4,10 @@
 // plan's medium stage; removing the surfaces re-plans and drops the photon pass again.
 // The direct light on surfaces by light rays (DirectSurfaceLightByRays): exact under an
 // absorbing cube's shadow, the floor's flux unchanged under a glass ball (its caustic stays the
-// photons'), and photons alone where the medium refracts.
+// photons'), and photons alone where the medium refracts. A lamp inside a closed box lights its
+// inner faces only: the atlas keeps the two sides of a texel apart, by photons and by rays.
 #include "vtkCamera.h"
+#include "vtkCubeSource.h"
 #include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -16,6 +18,7 @@
 #include "vtkPhotonTracer.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkRefractaBVH.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaRenderPipeline.h"
@@ -34,6 +37,15 @@
 
 namespace
 {
+// Channel c of a texel's irradiance on both sides together (the flux that arrived on it / area).
+double BothSides(vtkDataArray* irradiance, vtkIdType texel, int c)
+{
+  return vtkRefractaLightingVolume::GetSurfaceSideValue(
+           irradiance, texel, vtkRefractaLightingVolume::FRONT_SIDE, c, 3) +
+    vtkRefractaLightingVolume::GetSurfaceSideValue(
+      irradiance, texel, vtkRefractaLightingVolume::BACK_SIDE, c, 3);
+}
+
 // A clear glass ball (n up to 1.5, nothing absorbs or scatters) in a 24^3 unit box.
 vtkSmartPointer<vtkImageData> GlassBall()
 {
@@ -184,7 +196,8 @@ struct ShadowScene
     this->Pipeline->SetSurfaces(this->Surfaces);
   }
 
-  // The floor's texels: irradiance (RGB) and centroid (x, z), from the pipeline's lighting.
+  // The floor's texels: irradiance (RGB, both sides) and centroid (x, z), from the pipeline's
+  // lighting.
   void Texels(std::vector<std::array<double, 5>>& texels)
   {
     vtkDataArray* irradiance = this->Pipeline->GetLighting()->GetFieldData()->GetArray(
@@ -205,7 +218,7 @@ struct ShadowScene
         std::array<double, 5> row;
         for (int c = 0; c < 3; ++c)
         {
-          row[c] = irradiance->GetComponent(first + t, c);
+          row[c] = BothSides(irradiance, first + t, c);
         }
         for (int a : { 0, 2 })
         {
@@ -317,7 +330,7 @@ TEST(PipelineSurfaces, DirectLightByRaysKeepsTheFloorsFluxUnderGlass)
       }
       for (int t = 0; t < info[4 * k + 1] * info[4 * k + 1]; ++t)
       {
-        flux[split] += irradiance->GetComponent(info[4 * k] + t, 0) * areas[info[4 * k] + t];
+        flux[split] += BothSides(irradiance, info[4 * k] + t, 0) * areas[info[4 * k] + t];
       }
     }
   }
@@ -331,7 +344,7 @@ TEST(PipelineSurfaces, DirectLightByRaysKeepsTheFloorsFluxUnderGlass)
   {
     for (int t = 0; info[4 * k + 3] != 0 && t < info[4 * k + 1] * info[4 * k + 1]; ++t)
     {
-      glassTexels = std::max(glassTexels, std::abs(irradiance->GetComponent(info[4 * k] + t, 0)));
+      glassTexels = std::max(glassTexels, std::abs(BothSides(irradiance, info[4 * k] + t, 0)));
     }
   }
   EXPECT_EQ(glassTexels, 0.0);
@@ -380,4 +393,113 @@ TEST(PipelineSurfaces, DirectLightByRaysOnlyWhereItMatchesThePhotons)
   ASSERT_TRUE(scene.Pipeline->Render(32, 24));
   EXPECT_FALSE(scene.Pipeline->GetEffectPlan()->IsEnabled(vtkEffectPlan::SURFACE_LIGHTING));
   EXPECT_FALSE(scene.Pipeline->GetLastDirectSurfaceLightByRays());
+}
+
+// A lamp inside a closed grey box (around a clear medium): the inner faces are lit, the outer
+// faces get no light at all, by photons alone or with the direct light by rays; seen from
+// outside the box is black, seen from inside its walls are lit. With one irradiance for both
+// sides (before the atlas kept them apart) the outside glowed as bright as the inside.
+TEST(PipelineSurfaces, LampInsideAClosedBoxLightsOnlyItsInnerFaces)
+{
+  const int n = 8;
+  auto clear = vtkSmartPointer<vtkImageData>::New();
+  clear->SetDimensions(n, n, n);
+  clear->SetSpacing(1.0 / (n - 1), 1.0 / (n - 1), 1.0 / (n - 1));
+  vtkNew<vtkFloatArray> index;
+  index->SetName("RefractiveIndex");
+  index->SetNumberOfTuples(clear->GetNumberOfPoints());
+  index->Fill(1.0);
+  clear->GetPointData()->AddArray(index);
+  vtkNew<vtkRefractaRenderPipeline> pipeline;
+  pipeline->SetMedium(clear);
+  vtkNew<vtkLight> lamp;
+  lamp->SetLightTypeToSceneLight();
+  lamp->SetPositional(true);
+  lamp->SetConeAngle(180.0);
+  lamp->SetPosition(0.5, 0.5, 0.5);
+  lamp->SetFocalPoint(0.5, 0.0, 0.5);
+  pipeline->AddLight(lamp);
+  vtkNew<vtkCubeSource> box;
+  box->SetBounds(-0.5, 1.5, -0.5, 1.5, -0.5, 1.5);
+  box->Update();
+  vtkNew<vtkRefractaSurfaceMaterial> grey;
+  grey->SetAlbedo(0.5, 0.5, 0.5);
+  vtkNew<vtkRefractaSurfaceSet> surfaces;
+  surfaces->AddSurface(box->GetOutput(), grey);
+  surfaces->SetTexelSize(0.25);
+  pipeline->SetSurfaces(surfaces);
+  pipeline->GetPhotonTracer()->SetNumberOfPhotons(1 << 16);
+  vtkNew<vtkCamera> camera;
+  pipeline->SetCamera(camera);
+  for (bool rays : { true, false })
+  {
+    pipeline->SetDirectSurfaceLightByRays(rays);
+    camera->SetPosition(0.5, 0.8, 6.0); // outside, the whole box in view
+    camera->SetFocalPoint(0.5, 0.5, 0.5);
+    ASSERT_TRUE(pipeline->Render(48, 48));
+    EXPECT_EQ(pipeline->GetLastDirectSurfaceLightByRays(), rays);
+    vtkDataArray* e = pipeline->GetLighting()->GetFieldData()->GetArray(
+      vtkRefractaLightingVolume::SurfaceIrradianceName());
+    ASSERT_NE(e, nullptr);
+    ASSERT_EQ(e->GetNumberOfComponents(), 6);
+    // Each texel's outer side (where the face's winding normal points away from the lamp, or not)
+    // has no light; its inner side sees the lamp.
+    const std::vector<int>& info = surfaces->GetTriangleInfo();
+    const std::vector<double>& tri = surfaces->GetBVH()->GetTriangles();
+    const double* origin = surfaces->GetBVH()->GetFrameOrigin();
+    double outer = 0, innerLeast = 1e300;
+    for (size_t k = 0; 4 * k < info.size(); ++k)
+    {
+      const double* v = &tri[9 * k];
+      double a[3], b[3], normal[3], toFace[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        a[c] = v[3 + c] - v[c];
+        b[c] = v[6 + c] - v[c];
+        toFace[c] = origin[c] + (v[c] + v[3 + c] + v[6 + c]) / 3 - 0.5;
+      }
+      normal[0] = a[1] * b[2] - a[2] * b[1];
+      normal[1] = a[2] * b[0] - a[0] * b[2];
+      normal[2] = a[0] * b[1] - a[1] * b[0];
+      const double facing = normal[0] * toFace[0] + normal[1] * toFace[1] + normal[2] * toFace[2];
+      const int outerSide =
+        facing > 0 ? vtkRefractaLightingVolume::FRONT_SIDE : vtkRefractaLightingVolume::BACK_SIDE;
+      for (int t = 0; t < info[4 * k + 1] * info[4 * k + 1]; ++t)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          outer = std::max(outer,
+            vtkRefractaLightingVolume::GetSurfaceSideValue(e, info[4 * k] + t, outerSide, c, 3));
+          innerLeast = std::min(innerLeast,
+            vtkRefractaLightingVolume::GetSurfaceSideValue(
+              e, info[4 * k] + t, 1 - outerSide, c, 3));
+        }
+      }
+    }
+    EXPECT_EQ(outer, 0.0) << (rays ? "rays" : "photons") << ": light on the outer faces";
+    EXPECT_GT(innerLeast, 0.0) << (rays ? "rays" : "photons") << ": an inner texel left dark";
+    // From outside: the box covers the middle of the image, and it is black.
+    const std::vector<float>& outside = pipeline->GetImage();
+    float brightest = 0;
+    for (size_t p = 0; p < outside.size(); p += 4)
+    {
+      brightest = std::max({ brightest, outside[p], outside[p + 1], outside[p + 2] });
+    }
+    EXPECT_EQ(brightest, 0.0f) << (rays ? "rays" : "photons") << ": the box glows outside";
+    EXPECT_EQ(outside[4 * (24 * 48 + 24) + 3], 1.0f) << "the middle pixel sees the opaque box";
+    // From inside, looking at the far wall: lit.
+    camera->SetPosition(0.5, 0.5, 1.3);
+    camera->SetFocalPoint(0.5, 0.5, -0.5);
+    ASSERT_TRUE(pipeline->Render(16, 16));
+    const std::vector<float>& inside = pipeline->GetImage();
+    double sum = 0;
+    for (size_t p = 0; p < inside.size(); p += 4)
+    {
+      sum += inside[p];
+    }
+    EXPECT_GT(sum / (inside.size() / 4), 0.0) << (rays ? "rays" : "photons");
+    std::cout << (rays ? "rays + photons" : "photons alone") << ": outer faces' largest irradiance "
+              << outer << ", inner faces' least " << innerLeast << ", brightest pixel outside "
+              << brightest << ", mean red inside " << sum / (inside.size() / 4) << "\n";
+  }
 }

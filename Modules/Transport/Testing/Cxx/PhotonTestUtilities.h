@@ -139,6 +139,20 @@ inline vtkSmartPointer<vtkLight> Positional(std::array<double, 3> at, std::array
   return light;
 }
 
+// Channel c of a surface texel's irradiance on one side (vtkRefractaLightingVolume::SurfaceSide).
+inline double SideIrradiance(vtkDataArray* e, vtkIdType texel, int side, int c = 0)
+{
+  return vtkRefractaLightingVolume::GetSurfaceSideValue(e, texel, side, c, 3);
+}
+
+// Channel c of a texel's irradiance on both sides together: the flux that arrived on it from
+// anywhere, per unit area.
+inline double TexelIrradiance(vtkDataArray* e, vtkIdType texel, int c = 0)
+{
+  return SideIrradiance(e, texel, vtkRefractaLightingVolume::FRONT_SIDE, c) +
+    SideIrradiance(e, texel, vtkRefractaLightingVolume::BACK_SIDE, c);
+}
+
 inline double Field(vtkImageData* image, const char* name, int component = 0)
 {
   vtkDataArray* a = image->GetFieldData()->GetArray(name);

@@ -69,7 +69,7 @@ double Integral(vtkImageData* image, const char* name)
   return sum * SPACING * SPACING * SPACING;
 }
 
-// Power deposited on the surfaces (first channel): sum of irradiance x texel area.
+// Power deposited on the surfaces (first channel, both sides): sum of irradiance x texel area.
 double SurfaceFlux(vtkRefractaSurfaceSet* set, vtkImageData* image)
 {
   vtkDataArray* e =
@@ -81,7 +81,7 @@ double SurfaceFlux(vtkRefractaSurfaceSet* set, vtkImageData* image)
   double sum = 0;
   for (vtkIdType t = 0; t < e->GetNumberOfTuples(); ++t)
   {
-    sum += e->GetComponent(t, 0) * set->GetTexelAreas()[t];
+    sum += photontest::TexelIrradiance(e, t) * set->GetTexelAreas()[t];
   }
   return sum;
 }
@@ -311,7 +311,8 @@ TEST(PhotonAnalogScattering, RotatedAndMovedMediumLightsTheFloorTheSame)
         }
         const int cx = std::min(cells - 1, std::max(0, static_cast<int>((centre[0] + 1) / 0.5)));
         const int cz = std::min(cells - 1, std::max(0, static_cast<int>((centre[2] + 1) / 0.5)));
-        const double f = irradiance->GetComponent(first + i, 0) * set->GetTexelAreas()[first + i];
+        const double f =
+          photontest::TexelIrradiance(irradiance, first + i) * set->GetTexelAreas()[first + i];
         flux[moved][cx + cells * cz] += f;
         total[moved] += f;
       }

@@ -1,8 +1,8 @@
 // Environment light of the photon pass (vtkPhotonTracer::BackgroundIlluminates): a uniform sky of
 // radiance L lights each side of an unoccluded black plane with E = pi L; an upper-hemisphere sky
-// lights the upper side only (E = pi L in all); one bright texel of an equirectangular map gives
-// the directional answer E = L x integral over the texel of cos(theta) d omega; the books (with
-// the environment's emitted power) close; bad maps are reported.
+// lights the upper side only (E = pi L there, 0 below); one bright texel of an equirectangular map
+// gives the directional answer E = L x integral over the texel of cos(theta) d omega; the books
+// (with the environment's emitted power) close; bad maps are reported.
 #include "PhotonTestUtilities.h"
 
 #include "vtkExecutive.h"
@@ -68,8 +68,12 @@ vtkSmartPointer<vtkImageData> Vacuum()
   return medium;
 }
 
-// The area-weighted mean irradiance (RGB) over the whole atlas.
-std::array<double, 3> MeanIrradiance(vtkRefractaSurfaceSet* set, vtkImageData* out)
+// The floor's sides: its winding normal points down (-y), so the sky above lights its back.
+constexpr int Upper = vtkRefractaLightingVolume::BACK_SIDE;
+constexpr int Lower = vtkRefractaLightingVolume::FRONT_SIDE;
+
+// The area-weighted mean irradiance (RGB) over the whole atlas on one side.
+std::array<double, 3> MeanIrradiance(vtkRefractaSurfaceSet* set, vtkImageData* out, int side)
 {
   std::array<double, 3> mean = { 0, 0, 0 };
   vtkDataArray* e =
@@ -86,7 +90,7 @@ std::array<double, 3> MeanIrradiance(vtkRefractaSurfaceSet* set, vtkImageData* o
     area += a;
     for (int c = 0; c < 3; ++c)
     {
-      mean[c] += a * e->GetComponent(t, c);
+      mean[c] += a * photontest::SideIrradiance(e, t, side, c);
     }
   }
   for (int c = 0; c < 3; ++c)
@@ -127,7 +131,7 @@ vtkSmartPointer<vtkPhotonTracer> SkyTracer(vtkRefractaSurfaceSet* set, int photo
 TEST(PhotonEnvironment, UniformSkyLightsEachSideWithPiL)
 {
   // 2^19 photons from a uniform sky L = (1, 0.5, 0.25) onto a 4 x 4 black plane: each side sees
-  // the whole hemisphere, E = pi L per side, 2 pi L in the (two-sided) atlas.
+  // the whole hemisphere, E = pi L on each side of the atlas.
   auto set = BlackFloor(4.0);
   auto tracer = SkyTracer(set, 1 << 19);
   const double L[3] = { 1.0, 0.5, 0.25 };
@@ -137,15 +141,21 @@ TEST(PhotonEnvironment, UniformSkyLightsEachSideWithPiL)
   ASSERT_TRUE(tracer->GetUsedEnvironment());
   EXPECT_EQ(tracer->GetEnvironmentPhotons(), 1 << 19);
   ExpectBooksClose(out, 1e-4);
-  const auto E = MeanIrradiance(set, out);
-  std::cout << "uniform sky: E / (2 pi L) = " << E[0] / (2 * Pi * L[0]) << ", "
-            << E[1] / (2 * Pi * L[1]) << ", " << E[2] / (2 * Pi * L[2]) << "\n";
-  for (int c = 0; c < 3; ++c)
+  double both = 0;
+  for (int side : { Upper, Lower })
   {
-    EXPECT_NEAR(E[c], 2 * Pi * L[c], 0.02 * 2 * Pi * L[c]) << "channel " << c;
+    const auto E = MeanIrradiance(set, out, side);
+    std::cout << "uniform sky, " << (side == Upper ? "upper" : "lower")
+              << " side: E / (pi L) = " << E[0] / (Pi * L[0]) << ", " << E[1] / (Pi * L[1]) << ", "
+              << E[2] / (Pi * L[2]) << "\n";
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(E[c], Pi * L[c], 0.02 * Pi * L[c]) << "channel " << c << " side " << side;
+    }
+    both += E[0];
   }
-  // The plane absorbs it all: surface energy = E x area (both sides counted in E).
-  EXPECT_NEAR(photontest::Energy(out, "EnergySurface")[0], E[0] * 16.0, 1e-3 * E[0] * 16.0);
+  // The plane absorbs it all: surface energy = E x area on both sides.
+  EXPECT_NEAR(photontest::Energy(out, "EnergySurface")[0], both * 16.0, 1e-3 * both * 16.0);
   // Off: the sky does not light the scene (no lights either: darkness).
   tracer->BackgroundIlluminatesOff();
   tracer->Update();
@@ -166,12 +176,14 @@ TEST(PhotonEnvironment, UpperHemisphereSkyGivesPiLOnTheUpperSide)
   vtkImageData* out = tracer->GetOutput();
   ASSERT_TRUE(tracer->GetUsedEnvironment());
   ExpectBooksClose(out, 1e-4);
-  const auto E = MeanIrradiance(set, out);
+  const auto E = MeanIrradiance(set, out, Upper);
   std::cout << "upper hemisphere: E / (pi L) = " << E[0] / (Pi * L[0]) << ", " << E[1] / (Pi * L[1])
             << ", " << E[2] / (Pi * L[2]) << "\n";
+  const auto dark = MeanIrradiance(set, out, Lower);
   for (int c = 0; c < 3; ++c)
   {
     EXPECT_NEAR(E[c], Pi * L[c], 0.02 * Pi * L[c]) << "channel " << c;
+    EXPECT_EQ(dark[c], 0.0) << "channel " << c << ": no light comes from below";
   }
 }
 
@@ -194,22 +206,24 @@ TEST(PhotonEnvironment, OneBrightTexelIsADirectionalLight)
   const double lat0 = Pi * (6.0 / h - 0.5), lat1 = Pi * (7.0 / h - 0.5);
   const double cosineSolidAngle =
     2 * Pi / w * 0.5 * (std::sin(lat1) * std::sin(lat1) - std::sin(lat0) * std::sin(lat0));
-  const auto E = MeanIrradiance(set, out);
+  const auto E = MeanIrradiance(set, out, Upper);
   std::cout << "bright texel: E / (L x cos-weighted solid angle) = "
             << E[0] / (L[0] * cosineSolidAngle) << "\n";
   for (int c = 0; c < 3; ++c)
   {
     EXPECT_NEAR(E[c], L[c] * cosineSolidAngle, 0.02 * L[c] * cosineSolidAngle) << "channel " << c;
   }
+  EXPECT_EQ(MeanIrradiance(set, out, Lower)[0], 0.0);
   // The same texel below the horizon (row 1) lights the lower side with the same irradiance.
   const double black[3] = { 0, 0, 0 };
   SetTexel(map, 5, 6, black);
   SetTexel(map, 5, 1, L);
   map->Modified();
   tracer->Update();
-  const auto below = MeanIrradiance(set, tracer->GetOutput());
+  const auto below = MeanIrradiance(set, tracer->GetOutput(), Lower);
   std::cout << "bright texel below: " << below[0] / (L[0] * cosineSolidAngle) << "\n";
   EXPECT_NEAR(below[0], L[0] * cosineSolidAngle, 0.02 * L[0] * cosineSolidAngle);
+  EXPECT_EQ(MeanIrradiance(set, tracer->GetOutput(), Upper)[0], 0.0);
 }
 
 TEST(PhotonEnvironment, BadEnvironmentIsReported)

@@ -83,7 +83,7 @@ double SurfaceFlux(vtkRefractaSurfaceSet* set, vtkImageData* out, int surface)
     const int first = info[4 * k], n = info[4 * k + 1];
     for (int i = 0; i < n * n; ++i)
     {
-      flux += e->GetComponent(first + i, 0) * set->GetTexelAreas()[first + i];
+      flux += photontest::TexelIrradiance(e, first + i) * set->GetTexelAreas()[first + i];
     }
   }
   return flux;
@@ -263,7 +263,8 @@ TEST(PhotonInterfaces, SharpBallLensFocus)
         {
           x[a] = (1 - u - v) * t[a] + u * t[3 + a] + v * t[6 + a] + bvh->GetFrameOrigin()[a];
         }
-        const double flux = e->GetComponent(first + i, 0) * set->GetTexelAreas()[first + i];
+        const double flux =
+          photontest::TexelIrradiance(e, first + i) * set->GetTexelAreas()[first + i];
         m2 += flux * (x[0] * x[0] + x[1] * x[1]);
         m0 += flux;
       }
@@ -392,7 +393,7 @@ std::array<double, 3> SpotRms(
       {
         x[a] = (1 - u - v) * t[a] + u * t[3 + a] + v * t[6 + a] + bvh->GetFrameOrigin()[a];
       }
-      const double flux = e->GetComponent(first + i, 0) * area;
+      const double flux = photontest::TexelIrradiance(e, first + i) * area;
       const double r2 = x[0] * x[0] + x[1] * x[1];
       m2 += flux * r2;
       m0 += flux;
@@ -433,8 +434,10 @@ TEST(PhotonInterfaces, CausticAtlasResolvesTheFocus)
   ASSERT_NE(fine, nullptr);
   const vtkIdType texels = set->GetNumberOfTexels();
   ASSERT_EQ(fine->GetNumberOfTuples(), 16 * texels);
-  // Books: every fine texel's flux lies in its coarse texel, and on the screen all of it.
+  // Books, on each side: every fine texel's flux lies in its coarse texel, and on the screen all
+  // of it.
   const auto& info = set->GetTriangleInfo();
+  using photontest::SideIrradiance;
   double worst = 0, screen = 0;
   for (vtkIdType k = 0; k < set->GetNumberOfTriangles(); ++k)
   {
@@ -445,20 +448,24 @@ TEST(PhotonInterfaces, CausticAtlasResolvesTheFocus)
     // The fine texels of a triangle (subdivision 4 n) cut each coarse texel into 16: each one's
     // centroid finds its coarse texel.
     const int first = info[4 * k], n = info[4 * k + 1];
-    std::vector<double> sum(n * n, 0.0);
-    for (int f = 0; f < 16 * n * n; ++f)
+    for (int side = 0; side < vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES; ++side)
     {
-      double corners[6];
-      vtkRefractaSurfaceSet::GetTexelCorners(f, 4 * n, corners);
-      const float u = static_cast<float>((corners[0] + corners[2] + corners[4]) / 3);
-      const float v = static_cast<float>((corners[1] + corners[3] + corners[5]) / 3);
-      sum[vtkRefractaSurfaceSet::TexelIndex(u, v, n)] += fine->GetComponent(16 * first + f, 0) / 16;
-    }
-    for (int i = 0; i < n * n; ++i)
-    {
-      const double e = coarse->GetComponent(first + i, 0);
-      worst = std::max(worst, std::fabs(sum[i] - e));
-      screen = std::max(screen, e);
+      std::vector<double> sum(n * n, 0.0);
+      for (int f = 0; f < 16 * n * n; ++f)
+      {
+        double corners[6];
+        vtkRefractaSurfaceSet::GetTexelCorners(f, 4 * n, corners);
+        const float u = static_cast<float>((corners[0] + corners[2] + corners[4]) / 3);
+        const float v = static_cast<float>((corners[1] + corners[3] + corners[5]) / 3);
+        sum[vtkRefractaSurfaceSet::TexelIndex(u, v, n)] +=
+          SideIrradiance(fine, 16 * first + f, side) / 16;
+      }
+      for (int i = 0; i < n * n; ++i)
+      {
+        const double e = SideIrradiance(coarse, first + i, side);
+        worst = std::max(worst, std::fabs(sum[i] - e));
+        screen = std::max(screen, e);
+      }
     }
   }
   EXPECT_LT(worst, 1e-4 * screen);
@@ -477,15 +484,19 @@ TEST(PhotonInterfaces, CausticAtlasResolvesTheFocus)
     const bool onScreen = info[4 * k + REFRACTA_TRIANGLE_INFO_SURFACE] == 2;
     for (int t = first; t < first + n * n; ++t)
     {
-      const double count = counts->GetComponent(t, 0), flux = coarse->GetComponent(t, 0) * areas[t];
-      landed += count;
-      if (!onScreen || count == 0)
+      for (int side = 0; side < vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES; ++side)
       {
-        uncounted += onScreen ? flux : 0.0;
-        continue;
+        const double count = vtkRefractaLightingVolume::GetSurfaceSideValue(counts, t, side, 0, 1);
+        const double flux = SideIrradiance(coarse, t, side) * areas[t];
+        landed += count;
+        if (!onScreen || count == 0)
+        {
+          uncounted += onScreen ? flux : 0.0;
+          continue;
+        }
+        lowest = std::min(lowest, flux / count);
+        highest = std::max(highest, flux / count);
       }
-      lowest = std::min(lowest, flux / count);
-      highest = std::max(highest, flux / count);
     }
   }
   EXPECT_GT(landed, 5000);

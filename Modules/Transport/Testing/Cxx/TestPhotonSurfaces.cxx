@@ -43,12 +43,14 @@ vtkSmartPointer<vtkRefractaSurfaceMaterial> Black()
   return m;
 }
 
-// One texel of the atlas: world centroid, area, measured irradiance (first channel).
+// One texel of the atlas: world centroid, area, measured irradiance (first channel) on its front
+// (the planes' normals face the lights) and on its back.
 struct Texel
 {
   double Centre[3];
   double Area;
   double E;
+  double Back;
 };
 
 std::vector<Texel> Texels(vtkRefractaSurfaceSet* set, vtkImageData* out)
@@ -62,7 +64,7 @@ std::vector<Texel> Texels(vtkRefractaSurfaceSet* set, vtkImageData* out)
     return texels;
   }
   EXPECT_EQ(e->GetNumberOfTuples(), set->GetNumberOfTexels());
-  EXPECT_EQ(e->GetNumberOfComponents(), 3);
+  EXPECT_EQ(e->GetNumberOfComponents(), 6); // front RGB, back RGB
   vtkRefractaBVH* bvh = set->GetBVH();
   const auto& info = set->GetTriangleInfo();
   for (vtkIdType k = 0; k < set->GetNumberOfTriangles(); ++k)
@@ -80,7 +82,8 @@ std::vector<Texel> Texels(vtkRefractaSurfaceSet* set, vtkImageData* out)
         tx.Centre[a] = (1 - u - v) * t[a] + u * t[3 + a] + v * t[6 + a] + bvh->GetFrameOrigin()[a];
       }
       tx.Area = set->GetTexelAreas()[first + i];
-      tx.E = e->GetComponent(first + i, 0);
+      tx.E = photontest::SideIrradiance(e, first + i, vtkRefractaLightingVolume::FRONT_SIDE);
+      tx.Back = photontest::SideIrradiance(e, first + i, vtkRefractaLightingVolume::BACK_SIDE);
       texels.push_back(tx);
     }
   }
@@ -151,6 +154,12 @@ TEST(PhotonSurfaces, PointLightOnPlaneInverseSquareCosine)
     EXPECT_NEAR(measured / expected, 1.0, 0.01) << "ring " << rings[r] << " - " << rings[r + 1];
     std::cout << "ring [" << rings[r] << ", " << rings[r + 1]
               << "): measured / analytic = " << measured / expected << "\n";
+  }
+  // The sides are kept apart: no light comes from below the plane.
+  for (const auto& t : texels)
+  {
+    ASSERT_EQ(t.Back, 0.0) << "the underside of the plane at " << t.Centre[0] << ", "
+                           << t.Centre[1];
   }
 }
 
