@@ -329,14 +329,23 @@ vtkSmartPointer<vtkImageData> MapThroughTransferFunctions(const json& volume, vt
   property->SetScalarOpacityUnitDistance(Number(tf, "unit_distance", p, 1.0, 1e-30, 1e30));
   vtkNew<vtkTransferFunctionMedium> mapping;
   mapping->SetInputData(input);
+  // A point array, else a cell array (values at the cells' centres).
   if (volume.contains("array"))
   {
     const std::string name = String(volume, "array", "scene.medium.volume", "");
-    if (!input->GetPointData()->GetArray(name.c_str()))
+    const bool point = input->GetPointData()->GetArray(name.c_str()) != nullptr;
+    if (!point && !input->GetCellData()->GetArray(name.c_str()))
     {
-      Fail("scene.medium.volume.array", "the file has no point array '" + name + "'");
+      Fail("scene.medium.volume.array", "the file has no point or cell array '" + name + "'");
     }
-    mapping->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, name.c_str());
+    mapping->SetInputArrayToProcess(0, 0, 0,
+      point ? vtkDataObject::FIELD_ASSOCIATION_POINTS : vtkDataObject::FIELD_ASSOCIATION_CELLS,
+      name.c_str());
+  }
+  else if (!input->GetPointData()->GetScalars() && input->GetCellData()->GetScalars())
+  {
+    mapping->SetInputArrayToProcess(
+      0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, vtkDataSetAttributes::SCALARS);
   }
   mapping->SetVolumeProperty(property);
   auto ri = TransferPoints(tf, "refractive_index", p, 2);

@@ -11,8 +11,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <memory>
 
 vtkStandardNewMacro(vtkRefractaMedium);
 
@@ -180,6 +182,29 @@ void vtkRefractaMedium::PrintSelf(ostream& os, vtkIndent indent)
     os << indent << Conventions[id].Name << ": " << Conventions[id].Components << " component(s), "
        << Conventions[id].RangeDescription << ", default " << Conventions[id].Default << "\n";
   }
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkFloatArray> vtkRefractaMedium::NewArrayOrNull(int id, vtkIdType tuples)
+{
+  const int components = GetNumberOfComponents(id);
+  if (components <= 0 || tuples < 0)
+  {
+    return nullptr;
+  }
+  const size_t values = static_cast<size_t>(tuples) * components;
+  std::unique_ptr<float, decltype(&std::free)> data(
+    static_cast<float*>(std::malloc(std::max<size_t>(values, 1) * sizeof(float))), &std::free);
+  if (!data)
+  {
+    return nullptr;
+  }
+  auto a = vtkSmartPointer<vtkFloatArray>::New();
+  a->SetName(GetArrayName(id));
+  a->SetNumberOfComponents(components);
+  a->SetArray(
+    data.release(), static_cast<vtkIdType>(values), 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+  return a;
 }
 
 //------------------------------------------------------------------------------

@@ -26,10 +26,12 @@
 
 #include "RefractaCoreModule.h" // for export macro
 #include "vtkObject.h"
+#include "vtkSmartPointer.h" // for NewArrayOrNull
 
 #include <vector> // for std::vector
 
 class vtkDataArray;
+class vtkFloatArray;
 class vtkImageData;
 
 class REFRACTACORE_EXPORT vtkRefractaMedium : public vtkObject
@@ -160,6 +162,15 @@ public:
    * channels equal at every point. Passes then keep one value per point on the device.
    */
   static bool IsGrey(const std::vector<float>& rgb);
+
+  /**
+   * A new float array for medium array `id` (its name and number of components) with `tuples`
+   * tuples, values not initialised; nullptr when the memory cannot be had. The values are
+   * allocated here and handed to the array: VTK's own allocation path aborts the process when an
+   * allocation fails under a process memory limit, where a filter must instead report that the
+   * grid is too large (vtkMeshVoxelizer, vtkTransferFunctionMedium).
+   */
+  static vtkSmartPointer<vtkFloatArray> NewArrayOrNull(int id, vtkIdType tuples);
 #endif
 
   /**

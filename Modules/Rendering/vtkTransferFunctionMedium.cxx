@@ -7,6 +7,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMatrix3x3.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -86,6 +87,73 @@ vtkMTimeType vtkTransferFunctionMedium::GetMTime()
   return t;
 }
 
+namespace
+{
+// The grid of the cell centres of an image (extent, origin, spacing, direction matrix): along
+// every axis with cells one point fewer, starting half a spacing further in.
+void CellCentres(
+  int extent[6], double origin[3], const double spacing[3], const double direction[9])
+{
+  double shift[3] = { 0, 0, 0 };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (extent[2 * a + 1] > extent[2 * a])
+    {
+      extent[2 * a + 1] -= 1;
+      shift[a] = 0.5 * spacing[a];
+    }
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    origin[r] += direction[3 * r] * shift[0] + direction[3 * r + 1] * shift[1] +
+      direction[3 * r + 2] * shift[2];
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+bool vtkTransferFunctionMedium::MapsCellScalars()
+{
+  vtkInformation* info = this->GetInputArrayInformation(0);
+  return info && info->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
+    info->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+}
+
+//------------------------------------------------------------------------------
+int vtkTransferFunctionMedium::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (this->MapsCellScalars() && outInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    int extent[6];
+    double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
+    double direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+    if (outInfo->Has(vtkDataObject::ORIGIN()))
+    {
+      outInfo->Get(vtkDataObject::ORIGIN(), origin);
+    }
+    if (outInfo->Has(vtkDataObject::SPACING()))
+    {
+      outInfo->Get(vtkDataObject::SPACING(), spacing);
+    }
+    if (outInfo->Has(vtkDataObject::DIRECTION()))
+    {
+      outInfo->Get(vtkDataObject::DIRECTION(), direction);
+    }
+    CellCentres(extent, origin, spacing, direction);
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+    outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 int vtkTransferFunctionMedium::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
@@ -183,7 +251,7 @@ struct PointMapping
 }
 
 //------------------------------------------------------------------------------
-bool vtkTransferFunctionMedium::CheckInputs(vtkImageData* input, vtkDataArray* scalars)
+bool vtkTransferFunctionMedium::CheckInputs(vtkImageData* input, vtkDataArray* scalars, bool cells)
 {
   if (!this->VolumeProperty)
   {
@@ -193,8 +261,9 @@ bool vtkTransferFunctionMedium::CheckInputs(vtkImageData* input, vtkDataArray* s
   }
   if (!input || !scalars)
   {
-    vtkErrorMacro("The input image has no point scalars to map (a vtkImageData with one "
-                  "scalar point array is needed).");
+    vtkErrorMacro("The input image has no " << (cells ? "cell" : "point")
+                                            << " scalars to map (a vtkImageData with the "
+                                               "selected one-component array is needed).");
     return false;
   }
   const char* name = scalars->GetName() ? scalars->GetName() : "(unnamed)";
@@ -204,13 +273,14 @@ bool vtkTransferFunctionMedium::CheckInputs(vtkImageData* input, vtkDataArray* s
                                         << " components; the transfer-function mapping needs 1.");
     return false;
   }
-  if (input->GetNumberOfPoints() == 0 || scalars->GetNumberOfTuples() != input->GetNumberOfPoints())
+  const vtkIdType expected = cells ? input->GetNumberOfCells() : input->GetNumberOfPoints();
+  const char* element = cells ? "cell" : "point";
+  if (expected == 0 || scalars->GetNumberOfTuples() != expected)
   {
-    vtkErrorMacro("The input scalars '" << name << "' have " << scalars->GetNumberOfTuples()
-                                        << " values but the image has "
-                                        << input->GetNumberOfPoints()
-                                        << " points; a non-empty image with one scalar per point "
-                                           "is needed.");
+    vtkErrorMacro("The input scalars '"
+      << name << "' have " << scalars->GetNumberOfTuples() << " values but the image has "
+      << expected << " " << element << "s; a non-empty image with one scalar per " << element
+      << " is needed.");
     return false;
   }
   const double unit = this->VolumeProperty->GetScalarOpacityUnitDistance(0);
@@ -230,8 +300,10 @@ int vtkTransferFunctionMedium::RequestData(
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
-  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
-  if (!this->CheckInputs(input, scalars))
+  int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
+  const bool cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  if (!this->CheckInputs(input, scalars, cells))
   {
     return 0;
   }
@@ -252,22 +324,47 @@ int vtkTransferFunctionMedium::RequestData(
 
   const vtkIdType n = scalars->GetNumberOfTuples();
   output->CopyStructure(input);
-  auto make = [&](const char* name, int comps)
+  if (cells)
   {
-    vtkNew<vtkFloatArray> a;
-    a->SetName(name);
-    a->SetNumberOfComponents(comps);
-    a->SetNumberOfTuples(n);
-    output->GetPointData()->AddArray(a);
-    return a.GetPointer();
+    // The cells' centres: VTK's volume mappers place cell values there.
+    int extent[6];
+    double origin[3];
+    input->GetExtent(extent);
+    input->GetOrigin(origin);
+    CellCentres(extent, origin, input->GetSpacing(), input->GetDirectionMatrix()->GetData());
+    output->SetExtent(extent);
+    output->SetOrigin(origin);
+  }
+  bool allocated = true;
+  auto make = [&](int id) -> vtkFloatArray*
+  {
+    vtkSmartPointer<vtkFloatArray> a = vtkRefractaMedium::NewArrayOrNull(id, n);
+    allocated = allocated && a;
+    if (a)
+    {
+      output->GetPointData()->AddArray(a);
+    }
+    return a;
   };
-  vtkFloatArray* extinction = make(vtkRefractaMedium::ExtinctionName(), 3);
-  vtkFloatArray* albedo = make(vtkRefractaMedium::AlbedoName(), 3);
-  vtkFloatArray* anisotropy = make(vtkRefractaMedium::AnisotropyName(), 1);
+  vtkFloatArray* extinction = make(vtkRefractaMedium::EXTINCTION);
+  vtkFloatArray* albedo = make(vtkRefractaMedium::ALBEDO);
+  vtkFloatArray* anisotropy = make(vtkRefractaMedium::ANISOTROPY);
   vtkFloatArray* index =
-    this->RefractiveIndexFunction ? make(vtkRefractaMedium::RefractiveIndexName(), 1) : nullptr;
-  vtkFloatArray* emission =
-    this->EmissionScale > 0 ? make(vtkRefractaMedium::EmissionName(), 3) : nullptr;
+    this->RefractiveIndexFunction ? make(vtkRefractaMedium::REFRACTIVE_INDEX) : nullptr;
+  vtkFloatArray* emission = this->EmissionScale > 0 ? make(vtkRefractaMedium::EMISSION) : nullptr;
+  if (!allocated)
+  {
+    const int* dims = output->GetDimensions();
+    const int components =
+      7 + (this->RefractiveIndexFunction ? 1 : 0) + (this->EmissionScale > 0 ? 3 : 0);
+    vtkErrorMacro("Cannot allocate the medium of the grid "
+      << dims[0] << " x " << dims[1] << " x " << dims[2] << " ("
+      << static_cast<double>(n) * 4 * components / (1 << 30) << " GiB at " << 4 * components
+      << " bytes per point): not enough memory. Resample the volume to fewer points first "
+         "(vtkImageResample, vtkImageShrink3D).");
+    output->Initialize(); // an empty output, not an image with some of the arrays
+    return 0;
+  }
   anisotropy->FillValue(static_cast<float>(g));
   // Blocks of voxels in parallel (vtkSMPTools; VTK evaluates its transfer functions without
   // changing them), each block with its own mapping; the first voxel that cannot be mapped (in

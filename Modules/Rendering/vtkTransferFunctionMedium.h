@@ -24,10 +24,16 @@
  *   (C = sum T a c), so an existing volume rendering looks the same. Default 0 (no emission).
  *
  * Output: a medium on the input's grid (origin, spacing and direction matrix copied) with the
- * arrays above. Errors (no property, no point scalars, more than one component, a scalar count
- * other than the point count or an empty image, infinite scalars, a unit distance that is not
- * finite and > 0, NaN Anisotropy or EmissionScale, transfer functions that give NaN, or values
- * beyond the float range): vtkErrorMacro naming the problem and what would be valid,
+ * arrays above. Cell scalars (SetInputArrayToProcess with FIELD_ASSOCIATION_CELLS, as a volume
+ * mapper's SetScalarModeToUseCellData selects them) are values at the cells' centres, as VTK's
+ * volume mappers read them: the medium's grid is then those centres, one point fewer along every
+ * axis that has cells and half a spacing further in (the direction matrix applied), its box half a
+ * cell smaller on every side than the input's cells. Errors (no property, no scalars, more than
+ * one component, a scalar count other than the point (cell) count or an empty image, infinite
+ * scalars, a unit distance that is not
+ * finite and > 0, NaN Anisotropy or EmissionScale, transfer functions that give NaN, values
+ * beyond the float range, or an image whose medium (28 to 44 bytes per point) does not fit in
+ * memory): vtkErrorMacro naming the problem and what would be valid,
  * RequestData returns 0, the output is empty. A NaN scalar is missing data: its voxel is empty
  * space (no extinction or emission, n = 1), and one warning says how many there were.
  */
@@ -88,14 +94,18 @@ protected:
   vtkTransferFunctionMedium();
   ~vtkTransferFunctionMedium() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /**
    * The checks that do not depend on the scalars' values; false (with an error) when the
-   * mapping cannot run.
+   * mapping cannot run. `cells`: the scalars are cell data.
    */
-  bool CheckInputs(vtkImageData* input, vtkDataArray* scalars);
+  bool CheckInputs(vtkImageData* input, vtkDataArray* scalars, bool cells);
+
+  /// Whether the array to process is cell data (FIELD_ASSOCIATION_CELLS).
+  bool MapsCellScalars();
 
   vtkSmartPointer<vtkVolumeProperty> VolumeProperty;
   vtkSmartPointer<vtkPiecewiseFunction> RefractiveIndexFunction;

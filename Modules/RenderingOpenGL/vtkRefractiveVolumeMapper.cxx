@@ -233,17 +233,18 @@ bool vtkRefractiveVolumeMapper::UpdateMedium(vtkVolume* volume)
     this->ReportOnce(message.str());
     return false;
   }
-  if (cellFlag)
-  {
-    this->ReportOnce(std::string("The selected array '") +
-      (scalars->GetName() ? scalars->GetName() : "") +
-      "' is cell data; the medium needs point data (values at voxel centres), e.g. through "
-      "vtkCellDataToPointData.");
-    return false;
-  }
+  // Cell scalars are values at the cells' centres, as VTK's own volume mappers read them.
   in.Mapping->SetInputData(input);
-  in.Mapping->SetInputArrayToProcess(
-    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, scalars->GetName());
+  const int association =
+    cellFlag ? vtkDataObject::FIELD_ASSOCIATION_CELLS : vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  if (scalars->GetName() && *scalars->GetName())
+  {
+    in.Mapping->SetInputArrayToProcess(0, 0, 0, association, scalars->GetName());
+  }
+  else
+  {
+    in.Mapping->SetInputArrayToProcess(0, 0, 0, association, vtkDataSetAttributes::SCALARS);
+  }
   in.Mapping->SetVolumeProperty(volume->GetProperty());
   in.Mapping->SetRefractiveIndexFunction(in.IndexFunction);
   in.Mapping->SetAnisotropy(this->Anisotropy);

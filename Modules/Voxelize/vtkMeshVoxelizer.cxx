@@ -30,7 +30,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <memory>
 #include <new>
 #include <numeric>
@@ -67,27 +66,6 @@ constexpr int MaxMeshes = 0xFFFE;
 double Seconds(Clock::time_point a, Clock::time_point b)
 {
   return std::chrono::duration<double>(b - a).count();
-}
-
-// A medium array of `tuples` tuples, or nullptr when the memory cannot be had. Allocated here
-// and handed to the array (freed by it): VTK's own allocation path aborts the process when an
-// allocation fails under a process memory limit.
-vtkSmartPointer<vtkFloatArray> NewArray(int id, vtkIdType tuples)
-{
-  const int components = vtkRefractaMedium::GetNumberOfComponents(id);
-  const size_t values = static_cast<size_t>(tuples) * components;
-  std::unique_ptr<float, decltype(&std::free)> data(
-    static_cast<float*>(std::malloc(std::max<size_t>(values, 1) * sizeof(float))), &std::free);
-  if (!data)
-  {
-    return nullptr;
-  }
-  auto a = vtkSmartPointer<vtkFloatArray>::New();
-  a->SetName(vtkRefractaMedium::GetArrayName(id));
-  a->SetNumberOfComponents(components);
-  a->SetArray(
-    data.release(), static_cast<vtkIdType>(values), 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
-  return a;
 }
 
 // Runs rows(begin, end) over [0, rows) in vtkSMPTools blocks, reporting progress from `from` to
@@ -610,13 +588,14 @@ int vtkMeshVoxelizer::RequestData(
   bool allocated = true;
   try
   {
-    nArray = NewArray(vtkRefractaMedium::REFRACTIVE_INDEX, numVoxels);
-    gradArray = NewArray(vtkRefractaMedium::REFRACTIVE_INDEX_GRADIENT, numVoxels);
-    extArray = NewArray(vtkRefractaMedium::EXTINCTION, numVoxels);
-    albArray = NewArray(vtkRefractaMedium::ALBEDO, numVoxels);
-    gArray = NewArray(vtkRefractaMedium::ANISOTROPY, numVoxels);
-    emArray = NewArray(vtkRefractaMedium::EMISSION, numVoxels);
-    occArray = NewArray(vtkRefractaMedium::OCCUPANCY, numVoxels);
+    nArray = vtkRefractaMedium::NewArrayOrNull(vtkRefractaMedium::REFRACTIVE_INDEX, numVoxels);
+    gradArray =
+      vtkRefractaMedium::NewArrayOrNull(vtkRefractaMedium::REFRACTIVE_INDEX_GRADIENT, numVoxels);
+    extArray = vtkRefractaMedium::NewArrayOrNull(vtkRefractaMedium::EXTINCTION, numVoxels);
+    albArray = vtkRefractaMedium::NewArrayOrNull(vtkRefractaMedium::ALBEDO, numVoxels);
+    gArray = vtkRefractaMedium::NewArrayOrNull(vtkRefractaMedium::ANISOTROPY, numVoxels);
+    emArray = vtkRefractaMedium::NewArrayOrNull(vtkRefractaMedium::EMISSION, numVoxels);
+    occArray = vtkRefractaMedium::NewArrayOrNull(vtkRefractaMedium::OCCUPANCY, numVoxels);
     raster.Labels.assign(numVoxels, 0);
   }
   catch (const std::bad_alloc&)

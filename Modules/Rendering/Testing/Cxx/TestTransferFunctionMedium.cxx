@@ -2,15 +2,18 @@
 // colour, index, emission) on a small image, and every rejected input with its message. The
 // rejected inputs were found by fuzzing (Testing/Fuzz/Corpus/FuzzTransferFunctionMedium): before,
 // they gave NaN or infinite medium arrays.
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkMediumValidator.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRefractaMedium.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkTransferFunctionMedium.h"
 #include "vtkVolumeProperty.h"
@@ -237,4 +240,79 @@ TEST(TransferFunctionMedium, ScalarsThatDoNotFitTheGridAreRejected)
     f.Image->GetPointData()->GetScalars()->SetNumberOfTuples(0);
     f.ExpectError("a non-empty image with one scalar per point");
   }
+}
+
+// Cell scalars sit at the cells' centres (as VTK's volume mappers read them): the medium's grid
+// is those centres, through a rotated direction matrix and from a non-zero extent, and each
+// medium point holds its cell's mapping; the pipeline announces that grid before it runs.
+TEST(TransferFunctionMedium, CellScalarsMapAtTheCellCentres)
+{
+  Fixture f;
+  vtkNew<vtkImageData> image;
+  image->SetExtent(2, 6, -1, 2, 0, 2); // 5 x 4 x 3 points, 4 x 3 x 2 cells
+  image->SetOrigin(10, -5, 3);
+  image->SetSpacing(0.5, 0.25, 2.0);
+  image->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1); // 90 degrees about z
+  vtkNew<vtkDoubleArray> s;
+  s->SetName("density");
+  s->SetNumberOfTuples(image->GetNumberOfCells());
+  for (vtkIdType c = 0; c < s->GetNumberOfTuples(); ++c)
+  {
+    s->SetValue(c, static_cast<double>(c) / (s->GetNumberOfTuples() - 1));
+  }
+  image->GetCellData()->AddArray(s);
+  f.Mapping->SetInputData(image);
+  f.Mapping->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "density");
+  f.Mapping->UpdateInformation();
+  int announced[6];
+  f.Mapping->GetOutputInformation(0)->Get(
+    vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), announced);
+  f.Mapping->Update();
+  EXPECT_FALSE(f.Observer->GetError()) << f.Observer->GetErrorMessage();
+  vtkImageData* out = f.Mapping->GetOutput();
+  int extent[6];
+  out->GetExtent(extent);
+  const int expected[6] = { 2, 5, -1, 1, 0, 1 };
+  for (int i = 0; i < 6; ++i)
+  {
+    EXPECT_EQ(extent[i], expected[i]) << "extent " << i;
+    EXPECT_EQ(announced[i], expected[i]) << "announced extent " << i;
+  }
+  // Medium point (i, j, k) is the centre of cell (i, j, k): the mean of its 8 corners.
+  vtkDataArray* extinction = out->GetPointData()->GetArray(vtkRefractaMedium::ExtinctionName());
+  ASSERT_NE(extinction, nullptr);
+  ASSERT_EQ(extinction->GetNumberOfTuples(), s->GetNumberOfTuples());
+  for (int k = 0; k < 2; ++k)
+  {
+    for (int j = -1; j < 2; ++j)
+    {
+      for (int i = 2; i < 6; ++i)
+      {
+        int ijk[3] = { i, j, k };
+        const vtkIdType cell = image->ComputeCellId(ijk);
+        double centre[3] = { 0, 0, 0 }, x[3];
+        for (int corner = 0; corner < 8; ++corner)
+        {
+          double p[3];
+          image->TransformIndexToPhysicalPoint(
+            i + (corner & 1), j + ((corner >> 1) & 1), k + (corner >> 2), p);
+          for (int a = 0; a < 3; ++a)
+          {
+            centre[a] += p[a] / 8;
+          }
+        }
+        const vtkIdType point = out->FindPoint(centre);
+        ASSERT_GE(point, 0);
+        out->GetPoint(point, x);
+        EXPECT_NEAR(std::hypot(x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]), 0.0, 1e-9);
+        const double a = 0.5 * s->GetValue(cell); // the opacity function: 0 -> 0, 1 -> 0.5
+        EXPECT_NEAR(extinction->GetComponent(point, 0), -std::log1p(-a) / 0.5, 1e-5)
+          << "cell " << cell;
+      }
+    }
+  }
+  // A cell array of the wrong size is named as cells.
+  s->SetNumberOfTuples(5);
+  image->Modified();
+  f.ExpectError("have 5 values but the image has 24 cells");
 }

@@ -1,12 +1,15 @@
 // vtkRefractiveVolumeMapper as a drop-in for vtkGPUVolumeRayCastMapper: the same scene (VTK's
 // wavelet, extent -10..10, a transfer function, the renderer's default headlight) is exposed
-// alike by both mappers; SelectScalarArray, clipping planes and cropping are honoured; a missing
-// array and a blend mode it does not render are reported once, not on every Render.
+// alike by both mappers; SelectScalarArray, clipping planes and cropping are honoured; cell
+// scalars render as point scalars at the cells' centres; a missing array and a blend mode it
+// does not render are reported once, not on every Render.
 #include "MapperTestUtilities.h"
 
 #include "vtkCamera.h"
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
+#include "vtkFloatArray.h"
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -317,4 +320,46 @@ TEST(MapperDropIn, AnotherVolumeInTheRendererIsWarnedAboutOnce)
   other->VisibilityOn();
   scene.Window->Render();
   EXPECT_EQ(warnings->Count, 2);
+}
+
+TEST(MapperDropIn, CellScalarsRenderAsPointScalarsAtTheCellCentres)
+{
+  // The wavelet's values as the cell data of a grid one point larger, half a spacing lower: its
+  // cells' centres are the wavelet's points, so with SetScalarModeToUseCellData the medium (and
+  // the image) is the point-data wavelet's, as VTK's own mappers read cell data.
+  WaveletScene scene;
+  vtkNew<vtkRefractiveVolumeMapper> mapper;
+  mapper->SetNumberOfPhotons(1 << 12);
+  scene.Use(mapper);
+  vtkSmartPointer<vtkImageData> viaPoints = scene.Capture();
+  vtkImageData* wavelet = scene.Wavelet->GetOutput();
+  vtkNew<vtkImageData> cells;
+  cells->SetExtent(-10, 11, -10, 11, -10, 11);
+  cells->SetSpacing(wavelet->GetSpacing());
+  const double* origin = wavelet->GetOrigin();
+  const double* spacing = wavelet->GetSpacing();
+  cells->SetOrigin(
+    origin[0] - 0.5 * spacing[0], origin[1] - 0.5 * spacing[1], origin[2] - 0.5 * spacing[2]);
+  vtkNew<vtkFloatArray> values;
+  values->DeepCopy(wavelet->GetPointData()->GetArray("RTData"));
+  values->SetName("RTDataCells");
+  cells->GetCellData()->SetScalars(values);
+  ASSERT_EQ(cells->GetNumberOfCells(), wavelet->GetNumberOfPoints());
+  vtkNew<EventCounter> errors;
+  mapper->AddObserver(vtkCommand::ErrorEvent, errors);
+  mapper->SetInputData(cells);
+  mapper->SetScalarModeToUseCellData();
+  vtkSmartPointer<vtkImageData> viaCells = scene.Capture();
+  EXPECT_EQ(errors->Count, 0) << errors->Message;
+  auto* a = vtkUnsignedCharArray::SafeDownCast(viaPoints->GetPointData()->GetScalars());
+  auto* b = vtkUnsignedCharArray::SafeDownCast(viaCells->GetPointData()->GetScalars());
+  int worst = 0;
+  for (vtkIdType v = 0; v < a->GetNumberOfValues(); ++v)
+  {
+    worst = std::max(worst, std::abs(int(a->GetValue(v)) - int(b->GetValue(v))));
+  }
+  std::cout << "cell scalars against point scalars: largest pixel difference " << worst << "/255, "
+            << "mean brightness " << MeanBrightness(viaCells) << "\n";
+  EXPECT_GT(MeanBrightness(viaCells), 1.0);
+  EXPECT_LE(worst, 1);
 }
