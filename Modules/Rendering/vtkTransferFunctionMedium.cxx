@@ -1,4 +1,5 @@
 #include "vtkTransferFunctionMedium.h"
+#include "vtkTransferFunctionMediumMapping.h"
 
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
@@ -87,8 +88,12 @@ vtkMTimeType vtkTransferFunctionMedium::GetMTime()
   return t;
 }
 
+using vtkTransferFunctionMediumDetail::TupleMapping;
+
 namespace
 {
+constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+
 // The grid of the cell centres of an image (extent, origin, spacing, direction matrix): along
 // every axis with cells one point fewer, starting half a spacing further in.
 void CellCentres(
@@ -164,93 +169,6 @@ int vtkTransferFunctionMedium::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
-namespace
-{
-// The medium values at one scalar, or why the transfer functions give none (non-finite values,
-// or values a float array cannot hold).
-struct PointMapping
-{
-  double Sigma = 0.0;
-  double Colour[3] = { 0, 0, 0 };
-  double Index = 1.0;
-  // Held around the colour function's evaluation where that is not read-only (a
-  // vtkDiscretizableColorTransferFunction, ParaView's colour maps: GetColor() calls Build()).
-  std::mutex* ColourLock = nullptr;
-
-  // True when the values are usable; otherwise false with `error` saying what is wrong and what
-  // would be valid (the message is built only then: a stream per voxel cost more than the mapping).
-  bool Map(double s, vtkPiecewiseFunction* opacity, vtkColorTransferFunction* colour,
-    vtkPiecewiseFunction* grey, vtkPiecewiseFunction* index, double unit, double emissionScale,
-    std::string& error)
-  {
-    auto fail = [&error](const std::ostringstream& why)
-    {
-      error = why.str();
-      return false;
-    };
-    const double a = opacity->GetValue(s);
-    if (std::isnan(a))
-    {
-      std::ostringstream why;
-      why << "the scalar opacity function is NaN at scalar " << s
-          << "; opacities must be numbers in [0, 1]";
-      return fail(why);
-    }
-    this->Sigma = -std::log1p(-std::min(std::max(a, 0.0), 1.0 - 1e-6)) / unit;
-    if (grey)
-    {
-      this->Colour[0] = this->Colour[1] = this->Colour[2] = grey->GetValue(s);
-    }
-    else if (this->ColourLock)
-    {
-      std::lock_guard<std::mutex> lock(*this->ColourLock);
-      colour->GetColor(s, this->Colour);
-    }
-    else
-    {
-      colour->GetColor(s, this->Colour);
-    }
-    for (double& c : this->Colour)
-    {
-      if (std::isnan(c))
-      {
-        std::ostringstream why;
-        why << "the colour transfer function is NaN at scalar " << s
-            << "; colours (albedos) must be numbers in [0, 1]";
-        return fail(why);
-      }
-      c = std::min(std::max(c, 0.0), 1.0);
-    }
-    const double emission = emissionScale * this->Sigma;
-    if (!(this->Sigma <= FLT_MAX) || !(emission <= FLT_MAX))
-    {
-      std::ostringstream why;
-      why << "the extinction " << this->Sigma << " (opacity " << a << " over the unit distance "
-          << unit << ") times the emission scale " << emissionScale
-          << " exceeds the float range at scalar " << s
-          << "; use a larger ScalarOpacityUnitDistance or a smaller EmissionScale";
-      return fail(why);
-    }
-    if (index)
-    {
-      const double value = index->GetValue(s);
-      this->Index = std::max(1.0, value);
-      if (!(value <=
-            vtkRefractaMedium::MaximumRefractiveIndex)) // NaN, +Inf, or beyond the media's range
-      {
-        std::ostringstream why;
-        why << "the refractive index function gives " << value << " at scalar " << s
-            << "; indices must be finite numbers in [1, "
-            << vtkRefractaMedium::MaximumRefractiveIndex << "] (below 1 they are raised to 1)";
-        return fail(why);
-      }
-    }
-    return true;
-  }
-};
-}
-
-//------------------------------------------------------------------------------
 bool vtkTransferFunctionMedium::CheckInputs(vtkImageData* input, vtkDataArray* scalars, bool cells)
 {
   if (!this->VolumeProperty)
@@ -267,12 +185,6 @@ bool vtkTransferFunctionMedium::CheckInputs(vtkImageData* input, vtkDataArray* s
     return false;
   }
   const char* name = scalars->GetName() ? scalars->GetName() : "(unnamed)";
-  if (scalars->GetNumberOfComponents() != 1)
-  {
-    vtkErrorMacro("The input scalars '" << name << "' have " << scalars->GetNumberOfComponents()
-                                        << " components; the transfer-function mapping needs 1.");
-    return false;
-  }
   const vtkIdType expected = cells ? input->GetNumberOfCells() : input->GetNumberOfPoints();
   const char* element = cells ? "cell" : "point";
   if (expected == 0 || scalars->GetNumberOfTuples() != expected)
@@ -281,13 +193,6 @@ bool vtkTransferFunctionMedium::CheckInputs(vtkImageData* input, vtkDataArray* s
       << name << "' have " << scalars->GetNumberOfTuples() << " values but the image has "
       << expected << " " << element << "s; a non-empty image with one scalar per " << element
       << " is needed.");
-    return false;
-  }
-  const double unit = this->VolumeProperty->GetScalarOpacityUnitDistance(0);
-  if (!std::isfinite(unit) || !(unit > 0.0))
-  {
-    vtkErrorMacro("The volume property's ScalarOpacityUnitDistance is "
-      << unit << "; it must be finite and > 0 (world units).");
     return false;
   }
   return true;
@@ -308,11 +213,20 @@ int vtkTransferFunctionMedium::RequestData(
     return 0;
   }
   vtkVolumeProperty* property = this->VolumeProperty;
-  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
-  const bool grey = property->GetColorChannels(0) == 1;
-  vtkColorTransferFunction* colour = grey ? nullptr : property->GetRGBTransferFunction(0);
-  vtkPiecewiseFunction* greyFunction = grey ? property->GetGrayTransferFunction(0) : nullptr;
-  const double unit = property->GetScalarOpacityUnitDistance(0);
+  TupleMapping mapping;
+  std::string why;
+  if (!mapping.Configure(
+        property, scalars, this->RefractiveIndexFunction, this->EmissionScale, why))
+  {
+    vtkErrorMacro("The input scalars '" << (scalars->GetName() ? scalars->GetName() : "(unnamed)")
+                                        << "' " << why << ".");
+    return 0;
+  }
+  if (!mapping.CheckUnitDistances(why))
+  {
+    vtkErrorMacro(<< why);
+    return 0;
+  }
   double g = this->Anisotropy;
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 0)
   if (g == 0.0)
@@ -369,31 +283,32 @@ int vtkTransferFunctionMedium::RequestData(
   // Blocks of voxels in parallel (vtkSMPTools; VTK evaluates its transfer functions without
   // changing them), each block with its own mapping; the first voxel that cannot be mapped (in
   // index order, as a serial loop would find it) is mapped again below to report why.
-  vtkPiecewiseFunction* indexFunction = this->RefractiveIndexFunction;
-  const double emissionScale = this->EmissionScale;
   // A vtkDiscretizableColorTransferFunction rebuilds itself in GetColor() (ParaView's subclass
   // changes its annotations there): built here once, then evaluated under a lock; two threads
   // inside it crashed pvserver (RefractaParaView.ClientServer, session 18).
   std::mutex colourLock;
-  const bool lockColour = vtkDiscretizableColorTransferFunction::SafeDownCast(colour) != nullptr;
-  if (lockColour)
-  {
-    colour->Build();
-  }
+  mapping.PrepareColourFunctions(&colourLock);
+  const int components = mapping.GetNumberOfComponents();
   std::atomic<vtkIdType> missing(0); // NaN scalars: no data, mapped to empty space
   auto mapRange = [&](vtkIdType begin, vtkIdType end, std::atomic<vtkIdType>& firstBad)
   {
     vtkIdType localMissing = 0;
-    PointMapping point;
-    point.ColourLock = lockColour ? &colourLock : nullptr;
-    // Neighbouring voxels often share a scalar (a background, a segmented label): the last
-    // mapping is reused (the functions are evaluated once per run of equal scalars).
-    double mapped = std::numeric_limits<double>::quiet_NaN();
-    std::string why;
+    TupleMapping point = mapping;
+    // Neighbouring voxels often share a tuple (a background, a segmented label): the last
+    // mapping is reused (the functions are evaluated once per run of equal tuples).
+    double mapped[4] = { NaN, NaN, NaN, NaN }, t[4] = { 0, 0, 0, 0 };
+    std::string message;
     for (vtkIdType i = begin; i < end; ++i)
     {
-      const double s = scalars->GetComponent(i, 0);
-      if (std::isnan(s))
+      if (components == 1)
+      {
+        t[0] = scalars->GetComponent(i, 0); // one virtual call, not a tuple copy
+      }
+      else
+      {
+        scalars->GetTuple(i, t);
+      }
+      if (std::any_of(t, t + components, [](double v) { return std::isnan(v); }))
       {
         // Missing data (NaN, as NetCDF fill values often become): empty space, n = 1.
         std::fill_n(extinction->GetPointer(3 * i), 3, 0.0f);
@@ -409,9 +324,9 @@ int vtkTransferFunctionMedium::RequestData(
         ++localMissing;
         continue;
       }
-      if (!(s == mapped) &&
-        (!std::isfinite(s) ||
-          !point.Map(s, opacity, colour, greyFunction, indexFunction, unit, emissionScale, why)))
+      if (!std::equal(t, t + components, mapped) &&
+        (!std::all_of(t, t + components, [](double v) { return std::isfinite(v); }) ||
+          !point.Map(t, message)))
       {
         vtkIdType known = firstBad.load();
         while (i < known && !firstBad.compare_exchange_weak(known, i))
@@ -419,22 +334,22 @@ int vtkTransferFunctionMedium::RequestData(
         }
         return;
       }
-      mapped = s;
+      std::copy_n(t, components, mapped);
       float* e = extinction->GetPointer(3 * i);
       float* al = albedo->GetPointer(3 * i);
       float* em = emission ? emission->GetPointer(3 * i) : nullptr;
       for (int k = 0; k < 3; ++k)
       {
         e[k] = static_cast<float>(point.Sigma);
-        al[k] = static_cast<float>(point.Colour[k]);
+        al[k] = static_cast<float>(point.Albedo[k]);
         if (em)
         {
-          em[k] = static_cast<float>(emissionScale * point.Colour[k] * point.Sigma);
+          em[k] = static_cast<float>(point.Emission[k]);
         }
       }
       if (index)
       {
-        index->SetValue(i, static_cast<float>(point.Index));
+        index->SetValue(i, static_cast<float>(point.RefractiveIndex));
       }
     }
     missing += localMissing;
@@ -450,14 +365,22 @@ int vtkTransferFunctionMedium::RequestData(
   if (firstBad.load() < n)
   {
     const vtkIdType i = firstBad.load();
-    const double s = scalars->GetComponent(i, 0);
-    PointMapping point;
-    std::string why = "every scalar must be finite (or NaN: missing data, empty space)";
-    if (std::isfinite(s))
+    double t[4] = { 0, 0, 0, 0 };
+    scalars->GetTuple(i, t);
+    why = "every scalar must be finite (or NaN: missing data, empty space)";
+    if (std::all_of(t, t + components, [](double v) { return std::isfinite(v); }))
     {
-      point.Map(s, opacity, colour, greyFunction, indexFunction, unit, emissionScale, why);
+      mapping.Map(t, why);
     }
-    vtkErrorMacro("Cannot map the input scalar " << s << " at point " << i << ": " << why << ".");
+    std::ostringstream value;
+    value << (components > 1 ? "(" : "");
+    for (int c = 0; c < components; ++c)
+    {
+      value << (c ? ", " : "") << t[c];
+    }
+    value << (components > 1 ? ")" : "");
+    vtkErrorMacro(
+      "Cannot map the input scalar " << value.str() << " at point " << i << ": " << why << ".");
     output->Initialize();
     return 0;
   }

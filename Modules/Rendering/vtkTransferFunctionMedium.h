@@ -3,7 +3,7 @@
  * @brief   Maps a scalar vtkImageData (CT scan, simulation field) through a vtkVolumeProperty's
  *          transfer functions to a Refracta medium.
  *
- * The mapping (per grid point, s the input's scalar, component 0 of a one-component array):
+ * The mapping (per grid point, s the input's scalar; multi-component scalars below):
  * - **Extinction** (RGB, equal channels) from the scalar opacity function a(s), read as VTK reads
  *   it: the opacity of a slab ScalarOpacityUnitDistance d thick. So
  *   sigma_t = -ln(1 - a) / d, with a clamped to 1 - 1e-6 (sigma_t <= 13.8 / d). An image made with
@@ -23,14 +23,27 @@
  *   lights this is the emission-absorption model of VTK's compositing ray casters
  *   (C = sum T a c), so an existing volume rendering looks the same. Default 0 (no emission).
  *
+ * Multi-component scalars follow VTK's volume mappers (vtkVolumeProperty::IndependentComponents):
+ * - independent components (2 to 4; on, VTK's default): component c through the property's
+ *   functions of index c and its ComponentWeight w_c, as a mixture of species: sigma_t =
+ *   sum w_c sigma_c, albedo = sum w_c sigma_c colour_c / sigma_t (the weighted mean colour where
+ *   sigma_t = 0), emission = EmissionScale sum w_c sigma_c colour_c; the index function reads
+ *   component 0;
+ * - two dependent components: colour of component 0, opacity (and index) of component 1;
+ * - four dependent components: RGB given by components 0..2 (integer types divided by their
+ *   type's maximum, so 0..255 for unsigned char; floating point taken as it is, clamped to
+ *   [0, 1]), opacity (and index) of component 3.
+ * Other counts are errors naming the layouts that are valid. A NaN in any component is missing
+ * data.
+ *
  * Output: a medium on the input's grid (origin, spacing and direction matrix copied) with the
  * arrays above. Cell scalars (SetInputArrayToProcess with FIELD_ASSOCIATION_CELLS, as a volume
  * mapper's SetScalarModeToUseCellData selects them) are values at the cells' centres, as VTK's
  * volume mappers read them: the medium's grid is then those centres, one point fewer along every
  * axis that has cells and half a spacing further in (the direction matrix applied), its box half a
- * cell smaller on every side than the input's cells. Errors (no property, no scalars, more than
- * one component, a scalar count other than the point (cell) count or an empty image, infinite
- * scalars, a unit distance that is not
+ * cell smaller on every side than the input's cells. Errors (no property, no scalars, a
+ * component layout VTK does not define, a scalar count other than the point (cell) count or an
+ * empty image, infinite scalars, a unit distance that is not
  * finite and > 0, NaN Anisotropy or EmissionScale, transfer functions that give NaN, values
  * beyond the float range, or an image whose medium (28 to 44 bytes per point) does not fit in
  * memory): vtkErrorMacro naming the problem and what would be valid,

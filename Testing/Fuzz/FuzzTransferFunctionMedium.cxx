@@ -75,7 +75,7 @@ vtkSmartPointer<vtkDataArray> DecodeScalars(FuzzBytes& in, vtkIdType points)
   }
   scalars->SetName("density");
   const uint8_t shape = in.Byte();
-  scalars->SetNumberOfComponents(shape < 232 ? 1 : 1 + shape % 3);
+  scalars->SetNumberOfComponents(shape < 232 ? 1 : 1 + shape % 5); // 2 to 4: VTK's layouts
   const uint8_t count = in.Byte();
   scalars->SetNumberOfTuples(count < 232 ? points : std::max<vtkIdType>(0, points + count % 5 - 2));
   for (vtkIdType v = 0; v < scalars->GetNumberOfValues(); ++v)
@@ -165,6 +165,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   const double g = in.Double(), emission = in.Double();
   mapping->SetAnisotropy(g);
   mapping->SetEmissionScale(emission);
+  // Read last, so that older corpus files decode as before: dependent components (2 or 4 are
+  // colour and opacity, or RGB and opacity).
+  if (in.Bool() && mapping->GetVolumeProperty())
+  {
+    mapping->GetVolumeProperty()->IndependentComponentsOff();
+  }
 
   refracta_fuzz::ResetErrorCount();
   mapping->Update();

@@ -6,6 +6,7 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkMediumValidator.h"
@@ -16,6 +17,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkTransferFunctionMedium.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVolumeProperty.h"
 
 #include <gtest/gtest.h>
@@ -23,6 +25,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -315,4 +318,133 @@ TEST(TransferFunctionMedium, CellScalarsMapAtTheCellCentres)
   s->SetNumberOfTuples(5);
   image->Modified();
   f.ExpectError("have 5 values but the image has 24 cells");
+}
+
+namespace
+{
+// An image of `components`-component tuples, every point the same tuple.
+vtkSmartPointer<vtkImageData> TupleImage(vtkDataArray* values, const std::vector<double>& tuple)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(3, 3, 3);
+  values->SetName("channels");
+  values->SetNumberOfComponents(static_cast<int>(tuple.size()));
+  values->SetNumberOfTuples(27);
+  for (vtkIdType i = 0; i < 27; ++i)
+  {
+    for (size_t c = 0; c < tuple.size(); ++c)
+    {
+      values->SetComponent(i, static_cast<int>(c), tuple[c]);
+    }
+  }
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+}
+
+// Multi-component scalars as VTK's volume mappers read them (vtkVolumeProperty::
+// IndependentComponents): independent components are species whose extinctions add and whose
+// albedo is the mixture's; two dependent components are colour and opacity, four are RGB and
+// opacity.
+TEST(TransferFunctionMedium, MultiComponentScalarsFollowVTKsLayouts)
+{
+  const double unit = 0.5;
+  auto sigmaOf = [unit](double a) { return -std::log1p(-a) / unit; };
+  {
+    // Independent: component 0 through opacity 0.4, red; component 1 through opacity 0.2, blue,
+    // weight 0.5.
+    Fixture f;
+    vtkNew<vtkPiecewiseFunction> opacity1;
+    opacity1->AddPoint(0, 0.2);
+    opacity1->AddPoint(10, 0.2);
+    vtkNew<vtkColorTransferFunction> blue;
+    blue->AddRGBPoint(0, 0, 0, 1);
+    vtkNew<vtkPiecewiseFunction> opacity0;
+    opacity0->AddPoint(0, 0.4);
+    opacity0->AddPoint(10, 0.4);
+    vtkNew<vtkColorTransferFunction> red;
+    red->AddRGBPoint(0, 1, 0, 0);
+    f.Property->SetScalarOpacity(0, opacity0);
+    f.Property->SetColor(0, red);
+    f.Property->SetScalarOpacity(1, opacity1);
+    f.Property->SetColor(1, blue);
+    f.Property->SetScalarOpacityUnitDistance(1, unit);
+    f.Property->SetComponentWeight(1, 0.5);
+    f.Mapping->SetRefractiveIndexFunction(nullptr);
+    f.Mapping->SetEmissionScale(0.0);
+    vtkNew<vtkDoubleArray> values;
+    f.Mapping->SetInputData(TupleImage(values, { 3.0, 7.0 }));
+    f.Mapping->Update();
+    EXPECT_FALSE(f.Observer->GetError()) << f.Observer->GetErrorMessage();
+    vtkPointData* pd = f.Mapping->GetOutput()->GetPointData();
+    const double s0 = sigmaOf(0.4), s1 = 0.5 * sigmaOf(0.2);
+    EXPECT_NEAR(
+      pd->GetArray(vtkRefractaMedium::ExtinctionName())->GetComponent(13, 0), s0 + s1, 1e-5);
+    vtkDataArray* a = pd->GetArray(vtkRefractaMedium::AlbedoName());
+    EXPECT_NEAR(a->GetComponent(13, 0), s0 / (s0 + s1), 1e-6);
+    EXPECT_NEAR(a->GetComponent(13, 1), 0.0, 1e-9);
+    EXPECT_NEAR(a->GetComponent(13, 2), s1 / (s0 + s1), 1e-6);
+  }
+  {
+    // Two dependent components: colour of component 0 (white at 0 to red at 1), opacity of
+    // component 1 (0 -> 0, 1 -> 0.5), index of component 1.
+    Fixture f;
+    f.Property->IndependentComponentsOff();
+    vtkNew<vtkFloatArray> values;
+    f.Mapping->SetInputData(TupleImage(values, { 1.0, 0.5 }));
+    f.Mapping->Update();
+    EXPECT_FALSE(f.Observer->GetError()) << f.Observer->GetErrorMessage();
+    vtkPointData* pd = f.Mapping->GetOutput()->GetPointData();
+    EXPECT_NEAR(
+      pd->GetArray(vtkRefractaMedium::ExtinctionName())->GetComponent(0, 0), sigmaOf(0.25), 1e-5);
+    EXPECT_NEAR(pd->GetArray(vtkRefractaMedium::AlbedoName())->GetComponent(0, 1), 0.0, 1e-6);
+    EXPECT_NEAR(pd->GetArray(vtkRefractaMedium::AlbedoName())->GetComponent(0, 0), 1.0, 1e-6);
+    EXPECT_NEAR(
+      pd->GetArray(vtkRefractaMedium::RefractiveIndexName())->GetComponent(0, 0), 1.25, 1e-6);
+  }
+  {
+    // Four dependent unsigned char components: RGB / 255 directly, opacity of component 3.
+    Fixture f;
+    f.Property->IndependentComponentsOff();
+    f.Opacity->AddPoint(255, 0.5);
+    vtkNew<vtkUnsignedCharArray> values;
+    f.Mapping->SetInputData(TupleImage(values, { 255, 51, 0, 255 }));
+    f.Mapping->Update();
+    EXPECT_FALSE(f.Observer->GetError()) << f.Observer->GetErrorMessage();
+    vtkPointData* pd = f.Mapping->GetOutput()->GetPointData();
+    vtkDataArray* a = pd->GetArray(vtkRefractaMedium::AlbedoName());
+    EXPECT_NEAR(a->GetComponent(5, 0), 1.0, 1e-6);
+    EXPECT_NEAR(a->GetComponent(5, 1), 0.2, 1e-6);
+    EXPECT_NEAR(a->GetComponent(5, 2), 0.0, 1e-6);
+    EXPECT_NEAR(
+      pd->GetArray(vtkRefractaMedium::ExtinctionName())->GetComponent(5, 0), sigmaOf(0.5), 1e-5);
+  }
+  {
+    // Layouts VTK does not define are errors naming the alternatives; a NaN component is
+    // missing data.
+    Fixture f;
+    f.Property->IndependentComponentsOff();
+    vtkNew<vtkFloatArray> values;
+    f.Mapping->SetInputData(TupleImage(values, { 0.1, 0.2, 0.3 }));
+    f.ExpectError("have 3 components; the transfer-function mapping takes 1, 2 to 4 independent");
+  }
+  {
+    Fixture f;
+    vtkNew<vtkFloatArray> values;
+    f.Mapping->SetInputData(TupleImage(values, { 0.1, 0.2, 0.3, 0.4, 0.5 }));
+    f.ExpectError("have 5 components");
+  }
+  {
+    Fixture f;
+    f.Property->IndependentComponentsOff();
+    vtkNew<vtkFloatArray> values;
+    f.Mapping->SetInputData(TupleImage(values, { 0.5, NaN }));
+    f.Mapping->Update();
+    EXPECT_FALSE(f.Observer->GetError()) << f.Observer->GetErrorMessage();
+    EXPECT_EQ(f.Mapping->GetOutput()
+                ->GetPointData()
+                ->GetArray(vtkRefractaMedium::ExtinctionName())
+                ->GetComponent(0, 0),
+      0.0);
+  }
 }

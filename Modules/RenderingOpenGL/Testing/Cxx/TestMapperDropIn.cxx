@@ -1,8 +1,8 @@
 // vtkRefractiveVolumeMapper as a drop-in for vtkGPUVolumeRayCastMapper: the same scene (VTK's
 // wavelet, extent -10..10, a transfer function, the renderer's default headlight) is exposed
 // alike by both mappers; SelectScalarArray, clipping planes and cropping are honoured; cell
-// scalars render as point scalars at the cells' centres; a missing array and a blend mode it
-// does not render are reported once, not on every Render.
+// scalars render as point scalars at the cells' centres; independent components mix as species;
+// a missing array and a blend mode it does not render are reported once, not on every Render.
 #include "MapperTestUtilities.h"
 
 #include "vtkCamera.h"
@@ -11,6 +11,7 @@
 #include "vtkCommand.h"
 #include "vtkFloatArray.h"
 #include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkImageAppendComponents.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
@@ -117,6 +118,19 @@ double MeanBrightness(vtkImageData* image, int* covered = nullptr)
     *covered = n;
   }
   return n ? sum / n : 0.0;
+}
+
+// The number of channel values (0..255) that differ between two captures of the same size.
+int DifferingValues(vtkImageData* a, vtkImageData* b)
+{
+  auto* x = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
+  auto* y = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetScalars());
+  int count = 0;
+  for (vtkIdType v = 0; v < x->GetNumberOfValues(); ++v)
+  {
+    count += x->GetValue(v) != y->GetValue(v) ? 1 : 0;
+  }
+  return count;
 }
 
 // Brightness of the pixel column x = i, summed over rows.
@@ -362,4 +376,38 @@ TEST(MapperDropIn, CellScalarsRenderAsPointScalarsAtTheCellCentres)
             << "mean brightness " << MeanBrightness(viaCells) << "\n";
   EXPECT_GT(MeanBrightness(viaCells), 1.0);
   EXPECT_LE(worst, 1);
+}
+
+TEST(MapperDropIn, IndependentComponentsMixAsSpecies)
+{
+  // The wavelet twice as two independent components, the second of weight 0: the same species
+  // as the one-component wavelet, so the same image. Weight 1 adds the second species (the
+  // property's default functions for component 1): more extinction, a different image.
+  WaveletScene scene;
+  vtkNew<vtkRefractiveVolumeMapper> mapper;
+  mapper->SetNumberOfPhotons(1 << 12);
+  scene.Use(mapper);
+  vtkSmartPointer<vtkImageData> single = scene.Capture();
+  vtkNew<vtkImageAppendComponents> twice;
+  twice->AddInputConnection(scene.Wavelet->GetOutputPort());
+  twice->AddInputConnection(scene.Wavelet->GetOutputPort());
+  mapper->SetInputConnection(twice->GetOutputPort());
+  vtkVolumeProperty* property = scene.Volume->GetProperty();
+  vtkNew<vtkPiecewiseFunction> opacity1;
+  opacity1->AddPoint(37, 0.0);
+  opacity1->AddPoint(277, 0.3);
+  property->SetScalarOpacity(1, opacity1);
+  property->SetScalarOpacityUnitDistance(1, 1.0);
+  property->SetComponentWeight(1, 0.0);
+  vtkNew<EventCounter> errors;
+  mapper->AddObserver(vtkCommand::ErrorEvent, errors);
+  vtkSmartPointer<vtkImageData> mixed = scene.Capture();
+  EXPECT_EQ(errors->Count, 0) << errors->Message;
+  EXPECT_EQ(DifferingValues(single, mixed), 0) << "a species of weight 0 changes nothing";
+  property->SetComponentWeight(1, 1.0);
+  vtkSmartPointer<vtkImageData> both = scene.Capture();
+  EXPECT_EQ(errors->Count, 0) << errors->Message;
+  std::cout << "two independent components: " << DifferingValues(single, both)
+            << " values differ from one component\n";
+  EXPECT_GT(DifferingValues(single, both), 100);
 }
