@@ -93,10 +93,10 @@ using vtkTransferFunctionMediumDetail::TupleMapping;
 namespace
 {
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+}
 
-// The grid of the cell centres of an image (extent, origin, spacing, direction matrix): along
-// every axis with cells one point fewer, starting half a spacing further in.
-void CellCentres(
+//------------------------------------------------------------------------------
+void vtkTransferFunctionMedium::ComputeCellCentreGrid(
   int extent[6], double origin[3], const double spacing[3], const double direction[9])
 {
   double shift[3] = { 0, 0, 0 };
@@ -114,6 +114,33 @@ void CellCentres(
       direction[3 * r + 2] * shift[2];
   }
 }
+
+//------------------------------------------------------------------------------
+void vtkTransferFunctionMedium::AnnounceCellCentreGrid(vtkInformation* outInfo)
+{
+  if (!outInfo || !outInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    return;
+  }
+  int extent[6];
+  double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
+  double direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  if (outInfo->Has(vtkDataObject::ORIGIN()))
+  {
+    outInfo->Get(vtkDataObject::ORIGIN(), origin);
+  }
+  if (outInfo->Has(vtkDataObject::SPACING()))
+  {
+    outInfo->Get(vtkDataObject::SPACING(), spacing);
+  }
+  if (outInfo->Has(vtkDataObject::DIRECTION()))
+  {
+    outInfo->Get(vtkDataObject::DIRECTION(), direction);
+  }
+  ComputeCellCentreGrid(extent, origin, spacing, direction);
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
 }
 
 //------------------------------------------------------------------------------
@@ -132,28 +159,9 @@ int vtkTransferFunctionMedium::RequestInformation(
   {
     return 0;
   }
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (this->MapsCellScalars() && outInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  if (this->MapsCellScalars())
   {
-    int extent[6];
-    double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
-    double direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-    if (outInfo->Has(vtkDataObject::ORIGIN()))
-    {
-      outInfo->Get(vtkDataObject::ORIGIN(), origin);
-    }
-    if (outInfo->Has(vtkDataObject::SPACING()))
-    {
-      outInfo->Get(vtkDataObject::SPACING(), spacing);
-    }
-    if (outInfo->Has(vtkDataObject::DIRECTION()))
-    {
-      outInfo->Get(vtkDataObject::DIRECTION(), direction);
-    }
-    CellCentres(extent, origin, spacing, direction);
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-    outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+    AnnounceCellCentreGrid(outputVector->GetInformationObject(0));
   }
   return 1;
 }
@@ -245,7 +253,8 @@ int vtkTransferFunctionMedium::RequestData(
     double origin[3];
     input->GetExtent(extent);
     input->GetOrigin(origin);
-    CellCentres(extent, origin, input->GetSpacing(), input->GetDirectionMatrix()->GetData());
+    ComputeCellCentreGrid(
+      extent, origin, input->GetSpacing(), input->GetDirectionMatrix()->GetData());
     output->SetExtent(extent);
     output->SetOrigin(origin);
   }

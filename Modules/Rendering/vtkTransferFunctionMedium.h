@@ -58,6 +58,7 @@
 #include "vtkSmartPointer.h" // for members
 
 class vtkDataArray;
+class vtkInformation;
 class vtkImageData;
 class vtkPiecewiseFunction;
 class vtkVolumeProperty;
@@ -102,6 +103,22 @@ public:
   ///@}
 
   vtkMTimeType GetMTime() override;
+
+  /**
+   * The grid of the cell centres of an image (its extent, origin, spacing and direction matrix,
+   * row-major), where the medium of cell scalars lies: along every axis with cells one point
+   * fewer, the origin half a spacing further in through the direction matrix. `extent` and
+   * `origin` are changed in place.
+   */
+  static void ComputeCellCentreGrid(
+    int extent[6], double origin[3], const double spacing[3], const double direction[9]);
+
+  /**
+   * Changes the image information of a pipeline output (its WHOLE_EXTENT and ORIGIN, read with
+   * its SPACING and DIRECTION) from the input's grid to the grid of its cell centres, as
+   * RequestInformation announces it for cell scalars (for filters that wrap this one).
+   */
+  static void AnnounceCellCentreGrid(vtkInformation* outInfo);
 
 protected:
   vtkTransferFunctionMedium();

@@ -9,7 +9,8 @@ Refracta classes give when called directly.
   and the same grid.
 - The transfer-function proxy on ParaView's wavelet gives the same medium as
   refracta.vtkTransferFunctionMedium with a vtkVolumeProperty holding the same functions, bit for
-  bit.
+  bit; on a cell array (the wavelet through Point Data to Cell Data) too, on the grid of the
+  cells' centres, announced before the filter runs.
 - The lighting and render-image outputs carry the effect plan's summary and the stage times in
   their field data (what ParaView's Information panel shows).
 """
@@ -97,6 +98,30 @@ direct_tf.SetEmissionScale(0.5)
 direct_tf.Update()
 assert_same_image(proxy_tf, direct_tf.GetOutput(),
                   "RefractaTransferFunctionMedium vs vtkTransferFunctionMedium")
+
+# A cell array: the medium lies on the cells' centres (12^3 for the 13^3 wavelet), announced
+# before it runs, and equals vtkTransferFunctionMedium's on the same cells.
+cell_wavelet = simple.PointDatatoCellData(Input=wavelet)
+cell_tf = simple.RefractaTransferFunctionMedium(Input=cell_wavelet)
+cell_tf.Scalars = ["CELLS", "RTData"]
+cell_tf.ColorTransferFunction = colour
+cell_tf.ScalarOpacityFunction = opacity
+cell_tf.ScalarOpacityUnitDistance = 1.0
+cell_tf.UpdatePipeline()
+assert list(cell_tf.GetDataInformation().GetExtent()) == [-6, 5, -6, 5, -6, 5], \
+    cell_tf.GetDataInformation().GetExtent()
+proxy_cells = servermanager.Fetch(cell_tf)
+cell_data = servermanager.Fetch(cell_wavelet)
+direct_cells = refracta.vtkTransferFunctionMedium()
+direct_cells.SetInputData(cell_data)
+direct_cells.SetInputArrayToProcess(0, 0, 0, 1, "RTData")  # FIELD_ASSOCIATION_CELLS
+direct_cells.SetVolumeProperty(prop)
+direct_cells.SetAnisotropy(0.0)
+direct_cells.SetEmissionScale(0.0)
+direct_cells.Update()
+assert direct_cells.GetOutput().GetDimensions() == (12, 12, 12)
+assert_same_image(proxy_cells, direct_cells.GetOutput(),
+                  "RefractaTransferFunctionMedium on cell data vs vtkTransferFunctionMedium")
 
 # --- Lighting and render image: outputs and their field data ---
 lighting = simple.RefractaLighting(Input=medium)

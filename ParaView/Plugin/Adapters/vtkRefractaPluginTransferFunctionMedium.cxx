@@ -1,5 +1,6 @@
 #include "vtkRefractaPluginTransferFunctionMedium.h"
 
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataObject.h"
 #include "vtkImageData.h"
@@ -161,7 +162,18 @@ int vtkRefractaPluginTransferFunctionMedium::RequestInformation(
     vtkErrorMacro(<< wrong0);
     return refracta_plugin::EmptyInformation(outputVector);
   }
-  return this->Superclass::RequestInformation(request, inputVector, outputVector);
+  if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  // A cell array: the medium lies on the cells' centres (vtkTransferFunctionMedium).
+  vtkInformation* array = this->GetInputArrayInformation(0);
+  if (array && array->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
+    array->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  {
+    vtkTransferFunctionMedium::AnnounceCellCentreGrid(outputVector->GetInformationObject(0));
+  }
+  return 1;
 }
 
 //------------------------------------------------------------------------------
@@ -194,12 +206,13 @@ int vtkRefractaPluginTransferFunctionMedium::RequestData(
     scalars = input->GetPointData()->GetScalars();
     association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
   }
-  if (!scalars || association != vtkDataObject::FIELD_ASSOCIATION_POINTS)
+  const bool cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  if (!scalars || (!cells && association != vtkDataObject::FIELD_ASSOCIATION_POINTS))
   {
-    vtkErrorMacro("The input has no point array '"
-      << (name ? name : "") << "' to map (" << (scalars ? "it is cell data" : "not found")
-      << "); select a point-data scalar array (values at voxel centres), e.g. after Cell Data to "
-         "Point Data.");
+    vtkErrorMacro("The input has no point or cell array '"
+      << (name ? name : "") << "' to map (" << (scalars ? "it is field data" : "not found")
+      << "); select a point-data scalar array (values at the grid points) or a cell-data one "
+         "(values at the cells' centres).");
     return 1; // empty output until something changes (ParaView would re-run a failure)
   }
   if (!this->ScalarOpacity)
@@ -209,7 +222,12 @@ int vtkRefractaPluginTransferFunctionMedium::RequestData(
   }
   vtkNew<vtkImageData> scalarImage;
   scalarImage->ShallowCopy(input);
-  scalarImage->GetPointData()->SetScalars(scalars);
+  (cells ? static_cast<vtkDataSetAttributes*>(scalarImage->GetCellData())
+         : scalarImage->GetPointData())
+    ->SetScalars(scalars);
+  this->Medium->SetInputArrayToProcess(0, 0, 0,
+    cells ? vtkDataObject::FIELD_ASSOCIATION_CELLS : vtkDataObject::FIELD_ASSOCIATION_POINTS,
+    vtkDataSetAttributes::SCALARS);
   this->Medium->SetInputData(scalarImage);
   this->Medium->Update();
   this->Medium->SetInputData(nullptr);

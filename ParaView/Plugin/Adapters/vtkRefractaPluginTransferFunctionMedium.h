@@ -7,9 +7,10 @@
  * hands a filter its transfer functions as separate objects (the colour map, a
  * vtkColorTransferFunction such as vtkPVDiscretizableColorTransferFunction; the opacity, a
  * vtkPiecewiseFunction) and the array as the filter's input array to process. This filter puts
- * them into a vtkVolumeProperty, makes the selected point array the active scalars of a shallow
- * copy of the input, and runs vtkTransferFunctionMedium on it; the output is that filter's
- * output (the medium's arrays, on the input's grid). The mapping, its units and its errors are
+ * them into a vtkVolumeProperty, makes the selected point or cell array the active scalars of a
+ * shallow copy of the input, and runs vtkTransferFunctionMedium on it; the output is that
+ * filter's output (the medium's arrays, on the input's grid, or on the grid of its cells' centres
+ * for a cell array). The mapping, its units and its errors are
  * vtkTransferFunctionMedium's.
  *
  * Knobs (defaults): ColorTransferFunction (nullptr: albedo from vtkVolumeProperty's default, grey
@@ -17,8 +18,8 @@
  * 1: the thickness the opacity function refers to), Anisotropy (Henyey-Greenstein g, default 0),
  * EmissionScale (default 0), RefractiveIndexFunction (scalar -> n, nullptr: n = 1).
  *
- * Bad input (no selected point array, a cell array, no opacity function): vtkErrorMacro naming
- * it, empty output.
+ * Bad input (no selected point or cell array, a field array, no opacity function):
+ * vtkErrorMacro naming it, empty output.
  */
 #ifndef vtkRefractaPluginTransferFunctionMedium_h
 #define vtkRefractaPluginTransferFunctionMedium_h
