@@ -1,5 +1,6 @@
 #include "vtkRefractaVolumeRepresentation.h"
 
+#include "vtkCellData.h"
 #include "vtkDataSet.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVLODVolume.h"
@@ -80,8 +81,9 @@ void vtkRefractaVolumeRepresentation::UpdateMapperParameters()
   // and ignores the selection.
   vtkDataSet* input = this->VolumeMapper->GetInput();
   const char* selected = this->VolumeMapper->GetArrayName();
-  const bool hasSelection =
-    selected && selected[0] && input && input->GetPointData()->GetAbstractArray(selected);
+  const bool hasSelection = selected && selected[0] && input &&
+    (input->GetPointData()->GetAbstractArray(selected) ||
+      input->GetCellData()->GetAbstractArray(selected)); // cell data: at the cells' centres
   if (input && !hasSelection)
   {
     for (int id = 0; id < vtkRefractaMedium::NUMBER_OF_ARRAYS; ++id)
