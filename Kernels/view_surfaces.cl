@@ -37,7 +37,7 @@ inline int refracta_view_texel(int i, int j, int n, int inverted)
 }
 
 // Irradiance of `texel` on one side: `sided` is the irradiance buffer offset by that side's
-// first value (refracta_view_side_irradiance), whose texels hold their sides side by side.
+// first value (3 side floats, refracta_view_surface_irradiance); a texel's sides lie side by side.
 inline float3 refracta_view_texel_irradiance(__global const float* sided, long texel)
 {
   return vload3(refracta_sided_texel(texel, 0), sided);
@@ -52,17 +52,20 @@ inline float3 refracta_view_vertex_irradiance(
   int count = 0;
   if (p + q <= n - 1)
   {
-    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p, q, n, 0)); // corner (0, 0)
+    // corner (0, 0)
+    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p, q, n, 0));
     ++count;
   }
   if (p >= 1 && p - 1 + q <= n - 1)
   {
-    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p - 1, q, n, 0)); // corner (1, 0)
+    // corner (1, 0)
+    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p - 1, q, n, 0));
     ++count;
   }
   if (q >= 1)
   {
-    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p, q - 1, n, 0)); // corner (0, 1)
+    // corner (0, 1)
+    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p, q - 1, n, 0));
     ++count;
   }
   if (p >= 1 && p - 1 + q <= n - 2)
@@ -77,7 +80,8 @@ inline float3 refracta_view_vertex_irradiance(
   }
   if (p >= 1 && q >= 1 && p + q - 2 <= n - 2)
   {
-    sum += refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p - 1, q - 1, n, 1));
+    sum +=
+      refracta_view_texel_irradiance(irradiance, first + refracta_view_texel(p - 1, q - 1, n, 1));
     ++count;
   }
   return count > 0 ? sum / (float)count : sum;

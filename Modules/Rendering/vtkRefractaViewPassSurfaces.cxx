@@ -30,6 +30,20 @@ void ReportError(vtkObject* owner, const std::string& message)
 constexpr int Sides = vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES;
 static_assert(Sides == REFRACTA_SURFACE_SIDES, "the kernels' texel sides are the arrays' sides");
 
+// The sides' values one after the other per item (`width` floats per item and side).
+std::vector<float> Interleave(const std::vector<float> planes[Sides], size_t width)
+{
+  std::vector<float> out(Sides * planes[0].size());
+  for (size_t i = 0; i < planes[0].size() / width; ++i)
+  {
+    for (int side = 0; side < Sides; ++side)
+    {
+      std::copy_n(&planes[side][width * i], width, &out[width * (Sides * i + side)]);
+    }
+  }
+  return out;
+}
+
 // Checks a per-side lighting field array: perSide components for each side (front first) or
 // perSide for both (vtkRefractaLightingVolume::GetSurfaceSideValue), every value finite and >= 0.
 bool CheckArray(
@@ -246,22 +260,8 @@ bool SurfaceBuffers::PrepareIrradiance(
   }
   // The kernel's layout (view_surfaces.cl): a texel's sides side by side (front RGB, back RGB),
   // and a triangle's 9 corner floats of the front, then the back's.
-  std::vector<float> values(Sides * planes[0].size());
-  for (size_t i = 0; i < planes[0].size() / 3; ++i)
-  {
-    for (int side = 0; side < Sides; ++side)
-    {
-      std::copy_n(&planes[side][3 * i], 3, &values[3 * (Sides * i + side)]);
-    }
-  }
-  std::vector<float> corners(Sides * planeCorners[0].size());
-  for (size_t t = 0; t < planeCorners[0].size() / 9; ++t)
-  {
-    for (int side = 0; side < Sides; ++side)
-    {
-      std::copy_n(&planeCorners[side][9 * t], 9, &corners[9 * (Sides * t + side)]);
-    }
-  }
+  std::vector<float> values = Interleave(planes, 3);
+  std::vector<float> corners = Interleave(planeCorners, 9);
   if (corners.empty())
   {
     corners.assign(3, 0.0f); // no triangles: a buffer of one value, never read
