@@ -330,11 +330,14 @@ vtkSmartPointer<vtkImageData> MapThroughTransferFunctions(const json& volume, vt
   vtkNew<vtkTransferFunctionMedium> mapping;
   mapping->SetInputData(input);
   // A point array, else a cell array (values at the cells' centres).
+  vtkDataArray* mapped = input->GetPointData()->GetScalars();
   if (volume.contains("array"))
   {
     const std::string name = String(volume, "array", "scene.medium.volume", "");
-    const bool point = input->GetPointData()->GetArray(name.c_str()) != nullptr;
-    if (!point && !input->GetCellData()->GetArray(name.c_str()))
+    mapped = input->GetPointData()->GetArray(name.c_str());
+    const bool point = mapped != nullptr;
+    mapped = point ? mapped : input->GetCellData()->GetArray(name.c_str());
+    if (!mapped)
     {
       Fail("scene.medium.volume.array", "the file has no point or cell array '" + name + "'");
     }
@@ -342,10 +345,21 @@ vtkSmartPointer<vtkImageData> MapThroughTransferFunctions(const json& volume, vt
       point ? vtkDataObject::FIELD_ASSOCIATION_POINTS : vtkDataObject::FIELD_ASSOCIATION_CELLS,
       name.c_str());
   }
-  else if (!input->GetPointData()->GetScalars() && input->GetCellData()->GetScalars())
+  else if (!mapped && input->GetCellData()->GetScalars())
   {
+    mapped = input->GetCellData()->GetScalars();
     mapping->SetInputArrayToProcess(
       0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, vtkDataSetAttributes::SCALARS);
+  }
+  // The scene gives one set of transfer functions: the layouts of several components (one
+  // function per component, or colour and opacity components) have no keys here.
+  if (mapped && mapped->GetNumberOfComponents() != 1)
+  {
+    Fail("scene.medium.volume.array",
+      std::string("the array '") + (mapped->GetName() ? mapped->GetName() : "(active scalars)") +
+        "' has " + std::to_string(mapped->GetNumberOfComponents()) +
+        " components; a scene's transfer_function maps one-component arrays (extract a component "
+        "or the magnitude into an array of its own first)");
   }
   mapping->SetVolumeProperty(property);
   auto ri = TransferPoints(tf, "refractive_index", p, 2);

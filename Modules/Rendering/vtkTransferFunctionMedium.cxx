@@ -1,6 +1,7 @@
 #include "vtkTransferFunctionMedium.h"
 #include "vtkTransferFunctionMediumMapping.h"
 
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkDiscretizableColorTransferFunction.h"
@@ -93,6 +94,26 @@ using vtkTransferFunctionMediumDetail::TupleMapping;
 namespace
 {
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+
+// "point 'a', cell 'b'": the arrays of an image, for messages.
+std::string ArrayList(vtkImageData* image)
+{
+  std::ostringstream out;
+  auto add = [&out](vtkDataSetAttributes* data, const char* kind)
+  {
+    for (int a = 0; data && a < data->GetNumberOfArrays(); ++a)
+    {
+      const char* name = data->GetArrayName(a);
+      out << (out.tellp() > 0 ? ", " : "") << kind << " '" << (name ? name : "(unnamed)") << "'";
+    }
+  };
+  if (image)
+  {
+    add(image->GetPointData(), "point");
+    add(image->GetCellData(), "cell");
+  }
+  return out.tellp() > 0 ? out.str() : std::string("none");
+}
 }
 
 //------------------------------------------------------------------------------
@@ -116,31 +137,36 @@ void vtkTransferFunctionMedium::ComputeCellCentreGrid(
 }
 
 //------------------------------------------------------------------------------
-void vtkTransferFunctionMedium::AnnounceCellCentreGrid(vtkInformation* outInfo)
+void vtkTransferFunctionMedium::AnnounceCellCentreGrid(
+  vtkInformation* inInfo, vtkInformation* outInfo)
 {
-  if (!outInfo || !outInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  if (!inInfo || !outInfo || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
     return;
   }
+  // Read from the input's information: an image algorithm's output information may lack the
+  // direction matrix.
   int extent[6];
   double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
   double direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-  if (outInfo->Has(vtkDataObject::ORIGIN()))
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  if (inInfo->Has(vtkDataObject::ORIGIN()))
   {
-    outInfo->Get(vtkDataObject::ORIGIN(), origin);
+    inInfo->Get(vtkDataObject::ORIGIN(), origin);
   }
-  if (outInfo->Has(vtkDataObject::SPACING()))
+  if (inInfo->Has(vtkDataObject::SPACING()))
   {
-    outInfo->Get(vtkDataObject::SPACING(), spacing);
+    inInfo->Get(vtkDataObject::SPACING(), spacing);
   }
-  if (outInfo->Has(vtkDataObject::DIRECTION()))
+  if (inInfo->Has(vtkDataObject::DIRECTION()))
   {
-    outInfo->Get(vtkDataObject::DIRECTION(), direction);
+    inInfo->Get(vtkDataObject::DIRECTION(), direction);
   }
   ComputeCellCentreGrid(extent, origin, spacing, direction);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), direction, 9);
 }
 
 //------------------------------------------------------------------------------
@@ -161,7 +187,8 @@ int vtkTransferFunctionMedium::RequestInformation(
   }
   if (this->MapsCellScalars())
   {
-    AnnounceCellCentreGrid(outputVector->GetInformationObject(0));
+    AnnounceCellCentreGrid(
+      inputVector[0]->GetInformationObject(0), outputVector->GetInformationObject(0));
   }
   return 1;
 }
@@ -187,9 +214,27 @@ bool vtkTransferFunctionMedium::CheckInputs(vtkImageData* input, vtkDataArray* s
   }
   if (!input || !scalars)
   {
-    vtkErrorMacro("The input image has no " << (cells ? "cell" : "point")
-                                            << " scalars to map (a vtkImageData with the "
-                                               "selected one-component array is needed).");
+    // Name what was asked for and what there is.
+    vtkInformation* info = this->GetInputArrayInformation(0);
+    const char* wanted = info && info->Has(vtkDataObject::FIELD_NAME())
+      ? info->Get(vtkDataObject::FIELD_NAME())
+      : nullptr;
+    vtkErrorMacro("The input image has no "
+      << (cells ? "cell" : "point") << " array "
+      << (wanted && *wanted ? std::string("'") + wanted + "'" : std::string("(active scalars)"))
+      << " to map; its arrays: " << ArrayList(input)
+      << ". Select one with SetInputArrayToProcess (FIELD_ASSOCIATION_POINTS or _CELLS).");
+    return false;
+  }
+  if (cells != this->MapsCellScalars())
+  {
+    // FIELD_ASSOCIATION_POINTS_THEN_CELLS found a cell array: the grid announced before the data
+    // (RequestInformation) was the points'.
+    vtkErrorMacro("The scalars '" << (scalars->GetName() ? scalars->GetName() : "(unnamed)")
+                                  << "' were found in the cell data, but the array was not "
+                                     "selected as cell data; select it with "
+                                     "FIELD_ASSOCIATION_CELLS (a cell array's medium lies on the "
+                                     "cells' centres, a grid that must be known before the data).");
     return false;
   }
   const char* name = scalars->GetName() ? scalars->GetName() : "(unnamed)";
@@ -317,7 +362,7 @@ int vtkTransferFunctionMedium::RequestData(
       {
         scalars->GetTuple(i, t);
       }
-      if (std::any_of(t, t + components, [](double v) { return std::isnan(v); }))
+      if (point.IsMissing(t))
       {
         // Missing data (NaN, as NetCDF fill values often become): empty space, n = 1.
         std::fill_n(extinction->GetPointer(3 * i), 3, 0.0f);
@@ -334,8 +379,7 @@ int vtkTransferFunctionMedium::RequestData(
         continue;
       }
       if (!std::equal(t, t + components, mapped) &&
-        (!std::all_of(t, t + components, [](double v) { return std::isfinite(v); }) ||
-          !point.Map(t, message)))
+        (point.HasInfinite(t) || !point.Map(t, message)))
       {
         vtkIdType known = firstBad.load();
         while (i < known && !firstBad.compare_exchange_weak(known, i))
@@ -377,7 +421,7 @@ int vtkTransferFunctionMedium::RequestData(
     double t[4] = { 0, 0, 0, 0 };
     scalars->GetTuple(i, t);
     why = "every scalar must be finite (or NaN: missing data, empty space)";
-    if (std::all_of(t, t + components, [](double v) { return std::isfinite(v); }))
+    if (!mapping.HasInfinite(t))
     {
       mapping.Map(t, why);
     }
@@ -388,8 +432,8 @@ int vtkTransferFunctionMedium::RequestData(
       value << (c ? ", " : "") << t[c];
     }
     value << (components > 1 ? ")" : "");
-    vtkErrorMacro(
-      "Cannot map the input scalar " << value.str() << " at point " << i << ": " << why << ".");
+    vtkErrorMacro("Cannot map the input scalar "
+      << value.str() << " at " << (cells ? "cell " : "point ") << i << ": " << why << ".");
     output->Initialize();
     return 0;
   }

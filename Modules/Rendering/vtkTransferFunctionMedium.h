@@ -114,11 +114,11 @@ public:
     int extent[6], double origin[3], const double spacing[3], const double direction[9]);
 
   /**
-   * Changes the image information of a pipeline output (its WHOLE_EXTENT and ORIGIN, read with
-   * its SPACING and DIRECTION) from the input's grid to the grid of its cell centres, as
-   * RequestInformation announces it for cell scalars (for filters that wrap this one).
+   * Sets the image information of a pipeline output (WHOLE_EXTENT, ORIGIN, SPACING, DIRECTION)
+   * to the grid of the cell centres of the input's (read from `inInfo`), as RequestInformation
+   * announces it for cell scalars (for filters that wrap this one).
    */
-  static void AnnounceCellCentreGrid(vtkInformation* outInfo);
+  static void AnnounceCellCentreGrid(vtkInformation* inInfo, vtkInformation* outInfo);
 
 protected:
   vtkTransferFunctionMedium();

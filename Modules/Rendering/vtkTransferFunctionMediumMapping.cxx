@@ -81,10 +81,42 @@ bool TupleMapping::Configure(vtkVolumeProperty* property, vtkDataArray* scalars,
 }
 
 //------------------------------------------------------------------------------
+bool TupleMapping::IsMissing(const double* s) const
+{
+  bool anyNaN = false, anyRead = false;
+  for (int c = 0; c < this->Components; ++c)
+  {
+    if (this->Reads(c))
+    {
+      anyNaN = anyNaN || std::isnan(s[c]);
+      anyRead = anyRead || !std::isnan(s[c]);
+    }
+  }
+  return this->Mode == INDEPENDENT ? !anyRead && anyNaN : anyNaN;
+}
+
+//------------------------------------------------------------------------------
+bool TupleMapping::HasInfinite(const double* s) const
+{
+  for (int c = 0; c < this->Components; ++c)
+  {
+    if (this->Reads(c) && std::isinf(s[c]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+//------------------------------------------------------------------------------
 bool TupleMapping::CheckUnitDistances(std::string& why) const
 {
   for (int c = 0; c < (this->Mode == INDEPENDENT ? this->Components : 1); ++c)
   {
+    if (!this->Reads(c))
+    {
+      continue; // a species of weight 0 is never evaluated
+    }
     const double unit = this->Functions[c].Unit;
     if (!std::isfinite(unit) || !(unit > 0.0))
     {
@@ -117,9 +149,11 @@ void TupleMapping::PrepareColourFunctions(std::mutex* lock)
 }
 
 //------------------------------------------------------------------------------
-bool TupleMapping::MapComponent(
-  double s, const ComponentFunctions& f, double& sigma, double colour[3], std::string& why)
+bool TupleMapping::MapComponent(double s, const ComponentFunctions& f, int component, double& sigma,
+  double colour[3], std::string& why)
 {
+  auto of = [component]()
+  { return component < 0 ? std::string() : " of component " + std::to_string(component); };
   // Messages are built only on a failure: a stream per voxel cost more than the mapping.
   if (f.Opacity)
   {
@@ -127,7 +161,7 @@ bool TupleMapping::MapComponent(
     if (std::isnan(a))
     {
       std::ostringstream message;
-      message << "the scalar opacity function is NaN at scalar " << s
+      message << "the scalar opacity function" << of() << " is NaN at scalar " << s
               << "; opacities must be numbers in [0, 1]";
       return Fail(message, why);
     }
@@ -155,7 +189,7 @@ bool TupleMapping::MapComponent(
     if (std::isnan(colour[k]))
     {
       std::ostringstream message;
-      message << "the colour transfer function is NaN at scalar " << s
+      message << "the colour transfer function" << of() << " is NaN at scalar " << s
               << "; colours (albedos) must be numbers in [0, 1]";
       return Fail(message, why);
     }
@@ -168,9 +202,9 @@ bool TupleMapping::MapComponent(
 bool TupleMapping::MapIndex(double s, std::string& why)
 {
   this->RefractiveIndex = 1.0;
-  if (!this->Index)
+  if (!this->Index || std::isnan(s))
   {
-    return true;
+    return true; // no function, or a species without data here: n = 1
   }
   const double value = this->Index->GetValue(s);
   this->RefractiveIndex = std::max(1.0, value);
@@ -191,7 +225,7 @@ bool TupleMapping::Map(const double* s, std::string& why)
   if (this->Mode == SINGLE)
   {
     // The common case, without the mixing below.
-    if (!this->MapComponent(s[0], this->Functions[0], this->Sigma, this->Albedo, why))
+    if (!this->MapComponent(s[0], this->Functions[0], -1, this->Sigma, this->Albedo, why))
     {
       return false;
     }
@@ -206,11 +240,7 @@ bool TupleMapping::Map(const double* s, std::string& why)
   switch (this->Mode)
   {
     case SINGLE:
-      if (!this->MapComponent(s[0], this->Functions[0], this->Sigma, colour, why))
-      {
-        return false;
-      }
-      break;
+      break; // above
     case INDEPENDENT:
     {
       // Species: extinctions add; the albedo is scattering over extinction (the weighted mean
@@ -220,8 +250,12 @@ bool TupleMapping::Map(const double* s, std::string& why)
       for (int c = 0; c < this->Components; ++c)
       {
         const ComponentFunctions& f = this->Functions[c];
+        if (!this->Reads(c) || std::isnan(s[c]))
+        {
+          continue; // weight 0, or no data for this species here
+        }
         double sigma = 0, cc[3];
-        if (!this->MapComponent(s[c], f, sigma, cc, why))
+        if (!this->MapComponent(s[c], f, c, sigma, cc, why))
         {
           return false;
         }
@@ -242,7 +276,7 @@ bool TupleMapping::Map(const double* s, std::string& why)
     }
     case COLOUR_OPACITY:
       indexComponent = 1;
-      if (!this->MapComponent(s[1], this->Functions[0], this->Sigma, nullptr, why))
+      if (!this->MapComponent(s[1], this->Functions[0], -1, this->Sigma, nullptr, why))
       {
         return false;
       }
@@ -250,7 +284,7 @@ bool TupleMapping::Map(const double* s, std::string& why)
         ComponentFunctions colourOnly = this->Functions[0];
         colourOnly.Opacity = nullptr;
         double unused = 0;
-        if (!this->MapComponent(s[0], colourOnly, unused, colour, why))
+        if (!this->MapComponent(s[0], colourOnly, -1, unused, colour, why))
         {
           return false;
         }
@@ -258,7 +292,7 @@ bool TupleMapping::Map(const double* s, std::string& why)
       break;
     case RGB_OPACITY:
       indexComponent = 3;
-      if (!this->MapComponent(s[3], this->Functions[0], this->Sigma, nullptr, why))
+      if (!this->MapComponent(s[3], this->Functions[0], -1, this->Sigma, nullptr, why))
       {
         return false;
       }

@@ -4,7 +4,8 @@
 // - one component: its opacity, colour (or grey) and index functions;
 // - independent components (2 to 4, IndependentComponents on, VTK's default): component c through
 //   the property's functions of index c, weighted by ComponentWeight c, as a mixture of species:
-//   extinctions add, the albedo is the mixture's (scattering over extinction), emissions add;
+//   extinctions add, the albedo is the mixture's (scattering over extinction), emissions add; a
+//   species of weight 0 or with a NaN value is left out;
 // - two dependent components (IndependentComponents off): the colour function of component 0,
 //   the opacity function of component 1;
 // - four dependent components: RGB given directly by components 0..2 (integer types divided by
@@ -58,6 +59,12 @@ public:
   bool Map(const double* s, std::string& why);
 
   int GetNumberOfComponents() const { return this->Components; }
+
+  // Whether tuple `s` is missing data (empty space): a NaN in a component it reads; independent
+  // components: every component of non-zero weight NaN (a NaN species is left out of the mix).
+  bool IsMissing(const double* s) const;
+  // Whether a component it reads (of non-zero weight) is infinite: an error.
+  bool HasInfinite(const double* s) const;
   // Whether the unit distance of every component used is finite and > 0; else false with `why`.
   bool CheckUnitDistances(std::string& why) const;
 
@@ -68,9 +75,15 @@ public:
   double RefractiveIndex = 1.0;     // >= 1
 
 private:
-  // One component through functions f: extinction and colour.
-  bool MapComponent(
-    double s, const ComponentFunctions& f, double& sigma, double colour[3], std::string& why);
+  // One component through functions f: extinction and colour (none when `colour` is nullptr).
+  // `component` names the property's functions in messages (-1: one set of functions).
+  bool MapComponent(double s, const ComponentFunctions& f, int component, double& sigma,
+    double colour[3], std::string& why);
+  // Whether component c takes part (independent components of weight 0 do not).
+  bool Reads(int c) const
+  {
+    return this->Mode == INDEPENDENT ? this->Functions[c].Weight > 0 : (c < this->Components);
+  }
   bool MapIndex(double s, std::string& why);
   // Whether the extinction and emission fit a float; else false with `why` (at scalar s).
   bool CheckRange(double s, std::string& why) const;

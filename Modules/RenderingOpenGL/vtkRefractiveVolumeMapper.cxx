@@ -2,6 +2,7 @@
 
 #include "vtkAbstractMapper.h"
 #include "vtkCamera.h"
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkEffectPlan.h"
 #include "vtkFloatArray.h"
@@ -234,15 +235,29 @@ bool vtkRefractiveVolumeMapper::UpdateMedium(vtkVolume* volume)
     return false;
   }
   // Cell scalars are values at the cells' centres, as VTK's own volume mappers read them.
-  in.Mapping->SetInputData(input);
   const int association =
     cellFlag ? vtkDataObject::FIELD_ASSOCIATION_CELLS : vtkDataObject::FIELD_ASSOCIATION_POINTS;
   if (scalars->GetName() && *scalars->GetName())
   {
+    in.Mapping->SetInputData(input);
     in.Mapping->SetInputArrayToProcess(0, 0, 0, association, scalars->GetName());
   }
   else
   {
+    // Selected by index and unnamed: made the active scalars of a copy (the input's own active
+    // scalars may be another array).
+    if (input != in.UnnamedFrom || scalars != in.UnnamedArray ||
+      std::max(input->GetMTime(), scalars->GetMTime()) > in.UnnamedTime.GetMTime())
+    {
+      in.Unnamed->ShallowCopy(input);
+      (cellFlag ? static_cast<vtkDataSetAttributes*>(in.Unnamed->GetCellData())
+                : in.Unnamed->GetPointData())
+        ->SetScalars(scalars);
+      in.UnnamedFrom = input;
+      in.UnnamedArray = scalars;
+      in.UnnamedTime.Modified();
+    }
+    in.Mapping->SetInputData(in.Unnamed);
     in.Mapping->SetInputArrayToProcess(0, 0, 0, association, vtkDataSetAttributes::SCALARS);
   }
   in.Mapping->SetVolumeProperty(volume->GetProperty());

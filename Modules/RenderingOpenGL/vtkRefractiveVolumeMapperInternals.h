@@ -31,6 +31,13 @@ struct vtkRefractiveVolumeMapper::Internals
     vtkSmartPointer<vtkTransferFunctionMedium>::New();
   vtkSmartPointer<vtkPiecewiseFunction> IndexFunction;
   vtkSmartPointer<vtkImageData> LightingData;
+  // An unnamed selected array (chosen by index) cannot be named to the mapping filter: a shallow
+  // copy of the input with that array as the active scalars is mapped instead, rebuilt when the
+  // input or the array changes.
+  vtkNew<vtkImageData> Unnamed;
+  vtkImageData* UnnamedFrom = nullptr;
+  vtkDataArray* UnnamedArray = nullptr;
+  vtkTimeStamp UnnamedTime;
   vtkSmartPointer<vtkImageData> Medium; // the input or its transfer-function mapping, cut
   vtkImageData* Uncut = nullptr;        // what Medium was cut from
   vtkTimeStamp CutTime;

@@ -171,7 +171,8 @@ int vtkRefractaPluginTransferFunctionMedium::RequestInformation(
   if (array && array->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
     array->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS)
   {
-    vtkTransferFunctionMedium::AnnounceCellCentreGrid(outputVector->GetInformationObject(0));
+    vtkTransferFunctionMedium::AnnounceCellCentreGrid(
+      inputVector[0]->GetInformationObject(0), outputVector->GetInformationObject(0));
   }
   return 1;
 }

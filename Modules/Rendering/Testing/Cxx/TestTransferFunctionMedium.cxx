@@ -268,8 +268,10 @@ TEST(TransferFunctionMedium, CellScalarsMapAtTheCellCentres)
   f.Mapping->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "density");
   f.Mapping->UpdateInformation();
   int announced[6];
-  f.Mapping->GetOutputInformation(0)->Get(
-    vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), announced);
+  double announcedOrigin[3];
+  vtkInformation* outInfo = f.Mapping->GetOutputInformation(0);
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), announced);
+  outInfo->Get(vtkDataObject::ORIGIN(), announcedOrigin);
   f.Mapping->Update();
   EXPECT_FALSE(f.Observer->GetError()) << f.Observer->GetErrorMessage();
   vtkImageData* out = f.Mapping->GetOutput();
@@ -280,6 +282,12 @@ TEST(TransferFunctionMedium, CellScalarsMapAtTheCellCentres)
   {
     EXPECT_EQ(extent[i], expected[i]) << "extent " << i;
     EXPECT_EQ(announced[i], expected[i]) << "announced extent " << i;
+  }
+  // The announced origin is the data's (through the direction matrix, which an image
+  // algorithm's output information may lack).
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_NEAR(announcedOrigin[a], out->GetOrigin()[a], 1e-12) << "announced origin " << a;
   }
   // Medium point (i, j, k) is the centre of cell (i, j, k): the mean of its 8 corners.
   vtkDataArray* extinction = out->GetPointData()->GetArray(vtkRefractaMedium::ExtinctionName());
@@ -314,7 +322,16 @@ TEST(TransferFunctionMedium, CellScalarsMapAtTheCellCentres)
       }
     }
   }
+  // Cell data found through FIELD_ASSOCIATION_POINTS_THEN_CELLS: the grid announced was the
+  // points'; an error says how to select it.
+  f.Mapping->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS, "density");
+  f.ExpectError("select it with FIELD_ASSOCIATION_CELLS");
+  // A missing array is named with the arrays there are.
+  f.Mapping->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "nope");
+  f.ExpectError("no cell array 'nope' to map; its arrays: cell 'density'");
   // A cell array of the wrong size is named as cells.
+  f.Mapping->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "density");
   s->SetNumberOfTuples(5);
   image->Modified();
   f.ExpectError("have 5 values but the image has 24 cells");
@@ -433,6 +450,36 @@ TEST(TransferFunctionMedium, MultiComponentScalarsFollowVTKsLayouts)
     vtkNew<vtkFloatArray> values;
     f.Mapping->SetInputData(TupleImage(values, { 0.1, 0.2, 0.3, 0.4, 0.5 }));
     f.ExpectError("have 5 components");
+  }
+  {
+    // Independent species: a NaN species is left out of the mix (the other one stays), a
+    // species of weight 0 is never evaluated (its unit distance may be anything).
+    Fixture f;
+    f.Property->SetComponentWeight(2, 0.0);
+    f.Property->SetScalarOpacityUnitDistance(2, 0.0);
+    f.Property->SetScalarOpacity(1, f.Opacity);
+    f.Property->SetScalarOpacityUnitDistance(1, unit);
+    f.Mapping->SetRefractiveIndexFunction(nullptr);
+    vtkNew<vtkFloatArray> values;
+    f.Mapping->SetInputData(TupleImage(values, { NaN, 1.0, 7.0 }));
+    f.Mapping->Update();
+    EXPECT_FALSE(f.Observer->GetError()) << f.Observer->GetErrorMessage();
+    EXPECT_NEAR(f.Mapping->GetOutput()
+                  ->GetPointData()
+                  ->GetArray(vtkRefractaMedium::ExtinctionName())
+                  ->GetComponent(0, 0),
+      sigmaOf(0.5), 1e-5);
+  }
+  {
+    // Which component's function failed is named.
+    Fixture f;
+    vtkNew<vtkPiecewiseFunction> bad;
+    bad->AddPoint(0, NaN);
+    bad->AddPoint(10, NaN);
+    f.Property->SetScalarOpacity(1, bad);
+    vtkNew<vtkFloatArray> values;
+    f.Mapping->SetInputData(TupleImage(values, { 0.5, 2.0 }));
+    f.ExpectError("the scalar opacity function of component 1 is NaN at scalar 2");
   }
   {
     Fixture f;

@@ -405,3 +405,32 @@ TEST(MapperDropIn, IndependentComponentsMixAsSpecies)
             << " values differ from one component\n";
   EXPECT_GT(DifferingValues(single, both), 100);
 }
+
+TEST(MapperDropIn, AnUnnamedArraySelectedByIndexIsTheOneRendered)
+{
+  // Array 0 unnamed and all below the opacity function's first point (nothing to see); the
+  // active scalars another, visible array. SelectScalarArray(0) must render array 0, as
+  // vtkGPUVolumeRayCastMapper does (an unnamed array cannot be named to the mapping filter).
+  WaveletScene scene;
+  vtkNew<vtkRefractiveVolumeMapper> mapper;
+  mapper->SetNumberOfPhotons(1 << 12);
+  scene.Use(mapper);
+  vtkNew<vtkImageData> image;
+  image->ShallowCopy(scene.Wavelet->GetOutput());
+  vtkNew<vtkFloatArray> empty;
+  empty->SetNumberOfTuples(image->GetNumberOfPoints());
+  empty->Fill(0.0);
+  vtkDataArray* visible = image->GetPointData()->GetArray("RTData");
+  image->GetPointData()->Initialize();
+  image->GetPointData()->AddArray(empty); // index 0, no name
+  image->GetPointData()->SetScalars(visible);
+  mapper->SetInputData(image);
+  mapper->SetScalarModeToUsePointFieldData();
+  mapper->SelectScalarArray(0);
+  int covered = -1;
+  MeanBrightness(scene.Capture(), &covered);
+  EXPECT_EQ(covered, 0) << "array 0 (nothing to see) is rendered, not the active scalars";
+  mapper->SetScalarModeToDefault();
+  MeanBrightness(scene.Capture(), &covered);
+  EXPECT_GT(covered, Size * Size / 10) << "the active scalars are visible";
+}
