@@ -33,8 +33,9 @@
  * - four dependent components: RGB given by components 0..2 (integer types divided by their
  *   type's maximum, so 0..255 for unsigned char; floating point taken as it is, clamped to
  *   [0, 1]), opacity (and index) of component 3.
- * Other counts are errors naming the layouts that are valid. A NaN in any component is missing
- * data.
+ * Other counts are errors naming the layouts that are valid. A NaN is missing data: in a
+ * dependent layout the voxel is empty space; an independent species with a NaN (or of weight 0)
+ * is left out of the mix, and the voxel is empty only when every species is.
  *
  * Output: a medium on the input's grid (origin, spacing and direction matrix copied) with the
  * arrays above. Cell scalars (SetInputArrayToProcess with FIELD_ASSOCIATION_CELLS, as a volume
