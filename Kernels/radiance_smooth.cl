@@ -21,6 +21,9 @@
 //   first voxels into the thinner ones outside, which the camera sees unattenuated.
 //   (Renormalising each source voxel's weights over the neighbours that exist also conserves the
 //   total, but a uniform field then reads 0.92 in the face layer and 1.08 in the next.)
+//   A pair whose link an opaque surface cuts (bit `axis` of cut[lower voxel], with cutLinks) is
+//   not exchanged either: light on the two sides of a wall is not one field.
+//   Symmetric and row-stochastic still, so conservation and constants hold.
 // radiance_normalize: one work-item per voxel; unit direction, or zero where nothing arrived.
 
 __kernel void radiance_resolve(__global const long* fixedPoint, const ulong first,
@@ -67,7 +70,8 @@ inline float radiance_sigma_max(__global const float* extinction, int channels, 
 // `extinction` (1 grey, 3 RGB).
 __kernel void radiance_smooth_axis(__global const float* in, __global const float* extinction,
   const int extinctionChannels, const int4 dims, const int axis, const float spacing,
-  const float biasLimit, const float tauLimit, __global float* out, const uint count)
+  const float biasLimit, const float tauLimit, __global const uchar* cut, const int cutLinks,
+  __global float* out, const uint count)
 {
   const size_t id = get_global_id(0);
   if (id >= count)
@@ -90,6 +94,10 @@ __kernel void radiance_smooth_axis(__global const float* in, __global const floa
       continue; // mirror boundary: nothing crosses the grid's face
     }
     const size_t other = side < 0 ? id - stride : id + stride;
+    if (cutLinks && ((cut[side < 0 ? other : id] >> axis) & 1))
+    {
+      continue; // a surface between them
+    }
     float g = 1.0f;
     if (attenuates)
     {

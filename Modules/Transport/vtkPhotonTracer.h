@@ -73,7 +73,8 @@
  *    every step's chord is walked voxel by voxel, attenuating with sigma_t sampled in each voxel
  *    piece and depositing sigma_s's share of the loss there.
  * 4. Smoothing (optional): the paper's 3x3x3 filter with a mirror boundary: total-conserving,
- *    and a uniform field stays uniform up to the faces, edges and corners.
+ *    and a uniform field stays uniform up to the faces, edges and corners; neighbours that an
+ *    opaque surface separates exchange nothing.
  * Only the work the medium needs is compiled in: straight rays (no gradient or octree lookups;
  * a RefractiveIndexGradient array is then ignored) when n is constant or its gradient, given or
  * computed, is zero everywhere (a medium voxelized with exact interfaces: paths bend only at the
@@ -481,7 +482,10 @@ public:
   /**
    * Final 3x3x3 smoothing of Radiance and RadianceDirection (and of MultipleScattering and the
    * split's lattice source: every deposit field), default on: the binomial (1, 2, 1) / 4 per axis
-   * of Sun et al. 2008, total-conserving.
+   * of Sun et al. 2008, total-conserving. Two voxels whose centres an opaque (Lambertian)
+   * triangle of the surface set separates exchange nothing, so light does not seep through a
+   * wall (PhotonSurfaces.SmoothingDoesNotCrossAnOpaqueWall: the first slab behind a wall in fog
+   * fell from 2276 to 2e-4, float rounding of the last step).
    */
   vtkSetMacro(Smoothing, bool);
   vtkGetMacro(Smoothing, bool);
@@ -792,6 +796,8 @@ private:
   // arguments from `index` on (advanced past them); read back the irradiance; keep the arrays
   // for the next run.
   bool PrepareSurfaces(Internals& run);
+  // run.CutLinks from the opaque triangles, placed by `localToWorld` (grid-local -> world).
+  void CutSmoothingLinks(Internals& run, vtkMatrix4x4* localToWorld);
   bool UploadSurfaces(Internals& run);
 #ifndef __VTK_WRAP__
   bool SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint& index);

@@ -296,6 +296,10 @@ struct vtkPhotonTracer::Internals
   vtkOpenCLBuffer SurfBodies;                  // the glass bodies' inside media
   cl_float4 Frame[3];
   double SurfaceEpsilon = 0;
+  // Per voxel, bit a set where the segment to the next voxel centre along axis a crosses an
+  // opaque (Lambertian) triangle: the smoothing does not exchange deposits across it (empty:
+  // no such link; vtkPhotonTracerSurfaces.cxx, CutSmoothingLinks).
+  std::vector<unsigned char> CutLinks;
   vtkNew<vtkFloatArray> Irradiance;
   // Caustic atlas (vtkPhotonTracer::CausticSubdivision): c of this run, 1 when off (no
   // dielectric surfaces); its accumulators follow the coarse ones in SurfIrradiance.

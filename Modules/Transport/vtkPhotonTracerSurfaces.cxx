@@ -6,6 +6,7 @@
 
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
 #include "vtkRefractaBVH.h"
@@ -147,6 +148,10 @@ bool vtkPhotonTracer::PrepareSurfaces(Internals& run)
     run.Frame[r] =
       Float4(l2w[4 * r], l2w[4 * r + 1], l2w[4 * r + 2], l2w[4 * r + 3] - frameOrigin[r]);
   }
+  if (this->Smoothing)
+  {
+    this->CutSmoothingLinks(run, localToWorld);
+  }
   const double size = SceneSize(run.EmitLo, run.EmitHi);
   run.SurfaceEpsilon = RelativeSurfaceEpsilon * size;
   // Photons start where their ray enters this box: grow it so that they start off any surface
@@ -163,6 +168,35 @@ namespace
 {
 // Irradiance of `count` texels from their fixed-point accumulators (3 per texel, at `scale`);
 // texel t has the area of coarse texel t / perCoarse over perCoarse (same triangle, same area).
+// Whether the segment from p along axis a, `length` long, meets triangle v (a touch included;
+// a segment in the triangle's plane does not cut it).
+bool SegmentMeetsTriangle(const double p[3], int a, double length, const double v[3][3])
+{
+  double e1[3], e2[3], d[3] = { 0, 0, 0 }, w[3];
+  d[a] = length;
+  for (int c = 0; c < 3; ++c)
+  {
+    e1[c] = v[1][c] - v[0][c];
+    e2[c] = v[2][c] - v[0][c];
+    w[c] = p[c] - v[0][c];
+  }
+  double h[3], q[3];
+  vtkMath::Cross(d, e2, h);
+  const double det = vtkMath::Dot(e1, h);
+  const double scale = vtkMath::Norm(e1) * vtkMath::Norm(e2) * length;
+  if (!(std::fabs(det) > 1e-12 * scale))
+  {
+    return false; // parallel
+  }
+  const double tolerance = 1e-9;
+  const double u = vtkMath::Dot(w, h) / det;
+  vtkMath::Cross(w, e1, q);
+  const double s = vtkMath::Dot(d, q) / det;
+  const double t = vtkMath::Dot(e2, q) / det;
+  return u >= -tolerance && s >= -tolerance && u + s <= 1 + tolerance && t >= -tolerance &&
+    t <= 1 + tolerance;
+}
+
 void ResolveTexels(double scale, const cl_long* fixed, vtkIdType count, vtkIdType perCoarse,
   const std::vector<double>& coarseAreas, vtkFloatArray* out, const char* name)
 {
@@ -183,6 +217,79 @@ void ResolveTexels(double scale, const cl_long* fixed, vtkIdType count, vtkIdTyp
   }
 }
 
+}
+
+//------------------------------------------------------------------------------
+void vtkPhotonTracer::CutSmoothingLinks(Internals& run, vtkMatrix4x4* localToWorld)
+{
+  // Each opaque triangle in grid-local coordinates; the links of the voxels around its bounds
+  // are tested against it (segment from a voxel centre to the next along each axis; a touch
+  // counts, so a wall through a centre cuts both of its links across the wall).
+  const Medium& m = run.M;
+  run.CutLinks.clear();
+  vtkNew<vtkMatrix4x4> worldToLocal;
+  vtkMatrix4x4::Invert(localToWorld, worldToLocal);
+  vtkRefractaBVH* bvh = this->Surfaces->GetBVH();
+  const std::vector<double>& triangles = bvh->GetTriangles();
+  const std::vector<int>& info = this->Surfaces->GetTriangleInfo();
+  const double* frameOrigin = bvh->GetFrameOrigin();
+  for (vtkIdType k = 0; k < bvh->GetNumberOfTriangles(); ++k)
+  {
+    if (info[REFRACTA_TRIANGLE_INFO_INTS * k + REFRACTA_TRIANGLE_INFO_KIND] !=
+      REFRACTA_SURFACE_LAMBERTIAN)
+    {
+      continue; // glass lets light through: its two sides' fields belong together
+    }
+    double v[3][3];
+    int lo[3], hi[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      double world[4] = { 0, 0, 0, 1 };
+      for (int a = 0; a < 3; ++a)
+      {
+        world[a] = triangles[9 * k + 3 * c + a] + frameOrigin[a];
+      }
+      worldToLocal->MultiplyPoint(world, world);
+      std::copy(world, world + 3, v[c]);
+    }
+    bool inside = true;
+    for (int a = 0; a < 3 && inside; ++a)
+    {
+      const double h = m.Spacing[a];
+      const double low = std::min({ v[0][a], v[1][a], v[2][a] }) / h;
+      const double high = std::max({ v[0][a], v[1][a], v[2][a] }) / h;
+      lo[a] = static_cast<int>(std::max(std::floor(low) - 1.0, 0.0));
+      hi[a] = static_cast<int>(std::min(std::ceil(high) + 1.0, m.Dims[a] - 1.0));
+      inside = low < m.Dims[a] && high > -1.0 && lo[a] <= hi[a];
+    }
+    if (!inside)
+    {
+      continue;
+    }
+    if (run.CutLinks.empty())
+    {
+      run.CutLinks.assign(m.Voxels, 0);
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+    {
+      for (int y = lo[1]; y <= hi[1]; ++y)
+      {
+        for (int x = lo[0]; x <= hi[0]; ++x)
+        {
+          const int ijk[3] = { x, y, z };
+          const double p[3] = { x * m.Spacing[0], y * m.Spacing[1], z * m.Spacing[2] };
+          unsigned char& cut = run.CutLinks[x + size_t(m.Dims[0]) * (y + size_t(m.Dims[1]) * z)];
+          for (int a = 0; a < 3; ++a)
+          {
+            if (ijk[a] + 1 < m.Dims[a] && SegmentMeetsTriangle(p, a, m.Spacing[a], v))
+            {
+              cut |= static_cast<unsigned char>(1 << a);
+            }
+          }
+        }
+      }
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
