@@ -119,6 +119,7 @@ namespace vtkPhotonTracerDetail
 {
 struct ScratchPool;
 struct PhotonStreams;
+struct CutLinks;
 }
 
 class REFRACTATRANSPORT_EXPORT vtkPhotonTracer : public vtkImageAlgorithm
@@ -485,7 +486,7 @@ public:
    * of Sun et al. 2008, total-conserving. Two voxels whose centres an opaque (Lambertian)
    * triangle of the surface set separates exchange nothing, so light does not seep through a
    * wall (PhotonSurfaces.SmoothingDoesNotCrossAnOpaqueWall: the first slab behind a wall in fog
-   * fell from 2276 to 2e-4, float rounding of the last step).
+   * fell from 1678 to 1e-3, float rounding of the last step).
    */
   vtkSetMacro(Smoothing, bool);
   vtkGetMacro(Smoothing, bool);
@@ -788,6 +789,7 @@ private:
   std::unique_ptr<SurfaceCache> KeptSurfaces; // the surfaces' device arrays of the last run
   std::unique_ptr<vtkPhotonTracerDetail::ScratchPool> Scratch; // ReuseScratchBuffers
   std::unique_ptr<vtkPhotonTracerDetail::PhotonStreams> Streams; // the last run's photon order
+  std::unique_ptr<vtkPhotonTracerDetail::CutLinks> Cuts; // smoothing links surfaces cut, kept
   bool ReuseScratchBuffers = false;
   bool KeepDeviceCopies = false;
   bool CoherentPhotonOrder = true;
@@ -796,7 +798,8 @@ private:
   // arguments from `index` on (advanced past them); read back the irradiance; keep the arrays
   // for the next run.
   bool PrepareSurfaces(Internals& run);
-  // run.CutLinks from the opaque triangles, placed by `localToWorld` (grid-local -> world).
+  // this->Cuts from the opaque triangles, placed by `localToWorld` (grid-local -> world); kept
+  // while the set's build, the grid and the placement stay (a light move reuses them).
   void CutSmoothingLinks(Internals& run, vtkMatrix4x4* localToWorld);
   bool UploadSurfaces(Internals& run);
 #ifndef __VTK_WRAP__

@@ -17,6 +17,9 @@
 
 #include "refracta_surfaces.cl" // the flattened surface layout, shared with the kernels
 
+#include <algorithm>
+#include <memory>
+
 using namespace vtkPhotonTracerDetail;
 
 namespace
@@ -197,41 +200,19 @@ bool SegmentMeetsTriangle(const double p[3], int a, double length, const double 
     t <= 1 + tolerance;
 }
 
-void ResolveTexels(double scale, const cl_long* fixed, vtkIdType count, vtkIdType perCoarse,
-  const std::vector<double>& coarseAreas, vtkFloatArray* out, const char* name)
+// The smoothing links (vtkPhotonTracerDetail::CutLinks) that the opaque triangles of `set`
+// cut in medium m placed by `localToWorld`: each triangle in grid-local coordinates, the links
+// of the voxels around its bounds tested against it (segment from a voxel centre to the next
+// along each axis; a touch counts, so a wall through a centre cuts both of its links across it).
+void FindCutLinks(vtkRefractaSurfaceSet* set, const Medium& m, vtkMatrix4x4* localToWorld,
+  std::vector<unsigned char>& links)
 {
-  // Front RGB, back RGB per texel, as the kernel's sided texels 2 t + side hold them.
-  constexpr int components = 3 * vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES;
-  out->SetName(name);
-  out->SetNumberOfComponents(components);
-  out->SetNumberOfTuples(count);
-  for (vtkIdType t = 0; t < count; ++t)
-  {
-    const double area = coarseAreas[t / perCoarse] / static_cast<double>(perCoarse);
-    for (int c = 0; c < components; ++c)
-    {
-      // Deposited flux / texel area; rounding of the fixed point can leave a tiny negative.
-      const double flux = static_cast<double>(fixed[components * t + c]) / scale;
-      out->SetTypedComponent(t, c, static_cast<float>(std::max(flux, 0.0) / area));
-    }
-  }
-}
-
-}
-
-//------------------------------------------------------------------------------
-void vtkPhotonTracer::CutSmoothingLinks(Internals& run, vtkMatrix4x4* localToWorld)
-{
-  // Each opaque triangle in grid-local coordinates; the links of the voxels around its bounds
-  // are tested against it (segment from a voxel centre to the next along each axis; a touch
-  // counts, so a wall through a centre cuts both of its links across the wall).
-  const Medium& m = run.M;
-  run.CutLinks.clear();
+  links.clear();
   vtkNew<vtkMatrix4x4> worldToLocal;
   vtkMatrix4x4::Invert(localToWorld, worldToLocal);
-  vtkRefractaBVH* bvh = this->Surfaces->GetBVH();
+  vtkRefractaBVH* bvh = set->GetBVH();
   const std::vector<double>& triangles = bvh->GetTriangles();
-  const std::vector<int>& info = this->Surfaces->GetTriangleInfo();
+  const std::vector<int>& info = set->GetTriangleInfo();
   const double* frameOrigin = bvh->GetFrameOrigin();
   for (vtkIdType k = 0; k < bvh->GetNumberOfTriangles(); ++k)
   {
@@ -266,9 +247,9 @@ void vtkPhotonTracer::CutSmoothingLinks(Internals& run, vtkMatrix4x4* localToWor
     {
       continue;
     }
-    if (run.CutLinks.empty())
+    if (links.empty())
     {
-      run.CutLinks.assign(m.Voxels, 0);
+      links.assign(m.Voxels, 0);
     }
     for (int z = lo[2]; z <= hi[2]; ++z)
     {
@@ -278,7 +259,7 @@ void vtkPhotonTracer::CutSmoothingLinks(Internals& run, vtkMatrix4x4* localToWor
         {
           const int ijk[3] = { x, y, z };
           const double p[3] = { x * m.Spacing[0], y * m.Spacing[1], z * m.Spacing[2] };
-          unsigned char& cut = run.CutLinks[x + size_t(m.Dims[0]) * (y + size_t(m.Dims[1]) * z)];
+          unsigned char& cut = links[x + size_t(m.Dims[0]) * (y + size_t(m.Dims[1]) * z)];
           for (int a = 0; a < 3; ++a)
           {
             if (ijk[a] + 1 < m.Dims[a] && SegmentMeetsTriangle(p, a, m.Spacing[a], v))
@@ -290,6 +271,56 @@ void vtkPhotonTracer::CutSmoothingLinks(Internals& run, vtkMatrix4x4* localToWor
       }
     }
   }
+}
+
+void ResolveTexels(double scale, const cl_long* fixed, vtkIdType count, vtkIdType perCoarse,
+  const std::vector<double>& coarseAreas, vtkFloatArray* out, const char* name)
+{
+  // Front RGB, back RGB per texel, as the kernel's sided texels 2 t + side hold them.
+  constexpr int components = 3 * vtkRefractaLightingVolume::NUMBER_OF_SURFACE_SIDES;
+  out->SetName(name);
+  out->SetNumberOfComponents(components);
+  out->SetNumberOfTuples(count);
+  for (vtkIdType t = 0; t < count; ++t)
+  {
+    const double area = coarseAreas[t / perCoarse] / static_cast<double>(perCoarse);
+    for (int c = 0; c < components; ++c)
+    {
+      // Deposited flux / texel area; rounding of the fixed point can leave a tiny negative.
+      const double flux = static_cast<double>(fixed[components * t + c]) / scale;
+      out->SetTypedComponent(t, c, static_cast<float>(std::max(flux, 0.0) / area));
+    }
+  }
+}
+
+}
+
+//------------------------------------------------------------------------------
+void vtkPhotonTracer::CutSmoothingLinks(Internals& run, vtkMatrix4x4* localToWorld)
+{
+  // Found again only when the set's build, the grid or the placement changed.
+  const Medium& m = run.M;
+  if (!this->Cuts)
+  {
+    this->Cuts = std::make_unique<vtkPhotonTracerDetail::CutLinks>();
+  }
+  vtkPhotonTracerDetail::CutLinks& cuts = *this->Cuts;
+  const double* placement = localToWorld->GetData();
+  const bool same = cuts.Set == this->Surfaces &&
+    cuts.Builds == this->Surfaces->GetNumberOfBuilds() &&
+    std::equal(m.Dims, m.Dims + 3, cuts.Dims) &&
+    std::equal(m.Spacing, m.Spacing + 3, cuts.Spacing) &&
+    std::equal(placement, placement + 16, cuts.LocalToWorld);
+  if (!same)
+  {
+    cuts.Set = this->Surfaces;
+    cuts.Builds = this->Surfaces->GetNumberOfBuilds();
+    std::copy(m.Dims, m.Dims + 3, cuts.Dims);
+    std::copy(m.Spacing, m.Spacing + 3, cuts.Spacing);
+    std::copy(placement, placement + 16, cuts.LocalToWorld);
+    FindCutLinks(this->Surfaces, m, localToWorld, cuts.Links);
+  }
+  run.CutLinks = cuts.Links.empty() ? nullptr : &cuts.Links;
 }
 
 //------------------------------------------------------------------------------

@@ -93,6 +93,14 @@ struct WaveletScene
     this->Renderer->ResetCamera();
   }
 
+  // Refracta's mapper on the wavelet with few photons (these tests look at geometry, exposure
+  // and array selection, not at the lighting's noise).
+  void UseRefracta(vtkRefractiveVolumeMapper* mapper)
+  {
+    mapper->SetNumberOfPhotons(1 << 12);
+    this->Use(mapper);
+  }
+
   vtkSmartPointer<vtkImageData> Capture() { return refracta_test::Capture(this->Window); }
 };
 
@@ -185,8 +193,7 @@ TEST(MapperDropIn, SelectScalarArrayIsHonouredAndAMissingArrayIsReportedOnce)
 {
   WaveletScene scene;
   vtkNew<vtkRefractiveVolumeMapper> mapper;
-  mapper->SetNumberOfPhotons(1 << 12);
-  scene.Use(mapper);
+  scene.UseRefracta(mapper);
   vtkNew<EventCounter> errors;
   mapper->AddObserver(vtkCommand::ErrorEvent, errors);
   mapper->SetScalarModeToUsePointFieldData();
@@ -224,8 +231,7 @@ TEST(MapperDropIn, ClippingPlanesAndCroppingCutTheMediumAway)
 {
   WaveletScene scene;
   vtkNew<vtkRefractiveVolumeMapper> mapper;
-  mapper->SetNumberOfPhotons(1 << 12);
-  scene.Use(mapper);
+  scene.UseRefracta(mapper);
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
   camera->SetPosition(0, 0, 80);
   camera->SetFocalPoint(0, 0, 0);
@@ -281,8 +287,7 @@ TEST(MapperDropIn, UnsupportedBlendModeIsRefusedOnce)
 {
   WaveletScene scene;
   vtkNew<vtkRefractiveVolumeMapper> mapper;
-  mapper->SetNumberOfPhotons(1 << 12);
-  scene.Use(mapper);
+  scene.UseRefracta(mapper);
   vtkNew<EventCounter> warnings;
   mapper->AddObserver(vtkCommand::WarningEvent, warnings);
   mapper->SetBlendModeToMaximumIntensity();
@@ -300,8 +305,7 @@ TEST(MapperDropIn, AnotherVolumeInTheRendererIsWarnedAboutOnce)
 {
   WaveletScene scene;
   vtkNew<vtkRefractiveVolumeMapper> mapper;
-  mapper->SetNumberOfPhotons(1 << 12);
-  scene.Use(mapper);
+  scene.UseRefracta(mapper);
   vtkNew<EventCounter> warnings;
   mapper->AddObserver(vtkCommand::WarningEvent, warnings);
   scene.Window->Render();
@@ -343,8 +347,7 @@ TEST(MapperDropIn, CellScalarsRenderAsPointScalarsAtTheCellCentres)
   // the image) is the point-data wavelet's, as VTK's own mappers read cell data.
   WaveletScene scene;
   vtkNew<vtkRefractiveVolumeMapper> mapper;
-  mapper->SetNumberOfPhotons(1 << 12);
-  scene.Use(mapper);
+  scene.UseRefracta(mapper);
   vtkSmartPointer<vtkImageData> viaPoints = scene.Capture();
   vtkImageData* wavelet = scene.Wavelet->GetOutput();
   vtkNew<vtkImageData> cells;
@@ -379,8 +382,7 @@ TEST(MapperDropIn, IndependentComponentsMixAsSpecies)
   // property's default functions for component 1): more extinction, a different image.
   WaveletScene scene;
   vtkNew<vtkRefractiveVolumeMapper> mapper;
-  mapper->SetNumberOfPhotons(1 << 12);
-  scene.Use(mapper);
+  scene.UseRefracta(mapper);
   vtkSmartPointer<vtkImageData> single = scene.Capture();
   vtkNew<vtkImageAppendComponents> twice;
   twice->AddInputConnection(scene.Wavelet->GetOutputPort());
@@ -413,8 +415,7 @@ TEST(MapperDropIn, AnUnnamedArraySelectedByIndexIsTheOneRendered)
   // vtkGPUVolumeRayCastMapper does (an unnamed array cannot be named to the mapping filter).
   WaveletScene scene;
   vtkNew<vtkRefractiveVolumeMapper> mapper;
-  mapper->SetNumberOfPhotons(1 << 12);
-  scene.Use(mapper);
+  scene.UseRefracta(mapper);
   vtkNew<vtkImageData> image;
   image->ShallowCopy(scene.Wavelet->GetOutput());
   vtkNew<vtkFloatArray> empty;
