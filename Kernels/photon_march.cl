@@ -48,7 +48,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   const long causticOffset,
   __global const float* anisotropy, volatile __global long* multiple,
   __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
-  __global const float4* surfaceBodies, __global const int* volumeCausticBricks,
+  __global const float4* surfaceBodies, __global const int* cutVoxels,
+  __global const float4* cutPlanes, __global const int* volumeCausticBricks,
   volatile __global long* volumeCausticFine, const int volumeCausticSubdivision)
 {
   // Launched in chunks (for progress reports); the stream depends on the photon, not the chunk.
@@ -64,6 +65,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
     return;
   }
   ps.bodies = surfaceBodies;
+  ps.cutVoxels = cutVoxels;
+  ps.cutPlanes = cutPlanes;
   photon_set_volume_caustic(&ps, volumeCausticBricks, volumeCausticFine, volumeCausticSubdivision);
   const float3 emitted = ps.power;
   int steps = 0;
@@ -142,7 +145,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   const long causticOffset,
   __global const float* anisotropy, volatile __global long* multiple,
   __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
-  __global const float4* surfaceBodies, __global const int* volumeCausticBricks,
+  __global const float4* surfaceBodies, __global const int* cutVoxels,
+  __global const float4* cutPlanes, __global const int* volumeCausticBricks,
   volatile __global long* volumeCausticFine, const int volumeCausticSubdivision)
 {
   const uint id = first + (uint)get_global_id(0);
@@ -214,6 +218,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.body = as_int(s[6].w);
   }
   ps.bodies = surfaceBodies;
+  ps.cutVoxels = cutVoxels;
+  ps.cutPlanes = cutPlanes;
   photon_set_volume_caustic(&ps, volumeCausticBricks, volumeCausticFine, volumeCausticSubdivision);
   ps.dead = 0;
   int steps = (int)st.y;

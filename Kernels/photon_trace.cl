@@ -129,6 +129,9 @@
 #ifndef REFRACTA_SKIP_DIRECT
 #define REFRACTA_SKIP_DIRECT 0 /* 1: direct surface light left to light rays (photon_surfaces.cl) */
 #endif
+#ifndef REFRACTA_SIDED_DEPOSITS
+#define REFRACTA_SIDED_DEPOSITS 0 /* 1: opaque surfaces cut the grid (photon_sided_voxel) */
+#endif
 #ifndef REFRACTA_STEP_TOLERANCE
 #define REFRACTA_STEP_TOLERANCE 0.02f
 #endif
@@ -164,6 +167,8 @@ typedef struct
   volatile __global long* causticFine;     // volume caustic: PHOTON_FINE_LONGS per fine voxel
                                            // (the pilot, c = 1: one uint per voxel)
   int causticSub;                          // volume caustic: c, bricks of c^3 fine voxels
+  __global const int* cutVoxels;           // sided deposits: each voxel's cut plane, or -1
+  __global const float4* cutPlanes;        // sided deposits: the planes (refracta_across_cut)
 } photon_state;
 
 // The volume caustic's fine accumulators per fine voxel: S1 (3), direction sums (3), two longs of
@@ -412,6 +417,37 @@ inline float3 photon_sample_hg(float3 d, float g, uint* rng)
 #define photon_albedo_at(field, dims, u) refracta_sample3((field), (dims), (u))
 #endif
 
+#if REFRACTA_SIDED_DEPOSITS
+// The voxel that a piece in voxel `voxel` (at voxel coordinates `cell`) deposits into: its own,
+// unless an opaque surface through the voxel separates the piece's midpoint `mid` from the
+// voxel's centre (refracta_across_cut): then the neighbour on the piece's side along the axis the
+// surface faces most, whose centre is on that side (its own voxel at the grid's edge). Light on
+// one side of a wall thus never lands in a voxel whose centre is on the other.
+inline size_t photon_sided_voxel(const photon_state* ps, int4 dims, int3 cell, float3 mid,
+  size_t voxel)
+{
+  if (!refracta_across_cut(ps->cutVoxels, ps->cutPlanes, voxel, convert_float3(cell), mid))
+  {
+    return voxel;
+  }
+  const float4 plane = ps->cutPlanes[ps->cutVoxels[voxel]];
+  const float3 facing = fabs(plane.xyz);
+  const int axis = facing.x >= facing.y && facing.x >= facing.z ? 0 : (facing.y >= facing.z ? 1 : 2);
+  const float normal = axis == 0 ? plane.x : (axis == 1 ? plane.y : plane.z);
+  // Towards the piece: up the axis where the plane's value grows towards the piece's side.
+  const int step = (dot(plane.xyz, mid) + plane.w > 0.0f) == (normal > 0.0f) ? 1 : -1;
+  int3 to = cell;
+  to.x += axis == 0 ? step : 0;
+  to.y += axis == 1 ? step : 0;
+  to.z += axis == 2 ? step : 0;
+  if (any(to < (int3)(0)) || to.x >= dims.x || to.y >= dims.y || to.z >= dims.z)
+  {
+    return voxel;
+  }
+  return refracta_voxel_index(dims, to.x, to.y, to.z);
+}
+#endif
+
 #if REFRACTA_EXTINCTION
 // One piece of a voxel (sigma_t and the albedo sampled at its midpoint `mid`): attenuate, split the
 // loss, deposit the scattered part in `voxel`, then roulette.
@@ -439,14 +475,19 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
 #endif
   ps->absorbed += lost - sc;
   const float w = sc.x + sc.y + sc.z;
+#if REFRACTA_SIDED_DEPOSITS
+  const size_t target = photon_sided_voxel(ps, dims, cell, mid, voxel);
+#else
+  const size_t target = voxel;
+#endif
 #if REFRACTA_ANALOG
   if (ps->order > 0)
   {
     if (w > 0.0f)
     {
-      refracta_atomic_add_fixed(ps->multiple + 3 * voxel, sc.x);
-      refracta_atomic_add_fixed(ps->multiple + 3 * voxel + 1, sc.y);
-      refracta_atomic_add_fixed(ps->multiple + 3 * voxel + 2, sc.z);
+      refracta_atomic_add_fixed(ps->multiple + 3 * target, sc.x);
+      refracta_atomic_add_fixed(ps->multiple + 3 * target + 1, sc.y);
+      refracta_atomic_add_fixed(ps->multiple + 3 * target + 2, sc.z);
     }
   }
   else
@@ -461,7 +502,7 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
   {
     // One voxel's six accumulators share a cache line (the first touch of a voxel's line is most
     // of a deposit's cost on a CPU: two lines per piece cost 12% more of the default scene's pass).
-    volatile __global long* acc = deposits + 6 * voxel;
+    volatile __global long* acc = deposits + 6 * target;
     refracta_atomic_add_fixed(acc, sc.x);
     refracta_atomic_add_fixed(acc + 1, sc.y);
     refracta_atomic_add_fixed(acc + 2, sc.z);
@@ -472,7 +513,7 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
 #if REFRACTA_ANALOG
   if (ps->order >= REFRACTA_ANALOG_ORDERS)
   {
-    photon_hand_to_lattice(ps, sc, w, direction, voxel, dims);
+    photon_hand_to_lattice(ps, sc, w, direction, target, dims);
   }
   else
   {

@@ -34,6 +34,8 @@
 // weighted by 1 / n^2 with n sampled per step), REFRACTA_SOURCE_SCALE=<1 / n^2> (a uniform n != 1),
 // REFRACTA_SKIP (empty-space skipping, below), REFRACTA_HAS_SURFACES (opaque triangle surfaces,
 // below; view_surfaces.cl), REFRACTA_SURFACE_NEAREST (no irradiance interpolation),
+// REFRACTA_SIDED_LOOKUPS (opaque surfaces cut the grid: light is read from the sample's side of
+// them, refracta_view_sided_weights; `cutVoxels`, `cutPlanes`),
 // REFRACTA_DIELECTRIC (glass triangles: paths split at them, see refracta_view_dielectric_split)
 // with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>, REFRACTA_PACKED_MEDIUM (an
 // emitting medium with a grey extinction: `extinction` holds float4 (sigma, emission RGB) per voxel
@@ -271,20 +273,87 @@ inline float3 refracta_view_body_medium(
 // caustic, c times finer, as the mean of c points evenly spread over the step (one midpoint per
 // fine voxel crossed, where a single midpoint would alias the focused light into streaks). The
 // grid's emission is added by the caller (refracta_view_march).
+#ifdef REFRACTA_SIDED_LOOKUPS
+// Sided lookups of light (where opaque surfaces cut the grid, vtkRefractaGridCuts): the trilinear
+// weights of the stencil's eight corners (corner k at offset (k & 1, k >> 1 & 1, k >> 2 & 1), the
+// order of refracta_view_stencil_at) with the corners across a surface from u left out
+// (refracta_across_cut) and the others renormalised, so that a sample reads only light from its
+// own side of a wall (none where every corner is across). False, w untouched, where no corner has
+// a cut: the plain trilinear sample applies.
+inline bool refracta_view_sided_weights(const refracta_view_stencil* st, int4 dims, float3 u,
+  __global const int* cutVoxels, __global const float4* cutPlanes, float* w)
+{
+  bool cut = false;
+  #pragma unroll
+  for (int k = 0; k < 8; ++k)
+  {
+    cut = cut || cutVoxels[st->c[k]] >= 0;
+  }
+  if (!cut)
+  {
+    return false;
+  }
+  const float3 hi = (float3)((float)(dims.x - 1), (float)(dims.y - 1), (float)(dims.z - 1));
+  const float3 c = clamp(u, (float3)(0.0f), hi);
+  const float3 lo = floor(c);
+  const float3 up = fmin(lo + 1.0f, hi);
+  float sum = 0.0f;
+  #pragma unroll
+  for (int k = 0; k < 8; ++k)
+  {
+    const float3 corner =
+      (float3)((k & 1) ? up.x : lo.x, (k & 2) ? up.y : lo.y, (k & 4) ? up.z : lo.z);
+    const float wk = ((k & 1) ? st->fx : 1.0f - st->fx) * ((k & 2) ? st->fy : 1.0f - st->fy) *
+      ((k & 4) ? st->fz : 1.0f - st->fz);
+    w[k] = refracta_across_cut(cutVoxels, cutPlanes, st->c[k], corner, c) ? 0.0f : wk;
+    sum += w[k];
+  }
+  const float scale = sum > 0.0f ? 1.0f / sum : 0.0f;
+  #pragma unroll
+  for (int k = 0; k < 8; ++k)
+  {
+    w[k] *= scale;
+  }
+  return true;
+}
+
+inline float3 refracta_view_weighted3(
+  __global const float* f, const refracta_view_stencil* st, const float* w)
+{
+  float3 sum = (float3)(0.0f);
+  #pragma unroll
+  for (int k = 0; k < 8; ++k)
+  {
+    sum += w[k] * vload3(st->c[k], f);
+  }
+  return sum;
+}
+// A light field at the step: sided where the sample's corners are cut.
+#define REFRACTA_VIEW_LIGHT3(f)                                                                   \
+  (sided ? refracta_view_weighted3((f), st, sidedWeights) : refracta_view_sample3((f), st))
+#else
+#define REFRACTA_VIEW_LIGHT3(f) refracta_view_sample3((f), st)
+#endif
+
 inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, float3 du, float3 d,
   int4 dims, __global const float* anisotropy, __global const float* radiance,
   __global const float* radianceDirection, __global const float* multiple,
   __global const int* causticBricks, __global const float* causticRadiance,
-  __global const float* causticDirection, int causticSub)
+  __global const float* causticDirection, int causticSub, __global const int* cutVoxels,
+  __global const float4* cutPlanes)
 {
   float3 q = (float3)(0.0f);
+#ifdef REFRACTA_SIDED_LOOKUPS
+  float sidedWeights[8];
+  const bool sided = refracta_view_sided_weights(st, dims, u, cutVoxels, cutPlanes, sidedWeights);
+#endif
 #ifdef REFRACTA_HAS_SINGLE
-  const float3 s1 = refracta_view_sample3(radiance, st);
+  const float3 s1 = REFRACTA_VIEW_LIGHT3(radiance);
   const float g = refracta_view_sample1(anisotropy, st);
   if (s1.x + s1.y + s1.z > 0.0f)
   {
     // w_o = -d (towards the camera).
-    q += refracta_view_single(s1, refracta_view_sample3(radianceDirection, st), d, g);
+    q += refracta_view_single(s1, REFRACTA_VIEW_LIGHT3(radianceDirection), d, g);
   }
   if (causticSub > 1) // a run-time choice: no kernel variant of its own
   {
@@ -299,10 +368,11 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
   }
 #endif
 #ifdef REFRACTA_HAS_MULTIPLE
-  q += REFRACTA_INV_4PI * refracta_view_sample3(multiple, st);
+  q += REFRACTA_INV_4PI * REFRACTA_VIEW_LIGHT3(multiple);
 #endif
   return q;
 }
+#undef REFRACTA_VIEW_LIGHT3
 
 // The grid's fields a step reads (refracta_view_step_medium's arguments).
 #define REFRACTA_VIEW_MEDIUM_PARAMS                                                               \
@@ -310,10 +380,11 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
     __global const float *anisotropy, __global const float *radiance,                            \
     __global const float *radianceDirection, __global const float *multiple,                     \
     __global const int *causticBricks, __global const float *causticRadiance,                    \
-    __global const float *causticDirection, int causticSub
+    __global const float *causticDirection, int causticSub, __global const int *cutVoxels,       \
+    __global const float4 *cutPlanes
 #define REFRACTA_VIEW_MEDIUM_ARGS                                                                 \
   dims, extinction, emission, anisotropy, radiance, radianceDirection, multiple, causticBricks,  \
-    causticRadiance, causticDirection, causticSub
+    causticRadiance, causticDirection, causticSub, cutVoxels, cutPlanes
 
 // The grid's medium at a step's midpoint (stencil st at voxel coordinates u; du the step in voxel
 // units, d the ray's unit direction): its extinction *sigma and emission *gridEmission, and the
@@ -338,7 +409,7 @@ inline float3 refracta_view_step_medium(const refracta_view_stencil* st, float3 
 #endif
   return *gridEmission +
     refracta_view_source(st, u, du, d, dims, anisotropy, radiance, radianceDirection, multiple,
-      causticBricks, causticRadiance, causticDirection, causticSub);
+      causticBricks, causticRadiance, causticDirection, causticSub, cutVoxels, cutPlanes);
 }
 
 // What a source counts at a step: sources are physical radiance per length; what reaches the
@@ -373,12 +444,12 @@ inline float refracta_view_source_weight(
     const float4 toSurface0, const float4 toSurface1, const float4 toSurface2,                   \
     __global const float4 *bodies, __global const int *causticBricks,                             \
     __global const float *causticRadiance, __global const float *causticDirection,               \
-    const int causticSub
+    const int causticSub, __global const int *cutVoxels, __global const float4 *cutPlanes
 #define REFRACTA_VIEW_LEG_ARGS                                                                    \
   dims, spacing, extinction, emission, anisotropy, refractiveIndex, gradient, radiance,          \
     radianceDirection, multiple, stepLength, maxSteps, cutoff, occupancy, cellDims, activeLo,    \
     activeHi, skipMask, nodes, nodeCount, triangles, toSurface0, toSurface1, toSurface2, bodies, \
-    causticBricks, causticRadiance, causticDirection, causticSub
+    causticBricks, causticRadiance, causticDirection, causticSub, cutVoxels, cutPlanes
 
 // One leg of a view path: from `origin` in unit direction d (grid-local) until the ray meets a
 // surface, leaves the box (then it sees the background, or a surface outside the box), reaches

@@ -329,7 +329,8 @@ inline refracta_view_sample refracta_view_path(
     __global const float4* bodies, __global const int* causticBricks,                              \
     __global const float* causticRadiance, __global const float* causticDirection,                 \
     const int causticSub, const int supersampling,                                                 \
-    const float grazingCosine, volatile __global int* supersampledPixels
+    const float grazingCosine, volatile __global int* supersampledPixels,                          \
+    __global const int* cutVoxels, __global const float4* cutPlanes
 
 __kernel void refracta_view_pass(REFRACTA_VIEW_KERNEL_PARAMS)
 {

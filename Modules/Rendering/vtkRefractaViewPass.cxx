@@ -293,7 +293,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   // Surfaces: built and uploaded when the set's build is new, the irradiance when it changed.
   SurfaceBuffers& surf = in.Surfaces;
   if (!surf.Update(in.SurfaceSet, context, this) ||
-    (surf.Active() && !surf.PrepareIrradiance(context, this->CausticPhotonsPerFineTexel, this)))
+    (surf.Active() && !surf.PrepareIrradiance(context, this->CausticPhotonsPerFineTexel, this)) ||
+    !surf.UpdateCuts(in.Dims, in.Spacing, frame.WorldToLocal, context, this))
   {
     return false;
   }
@@ -335,6 +336,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.NearestTexel = this->SurfaceFilter == NEAREST_TEXEL;
   variant.Dielectric = surf.HasDielectric();
   variant.SplitDepth = this->DielectricSplitDepth;
+  variant.Sided = surf.HasCuts() && (in.HasSingle || in.HasMultiple);
   variant.Caustic = surf.GetCausticSubdivision();
   variant.CausticOffset = surf.GetNumberOfTexels();
   variant.LaneMarching = this->LaneMarching &&
@@ -499,7 +501,8 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       buf(surf.Interfaces), toSurface[0], toSurface[1], toSurface[2], hdrBuffer.Get(),
       stepBuffer.Get(), transmittanceBuffer.Get(), backgroundBuffer.Get(), surfaceDepthBuffer.Get(),
       buf(surf.Bodies), buf(in.CausticBricks), buf(in.CausticRadiance), buf(in.CausticDirection),
-      causticSub, supersampling, grazingCosine, supersampledBuffer.Get());
+      causticSub, supersampling, grazingCosine, supersampledBuffer.Get(), buf(surf.CutVoxels),
+      buf(surf.CutPlanes));
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
       !this->RunTiles(context, launch, width, rows, row0, height, rowsPerTile))
     {

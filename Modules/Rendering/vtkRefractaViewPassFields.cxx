@@ -188,6 +188,7 @@ std::string KernelOptions(const KernelVariant& v)
   flag(v.Surfaces, "REFRACTA_HAS_SURFACES");
   flag(v.Surfaces && v.NearestTexel, "REFRACTA_SURFACE_NEAREST");
   flag(v.Surfaces && v.Dielectric, "REFRACTA_DIELECTRIC");
+  flag(v.Surfaces && v.Sided, "REFRACTA_SIDED_LOOKUPS");
   if (v.Surfaces && v.Dielectric)
   {
     options += " -DREFRACTA_SPLIT_DEPTH=" + std::to_string(v.SplitDepth);

@@ -66,6 +66,7 @@ struct KernelVariant
   bool Surfaces = false;       // REFRACTA_HAS_SURFACES
   bool NearestTexel = false;   // REFRACTA_SURFACE_NEAREST
   bool Dielectric = false;     // REFRACTA_DIELECTRIC (glass triangles)
+  bool Sided = false;          // REFRACTA_SIDED_LOOKUPS (opaque surfaces cut the grid)
   int SplitDepth = 1;          // REFRACTA_SPLIT_DEPTH (interfaces where both legs are followed)
   int Caustic = 1;             // REFRACTA_CAUSTIC_SUBDIVISION (c > 1: the caustic atlas is read)
   long long CausticOffset = 0; // REFRACTA_CAUSTIC_OFFSET (atlas texels before the fine ones)

@@ -79,6 +79,45 @@ bool CheckArray(
 }
 
 //------------------------------------------------------------------------------
+bool SurfaceBuffers::UpdateCuts(const int dims[3], const double spacing[3],
+  const double worldToLocal[4][4], vtkOpenCLContext* context, vtkObject* owner)
+{
+  if (!this->Active())
+  {
+    this->CutVoxels.Reset();
+    this->CutPlanes.Reset();
+    return true;
+  }
+  vtkNew<vtkMatrix4x4> localToWorld;
+  localToWorld->DeepCopy(&worldToLocal[0][0]);
+  localToWorld->Invert();
+  const bool searched = this->Cuts->Update(this->Set, dims, spacing, localToWorld);
+  if (!this->Cuts->HasCuts())
+  {
+    this->CutVoxels.Reset();
+    this->CutPlanes.Reset();
+    return true;
+  }
+  if (searched || !this->CutVoxels)
+  {
+    const std::vector<int>& voxels = this->Cuts->GetVoxelPlanes();
+    const std::vector<float>& planes = this->Cuts->GetPlanes();
+    const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
+    this->CutVoxels =
+      context->CreateBuffer(in, voxels.size() * sizeof(int), voxels.data(), "cut voxels", owner);
+    this->CutPlanes =
+      context->CreateBuffer(in, planes.size() * sizeof(float), planes.data(), "cut planes", owner);
+    if (!this->CutVoxels || !this->CutPlanes)
+    {
+      this->CutVoxels.Reset();
+      this->CutPlanes.Reset();
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool SurfaceBuffers::Update(vtkRefractaSurfaceSet* set, vtkOpenCLContext* context, vtkObject* owner)
 {
   if (set != this->Set)

@@ -8,7 +8,9 @@
 #define vtkRefractaViewPassSurfaces_h
 
 #include "vtkDataArray.h"     // for LightingArrays
+#include "vtkNew.h"           // for the grid cuts
 #include "vtkOpenCLContext.h" // for vtkOpenCLBuffer, cl_float4
+#include "vtkRefractaGridCuts.h" // for the grid cuts
 #include "vtkSmartPointer.h"  // for members
 #include "vtkType.h"          // for vtkMTimeType, vtkIdType
 
@@ -42,6 +44,15 @@ public:
   // False, with an error, when the tuples do not match the set's texels.
   bool PrepareIrradiance(vtkOpenCLContext* context, double photonsPerFineTexel, vtkObject* owner);
 
+  // Where the set's opaque triangles cut the medium's grid (vtkRefractaGridCuts, found again only
+  // when the build, the grid or the placement changed): uploads each cut voxel's plane index
+  // (CutVoxels) and the planes (CutPlanes) for the sided lookups of light; none without surfaces
+  // or cuts. `worldToLocal` maps the set's world to the grid-local frame. False after an error.
+  bool UpdateCuts(const int dims[3], const double spacing[3], const double worldToLocal[4][4],
+    vtkOpenCLContext* context, vtkObject* owner);
+  // Whether the last UpdateCuts() found cuts (the kernel then reads light sided).
+  bool HasCuts() const { return static_cast<bool>(this->CutVoxels); }
+  vtkRefractaGridCuts* GetCuts() { return this->Cuts; }
   // Whether there is anything to hit.
   bool Active() const { return this->NodeCount > 0; }
 
@@ -68,9 +79,11 @@ public:
   // Corner normals (float4 per corner), (IndexInside, IndexOutside) per surface and the glass
   // bodies' inside media (vtkRefractaSurfaceSet::GetSurfaceBodies()).
   vtkOpenCLBuffer Normals, Interfaces, Bodies;
+  vtkOpenCLBuffer CutVoxels, CutPlanes; // UpdateCuts()
 
 private:
   vtkSmartPointer<vtkRefractaSurfaceSet> Set;
+  vtkNew<vtkRefractaGridCuts> Cuts;
   int UploadedBuild = -1; // the set's GetNumberOfBuilds() at the last upload
   int NodeCount = 0;
   bool Dielectric = false;

@@ -237,7 +237,8 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   }
   this->LastCausticSubdivision = run.Caustic;
   options << " -DREFRACTA_CAUSTIC_SUBDIVISION=" << run.Caustic;
-  options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0);
+  options << " -DREFRACTA_ANALOG=" << (run.Analog ? 1 : 0)
+          << " -DREFRACTA_SIDED_DEPOSITS=" << (run.Cuts && m.Scatters ? 1 : 0);
   // Direct surface light left to straight light rays: only where they give what the photons
   // would: photons that fly straight (the rays cut voxels at node planes as the photons do,
   // LR_NODE_CUTS), from delta lights the rays sample exactly (not the sky,

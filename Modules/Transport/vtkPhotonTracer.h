@@ -114,12 +114,12 @@ class vtkLight;
 class vtkLightCollection;
 class vtkMatrix4x4;
 class vtkOpenCLContext;
+class vtkRefractaGridCuts;
 class vtkRefractaSurfaceSet;
 namespace vtkPhotonTracerDetail
 {
 struct ScratchPool;
 struct PhotonStreams;
-struct CutLinks;
 }
 
 class REFRACTATRANSPORT_EXPORT vtkPhotonTracer : public vtkImageAlgorithm
@@ -789,7 +789,7 @@ private:
   std::unique_ptr<SurfaceCache> KeptSurfaces; // the surfaces' device arrays of the last run
   std::unique_ptr<vtkPhotonTracerDetail::ScratchPool> Scratch; // ReuseScratchBuffers
   std::unique_ptr<vtkPhotonTracerDetail::PhotonStreams> Streams; // the last run's photon order
-  std::unique_ptr<vtkPhotonTracerDetail::CutLinks> Cuts; // smoothing links surfaces cut, kept
+  vtkSmartPointer<vtkRefractaGridCuts> Cuts; // where opaque surfaces cut the grid, kept
   bool ReuseScratchBuffers = false;
   bool KeepDeviceCopies = false;
   bool CoherentPhotonOrder = true;
@@ -800,8 +800,9 @@ private:
   bool PrepareSurfaces(Internals& run);
   // this->Cuts from the opaque triangles, placed by `localToWorld` (grid-local -> world); kept
   // while the set's build, the grid and the placement stay (a light move reuses them).
-  void CutSmoothingLinks(Internals& run, vtkMatrix4x4* localToWorld);
+  void FindGridCuts(Internals& run, vtkMatrix4x4* localToWorld);
   bool UploadSurfaces(Internals& run);
+  bool UploadGridCuts(Internals& run); // the cut voxels' planes (placeholders without)
 #ifndef __VTK_WRAP__
   bool SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint& index);
 #endif

@@ -24,6 +24,7 @@
 
 class vtkImageData;
 class vtkLight;
+class vtkRefractaGridCuts;
 class vtkRefractaGridFrame;
 class vtkRefractaSurfaceSet;
 
@@ -164,20 +165,6 @@ struct EnvironmentSetup
   double PowerFactor = 0;
 };
 
-// The smoothing links that opaque triangles cut (vtkPhotonTracerSurfaces.cxx,
-// CutSmoothingLinks), and what they were found for. Links: per voxel, bit a set where the segment
-// to the next voxel centre along axis a crosses an opaque (Lambertian) triangle; empty when none
-// is cut.
-struct CutLinks
-{
-  vtkSmartPointer<vtkRefractaSurfaceSet> Set; // held: a new set cannot take its address
-  int Builds = -1;
-  int Dims[3] = { 0, 0, 0 };
-  double Spacing[3] = { 0, 0, 0 };
-  double LocalToWorld[16] = {};
-  std::vector<unsigned char> Links;
-};
-
 // The scratch buffers (created without data: accumulators, photon state, the resolve's and the
 // smoothing's work arrays) of the last run, kept for the next (vtkPhotonTracer::
 // ReuseScratchBuffers). A run borrows a kept buffer of the same name, flags and size that it has
@@ -311,10 +298,13 @@ struct vtkPhotonTracer::Internals
   vtkOpenCLBuffer SurfBodies;                  // the glass bodies' inside media
   cl_float4 Frame[3];
   double SurfaceEpsilon = 0;
-  // The links the smoothing does not exchange across (nullptr: none cut this run) and their
-  // device copy, uploaded once per run (vtkPhotonTracerOutput.cxx, SmoothAxes).
+  // Where opaque surfaces cut the grid (vtkRefractaGridCuts; nullptr: nowhere this run): the
+  // links the smoothing does not exchange across and their device copy, uploaded once per run
+  // (vtkPhotonTracerOutput.cxx, SmoothAxes); each cut voxel's plane and the planes, for the
+  // march's sided deposits (REFRACTA_SIDED_DEPOSITS).
+  const vtkRefractaGridCuts* Cuts = nullptr;
   const std::vector<unsigned char>* CutLinks = nullptr;
-  vtkOpenCLBuffer CutLinksBuffer;
+  vtkOpenCLBuffer CutLinksBuffer, CutVoxels, CutPlanes;
   vtkNew<vtkFloatArray> Irradiance;
   // Caustic atlas (vtkPhotonTracer::CausticSubdivision): c of this run, 1 when off (no
   // dielectric surfaces); its accumulators follow the coarse ones in SurfIrradiance.

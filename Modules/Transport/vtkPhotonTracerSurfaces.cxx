@@ -10,6 +10,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
 #include "vtkRefractaBVH.h"
+#include "vtkRefractaGridCuts.h"
 #include "vtkRefractaGridFrame.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaSurfaceMaterial.h"
@@ -151,10 +152,7 @@ bool vtkPhotonTracer::PrepareSurfaces(Internals& run)
     run.Frame[r] =
       Float4(l2w[4 * r], l2w[4 * r + 1], l2w[4 * r + 2], l2w[4 * r + 3] - frameOrigin[r]);
   }
-  if (this->Smoothing)
-  {
-    this->CutSmoothingLinks(run, localToWorld);
-  }
+  this->FindGridCuts(run, localToWorld);
   const double size = SceneSize(run.EmitLo, run.EmitHi);
   run.SurfaceEpsilon = RelativeSurfaceEpsilon * size;
   // Photons start where their ray enters this box: grow it so that they start off any surface
@@ -171,108 +169,6 @@ namespace
 {
 // Irradiance of `count` texels from their fixed-point accumulators (3 per texel, at `scale`);
 // texel t has the area of coarse texel t / perCoarse over perCoarse (same triangle, same area).
-// Whether the segment from p along axis a, `length` long, meets triangle v (a touch included;
-// a segment in the triangle's plane does not cut it).
-bool SegmentMeetsTriangle(const double p[3], int a, double length, const double v[3][3])
-{
-  double e1[3], e2[3], d[3] = { 0, 0, 0 }, w[3];
-  d[a] = length;
-  for (int c = 0; c < 3; ++c)
-  {
-    e1[c] = v[1][c] - v[0][c];
-    e2[c] = v[2][c] - v[0][c];
-    w[c] = p[c] - v[0][c];
-  }
-  double h[3], q[3];
-  vtkMath::Cross(d, e2, h);
-  const double det = vtkMath::Dot(e1, h);
-  const double scale = vtkMath::Norm(e1) * vtkMath::Norm(e2) * length;
-  if (!(std::fabs(det) > 1e-12 * scale))
-  {
-    return false; // parallel
-  }
-  const double tolerance = 1e-9;
-  const double u = vtkMath::Dot(w, h) / det;
-  vtkMath::Cross(w, e1, q);
-  const double s = vtkMath::Dot(d, q) / det;
-  const double t = vtkMath::Dot(e2, q) / det;
-  return u >= -tolerance && s >= -tolerance && u + s <= 1 + tolerance && t >= -tolerance &&
-    t <= 1 + tolerance;
-}
-
-// The smoothing links (vtkPhotonTracerDetail::CutLinks) that the opaque triangles of `set`
-// cut in medium m placed by `localToWorld`: each triangle in grid-local coordinates, the links
-// of the voxels around its bounds tested against it (segment from a voxel centre to the next
-// along each axis; a touch counts, so a wall through a centre cuts both of its links across it).
-void FindCutLinks(vtkRefractaSurfaceSet* set, const Medium& m, vtkMatrix4x4* localToWorld,
-  std::vector<unsigned char>& links)
-{
-  links.clear();
-  vtkNew<vtkMatrix4x4> worldToLocal;
-  vtkMatrix4x4::Invert(localToWorld, worldToLocal);
-  vtkRefractaBVH* bvh = set->GetBVH();
-  const std::vector<double>& triangles = bvh->GetTriangles();
-  const std::vector<int>& info = set->GetTriangleInfo();
-  const double* frameOrigin = bvh->GetFrameOrigin();
-  for (vtkIdType k = 0; k < bvh->GetNumberOfTriangles(); ++k)
-  {
-    if (info[REFRACTA_TRIANGLE_INFO_INTS * k + REFRACTA_TRIANGLE_INFO_KIND] !=
-      REFRACTA_SURFACE_LAMBERTIAN)
-    {
-      continue; // glass lets light through: its two sides' fields belong together
-    }
-    double v[3][3];
-    int lo[3], hi[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      double world[4] = { 0, 0, 0, 1 };
-      for (int a = 0; a < 3; ++a)
-      {
-        world[a] = triangles[9 * k + 3 * c + a] + frameOrigin[a];
-      }
-      worldToLocal->MultiplyPoint(world, world);
-      std::copy(world, world + 3, v[c]);
-    }
-    bool inside = true;
-    for (int a = 0; a < 3 && inside; ++a)
-    {
-      const double h = m.Spacing[a];
-      const double low = std::min({ v[0][a], v[1][a], v[2][a] }) / h;
-      const double high = std::max({ v[0][a], v[1][a], v[2][a] }) / h;
-      lo[a] = static_cast<int>(std::max(std::floor(low) - 1.0, 0.0));
-      hi[a] = static_cast<int>(std::min(std::ceil(high) + 1.0, m.Dims[a] - 1.0));
-      inside = low < m.Dims[a] && high > -1.0 && lo[a] <= hi[a];
-    }
-    if (!inside)
-    {
-      continue;
-    }
-    if (links.empty())
-    {
-      links.assign(m.Voxels, 0);
-    }
-    for (int z = lo[2]; z <= hi[2]; ++z)
-    {
-      for (int y = lo[1]; y <= hi[1]; ++y)
-      {
-        for (int x = lo[0]; x <= hi[0]; ++x)
-        {
-          const int ijk[3] = { x, y, z };
-          const double p[3] = { x * m.Spacing[0], y * m.Spacing[1], z * m.Spacing[2] };
-          unsigned char& cut = links[x + size_t(m.Dims[0]) * (y + size_t(m.Dims[1]) * z)];
-          for (int a = 0; a < 3; ++a)
-          {
-            if (ijk[a] + 1 < m.Dims[a] && SegmentMeetsTriangle(p, a, m.Spacing[a], v))
-            {
-              cut |= static_cast<unsigned char>(1 << a);
-            }
-          }
-        }
-      }
-    }
-  }
-}
-
 void ResolveTexels(double scale, const cl_long* fixed, vtkIdType count, vtkIdType perCoarse,
   const std::vector<double>& coarseAreas, vtkFloatArray* out, const char* name)
 {
@@ -296,31 +192,15 @@ void ResolveTexels(double scale, const cl_long* fixed, vtkIdType count, vtkIdTyp
 }
 
 //------------------------------------------------------------------------------
-void vtkPhotonTracer::CutSmoothingLinks(Internals& run, vtkMatrix4x4* localToWorld)
+void vtkPhotonTracer::FindGridCuts(Internals& run, vtkMatrix4x4* localToWorld)
 {
-  // Found again only when the set's build, the grid or the placement changed.
-  const Medium& m = run.M;
   if (!this->Cuts)
   {
-    this->Cuts = std::make_unique<vtkPhotonTracerDetail::CutLinks>();
+    this->Cuts = vtkSmartPointer<vtkRefractaGridCuts>::New();
   }
-  vtkPhotonTracerDetail::CutLinks& cuts = *this->Cuts;
-  const double* placement = localToWorld->GetData();
-  const bool same = cuts.Set == this->Surfaces &&
-    cuts.Builds == this->Surfaces->GetNumberOfBuilds() &&
-    std::equal(m.Dims, m.Dims + 3, cuts.Dims) &&
-    std::equal(m.Spacing, m.Spacing + 3, cuts.Spacing) &&
-    std::equal(placement, placement + 16, cuts.LocalToWorld);
-  if (!same)
-  {
-    cuts.Set = this->Surfaces;
-    cuts.Builds = this->Surfaces->GetNumberOfBuilds();
-    std::copy(m.Dims, m.Dims + 3, cuts.Dims);
-    std::copy(m.Spacing, m.Spacing + 3, cuts.Spacing);
-    std::copy(placement, placement + 16, cuts.LocalToWorld);
-    FindCutLinks(this->Surfaces, m, localToWorld, cuts.Links);
-  }
-  run.CutLinks = cuts.Links.empty() ? nullptr : &cuts.Links;
+  this->Cuts->Update(this->Surfaces, run.M.Dims, run.M.Spacing, localToWorld);
+  run.Cuts = this->Cuts->HasCuts() ? this->Cuts.Get() : nullptr;
+  run.CutLinks = run.Cuts && this->Smoothing ? &this->Cuts->GetLinks() : nullptr;
 }
 
 //------------------------------------------------------------------------------
@@ -346,7 +226,8 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
     }
     this->KeptSurfaces.reset();
     return run.SurfNodes && run.SurfTriangles && run.SurfInfo && run.SurfAlbedo &&
-      run.SurfIrradiance && run.SurfNormals && run.SurfInterfaces && run.SurfBodies;
+      run.SurfIrradiance && run.SurfNormals && run.SurfInterfaces && run.SurfBodies &&
+      this->UploadGridCuts(run);
   }
   vtkRefractaSurfaceSet* set = run.Surfaces;
   SurfaceCache* kept = this->KeptSurfaces.get();
@@ -399,7 +280,30 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
   run.SurfIrradianceBytes = accumulators * sizeof(cl_long);
   return run.SurfNodes && run.SurfTriangles && run.SurfInfo && run.SurfAlbedo &&
     run.SurfIrradiance && run.SurfNormals && run.SurfInterfaces && run.SurfBodies &&
+    this->UploadGridCuts(run) &&
     ctx->ZeroBuffer(run.SurfIrradiance.Get(), accumulators * sizeof(cl_long), this);
+}
+
+//------------------------------------------------------------------------------
+// The cut voxels' planes for the march's sided deposits (placeholders without cuts: the kernels
+// take the arguments whatever the variant). Per run: the grid may change between runs.
+bool vtkPhotonTracer::UploadGridCuts(Internals& run)
+{
+  Allocator& alloc = run.Alloc;
+  const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
+  if (run.Cuts)
+  {
+    const std::vector<int>& voxels = run.Cuts->GetVoxelPlanes();
+    const std::vector<float>& planes = run.Cuts->GetPlanes();
+    run.CutVoxels = alloc.Make(in, voxels.size() * sizeof(int), voxels.data(), "cut voxels");
+    run.CutPlanes = alloc.Make(in, planes.size() * sizeof(float), planes.data(), "cut planes");
+  }
+  else
+  {
+    run.CutVoxels = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "cut voxels (none)");
+    run.CutPlanes = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "cut planes (none)");
+  }
+  return run.CutVoxels && run.CutPlanes;
 }
 
 //------------------------------------------------------------------------------
@@ -445,6 +349,9 @@ bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_u
   set(sizeof(cl_mem), &interfaces);
   const cl_mem bodies = run.SurfBodies.Get();
   set(sizeof(cl_mem), &bodies);
+  const cl_mem cutVoxels = run.CutVoxels.Get(), cutPlanes = run.CutPlanes.Get();
+  set(sizeof(cl_mem), &cutVoxels);
+  set(sizeof(cl_mem), &cutPlanes);
   return run.Context->Check(status, "clSetKernelArg(surfaces)", this);
 }
 

@@ -18,8 +18,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <string>
 #include <vector>
 
 namespace
@@ -422,4 +424,67 @@ TEST(PhotonSurfaces, SmoothingDoesNotCrossAnOpaqueWall)
   std::cout << "first slab beyond the wall: " << open << " without it, " << walled
             << " with it (x = 0.5), " << moved << " (x = 0.35)\n";
   EXPECT_GT(open, 0.0);
+}
+
+TEST(PhotonSurfaces, DepositsStayOnTheirSideOfAWall)
+{
+  // The fog box of the test above, the wall at x = 0.51: the voxel of centre 0.5217 is on the
+  // wall's dark side, but its cell [0.5, 0.543] holds a lit sliver [0.5, 0.51]. Its pieces there
+  // deposit into the lit neighbour (centre 0.4783) instead (vtkRefractaGridCuts' planes), so no
+  // voxel centre beyond the wall receives light, with the smoothing and without it, and the
+  // deposits still hold all the scattered power: sum(Radiance) h^3 = EnergyScattered.
+  const int n = 24;
+  const double h = 1.0 / (n - 1);
+  auto fog = photontest::MakeMedium(n, n, n, h,
+    [](double, double, double)
+    {
+      photontest::Voxel v;
+      v.Extinction = { 3, 3, 3 };
+      v.Albedo = { 0.9, 0.9, 0.9 };
+      return v;
+    });
+  vtkNew<vtkPlaneSource> wall;
+  wall->SetOrigin(0.51, -1, -1);
+  wall->SetPoint1(0.51, 2, -1);
+  wall->SetPoint2(0.51, -1, 2);
+  wall->Update();
+  vtkNew<vtkRefractaSurfaceSet> set;
+  set->AddSurface(wall->GetOutput(), Black());
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->SetInputData(fog);
+  tracer->SetSurfaces(set);
+  tracer->AddLight(photontest::Positional({ 0.2, 0.5, 0.5 }, { 0.2, 0.0, 0.5 }, 180, 0, 1.0));
+  tracer->SetNumberOfPhotons(1 << 16);
+  for (bool smoothing : { false, true })
+  {
+    tracer->SetSmoothing(smoothing);
+    tracer->Update();
+    vtkImageData* out = tracer->GetOutput();
+    vtkDataArray* radiance = out->GetPointData()->GetArray("Radiance");
+    ASSERT_NE(radiance, nullptr);
+    double beyond = 0, lit = 0, total = 0, sliverVoxel = 0;
+    for (vtkIdType v = 0; v < radiance->GetNumberOfTuples(); ++v)
+    {
+      double x[3];
+      out->GetPoint(v, x);
+      const double r = radiance->GetComponent(v, 0);
+      if (x[0] > 0.51)
+      {
+        beyond = std::max(beyond, r);
+      }
+      else
+      {
+        lit = std::max(lit, r);
+      }
+      total += r * h * h * h;
+      sliverVoxel += v % n == 12 ? r : 0.0;
+    }
+    const std::string what = smoothing ? "smoothed" : "unsmoothed";
+    EXPECT_GT(lit, 0.0);
+    EXPECT_LT(beyond, 1e-8 * lit) << what << ": light beyond the wall";
+    EXPECT_LT(sliverVoxel, 1e-8 * lit) << what << ": the lit sliver's voxel";
+    const double scattered = photontest::Energy(out, "EnergyScattered")[0];
+    EXPECT_NEAR(total, scattered, 1e-5 * scattered) << what << ": deposits lost or created";
+    ExpectBooksClose(out, 1e-4);
+  }
 }

@@ -1,0 +1,270 @@
+#include "vtkRefractaGridCuts.h"
+
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkRefractaBVH.h"
+#include "vtkRefractaSurfaceSet.h"
+
+#include "refracta_surfaces.cl" // the triangle info layout, shared with the kernels
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+vtkStandardNewMacro(vtkRefractaGridCuts);
+
+namespace
+{
+// Where the segment from p along axis a, `length` long, meets triangle v: true with *t the
+// fraction of the segment (a touch included; a segment in the triangle's plane does not cut it).
+bool SegmentMeetsTriangle(const double p[3], int a, double length, const double v[3][3], double* t)
+{
+  double e1[3], e2[3], d[3] = { 0, 0, 0 }, w[3];
+  d[a] = length;
+  for (int c = 0; c < 3; ++c)
+  {
+    e1[c] = v[1][c] - v[0][c];
+    e2[c] = v[2][c] - v[0][c];
+    w[c] = p[c] - v[0][c];
+  }
+  double h[3], q[3];
+  vtkMath::Cross(d, e2, h);
+  const double det = vtkMath::Dot(e1, h);
+  const double scale = vtkMath::Norm(e1) * vtkMath::Norm(e2) * length;
+  if (!(std::fabs(det) > 1e-12 * scale))
+  {
+    return false; // parallel
+  }
+  const double tolerance = 1e-9;
+  // A touch within the float rounding of the set's vertices (stored relative to the BVH's frame
+  // origin in float) counts: a wall through voxel centres cuts the links on both sides of them.
+  const double touch = 1e-5;
+  const double u = vtkMath::Dot(w, h) / det;
+  vtkMath::Cross(w, e1, q);
+  const double s = vtkMath::Dot(d, q) / det;
+  *t = vtkMath::Dot(e2, q) / det;
+  return u >= -tolerance && s >= -tolerance && u + s <= 1 + tolerance && *t >= -touch &&
+    *t <= 1 + touch;
+}
+
+// Triangle v's plane in voxel coordinates u = local / spacing: n . u + d = 0, n unit. False for a
+// degenerate triangle.
+bool PlaneInVoxels(const double v[3][3], const double spacing[3], float plane[4])
+{
+  double e1[3], e2[3], n[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    e1[c] = v[1][c] - v[0][c];
+    e2[c] = v[2][c] - v[0][c];
+  }
+  vtkMath::Cross(e1, e2, n);
+  // n . x = n . v0 with x = spacing * u: (n * spacing) . u = n . v0.
+  const double offset = vtkMath::Dot(n, v[0]);
+  for (int c = 0; c < 3; ++c)
+  {
+    n[c] *= spacing[c];
+  }
+  const double norm = vtkMath::Norm(n);
+  if (!(norm > 0.0))
+  {
+    return false;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    plane[c] = static_cast<float>(n[c] / norm);
+  }
+  plane[3] = static_cast<float>(-offset / norm);
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
+vtkRefractaGridCuts::vtkRefractaGridCuts() = default;
+vtkRefractaGridCuts::~vtkRefractaGridCuts() = default;
+
+//------------------------------------------------------------------------------
+bool vtkRefractaGridCuts::Update(vtkRefractaSurfaceSet* set, const int dims[3],
+  const double spacing[3], vtkMatrix4x4* localToWorld)
+{
+  double placement[16];
+  vtkMatrix4x4::DeepCopy(placement, localToWorld);
+  const int builds = set ? set->GetNumberOfBuilds() : -1;
+  if (this->NumberOfSearches > 0 && this->Set == set && this->Builds == builds &&
+    std::equal(dims, dims + 3, this->Dims) && std::equal(spacing, spacing + 3, this->Spacing) &&
+    std::equal(placement, placement + 16, this->LocalToWorld))
+  {
+    return false;
+  }
+  this->Set = set;
+  this->Builds = builds;
+  std::copy(dims, dims + 3, this->Dims);
+  std::copy(spacing, spacing + 3, this->Spacing);
+  std::copy(placement, placement + 16, this->LocalToWorld);
+  this->Links.clear();
+  this->VoxelPlanes.clear();
+  this->Planes.clear();
+  ++this->NumberOfSearches;
+  if (set && set->GetBVH()->GetNumberOfTriangles() > 0)
+  {
+    this->Search(set, localToWorld);
+  }
+  this->Modified();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaGridCuts::Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* localToWorld)
+{
+  vtkNew<vtkMatrix4x4> worldToLocal;
+  vtkMatrix4x4::Invert(localToWorld, worldToLocal);
+  vtkRefractaBVH* bvh = set->GetBVH();
+  const std::vector<double>& triangles = bvh->GetTriangles();
+  const std::vector<int>& info = set->GetTriangleInfo();
+  const double* frameOrigin = bvh->GetFrameOrigin();
+  // Triangle k's corners in grid-local coordinates (the BVH keeps them in the surface frame).
+  auto toLocal = [&](vtkIdType k, double v[3][3])
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      double world[4] = { 0, 0, 0, 1 };
+      for (int a = 0; a < 3; ++a)
+      {
+        world[a] = triangles[9 * k + 3 * c + a] + frameOrigin[a];
+      }
+      worldToLocal->MultiplyPoint(world, world);
+      std::copy(world, world + 3, v[c]);
+    }
+  };
+  const int* dims = this->Dims;
+  const double* h = this->Spacing;
+  const size_t voxels = size_t(dims[0]) * dims[1] * dims[2];
+  // The nearest cut of each voxel's links so far: its distance (in links) and triangle.
+  std::vector<float> nearest;
+  std::vector<int> nearestTriangle;
+  auto offer = [&](size_t voxel, double distance, int triangle)
+  {
+    if (distance < nearest[voxel])
+    {
+      nearest[voxel] = static_cast<float>(distance);
+      nearestTriangle[voxel] = triangle;
+    }
+  };
+  for (vtkIdType k = 0; k < bvh->GetNumberOfTriangles(); ++k)
+  {
+    if (info[REFRACTA_TRIANGLE_INFO_INTS * k + REFRACTA_TRIANGLE_INFO_KIND] !=
+      REFRACTA_SURFACE_LAMBERTIAN)
+    {
+      continue; // glass lets light through: its two sides' fields belong together
+    }
+    double v[3][3];
+    int lo[3], hi[3];
+    toLocal(k, v);
+    bool inside = true;
+    for (int a = 0; a < 3 && inside; ++a)
+    {
+      const double low = std::min({ v[0][a], v[1][a], v[2][a] }) / h[a];
+      const double high = std::max({ v[0][a], v[1][a], v[2][a] }) / h[a];
+      lo[a] = static_cast<int>(std::max(std::floor(low) - 1.0, 0.0));
+      hi[a] = static_cast<int>(std::min(std::ceil(high) + 1.0, dims[a] - 1.0));
+      inside = low < dims[a] && high > -1.0 && lo[a] <= hi[a];
+    }
+    if (!inside)
+    {
+      continue;
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+    {
+      for (int y = lo[1]; y <= hi[1]; ++y)
+      {
+        for (int x = lo[0]; x <= hi[0]; ++x)
+        {
+          const int ijk[3] = { x, y, z };
+          const double p[3] = { x * h[0], y * h[1], z * h[2] };
+          const size_t voxel = x + size_t(dims[0]) * (y + size_t(dims[1]) * z);
+          const size_t stride[3] = { 1, size_t(dims[0]), size_t(dims[0]) * dims[1] };
+          for (int a = 0; a < 3; ++a)
+          {
+            double t = 0;
+            if (ijk[a] + 1 < dims[a] && SegmentMeetsTriangle(p, a, h[a], v, &t))
+            {
+              if (this->Links.empty())
+              {
+                this->Links.assign(voxels, 0);
+                nearest.assign(voxels, std::numeric_limits<float>::infinity());
+                nearestTriangle.assign(voxels, -1);
+              }
+              this->Links[voxel] |= static_cast<unsigned char>(1 << a);
+              const int triangle = static_cast<int>(k);
+              offer(voxel, std::fabs(t), triangle);
+              offer(voxel + stride[a], std::fabs(1.0 - t), triangle);
+            }
+          }
+        }
+      }
+    }
+  }
+  if (this->Links.empty())
+  {
+    return;
+  }
+  // One plane per triangle that is some voxel's nearest cut.
+  this->VoxelPlanes.assign(voxels, -1);
+  std::vector<int> planeOf(bvh->GetNumberOfTriangles(), -1);
+  for (size_t voxel = 0; voxel < voxels; ++voxel)
+  {
+    const int k = nearestTriangle[voxel];
+    if (k < 0)
+    {
+      continue;
+    }
+    if (planeOf[k] < 0)
+    {
+      double v[3][3];
+      toLocal(k, v);
+      float plane[4];
+      if (!PlaneInVoxels(v, h, plane))
+      {
+        continue; // a degenerate triangle cuts no link; never reached
+      }
+      planeOf[k] = static_cast<int>(this->Planes.size() / 4);
+      this->Planes.insert(this->Planes.end(), plane, plane + 4);
+    }
+    this->VoxelPlanes[voxel] = planeOf[k];
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkRefractaGridCuts::IsAcross(int i, int j, int k, const double u[3]) const
+{
+  if (this->VoxelPlanes.empty() || i < 0 || j < 0 || k < 0 || i >= this->Dims[0] ||
+    j >= this->Dims[1] || k >= this->Dims[2])
+  {
+    return false;
+  }
+  const int p = this->VoxelPlanes[i + size_t(this->Dims[0]) * (j + size_t(this->Dims[1]) * k)];
+  if (p < 0)
+  {
+    return false;
+  }
+  const float* n = &this->Planes[4 * size_t(p)];
+  const float centre = n[0] * i + n[1] * j + n[2] * k + n[3];
+  const float point = n[0] * static_cast<float>(u[0]) + n[1] * static_cast<float>(u[1]) +
+    n[2] * static_cast<float>(u[2]) + n[3];
+  return (centre >= 0.0f) != (point >= 0.0f);
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaGridCuts::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Dims: " << this->Dims[0] << " " << this->Dims[1] << " " << this->Dims[2] << "\n";
+  os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << " "
+     << this->Spacing[2] << "\n";
+  const auto cut =
+    std::count_if(this->VoxelPlanes.begin(), this->VoxelPlanes.end(), [](int p) { return p >= 0; });
+  os << indent << "CutVoxels: " << cut << "\n";
+  os << indent << "Planes: " << this->Planes.size() / 4 << "\n";
+  os << indent << "NumberOfSearches: " << this->NumberOfSearches << "\n";
+}
