@@ -12,6 +12,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPlaneSource.h"
+#include "vtkPolyData.h"
 #include "vtkRefractaBVH.h"
 #include "vtkRefractaSurfaceMaterial.h"
 #include "vtkRefractaSurfaceSet.h"
@@ -108,6 +109,30 @@ void ExpectBooksClose(vtkImageData* out, double tolerance)
     const double sum = absorbed[c] + surface[c] + escaped[c] + scattered[c] + remaining[c];
     EXPECT_NEAR(sum, emitted[c], tolerance * emitted[c]) << "channel " << c;
   }
+}
+
+// The fog box [0, 1]^3 of the wall tests (n^3, sigma_t 3, albedo 0.9).
+vtkSmartPointer<vtkImageData> WallFog(int n)
+{
+  return photontest::MakeMedium(n, n, n, 1.0 / (n - 1),
+    [](double, double, double)
+    {
+      photontest::Voxel v;
+      v.Extinction = { 3, 3, 3 };
+      v.Albedo = { 0.9, 0.9, 0.9 };
+      return v;
+    });
+}
+
+// An opaque wall x = `x` reaching beyond that box.
+vtkSmartPointer<vtkPolyData> Wall(double x)
+{
+  vtkNew<vtkPlaneSource> wall;
+  wall->SetOrigin(x, -1, -1);
+  wall->SetPoint1(x, 2, -1);
+  wall->SetPoint2(x, -1, 2);
+  wall->Update();
+  return wall->GetOutput();
 }
 
 vtkSmartPointer<vtkImageData> Vacuum(int n, double spacing, double origin)
@@ -369,14 +394,7 @@ TEST(PhotonSurfaces, SmoothingDoesNotCrossAnOpaqueWall)
   // the lit side's light in the first voxel slab beyond it). The wall then moves (a new build of
   // the set: the cut links are found again, not taken from the last run), and the books close.
   const int n = 24;
-  auto fog = photontest::MakeMedium(n, n, n, 1.0 / (n - 1),
-    [](double, double, double)
-    {
-      photontest::Voxel v;
-      v.Extinction = { 3, 3, 3 };
-      v.Albedo = { 0.9, 0.9, 0.9 };
-      return v;
-    });
+  auto fog = WallFog(n);
   vtkNew<vtkPhotonTracer> tracer;
   tracer->SetInputData(fog);
   tracer->AddLight(photontest::Positional({ 0.2, 0.5, 0.5 }, { 0.2, 0.0, 0.5 }, 180, 0, 1.0));
@@ -406,13 +424,8 @@ TEST(PhotonSurfaces, SmoothingDoesNotCrossAnOpaqueWall)
   vtkNew<vtkRefractaSurfaceSet> set;
   auto wallAt = [&](double x)
   {
-    vtkNew<vtkPlaneSource> wall;
-    wall->SetOrigin(x, -1, -1);
-    wall->SetPoint1(x, 2, -1);
-    wall->SetPoint2(x, -1, 2);
-    wall->Update();
     set->RemoveAllSurfaces();
-    set->AddSurface(wall->GetOutput(), Black());
+    set->AddSurface(Wall(x), Black());
   };
   wallAt(0.5);
   tracer->SetSurfaces(set);
@@ -435,21 +448,9 @@ TEST(PhotonSurfaces, DepositsStayOnTheirSideOfAWall)
   // deposits still hold all the scattered power: sum(Radiance) h^3 = EnergyScattered.
   const int n = 24;
   const double h = 1.0 / (n - 1);
-  auto fog = photontest::MakeMedium(n, n, n, h,
-    [](double, double, double)
-    {
-      photontest::Voxel v;
-      v.Extinction = { 3, 3, 3 };
-      v.Albedo = { 0.9, 0.9, 0.9 };
-      return v;
-    });
-  vtkNew<vtkPlaneSource> wall;
-  wall->SetOrigin(0.51, -1, -1);
-  wall->SetPoint1(0.51, 2, -1);
-  wall->SetPoint2(0.51, -1, 2);
-  wall->Update();
+  auto fog = WallFog(n);
   vtkNew<vtkRefractaSurfaceSet> set;
-  set->AddSurface(wall->GetOutput(), Black());
+  set->AddSurface(Wall(0.51), Black());
   vtkNew<vtkPhotonTracer> tracer;
   tracer->SetInputData(fog);
   tracer->SetSurfaces(set);
