@@ -420,9 +420,13 @@ inline float3 photon_sample_hg(float3 d, float g, uint* rng)
 #if REFRACTA_SIDED_DEPOSITS
 // The voxel that a piece in voxel `voxel` (at voxel coordinates `cell`) deposits into: its own,
 // unless an opaque surface through the voxel separates the piece's midpoint `mid` from the
-// voxel's centre (refracta_across_cut): then the neighbour on the piece's side along the axis the
-// surface faces most, whose centre is on that side (its own voxel at the grid's edge). Light on
-// one side of a wall thus never lands in a voxel whose centre is on the other.
+// voxel's centre (refracta_across_cut): then the nearest neighbour on the piece's side, reached
+// by steps towards it along the axes the surface faces, most-facing first, until a centre is on
+// the piece's side of the plane (at most three: the piece is within half a voxel of the centre
+// per axis, so |n . (mid - centre)| <= sum |n_a| / 2, and the three steps move the centre by
+// sum |n_a|); axes whose step would leave the grid are passed over, and its own voxel is kept
+// only where no step reaches the piece's side (a wall through a corner of the grid). Light on one
+// side of a wall thus lands in a voxel whose centre is on the other nowhere else.
 inline size_t photon_sided_voxel(const photon_state* ps, int4 dims, int3 cell, float3 mid,
   size_t voxel)
 {
@@ -431,20 +435,48 @@ inline size_t photon_sided_voxel(const photon_state* ps, int4 dims, int3 cell, f
     return voxel;
   }
   const float4 plane = ps->cutPlanes[ps->cutVoxels[voxel]];
+  const bool front = dot(plane.xyz, mid) + plane.w >= 0.0f; // the piece's side
   const float3 facing = fabs(plane.xyz);
-  const int axis = facing.x >= facing.y && facing.x >= facing.z ? 0 : (facing.y >= facing.z ? 1 : 2);
-  const float normal = axis == 0 ? plane.x : (axis == 1 ? plane.y : plane.z);
-  // Towards the piece: up the axis where the plane's value grows towards the piece's side.
-  const int step = (dot(plane.xyz, mid) + plane.w > 0.0f) == (normal > 0.0f) ? 1 : -1;
-  int3 to = cell;
-  to.x += axis == 0 ? step : 0;
-  to.y += axis == 1 ? step : 0;
-  to.z += axis == 2 ? step : 0;
-  if (any(to < (int3)(0)) || to.x >= dims.x || to.y >= dims.y || to.z >= dims.z)
+  // The axes by decreasing |n_a|.
+  int order[3] = { 0, 1, 2 };
+  const float f[3] = { facing.x, facing.y, facing.z };
+  for (int a = 0; a < 2; ++a)
   {
-    return voxel;
+    for (int b = a + 1; b < 3; ++b)
+    {
+      if (f[order[b]] > f[order[a]])
+      {
+        const int t = order[a];
+        order[a] = order[b];
+        order[b] = t;
+      }
+    }
   }
-  return refracta_voxel_index(dims, to.x, to.y, to.z);
+  const float n[3] = { plane.x, plane.y, plane.z };
+  int to[3] = { cell.x, cell.y, cell.z };
+  const int size[3] = { dims.x, dims.y, dims.z };
+  for (int k = 0; k < 3; ++k)
+  {
+    const int a = order[k];
+    if (!(f[a] > 0.0f))
+    {
+      break;
+    }
+    // Up the axis where n . u grows towards the piece's side; an axis whose step would leave
+    // the grid is passed over (a wall meeting the grid's face).
+    const int step = (front == (n[a] > 0.0f)) ? 1 : -1;
+    if (to[a] + step < 0 || to[a] + step >= size[a])
+    {
+      continue;
+    }
+    to[a] += step;
+    const float side = n[0] * (float)to[0] + n[1] * (float)to[1] + n[2] * (float)to[2] + plane.w;
+    if ((side >= 0.0f) == front)
+    {
+      return refracta_voxel_index(dims, to[0], to[1], to[2]);
+    }
+  }
+  return voxel;
 }
 #endif
 

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 
 vtkStandardNewMacro(vtkRefractaGridCuts);
 
@@ -88,8 +89,29 @@ vtkRefractaGridCuts::~vtkRefractaGridCuts() = default;
 bool vtkRefractaGridCuts::Update(vtkRefractaSurfaceSet* set, const int dims[3],
   const double spacing[3], vtkMatrix4x4* localToWorld)
 {
+  // At most 2^40 points: the voxel count must not overflow the index arithmetic.
+  const bool gridValid = dims[0] >= 1 && dims[1] >= 1 && dims[2] >= 1 &&
+    static_cast<double>(dims[0]) * dims[1] * dims[2] <= 1099511627776.0 &&
+    std::all_of(spacing, spacing + 3, [](double h) { return std::isfinite(h) && h > 0.0; });
+  if (!gridValid)
+  {
+    vtkErrorMacro("Cannot find the cuts of a grid of "
+      << dims[0] << " x " << dims[1] << " x " << dims[2] << " points with spacing " << spacing[0]
+      << ", " << spacing[1] << ", " << spacing[2]
+      << ": dimensions must be >= 1 (at most 2^40 points) and "
+         "spacings finite and > 0.");
+    this->Clear();
+    return false;
+  }
+  if (set && !set->Build())
+  {
+    vtkErrorMacro("Cannot find the cuts: the surface set could not be built.");
+    this->Clear();
+    return false;
+  }
   double placement[16];
-  vtkMatrix4x4::DeepCopy(placement, localToWorld);
+  vtkNew<vtkMatrix4x4> identity;
+  vtkMatrix4x4::DeepCopy(placement, localToWorld ? localToWorld : identity.Get());
   const int builds = set ? set->GetNumberOfBuilds() : -1;
   if (this->NumberOfSearches > 0 && this->Set == set && this->Builds == builds &&
     std::equal(dims, dims + 3, this->Dims) && std::equal(spacing, spacing + 3, this->Spacing) &&
@@ -108,10 +130,34 @@ bool vtkRefractaGridCuts::Update(vtkRefractaSurfaceSet* set, const int dims[3],
   ++this->NumberOfSearches;
   if (set && set->GetBVH()->GetNumberOfTriangles() > 0)
   {
-    this->Search(set, localToWorld);
+    vtkNew<vtkMatrix4x4> matrix;
+    matrix->DeepCopy(placement);
+    try
+    {
+      this->Search(set, matrix);
+    }
+    catch (const std::bad_alloc&)
+    {
+      vtkErrorMacro("Cannot allocate the cuts of the grid of "
+        << dims[0] << " x " << dims[1] << " x " << dims[2]
+        << " points (9 bytes per point while searching).");
+      this->Clear();
+      return false;
+    }
   }
   this->Modified();
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaGridCuts::Clear()
+{
+  this->Set = nullptr;
+  this->Builds = -1;
+  this->Links.clear();
+  this->VoxelPlanes.clear();
+  this->Planes.clear();
+  this->Modified();
 }
 
 //------------------------------------------------------------------------------
@@ -140,40 +186,50 @@ void vtkRefractaGridCuts::Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* local
   const int* dims = this->Dims;
   const double* h = this->Spacing;
   const size_t voxels = size_t(dims[0]) * dims[1] * dims[2];
-  // The nearest cut of each voxel's links so far: its distance (in links) and triangle.
+  const size_t stride[3] = { 1, size_t(dims[0]), size_t(dims[0]) * dims[1] };
+  // The nearest triangle plane of each voxel so far (|n . u + d|, in voxels) and its triangle.
   std::vector<float> nearest;
   std::vector<int> nearestTriangle;
-  auto offer = [&](size_t voxel, double distance, int triangle)
-  {
-    if (distance < nearest[voxel])
-    {
-      nearest[voxel] = static_cast<float>(distance);
-      nearestTriangle[voxel] = triangle;
-    }
-  };
+  std::vector<float> trianglePlanes(4 * size_t(bvh->GetNumberOfTriangles()), 0.0f);
   for (vtkIdType k = 0; k < bvh->GetNumberOfTriangles(); ++k)
   {
-    if (info[REFRACTA_TRIANGLE_INFO_INTS * k + REFRACTA_TRIANGLE_INFO_KIND] !=
-      REFRACTA_SURFACE_LAMBERTIAN)
-    {
-      continue; // glass lets light through: its two sides' fields belong together
-    }
+    float* plane = &trianglePlanes[4 * size_t(k)];
     double v[3][3];
-    int lo[3], hi[3];
     toLocal(k, v);
+    if (info[REFRACTA_TRIANGLE_INFO_INTS * k + REFRACTA_TRIANGLE_INFO_KIND] !=
+        REFRACTA_SURFACE_LAMBERTIAN ||
+      !PlaneInVoxels(v, h, plane))
+    {
+      continue; // glass lets light through (its two sides' fields belong together); degenerate
+    }
+    // The voxels within one voxel of the triangle's bounds (in voxel coordinates), and the
+    // links from them.
+    double low[3], high[3];
+    int lo[3], hi[3];
     bool inside = true;
     for (int a = 0; a < 3 && inside; ++a)
     {
-      const double low = std::min({ v[0][a], v[1][a], v[2][a] }) / h[a];
-      const double high = std::max({ v[0][a], v[1][a], v[2][a] }) / h[a];
-      lo[a] = static_cast<int>(std::max(std::floor(low) - 1.0, 0.0));
-      hi[a] = static_cast<int>(std::min(std::ceil(high) + 1.0, dims[a] - 1.0));
-      inside = low < dims[a] && high > -1.0 && lo[a] <= hi[a];
+      low[a] = std::min({ v[0][a], v[1][a], v[2][a] }) / h[a];
+      high[a] = std::max({ v[0][a], v[1][a], v[2][a] }) / h[a];
+      lo[a] = static_cast<int>(std::max(std::floor(low[a]) - 1.0, 0.0));
+      hi[a] = static_cast<int>(std::min(std::ceil(high[a]) + 1.0, dims[a] - 1.0));
+      inside = low[a] < dims[a] && high[a] > -1.0 && lo[a] <= hi[a];
     }
     if (!inside)
     {
       continue;
     }
+    if (nearest.empty())
+    {
+      this->Links.assign(voxels, 0);
+      nearest.assign(voxels, std::numeric_limits<float>::infinity());
+      nearestTriangle.assign(voxels, -1);
+    }
+    // The points within one voxel of a centre per axis (the cell's deposits: half a voxel; the
+    // trilinear lookups that read the centre: one) lie within |n_x| + |n_y| + |n_z| of it
+    // along the plane's normal.
+    const double reach = std::fabs(plane[0]) + std::fabs(plane[1]) + std::fabs(plane[2]);
+    const int triangle = static_cast<int>(k);
     for (int z = lo[2]; z <= hi[2]; ++z)
     {
       for (int y = lo[1]; y <= hi[1]; ++y)
@@ -181,38 +237,40 @@ void vtkRefractaGridCuts::Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* local
         for (int x = lo[0]; x <= hi[0]; ++x)
         {
           const int ijk[3] = { x, y, z };
+          const size_t voxel = x + stride[1] * y + stride[2] * z;
+          const double distance =
+            std::fabs(plane[0] * x + plane[1] * y + plane[2] * z + double(plane[3]));
+          bool nearBounds = true;
+          for (int a = 0; a < 3; ++a)
+          {
+            nearBounds = nearBounds && ijk[a] >= low[a] - 1.0 && ijk[a] <= high[a] + 1.0;
+          }
+          // Where the triangle (conservatively: its plane and its bounds) passes within a voxel
+          // per axis of a centre, the centre's cell may hold light from its other side, and a
+          // lookup from that side may read the centre: the voxel gets the nearest such plane.
+          if (nearBounds && distance <= reach && distance < nearest[voxel])
+          {
+            nearest[voxel] = static_cast<float>(distance);
+            nearestTriangle[voxel] = triangle;
+          }
           const double p[3] = { x * h[0], y * h[1], z * h[2] };
-          const size_t voxel = x + size_t(dims[0]) * (y + size_t(dims[1]) * z);
-          const size_t stride[3] = { 1, size_t(dims[0]), size_t(dims[0]) * dims[1] };
           for (int a = 0; a < 3; ++a)
           {
             double t = 0;
             if (ijk[a] + 1 < dims[a] && SegmentMeetsTriangle(p, a, h[a], v, &t))
             {
-              if (this->Links.empty())
-              {
-                this->Links.assign(voxels, 0);
-                nearest.assign(voxels, std::numeric_limits<float>::infinity());
-                nearestTriangle.assign(voxels, -1);
-              }
               this->Links[voxel] |= static_cast<unsigned char>(1 << a);
-              const int triangle = static_cast<int>(k);
-              offer(voxel, std::fabs(t), triangle);
-              offer(voxel + stride[a], std::fabs(1.0 - t), triangle);
             }
           }
         }
       }
     }
   }
-  if (this->Links.empty())
-  {
-    return;
-  }
-  // One plane per triangle that is some voxel's nearest cut.
+  // One plane per triangle that is some voxel's nearest.
   this->VoxelPlanes.assign(voxels, -1);
   std::vector<int> planeOf(bvh->GetNumberOfTriangles(), -1);
-  for (size_t voxel = 0; voxel < voxels; ++voxel)
+  bool any = false;
+  for (size_t voxel = 0; voxel < nearestTriangle.size(); ++voxel)
   {
     const int k = nearestTriangle[voxel];
     if (k < 0)
@@ -221,17 +279,17 @@ void vtkRefractaGridCuts::Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* local
     }
     if (planeOf[k] < 0)
     {
-      double v[3][3];
-      toLocal(k, v);
-      float plane[4];
-      if (!PlaneInVoxels(v, h, plane))
-      {
-        continue; // a degenerate triangle cuts no link; never reached
-      }
       planeOf[k] = static_cast<int>(this->Planes.size() / 4);
+      const float* plane = &trianglePlanes[4 * size_t(k)];
       this->Planes.insert(this->Planes.end(), plane, plane + 4);
     }
     this->VoxelPlanes[voxel] = planeOf[k];
+    any = true;
+  }
+  if (!any)
+  {
+    this->Links.clear();
+    this->VoxelPlanes.clear();
   }
 }
 

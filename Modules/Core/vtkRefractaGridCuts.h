@@ -10,8 +10,10 @@
  * - the **cut links**: per voxel, bit a (a = 0, 1, 2) is set where the segment from its centre to
  *   the next voxel centre along axis a meets a triangle (a touch counts, so a wall through a centre
  *   cuts both of its links across it);
- * - each **cut voxel's plane**: a voxel at either end of a cut link gets the plane of the
- *   triangle that cuts one of its links nearest to its centre, in voxel coordinates u (grid-local
+ * - each **cut voxel's plane**: a voxel within one voxel per axis of a triangle (the reach of its
+ *   cell's deposits and of the trilinear lookups that read it; conservatively, the triangle's
+ *   plane within |n_x| + |n_y| + |n_z| voxels of the centre and its bounds within one voxel) gets
+ *   the plane of the nearest such triangle, in voxel coordinates u (grid-local
  *   / spacing, voxel (i, j, k) at u = (i, j, k)) as (n, d) with n a unit vector in u and
  *   n . u + d the signed distance in voxels. A point lies **across** the voxel's surface when it is
  *   on the other side of that plane from the voxel's centre (IsAcross; a centre on the plane
@@ -50,9 +52,12 @@ public:
   /**
    * Finds the cuts of the Lambertian triangles of `set` (built: vtkRefractaSurfaceSet::Build())
    * in the grid of `dims` points with `spacing` (world units per voxel, > 0), whose grid-local
-   * frame (vtkRefractaGridFrame) `localToWorld` places in the surfaces' world. Keeps the last
+   * frame (vtkRefractaGridFrame) `localToWorld` places in the surfaces' world (nullptr: the
+   * identity). Builds the set first (vtkRefractaSurfaceSet::Build() is cached). Keeps the last
    * result when the set, its build, the grid and the placement are those of the last call.
-   * nullptr or an empty set: no cuts. Returns true when it searched again.
+   * nullptr or an empty set: no cuts. Returns true when it searched again; false also after an
+   * error (dimensions < 1, a spacing not finite and > 0, a set that cannot be built, memory),
+   * which leaves no cuts.
    */
   bool Update(vtkRefractaSurfaceSet* set, const int dims[3], const double spacing[3],
     vtkMatrix4x4* localToWorld);
@@ -102,6 +107,7 @@ private:
   void operator=(const vtkRefractaGridCuts&) = delete;
 
   void Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* localToWorld);
+  void Clear(); // no cuts, nothing kept
 
   // What the kept result was found for.
   vtkSmartPointer<vtkRefractaSurfaceSet> Set; // held: a new set cannot take its address

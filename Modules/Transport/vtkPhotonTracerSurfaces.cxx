@@ -6,7 +6,6 @@
 
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
-#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
 #include "vtkRefractaBVH.h"

@@ -14,6 +14,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPhotonTracer.h"
@@ -508,12 +509,12 @@ TEST(PipelineSurfaces, LampInsideAClosedBoxLightsOnlyItsInnerFaces)
 TEST(PipelineSurfaces, FogBehindAWallStaysDark)
 {
   // A fog box [0, 1]^3 (24^3, sigma_t 3, albedo 0.9: multiple scattering by analog photons) split
-  // by an opaque wall reaching beyond it, the lamp on the side x < wall, the camera on the other
-  // side: nothing there is lit, so the image is black. Two walls between voxel centres: at x =
-  // 0.53 the voxel of centre 0.5217 spans the wall (the view's trilinear lookups read it from the
-  // dark side: before session 26 the image's largest value was 0.058 against 6.1 seen from the
-  // lit side); at x = 0.51 the voxel of centre 0.5217, on the dark side, held the deposits of the
-  // lit sliver of its cell.
+  // by an opaque wall reaching beyond it, the lamp on one side, the camera on the other: nothing
+  // there is lit, so the image is black. Two walls between voxel centres: at x = 0.53 the voxel
+  // of centre 0.5217 spans the wall (the view's trilinear lookups read it from the dark side:
+  // before session 26 the image's largest value was 0.058 against 6.1 seen from the lit side); at
+  // x = 0.51 the voxel of centre 0.5217, on the dark side, held the deposits of the lit sliver of
+  // its cell (0.076). And an oblique wall, normal (1, 1, 1) through the box's centre.
   const int n = 24;
   auto fog = vtkSmartPointer<vtkImageData>::New();
   fog->SetDimensions(n, n, n);
@@ -536,8 +537,6 @@ TEST(PipelineSurfaces, FogBehindAWallStaysDark)
   lamp->SetLightTypeToSceneLight();
   lamp->SetPositional(true);
   lamp->SetConeAngle(180.0);
-  lamp->SetPosition(0.25, 0.5, 0.5);
-  lamp->SetFocalPoint(0.25, 0.0, 0.5);
   lamp->SetIntensity(4.0);
   pipeline->AddLight(lamp);
   vtkNew<vtkRefractaSurfaceMaterial> grey;
@@ -549,10 +548,13 @@ TEST(PipelineSurfaces, FogBehindAWallStaysDark)
   vtkNew<vtkCamera> camera;
   camera->SetViewAngle(20);
   pipeline->SetCamera(camera);
-  auto meanAndLargest = [&](double x, double& mean)
+  // The image's mean and largest value seen from `eye` towards `centre`.
+  auto meanAndLargest = [&](const double eye[3], const double centre[3], double& mean)
   {
-    camera->SetPosition(x, 0.5, 0.5);
-    camera->SetFocalPoint(0.5, 0.5, 0.5);
+    camera->SetPosition(eye);
+    camera->SetFocalPoint(centre);
+    camera->SetViewUp(0, 0, 1);
+    camera->OrthogonalizeViewUp();
     EXPECT_TRUE(pipeline->Render(40, 40));
     const std::vector<float>& image = pipeline->GetImage();
     double largest = 0;
@@ -567,24 +569,58 @@ TEST(PipelineSurfaces, FogBehindAWallStaysDark)
     }
     return largest;
   };
-  for (double wall : { 0.53, 0.51 })
+  const double third = 1.0 / std::sqrt(3.0);
+  struct Wall
   {
+    double Normal[3]; // towards the dark side
+    double Centre[3];
+  };
+  for (const Wall& wall :
+    { Wall{ { 1, 0, 0 }, { 0.53, 0.5, 0.5 } }, Wall{ { 1, 0, 0 }, { 0.51, 0.5, 0.5 } },
+      Wall{ { third, third, third }, { 0.5, 0.5, 0.5 } } })
+  {
+    // A square of side 11 about the centre, normal to Normal.
+    double u[3], v[3];
+    const double z[3] = { 0, 0, 1 };
+    vtkMath::Cross(z, wall.Normal, u);
+    vtkMath::Normalize(u);
+    if (!(vtkMath::Norm(u) > 0.5))
+    {
+      u[0] = 1;
+      u[1] = u[2] = 0;
+    }
+    vtkMath::Cross(wall.Normal, u, v);
+    double corner[3], p1[3], p2[3], lampAt[3], lit[3], dark[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      corner[a] = wall.Centre[a] - 5.5 * (u[a] + v[a]);
+      p1[a] = corner[a] + 11 * u[a];
+      p2[a] = corner[a] + 11 * v[a];
+      lampAt[a] = wall.Centre[a] - 0.28 * wall.Normal[a];
+      lit[a] = wall.Centre[a] - 2.5 * wall.Normal[a];
+      dark[a] = wall.Centre[a] + 2.5 * wall.Normal[a];
+    }
     vtkNew<vtkPlaneSource> plane;
-    plane->SetOrigin(wall, -5, -5);
-    plane->SetPoint1(wall, 6, -5);
-    plane->SetPoint2(wall, -5, 6);
+    plane->SetOrigin(corner);
+    plane->SetPoint1(p1);
+    plane->SetPoint2(p2);
     plane->SetResolution(8, 8);
     plane->Update();
     surfaces->RemoveAllSurfaces();
     surfaces->AddSurface(plane->GetOutput(), grey);
+    lamp->SetPosition(lampAt);
+    lamp->SetFocalPoint(lampAt[0], lampAt[1] - 1, lampAt[2]);
     double litMean = 0, darkMean = 0;
-    meanAndLargest(-2.0, litMean);
-    const double dark = meanAndLargest(3.0, darkMean);
-    std::cout << "wall at x = " << wall << ": seen from the lit side, mean " << litMean
-              << "; from the dark side, largest " << dark << "\n";
+    meanAndLargest(lit, wall.Centre, litMean);
+    const double largest = meanAndLargest(dark, wall.Centre, darkMean);
+    std::cout << "wall through (" << wall.Centre[0] << ", " << wall.Centre[1] << ", "
+              << wall.Centre[2] << "), normal x " << wall.Normal[0]
+              << ": seen from the lit side, mean " << litMean << "; from the dark side, largest "
+              << largest << "\n";
     EXPECT_GT(litMean, 1.0);
     // Photons stop at the wall in float: a sliver of a step may round past it (1e-6 of the lit
     // side's light at most in the deposits).
-    EXPECT_LT(dark, 1e-5 * litMean) << "light behind the wall at x = " << wall;
+    EXPECT_LT(largest, 1e-5 * litMean)
+      << "light behind the wall through x = " << wall.Centre[0] << ", normal x " << wall.Normal[0];
   }
 }
