@@ -49,7 +49,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   __global const float* anisotropy, volatile __global long* multiple,
   __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
   __global const float4* surfaceBodies, __global const int* cutVoxels,
-  __global const float4* cutPlanes, __global const int* volumeCausticBricks,
+  __global const int* volumeCausticBricks,
   volatile __global long* volumeCausticFine, const int volumeCausticSubdivision)
 {
   // Launched in chunks (for progress reports); the stream depends on the photon, not the chunk.
@@ -66,7 +66,13 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   }
   ps.bodies = surfaceBodies;
   ps.cutVoxels = cutVoxels;
-  ps.cutPlanes = cutPlanes;
+  ps.sideNodes = surfaceNodes;
+  ps.sideNodeCount = surfaceNodeCount;
+  ps.sideTriangles = surfaceTriangles;
+  ps.sideInfo = (__global const int*)surfaceInfo;
+  ps.sideFrame0 = frame0;
+  ps.sideFrame1 = frame1;
+  ps.sideFrame2 = frame2;
   photon_set_volume_caustic(&ps, volumeCausticBricks, volumeCausticFine, volumeCausticSubdivision);
   const float3 emitted = ps.power;
   int steps = 0;
@@ -146,7 +152,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   __global const float* anisotropy, volatile __global long* multiple,
   __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
   __global const float4* surfaceBodies, __global const int* cutVoxels,
-  __global const float4* cutPlanes, __global const int* volumeCausticBricks,
+  __global const int* volumeCausticBricks,
   volatile __global long* volumeCausticFine, const int volumeCausticSubdivision)
 {
   const uint id = first + (uint)get_global_id(0);
@@ -219,7 +225,13 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   }
   ps.bodies = surfaceBodies;
   ps.cutVoxels = cutVoxels;
-  ps.cutPlanes = cutPlanes;
+  ps.sideNodes = surfaceNodes;
+  ps.sideNodeCount = surfaceNodeCount;
+  ps.sideTriangles = surfaceTriangles;
+  ps.sideInfo = (__global const int*)surfaceInfo;
+  ps.sideFrame0 = frame0;
+  ps.sideFrame1 = frame1;
+  ps.sideFrame2 = frame2;
   photon_set_volume_caustic(&ps, volumeCausticBricks, volumeCausticFine, volumeCausticSubdivision);
   ps.dead = 0;
   int steps = (int)st.y;

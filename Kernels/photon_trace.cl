@@ -167,8 +167,16 @@ typedef struct
   volatile __global long* causticFine;     // volume caustic: PHOTON_FINE_LONGS per fine voxel
                                            // (the pilot, c = 1: one uint per voxel)
   int causticSub;                          // volume caustic: c, bricks of c^3 fine voxels
-  __global const int* cutVoxels;           // sided deposits: each voxel's cut plane, or -1
-  __global const float4* cutPlanes;        // sided deposits: the planes (refracta_across_cut)
+  // Sided deposits (REFRACTA_SIDED_DEPOSITS): the voxels near opaque triangles (cutVoxels >= 0,
+  // vtkRefractaGridCuts), the surfaces (BVH, triangles, their info), grid-local -> surface frame
+  // rows and the grid's spacing.
+  __global const int* cutVoxels;
+  __global const float4* sideNodes;
+  int sideNodeCount;
+  __global const float4* sideTriangles;
+  __global const int* sideInfo;
+  float4 sideFrame0, sideFrame1, sideFrame2;
+  float4 sideSpacing;
 } photon_state;
 
 // The volume caustic's fine accumulators per fine voxel: S1 (3), direction sums (3), two longs of
@@ -418,62 +426,55 @@ inline float3 photon_sample_hg(float3 d, float g, uint* rng)
 #endif
 
 #if REFRACTA_SIDED_DEPOSITS
+// Whether an opaque surface separates voxel coordinates a and b (centres at integers).
+inline bool photon_separated(const photon_state* ps, float3 a, float3 b)
+{
+  return refracta_opaque_between(ps->sideNodes, ps->sideNodeCount, ps->sideTriangles,
+    ps->sideInfo, ps->sideFrame0, ps->sideFrame1, ps->sideFrame2, a * ps->sideSpacing.xyz,
+    b * ps->sideSpacing.xyz);
+}
+
 // The voxel that a piece in voxel `voxel` (at voxel coordinates `cell`) deposits into: its own,
-// unless an opaque surface through the voxel separates the piece's midpoint `mid` from the
-// voxel's centre (refracta_across_cut): then the nearest neighbour on the piece's side, reached
-// by steps towards it along the axes the surface faces, most-facing first, until a centre is on
-// the piece's side of the plane (at most three: the piece is within half a voxel of the centre
-// per axis, so |n . (mid - centre)| <= sum |n_a| / 2, and the three steps move the centre by
-// sum |n_a|); axes whose step would leave the grid are passed over, and its own voxel is kept
-// only where no step reaches the piece's side (a wall through a corner of the grid). Light on one
-// side of a wall thus lands in a voxel whose centre is on the other nowhere else.
+// unless an opaque surface separates the piece's midpoint `mid` from the voxel's centre (asked
+// only of voxels near opaque triangles, cutVoxels >= 0); then the nearest of the 26 voxels
+// around it whose centre no opaque surface separates from `mid` (its own voxel where there is
+// none: a closed body thinner than a voxel). Light on one side of a wall thus lands in a voxel
+// whose centre is on that side, whatever the wall's shape.
 inline size_t photon_sided_voxel(const photon_state* ps, int4 dims, int3 cell, float3 mid,
   size_t voxel)
 {
-  if (!refracta_across_cut(ps->cutVoxels, ps->cutPlanes, voxel, convert_float3(cell), mid))
+  if (ps->cutVoxels[voxel] < 0 || !photon_separated(ps, mid, convert_float3(cell)))
   {
     return voxel;
   }
-  const float4 plane = ps->cutPlanes[ps->cutVoxels[voxel]];
-  const bool front = dot(plane.xyz, mid) + plane.w >= 0.0f; // the piece's side
-  const float3 facing = fabs(plane.xyz);
-  // The axes by decreasing |n_a|.
-  int order[3] = { 0, 1, 2 };
-  const float f[3] = { facing.x, facing.y, facing.z };
-  for (int a = 0; a < 2; ++a)
+  // The 27 voxels around its own (the eight centres around `mid` among them), nearest first.
+  int tried = 1 << 13; // bit k: neighbour (k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1) tried; 13: itself
+  for (int round = 0; round < 26; ++round)
   {
-    for (int b = a + 1; b < 3; ++b)
+    int pick = -1;
+    float nearest = INFINITY;
+    for (int k = 0; k < 27; ++k)
     {
-      if (f[order[b]] > f[order[a]])
+      const int3 to = cell + (int3)(k % 3 - 1, (k / 3) % 3 - 1, k / 9 - 1);
+      const bool inGrid =
+        all(to >= (int3)(0)) && to.x < dims.x && to.y < dims.y && to.z < dims.z;
+      const float3 offset = convert_float3(to) - mid;
+      const float d = dot(offset, offset);
+      if (!((tried >> k) & 1) && inGrid && d < nearest)
       {
-        const int t = order[a];
-        order[a] = order[b];
-        order[b] = t;
+        nearest = d;
+        pick = k;
       }
     }
-  }
-  const float n[3] = { plane.x, plane.y, plane.z };
-  int to[3] = { cell.x, cell.y, cell.z };
-  const int size[3] = { dims.x, dims.y, dims.z };
-  for (int k = 0; k < 3; ++k)
-  {
-    const int a = order[k];
-    if (!(f[a] > 0.0f))
+    if (pick < 0)
     {
       break;
     }
-    // Up the axis where n . u grows towards the piece's side; an axis whose step would leave
-    // the grid is passed over (a wall meeting the grid's face).
-    const int step = (front == (n[a] > 0.0f)) ? 1 : -1;
-    if (to[a] + step < 0 || to[a] + step >= size[a])
+    tried |= 1 << pick;
+    const int3 to = cell + (int3)(pick % 3 - 1, (pick / 3) % 3 - 1, pick / 9 - 1);
+    if (!photon_separated(ps, mid, convert_float3(to)))
     {
-      continue;
-    }
-    to[a] += step;
-    const float side = n[0] * (float)to[0] + n[1] * (float)to[1] + n[2] * (float)to[2] + plane.w;
-    if ((side >= 0.0f) == front)
-    {
-      return refracta_voxel_index(dims, to[0], to[1], to[2]);
+      return refracta_voxel_index(dims, to.x, to.y, to.z);
     }
   }
   return voxel;
@@ -602,6 +603,9 @@ inline void photon_walk(photon_state* ps, float3 x0, float3 x1, float t1, int4 d
     return;
   }
   const float3 direction = (x1 - x0) / worldLength;
+#if REFRACTA_SIDED_DEPOSITS
+  ps->sideSpacing = spacing;
+#endif
   const int3 hiCell = (int3)((dims.x << PHOTON_CUT_SHIFT) - 1, (dims.y << PHOTON_CUT_SHIFT) - 1,
     (dims.z << PHOTON_CUT_SHIFT) - 1);
   int3 cell = clamp(convert_int3_rtn(a), (int3)(0), hiCell);

@@ -62,23 +62,6 @@ inline long refracta_voxel_containing(int4 dims, float3 u)
   return (long)refracta_voxel_index(dims, i, j, k);
 }
 
-// Opaque surfaces between voxels (vtkRefractaGridCuts): voxel v (at voxel coordinates c) has a
-// plane (n, d) in voxel coordinates, cutPlanes[cutVoxels[v]], where an opaque triangle cuts one of
-// its links to the next voxels (cutVoxels[v] < 0: none). Whether voxel coordinates u lie across
-// that surface from v's centre (the host's twin: vtkRefractaGridCuts::IsAcross). A point on the
-// plane counts on its front (n . u + d >= 0), so a centre on a wall belongs to one side.
-inline bool refracta_across_cut(
-  __global const int* cutVoxels, __global const float4* cutPlanes, size_t v, float3 c, float3 u)
-{
-  const int p = cutVoxels[v];
-  if (p < 0)
-  {
-    return false;
-  }
-  const float4 plane = cutPlanes[p];
-  return (dot(plane.xyz, c) + plane.w >= 0.0f) != (dot(plane.xyz, u) + plane.w >= 0.0f);
-}
-
 // Corner indices and weights of the trilinear stencil around u (clamped to the grid).
 typedef struct
 {

@@ -276,9 +276,12 @@ inline refracta_hit refracta_bvh_closest(__global const float4* nodes, int nodeC
   return hit;
 }
 
-// Whether any triangle meets the ray within (tMin, tMax) (shadow rays): stops at the first hit.
-inline bool refracta_bvh_occluded(__global const float4* nodes, int nodeCount,
-  __global const float4* triangles, float3 origin, float3 dir, float tMin, float tMax)
+// Whether a triangle meets the ray within (tMin, tMax), stopping at the first hit: any triangle
+// where opaqueOnly is false (shadow rays), else only opaque ones (REFRACTA_SURFACE_LAMBERTIAN in
+// triInfo): the test of whether an opaque surface separates two points (refracta_opaque_between).
+inline bool refracta_bvh_any_hit(__global const float4* nodes, int nodeCount,
+  __global const float4* triangles, __global const int* triInfo, bool opaqueOnly, float3 origin,
+  float3 dir, float tMin, float tMax)
 {
   if (nodeCount <= 0)
   {
@@ -304,8 +307,11 @@ inline bool refracta_bvh_occluded(__global const float4* nodes, int nodeCount,
       for (int k = first; k < first + count; ++k)
       {
         float t, u, v;
-        if (refracta_intersect_triangle(&r, triangles[3 * k].xyz, triangles[3 * k + 1].xyz,
-              triangles[3 * k + 2].xyz, tMin, tMax, &t, &u, &v))
+        if ((!opaqueOnly ||
+              triInfo[REFRACTA_TRIANGLE_INFO_INTS * k + REFRACTA_TRIANGLE_INFO_KIND] ==
+                REFRACTA_SURFACE_LAMBERTIAN) &&
+          refracta_intersect_triangle(&r, triangles[3 * k].xyz, triangles[3 * k + 1].xyz,
+            triangles[3 * k + 2].xyz, tMin, tMax, &t, &u, &v))
         {
           return true;
         }
@@ -318,6 +324,33 @@ inline bool refracta_bvh_occluded(__global const float4* nodes, int nodeCount,
     }
   }
   return false;
+}
+
+inline bool refracta_bvh_occluded(__global const float4* nodes, int nodeCount,
+  __global const float4* triangles, float3 origin, float3 dir, float tMin, float tMax)
+{
+  return refracta_bvh_any_hit(nodes, nodeCount, triangles, triangles ? (__global const int*)0 : 0,
+    false, origin, dir, tMin, tMax);
+}
+
+// Whether an opaque triangle separates grid-local point a from b, the rows
+// toSurface0..2 mapping grid-local points to the surface frame: light on one side of a wall is
+// not light on the other (vtkRefractaGridCuts flags the voxels near opaque triangles where the
+// photon pass's deposits and the view pass's lookups ask). A triangle through b, or within 0.1%
+// of the segment's length beyond it, counts: a voxel centre on a wall belongs to neither side.
+inline bool refracta_opaque_between(__global const float4* nodes, int nodeCount,
+  __global const float4* triangles, __global const int* triInfo, float4 toSurface0,
+  float4 toSurface1, float4 toSurface2, float3 a, float3 b)
+{
+  const float3 sa = (float3)(dot(toSurface0.xyz, a) + toSurface0.w,
+    dot(toSurface1.xyz, a) + toSurface1.w, dot(toSurface2.xyz, a) + toSurface2.w);
+  const float3 sb = (float3)(dot(toSurface0.xyz, b) + toSurface0.w,
+    dot(toSurface1.xyz, b) + toSurface1.w, dot(toSurface2.xyz, b) + toSurface2.w);
+  const float3 d = sb - sa;
+  const float len = length(d);
+  return len > 0.0f &&
+    refracta_bvh_any_hit(
+      nodes, nodeCount, triangles, triInfo, true, sa, d / len, 0.0f, 1.001f * len);
 }
 
 // Unit geometric normal of triangle k (the winding's normal; surfaces are two-sided).

@@ -35,7 +35,7 @@
 // REFRACTA_SKIP (empty-space skipping, below), REFRACTA_HAS_SURFACES (opaque triangle surfaces,
 // below; view_surfaces.cl), REFRACTA_SURFACE_NEAREST (no irradiance interpolation),
 // REFRACTA_SIDED_LOOKUPS (opaque surfaces cut the grid: light is read from the sample's side of
-// them, refracta_view_sided_weights; `cutVoxels`, `cutPlanes`),
+// them, refracta_view_sided_weights; `cutVoxels` and the surfaces),
 // REFRACTA_DIELECTRIC (glass triangles: paths split at them, see refracta_view_dielectric_split)
 // with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>, REFRACTA_PACKED_MEDIUM (an
 // emitting medium with a grey extinction: `extinction` holds float4 (sigma, emission RGB) per voxel
@@ -273,39 +273,52 @@ inline float3 refracta_view_body_medium(
 // caustic, c times finer, as the mean of c points evenly spread over the step (one midpoint per
 // fine voxel crossed, where a single midpoint would alias the focused light into streaks). The
 // grid's emission is added by the caller (refracta_view_march).
+// The arguments of a sided lookup: the voxels near opaque triangles (cutVoxels >= 0,
+// vtkRefractaGridCuts), the surfaces and the grid-local -> surface frame rows.
+#define REFRACTA_VIEW_SIDE_PARAMS                                                                 \
+  __global const int *cutVoxels, __global const float4 *nodes, const int nodeCount,              \
+    __global const float4 *triangles, __global const int *triInfo, const float4 toSurface0,      \
+    const float4 toSurface1, const float4 toSurface2
+#define REFRACTA_VIEW_SIDE_ARGS                                                                   \
+  cutVoxels, nodes, nodeCount, triangles, triInfo, toSurface0, toSurface1, toSurface2
+
 #ifdef REFRACTA_SIDED_LOOKUPS
-// Sided lookups of light (where opaque surfaces cut the grid, vtkRefractaGridCuts): the trilinear
-// weights of the stencil's eight corners (corner k at offset (k & 1, k >> 1 & 1, k >> 2 & 1), the
-// order of refracta_view_stencil_at) with the corners across a surface from u left out
-// (refracta_across_cut) and the others renormalised, so that a sample reads only light from its
-// own side of a wall (none where every corner is across). False, w untouched, where no corner has
-// a cut: the plain trilinear sample applies.
-inline bool refracta_view_sided_weights(const refracta_view_stencil* st, int4 dims, float3 u,
-  __global const int* cutVoxels, __global const float4* cutPlanes, float* w)
+// Sided lookups of light (where opaque surfaces cut the grid): the trilinear weights of the
+// stencil's eight corners (corner k at offset (k & 1, k >> 1 & 1, k >> 2 & 1), the order of
+// refracta_view_stencil_at) with the corners near an opaque triangle that one separates from the
+// sample at voxel coordinates u (refracta_opaque_between, from u itself: a sample in the grid's
+// outer half voxel is not clamped first) left out and the others renormalised, so that a sample
+// reads only light from its own side of a wall, whatever the wall's shape (none where every
+// corner is across). False, w untouched, where no corner is near an opaque triangle: the plain
+// trilinear sample applies.
+inline bool refracta_view_sided_weights(const refracta_view_stencil* st, int4 dims,
+  float4 spacing, float3 u, REFRACTA_VIEW_SIDE_PARAMS, float* w)
 {
-  bool cut = false;
+  bool near = false;
   #pragma unroll
   for (int k = 0; k < 8; ++k)
   {
-    cut = cut || cutVoxels[st->c[k]] >= 0;
+    near = near || cutVoxels[st->c[k]] >= 0;
   }
-  if (!cut)
+  if (!near)
   {
     return false;
   }
   const float3 hi = (float3)((float)(dims.x - 1), (float)(dims.y - 1), (float)(dims.z - 1));
-  const float3 c = clamp(u, (float3)(0.0f), hi);
-  const float3 lo = floor(c);
+  const float3 lo = floor(clamp(u, (float3)(0.0f), hi));
   const float3 up = fmin(lo + 1.0f, hi);
+  const float3 x = u * spacing.xyz;
   float sum = 0.0f;
-  #pragma unroll
   for (int k = 0; k < 8; ++k)
   {
     const float3 corner =
       (float3)((k & 1) ? up.x : lo.x, (k & 2) ? up.y : lo.y, (k & 4) ? up.z : lo.z);
     const float wk = ((k & 1) ? st->fx : 1.0f - st->fx) * ((k & 2) ? st->fy : 1.0f - st->fy) *
       ((k & 4) ? st->fz : 1.0f - st->fz);
-    w[k] = refracta_across_cut(cutVoxels, cutPlanes, st->c[k], corner, c) ? 0.0f : wk;
+    const bool across = wk > 0.0f && cutVoxels[st->c[k]] >= 0 &&
+      refracta_opaque_between(nodes, nodeCount, triangles, triInfo, toSurface0, toSurface1,
+        toSurface2, x, corner * spacing.xyz);
+    w[k] = across ? 0.0f : wk;
     sum += w[k];
   }
   const float scale = sum > 0.0f ? 1.0f / sum : 0.0f;
@@ -339,13 +352,14 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
   int4 dims, __global const float* anisotropy, __global const float* radiance,
   __global const float* radianceDirection, __global const float* multiple,
   __global const int* causticBricks, __global const float* causticRadiance,
-  __global const float* causticDirection, int causticSub, __global const int* cutVoxels,
-  __global const float4* cutPlanes)
+  __global const float* causticDirection, int causticSub, float4 spacing,
+  REFRACTA_VIEW_SIDE_PARAMS)
 {
   float3 q = (float3)(0.0f);
 #ifdef REFRACTA_SIDED_LOOKUPS
   float sidedWeights[8];
-  const bool sided = refracta_view_sided_weights(st, dims, u, cutVoxels, cutPlanes, sidedWeights);
+  const bool sided =
+    refracta_view_sided_weights(st, dims, spacing, u, REFRACTA_VIEW_SIDE_ARGS, sidedWeights);
 #endif
 #ifdef REFRACTA_HAS_SINGLE
   const float3 s1 = REFRACTA_VIEW_LIGHT3(radiance);
@@ -380,11 +394,11 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
     __global const float *anisotropy, __global const float *radiance,                            \
     __global const float *radianceDirection, __global const float *multiple,                     \
     __global const int *causticBricks, __global const float *causticRadiance,                    \
-    __global const float *causticDirection, int causticSub, __global const int *cutVoxels,       \
-    __global const float4 *cutPlanes
+    __global const float *causticDirection, int causticSub, float4 spacing,                     \
+    REFRACTA_VIEW_SIDE_PARAMS
 #define REFRACTA_VIEW_MEDIUM_ARGS                                                                 \
   dims, extinction, emission, anisotropy, radiance, radianceDirection, multiple, causticBricks,  \
-    causticRadiance, causticDirection, causticSub, cutVoxels, cutPlanes
+    causticRadiance, causticDirection, causticSub, spacing, REFRACTA_VIEW_SIDE_ARGS
 
 // The grid's medium at a step's midpoint (stencil st at voxel coordinates u; du the step in voxel
 // units, d the ray's unit direction): its extinction *sigma and emission *gridEmission, and the
@@ -409,7 +423,8 @@ inline float3 refracta_view_step_medium(const refracta_view_stencil* st, float3 
 #endif
   return *gridEmission +
     refracta_view_source(st, u, du, d, dims, anisotropy, radiance, radianceDirection, multiple,
-      causticBricks, causticRadiance, causticDirection, causticSub, cutVoxels, cutPlanes);
+      causticBricks, causticRadiance, causticDirection, causticSub, spacing,
+      REFRACTA_VIEW_SIDE_ARGS);
 }
 
 // What a source counts at a step: sources are physical radiance per length; what reaches the
@@ -444,12 +459,12 @@ inline float refracta_view_source_weight(
     const float4 toSurface0, const float4 toSurface1, const float4 toSurface2,                   \
     __global const float4 *bodies, __global const int *causticBricks,                             \
     __global const float *causticRadiance, __global const float *causticDirection,               \
-    const int causticSub, __global const int *cutVoxels, __global const float4 *cutPlanes
+    const int causticSub, __global const int *cutVoxels, __global const int *triInfo
 #define REFRACTA_VIEW_LEG_ARGS                                                                    \
   dims, spacing, extinction, emission, anisotropy, refractiveIndex, gradient, radiance,          \
     radianceDirection, multiple, stepLength, maxSteps, cutoff, occupancy, cellDims, activeLo,    \
     activeHi, skipMask, nodes, nodeCount, triangles, toSurface0, toSurface1, toSurface2, bodies, \
-    causticBricks, causticRadiance, causticDirection, causticSub, cutVoxels, cutPlanes
+    causticBricks, causticRadiance, causticDirection, causticSub, cutVoxels, triInfo
 
 // One leg of a view path: from `origin` in unit direction d (grid-local) until the ray meets a
 // surface, leaves the box (then it sees the background, or a surface outside the box), reaches

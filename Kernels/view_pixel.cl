@@ -154,11 +154,11 @@ inline bool refracta_view_footprint_aliases(__global const float4* nodes, const 
 #define REFRACTA_VIEW_PATH_PARAMS                                                                 \
   REFRACTA_VIEW_LEG_PARAMS, const float4 background, __global const float *environment,          \
     const int2 envSize, const float4 envRight, const float4 envUp, const float4 envFront,         \
-    __global const int *triInfo, __global const float *surfaceAlbedo,                            \
+    __global const float *surfaceAlbedo,                                                         \
     __global const float *surfaceIrradiance, __global const float *surfaceCorners,               \
     __global const float4 *triNormals, __global const float2 *interfaces
 #define REFRACTA_VIEW_PATH_ARGS                                                                   \
-  REFRACTA_VIEW_LEG_ARGS, background, environment, envSize, envRight, envUp, envFront, triInfo,  \
+  REFRACTA_VIEW_LEG_ARGS, background, environment, envSize, envRight, envUp, envFront,           \
     surfaceAlbedo, surfaceIrradiance, surfaceCorners, triNormals, interfaces
 
 // One path's result: its radiance, the RGB transmittance of the legs that end in the background,
@@ -330,7 +330,7 @@ inline refracta_view_sample refracta_view_path(
     __global const float* causticRadiance, __global const float* causticDirection,                 \
     const int causticSub, const int supersampling,                                                 \
     const float grazingCosine, volatile __global int* supersampledPixels,                          \
-    __global const int* cutVoxels, __global const float4* cutPlanes
+    __global const int* cutVoxels
 
 __kernel void refracta_view_pass(REFRACTA_VIEW_KERNEL_PARAMS)
 {

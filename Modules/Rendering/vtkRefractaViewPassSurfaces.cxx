@@ -85,7 +85,6 @@ bool SurfaceBuffers::UpdateCuts(const int dims[3], const double spacing[3],
   if (!this->Active())
   {
     this->CutVoxels.Reset();
-    this->CutPlanes.Reset();
     return true;
   }
   vtkNew<vtkMatrix4x4> localToWorld;
@@ -95,22 +94,15 @@ bool SurfaceBuffers::UpdateCuts(const int dims[3], const double spacing[3],
   if (!this->Cuts->HasCuts())
   {
     this->CutVoxels.Reset();
-    this->CutPlanes.Reset();
     return true;
   }
   if (searched || !this->CutVoxels)
   {
     const std::vector<int>& voxels = this->Cuts->GetVoxelPlanes();
-    const std::vector<float>& planes = this->Cuts->GetPlanes();
-    const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
-    this->CutVoxels =
-      context->CreateBuffer(in, voxels.size() * sizeof(int), voxels.data(), "cut voxels", owner);
-    this->CutPlanes =
-      context->CreateBuffer(in, planes.size() * sizeof(float), planes.data(), "cut planes", owner);
-    if (!this->CutVoxels || !this->CutPlanes)
+    this->CutVoxels = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+      voxels.size() * sizeof(int), voxels.data(), "voxels near opaque surfaces", owner);
+    if (!this->CutVoxels)
     {
-      this->CutVoxels.Reset();
-      this->CutPlanes.Reset();
       return false;
     }
   }

@@ -45,9 +45,10 @@ public:
   bool PrepareIrradiance(vtkOpenCLContext* context, double photonsPerFineTexel, vtkObject* owner);
 
   // Where the set's opaque triangles cut the medium's grid (vtkRefractaGridCuts, found again only
-  // when the build, the grid or the placement changed): uploads each cut voxel's plane index
-  // (CutVoxels) and the planes (CutPlanes) for the sided lookups of light; none without surfaces
-  // or cuts. `worldToLocal` maps the set's world to the grid-local frame. False after an error.
+  // when the build, the grid or the placement changed): uploads which voxels are near an opaque
+  // triangle (CutVoxels >= 0), where the sided lookups of light ask the BVH whether one separates
+  // a sample from a voxel; none without surfaces or cuts. `worldToLocal` maps the set's world to
+  // the grid-local frame. False after an error.
   bool UpdateCuts(const int dims[3], const double spacing[3], const double worldToLocal[4][4],
     vtkOpenCLContext* context, vtkObject* owner);
   // Whether the last UpdateCuts() found cuts (the kernel then reads light sided).
@@ -79,7 +80,7 @@ public:
   // Corner normals (float4 per corner), (IndexInside, IndexOutside) per surface and the glass
   // bodies' inside media (vtkRefractaSurfaceSet::GetSurfaceBodies()).
   vtkOpenCLBuffer Normals, Interfaces, Bodies;
-  vtkOpenCLBuffer CutVoxels, CutPlanes; // UpdateCuts()
+  vtkOpenCLBuffer CutVoxels; // UpdateCuts()
 
 private:
   vtkSmartPointer<vtkRefractaSurfaceSet> Set;

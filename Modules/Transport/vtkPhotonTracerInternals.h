@@ -300,11 +300,11 @@ struct vtkPhotonTracer::Internals
   double SurfaceEpsilon = 0;
   // Where opaque surfaces cut the grid (vtkRefractaGridCuts; nullptr: nowhere this run): the
   // links the smoothing does not exchange across and their device copy, uploaded once per run
-  // (vtkPhotonTracerOutput.cxx, SmoothAxes); each cut voxel's plane and the planes, for the
-  // march's sided deposits (REFRACTA_SIDED_DEPOSITS).
+  // (vtkPhotonTracerOutput.cxx, SmoothAxes); the voxels near opaque triangles, where the
+  // march's sided deposits ask the BVH (REFRACTA_SIDED_DEPOSITS).
   const vtkRefractaGridCuts* Cuts = nullptr;
   const std::vector<unsigned char>* CutLinks = nullptr;
-  vtkOpenCLBuffer CutLinksBuffer, CutVoxels, CutPlanes;
+  vtkOpenCLBuffer CutLinksBuffer, CutVoxels;
   vtkNew<vtkFloatArray> Irradiance;
   // Caustic atlas (vtkPhotonTracer::CausticSubdivision): c of this run, 1 when off (no
   // dielectric surfaces); its accumulators follow the coarse ones in SurfIrradiance.

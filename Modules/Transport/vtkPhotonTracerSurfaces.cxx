@@ -290,19 +290,11 @@ bool vtkPhotonTracer::UploadGridCuts(Internals& run)
 {
   Allocator& alloc = run.Alloc;
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
-  if (run.Cuts)
-  {
-    const std::vector<int>& voxels = run.Cuts->GetVoxelPlanes();
-    const std::vector<float>& planes = run.Cuts->GetPlanes();
-    run.CutVoxels = alloc.Make(in, voxels.size() * sizeof(int), voxels.data(), "cut voxels");
-    run.CutPlanes = alloc.Make(in, planes.size() * sizeof(float), planes.data(), "cut planes");
-  }
-  else
-  {
-    run.CutVoxels = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "cut voxels (none)");
-    run.CutPlanes = alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "cut planes (none)");
-  }
-  return run.CutVoxels && run.CutPlanes;
+  run.CutVoxels = run.Cuts
+    ? alloc.Make(in, run.Cuts->GetVoxelPlanes().size() * sizeof(int),
+        run.Cuts->GetVoxelPlanes().data(), "voxels near opaque surfaces")
+    : alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "voxels near opaque surfaces (none)");
+  return static_cast<bool>(run.CutVoxels);
 }
 
 //------------------------------------------------------------------------------
@@ -348,9 +340,8 @@ bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_u
   set(sizeof(cl_mem), &interfaces);
   const cl_mem bodies = run.SurfBodies.Get();
   set(sizeof(cl_mem), &bodies);
-  const cl_mem cutVoxels = run.CutVoxels.Get(), cutPlanes = run.CutPlanes.Get();
+  const cl_mem cutVoxels = run.CutVoxels.Get();
   set(sizeof(cl_mem), &cutVoxels);
-  set(sizeof(cl_mem), &cutPlanes);
   return run.Context->Check(status, "clSetKernelArg(surfaces)", this);
 }
 
