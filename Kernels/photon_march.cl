@@ -48,7 +48,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   const long causticOffset,
   __global const float* anisotropy, volatile __global long* multiple,
   __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
-  __global const float4* surfaceBodies, __global const int* cutVoxels,
+  __global const float4* surfaceBodies, __global const uchar* cutLinks,
   __global const int* volumeCausticBricks,
   volatile __global long* volumeCausticFine, const int volumeCausticSubdivision)
 {
@@ -65,7 +65,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
     return;
   }
   ps.bodies = surfaceBodies;
-  ps.cutVoxels = cutVoxels;
+  ps.cutLinks = cutLinks;
   ps.sideNodes = surfaceNodes;
   ps.sideNodeCount = surfaceNodeCount;
   ps.sideTriangles = surfaceTriangles;
@@ -151,7 +151,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   const long causticOffset,
   __global const float* anisotropy, volatile __global long* multiple,
   __global const float4* surfaceNormals, __global const float2* surfaceInterfaces,
-  __global const float4* surfaceBodies, __global const int* cutVoxels,
+  __global const float4* surfaceBodies, __global const uchar* cutLinks,
   __global const int* volumeCausticBricks,
   volatile __global long* volumeCausticFine, const int volumeCausticSubdivision)
 {
@@ -224,7 +224,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.body = as_int(s[6].w);
   }
   ps.bodies = surfaceBodies;
-  ps.cutVoxels = cutVoxels;
+  ps.cutLinks = cutLinks;
   ps.sideNodes = surfaceNodes;
   ps.sideNodeCount = surfaceNodeCount;
   ps.sideTriangles = surfaceTriangles;

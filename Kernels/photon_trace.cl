@@ -167,10 +167,10 @@ typedef struct
   volatile __global long* causticFine;     // volume caustic: PHOTON_FINE_LONGS per fine voxel
                                            // (the pilot, c = 1: one uint per voxel)
   int causticSub;                          // volume caustic: c, bricks of c^3 fine voxels
-  // Sided deposits (REFRACTA_SIDED_DEPOSITS): the voxels near opaque triangles (cutVoxels >= 0,
-  // vtkRefractaGridCuts), the surfaces (BVH, triangles, their info), grid-local -> surface frame
-  // rows and the grid's spacing.
-  __global const int* cutVoxels;
+  // Sided deposits (REFRACTA_SIDED_DEPOSITS): the voxels near opaque triangles (bit
+  // REFRACTA_CUT_NEAR of cutLinks, vtkRefractaGridCuts), the surfaces (BVH, triangles, their
+  // info), the grid-local -> surface frame rows and the grid's spacing.
+  __global const uchar* cutLinks;
   __global const float4* sideNodes;
   int sideNodeCount;
   __global const float4* sideTriangles;
@@ -436,14 +436,15 @@ inline bool photon_separated(const photon_state* ps, float3 a, float3 b)
 
 // The voxel that a piece in voxel `voxel` (at voxel coordinates `cell`) deposits into: its own,
 // unless an opaque surface separates the piece's midpoint `mid` from the voxel's centre (asked
-// only of voxels near opaque triangles, cutVoxels >= 0); then the nearest of the 26 voxels
+// only of voxels near opaque triangles, REFRACTA_CUT_NEAR); then the nearest of the 26 voxels
 // around it whose centre no opaque surface separates from `mid` (its own voxel where there is
 // none: a closed body thinner than a voxel). Light on one side of a wall thus lands in a voxel
 // whose centre is on that side, whatever the wall's shape.
 inline size_t photon_sided_voxel(const photon_state* ps, int4 dims, int3 cell, float3 mid,
   size_t voxel)
 {
-  if (ps->cutVoxels[voxel] < 0 || !photon_separated(ps, mid, convert_float3(cell)))
+  if (!(ps->cutLinks[voxel] & REFRACTA_CUT_NEAR) ||
+    !photon_separated(ps, mid, convert_float3(cell)))
   {
     return voxel;
   }

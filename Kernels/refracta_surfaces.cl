@@ -49,6 +49,9 @@
 #define REFRACTA_SURFACE_LAMBERTIAN 0 /* opaque two-sided Lambertian reflector */
 #define REFRACTA_SURFACE_DIELECTRIC 1 /* transparent interface between two indices */
 #define REFRACTA_SURFACE_SIDES 2 /* front, back: vtkRefractaLightingVolume::SurfaceSide */
+/* vtkRefractaGridCuts' byte per voxel: bit a (1, 2, 4) its link along +axis a is cut; this bit:
+   an opaque triangle passes within one voxel per axis of its centre */
+#define REFRACTA_CUT_NEAR 8
 #define REFRACTA_TRIANGLE_NORMAL_FLOATS 12 /* floats per triangle in normals (3 float4) */
 #define REFRACTA_SURFACE_INTERFACE_FLOATS 2 /* floats per surface in interfaces */
 #define REFRACTA_SURFACE_BODY_FLOATS 12 /* floats per surface in bodies (3 float4) */

@@ -35,7 +35,7 @@
 // REFRACTA_SKIP (empty-space skipping, below), REFRACTA_HAS_SURFACES (opaque triangle surfaces,
 // below; view_surfaces.cl), REFRACTA_SURFACE_NEAREST (no irradiance interpolation),
 // REFRACTA_SIDED_LOOKUPS (opaque surfaces cut the grid: light is read from the sample's side of
-// them, refracta_view_sided_weights; `cutVoxels` and the surfaces),
+// them, refracta_view_sided_weights; `cutLinks` and the surfaces),
 // REFRACTA_DIELECTRIC (glass triangles: paths split at them, see refracta_view_dielectric_split)
 // with REFRACTA_SPLIT_DEPTH=<interfaces where both legs are followed>, REFRACTA_PACKED_MEDIUM (an
 // emitting medium with a grey extinction: `extinction` holds float4 (sigma, emission RGB) per voxel
@@ -268,19 +268,14 @@ inline float3 refracta_view_body_medium(
 }
 #endif
 
-// Scattered source term Q of a step (midpoint at voxel coordinates u, the step `du` in voxel
-// units) for a ray travelling in unit direction d: the voxel fields at the midpoint; the volume
-// caustic, c times finer, as the mean of c points evenly spread over the step (one midpoint per
-// fine voxel crossed, where a single midpoint would alias the focused light into streaks). The
-// grid's emission is added by the caller (refracta_view_march).
-// The arguments of a sided lookup: the voxels near opaque triangles (cutVoxels >= 0,
-// vtkRefractaGridCuts), the surfaces and the grid-local -> surface frame rows.
+// The arguments of a sided lookup: the voxels near opaque triangles (bit REFRACTA_CUT_NEAR of
+// cutLinks, vtkRefractaGridCuts), the surfaces and the grid-local -> surface frame rows.
 #define REFRACTA_VIEW_SIDE_PARAMS                                                                 \
-  __global const int *cutVoxels, __global const float4 *nodes, const int nodeCount,              \
+  __global const uchar *cutLinks, __global const float4 *nodes, const int nodeCount,              \
     __global const float4 *triangles, __global const int *triInfo, const float4 toSurface0,      \
     const float4 toSurface1, const float4 toSurface2
 #define REFRACTA_VIEW_SIDE_ARGS                                                                   \
-  cutVoxels, nodes, nodeCount, triangles, triInfo, toSurface0, toSurface1, toSurface2
+  cutLinks, nodes, nodeCount, triangles, triInfo, toSurface0, toSurface1, toSurface2
 
 #ifdef REFRACTA_SIDED_LOOKUPS
 // Sided lookups of light (where opaque surfaces cut the grid): the trilinear weights of the
@@ -298,7 +293,7 @@ inline bool refracta_view_sided_weights(const refracta_view_stencil* st, int4 di
   #pragma unroll
   for (int k = 0; k < 8; ++k)
   {
-    near = near || cutVoxels[st->c[k]] >= 0;
+    near = near || (cutLinks[st->c[k]] & REFRACTA_CUT_NEAR);
   }
   if (!near)
   {
@@ -315,7 +310,7 @@ inline bool refracta_view_sided_weights(const refracta_view_stencil* st, int4 di
       (float3)((k & 1) ? up.x : lo.x, (k & 2) ? up.y : lo.y, (k & 4) ? up.z : lo.z);
     const float wk = ((k & 1) ? st->fx : 1.0f - st->fx) * ((k & 2) ? st->fy : 1.0f - st->fy) *
       ((k & 4) ? st->fz : 1.0f - st->fz);
-    const bool across = wk > 0.0f && cutVoxels[st->c[k]] >= 0 &&
+    const bool across = wk > 0.0f && (cutLinks[st->c[k]] & REFRACTA_CUT_NEAR) &&
       refracta_opaque_between(nodes, nodeCount, triangles, triInfo, toSurface0, toSurface1,
         toSurface2, x, corner * spacing.xyz);
     w[k] = across ? 0.0f : wk;
@@ -348,6 +343,11 @@ inline float3 refracta_view_weighted3(
 #define REFRACTA_VIEW_LIGHT3(f) refracta_view_sample3((f), st)
 #endif
 
+// Scattered source term Q of a step (midpoint at voxel coordinates u, the step `du` in voxel
+// units) for a ray travelling in unit direction d: the voxel fields at the midpoint; the volume
+// caustic, c times finer, as the mean of c points evenly spread over the step (one midpoint per
+// fine voxel crossed, where a single midpoint would alias the focused light into streaks). The
+// grid's emission is added by the caller (refracta_view_march).
 inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, float3 du, float3 d,
   int4 dims, __global const float* anisotropy, __global const float* radiance,
   __global const float* radianceDirection, __global const float* multiple,
@@ -459,12 +459,12 @@ inline float refracta_view_source_weight(
     const float4 toSurface0, const float4 toSurface1, const float4 toSurface2,                   \
     __global const float4 *bodies, __global const int *causticBricks,                             \
     __global const float *causticRadiance, __global const float *causticDirection,               \
-    const int causticSub, __global const int *cutVoxels, __global const int *triInfo
+    const int causticSub, __global const uchar *cutLinks, __global const int *triInfo
 #define REFRACTA_VIEW_LEG_ARGS                                                                    \
   dims, spacing, extinction, emission, anisotropy, refractiveIndex, gradient, radiance,          \
     radianceDirection, multiple, stepLength, maxSteps, cutoff, occupancy, cellDims, activeLo,    \
     activeHi, skipMask, nodes, nodeCount, triangles, toSurface0, toSurface1, toSurface2, bodies, \
-    causticBricks, causticRadiance, causticDirection, causticSub, cutVoxels, triInfo
+    causticBricks, causticRadiance, causticDirection, causticSub, cutLinks, triInfo
 
 // One leg of a view path: from `origin` in unit direction d (grid-local) until the ray meets a
 // surface, leaves the box (then it sees the background, or a surface outside the box), reaches

@@ -330,7 +330,7 @@ inline refracta_view_sample refracta_view_path(
     __global const float* causticRadiance, __global const float* causticDirection,                 \
     const int causticSub, const int supersampling,                                                 \
     const float grazingCosine, volatile __global int* supersampledPixels,                          \
-    __global const int* cutVoxels
+    __global const uchar* cutLinks
 
 __kernel void refracta_view_pass(REFRACTA_VIEW_KERNEL_PARAMS)
 {

@@ -11,16 +11,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <new>
 
 vtkStandardNewMacro(vtkRefractaGridCuts);
 
 namespace
 {
-// Where the segment from p along axis a, `length` long, meets triangle v: true with *t the
-// fraction of the segment (a touch included; a segment in the triangle's plane does not cut it).
-bool SegmentMeetsTriangle(const double p[3], int a, double length, const double v[3][3], double* t)
+// Whether the segment from p along axis a, `length` long, meets triangle v (a touch included; a
+// segment in the triangle's plane does not cut it).
+bool SegmentMeetsTriangle(const double p[3], int a, double length, const double v[3][3])
 {
   double e1[3], e2[3], d[3] = { 0, 0, 0 }, w[3];
   d[a] = length;
@@ -45,13 +44,13 @@ bool SegmentMeetsTriangle(const double p[3], int a, double length, const double 
   const double u = vtkMath::Dot(w, h) / det;
   vtkMath::Cross(w, e1, q);
   const double s = vtkMath::Dot(d, q) / det;
-  *t = vtkMath::Dot(e2, q) / det;
-  return u >= -tolerance && s >= -tolerance && u + s <= 1 + tolerance && *t >= -touch &&
-    *t <= 1 + touch;
+  const double t = vtkMath::Dot(e2, q) / det;
+  return u >= -tolerance && s >= -tolerance && u + s <= 1 + tolerance && t >= -touch &&
+    t <= 1 + touch;
 }
 
-// Triangle v's plane in voxel coordinates u = local / spacing: n . u + d = 0, n unit. False for a
-// degenerate triangle.
+// Triangle v's plane in voxel coordinates u = local / spacing: n . u + d = 0, n unit (the voxels
+// near the triangle are within |n_x| + |n_y| + |n_z| of it). False for a degenerate triangle.
 bool PlaneInVoxels(const double v[3][3], const double spacing[3], float plane[4])
 {
   double e1[3], e2[3], n[3];
@@ -98,8 +97,7 @@ bool vtkRefractaGridCuts::Update(vtkRefractaSurfaceSet* set, const int dims[3],
     vtkErrorMacro("Cannot find the cuts of a grid of "
       << dims[0] << " x " << dims[1] << " x " << dims[2] << " points with spacing " << spacing[0]
       << ", " << spacing[1] << ", " << spacing[2]
-      << ": dimensions must be >= 1 (at most 2^40 points) and "
-         "spacings finite and > 0.");
+      << ": dimensions must be >= 1 (at most 2^40 points) and spacings finite and > 0.");
     this->Clear();
     return false;
   }
@@ -125,8 +123,6 @@ bool vtkRefractaGridCuts::Update(vtkRefractaSurfaceSet* set, const int dims[3],
   std::copy(spacing, spacing + 3, this->Spacing);
   std::copy(placement, placement + 16, this->LocalToWorld);
   this->Links.clear();
-  this->VoxelPlanes.clear();
-  this->Planes.clear();
   ++this->NumberOfSearches;
   if (set && set->GetBVH()->GetNumberOfTriangles() > 0)
   {
@@ -139,8 +135,7 @@ bool vtkRefractaGridCuts::Update(vtkRefractaSurfaceSet* set, const int dims[3],
     catch (const std::bad_alloc&)
     {
       vtkErrorMacro("Cannot allocate the cuts of the grid of "
-        << dims[0] << " x " << dims[1] << " x " << dims[2]
-        << " points (9 bytes per point while searching).");
+        << dims[0] << " x " << dims[1] << " x " << dims[2] << " points (one byte per point).");
       this->Clear();
       return false;
     }
@@ -155,8 +150,6 @@ void vtkRefractaGridCuts::Clear()
   this->Set = nullptr;
   this->Builds = -1;
   this->Links.clear();
-  this->VoxelPlanes.clear();
-  this->Planes.clear();
   this->Modified();
 }
 
@@ -185,16 +178,10 @@ void vtkRefractaGridCuts::Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* local
   };
   const int* dims = this->Dims;
   const double* h = this->Spacing;
-  const size_t voxels = size_t(dims[0]) * dims[1] * dims[2];
-  const size_t stride[3] = { 1, size_t(dims[0]), size_t(dims[0]) * dims[1] };
-  // The nearest triangle plane of each voxel so far (|n . u + d|, in voxels) and its triangle.
-  std::vector<float> nearest;
-  std::vector<int> nearestTriangle;
-  std::vector<float> trianglePlanes(4 * size_t(bvh->GetNumberOfTriangles()), 0.0f);
   for (vtkIdType k = 0; k < bvh->GetNumberOfTriangles(); ++k)
   {
-    float* plane = &trianglePlanes[4 * size_t(k)];
     double v[3][3];
+    float plane[4];
     toLocal(k, v);
     if (info[REFRACTA_TRIANGLE_INFO_INTS * k + REFRACTA_TRIANGLE_INFO_KIND] !=
         REFRACTA_SURFACE_LAMBERTIAN ||
@@ -219,17 +206,14 @@ void vtkRefractaGridCuts::Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* local
     {
       continue;
     }
-    if (nearest.empty())
+    if (this->Links.empty())
     {
-      this->Links.assign(voxels, 0);
-      nearest.assign(voxels, std::numeric_limits<float>::infinity());
-      nearestTriangle.assign(voxels, -1);
+      this->Links.assign(size_t(dims[0]) * dims[1] * dims[2], 0);
     }
     // The points within one voxel of a centre per axis (the cell's deposits: half a voxel; the
     // trilinear lookups that read the centre: one) lie within |n_x| + |n_y| + |n_z| of it
     // along the plane's normal.
     const double reach = std::fabs(plane[0]) + std::fabs(plane[1]) + std::fabs(plane[2]);
-    const int triangle = static_cast<int>(k);
     for (int z = lo[2]; z <= hi[2]; ++z)
     {
       for (int y = lo[1]; y <= hi[1]; ++y)
@@ -237,80 +221,41 @@ void vtkRefractaGridCuts::Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* local
         for (int x = lo[0]; x <= hi[0]; ++x)
         {
           const int ijk[3] = { x, y, z };
-          const size_t voxel = x + stride[1] * y + stride[2] * z;
-          const double distance =
-            std::fabs(plane[0] * x + plane[1] * y + plane[2] * z + double(plane[3]));
-          bool nearBounds = true;
+          unsigned char& bits = this->Links[x + size_t(dims[0]) * (y + size_t(dims[1]) * z)];
+          bool near = std::fabs(plane[0] * x + plane[1] * y + plane[2] * z + plane[3]) <= reach;
           for (int a = 0; a < 3; ++a)
           {
-            nearBounds = nearBounds && ijk[a] >= low[a] - 1.0 && ijk[a] <= high[a] + 1.0;
+            near = near && ijk[a] >= low[a] - 1.0 && ijk[a] <= high[a] + 1.0;
           }
-          // Where the triangle (conservatively: its plane and its bounds) passes within a voxel
-          // per axis of a centre, the centre's cell may hold light from its other side, and a
-          // lookup from that side may read the centre: the voxel gets the nearest such plane.
-          if (nearBounds && distance <= reach && distance < nearest[voxel])
-          {
-            nearest[voxel] = static_cast<float>(distance);
-            nearestTriangle[voxel] = triangle;
-          }
+          bits |= near ? REFRACTA_CUT_NEAR : 0;
           const double p[3] = { x * h[0], y * h[1], z * h[2] };
           for (int a = 0; a < 3; ++a)
           {
-            double t = 0;
-            if (ijk[a] + 1 < dims[a] && SegmentMeetsTriangle(p, a, h[a], v, &t))
+            if (ijk[a] + 1 < dims[a] && SegmentMeetsTriangle(p, a, h[a], v))
             {
-              this->Links[voxel] |= static_cast<unsigned char>(1 << a);
+              bits |= static_cast<unsigned char>(1 << a);
             }
           }
         }
       }
     }
   }
-  // One plane per triangle that is some voxel's nearest.
-  this->VoxelPlanes.assign(voxels, -1);
-  std::vector<int> planeOf(bvh->GetNumberOfTriangles(), -1);
-  bool any = false;
-  for (size_t voxel = 0; voxel < nearestTriangle.size(); ++voxel)
-  {
-    const int k = nearestTriangle[voxel];
-    if (k < 0)
-    {
-      continue;
-    }
-    if (planeOf[k] < 0)
-    {
-      planeOf[k] = static_cast<int>(this->Planes.size() / 4);
-      const float* plane = &trianglePlanes[4 * size_t(k)];
-      this->Planes.insert(this->Planes.end(), plane, plane + 4);
-    }
-    this->VoxelPlanes[voxel] = planeOf[k];
-    any = true;
-  }
-  if (!any)
+  if (std::none_of(this->Links.begin(), this->Links.end(), [](unsigned char b) { return b != 0; }))
   {
     this->Links.clear();
-    this->VoxelPlanes.clear();
   }
 }
 
 //------------------------------------------------------------------------------
-bool vtkRefractaGridCuts::IsAcross(int i, int j, int k, const double u[3]) const
+bool vtkRefractaGridCuts::IsNear(int i, int j, int k) const
 {
-  if (this->VoxelPlanes.empty() || i < 0 || j < 0 || k < 0 || i >= this->Dims[0] ||
-    j >= this->Dims[1] || k >= this->Dims[2])
+  if (this->Links.empty() || i < 0 || j < 0 || k < 0 || i >= this->Dims[0] || j >= this->Dims[1] ||
+    k >= this->Dims[2])
   {
     return false;
   }
-  const int p = this->VoxelPlanes[i + size_t(this->Dims[0]) * (j + size_t(this->Dims[1]) * k)];
-  if (p < 0)
-  {
-    return false;
-  }
-  const float* n = &this->Planes[4 * size_t(p)];
-  const float centre = n[0] * i + n[1] * j + n[2] * k + n[3];
-  const float point = n[0] * static_cast<float>(u[0]) + n[1] * static_cast<float>(u[1]) +
-    n[2] * static_cast<float>(u[2]) + n[3];
-  return (centre >= 0.0f) != (point >= 0.0f);
+  return (this->Links[i + size_t(this->Dims[0]) * (j + size_t(this->Dims[1]) * k)] &
+           REFRACTA_CUT_NEAR) != 0;
 }
 
 //------------------------------------------------------------------------------
@@ -320,9 +265,8 @@ void vtkRefractaGridCuts::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Dims: " << this->Dims[0] << " " << this->Dims[1] << " " << this->Dims[2] << "\n";
   os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << " "
      << this->Spacing[2] << "\n";
-  const auto cut =
-    std::count_if(this->VoxelPlanes.begin(), this->VoxelPlanes.end(), [](int p) { return p >= 0; });
-  os << indent << "CutVoxels: " << cut << "\n";
-  os << indent << "Planes: " << this->Planes.size() / 4 << "\n";
+  const auto near = std::count_if(this->Links.begin(), this->Links.end(),
+    [](unsigned char b) { return (b & REFRACTA_CUT_NEAR) != 0; });
+  os << indent << "NearVoxels: " << near << "\n";
   os << indent << "NumberOfSearches: " << this->NumberOfSearches << "\n";
 }

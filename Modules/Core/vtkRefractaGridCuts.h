@@ -10,21 +10,17 @@
  * - the **cut links**: per voxel, bit a (a = 0, 1, 2) is set where the segment from its centre to
  *   the next voxel centre along axis a meets a triangle (a touch counts, so a wall through a centre
  *   cuts both of its links across it);
- * - each **cut voxel's plane**: a voxel within one voxel per axis of a triangle (the reach of its
- *   cell's deposits and of the trilinear lookups that read it; conservatively, the triangle's
- *   plane within |n_x| + |n_y| + |n_z| voxels of the centre and its bounds within one voxel) gets
- *   the plane of the nearest such triangle, in voxel coordinates u (grid-local
- *   / spacing, voxel (i, j, k) at u = (i, j, k)) as (n, d) with n a unit vector in u and
- *   n . u + d the signed distance in voxels. A point lies **across** the voxel's surface when it is
- *   on the other side of that plane from the voxel's centre (IsAcross; a centre on the plane
- *   belongs to its front).
+ * - the voxels **near** a triangle (bit REFRACTA_CUT_NEAR, 8): a triangle passes within one voxel
+ *   per axis of the centre (conservatively: its plane within |n_x| + |n_y| + |n_z| voxels, its
+ *   bounds within one voxel), the reach of the cell's deposits and of the trilinear lookups that
+ *   read the centre.
  *
- * Three passes read them: the photon deposits' 3 x 3 x 3 smoothing exchanges nothing over a cut
- * link; a photon's piece whose midpoint is across its voxel's surface deposits into the
- * neighbour on its own side; the view pass's trilinear lookups of light leave out the corners
- * across their surface from the sample. The plane is the triangle's own, extended: near the edge
- * of a surface it may separate points that the surface does not (within a voxel of the edge).
- * Dielectric (glass) triangles cut nothing: light passes through them.
+ * The passes read them: the photon deposits' 3 x 3 x 3 smoothing exchanges nothing over a cut
+ * link; near a triangle, a photon's piece that an opaque triangle separates from its voxel's
+ * centre deposits into the nearest voxel around whose centre it sees, and the view pass's
+ * trilinear lookups of light leave out the corners an opaque triangle separates from the sample
+ * (both asked of the surfaces' BVH on the device, refracta_opaque_between). Dielectric (glass)
+ * triangles cut nothing: light passes through them.
  *
  * The search runs on the host in double precision over the voxels around each triangle's bounds
  * and is kept while the set's build, the grid and the placement stay the same (a light or camera
@@ -63,35 +59,22 @@ public:
     vtkMatrix4x4* localToWorld);
 
   /**
-   * Whether any link is cut (false until Update()).
+   * Whether any link is cut or any voxel near an opaque triangle (false until Update()).
    */
   bool HasCuts() const { return !this->Links.empty(); }
 
   /**
-   * Per voxel (index x + nx (y + ny z)), bit a set where its link along +axis a is cut; empty
-   * when none is.
+   * Per voxel (index x + nx (y + ny z)), bit a set where its link along +axis a is cut and bit
+   * REFRACTA_CUT_NEAR (Kernels/refracta_surfaces.cl, 8) where an opaque triangle passes within
+   * one voxel per axis of its centre; empty when neither happens anywhere.
    */
   const std::vector<unsigned char>& GetLinks() const { return this->Links; }
 
   /**
-   * Per voxel, the index of its plane in GetPlanes() (4 floats each), or -1 for a voxel at no
-   * cut link; empty when no link is cut.
+   * Whether an opaque triangle passes within one voxel per axis of voxel (i, j, k)'s centre
+   * (false outside the grid).
    */
-  const std::vector<int>& GetVoxelPlanes() const { return this->VoxelPlanes; }
-
-  /**
-   * The planes (n_x, n_y, n_z, d) in voxel coordinates, n unit: one per triangle that is some
-   * voxel's nearest cut.
-   */
-  const std::vector<float>& GetPlanes() const { return this->Planes; }
-
-  /**
-   * Whether voxel coordinates `u` lie across the surface of voxel (i, j, k) from its centre
-   * (false for a voxel without a plane). A point on the plane counts on its front (n . u + d >=
-   * 0): a voxel whose centre lies on a surface belongs to the side its normal faces. In float, as
-   * the kernels' twin refracta_across_cut (Kernels/refracta_common.cl) computes it.
-   */
-  bool IsAcross(int i, int j, int k, const double u[3]) const;
+  bool IsNear(int i, int j, int k) const;
 
   /**
    * How many searches Update() has run (a kept result is not a search).
@@ -118,8 +101,6 @@ private:
   int NumberOfSearches = 0;
 
   std::vector<unsigned char> Links;
-  std::vector<int> VoxelPlanes;
-  std::vector<float> Planes;
 };
 
 #endif

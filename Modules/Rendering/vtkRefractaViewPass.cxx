@@ -501,7 +501,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
       buf(surf.Interfaces), toSurface[0], toSurface[1], toSurface[2], hdrBuffer.Get(),
       stepBuffer.Get(), transmittanceBuffer.Get(), backgroundBuffer.Get(), surfaceDepthBuffer.Get(),
       buf(surf.Bodies), buf(in.CausticBricks), buf(in.CausticRadiance), buf(in.CausticDirection),
-      causticSub, supersampling, grazingCosine, supersampledBuffer.Get(), buf(surf.CutVoxels));
+      causticSub, supersampling, grazingCosine, supersampledBuffer.Get(), buf(surf.CutLinks));
     if (!context->Check(status, "clSetKernelArg (refracta_view_pass)", this) ||
       !this->RunTiles(context, launch, width, rows, row0, height, rowsPerTile))
     {

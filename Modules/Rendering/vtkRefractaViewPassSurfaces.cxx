@@ -84,7 +84,7 @@ bool SurfaceBuffers::UpdateCuts(const int dims[3], const double spacing[3],
 {
   if (!this->Active())
   {
-    this->CutVoxels.Reset();
+    this->CutLinks.Reset();
     return true;
   }
   vtkNew<vtkMatrix4x4> localToWorld;
@@ -93,15 +93,15 @@ bool SurfaceBuffers::UpdateCuts(const int dims[3], const double spacing[3],
   const bool searched = this->Cuts->Update(this->Set, dims, spacing, localToWorld);
   if (!this->Cuts->HasCuts())
   {
-    this->CutVoxels.Reset();
+    this->CutLinks.Reset();
     return true;
   }
-  if (searched || !this->CutVoxels)
+  if (searched || !this->CutLinks)
   {
-    const std::vector<int>& voxels = this->Cuts->GetVoxelPlanes();
-    this->CutVoxels = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-      voxels.size() * sizeof(int), voxels.data(), "voxels near opaque surfaces", owner);
-    if (!this->CutVoxels)
+    const std::vector<unsigned char>& links = this->Cuts->GetLinks();
+    this->CutLinks = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, links.size(),
+      links.data(), "voxels near opaque surfaces", owner);
+    if (!this->CutLinks)
     {
       return false;
     }

@@ -46,13 +46,13 @@ public:
 
   // Where the set's opaque triangles cut the medium's grid (vtkRefractaGridCuts, found again only
   // when the build, the grid or the placement changed): uploads which voxels are near an opaque
-  // triangle (CutVoxels >= 0), where the sided lookups of light ask the BVH whether one separates
-  // a sample from a voxel; none without surfaces or cuts. `worldToLocal` maps the set's world to
-  // the grid-local frame. False after an error.
+  // triangle (CutLinks, bit REFRACTA_CUT_NEAR), where the sided lookups of light ask the BVH
+  // whether one separates a sample from a voxel; none without surfaces or cuts. `worldToLocal` maps
+  // the set's world to the grid-local frame. False after an error.
   bool UpdateCuts(const int dims[3], const double spacing[3], const double worldToLocal[4][4],
     vtkOpenCLContext* context, vtkObject* owner);
   // Whether the last UpdateCuts() found cuts (the kernel then reads light sided).
-  bool HasCuts() const { return static_cast<bool>(this->CutVoxels); }
+  bool HasCuts() const { return static_cast<bool>(this->CutLinks); }
   vtkRefractaGridCuts* GetCuts() { return this->Cuts; }
   // Whether there is anything to hit.
   bool Active() const { return this->NodeCount > 0; }
@@ -80,7 +80,7 @@ public:
   // Corner normals (float4 per corner), (IndexInside, IndexOutside) per surface and the glass
   // bodies' inside media (vtkRefractaSurfaceSet::GetSurfaceBodies()).
   vtkOpenCLBuffer Normals, Interfaces, Bodies;
-  vtkOpenCLBuffer CutVoxels; // UpdateCuts()
+  vtkOpenCLBuffer CutLinks; // UpdateCuts()
 
 private:
   vtkSmartPointer<vtkRefractaSurfaceSet> Set;

@@ -298,13 +298,11 @@ struct vtkPhotonTracer::Internals
   vtkOpenCLBuffer SurfBodies;                  // the glass bodies' inside media
   cl_float4 Frame[3];
   double SurfaceEpsilon = 0;
-  // Where opaque surfaces cut the grid (vtkRefractaGridCuts; nullptr: nowhere this run): the
-  // links the smoothing does not exchange across and their device copy, uploaded once per run
-  // (vtkPhotonTracerOutput.cxx, SmoothAxes); the voxels near opaque triangles, where the
-  // march's sided deposits ask the BVH (REFRACTA_SIDED_DEPOSITS).
+  // Where opaque surfaces cut the grid (vtkRefractaGridCuts; nullptr: nowhere this run) and its
+  // links and near-surface bits on the device, uploaded once per run for the march's sided
+  // deposits (REFRACTA_SIDED_DEPOSITS) and the smoothing (vtkPhotonTracerOutput.cxx, SmoothAxes).
   const vtkRefractaGridCuts* Cuts = nullptr;
-  const std::vector<unsigned char>* CutLinks = nullptr;
-  vtkOpenCLBuffer CutLinksBuffer, CutVoxels;
+  vtkOpenCLBuffer CutLinksBuffer;
   vtkNew<vtkFloatArray> Irradiance;
   // Caustic atlas (vtkPhotonTracer::CausticSubdivision): c of this run, 1 when off (no
   // dielectric surfaces); its accumulators follow the coarse ones in SurfIrradiance.

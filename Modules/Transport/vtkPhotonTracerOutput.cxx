@@ -153,20 +153,8 @@ bool vtkPhotonTracer::SmoothAxes(Internals& run, cl_kernel filter, cl_mem a, cl_
   // <= 2 biasLimit (the kernel evaluates cosh only beyond it).
   const cl_float tauLimit = static_cast<cl_float>(std::acosh(1.0 + 2.0 * bias));
   const cl_uint voxelCount = static_cast<cl_uint>(m.Voxels);
-  // The links opaque surfaces cut, uploaded once per run (one byte per voxel; the kernel takes
-  // a buffer even when no link is cut: then one byte it does not read).
-  const cl_int cutLinks = run.CutLinks ? 1 : 0;
-  if (!run.CutLinksBuffer)
-  {
-    const unsigned char none = 0;
-    run.CutLinksBuffer =
-      run.Context->CreateBuffer(CL_MEM_READ_ONLY, cutLinks ? run.CutLinks->size() : 1,
-        cutLinks ? run.CutLinks->data() : &none, "smoothing links cut by surfaces", this);
-    if (!run.CutLinksBuffer)
-    {
-      return false;
-    }
-  }
+  // The links opaque surfaces cut (uploaded with the surfaces, UploadGridCuts).
+  const cl_int cutLinks = run.Cuts ? 1 : 0;
   cl_mem from = a, to = b;
   for (cl_int axis = 0; axis < 3; ++axis)
   {

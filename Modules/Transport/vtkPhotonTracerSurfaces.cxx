@@ -199,7 +199,6 @@ void vtkPhotonTracer::FindGridCuts(Internals& run, vtkMatrix4x4* localToWorld)
   }
   this->Cuts->Update(this->Surfaces, run.M.Dims, run.M.Spacing, localToWorld);
   run.Cuts = this->Cuts->HasCuts() ? this->Cuts.Get() : nullptr;
-  run.CutLinks = run.Cuts && this->Smoothing ? &this->Cuts->GetLinks() : nullptr;
 }
 
 //------------------------------------------------------------------------------
@@ -290,11 +289,11 @@ bool vtkPhotonTracer::UploadGridCuts(Internals& run)
 {
   Allocator& alloc = run.Alloc;
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
-  run.CutVoxels = run.Cuts
-    ? alloc.Make(in, run.Cuts->GetVoxelPlanes().size() * sizeof(int),
-        run.Cuts->GetVoxelPlanes().data(), "voxels near opaque surfaces")
-    : alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "voxels near opaque surfaces (none)");
-  return static_cast<bool>(run.CutVoxels);
+  run.CutLinksBuffer = run.Cuts
+    ? alloc.Make(in, run.Cuts->GetLinks().size(), run.Cuts->GetLinks().data(),
+        "links and voxels near opaque surfaces")
+    : alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "links and voxels near opaque surfaces (none)");
+  return static_cast<bool>(run.CutLinksBuffer);
 }
 
 //------------------------------------------------------------------------------
@@ -340,8 +339,8 @@ bool vtkPhotonTracer::SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_u
   set(sizeof(cl_mem), &interfaces);
   const cl_mem bodies = run.SurfBodies.Get();
   set(sizeof(cl_mem), &bodies);
-  const cl_mem cutVoxels = run.CutVoxels.Get();
-  set(sizeof(cl_mem), &cutVoxels);
+  const cl_mem cutLinks = run.CutLinksBuffer.Get();
+  set(sizeof(cl_mem), &cutLinks);
   return run.Context->Check(status, "clSetKernelArg(surfaces)", this);
 }
 
