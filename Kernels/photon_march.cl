@@ -65,14 +65,8 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
     return;
   }
   ps.bodies = surfaceBodies;
-  ps.cutLinks = cutLinks;
-  ps.sideNodes = surfaceNodes;
-  ps.sideNodeCount = surfaceNodeCount;
-  ps.sideTriangles = surfaceTriangles;
-  ps.sideInfo = (__global const int*)surfaceInfo;
-  ps.sideFrame0 = frame0;
-  ps.sideFrame1 = frame1;
-  ps.sideFrame2 = frame2;
+  photon_set_sides(&ps, cutLinks, surfaceNodes, surfaceNodeCount, surfaceTriangles,
+    (__global const int*)surfaceInfo, frame0, frame1, frame2);
   photon_set_volume_caustic(&ps, volumeCausticBricks, volumeCausticFine, volumeCausticSubdivision);
   const float3 emitted = ps.power;
   int steps = 0;
@@ -224,14 +218,8 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     ps.body = as_int(s[6].w);
   }
   ps.bodies = surfaceBodies;
-  ps.cutLinks = cutLinks;
-  ps.sideNodes = surfaceNodes;
-  ps.sideNodeCount = surfaceNodeCount;
-  ps.sideTriangles = surfaceTriangles;
-  ps.sideInfo = (__global const int*)surfaceInfo;
-  ps.sideFrame0 = frame0;
-  ps.sideFrame1 = frame1;
-  ps.sideFrame2 = frame2;
+  photon_set_sides(&ps, cutLinks, surfaceNodes, surfaceNodeCount, surfaceTriangles,
+    (__global const int*)surfaceInfo, frame0, frame1, frame2);
   photon_set_volume_caustic(&ps, volumeCausticBricks, volumeCausticFine, volumeCausticSubdivision);
   ps.dead = 0;
   int steps = (int)st.y;

@@ -192,6 +192,22 @@ inline void photon_set_volume_caustic(
   ps->causticSub = subdivision;
 }
 
+// The sided deposits' view of the scene (photon_sided_voxel): the voxels near opaque triangles
+// and the surfaces in their frame.
+inline void photon_set_sides(photon_state* ps, __global const uchar* cutLinks,
+  __global const float4* nodes, int nodeCount, __global const float4* triangles,
+  __global const int* info, float4 frame0, float4 frame1, float4 frame2)
+{
+  ps->cutLinks = cutLinks;
+  ps->sideNodes = nodes;
+  ps->sideNodeCount = nodeCount;
+  ps->sideTriangles = triangles;
+  ps->sideInfo = info;
+  ps->sideFrame0 = frame0;
+  ps->sideFrame1 = frame1;
+  ps->sideFrame2 = frame2;
+}
+
 // A 3D DDA over unit cells along a + t du (t in [0, 1]) from `cell`: each axis's step (-1, 0, 1),
 // the t between its cell faces and the t of its next face.
 inline void photon_dda_start(
