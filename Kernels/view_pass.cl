@@ -336,7 +336,7 @@ inline float3 refracta_view_weighted3(
   }
   return sum;
 }
-// A light field at the step: sided where the sample's corners are cut.
+// A light field at the step: sided where a corner of the sample is near an opaque triangle.
 #define REFRACTA_VIEW_LIGHT3(f)                                                                   \
   (sided ? refracta_view_weighted3((f), st, sidedWeights) : refracta_view_sample3((f), st))
 #else
