@@ -66,7 +66,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   }
   ps.bodies = surfaceBodies;
   photon_set_sides(&ps, cutLinks, surfaceNodes, surfaceNodeCount, surfaceTriangles,
-    (__global const int*)surfaceInfo, frame0, frame1, frame2);
+    (__global const int*)surfaceInfo, frame0, frame1, frame2, spacing);
   photon_set_volume_caustic(&ps, volumeCausticBricks, volumeCausticFine, volumeCausticSubdivision);
   const float3 emitted = ps.power;
   int steps = 0;
@@ -219,7 +219,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
   }
   ps.bodies = surfaceBodies;
   photon_set_sides(&ps, cutLinks, surfaceNodes, surfaceNodeCount, surfaceTriangles,
-    (__global const int*)surfaceInfo, frame0, frame1, frame2);
+    (__global const int*)surfaceInfo, frame0, frame1, frame2, spacing);
   photon_set_volume_caustic(&ps, volumeCausticBricks, volumeCausticFine, volumeCausticSubdivision);
   ps.dead = 0;
   int steps = (int)st.y;

@@ -192,11 +192,11 @@ inline void photon_set_volume_caustic(
   ps->causticSub = subdivision;
 }
 
-// The sided deposits' view of the scene (photon_sided_voxel): the voxels near opaque triangles
-// and the surfaces in their frame.
+// The sided deposits' view of the scene (photon_sided_voxel): the voxels near opaque triangles,
+// the surfaces in their frame and the grid's spacing.
 inline void photon_set_sides(photon_state* ps, __global const uchar* cutLinks,
   __global const float4* nodes, int nodeCount, __global const float4* triangles,
-  __global const int* info, float4 frame0, float4 frame1, float4 frame2)
+  __global const int* info, float4 frame0, float4 frame1, float4 frame2, float4 spacing)
 {
   ps->cutLinks = cutLinks;
   ps->sideNodes = nodes;
@@ -206,6 +206,7 @@ inline void photon_set_sides(photon_state* ps, __global const uchar* cutLinks,
   ps->sideFrame0 = frame0;
   ps->sideFrame1 = frame1;
   ps->sideFrame2 = frame2;
+  ps->sideSpacing = spacing;
 }
 
 // A 3D DDA over unit cells along a + t du (t in [0, 1]) from `cell`: each axis's step (-1, 0, 1),
@@ -620,9 +621,6 @@ inline void photon_walk(photon_state* ps, float3 x0, float3 x1, float t1, int4 d
     return;
   }
   const float3 direction = (x1 - x0) / worldLength;
-#if REFRACTA_SIDED_DEPOSITS
-  ps->sideSpacing = spacing;
-#endif
   const int3 hiCell = (int3)((dims.x << PHOTON_CUT_SHIFT) - 1, (dims.y << PHOTON_CUT_SHIFT) - 1,
     (dims.z << PHOTON_CUT_SHIFT) - 1);
   int3 cell = clamp(convert_int3_rtn(a), (int3)(0), hiCell);

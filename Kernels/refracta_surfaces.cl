@@ -332,8 +332,8 @@ inline bool refracta_bvh_any_hit(__global const float4* nodes, int nodeCount,
 inline bool refracta_bvh_occluded(__global const float4* nodes, int nodeCount,
   __global const float4* triangles, float3 origin, float3 dir, float tMin, float tMax)
 {
-  return refracta_bvh_any_hit(nodes, nodeCount, triangles, triangles ? (__global const int*)0 : 0,
-    false, origin, dir, tMin, tMax);
+  return refracta_bvh_any_hit(
+    nodes, nodeCount, triangles, (__global const int*)0, false, origin, dir, tMin, tMax);
 }
 
 // Whether an opaque triangle separates grid-local point a from b, the rows

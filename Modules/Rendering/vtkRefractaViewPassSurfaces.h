@@ -53,7 +53,6 @@ public:
     vtkOpenCLContext* context, vtkObject* owner);
   // Whether the last UpdateCuts() found cuts (the kernel then reads light sided).
   bool HasCuts() const { return static_cast<bool>(this->CutLinks); }
-  vtkRefractaGridCuts* GetCuts() { return this->Cuts; }
   // Whether there is anything to hit.
   bool Active() const { return this->NodeCount > 0; }
 

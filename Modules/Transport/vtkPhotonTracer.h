@@ -802,7 +802,7 @@ private:
   // while the set's build, the grid and the placement stay (a light move reuses them).
   void FindGridCuts(Internals& run, vtkMatrix4x4* localToWorld);
   bool UploadSurfaces(Internals& run);
-  bool UploadGridCuts(Internals& run); // the cut voxels' planes (placeholders without)
+  bool UploadGridCuts(Internals& run); // vtkRefractaGridCuts' bytes (a placeholder without)
 #ifndef __VTK_WRAP__
   bool SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint& index);
 #endif

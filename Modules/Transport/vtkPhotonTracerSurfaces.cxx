@@ -283,8 +283,9 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
 }
 
 //------------------------------------------------------------------------------
-// The cut voxels' planes for the march's sided deposits (placeholders without cuts: the kernels
-// take the arguments whatever the variant). Per run: the grid may change between runs.
+// vtkRefractaGridCuts' byte per voxel (cut links, near an opaque triangle) for the march's sided
+// deposits and the smoothing (a placeholder without cuts: the kernels take the argument whatever
+// the variant). Per run: the grid may change between runs.
 bool vtkPhotonTracer::UploadGridCuts(Internals& run)
 {
   Allocator& alloc = run.Alloc;
