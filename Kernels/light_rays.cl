@@ -309,6 +309,212 @@ __kernel void light_rays_voxels(LR_SCENE_ARGS, __global const float* scattering,
   lr_store(scattering, v, phi, flux, radiance, direction);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Box means at sharp voxels. Where sigma_t changes steeply within a voxel's box (the ramp of the
+// trilinear medium between a dense centre and an empty one), S1 at the centre is not what the
+// view pass needs: the light scatters in the ramp, where the centre values (sigma_s = 0 on the
+// empty side, phi ~ 0 on the dense side) hold almost none of it. There the voxel gets the mean
+// of sigma_s phi over its box instead, the quantity every photon deposit estimates, computed
+// without noise: parallel lines along each light's travel direction w, LR_BOX_LINES^2 through
+// each face the light enters by, each weighted by the area of the box's projection it stands
+// for (the midpoint rule on each face: exact where the integrand is linear over a line's patch;
+// the chord length bends where the face a line leaves by changes, which the rule converges to as
+// 1 / LR_BOX_LINES). A line carries the fluence it has on the plane Pi (normal w, LR_BOX_UPSTREAM
+// spacings upstream of the box's centre: interpolated bilinearly between four light rays
+// traced from the corners of the box's shadow on Pi (lr_far_fluence), lr_light_fluence with its
+// transmittance,
+// shadows, spot cone and extended lights), loses exp(-optical depth) from Pi to the box (the
+// medium right in front of the box, where the fluence changes fast, integrated along each line),
+// then through the box loses phi (1 - exp(-sigma_t len)) per piece, cut at the voxel's centre
+// planes (the trilinear medium's kinks), sigma_t and the albedo sampled at each piece's midpoint
+// as a photon does; a times the loss scatters. The sum divided by the box's volume is the mean.
+// A positional light closer than Pi, and a fluence on Pi that a fifth ray at the shadow's centre
+// shows is not log-linear there (within LR_BOX_FAR_TOLERANCE), are traced from every line's
+// entry instead.
+#define LR_BOX_LINES 4
+#define LR_BOX_UPSTREAM 4.0f
+#define LR_BOX_FAR_TOLERANCE 0.02f
+#define LR_BOX_DARK 0.05f
+
+// The fluence at (alpha, beta) in [0, 1]^2 of the square whose corners hold far[0..3] (x, then
+// y): bilinear in log phi (exact where the optical depth to the light changes linearly across
+// Pi, as behind a uniform layer), bilinear in phi in a channel where a corner is dark.
+inline float3 lr_far_fluence(const float3* far, float alpha, float beta)
+{
+  const float3 linear = mix(mix(far[0], far[1], alpha), mix(far[2], far[3], alpha), beta);
+  const int3 dark = far[0] <= 0.0f || far[1] <= 0.0f || far[2] <= 0.0f || far[3] <= 0.0f;
+  const float3 lf[4] = { log(fmax(far[0], FLT_MIN)), log(fmax(far[1], FLT_MIN)),
+    log(fmax(far[2], FLT_MIN)), log(fmax(far[3], FLT_MIN)) };
+  const float3 logLinear = exp(mix(mix(lf[0], lf[1], alpha), mix(lf[2], lf[3], alpha), beta));
+  return select(logLinear, linear, dark);
+}
+
+// Scattered power (RGB) of one light's beam through the box [lo, lo + h], per unit volume.
+inline float3 lr_box_light(const lr_scene* s, __global const float* albedo,
+  __global const float4* light, float3 lo, float minDistance, float3* travelOut)
+{
+  const float3 h = s->spacing.xyz;
+  const float3 centre = lo + 0.5f * h;
+  const bool positional = light[0].w >= 0.5f;
+  const float upstream = LR_BOX_UPSTREAM * fmax(fmax(h.x, h.y), h.z);
+  float3 w;
+  bool exact = false; // every line's fluence by its own light ray
+  if (!positional)
+  {
+    w = light[1].xyz;
+  }
+  else
+  {
+    const float3 away = centre - light[0].xyz;
+    w = length(away) > 0.0f ? normalize(away) : (float3)(0.0f, 0.0f, -1.0f);
+    exact = length(away) < upstream + length(h);
+  }
+  *travelOut = w;
+  // The plane Pi and the fluence at the corners of the box's shadow on it.
+  const float3 origin = centre - upstream * w;
+  const float3 u1 = normalize(cross(fabs(w.x) < 0.9f ? (float3)(1.0f, 0.0f, 0.0f)
+                                                       : (float3)(0.0f, 1.0f, 0.0f),
+    w));
+  const float3 u2 = cross(w, u1);
+  const float r1 = 0.5f * dot(fabs(u1), h), r2 = 0.5f * dot(fabs(u2), h);
+  float3 far[4] = { (float3)(0.0f), (float3)(0.0f), (float3)(0.0f), (float3)(0.0f) };
+  if (!exact)
+  {
+    float3 unused;
+    bool lit = false;
+    for (int corner = 0; corner < 4; ++corner)
+    {
+      const float3 q = origin + ((corner & 1) ? r1 : -r1) * u1 + ((corner & 2) ? r2 : -r2) * u2;
+      far[corner] = lr_light_fluence(s, light, q, minDistance, &unused, (float3)(0.0f));
+      lit = lit || any(far[corner] > (float3)(0.0f));
+    }
+    // Where the fluence is not log-linear across the shadow (Pi crosses a face of the medium, a
+    // shadow's edge), a fifth ray at its centre disagrees with the interpolation: there every
+    // line's fluence comes from its own light ray.
+    const float3 middle = lr_light_fluence(s, light, origin, minDistance, &unused, (float3)(0.0f));
+    const float3 predicted = lr_far_fluence(far, 0.5f, 0.5f);
+    // (Differences below LR_BOX_DARK of the light's unattenuated fluence do not count: deep in a
+    // shadow the lines carry next to nothing either way.)
+    const float3 toCentre = centre - light[0].xyz;
+    const float3 unattenuated = positional
+      ? light[2].xyz / fmax(dot(toCentre, toCentre), minDistance * minDistance)
+      : light[2].xyz;
+    exact = any(fabs(predicted - middle) >
+      LR_BOX_FAR_TOLERANCE * fmax(fmax(middle, predicted), LR_BOX_DARK * unattenuated));
+    if (!lit && !exact)
+    {
+      return (float3)(0.0f);
+    }
+  }
+  float3 sum = (float3)(0.0f);
+  const float wa[3] = { w.x, w.y, w.z };
+  const float ha[3] = { h.x, h.y, h.z };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (fabs(wa[a]) < 1e-6f)
+    {
+      continue; // no line enters through a face parallel to the beam
+    }
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    const float area = ha[b] * ha[c] * fabs(wa[a]) / (float)(LR_BOX_LINES * LR_BOX_LINES);
+    for (int p = 0; p < LR_BOX_LINES; ++p)
+    {
+      for (int q = 0; q < LR_BOX_LINES; ++q)
+      {
+        float e[3];
+        e[a] = wa[a] > 0.0f ? 0.0f : ha[a];
+        e[b] = ((float)p + 0.5f) / (float)LR_BOX_LINES * ha[b];
+        e[c] = ((float)q + 0.5f) / (float)LR_BOX_LINES * ha[c];
+        const float3 entry = lo + (float3)(e[0], e[1], e[2]);
+        float3 phi;
+        if (exact)
+        {
+          float3 unused;
+          phi = lr_light_fluence(s, light, entry, minDistance, &unused, (float3)(0.0f));
+        }
+        else
+        {
+          const float depth = dot(entry - origin, w); // > 0: Pi lies upstream of the box
+          const float3 start = entry - depth * w;
+          const float alpha = clamp(0.5f * (dot(start - origin, u1) / r1 + 1.0f), 0.0f, 1.0f);
+          const float beta = clamp(0.5f * (dot(start - origin, u2) / r2 + 1.0f), 0.0f, 1.0f);
+          phi = lr_far_fluence(far, alpha, beta) * exp(-lr_optical_depth(s, start, w, depth));
+          if (positional)
+          {
+            const float3 toStart = start - light[0].xyz, toEntry = entry - light[0].xyz;
+            phi *= dot(toStart, toStart) / fmax(dot(toEntry, toEntry), minDistance * minDistance);
+          }
+        }
+        if (!any(phi > (float3)(0.0f)))
+        {
+          continue;
+        }
+        // Exit distance and the (at most three) centre-plane crossings, in order.
+        float tEntry, tExit;
+        refracta_intersect_box(entry, w, lo, lo + h, &tEntry, &tExit);
+        const float3 inv = (float3)(1.0f) / w;
+        float3 cut = select((centre - entry) * inv, (float3)(INFINITY), fabs(w) < 1e-6f);
+        cut = select(cut, (float3)(INFINITY), cut <= 0.0f || cut >= tExit);
+        // The pieces' ends: the crossings in order (smallest, median, largest), then the exit.
+        const float ends[4] = { fmin(fmin(cut.x, cut.y), cut.z),
+          fmax(fmin(cut.x, cut.y), fmin(fmax(cut.x, cut.y), cut.z)), fmax(fmax(cut.x, cut.y), cut.z),
+          tExit };
+        float3 carried = (float3)(1.0f);
+        float3 scattered = (float3)(0.0f);
+        float t = 0.0f;
+        for (int piece = 0; piece < 4; ++piece)
+        {
+          const float end = fmin(ends[piece], tExit);
+          if (!(end > t))
+          {
+            continue;
+          }
+          const float3 mid = refracta_to_voxel(entry + w * (0.5f * (t + end)), s->spacing);
+          const float3 sigmaT = refracta_sample3(s->extinction, s->dims, mid);
+          const float3 lost = carried * (-expm1(-sigmaT * (end - t)));
+          scattered += lost * clamp(refracta_sample3(albedo, s->dims, mid), 0.0f, 1.0f);
+          carried -= lost;
+          t = end;
+        }
+        sum += area * phi * scattered;
+      }
+    }
+  }
+  return sum / (h.x * h.y * h.z);
+}
+
+// S1 and the direction at the sharp voxels listed in `voxels` (their linear indices): the box
+// mean of sigma_s phi over all lights; boxRadiance[v'] and boxDirection[v'] by list position.
+__kernel void light_rays_boxes(LR_SCENE_ARGS, __global const float* albedo,
+  __global const float4* lights, const int lightCount, const float minDistance,
+  __global const ulong* voxels, __global float* boxRadiance, __global float* boxDirection,
+  const ulong count)
+{
+  const size_t n = get_global_id(0);
+  if (n >= count)
+  {
+    return;
+  }
+  const lr_scene s = LR_MAKE_SCENE();
+  const size_t v = voxels[n];
+  const int i = (int)(v % (size_t)dims.x);
+  const int j = (int)((v / (size_t)dims.x) % (size_t)dims.y);
+  const int k = (int)(v / ((size_t)dims.x * (size_t)dims.y));
+  const float3 lo = ((float3)((float)i, (float)j, (float)k) - 0.5f) * spacing.xyz;
+  float3 s1 = (float3)(0.0f), flux = (float3)(0.0f);
+  for (int l = 0; l < lightCount; ++l)
+  {
+    float3 travel;
+    const float3 e =
+      lr_box_light(&s, albedo, lights + LR_LIGHT_FLOAT4S * l, lo, minDistance, &travel);
+    s1 += e;
+    flux += (e.x + e.y + e.z) * travel;
+  }
+  const float len = length(flux);
+  vstore3(s1, n, boxRadiance);
+  vstore3(len > 0.0f && (s1.x + s1.y + s1.z) > 0.0f ? flux / len : (float3)(0.0f), n, boxDirection);
+}
+
 // phi and flux at arbitrary grid-local points (the samples of the interpolation, the points of
 // their gradients and of their error metric).
 __kernel void light_rays_points(LR_SCENE_ARGS, __global const float4* points, const int pointCount,

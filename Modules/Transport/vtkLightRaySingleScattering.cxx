@@ -162,7 +162,8 @@ int vtkLightRaySingleScattering::RequestData(
   output->Initialize();
   this->TotalSeconds = this->SamplingSeconds = this->VoxelSeconds = 0;
   this->NumberOfSamples = this->NumberOfUncoveredVoxels = 0;
-  this->NumberOfEvaluatedPoints = 0;
+  this->NumberOfEvaluatedPoints = this->NumberOfBoxMeanVoxels = 0;
+  this->BoxMeanSeconds = 0;
   this->LastRunAborted = false;
   this->SamplesPerLevel.clear();
   this->SamplePositions->SetNumberOfTuples(0);
@@ -205,7 +206,8 @@ int vtkLightRaySingleScattering::RequestData(
       a->SetNumberOfTuples(static_cast<vtkIdType>(run.M.Voxels));
     }
     if (!this->Upload(run) ||
-      !(this->Method == INTERPOLATED ? this->RunInterpolation(run) : this->RunLightRays(run)))
+      !(this->Method == INTERPOLATED ? this->RunInterpolation(run) : this->RunLightRays(run)) ||
+      (this->SharpVoxelBoxMeans && !run.Aborted && !this->RunBoxMeans(run)))
     {
       return 0;
     }
@@ -588,6 +590,7 @@ void vtkLightRaySingleScattering::WriteOutput(Internals& run, vtkImageData* outp
   addCount("NumberOfSamples", this->NumberOfSamples);
   addCount("EvaluatedPoints", this->NumberOfEvaluatedPoints);
   addCount("UncoveredVoxels", this->NumberOfUncoveredVoxels);
+  addCount("BoxMeanVoxels", this->NumberOfBoxMeanVoxels);
 }
 
 //------------------------------------------------------------------------------
@@ -603,12 +606,15 @@ void vtkLightRaySingleScattering::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
   os << indent << "CoarsestGridResolution: " << this->CoarsestGridResolution << "\n";
   os << indent << "MaximumGridResolution: " << this->MaximumGridResolution << "\n";
+  os << indent << "SharpVoxelBoxMeans: " << this->SharpVoxelBoxMeans << "\n";
   os << indent << "LastRunAborted: " << this->LastRunAborted << "\n";
   os << indent << "UseViewPoint: " << this->UseViewPoint << " (" << this->ViewPoint[0] << ", "
      << this->ViewPoint[1] << ", " << this->ViewPoint[2] << ")\n";
   os << indent << "TotalSeconds: " << this->TotalSeconds << "\n";
   os << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n";
   os << indent << "NumberOfEvaluatedPoints: " << this->NumberOfEvaluatedPoints << "\n";
+  os << indent << "NumberOfBoxMeanVoxels: " << this->NumberOfBoxMeanVoxels << "\n";
+  os << indent << "BoxMeanSeconds: " << this->BoxMeanSeconds << "\n";
   os << indent << "SurfaceSeconds: " << this->SurfaceSeconds << "\n";
   os << indent << "NumberOfSurfacePoints: " << this->NumberOfSurfacePoints << "\n";
 }

@@ -128,6 +128,69 @@ TEST(LightRays, SlabUnderDirectionalLightIsAnalytic)
     "light_rays");
 }
 
+// A dense slab's face under a directional light along +z (sigma_t = S from the centre plane
+// z = 6 on, 0 below; unit spacing): the trilinear medium ramps from 0 to S between the centres
+// z = 5 and z = 6, where most of the light scatters when S is large. The two voxels whose box
+// holds the ramp (k = 5, 6) get the box mean (1 / h) integral over the box of
+// a sigma(z) E exp(-tau(z)) dz, tau(z) = S (z - 5)^2 / 2 in the ramp and S / 2 + S (z - 6) past it
+// (integrated here in double), to float precision (light along an axis: the lines' rule is
+// exact); the voxels beyond keep their centre values. Without the box means the empty voxel
+// k = 5 holds nothing and the face voxel the light at its centre: at S = 10 that is 6.7% of what
+// the two voxels' boxes scatter.
+TEST(LightRays, BoxMeansAtADenseFaceMatchTheTrilinearMedium)
+{
+  const double albedo = 0.8, e = 2.0;
+  for (double S : { 2.0, 10.0 })
+  {
+    auto medium = MakeMedium(4, 4, 12, 1.0,
+      [&](double, double, double z) { return Homogeneous(z >= 6 ? S : 0.0, albedo); });
+    auto sigmaAt = [&](double z) { return z <= 5 ? 0.0 : (z >= 6 ? S : S * (z - 5)); };
+    auto tauAt = [&](double z)
+    { return z <= 5 ? 0.0 : (z >= 6 ? S / 2 + S * (z - 6) : S * (z - 5) * (z - 5) / 2); };
+    auto boxMean = [&](int k)
+    {
+      const int steps = 200000;
+      double sum = 0;
+      for (int i = 0; i < steps; ++i)
+      {
+        const double z = k - 0.5 + (i + 0.5) / steps;
+        sum += albedo * sigmaAt(z) * e * std::exp(-tauAt(z));
+      }
+      return sum / steps;
+    };
+    for (bool boxMeans : { true, false })
+    {
+      vtkNew<vtkLightRaySingleScattering> pass;
+      pass->AddLight(Directional({ 1.5, 1.5, -10 }, { 1.5, 1.5, 0 }, e));
+      pass->SetSharpVoxelBoxMeans(boxMeans);
+      auto out = RunPass(pass, medium);
+      const float* s1 = Radiance(out);
+      const size_t column = 1 + 4 * 2; // (i, j) = (1, 2)
+      const double centre7 = albedo * S * e * std::exp(-tauAt(7));
+      const double at5 = s1[3 * (column + 16 * 5)], at6 = s1[3 * (column + 16 * 6)];
+      const double at7 = s1[3 * (column + 16 * 7)];
+      std::cout << "S " << S << (boxMeans ? ", box means: " : ", centres: ") << at5 << " " << at6
+                << " " << at7 << " (box means " << boxMean(5) << " " << boxMean(6) << ")\n";
+      EXPECT_NEAR(at7 / centre7, 1.0, 1e-4) << "beyond the face: the centre value";
+      if (boxMeans)
+      {
+        // The layers k = 5 and 6, and the dense voxels on the grid's faces (k = 7..10: 12 per
+        // layer; k = 11: all 16), which reach a face with no medium beyond.
+        EXPECT_EQ(pass->GetNumberOfBoxMeanVoxels(), 16 + 16 + 4 * 12 + 16);
+        EXPECT_NEAR(at5 / boxMean(5), 1.0, 1e-3);
+        EXPECT_NEAR(at6 / boxMean(6), 1.0, 1e-3);
+        EXPECT_NEAR(Direction(out)[3 * (column + 16 * 5) + 2], 1.0, 1e-5);
+      }
+      else
+      {
+        EXPECT_EQ(pass->GetNumberOfBoxMeanVoxels(), 0);
+        EXPECT_EQ(at5, 0.0);
+        EXPECT_NEAR(at6 / (albedo * S * e * std::exp(-S / 2)), 1.0, 1e-4);
+      }
+    }
+  }
+}
+
 // A point light at the centre of a homogeneous sphere: S1(d) = sigma_s I exp(-sigma_t d) / d^2,
 // and the direction points away from the light.
 TEST(LightRays, PointLightInHomogeneousSphereIsAnalytic)
