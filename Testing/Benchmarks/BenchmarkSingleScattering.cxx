@@ -5,7 +5,10 @@
 // from one run.
 //
 // Usage: BenchmarkSingleScattering [--sizes 64,128] [--lights 1,8,32,64] [--repeats 3]
-//          [--max-photons 4194304] [--photon-lights 1] [--csv file]
+//          [--max-photons 4194304] [--photon-lights 1] [--csv file] [--box-means 1]
+// --box-means 1 instead times the light rays with and without their box means at sharp voxels
+// (vtkLightRaySingleScattering::SharpVoxelBoxMeans) on dense media of 1 optical depth per voxel
+// (the lower half of the grid, a ball of radius 0.35) under a sun: what the box means cost.
 // The photon search doubles the photon count from 2^14 until its RMS distance to the light rays
 // is at most the interpolation's (or --max-photons); it runs for the light counts in
 // --photon-lights only (its cost does not grow with the lights, only its error target moves).
@@ -22,6 +25,7 @@
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
 #include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaMedium.h"
 
 #include <algorithm>
 #include <cmath>
@@ -78,8 +82,82 @@ double RelativeRms(vtkImageData* a, vtkImageData* reference)
 }
 }
 
+// n^3 voxels over the unit cube: sigma_t = n (an optical depth of 1 per voxel) in the lower half
+// (slab) or in a ball of radius 0.35, 0 elsewhere; albedo 0.8.
+vtkSmartPointer<vtkImageData> DenseMedium(int n, bool ball)
+{
+  auto medium = vtkSmartPointer<vtkImageData>::New();
+  const double h = 1.0 / n;
+  medium->SetDimensions(n, n, n);
+  medium->SetSpacing(h, h, h);
+  medium->SetOrigin(0.5 * h, 0.5 * h, 0.5 * h);
+  vtkNew<vtkFloatArray> extinction, albedo;
+  extinction->SetName(vtkRefractaMedium::ExtinctionName());
+  albedo->SetName(vtkRefractaMedium::AlbedoName());
+  extinction->SetNumberOfComponents(3);
+  albedo->SetNumberOfComponents(3);
+  extinction->SetNumberOfTuples(medium->GetNumberOfPoints());
+  albedo->SetNumberOfTuples(medium->GetNumberOfPoints());
+  for (vtkIdType id = 0; id < medium->GetNumberOfPoints(); ++id)
+  {
+    double p[3];
+    medium->GetPoint(id, p);
+    const double r2 =
+      (p[0] - 0.5) * (p[0] - 0.5) + (p[1] - 0.5) * (p[1] - 0.5) + (p[2] - 0.5) * (p[2] - 0.5);
+    const double sigma = (ball ? r2 < 0.35 * 0.35 : p[1] < 0.5) ? n : 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      extinction->SetComponent(id, c, sigma);
+      albedo->SetComponent(id, c, 0.8);
+    }
+  }
+  medium->GetPointData()->AddArray(extinction);
+  medium->GetPointData()->AddArray(albedo);
+  return medium;
+}
+
+// The light rays with and without box means at sharp voxels, medians of `repeats`.
+void TimeBoxMeans(const std::vector<int>& sizes, int repeats)
+{
+  vtkNew<vtkLight> sun;
+  sun->SetLightTypeToSceneLight();
+  sun->PositionalOff();
+  sun->SetPosition(1.5, 3.0, 1.0);
+  sun->SetFocalPoint(0.5, 0.5, 0.5);
+  std::printf("%5s %6s %12s %12s %8s %12s %14s\n", "grid", "medium", "centres [s]", "box means [s]",
+    "ratio", "sharp voxels", "us per sharp");
+  for (int n : sizes)
+  {
+    for (bool ball : { false, true })
+    {
+      auto medium = DenseMedium(n, ball);
+      double seconds[2];
+      long long sharp = 0;
+      for (int boxMeans = 0; boxMeans < 2; ++boxMeans)
+      {
+        vtkNew<vtkLightRaySingleScattering> rays;
+        rays->AddLight(sun);
+        rays->SetSharpVoxelBoxMeans(boxMeans == 1);
+        rays->SetInputData(medium);
+        seconds[boxMeans] = refracta::bench::MedianSeconds(repeats,
+          [&]
+          {
+            rays->Modified();
+            rays->Update();
+          });
+        sharp = rays->GetNumberOfBoxMeanVoxels();
+      }
+      std::printf("%5d %6s %12.3f %12.3f %8.2f %12lld %14.1f\n", n, ball ? "ball" : "slab",
+        seconds[0], seconds[1], seconds[1] / seconds[0], sharp,
+        sharp ? 1e6 * (seconds[1] - seconds[0]) / sharp : 0.0);
+      std::fflush(stdout);
+    }
+  }
+}
+
 int main(int argc, char* argv[])
 {
+  bool boxMeans = false;
   std::vector<int> sizes = { 64, 128 };
   std::vector<int> lightCounts = { 1, 8, 32, 64 };
   std::vector<int> photonLights = { 1 };
@@ -101,6 +179,8 @@ int main(int argc, char* argv[])
       maxPhotons = std::atoi(value.c_str());
     else if (key == "--csv")
       csv = value;
+    else if (key == "--box-means")
+      boxMeans = std::atoi(value.c_str()) != 0;
     else
     {
       std::cerr << "Unknown option " << key << "\n";
@@ -115,6 +195,11 @@ int main(int argc, char* argv[])
   }
   std::cout << "Device: " << context->GetDeviceName() << " (" << context->GetPlatformName()
             << "), median of " << repeats << " runs\n";
+  if (boxMeans)
+  {
+    TimeBoxMeans(sizes, repeats);
+    return 0;
+  }
   std::ostringstream table;
   table << "size,lights,light_rays_s,interpolated_s,speedup,samples,rms,photons,photon_rms,"
            "photon_s,photon_speedup_vs_interpolated\n";
