@@ -214,28 +214,27 @@ void vtkRefractaGridCuts::Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* local
     // trilinear lookups that read the centre: one) lie within |n_x| + |n_y| + |n_z| of it
     // along the plane's normal.
     const double reach = std::fabs(plane[0]) + std::fabs(plane[1]) + std::fabs(plane[2]);
-    for (int z = lo[2]; z <= hi[2]; ++z)
+    // Only the voxels within `reach` of the plane can be near it or have a link it cuts (a link
+    // along axis a spans |n_a| <= reach across the plane): along the plane's dominant axis d,
+    // each column of the bounds holds at most 2 reach / |n_d| + 1 <= 7 of them. The band is
+    // widened by 0.01 voxel for the plane's float rounding and the links' touch tolerance.
+    const int d = static_cast<int>(std::max_element(plane, plane + 3,
+                                     [](float x, float y) { return std::fabs(x) < std::fabs(y); }) -
+      plane);
+    const int e = (d + 1) % 3, f = (d + 2) % 3;
+    const double band = reach + 0.01;
+    int ijk[3];
+    for (ijk[f] = lo[f]; ijk[f] <= hi[f]; ++ijk[f])
     {
-      for (int y = lo[1]; y <= hi[1]; ++y)
+      for (ijk[e] = lo[e]; ijk[e] <= hi[e]; ++ijk[e])
       {
-        for (int x = lo[0]; x <= hi[0]; ++x)
+        const double rest = plane[e] * ijk[e] + plane[f] * ijk[f] + plane[3];
+        const double t0 = (-band - rest) / plane[d], t1 = (band - rest) / plane[d];
+        const int first = std::max(lo[d], static_cast<int>(std::ceil(std::min(t0, t1))));
+        const int last = std::min(hi[d], static_cast<int>(std::floor(std::max(t0, t1))));
+        for (ijk[d] = first; ijk[d] <= last; ++ijk[d])
         {
-          const int ijk[3] = { x, y, z };
-          unsigned char& bits = this->Links[x + size_t(dims[0]) * (y + size_t(dims[1]) * z)];
-          bool near = std::fabs(plane[0] * x + plane[1] * y + plane[2] * z + plane[3]) <= reach;
-          for (int a = 0; a < 3; ++a)
-          {
-            near = near && ijk[a] >= low[a] - 1.0 && ijk[a] <= high[a] + 1.0;
-          }
-          bits |= near ? REFRACTA_CUT_NEAR : 0;
-          const double p[3] = { x * h[0], y * h[1], z * h[2] };
-          for (int a = 0; a < 3; ++a)
-          {
-            if (ijk[a] + 1 < dims[a] && SegmentMeetsTriangle(p, a, h[a], v))
-            {
-              bits |= static_cast<unsigned char>(1 << a);
-            }
-          }
+          this->MarkVoxel(ijk, plane, reach, low, high, v);
         }
       }
     }
@@ -243,6 +242,33 @@ void vtkRefractaGridCuts::Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* local
   if (std::none_of(this->Links.begin(), this->Links.end(), [](unsigned char b) { return b != 0; }))
   {
     this->Links.clear();
+  }
+}
+
+//------------------------------------------------------------------------------
+// Voxel ijk's bits for triangle v (plane in voxel coordinates, bounds low..high in voxels): near
+// when within `reach` of the plane and one voxel of the bounds; a link along each axis when the
+// segment to the next centre meets the triangle.
+void vtkRefractaGridCuts::MarkVoxel(const int ijk[3], const float plane[4], double reach,
+  const double low[3], const double high[3], const double v[3][3])
+{
+  const int* dims = this->Dims;
+  const double* h = this->Spacing;
+  unsigned char& bits = this->Links[ijk[0] + size_t(dims[0]) * (ijk[1] + size_t(dims[1]) * ijk[2])];
+  bool near =
+    std::fabs(plane[0] * ijk[0] + plane[1] * ijk[1] + plane[2] * ijk[2] + plane[3]) <= reach;
+  for (int a = 0; a < 3; ++a)
+  {
+    near = near && ijk[a] >= low[a] - 1.0 && ijk[a] <= high[a] + 1.0;
+  }
+  bits |= near ? REFRACTA_CUT_NEAR : 0;
+  const double p[3] = { ijk[0] * h[0], ijk[1] * h[1], ijk[2] * h[2] };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (ijk[a] + 1 < dims[a] && SegmentMeetsTriangle(p, a, h[a], v))
+    {
+      bits |= static_cast<unsigned char>(1 << a);
+    }
   }
 }
 

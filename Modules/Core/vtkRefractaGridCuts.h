@@ -90,6 +90,8 @@ private:
   void operator=(const vtkRefractaGridCuts&) = delete;
 
   void Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* localToWorld);
+  void MarkVoxel(const int ijk[3], const float plane[4], double reach, const double low[3],
+    const double high[3], const double v[3][3]);
   void Clear(); // no cuts, nothing kept
 
   // What the kept result was found for.

@@ -5,7 +5,7 @@
 // --runs runs.
 //
 // Usage: BenchmarkSurfaces [--quick] [--runs 3] [--rays 200000] [--csv surfaces_benchmark.csv]
-//                          [--texel-sweep] [--direct-light]
+//                          [--texel-sweep] [--direct-light] [--grid-cuts]
 //   --quick: only the 10k mesh, 20000 rays, one run (the smoke test).
 //   --texel-sweep: instead, the irradiance atlas's resolution against the photon count (the
 //     justification of the automatic texel size): a black 20 x 20 plane under a point light of
@@ -18,6 +18,9 @@
 //     same errors and seconds with photons alone and with the direct light from light rays
 //     (vtkPhotonTracer::SkipDirectSurfaceLight + vtkLightRaySingleScattering::
 //     ComputeSurfaceIrradiance, what the pipeline does), in one run.
+//   --grid-cuts: instead, vtkRefractaGridCuts's search (medians of --runs): a sphere of radius
+//     0.4 (about 10k triangles) in a 256^3 grid over the unit cube, and 400 large random
+//     triangles (corners anywhere in the cube: overlapping, oblique) in a 160^3 grid.
 #include "RefractaBenchmark.h"
 
 #include "vtkCellArray.h"
@@ -31,14 +34,17 @@
 #include "vtkPhotonTracer.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkRefractaBVH.h"
+#include "vtkRefractaGridCuts.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 #include "vtkRefractaSurfaceMaterial.h"
 #include "vtkRefractaSurfaceSet.h"
 #include "vtkSphereSource.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -287,8 +293,76 @@ int DirectLightComparison(const std::string& csv)
   return table.WriteCsv(csv) ? 0 : 1;
 }
 
+// The search of vtkRefractaGridCuts on a sphere and on random large triangles.
+int GridCutsSearch(int runs)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.5, 0.5, 0.5);
+  sphere->SetRadius(0.4);
+  sphere->SetThetaResolution(100);
+  sphere->SetPhiResolution(52);
+  sphere->Update();
+  vtkNew<vtkPolyData> random;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> cells;
+  std::mt19937 generator(11);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int t = 0; t < 400; ++t)
+  {
+    vtkIdType ids[3];
+    for (vtkIdType& id : ids)
+    {
+      id = points->InsertNextPoint(uniform(generator), uniform(generator), uniform(generator));
+    }
+    cells->InsertNextCell(3, ids);
+  }
+  random->SetPoints(points);
+  random->SetPolys(cells);
+  struct Case
+  {
+    const char* Name;
+    vtkPolyData* Mesh;
+    int N;
+  };
+  const Case cases[] = { { "sphere", sphere->GetOutput(), 256 }, { "random", random, 160 } };
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkRefractaSurfaceSet> set;
+    vtkNew<vtkRefractaSurfaceMaterial> material;
+    set->AddSurface(c.Mesh, material);
+    if (!set->Build())
+    {
+      return 1;
+    }
+    const int dims[3] = { c.N, c.N, c.N };
+    const double h = 1.0 / (c.N - 1);
+    const double spacing[3] = { h, h, h };
+    size_t marked = 0;
+    unsigned long long digest = 0; // of every voxel's bits: the same cuts give the same digest
+    const double seconds = refracta::bench::MedianSeconds(runs,
+      [&]
+      {
+        vtkNew<vtkRefractaGridCuts> cuts;
+        cuts->Update(set, dims, spacing, nullptr);
+        const std::vector<unsigned char>& links = cuts->GetLinks();
+        marked = std::count_if(links.begin(), links.end(), [](unsigned char b) { return b != 0; });
+        digest = 0;
+        for (size_t v = 0; v < links.size(); ++v)
+        {
+          digest = digest * 1099511628211ull + (v + 1) * links[v];
+        }
+      });
+    std::cout << "grid cuts, " << c.Name << ": " << set->GetBVH()->GetNumberOfTriangles()
+              << " triangles, " << c.N << "^3: " << seconds << " s (median of " << runs << "), "
+              << marked << " voxels near a triangle or with a cut link, digest " << digest
+              << std::endl;
+  }
+  return 0;
+}
+
 int main(int argc, char* argv[])
 {
+  bool gridCuts = false;
   bool quick = false;
   int runs = 3;
   int rays = 200000;
@@ -323,12 +397,20 @@ int main(int argc, char* argv[])
     {
       directLight = true;
     }
+    else if (arg == "--grid-cuts")
+    {
+      gridCuts = true;
+    }
     else
     {
       std::cerr << "usage: BenchmarkSurfaces [--quick] [--runs n] [--rays n] [--csv file] "
-                   "[--texel-sweep] [--direct-light]\n";
+                   "[--texel-sweep] [--direct-light] [--grid-cuts]\n";
       return 2;
     }
+  }
+  if (gridCuts)
+  {
+    return GridCutsSearch(runs);
   }
   if (directLight)
   {

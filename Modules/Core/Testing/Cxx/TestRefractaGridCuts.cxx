@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <string>
 
 namespace
@@ -90,6 +91,75 @@ TEST(RefractaGridCuts, AWallCutsTheLinksAcrossItAndNoOthers)
   EXPECT_EQ(wrong, 0);
   EXPECT_FALSE(cuts->IsNear(-1, 0, 0));
   EXPECT_FALSE(cuts->IsNear(12, N, 0));
+}
+
+TEST(RefractaGridCuts, AnObliqueWallCutsExactlyTheLinksItSeparates)
+{
+  // A wall through (0.5, 0.47, 0.52) with normal n = (0.3, -0.5, 0.81), far larger than the grid
+  // (the search visits only the voxels within reach of its plane): a link is cut where the plane
+  // separates its ends, a voxel is near where its centre lies within |n_x| + |n_y| + |n_z| voxels
+  // of the plane (n unit). Centres within 1e-4 voxel of either rule's boundary are skipped.
+  const double n0[3] = { 0.3, -0.5, 0.81 }, c[3] = { 0.5, 0.47, 0.52 };
+  const double length = std::sqrt(n0[0] * n0[0] + n0[1] * n0[1] + n0[2] * n0[2]);
+  const double n[3] = { n0[0] / length, n0[1] / length, n0[2] / length };
+  double u[3] = { n[1], -n[0], 0.0 }; // in the plane
+  const double ul = std::sqrt(u[0] * u[0] + u[1] * u[1]);
+  u[0] /= ul;
+  u[1] /= ul;
+  const double w[3] = { n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2],
+    n[0] * u[1] - n[1] * u[0] };
+  vtkNew<vtkPlaneSource> wall;
+  wall->SetOrigin(
+    c[0] - 3 * u[0] - 3 * w[0], c[1] - 3 * u[1] - 3 * w[1], c[2] - 3 * u[2] - 3 * w[2]);
+  wall->SetPoint1(
+    c[0] + 3 * u[0] - 3 * w[0], c[1] + 3 * u[1] - 3 * w[1], c[2] + 3 * u[2] - 3 * w[2]);
+  wall->SetPoint2(
+    c[0] - 3 * u[0] + 3 * w[0], c[1] - 3 * u[1] + 3 * w[1], c[2] - 3 * u[2] + 3 * w[2]);
+  wall->Update();
+  vtkNew<vtkMatrix4x4> identity;
+  vtkNew<vtkRefractaGridCuts> cuts;
+  cuts->Update(Set(wall->GetOutput()), Dims, Spacing, identity);
+  ASSERT_TRUE(cuts->HasCuts());
+  // Signed distance in voxels of centre (i, j, k) (isotropic spacing).
+  auto distance = [&](double i, double j, double k)
+  {
+    return (n[0] * (i * Spacing[0] - c[0]) + n[1] * (j * Spacing[1] - c[1]) +
+             n[2] * (k * Spacing[2] - c[2])) /
+      Spacing[0];
+  };
+  const double reach = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
+  int wrong = 0, cut = 0, near = 0, checked = 0;
+  for (int k = 0; k < N; ++k)
+  {
+    for (int j = 0; j < N; ++j)
+    {
+      for (int i = 0; i < N; ++i)
+      {
+        const double here = distance(i, j, k);
+        if (std::fabs(std::fabs(here) - reach) < 1e-4 || std::fabs(here) < 1e-4)
+        {
+          continue;
+        }
+        ++checked;
+        const bool expectNear = std::fabs(here) <= reach;
+        near += expectNear;
+        wrong += cuts->IsNear(i, j, k) != expectNear;
+        const double next[3] = { distance(i + 1, j, k), distance(i, j + 1, k),
+          distance(i, j, k + 1) };
+        const int ijk[3] = { i, j, k };
+        for (int a = 0; a < 3; ++a)
+        {
+          const bool expectCut = ijk[a] + 1 < N && (here < 0) != (next[a] < 0);
+          cut += expectCut;
+          wrong += ((cuts->GetLinks()[Voxel(i, j, k)] >> a) & 1) != (expectCut ? 1 : 0);
+        }
+      }
+    }
+  }
+  std::cout << checked << " voxels checked, " << near << " near, " << cut << " links cut\n";
+  EXPECT_GT(near, 1000);
+  EXPECT_GT(cut, 1000);
+  EXPECT_EQ(wrong, 0);
 }
 
 TEST(RefractaGridCuts, ARigidPlacementGivesTheSameCuts)
