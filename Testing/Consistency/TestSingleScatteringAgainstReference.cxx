@@ -41,6 +41,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -141,6 +142,26 @@ Scene LitCloud(double g, bool lamp = true)
   s.Camera->SetFocalPoint(0.5, 0.5, 0.5);
   s.Camera->SetViewUp(0, 1, 0);
   s.Camera->SetViewAngle(30);
+  return s;
+}
+
+// The cloud's sun alone over a medium of sigma_t = shape(point) instead of the cloud (albedo 0.9,
+// g = 0).
+Scene SunlitShape(const std::function<double(const double[3])>& shape)
+{
+  Scene s = LitCloud(0.0, false);
+  vtkFloatArray* ext = vtkFloatArray::SafeDownCast(
+    s.Medium->GetPointData()->GetArray(vtkRefractaMedium::ExtinctionName()));
+  for (vtkIdType id = 0; id < s.Medium->GetNumberOfPoints(); ++id)
+  {
+    double p[3];
+    s.Medium->GetPoint(id, p);
+    const double sigma = shape(p);
+    for (int c = 0; c < 3; ++c)
+    {
+      ext->SetComponent(id, c, sigma);
+    }
+  }
   return s;
 }
 
@@ -258,20 +279,13 @@ TEST(SingleScatteringAgainstReference, ForwardScatteringCloudUnderSun)
 // mean"); the light rays' image x 1.3 must fail.
 TEST(SingleScatteringAgainstReference, SharpEdgedBall)
 {
-  Scene s = LitCloud(0.0, false);
-  vtkFloatArray* ext = vtkFloatArray::SafeDownCast(
-    s.Medium->GetPointData()->GetArray(vtkRefractaMedium::ExtinctionName()));
-  for (vtkIdType id = 0; id < s.Medium->GetNumberOfPoints(); ++id)
-  {
-    double p[3];
-    s.Medium->GetPoint(id, p);
-    const double r = std::sqrt(
-      (p[0] - 0.5) * (p[0] - 0.5) + (p[1] - 0.5) * (p[1] - 0.5) + (p[2] - 0.5) * (p[2] - 0.5));
-    for (int c = 0; c < 3; ++c)
+  Scene s = SunlitShape(
+    [](const double p[3])
     {
-      ext->SetComponent(id, c, r < 0.35 ? 8.0 : 0.0);
-    }
-  }
+      const double r = std::sqrt(
+        (p[0] - 0.5) * (p[0] - 0.5) + (p[1] - 0.5) * (p[1] - 0.5) + (p[2] - 0.5) * (p[2] - 0.5));
+      return r < 0.35 ? 8.0 : 0.0;
+    });
   CheckMethods(s, 2048, { 0.15, 0.30, 0.45, 1.3 });
 }
 
@@ -286,18 +300,7 @@ TEST(SingleScatteringAgainstReference, SharpEdgedBall)
 // B 25% for all; the light rays at their centres must fail it.
 TEST(SingleScatteringAgainstReference, DenseSlabFace)
 {
-  Scene s = LitCloud(0.0, false);
-  vtkFloatArray* ext = vtkFloatArray::SafeDownCast(
-    s.Medium->GetPointData()->GetArray(vtkRefractaMedium::ExtinctionName()));
-  for (vtkIdType id = 0; id < s.Medium->GetNumberOfPoints(); ++id)
-  {
-    double p[3];
-    s.Medium->GetPoint(id, p);
-    for (int c = 0; c < 3; ++c)
-    {
-      ext->SetComponent(id, c, p[1] < 0.5 ? 24.0 : 0.0);
-    }
-  }
+  Scene s = SunlitShape([](const double p[3]) { return p[1] < 0.5 ? 24.0 : 0.0; });
   s.Camera->SetPosition(0.5, 2.0, 2.2);
   s.Camera->SetFocalPoint(0.5, 0.45, 0.5);
   const Regions ref = Pool(RenderReference(s, 1024));
