@@ -191,6 +191,38 @@ TEST(LightRays, BoxMeansAtADenseFaceMatchTheTrilinearMedium)
   }
 }
 
+// A black wall two voxels in front of a dense face (sigma_t 2 from z = 6 on, light along +z, the
+// wall at z = 3.5 over x < 6): the face's sharp voxels behind the wall get no light, those beside
+// it their box means, although the plane their lines start from (4 voxels upstream) lies in
+// front of the wall.
+TEST(LightRays, BoxMeansBehindAWallAreDark)
+{
+  auto medium = MakeMedium(
+    12, 4, 12, 1.0, [&](double, double, double z) { return Homogeneous(z >= 6 ? 2.0 : 0.0, 0.8); });
+  vtkNew<vtkPlaneSource> wall;
+  wall->SetOrigin(-2, -2, 3.5);
+  wall->SetPoint1(5.5, -2, 3.5);
+  wall->SetPoint2(-2, 6, 3.5);
+  wall->Update();
+  vtkNew<vtkRefractaSurfaceMaterial> black;
+  black->SetAlbedo(0, 0, 0);
+  vtkNew<vtkRefractaSurfaceSet> set;
+  set->AddSurface(wall->GetOutput(), black);
+  vtkNew<vtkLightRaySingleScattering> pass;
+  pass->AddLight(Directional({ 5.5, 1.5, -10 }, { 5.5, 1.5, 0 }, 1.0));
+  pass->SetSurfaces(set);
+  auto out = RunPass(pass, medium);
+  const float* s1 = Radiance(out);
+  for (int k : { 5, 6 })
+  {
+    const size_t shaded = 2 + 12 * (1 + 4 * static_cast<size_t>(k));
+    const size_t lit = 9 + 12 * (1 + 4 * static_cast<size_t>(k));
+    EXPECT_EQ(s1[3 * shaded], 0.0f) << "voxel (2, 1, " << k << ") lies behind the wall";
+    EXPECT_GT(s1[3 * lit], 0.1f) << "voxel (9, 1, " << k << ") is lit";
+  }
+  EXPECT_GT(pass->GetNumberOfBoxMeanVoxels(), 0);
+}
+
 // A point light at the centre of a homogeneous sphere: S1(d) = sigma_s I exp(-sigma_t d) / d^2,
 // and the direction points away from the light.
 TEST(LightRays, PointLightInHomogeneousSphereIsAnalytic)
