@@ -111,9 +111,13 @@ bool vtkLightRaySingleScattering::RunBoxMeans(Internals& run)
     !ctx->Check(run.SetArgs(kernel.Get(), albedo.Get(), run.LightBuffer.Get(), run.LightCount,
                   minDistance, list.Get(), radiance.Get(), direction.Get(), n),
       "clSetKernelArg(light_rays_boxes)", this) ||
-    !Run1D(ctx, kernel.Get(), count, "light_rays_boxes", this))
+    !this->RunChunked(run, kernel.Get(), count, "light_rays_boxes", 0.9, 0.95))
   {
     return false;
+  }
+  if (run.Aborted)
+  {
+    return true; // RequestData leaves the output empty
   }
   std::vector<float> means(3 * count), directions(3 * count);
   if (!ctx->ReadBuffer(radiance.Get(), means.size() * sizeof(float), means.data(), this) ||

@@ -207,7 +207,8 @@ public:
   /**
    * Whether the last run was aborted (AbortExecute set, e.g. by a ProgressEvent observer): the
    * output is then empty and no error is reported. Progress is reported per chunk of voxels (and
-   * per grid level of the interpolation); the abort is checked at the same points.
+   * of sharp voxels for their box means, and per grid level of the interpolation); the abort is
+   * checked at the same points.
    */
   vtkGetMacro(LastRunAborted, bool);
 

@@ -323,3 +323,45 @@ TEST(LightRayProgress, ProgressAndAbort)
     EXPECT_GT(lit, 0.0) << name;
   }
 }
+
+// The box means at sharp voxels (a dense slab's face and the slab's voxels on the grid's faces,
+// about 15k of them on 48^3: most of a run) report progress from 0.9 to 0.95 and see an abort
+// there within a chunk: an empty output, no error.
+TEST(LightRayProgress, AbortDuringTheBoxMeans)
+{
+  const int n = 48;
+  vtkSmartPointer<vtkImageData> medium = photontest::MakeMedium(
+    n, n, n, 1.0,
+    [=](double, double y, double)
+    {
+      photontest::Voxel v;
+      const double s = y < 24 ? 2.0 : 0.0;
+      v.Extinction = { s, s, s };
+      v.Albedo = { 0.8, 0.8, 0.8 };
+      return v;
+    },
+    false);
+  vtkNew<vtkLightRaySingleScattering> rays;
+  rays->SetInputData(medium);
+  rays->AddLight(photontest::Directional({ 30, 100, 10 }, { 23.5, 23.5, 23.5 }, 1.0));
+  vtkNew<ProgressLog> log;
+  rays->AddObserver(vtkCommand::ProgressEvent, log);
+  log->Reset(0.9);
+  const auto start = Clock::now();
+  rays->Update();
+  const double latency = std::chrono::duration<double>(Clock::now() - log->AbortTime).count();
+  std::printf("aborted after %.3f s; Update() returned %.3f s after the abort\n",
+    std::chrono::duration<double>(log->AbortTime - start).count(), latency);
+  EXPECT_TRUE(log->Aborted);
+  EXPECT_LT(latency, 0.5);
+  EXPECT_TRUE(rays->GetLastRunAborted());
+  EXPECT_EQ(rays->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_GT(rays->GetNumberOfBoxMeanVoxels(), 10000);
+
+  rays->AbortExecuteOff();
+  log->Reset(2.0);
+  rays->Update();
+  EXPECT_FALSE(rays->GetLastRunAborted());
+  ExpectGoodProgress(log->Values, "light rays with box means");
+  EXPECT_EQ(rays->GetOutput()->GetNumberOfPoints(), medium->GetNumberOfPoints());
+}
