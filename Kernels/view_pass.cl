@@ -29,7 +29,8 @@
 //
 // Options (-D): REFRACTA_CURVED, REFRACTA_PARALLEL (parallel projection), REFRACTA_HAS_SINGLE
 // (Radiance + RadianceDirection + Anisotropy given), REFRACTA_HAS_MULTIPLE (MultipleScattering
-// given), REFRACTA_HAS_EMISSION, REFRACTA_HAS_ENVIRONMENT (equirectangular background image),
+// given; with REFRACTA_MULTIPLE_DIRECTION its flux over its fluence follows it in `multiple`, 3
+// floats per voxel after S_ms's), REFRACTA_HAS_EMISSION, REFRACTA_HAS_ENVIRONMENT (equirectangular background image),
 // REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length), REFRACTA_INDEX_WEIGHT (sources
 // weighted by 1 / n^2 with n sampled per step), REFRACTA_SOURCE_SCALE=<1 / n^2> (a uniform n != 1),
 // REFRACTA_SKIP (empty-space skipping, below), REFRACTA_HAS_SURFACES (opaque triangle surfaces,
@@ -382,7 +383,22 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
   }
 #endif
 #ifdef REFRACTA_HAS_MULTIPLE
+#ifdef REFRACTA_MULTIPLE_DIRECTION
+  // The multiply scattered light's flux over its fluence F / phi (length f, stored after S_ms in
+  // the same buffer): a fraction f of it travels along F (the phase function), the rest is
+  // isotropic; exact for a collimated and an isotropic field, right to first order between.
+  const float3 ms = REFRACTA_VIEW_LIGHT3(multiple);
+  const float3 flux =
+    REFRACTA_VIEW_LIGHT3(multiple + 3 * ((size_t)dims.x * (size_t)dims.y * (size_t)dims.z));
+  const float f = fmin(length(flux), 1.0f);
+  q += (1.0f - f) * REFRACTA_INV_4PI * ms;
+  if (f > 0.0f)
+  {
+    q += refracta_view_single(f * ms, flux, d, refracta_view_sample1(anisotropy, st));
+  }
+#else
   q += REFRACTA_INV_4PI * REFRACTA_VIEW_LIGHT3(multiple);
+#endif
 #endif
   return q;
 }

@@ -30,6 +30,8 @@ const char* vtkRefractaLightingVolume::GetArrayName(int id)
       return MultipleScatteringSourceName();
     case MULTIPLE_SCATTERING_SOURCE_DIRECTION:
       return MultipleScatteringSourceDirectionName();
+    case MULTIPLE_SCATTERING_DIRECTION:
+      return MultipleScatteringDirectionName();
     default:
       return nullptr;
   }

@@ -15,6 +15,11 @@
  * - `MultipleScatteringSource` (3, first-collision split only, vtkPhotonTracer::ScatteringOrders
  *   k): power per unit volume scattered by light scattered k times, the lattice's source.
  * - `MultipleScatteringSourceDirection` (3): mean travel direction of that light (unit, or zero).
+ * - `MultipleScatteringDirection` (3, photons carrying every order only: analog scattering with
+ *   surfaces): the mean travel direction of the multiply scattered light weighted by its power,
+ *   i.e. its net flux over its fluence, F / phi_ms (length f in [0, 1]: 0 isotropic, 1
+ *   collimated; zero where none). The view pass then shades S_ms as a fraction f travelling along
+ *   it (the phase function) and the rest isotropic; without it, all isotropic.
  *
  * The lattice's source is `Radiance` (S1), or `MultipleScatteringSource` where the photon pass
  * carried the first k orders itself (LatticeSourceName()); then the lattice's S_ms is added to
@@ -62,6 +67,7 @@ public:
     MULTIPLE_SCATTERING,
     MULTIPLE_SCATTERING_SOURCE,
     MULTIPLE_SCATTERING_SOURCE_DIRECTION,
+    MULTIPLE_SCATTERING_DIRECTION,
     NUMBER_OF_ARRAYS
   };
 
@@ -77,6 +83,7 @@ public:
   {
     return "MultipleScatteringSourceDirection";
   }
+  static const char* MultipleScatteringDirectionName() { return "MultipleScatteringDirection"; }
   ///@}
 
   ///@{

@@ -326,6 +326,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.UniformIndex = in.UniformIndex;
   variant.Single = in.HasSingle;
   variant.Multiple = in.HasMultiple;
+  variant.MultipleDirection = in.HasMultipleDirection;
   variant.Emission = in.HasEmission;
   variant.Packed = in.PackedMedium;
   variant.Environment = env != nullptr;

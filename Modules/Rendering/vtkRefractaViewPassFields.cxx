@@ -178,6 +178,7 @@ std::string KernelOptions(const KernelVariant& v)
   }
   flag(v.Single, "REFRACTA_HAS_SINGLE");
   flag(v.Multiple, "REFRACTA_HAS_MULTIPLE");
+  flag(v.Multiple && v.MultipleDirection, "REFRACTA_MULTIPLE_DIRECTION");
   flag(v.Emission, "REFRACTA_HAS_EMISSION");
   flag(v.Packed, "REFRACTA_PACKED_MEDIUM");
   flag(v.Environment, "REFRACTA_HAS_ENVIRONMENT");

@@ -57,6 +57,7 @@ struct KernelVariant
   double UniformIndex = 1;     // else REFRACTA_SOURCE_SCALE = 1 / n^2 when n != 1
   bool Single = false;         // REFRACTA_HAS_SINGLE
   bool Multiple = false;       // REFRACTA_HAS_MULTIPLE
+  bool MultipleDirection = false; // REFRACTA_MULTIPLE_DIRECTION (F / phi after S_ms)
   bool Emission = false;       // REFRACTA_HAS_EMISSION
   bool Packed = false;         // REFRACTA_PACKED_MEDIUM (grey extinction and emission, float4)
   bool Environment = false;    // REFRACTA_HAS_ENVIRONMENT

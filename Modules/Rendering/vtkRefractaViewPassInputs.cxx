@@ -267,7 +267,7 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
   }
   // A new medium invalidates the lighting volume's upload (it must match the grid).
   in.Lighting = nullptr;
-  in.HasSingle = in.HasMultiple = false;
+  in.HasSingle = in.HasMultiple = in.HasMultipleDirection = false;
   in.Radiance.Reset();
   in.RadianceDirection.Reset();
   in.Multiple.Reset();
@@ -295,7 +295,7 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
       in.OccupancyDirty = true;
     }
     in.Lighting = nullptr;
-    in.HasSingle = in.HasMultiple = false;
+    in.HasSingle = in.HasMultiple = in.HasMultipleDirection = false;
     in.Radiance.Reset();
     in.RadianceDirection.Reset();
     in.Multiple.Reset();
@@ -329,6 +329,8 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
   vtkDataArray* radiance = pd->GetArray(vtkRefractaLightingVolume::RadianceName());
   vtkDataArray* direction = pd->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
   vtkDataArray* multiple = pd->GetArray(vtkRefractaLightingVolume::MultipleScatteringName());
+  vtkDataArray* multipleDirection =
+    multiple ? pd->GetArray(vtkRefractaLightingVolume::MultipleScatteringDirectionName()) : nullptr;
   const vtkIdType n = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
   auto check = [&](vtkDataArray* a, const char* name, bool nonNegative) -> bool
   {
@@ -356,13 +358,17 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
   if ((radiance &&
         (!check(radiance, vtkRefractaLightingVolume::RadianceName(), true) ||
           !check(direction, vtkRefractaLightingVolume::RadianceDirectionName(), false))) ||
-    (multiple && !check(multiple, vtkRefractaLightingVolume::MultipleScatteringName(), true)))
+    (multiple && !check(multiple, vtkRefractaLightingVolume::MultipleScatteringName(), true)) ||
+    (multipleDirection &&
+      !check(
+        multipleDirection, vtkRefractaLightingVolume::MultipleScatteringDirectionName(), false)))
   {
     return false;
   }
   vtkOpenCLContext* context = in.GetContext();
   in.HasSingle = radiance != nullptr;
   in.HasMultiple = multiple != nullptr;
+  in.HasMultipleDirection = multipleDirection != nullptr;
   in.Radiance.Reset();
   in.RadianceDirection.Reset();
   in.Multiple.Reset();
@@ -394,10 +400,25 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
       values.data(), array->GetName(), this);
     return static_cast<bool>(buffer);
   };
-  // RadianceDirection is stored in the grid-local frame (vtkPhotonTracer, Physics.md).
+  // S_ms followed by its flux over its fluence in one buffer (the kernel reads the second half
+  // where it has REFRACTA_MULTIPLE_DIRECTION): always an upload.
+  auto multipleWithDirection = [&]()
+  {
+    FetchFloats(multiple, 3, values);
+    MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
+    std::vector<float> flux;
+    FetchFloats(multipleDirection, 3, flux);
+    values.insert(values.end(), flux.begin(), flux.end());
+    in.Multiple = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
+      values.data(), multiple->GetName(), this);
+    return static_cast<bool>(in.Multiple);
+  };
+  // RadianceDirection and MultipleScatteringDirection are stored in the grid-local frame
+  // (vtkPhotonTracer, Physics.md).
   if ((in.HasSingle &&
         (!field(radiance, true, in.Radiance) || !field(direction, false, in.RadianceDirection))) ||
-    (in.HasMultiple && !field(multiple, true, in.Multiple)))
+    (in.HasMultiple &&
+      !(in.HasMultipleDirection ? multipleWithDirection() : field(multiple, true, in.Multiple))))
   {
     return false;
   }

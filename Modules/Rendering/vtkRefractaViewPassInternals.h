@@ -47,6 +47,7 @@ struct vtkRefractaViewPass::Internals
   vtkMTimeType LightingTime = 0;
   bool HasSingle = false;
   bool HasMultiple = false;
+  bool HasMultipleDirection = false; // then Multiple holds S_ms and after it F / phi_ms
   vtkOpenCLBuffer Radiance, RadianceDirection, Multiple;
   // The volume caustic: c (1: none), each voxel's brick, the fine S1 and directions.
   int VolumeCausticSub = 1;

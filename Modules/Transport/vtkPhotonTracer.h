@@ -199,7 +199,10 @@ public:
    * is reflected by the surfaces. Deposits of photons that have not scattered since their light
    * or their last surface reflection go to `Radiance` (S1) as before; those of photons that have
    * go to a point array vtkRefractaLightingVolume::MultipleScatteringName() (S_ms, power per unit
-   * volume, smoothed like Radiance), which then replaces the lattice's. The books stay exact per
+   * volume, smoothed like Radiance), which then replaces the lattice's, with its flux over its
+   * fluence in MultipleScatteringDirectionName() (the deposits' directions weighted by their
+   * power, smoothed alike; length <= 1; every order by photons only, not with ScatteringOrders'
+   * split), which the view pass shades with the phase function. The books stay exact per
    * photon: Emitted = Absorbed + Surface + Escaped + Remaining, with EnergyScattered 0 (nothing
    * is handed on to a lattice). See Documentation/Physics.md, "Surfaces and multiple scattering".
    */
@@ -816,9 +819,12 @@ private:
   // Fixed-point deposits (3 per voxel from `offset` longs into `fixed`, voxel v's at offset +
   // stride v) into power per unit volume in `values`, smoothed with Smoothing; with
   // `directions`, the direction sums (from `directionOffset` into `directionFixed`, the same
-  // stride) into unit mean directions, smoothed the same way.
+  // stride) smoothed the same way into unit mean directions, or with `unit` false into sums per
+  // photon scale (each voxel's sum over its values' channel sum times the voxel's volume is then
+  // the mean direction weighted by power, its length the flux over the fluence).
   bool ResolveDeposits(Internals& run, cl_mem fixed, size_t offset, cl_mem directionFixed,
-    size_t directionOffset, size_t stride, vtkFloatArray* values, vtkFloatArray* directions);
+    size_t directionOffset, size_t stride, vtkFloatArray* values, vtkFloatArray* directions,
+    bool unit = true);
   // The smoothing's three axis passes (radiance_smooth_axis) from `a` into `b` (`a` is scratch).
   bool SmoothAxes(Internals& run, cl_kernel filter, cl_mem a, cl_mem b);
 #endif

@@ -1,22 +1,61 @@
 // The analog-scattering stage of vtkPhotonTracer (AnalogScattering with surfaces, and the
 // first-collision split of ScatteringOrders): the medium's anisotropy and the accumulators on the
-// device, and S_ms (and the split's lattice source) resolved and smoothed like Radiance into point
-// arrays. The marching itself is in photon_trace.cl (REFRACTA_ANALOG).
+// device, and S_ms (with its flux over its fluence, or the split's lattice source) resolved and
+// smoothed like Radiance into point arrays. The marching itself is in photon_trace.cl
+// (REFRACTA_ANALOG).
 #include "vtkPhotonTracer.h"
 #include "vtkPhotonTracerInternals.h"
 
 #include "vtkFloatArray.h"
 #include "vtkRefractaLightingVolume.h"
+#include "vtkSMPTools.h"
+
+#include <cmath>
 
 using namespace vtkPhotonTracerDetail;
 
 namespace
 {
-// Fixed-point accumulators per voxel: S_ms (3), and with the split the lattice's source (3) and
-// its direction sums (3), in that order (photon_hand_to_lattice).
+// Fixed-point accumulators per voxel: S_ms (3), then with the split the lattice's source (3) and
+// its direction sums (3) (photon_hand_to_lattice), else S_ms's direction sums (3), in that order.
 size_t AccumulatorsPerVoxel(int splitOrders)
 {
-  return splitOrders > 0 ? 9 : 3;
+  return splitOrders > 0 ? 9 : 6;
+}
+
+// S_ms's direction sums (per photon scale) into F / phi_ms: over the channel sum of S_ms times
+// the voxel's volume (the deposits' weight), at most unit length (rounding), zero where none.
+void FluxOverFluence(vtkFloatArray* multiple, vtkFloatArray* direction, double volume)
+{
+  const float* ms = multiple->GetPointer(0);
+  float* d = direction->GetPointer(0);
+  vtkSMPTools::For(0, multiple->GetNumberOfTuples(),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType v = begin; v < end; ++v)
+      {
+        const double weight = volume * (double(ms[3 * v]) + ms[3 * v + 1] + ms[3 * v + 2]);
+        double f[3] = { 0, 0, 0 };
+        if (weight > 0)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            f[c] = d[3 * v + c] / weight;
+          }
+          const double length = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+          const double shrink = length > 1.0 ? 1.0 / length : 1.0;
+          for (double& x : f)
+          {
+            x = std::isfinite(x) ? x * shrink : 0.0;
+          }
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          d[3 * v + c] = static_cast<float>(f[c]);
+        }
+      }
+    });
+  direction->Modified(); // its device copy (the raw sums) is no longer its copy
 }
 }
 
@@ -55,13 +94,22 @@ bool vtkPhotonTracer::ResolveMultipleScattering(Internals& run)
   }
   const size_t voxels = run.M.Voxels;
   run.Multiple->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
+  if (run.SplitOrders == 0)
+  {
+    // Every order by photons: S_ms with its flux over its fluence.
+    run.MultipleDirection->SetName(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
+    if (!this->ResolveDeposits(run, run.MultipleFixed.Get(), 0, run.MultipleFixed.Get(), 3 * voxels,
+          3, run.Multiple, run.MultipleDirection, false))
+    {
+      return false;
+    }
+    FluxOverFluence(
+      run.Multiple, run.MultipleDirection, run.M.Spacing[0] * run.M.Spacing[1] * run.M.Spacing[2]);
+    return true;
+  }
   if (!this->ResolveDeposits(run, run.MultipleFixed.Get(), 0, nullptr, 0, 3, run.Multiple, nullptr))
   {
     return false;
-  }
-  if (run.SplitOrders == 0)
-  {
-    return true;
   }
   run.LatticeSource->SetName(vtkRefractaLightingVolume::MultipleScatteringSourceName());
   run.LatticeSourceDirection->SetName(

@@ -311,12 +311,14 @@ struct vtkPhotonTracer::Internals
   vtkNew<vtkIdTypeArray> CausticPhotons; // caustic photons per atlas texel
   // Analog scattering (vtkPhotonTracer::AnalogScattering, ScatteringOrders): whether this run
   // uses it, the split order k (0: every order), g per voxel on the device, the accumulators
-  // (fixed point: S_ms, 3 per voxel; with the split also the lattice's source and its direction
-  // sums, 3 + 3 per voxel) and the resolved arrays.
+  // (fixed point: S_ms, 3 per voxel; then, every order by photons, S_ms's direction sums, 3 per
+  // voxel; with the split instead the lattice's source and its direction sums, 3 + 3 per voxel)
+  // and the resolved arrays.
   bool Analog = false;
   int SplitOrders = 0;
   vtkOpenCLBuffer AnisotropyBuffer, MultipleFixed;
   vtkNew<vtkFloatArray> Multiple;
+  vtkNew<vtkFloatArray> MultipleDirection; // F / phi_ms (every order by photons)
   vtkNew<vtkFloatArray> LatticeSource;
   vtkNew<vtkFloatArray> LatticeSourceDirection;
   // Volume caustic (vtkPhotonTracer::VolumeCausticSubdivision): whether the kernels have it, c of

@@ -55,7 +55,7 @@ bool vtkPhotonTracer::ResolveRadiance(Internals& run)
 //------------------------------------------------------------------------------
 bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offset,
   cl_mem directionFixed, size_t directionOffset, size_t stride, vtkFloatArray* values,
-  vtkFloatArray* directions)
+  vtkFloatArray* directions, bool unit)
 {
   Medium& m = run.M;
   vtkOpenCLContext* ctx = run.Context;
@@ -137,7 +137,7 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
     return true;
   };
   return field(fixed, offset, valueFactor, values, false) &&
-    (!directions || field(directionFixed, directionOffset, directionFactor, directions, true));
+    (!directions || field(directionFixed, directionOffset, directionFactor, directions, unit));
 }
 
 //------------------------------------------------------------------------------

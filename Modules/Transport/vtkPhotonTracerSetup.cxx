@@ -583,18 +583,20 @@ bool vtkPhotonTracer::PlanMemory(Internals& run)
   if (run.Analog)
   {
     plan->AddDeviceBuffer(grid, "anisotropy", v * 4, gridSetting);
+    // S_ms, then the split's source and its direction sums, or S_ms's direction sums.
     plan->AddDeviceBuffer(grid,
-      run.SplitOrders > 0 ? "S_ms and lattice source accumulators" : "S_ms accumulator",
-      v * (run.SplitOrders > 0 ? 9 : 3) * 8, gridSetting);
+      run.SplitOrders > 0 ? "S_ms and lattice source accumulators"
+                          : "S_ms and direction accumulators",
+      v * (run.SplitOrders > 0 ? 9 : 6) * 8, gridSetting);
     plan->AddHostMemory(
-      grid, "MultipleScattering", v * 12 * (run.SplitOrders > 0 ? 3 : 1), gridSetting);
+      grid, "MultipleScattering", v * 12 * (run.SplitOrders > 0 ? 3 : 2), gridSetting);
   }
   if (m.Scatters)
   {
-    // Each resolved field (ResolveDeposits: Radiance, its direction, S_ms, the split's source
-    // and its direction) and its smoothed copy. They are made one field at a time, so this is an
-    // upper bound, like the allocator's count it is compared with.
-    const int fields = 2 + (run.Analog ? 1 : 0) + (run.SplitOrders > 0 ? 2 : 0);
+    // Each resolved field (ResolveDeposits: Radiance, its direction, S_ms, its direction or the
+    // split's source and its direction) and its smoothed copy. They are made one field at a time,
+    // so this is an upper bound, like the allocator's count it is compared with.
+    const int fields = 2 + (run.Analog ? (run.SplitOrders > 0 ? 3 : 2) : 0);
     plan->AddDeviceBuffer(
       grid, "resolved fields", fields * (this->Smoothing ? 2 : 1) * v * 12, gridSetting);
   }

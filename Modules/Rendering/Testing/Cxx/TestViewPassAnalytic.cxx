@@ -2,7 +2,9 @@
 // single-scattering source S1 (constant mean direction, HG g) and multiple-scattering source S_ms,
 // seen by straight rays, has per pixel
 //   L = Q (1 - exp(-sigma l)) / sigma + exp(-sigma l) L_bg,
-//   Q = eps + p_HG(g, dot(dir, -d)) S1 + S_ms / (4 pi),
+//   Q = eps + p_HG(g, dot(dir, -d)) S1 + S_ms / (4 pi)
+// (with a MultipleScatteringDirection F of length f: (1 - f) S_ms / (4 pi) + f p_HG(g,
+// dot(F / f, -d)) S_ms),
 // with l the chord of the pixel's ray through the box [-s/2, (N - 1/2) s] (computed here in
 // double precision). Because the kernel integrates each step exactly for a constant medium, the
 // answer must hold for any step length, with perspective and parallel cameras, a rotated and
@@ -98,8 +100,10 @@ Scene MakeScene(bool rotated)
 
 // Expected RGBA for every pixel, in double, from the same camera frame definition.
 // `index`: the medium's uniform refractive index; sources count 1 / n^2 (basic radiance).
-std::vector<double> Expected(
-  const Scene& scene, vtkCamera* camera, int w, int h, double index = 1.0)
+// `msFlux` (grid-local, length f <= 1): MultipleScatteringDirection, the fraction f of S_ms shaded
+// with the phase function about it, the rest isotropic (nullptr: all isotropic).
+std::vector<double> Expected(const Scene& scene, vtkCamera* camera, int w, int h,
+  double index = 1.0, const double* msFlux = nullptr)
 {
   vtkRefractaViewPass::RayFrame f;
   EXPECT_TRUE(vtkRefractaViewPass::ComputeRayFrame(camera, scene.Medium, nullptr, w, h, f));
@@ -129,11 +133,13 @@ std::vector<double> Expected(
       }
       const double chord = std::max(t1 - t0, 0.0);
       const double cosTheta = -vtkMath::Dot(scene.LightDirLocal, d);
+      const double f = msFlux ? vtkMath::Norm(msFlux) : 0.0;
+      const double msPhase =
+        (1 - f) / (4 * vtkMath::Pi()) + (f > 0 ? f * HG(-vtkMath::Dot(msFlux, d) / f, G) : 0.0);
       double meanT = 0;
       for (int c = 0; c < 3; ++c)
       {
-        const double q =
-          (Eps[c] + HG(cosTheta, G) * S1[c] + Sms[c] / (4 * vtkMath::Pi())) / (index * index);
+        const double q = (Eps[c] + HG(cosTheta, G) * S1[c] + msPhase * Sms[c]) / (index * index);
         const double tr = std::exp(-Sigma[c] * chord);
         result[(i + size_t(w) * j) * 4 + c] = q * (1 - tr) / Sigma[c] + tr * Background[c];
         meanT += tr / 3;
@@ -219,6 +225,36 @@ TEST(ViewPassAnalytic, HomogeneousCubeMatchesClosedForm)
       CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36),
         rotated ? "rotated parallel" : "parallel");
     }
+  }
+}
+
+// MultipleScatteringDirection (the photons' F / phi_ms, length f = 0.6 here): the view pass
+// shades f S_ms with the phase function about it and (1 - f) S_ms isotropically, on the plain
+// and the rotated, far-off grid, with a perspective and a parallel camera. (An isotropic S_ms,
+// f = 0, is the cube above.)
+TEST(ViewPassAnalytic, MultipleScatteringWithAFluxMatchesTheClosedForm)
+{
+  double flux[3] = { -0.5, 0.2, 0.7 };
+  vtkMath::Normalize(flux);
+  for (double& x : flux)
+  {
+    x *= 0.6;
+  }
+  for (bool rotated : { false, true })
+  {
+    Scene scene = MakeScene(rotated);
+    refracta_test::AddConstant(scene.Lighting,
+      vtkRefractaLightingVolume::MultipleScatteringDirectionName(), 3, flux[0], flux[1], flux[2]);
+    vtkNew<vtkCamera> camera;
+    auto renderer = ObliqueRenderer(scene, camera);
+    renderer->Update();
+    CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36, 1.0, flux),
+      rotated ? "rotated perspective, S_ms with a flux" : "perspective, S_ms with a flux");
+    camera->ParallelProjectionOn();
+    camera->SetParallelScale(0.9);
+    renderer->Update();
+    CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36, 1.0, flux),
+      rotated ? "rotated parallel, S_ms with a flux" : "parallel, S_ms with a flux");
   }
 }
 

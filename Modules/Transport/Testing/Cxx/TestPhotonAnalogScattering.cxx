@@ -195,6 +195,67 @@ TEST(PhotonAnalogScattering, SingleScatteringStaysUnbiasedAndScatteredLightReach
   EXPECT_GT(fluxAna, 1.5 * fluxDet) << "scattered light must reach the floor";
 }
 
+// With every order by photons, MultipleScatteringDirection is the multiply scattered light's flux
+// over its fluence F / phi_ms: never longer than 1; in the fog just above a black floor, where
+// nothing comes back up, it points down (measured: mean y -0.51); above a white floor less so
+// (-0.34: the reflected light is a new beam, S1, until it scatters again, and then it travels up).
+TEST(PhotonAnalogScattering, MultipleScatteringDirectionFollowsTheNetFlux)
+{
+  auto medium = Fog(1.5, 0.8, 0.3);
+  // Mean y component of F / phi over the voxels (i, 2, k), i, k in 3..8 (centres 0.2 above the
+  // floor y = 0.3 of albedo `albedo`), under a spot light aimed down.
+  auto meanY = [&](double albedo)
+  {
+    vtkNew<vtkRefractaSurfaceSet> set;
+    vtkNew<vtkRefractaSurfaceMaterial> material;
+    material->SetAlbedo(albedo, albedo, albedo);
+    vtkNew<vtkPlaneSource> floor;
+    floor->SetOrigin(-1, 0.3, -1);
+    floor->SetPoint1(4, 0.3, -1);
+    floor->SetPoint2(-1, 0.3, 4);
+    floor->Update();
+    set->AddSurface(floor->GetOutput(), material);
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->SetInputData(medium);
+    tracer->SetSurfaces(set);
+    tracer->AnalogScatteringOn();
+    tracer->AddLight(
+      photontest::Positional({ 1.375, 6.0, 1.375 }, { 1.375, 0, 1.375 }, 20, 1, 3.0));
+    tracer->SetNumberOfPhotons(1 << 16);
+    tracer->Update();
+    vtkDataArray* f = tracer->GetOutput()->GetPointData()->GetArray(
+      vtkRefractaLightingVolume::MultipleScatteringDirectionName());
+    EXPECT_NE(f, nullptr);
+    if (!f)
+    {
+      return 0.0;
+    }
+    double longest = 0;
+    for (vtkIdType t = 0; t < f->GetNumberOfTuples(); ++t)
+    {
+      double v[3];
+      f->GetTuple(t, v);
+      EXPECT_TRUE(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]));
+      longest = std::max(longest, vtkMath::Norm(v));
+    }
+    EXPECT_LE(longest, 1.0 + 1e-6);
+    double mean = 0;
+    for (int k = 3; k <= 8; ++k)
+    {
+      for (int i = 3; i <= 8; ++i)
+      {
+        mean += f->GetComponent(i + N * (2 + N * k), 1) / 36;
+      }
+    }
+    return mean;
+  };
+  const double black = meanY(0.0), white = meanY(1.0);
+  std::cout << "F / phi 0.2 above the floor, mean y: black floor " << black << ", white floor "
+            << white << std::endl;
+  EXPECT_LT(black, -0.3) << "the light above a black floor travels down";
+  EXPECT_GT(white, black + 0.1) << "a white floor sends some of it back up";
+}
+
 TEST(PhotonAnalogScattering, OffWithoutSurfacesOrScattering)
 {
   vtkNew<vtkPhotonTracer> tracer;
