@@ -51,7 +51,9 @@
  *   kernel; GetLastLaneMarching() says which ran.
  *
  * The lighting volume must be on the medium's grid and carry `Radiance` (S1, RGB) with
- * `RadianceDirection` (3, unit, in the grid-local frame), and/or `MultipleScattering` (S_ms, RGB).
+ * `RadianceDirection` (3, unit, in the grid-local frame), and/or `MultipleScattering` (S_ms, RGB),
+ * optionally with `MultipleScatteringDirection` (its flux over its fluence F / phi_ms, grid-local,
+ * length f <= 1: f S_ms is shaded with the phase function about F, the rest isotropically).
  *
  * Surfaces (SetSurfaces()): opaque two-sided Lambertian triangles (vtkRefractaSurfaceSet, world
  * coordinates) inside, behind, under or around the medium. A view ray, curved in the medium and

@@ -7,6 +7,7 @@
 #include "vtkPhotonTracerInternals.h"
 
 #include "vtkFloatArray.h"
+#include "vtkOpenCLDeviceArrays.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkSMPTools.h"
 
@@ -55,7 +56,7 @@ void FluxOverFluence(vtkFloatArray* multiple, vtkFloatArray* direction, double v
         }
       }
     });
-  direction->Modified(); // its device copy (the raw sums) is no longer its copy
+  direction->Modified();
 }
 }
 
@@ -105,6 +106,8 @@ bool vtkPhotonTracer::ResolveMultipleScattering(Internals& run)
     }
     FluxOverFluence(
       run.Multiple, run.MultipleDirection, run.M.Spacing[0] * run.M.Spacing[1] * run.M.Spacing[2]);
+    // The device holds the raw sums: no copy of the array to hand on.
+    run.Context->GetDeviceArrays()->Forget(run.MultipleDirection);
     return true;
   }
   if (!this->ResolveDeposits(run, run.MultipleFixed.Get(), 0, nullptr, 0, 3, run.Multiple, nullptr))
