@@ -376,11 +376,14 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
   in.OccupancyDirty = true;
   this->LastLightingArraysShared = 0;
   // One field on the device: the copy a light pass kept there, else an upload (3 floats per
-  // voxel either way); `mark`: its nonzero voxels are sources for the skipping.
-  std::vector<float> values;
-  auto field = [&](vtkDataArray* array, bool mark, vtkOpenCLBuffer& buffer)
+  // voxel either way); `mark`: its nonzero voxels are sources for the skipping. With `after`,
+  // the upload of both, `after`'s values following the field's (MultipleScattering and its
+  // direction, which the kernel reads in one buffer with REFRACTA_MULTIPLE_DIRECTION).
+  std::vector<float> values, following;
+  auto field =
+    [&](vtkDataArray* array, bool mark, vtkOpenCLBuffer& buffer, vtkDataArray* after = nullptr)
   {
-    buffer = context->GetDeviceArrays()->Share(array);
+    buffer = after ? vtkOpenCLBuffer() : context->GetDeviceArrays()->Share(array);
     if (buffer) // only float arrays have device copies
     {
       ++this->LastLightingArraysShared;
@@ -396,29 +399,20 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     {
       MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
     }
+    if (after)
+    {
+      FetchFloats(after, 3, following);
+      values.insert(values.end(), following.begin(), following.end());
+    }
     buffer = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
       values.data(), array->GetName(), this);
     return static_cast<bool>(buffer);
-  };
-  // S_ms followed by its flux over its fluence in one buffer (the kernel reads the second half
-  // where it has REFRACTA_MULTIPLE_DIRECTION): always an upload.
-  auto multipleWithDirection = [&]()
-  {
-    FetchFloats(multiple, 3, values);
-    MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
-    std::vector<float> flux;
-    FetchFloats(multipleDirection, 3, flux);
-    values.insert(values.end(), flux.begin(), flux.end());
-    in.Multiple = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
-      values.data(), multiple->GetName(), this);
-    return static_cast<bool>(in.Multiple);
   };
   // RadianceDirection and MultipleScatteringDirection are stored in the grid-local frame
   // (vtkPhotonTracer, Physics.md).
   if ((in.HasSingle &&
         (!field(radiance, true, in.Radiance) || !field(direction, false, in.RadianceDirection))) ||
-    (in.HasMultiple &&
-      !(in.HasMultipleDirection ? multipleWithDirection() : field(multiple, true, in.Multiple))))
+    (in.HasMultiple && !field(multiple, true, in.Multiple, multipleDirection)))
   {
     return false;
   }

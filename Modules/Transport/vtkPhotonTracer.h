@@ -805,7 +805,8 @@ private:
   // while the set's build, the grid and the placement stay (a light move reuses them).
   void FindGridCuts(Internals& run, vtkMatrix4x4* localToWorld);
   bool UploadSurfaces(Internals& run);
-  bool UploadGridCuts(Internals& run); // vtkRefractaGridCuts' bytes (a placeholder without)
+  bool UploadGridCuts(
+    Internals& run); // vtkRefractaGridCuts' bytes (a one-byte stand-in without cuts)
 #ifndef __VTK_WRAP__
   bool SetSurfaceArguments(Internals& run, cl_kernel kernel, cl_uint& index);
 #endif

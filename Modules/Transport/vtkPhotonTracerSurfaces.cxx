@@ -284,8 +284,8 @@ bool vtkPhotonTracer::UploadSurfaces(Internals& run)
 
 //------------------------------------------------------------------------------
 // vtkRefractaGridCuts' byte per voxel (cut links, near an opaque triangle) for the march's sided
-// deposits and the smoothing (a placeholder without cuts: the kernels take the argument whatever
-// the variant). Per run: the grid may change between runs.
+// deposits and the smoothing (without cuts a one-byte stand-in: the kernels take the argument
+// whatever the variant). Per run: the grid may change between runs.
 bool vtkPhotonTracer::UploadGridCuts(Internals& run)
 {
   Allocator& alloc = run.Alloc;

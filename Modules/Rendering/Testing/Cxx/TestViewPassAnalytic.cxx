@@ -427,6 +427,26 @@ TEST(ViewPassAnalytic, BadInputsAreReported)
   EXPECT_NE(errors->GetErrorMessage().find("invalid value"), std::string::npos);
   errors->Clear();
 
+  // MultipleScatteringDirection with 2 components, then with a NaN: errors naming it.
+  const char* msDirection = vtkRefractaLightingVolume::MultipleScatteringDirectionName();
+  vtkNew<vtkImageData> badFlux;
+  badFlux->CopyStructure(scene.Medium);
+  refracta_test::AddConstant(
+    badFlux, vtkRefractaLightingVolume::MultipleScatteringName(), 3, 1, 1, 1);
+  refracta_test::AddConstant(badFlux, msDirection, 2, 0.1, 0.2);
+  renderer->SetLightingData(badFlux);
+  renderer->Update();
+  EXPECT_NE(errors->GetErrorMessage().find(msDirection), std::string::npos)
+    << errors->GetErrorMessage();
+  EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 0);
+  errors->Clear();
+  refracta_test::AddConstant(badFlux, msDirection, 3, 0.1, 0.2, 0.3)->SetValue(5, std::nanf(""));
+  renderer->Update();
+  EXPECT_NE(errors->GetErrorMessage().find("invalid value"), std::string::npos)
+    << errors->GetErrorMessage();
+  EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 0);
+  errors->Clear();
+
   // Degenerate camera; bad environment image.
   renderer->SetLightingData(nullptr);
   camera->SetFocalPoint(camera->GetPosition());

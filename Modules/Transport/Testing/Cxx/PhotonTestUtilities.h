@@ -8,7 +8,9 @@
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
+#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkSmartPointer.h"
 
@@ -88,6 +90,20 @@ inline vtkSmartPointer<vtkImageData> RefractingFog(int nx, int ny, int nz, doubl
       v.Albedo = albedo;
       return v;
     });
+}
+
+// A rectangle from `origin` spanned by the edges p1 - origin and p2 - origin (vtkPlaneSource).
+inline vtkSmartPointer<vtkPolyData> Rectangle(
+  std::array<double, 3> origin, std::array<double, 3> p1, std::array<double, 3> p2)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(origin.data());
+  plane->SetPoint1(p1.data());
+  plane->SetPoint2(p2.data());
+  plane->Update();
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->DeepCopy(plane->GetOutput());
+  return out;
 }
 
 // Every array of `a` holds the same bits as `b`'s array of the same name (point data or field

@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -89,6 +90,17 @@ double RelativeRms(const float* a, const float* b, size_t values)
     ref += double(b[i]) * b[i];
   }
   return std::sqrt(diff / std::max(ref, 1e-300));
+}
+
+// A set holding one black plane (vtkPlaneSource: origin, point 1, point 2).
+vtkSmartPointer<vtkRefractaSurfaceSet> BlackPlane(
+  std::array<double, 3> origin, std::array<double, 3> p1, std::array<double, 3> p2)
+{
+  vtkNew<vtkRefractaSurfaceMaterial> black;
+  black->SetAlbedo(0, 0, 0);
+  auto set = vtkSmartPointer<vtkRefractaSurfaceSet>::New();
+  set->AddSurface(Rectangle(origin, p1, p2), black);
+  return set;
 }
 
 vtkSmartPointer<vtkImageData> RunPass(vtkLightRaySingleScattering* pass, vtkImageData* medium)
@@ -199,15 +211,7 @@ TEST(LightRays, BoxMeansBehindAWallAreDark)
 {
   auto medium = MakeMedium(
     12, 4, 12, 1.0, [&](double, double, double z) { return Homogeneous(z >= 6 ? 2.0 : 0.0, 0.8); });
-  vtkNew<vtkPlaneSource> wall;
-  wall->SetOrigin(-2, -2, 3.5);
-  wall->SetPoint1(5.5, -2, 3.5);
-  wall->SetPoint2(-2, 6, 3.5);
-  wall->Update();
-  vtkNew<vtkRefractaSurfaceMaterial> black;
-  black->SetAlbedo(0, 0, 0);
-  vtkNew<vtkRefractaSurfaceSet> set;
-  set->AddSurface(wall->GetOutput(), black);
+  auto set = BlackPlane({ -2, -2, 3.5 }, { 5.5, -2, 3.5 }, { -2, 6, 3.5 });
   vtkNew<vtkLightRaySingleScattering> pass;
   pass->AddLight(Directional({ 5.5, 1.5, -10 }, { 5.5, 1.5, 0 }, 1.0));
   pass->SetSurfaces(set);
@@ -316,15 +320,7 @@ TEST(LightRays, SurfacesCastShadows)
 {
   auto medium =
     MakeMedium(20, 20, 10, 1.0, [&](double, double, double) { return Homogeneous(0.05, 1.0); });
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(-1, -1, -3);
-  plane->SetPoint1(9.5, -1, -3);
-  plane->SetPoint2(-1, 25, -3);
-  plane->Update();
-  vtkNew<vtkRefractaSurfaceMaterial> black;
-  black->SetAlbedo(0, 0, 0);
-  vtkNew<vtkRefractaSurfaceSet> set;
-  set->AddSurface(plane->GetOutput(), black);
+  auto set = BlackPlane({ -1, -1, -3 }, { 9.5, -1, -3 }, { -1, 25, -3 });
   vtkNew<vtkLightRaySingleScattering> pass;
   pass->AddLight(Directional({ 10, 10, -20 }, { 10, 10, 0 }, 1.0));
   pass->SetSurfaces(set);

@@ -86,6 +86,16 @@ double SurfaceFlux(vtkRefractaSurfaceSet* set, vtkImageData* image)
   return sum;
 }
 
+// A grey floor y = 0.3 across the fog (and beyond it) of the given albedo.
+vtkSmartPointer<vtkRefractaSurfaceSet> Floor(double albedo)
+{
+  auto set = vtkSmartPointer<vtkRefractaSurfaceSet>::New();
+  vtkNew<vtkRefractaSurfaceMaterial> material;
+  material->SetAlbedo(albedo, albedo, albedo);
+  set->AddSurface(photontest::Rectangle({ -1, 0.3, -1 }, { 4, 0.3, -1 }, { -1, 0.3, 4 }), material);
+  return set;
+}
+
 vtkSmartPointer<vtkRefractaSurfaceSet> WhiteBox()
 {
   auto set = vtkSmartPointer<vtkRefractaSurfaceSet>::New();
@@ -154,15 +164,7 @@ TEST(PhotonAnalogScattering, SingleScatteringStaysUnbiasedAndScatteredLightReach
 {
   // Fog over a black floor inside it under a spot light: the floor absorbs all it receives.
   auto medium = Fog(1.5, 0.8, 0.3);
-  vtkNew<vtkRefractaSurfaceSet> set;
-  vtkNew<vtkRefractaSurfaceMaterial> black;
-  black->SetAlbedo(0, 0, 0);
-  vtkNew<vtkPlaneSource> floor;
-  floor->SetOrigin(-1, 0.3, -1);
-  floor->SetPoint1(4, 0.3, -1);
-  floor->SetPoint2(-1, 0.3, 4);
-  floor->Update();
-  set->AddSurface(floor->GetOutput(), black);
+  auto set = Floor(0.0);
   auto run =
     [&](vtkRefractaSurfaceSet* surfaces, bool analog, double& s1, double& floorFlux, double& sms)
   {
@@ -206,18 +208,9 @@ TEST(PhotonAnalogScattering, MultipleScatteringDirectionFollowsTheNetFlux)
   // floor y = 0.3 of albedo `albedo`), under a spot light aimed down.
   auto meanY = [&](double albedo)
   {
-    vtkNew<vtkRefractaSurfaceSet> set;
-    vtkNew<vtkRefractaSurfaceMaterial> material;
-    material->SetAlbedo(albedo, albedo, albedo);
-    vtkNew<vtkPlaneSource> floor;
-    floor->SetOrigin(-1, 0.3, -1);
-    floor->SetPoint1(4, 0.3, -1);
-    floor->SetPoint2(-1, 0.3, 4);
-    floor->Update();
-    set->AddSurface(floor->GetOutput(), material);
     vtkNew<vtkPhotonTracer> tracer;
     tracer->SetInputData(medium);
-    tracer->SetSurfaces(set);
+    tracer->SetSurfaces(Floor(albedo));
     tracer->AnalogScatteringOn();
     tracer->AddLight(
       photontest::Positional({ 1.375, 6.0, 1.375 }, { 1.375, 0, 1.375 }, 20, 1, 3.0));

@@ -45,20 +45,6 @@ vtkSmartPointer<vtkRefractaSurfaceMaterial> Black()
   return m;
 }
 
-// A rectangle from `origin` spanned by the edges p1 - origin and p2 - origin.
-vtkSmartPointer<vtkPolyData> Rectangle(
-  std::array<double, 3> origin, std::array<double, 3> p1, std::array<double, 3> p2)
-{
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(origin.data());
-  plane->SetPoint1(p1.data());
-  plane->SetPoint2(p2.data());
-  plane->Update();
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->DeepCopy(plane->GetOutput());
-  return out;
-}
-
 vtkSmartPointer<vtkImageData> Vacuum()
 {
   auto medium = photontest::MakeMedium(
@@ -191,10 +177,10 @@ TEST(PhotonInterfaces, PrismReflectsTotally)
   // Surface 1: under the hypotenuse (inside the prism's footprint only, so the direct beam
   // cannot reach it); 2: left of the leg; 3: a reference plane in the open beam.
   set->AddSurface(
-    Rectangle({ 0.05, -0.9, -0.5 }, { 0.9, -0.9, -0.5 }, { 0.05, 0.9, -0.5 }), Black());
+    photontest::Rectangle({ 0.05, -0.9, -0.5 }, { 0.9, -0.9, -0.5 }, { 0.05, 0.9, -0.5 }), Black());
   set->AddSurface(
-    Rectangle({ -0.3, -1.2, -0.2 }, { -0.3, 1.2, -0.2 }, { -0.3, -1.2, 1.2 }), Black());
-  set->AddSurface(Rectangle({ 1.2, -1, 1 }, { 1.8, -1, 1 }, { 1.2, 1, 1 }), Black());
+    photontest::Rectangle({ -0.3, -1.2, -0.2 }, { -0.3, 1.2, -0.2 }, { -0.3, -1.2, 1.2 }), Black());
+  set->AddSurface(photontest::Rectangle({ 1.2, -1, 1 }, { 1.8, -1, 1 }, { 1.2, 1, 1 }), Black());
   vtkNew<vtkPhotonTracer> tracer;
   tracer->SetInputData(Vacuum());
   tracer->SetSurfaces(set);
@@ -226,7 +212,8 @@ TEST(PhotonInterfaces, SharpBallLensFocus)
   set->SetTexelSize(0.01);
   vtkNew<vtkMatrix4x4> move;
   AddBallLens(set, radius, index, aperture);
-  set->AddSurface(Rectangle({ -0.5, -0.5, 0 }, { 0.5, -0.5, 0 }, { -0.5, 0.5, 0 }), Black(), move);
+  set->AddSurface(
+    photontest::Rectangle({ -0.5, -0.5, 0 }, { 0.5, -0.5, 0 }, { -0.5, 0.5, 0 }), Black(), move);
   vtkNew<vtkPhotonTracer> tracer;
   tracer->SetInputData(Vacuum());
   tracer->AddLight(photontest::Directional({ 0, 0, 10 }, { 0, 0, 0 }, 1.0));
@@ -414,7 +401,8 @@ TEST(PhotonInterfaces, CausticAtlasResolvesTheFocus)
   vtkNew<vtkRefractaSurfaceSet> set;
   set->SetTexelSize(0.02);
   AddBallLens(set, radius, index, aperture);
-  set->AddSurface(Rectangle({ -0.5, -0.5, -D }, { 0.5, -0.5, -D }, { -0.5, 0.5, -D }), Black());
+  set->AddSurface(
+    photontest::Rectangle({ -0.5, -0.5, -D }, { 0.5, -0.5, -D }, { -0.5, 0.5, -D }), Black());
   vtkNew<vtkPhotonTracer> tracer;
   tracer->SetInputData(Vacuum());
   tracer->AddLight(photontest::Directional({ 0, 0, 10 }, { 0, 0, 0 }, 1.0));
@@ -527,7 +515,8 @@ TEST(PhotonInterfaces, CausticAtlasResolvesTheFocus)
 
   // Without glass: no caustic photons, no caustic array.
   vtkNew<vtkRefractaSurfaceSet> plain;
-  plain->AddSurface(Rectangle({ -0.5, -0.5, -D }, { 0.5, -0.5, -D }, { -0.5, 0.5, -D }), Black());
+  plain->AddSurface(
+    photontest::Rectangle({ -0.5, -0.5, -D }, { 0.5, -0.5, -D }, { -0.5, 0.5, -D }), Black());
   tracer->SetSurfaces(plain);
   tracer->Update();
   EXPECT_EQ(tracer->GetOutput()->GetFieldData()->GetArray(
