@@ -213,7 +213,16 @@ inline int photon_surface_interact(photon_state* ps, float3* x, float3* dir, flo
   const float3 boosted = ps->power / q;
   ps->gained += boosted - ps->power;
   ps->power = boosted;
+#if REFRACTA_ANALOG
+  // Where the photons carry the scattered orders, reflected light joins them: its scattering
+  // counts with S_ms, whose flux over its fluence shades it (MultipleScatteringDirection), and S1
+  // keeps the beams from the lights, whose one direction per voxel is right for each. In S1, a
+  // lit floor's diffuse reflection and the lamp's beam above it would be shaded as one beam along
+  // their (nearly cancelling) mean direction.
+  ps->order = 1;
+#else
   ps->order = 0; // a new beam: its first scattering is S1 again
+#endif
   ps->caustic = 0;
   // The normal turned towards the side the photon came from.
   n = side ? -n : n;

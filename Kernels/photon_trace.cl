@@ -43,14 +43,15 @@
 // Analog scattering (REFRACTA_ANALOG 1, only with REFRACTA_SURFACES and REFRACTA_DEPOSIT; see
 // vtkPhotonTracer::AnalogScattering): the lattice, which knows no surfaces, is replaced by the
 // photons themselves. A piece still deposits its expected scattered power P (1 - T) a (order 0,
-// a photon straight from a light or a surface: `deposits`, S1 and its direction; order >= 1, a
-// photon that has scattered in the medium since: `multiple`, S_ms), books P (1 - T) (1 - a) as
-// absorbed, and then goes on either unscattered (power P T / (1 - q)) or scattered in the piece
-// (power P (1 - T) a / q, at an exponentially distributed point, in a Henyey-Greenstein direction,
-// order + 1), with q = sum_c P (1 - T_c) a_c / sum_c P (T_c + (1 - T_c) a_c): the choice keeps
+// a photon straight from a light, through glass or not: `deposits`, S1 and its direction; order
+// >= 1, a photon that has scattered in the medium or been reflected by a surface since:
+// `multiple`, S_ms), books P (1 - T) (1 - a) as absorbed, and then goes on either unscattered
+// (power P T / (1 - q)) or scattered in the piece (power P (1 - T) a / q, at an exponentially
+// distributed point, in a Henyey-Greenstein direction, order + 1), with q = sum_c P (1 - T_c) a_c / sum_c P (T_c + (1 - T_c) a_c): the choice keeps
 // the photon's total power, and any per-channel difference (coloured media) goes to the roulette
 // books (killed / gained), so the books stay exact per photon and nothing goes to `scattered`.
-// A surface's reflection resets the order to 0 (a new beam, as without analog scattering).
+// A surface's diffuse reflection sets the order to 1 (diffuse light, whose flux over its fluence
+// shades it; without analog scattering it starts a new beam, order 0).
 // The analog machinery also runs without surfaces (the kernels are built with REFRACTA_SURFACES
 // and an empty surface set) for the first-collision split (vtkPhotonTracer::ScatteringOrders k):
 // a photon scatters analogically while its order is below REFRACTA_ANALOG_ORDERS = k; at order k

@@ -199,14 +199,16 @@ TEST(PhotonAnalogScattering, SingleScatteringStaysUnbiasedAndScatteredLightReach
 
 // With every order by photons, MultipleScatteringDirection is the multiply scattered light's flux
 // over its fluence F / phi_ms: never longer than 1; in the fog just above a black floor, where
-// nothing comes back up, it points down (measured: mean y -0.51); above a white floor less so
-// (-0.34: the reflected light is a new beam, S1, until it scatters again, and then it travels up).
+// nothing comes back up, it points down (measured: mean y -0.51); above a white floor, whose
+// reflected light counts with S_ms (diffuse light, no beam from a light), the floor's light going
+// up balances the fog's coming down (-0.03). S1 then holds only the beams from the light: the
+// same values over either floor.
 TEST(PhotonAnalogScattering, MultipleScatteringDirectionFollowsTheNetFlux)
 {
   auto medium = Fog(1.5, 0.8, 0.3);
   // Mean y component of F / phi over the voxels (i, 2, k), i, k in 3..8 (centres 0.2 above the
-  // floor y = 0.3 of albedo `albedo`), under a spot light aimed down.
-  auto meanY = [&](double albedo)
+  // floor y = 0.3 of albedo `albedo`), under a spot light aimed down; S1 into `s1`.
+  auto meanY = [&](double albedo, std::vector<double>& s1)
   {
     vtkNew<vtkPhotonTracer> tracer;
     tracer->SetInputData(medium);
@@ -216,8 +218,14 @@ TEST(PhotonAnalogScattering, MultipleScatteringDirectionFollowsTheNetFlux)
       photontest::Positional({ 1.375, 6.0, 1.375 }, { 1.375, 0, 1.375 }, 20, 1, 3.0));
     tracer->SetNumberOfPhotons(1 << 16);
     tracer->Update();
-    vtkDataArray* f = tracer->GetOutput()->GetPointData()->GetArray(
-      vtkRefractaLightingVolume::MultipleScatteringDirectionName());
+    vtkPointData* pd = tracer->GetOutput()->GetPointData();
+    vtkDataArray* radiance = pd->GetArray(vtkRefractaLightingVolume::RadianceName());
+    s1.assign(radiance ? 3 * radiance->GetNumberOfTuples() : 0, 0.0);
+    for (size_t i = 0; i < s1.size(); ++i)
+    {
+      s1[i] = radiance->GetComponent(static_cast<vtkIdType>(i / 3), static_cast<int>(i % 3));
+    }
+    vtkDataArray* f = pd->GetArray(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
     EXPECT_NE(f, nullptr);
     if (!f)
     {
@@ -242,11 +250,14 @@ TEST(PhotonAnalogScattering, MultipleScatteringDirectionFollowsTheNetFlux)
     }
     return mean;
   };
-  const double black = meanY(0.0), white = meanY(1.0);
+  std::vector<double> s1Black, s1White;
+  const double black = meanY(0.0, s1Black), white = meanY(1.0, s1White);
   std::cout << "F / phi 0.2 above the floor, mean y: black floor " << black << ", white floor "
             << white << std::endl;
   EXPECT_LT(black, -0.3) << "the light above a black floor travels down";
-  EXPECT_GT(white, black + 0.1) << "a white floor sends some of it back up";
+  EXPECT_GT(white, black + 0.3) << "a white floor sends its reflection back up";
+  ASSERT_FALSE(s1Black.empty());
+  EXPECT_EQ(s1White, s1Black) << "S1 holds the light's own beams, whatever the floor reflects";
 }
 
 TEST(PhotonAnalogScattering, OffWithoutSurfacesOrScattering)
