@@ -47,9 +47,10 @@
 // >= 1, a photon that has scattered in the medium or been reflected by a surface since:
 // `multiple`, S_ms), books P (1 - T) (1 - a) as absorbed, and then goes on either unscattered
 // (power P T / (1 - q)) or scattered in the piece (power P (1 - T) a / q, at an exponentially
-// distributed point, in a Henyey-Greenstein direction, order + 1), with q = sum_c P (1 - T_c) a_c / sum_c P (T_c + (1 - T_c) a_c): the choice keeps
-// the photon's total power, and any per-channel difference (coloured media) goes to the roulette
-// books (killed / gained), so the books stay exact per photon and nothing goes to `scattered`.
+// distributed point, in a Henyey-Greenstein direction, order + 1), with
+// q = sum_c P (1 - T_c) a_c / sum_c P (T_c + (1 - T_c) a_c): the choice keeps the photon's total
+// power, and any per-channel difference (coloured media) goes to the roulette books (killed /
+// gained), so the books stay exact per photon and nothing goes to `scattered`.
 // A surface's diffuse reflection sets the order to 1 (diffuse light, whose flux over its fluence
 // shades it; without analog scattering it starts a new beam, order 0).
 // The analog machinery also runs without surfaces (the kernels are built with REFRACTA_SURFACES
