@@ -125,3 +125,18 @@ __kernel void radiance_normalize(__global float* direction, const uint count)
   const float m = length(d);
   vstore3(m > 0.0f && isfinite(m) ? d / m : (float3)(0.0f), id, direction);
 }
+
+// radiance_scale_voxels: one work-item per listed voxel, values[voxel] *= scale: the owned volumes
+// of the sided deposits (vtkRefractaGridCuts::GetScaledVoxels: deposits gathered from a volume
+// other than the voxel's own box become power per unit volume again), before the smoothing.
+__kernel void radiance_scale_voxels(__global float* values, __global const uint* voxels,
+  __global const float* scales, const uint count)
+{
+  const size_t id = get_global_id(0);
+  if (id >= count)
+  {
+    return;
+  }
+  const size_t v = voxels[id];
+  vstore3(vload3(v, values) * scales[id], v, values);
+}

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <new>
 
 vtkStandardNewMacro(vtkRefractaGridCuts);
@@ -123,6 +125,10 @@ bool vtkRefractaGridCuts::Update(vtkRefractaSurfaceSet* set, const int dims[3],
   std::copy(spacing, spacing + 3, this->Spacing);
   std::copy(placement, placement + 16, this->LocalToWorld);
   this->Links.clear();
+  this->Opaque.clear();
+  this->ScaledVoxels.clear();
+  this->VolumeScales.clear();
+  this->VolumesCounted = false;
   ++this->NumberOfSearches;
   if (set && set->GetBVH()->GetNumberOfTriangles() > 0)
   {
@@ -150,6 +156,10 @@ void vtkRefractaGridCuts::Clear()
   this->Set = nullptr;
   this->Builds = -1;
   this->Links.clear();
+  this->Opaque.clear();
+  this->ScaledVoxels.clear();
+  this->VolumeScales.clear();
+  this->VolumesCounted = false;
   this->Modified();
 }
 
@@ -189,6 +199,7 @@ void vtkRefractaGridCuts::Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* local
     {
       continue; // glass lets light through (its two sides' fields belong together); degenerate
     }
+    this->Opaque.insert(this->Opaque.end(), &v[0][0], &v[0][0] + 9);
     // The voxels within one voxel of the triangle's bounds (in voxel coordinates), and the
     // links from them.
     double low[3], high[3];
@@ -268,6 +279,142 @@ void vtkRefractaGridCuts::MarkVoxel(const int ijk[3], const float plane[4], doub
     if (ijk[a] + 1 < dims[a] && SegmentMeetsTriangle(p, a, h[a], v))
     {
       bits |= static_cast<unsigned char>(1 << a);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+const std::vector<vtkIdType>& vtkRefractaGridCuts::GetScaledVoxels()
+{
+  this->CountOwnedVolumes();
+  return this->ScaledVoxels;
+}
+
+//------------------------------------------------------------------------------
+const std::vector<float>& vtkRefractaGridCuts::GetVolumeScales()
+{
+  this->CountOwnedVolumes();
+  return this->VolumeScales;
+}
+
+//------------------------------------------------------------------------------
+void vtkRefractaGridCuts::CountOwnedVolumes()
+{
+  if (this->VolumesCounted || this->Links.empty())
+  {
+    return;
+  }
+  this->VolumesCounted = true;
+  vtkNew<vtkRefractaBVH> bvh;
+  bvh->Build(this->Opaque.data(), static_cast<vtkIdType>(this->Opaque.size() / 9));
+  const int* dims = this->Dims;
+  const double* h = this->Spacing;
+  // Whether an opaque triangle separates voxel coordinates a from b (a touch within 0.1% of the
+  // segment beyond b counts), as refracta_opaque_between asks it.
+  auto separated = [&](const double a[3], const int b[3])
+  {
+    double origin[3], direction[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      origin[c] = a[c] * h[c];
+      direction[c] = (b[c] - a[c]) * h[c];
+    }
+    return bvh->Occluded(origin, direction, 1.001);
+  };
+  auto index = [&](const int ijk[3])
+  { return ijk[0] + vtkIdType(dims[0]) * (ijk[1] + vtkIdType(dims[1]) * ijk[2]); };
+  // The voxel a point p in voxel `cell`'s box deposits into (photon_sided_voxel's rule and order).
+  auto owner = [&](const double p[3], const int cell[3])
+  {
+    if (!separated(p, cell))
+    {
+      return index(cell);
+    }
+    int tried = 1 << 13;
+    for (int round = 0; round < 26; ++round)
+    {
+      int pick = -1;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 27; ++k)
+      {
+        const int to[3] = { cell[0] + k % 3 - 1, cell[1] + (k / 3) % 3 - 1, cell[2] + k / 9 - 1 };
+        bool inGrid = true;
+        double d = 0;
+        for (int c = 0; c < 3; ++c)
+        {
+          inGrid = inGrid && to[c] >= 0 && to[c] < dims[c];
+          d += (to[c] - p[c]) * (to[c] - p[c]);
+        }
+        if (!((tried >> k) & 1) && inGrid && d < nearest)
+        {
+          nearest = d;
+          pick = k;
+        }
+      }
+      if (pick < 0)
+      {
+        break;
+      }
+      tried |= 1 << pick;
+      const int to[3] = { cell[0] + pick % 3 - 1, cell[1] + (pick / 3) % 3 - 1,
+        cell[2] + pick / 9 - 1 };
+      if (!separated(p, to))
+      {
+        return index(to);
+      }
+    }
+    return index(cell);
+  };
+  // 64 points per box from the R3 sequence (Roberts 2018: frac(1/2 + k alpha), alpha_a =
+  // phi3^-a, phi3 the plastic number): a grid of 4 x 4 x 4 puts only 4 distinct coordinates on
+  // each axis, so an axis-aligned wall's share of a box was counted to a quarter; these 64 points
+  // project to 64 distinct coordinates on every axis.
+  constexpr int points = 64;
+  constexpr double share = 1.0 / points;
+  const double phi3 = 1.2207440846057596;
+  const double alpha[3] = { 1.0 / phi3, 1.0 / (phi3 * phi3), 1.0 / (phi3 * phi3 * phi3) };
+  double offsets[points][3];
+  for (int k = 0; k < points; ++k)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const double u = 0.5 + (k + 1) * alpha[a];
+      offsets[k][a] = u - std::floor(u) - 0.5;
+    }
+  }
+  std::map<vtkIdType, double> owned; // the voxels whose owned volume (in boxes) is not 1
+  for (int z = 0; z < dims[2]; ++z)
+  {
+    for (int y = 0; y < dims[1]; ++y)
+    {
+      for (int x = 0; x < dims[0]; ++x)
+      {
+        const int cell[3] = { x, y, z };
+        const vtkIdType own = index(cell);
+        if (!(this->Links[own] & REFRACTA_CUT_NEAR))
+        {
+          continue;
+        }
+        for (const auto& offset : offsets)
+        {
+          const double p[3] = { x + offset[0], y + offset[1], z + offset[2] };
+          const vtkIdType to = owner(p, cell);
+          if (to != own)
+          {
+            owned.emplace(own, 1.0).first->second -= share;
+            owned.emplace(to, 1.0).first->second += share;
+          }
+        }
+      }
+    }
+  }
+  for (const auto& entry : owned)
+  {
+    if (std::fabs(entry.second - 1.0) > 0.5 * share)
+    {
+      this->ScaledVoxels.push_back(entry.first);
+      this->VolumeScales.push_back(
+        entry.second > 0.5 * share ? static_cast<float>(1.0 / entry.second) : 0.0f);
     }
   }
 }

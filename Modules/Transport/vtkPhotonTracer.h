@@ -196,9 +196,10 @@ public:
    * expected scattered power of every voxel piece, but then really scatters there with the
    * piece's share of scattered power (a Henyey-Greenstein direction from the medium's
    * `Anisotropy`, at an exponentially distributed point), so scattered light reaches, lights and
-   * is reflected by the surfaces. Deposits of photons that have not scattered since their light
-   * or their last surface reflection go to `Radiance` (S1) as before; those of photons that have
-   * go to a point array vtkRefractaLightingVolume::MultipleScatteringName() (S_ms, power per unit
+   * is reflected by the surfaces. Deposits of photons that have neither scattered nor been
+   * reflected by a surface since their light go to `Radiance` (S1) as before; those of photons
+   * that have (diffuse light: its one mean direction per voxel would not describe it) go to a
+   * point array vtkRefractaLightingVolume::MultipleScatteringName() (S_ms, power per unit
    * volume, smoothed like Radiance), which then replaces the lattice's, with its flux over its
    * fluence in MultipleScatteringDirectionName() (the deposits' directions weighted by their
    * power, smoothed alike; length <= 1; every order by photons only, not with ScatteringOrders'

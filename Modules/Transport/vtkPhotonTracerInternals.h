@@ -301,8 +301,11 @@ struct vtkPhotonTracer::Internals
   // Where opaque surfaces cut the grid (vtkRefractaGridCuts; nullptr: nowhere this run) and its
   // links and near-surface bits on the device, uploaded once per run for the march's sided
   // deposits (REFRACTA_SIDED_DEPOSITS) and the smoothing (vtkPhotonTracerOutput.cxx, SmoothAxes).
-  const vtkRefractaGridCuts* Cuts = nullptr;
+  vtkRefractaGridCuts* Cuts = nullptr;
   vtkOpenCLBuffer CutLinksBuffer;
+  // Its owned volumes (GetScaledVoxels, GetVolumeScales), applied to the resolved deposits.
+  vtkOpenCLBuffer ScaledVoxels, VolumeScales;
+  cl_uint NumberOfScaledVoxels = 0;
   vtkNew<vtkFloatArray> Irradiance;
   // Caustic atlas (vtkPhotonTracer::CausticSubdivision): c of this run, 1 when off (no
   // dielectric surfaces); its accumulators follow the coarse ones in SurfIrradiance.

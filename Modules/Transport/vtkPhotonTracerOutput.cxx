@@ -79,7 +79,8 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
   vtkOpenCLKernel resolve = ctx->CreateKernel(smooth, "radiance_resolve", this);
   vtkOpenCLKernel filter = ctx->CreateKernel(smooth, "radiance_smooth_axis", this);
   vtkOpenCLKernel normalize = ctx->CreateKernel(smooth, "radiance_normalize", this);
-  if (!resolve || !filter || !normalize)
+  vtkOpenCLKernel scale = ctx->CreateKernel(smooth, "radiance_scale_voxels", this);
+  if (!resolve || !filter || !normalize || !scale)
   {
     return false;
   }
@@ -110,6 +111,15 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
                     resolve.Get(), source, first, strideLongs, factor, a.Get(), voxelCount),
         "clSetKernelArg(radiance_resolve)", this) ||
       !Run1D(ctx, resolve.Get(), voxels, "radiance_resolve", this))
+    {
+      return false;
+    }
+    // Deposits near opaque surfaces per unit of the volume they came from (the owned volumes).
+    if (!unit && run.NumberOfScaledVoxels > 0 &&
+      (!ctx->Check(vtkOpenCLSetKernelArgs(scale.Get(), a.Get(), run.ScaledVoxels.Get(),
+                     run.VolumeScales.Get(), run.NumberOfScaledVoxels),
+         "clSetKernelArg(radiance_scale_voxels)", this) ||
+        !Run1D(ctx, scale.Get(), run.NumberOfScaledVoxels, "radiance_scale_voxels", this)))
     {
       return false;
     }

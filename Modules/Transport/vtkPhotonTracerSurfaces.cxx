@@ -294,6 +294,22 @@ bool vtkPhotonTracer::UploadGridCuts(Internals& run)
     ? alloc.Make(in, run.Cuts->GetLinks().size(), run.Cuts->GetLinks().data(),
         "links and voxels near opaque surfaces")
     : alloc.Make(CL_MEM_READ_ONLY, 16, nullptr, "links and voxels near opaque surfaces (none)");
+  run.NumberOfScaledVoxels = 0;
+  if (run.Cuts && !run.Cuts->GetScaledVoxels().empty())
+  {
+    const std::vector<vtkIdType>& scaled = run.Cuts->GetScaledVoxels();
+    const std::vector<cl_uint> voxels(scaled.begin(), scaled.end());
+    const std::vector<float>& scales = run.Cuts->GetVolumeScales();
+    run.ScaledVoxels =
+      alloc.Make(in, voxels.size() * sizeof(cl_uint), voxels.data(), "voxels of scaled volume");
+    run.VolumeScales =
+      alloc.Make(in, scales.size() * sizeof(float), scales.data(), "their volume scales");
+    if (!run.ScaledVoxels || !run.VolumeScales)
+    {
+      return false;
+    }
+    run.NumberOfScaledVoxels = static_cast<cl_uint>(voxels.size());
+  }
   return static_cast<bool>(run.CutLinksBuffer);
 }
 

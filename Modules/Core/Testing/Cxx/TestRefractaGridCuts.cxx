@@ -254,3 +254,33 @@ TEST(RefractaGridCuts, BadGridsAreErrorsThatLeaveNoCuts)
   EXPECT_TRUE(cuts->Update(set, Dims, Spacing, nullptr)); // a good grid again: searched
   EXPECT_TRUE(cuts->HasCuts());
 }
+
+TEST(RefractaGridCuts, OwnedVolumesCountTheSliversAWallMoves)
+{
+  // x = 0.51 lies at u = 11.73: the box of a centre at i = 12 (dark side) holds a lit sliver
+  // 0.23 voxel wide, whose pieces deposit into the lit centres at i = 11. The owned volumes:
+  // 1.23 boxes for i = 11, 0.77 for i = 12 (64 points per box: to about 2/64), and the total over
+  // the grid is the grid's (a point's share only moves).
+  vtkNew<vtkMatrix4x4> identity;
+  vtkNew<vtkRefractaGridCuts> cuts;
+  cuts->Update(Set(Wall(0.51)), Dims, Spacing, identity);
+  const auto& voxels = cuts->GetScaledVoxels();
+  const auto& scales = cuts->GetVolumeScales();
+  ASSERT_EQ(voxels.size(), scales.size());
+  std::vector<double> owned(size_t(N) * N * N, 1.0);
+  for (size_t k = 0; k < voxels.size(); ++k)
+  {
+    owned[voxels[k]] = scales[k] > 0 ? 1.0 / scales[k] : 0.0;
+  }
+  const double fraction = 0.51 * (N - 1) - 11.5; // the sliver, in boxes
+  EXPECT_NEAR(owned[Voxel(11, 10, 10)], 1.0 + fraction, 0.035);
+  EXPECT_NEAR(owned[Voxel(12, 10, 10)], 1.0 - fraction, 0.035);
+  EXPECT_EQ(owned[Voxel(13, 10, 10)], 1.0);
+  EXPECT_EQ(owned[Voxel(10, 10, 10)], 1.0);
+  double total = 0;
+  for (double v : owned)
+  {
+    total += v;
+  }
+  EXPECT_NEAR(total, double(N) * N * N, 1e-6);
+}
