@@ -6,6 +6,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkRefractaBVH.h"
 #include "vtkRefractaSurfaceSet.h"
+#include "vtkSMPTools.h"
 
 #include "refracta_surfaces.cl" // the triangle info layout, shared with the kernels
 
@@ -14,6 +15,8 @@
 #include <limits>
 #include <map>
 #include <new>
+#include <utility>
+#include <vector>
 
 vtkStandardNewMacro(vtkRefractaGridCuts);
 
@@ -126,6 +129,7 @@ bool vtkRefractaGridCuts::Update(vtkRefractaSurfaceSet* set, const int dims[3],
   std::copy(placement, placement + 16, this->LocalToWorld);
   this->Links.clear();
   this->Opaque.clear();
+  this->BoxTriangles.clear();
   this->ScaledVoxels.clear();
   this->VolumeScales.clear();
   this->VolumesCounted = false;
@@ -157,6 +161,7 @@ void vtkRefractaGridCuts::Clear()
   this->Builds = -1;
   this->Links.clear();
   this->Opaque.clear();
+  this->BoxTriangles.clear();
   this->ScaledVoxels.clear();
   this->VolumeScales.clear();
   this->VolumesCounted = false;
@@ -246,6 +251,7 @@ void vtkRefractaGridCuts::Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* local
         for (ijk[d] = first; ijk[d] <= last; ++ijk[d])
         {
           this->MarkVoxel(ijk, plane, reach, low, high, v);
+          this->NoteBoxTriangle(ijk, plane, reach, low, high);
         }
       }
     }
@@ -284,6 +290,28 @@ void vtkRefractaGridCuts::MarkVoxel(const int ijk[3], const float plane[4], doub
 }
 
 //------------------------------------------------------------------------------
+// Whether the last triangle of Opaque may cross voxel ijk's box (a conservative test: within half
+// the box's extent along the plane's normal and half a voxel of the triangle's bounds, each
+// widened by 0.01 voxel for rounding); if so, the pair is noted for the owned volumes.
+void vtkRefractaGridCuts::NoteBoxTriangle(
+  const int ijk[3], const float plane[4], double reach, const double low[3], const double high[3])
+{
+  bool crosses = std::fabs(plane[0] * ijk[0] + plane[1] * ijk[1] + plane[2] * ijk[2] + plane[3]) <=
+    0.5 * reach + 0.01;
+  for (int a = 0; a < 3; ++a)
+  {
+    crosses = crosses && ijk[a] >= low[a] - 0.51 && ijk[a] <= high[a] + 0.51;
+  }
+  if (crosses)
+  {
+    const int* dims = this->Dims;
+    this->BoxTriangles.emplace_back(
+      ijk[0] + vtkIdType(dims[0]) * (ijk[1] + vtkIdType(dims[1]) * ijk[2]),
+      static_cast<vtkIdType>(this->Opaque.size() / 9) - 1);
+  }
+}
+
+//------------------------------------------------------------------------------
 const std::vector<vtkIdType>& vtkRefractaGridCuts::GetScaledVoxels()
 {
   this->CountOwnedVolumes();
@@ -305,30 +333,72 @@ void vtkRefractaGridCuts::CountOwnedVolumes()
     return;
   }
   this->VolumesCounted = true;
-  vtkNew<vtkRefractaBVH> bvh;
-  bvh->Build(this->Opaque.data(), static_cast<vtkIdType>(this->Opaque.size() / 9));
   const int* dims = this->Dims;
   const double* h = this->Spacing;
-  // Whether an opaque triangle separates voxel coordinates a from b (a touch within 0.1% of the
-  // segment beyond b counts), as refracta_opaque_between asks it.
-  auto separated = [&](const double a[3], const int b[3])
+  // The voxels whose box a triangle may cross, each with those triangles (rows of `pairs` from
+  // first[slot] on): a point of any other box sees its centre, and a segment within a few boxes
+  // can only meet the triangles noted for them.
+  std::vector<std::pair<vtkIdType, vtkIdType>>& pairs = this->BoxTriangles;
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::vector<vtkIdType> crossed, first;
+  for (size_t k = 0; k < pairs.size(); ++k)
+  {
+    if (k == 0 || pairs[k].first != pairs[k - 1].first)
+    {
+      crossed.push_back(pairs[k].first);
+      first.push_back(static_cast<vtkIdType>(k));
+    }
+  }
+  first.push_back(static_cast<vtkIdType>(pairs.size()));
+  auto index = [&](int i, int j, int k)
+  { return i + vtkIdType(dims[0]) * (j + vtkIdType(dims[1]) * k); };
+  // Whether an opaque triangle separates voxel coordinates p (in voxel cell's box) from voxel
+  // to's centre (a touch within 0.1% of the segment beyond it counts), as refracta_opaque_between
+  // asks it: the segment lies in the boxes of the voxels between the two.
+  auto separated = [&](const double p[3], const int cell[3], const int to[3])
   {
     double origin[3], direction[3];
+    int lo[3], hi[3];
     for (int c = 0; c < 3; ++c)
     {
-      origin[c] = a[c] * h[c];
-      direction[c] = (b[c] - a[c]) * h[c];
+      origin[c] = p[c] * h[c];
+      direction[c] = (to[c] - p[c]) * h[c];
+      lo[c] = std::min(cell[c], to[c]);
+      hi[c] = std::max(cell[c], to[c]);
     }
-    return bvh->Occluded(origin, direction, 1.001);
+    for (int k = lo[2]; k <= hi[2]; ++k)
+    {
+      for (int j = lo[1]; j <= hi[1]; ++j)
+      {
+        for (int i = lo[0]; i <= hi[0]; ++i)
+        {
+          const auto at = std::lower_bound(crossed.begin(), crossed.end(), index(i, j, k));
+          if (at == crossed.end() || *at != index(i, j, k))
+          {
+            continue;
+          }
+          const size_t slot = static_cast<size_t>(at - crossed.begin());
+          for (vtkIdType r = first[slot]; r < first[slot + 1]; ++r)
+          {
+            const double* t = this->Opaque.data() + 9 * pairs[r].second;
+            double hit[3];
+            if (vtkRefractaBVH::IntersectTriangle(origin, direction, t, t + 3, t + 6, 1.001, hit))
+            {
+              return true;
+            }
+          }
+        }
+      }
+    }
+    return false;
   };
-  auto index = [&](const int ijk[3])
-  { return ijk[0] + vtkIdType(dims[0]) * (ijk[1] + vtkIdType(dims[1]) * ijk[2]); };
   // The voxel a point p in voxel `cell`'s box deposits into (photon_sided_voxel's rule and order).
   auto owner = [&](const double p[3], const int cell[3])
   {
-    if (!separated(p, cell))
+    if (!separated(p, cell, cell))
     {
-      return index(cell);
+      return index(cell[0], cell[1], cell[2]);
     }
     int tried = 1 << 13;
     for (int round = 0; round < 26; ++round)
@@ -358,12 +428,12 @@ void vtkRefractaGridCuts::CountOwnedVolumes()
       tried |= 1 << pick;
       const int to[3] = { cell[0] + pick % 3 - 1, cell[1] + (pick / 3) % 3 - 1,
         cell[2] + pick / 9 - 1 };
-      if (!separated(p, to))
+      if (!separated(p, cell, to))
       {
-        return index(to);
+        return index(to[0], to[1], to[2]);
       }
     }
-    return index(cell);
+    return index(cell[0], cell[1], cell[2]);
   };
   // 64 points per box from the R3 sequence (Roberts 2018: frac(1/2 + k alpha), alpha_a =
   // phi3^-a, phi3 the plastic number): a grid of 4 x 4 x 4 puts only 4 distinct coordinates on
@@ -382,30 +452,36 @@ void vtkRefractaGridCuts::CountOwnedVolumes()
       offsets[k][a] = u - std::floor(u) - 0.5;
     }
   }
-  std::map<vtkIdType, double> owned; // the voxels whose owned volume (in boxes) is not 1
-  for (int z = 0; z < dims[2]; ++z)
-  {
-    for (int y = 0; y < dims[1]; ++y)
+  // Per crossed voxel, the voxels its box's points deposit into instead (in parallel: each slot
+  // is written by one thread), then summed into the owned volumes (in boxes) that are not 1.
+  std::vector<std::vector<vtkIdType>> moved(crossed.size());
+  vtkSMPTools::For(0, static_cast<vtkIdType>(crossed.size()),
+    [&](vtkIdType begin, vtkIdType end)
     {
-      for (int x = 0; x < dims[0]; ++x)
+      for (vtkIdType slot = begin; slot < end; ++slot)
       {
-        const int cell[3] = { x, y, z };
-        const vtkIdType own = index(cell);
-        if (!(this->Links[own] & REFRACTA_CUT_NEAR))
-        {
-          continue;
-        }
+        const vtkIdType own = crossed[slot];
+        const int cell[3] = { static_cast<int>(own % dims[0]),
+          static_cast<int>((own / dims[0]) % dims[1]),
+          static_cast<int>(own / (vtkIdType(dims[0]) * dims[1])) };
         for (const auto& offset : offsets)
         {
-          const double p[3] = { x + offset[0], y + offset[1], z + offset[2] };
+          const double p[3] = { cell[0] + offset[0], cell[1] + offset[1], cell[2] + offset[2] };
           const vtkIdType to = owner(p, cell);
           if (to != own)
           {
-            owned.emplace(own, 1.0).first->second -= share;
-            owned.emplace(to, 1.0).first->second += share;
+            moved[slot].push_back(to);
           }
         }
       }
+    });
+  std::map<vtkIdType, double> owned;
+  for (size_t slot = 0; slot < crossed.size(); ++slot)
+  {
+    for (const vtkIdType to : moved[slot])
+    {
+      owned.emplace(crossed[slot], 1.0).first->second -= share;
+      owned.emplace(to, 1.0).first->second += share;
     }
   }
   for (const auto& entry : owned)

@@ -33,6 +33,7 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // for the kept set
 
+#include <utility> // for std::pair
 #include <vector> // for the cuts
 
 class vtkMatrix4x4;
@@ -85,8 +86,9 @@ public:
    * (a wall through it or through a neighbour's) are listed with h^3 / V_owned, V_owned the
    * volume of the points that deposit into them (the factor that makes their deposits power per
    * unit volume again; 0 for a voxel that owns nothing, a centre on a wall). V_owned is counted
-   * at 64 points per box near a triangle (the R3 low-discrepancy sequence), in double with a BVH
-   * of the opaque triangles, on the first call after a search (the view pass never asks). Empty
+   * at 64 points per box a triangle crosses (the R3 low-discrepancy sequence; a point of any
+   * other box sees its centre), in double against the triangles noted for the boxes a segment
+   * passes, on the first call after a search (the view pass never asks), in parallel. Empty
    * without cuts.
    */
   const std::vector<vtkIdType>& GetScaledVoxels();
@@ -109,6 +111,8 @@ private:
   void Search(vtkRefractaSurfaceSet* set, vtkMatrix4x4* localToWorld);
   void MarkVoxel(const int ijk[3], const float plane[4], double reach, const double low[3],
     const double high[3], const double v[3][3]);
+  void NoteBoxTriangle(const int ijk[3], const float plane[4], double reach, const double low[3],
+    const double high[3]);
   void Clear(); // no cuts, nothing kept
   // The owned volumes (GetScaledVoxels) of the triangles in Opaque.
   void CountOwnedVolumes();
@@ -123,6 +127,8 @@ private:
 
   std::vector<unsigned char> Links;
   std::vector<double> Opaque; // the opaque triangles, grid-local (9 doubles each)
+  // (voxel, triangle of Opaque) where the triangle may cross the voxel's box.
+  std::vector<std::pair<vtkIdType, vtkIdType>> BoxTriangles;
   bool VolumesCounted = false;
   std::vector<vtkIdType> ScaledVoxels;
   std::vector<float> VolumeScales;
