@@ -59,8 +59,9 @@
 // it still deposits into `multiple`, but what it scatters is also handed to the lattice (books:
 // `scattered`; the accumulators after S_ms in `multiple`: 3 per voxel for the source, then 3 for
 // its direction sums) and it flies on with the unscattered part only, as without analog
-// scattering. Without the split (every order by photons), S_ms's own direction sums follow it
-// in `multiple` (3 per voxel, weighted by the deposit's channel sum). The lattice then carries the orders above k from that smoother source.
+// scattering; the lattice then carries the orders above k from that smoother source. Without the
+// split (every order by photons), `multiple` holds six per voxel, S_ms and its direction sums
+// (weighted by the deposit's channel sum), as `deposits` does.
 //
 // Glass bodies (REFRACTA_INTERFACES): a dielectric surface with an inside medium (the `bodies`
 // table of refracta_surfaces.cl) fills its inside with that homogeneous medium. A photon carries
@@ -539,18 +540,20 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
   {
     if (w > 0.0f)
     {
-      refracta_atomic_add_fixed(ps->multiple + 3 * target, sc.x);
-      refracta_atomic_add_fixed(ps->multiple + 3 * target + 1, sc.y);
-      refracta_atomic_add_fixed(ps->multiple + 3 * target + 2, sc.z);
 #if REFRACTA_ANALOG_ORDERS == 0x7fffffff
       // Every order by photons: S_ms's direction sums follow it (its flux over its fluence, the
-      // view pass's phase function for the multiply scattered light).
-      volatile __global long* flux =
-        ps->multiple + 3 * ((size_t)dims.x * (size_t)dims.y * (size_t)dims.z + target);
-      refracta_atomic_add_fixed(flux, w * direction.x);
-      refracta_atomic_add_fixed(flux + 1, w * direction.y);
-      refracta_atomic_add_fixed(flux + 2, w * direction.z);
+      // view pass's phase function for the multiply scattered light), in the same cache line
+      // (six per voxel, as `deposits`).
+      volatile __global long* acc = ps->multiple + 6 * target;
+      refracta_atomic_add_fixed(acc + 3, w * direction.x);
+      refracta_atomic_add_fixed(acc + 4, w * direction.y);
+      refracta_atomic_add_fixed(acc + 5, w * direction.z);
+#else
+      volatile __global long* acc = ps->multiple + 3 * target;
 #endif
+      refracta_atomic_add_fixed(acc, sc.x);
+      refracta_atomic_add_fixed(acc + 1, sc.y);
+      refracta_atomic_add_fixed(acc + 2, sc.z);
     }
   }
   else

@@ -17,8 +17,9 @@ using namespace vtkPhotonTracerDetail;
 
 namespace
 {
-// Fixed-point accumulators per voxel: S_ms (3), then with the split the lattice's source (3) and
-// its direction sums (3) (photon_hand_to_lattice), else S_ms's direction sums (3), in that order.
+// Fixed-point accumulators per voxel: with the split S_ms (3 per voxel), then the lattice's source
+// (3 per voxel) and its direction sums (3 per voxel) (photon_hand_to_lattice), each in a block of
+// its own; else S_ms and its direction sums interleaved, six per voxel (one cache line a deposit).
 size_t AccumulatorsPerVoxel(int splitOrders)
 {
   return splitOrders > 0 ? 9 : 6;
@@ -99,8 +100,8 @@ bool vtkPhotonTracer::ResolveMultipleScattering(Internals& run)
   {
     // Every order by photons: S_ms with its flux over its fluence.
     run.MultipleDirection->SetName(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
-    if (!this->ResolveDeposits(run, run.MultipleFixed.Get(), 0, run.MultipleFixed.Get(), 3 * voxels,
-          3, run.Multiple, run.MultipleDirection, false))
+    if (!this->ResolveDeposits(run, run.MultipleFixed.Get(), 0, run.MultipleFixed.Get(), 3, 6,
+          run.Multiple, run.MultipleDirection, false))
     {
       return false;
     }
