@@ -353,10 +353,45 @@ void vtkRefractaGridCuts::CountOwnedVolumes()
   first.push_back(static_cast<vtkIdType>(pairs.size()));
   auto index = [&](int i, int j, int k)
   { return i + vtkIdType(dims[0]) * (j + vtkIdType(dims[1]) * k); };
-  // Whether an opaque triangle separates voxel coordinates p (in voxel cell's box) from voxel
-  // to's centre (a touch within 0.1% of the segment beyond it counts), as refracta_opaque_between
-  // asks it: the segment lies in the boxes of the voxels between the two.
-  auto separated = [&](const double p[3], const int cell[3], const int to[3])
+  // Each triangle's plane n . x + d = 0 (n unnormalised): a segment with both ends clearly on one
+  // side cannot meet it, which spares most of the exact tests.
+  std::vector<double> planes(this->Opaque.size() / 9 * 4);
+  for (size_t t = 0; t < planes.size() / 4; ++t)
+  {
+    const double* v = this->Opaque.data() + 9 * t;
+    const double e1[3] = { v[3] - v[0], v[4] - v[1], v[5] - v[2] };
+    const double e2[3] = { v[6] - v[0], v[7] - v[1], v[8] - v[2] };
+    double* q = planes.data() + 4 * t;
+    vtkMath::Cross(e1, e2, q);
+    q[3] = -vtkMath::Dot(q, v);
+  }
+  // Whether a triangle noted for the box in `slot` meets the segment origin + t direction, t in
+  // (0, 1.001] (a touch within 0.1% beyond its end counts, as refracta_opaque_between asks it).
+  auto meets = [&](size_t slot, const double origin[3], const double direction[3])
+  {
+    for (vtkIdType r = first[slot]; r < first[slot + 1]; ++r)
+    {
+      const double* q = planes.data() + 4 * pairs[r].second;
+      const double s0 = vtkMath::Dot(q, origin) + q[3];
+      const double along = vtkMath::Dot(q, direction);
+      const double s1 = s0 + 1.001 * along;
+      const double tolerance = 1e-9 * (std::fabs(q[3]) + std::fabs(s0) + std::fabs(along));
+      if ((s0 > tolerance && s1 > tolerance) || (s0 < -tolerance && s1 < -tolerance))
+      {
+        continue;
+      }
+      const double* t = this->Opaque.data() + 9 * pairs[r].second;
+      double hit[3];
+      if (vtkRefractaBVH::IntersectTriangle(origin, direction, t, t + 3, t + 6, 1.001, hit))
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  // Whether an opaque triangle separates voxel coordinates p (in the box of voxel cell, crossed
+  // slot `cellSlot`) from voxel to's centre: the segment lies in the boxes of the voxels between.
+  auto separated = [&](const double p[3], const int cell[3], size_t cellSlot, const int to[3])
   {
     double origin[3], direction[3];
     int lo[3], hi[3];
@@ -373,20 +408,20 @@ void vtkRefractaGridCuts::CountOwnedVolumes()
       {
         for (int i = lo[0]; i <= hi[0]; ++i)
         {
-          const auto at = std::lower_bound(crossed.begin(), crossed.end(), index(i, j, k));
-          if (at == crossed.end() || *at != index(i, j, k))
+          const vtkIdType v = index(i, j, k);
+          if (i == cell[0] && j == cell[1] && k == cell[2])
           {
-            continue;
-          }
-          const size_t slot = static_cast<size_t>(at - crossed.begin());
-          for (vtkIdType r = first[slot]; r < first[slot + 1]; ++r)
-          {
-            const double* t = this->Opaque.data() + 9 * pairs[r].second;
-            double hit[3];
-            if (vtkRefractaBVH::IntersectTriangle(origin, direction, t, t + 3, t + 6, 1.001, hit))
+            if (meets(cellSlot, origin, direction))
             {
               return true;
             }
+            continue;
+          }
+          const auto at = std::lower_bound(crossed.begin(), crossed.end(), v);
+          if (at != crossed.end() && *at == v &&
+            meets(static_cast<size_t>(at - crossed.begin()), origin, direction))
+          {
+            return true;
           }
         }
       }
@@ -394,9 +429,9 @@ void vtkRefractaGridCuts::CountOwnedVolumes()
     return false;
   };
   // The voxel a point p in voxel `cell`'s box deposits into (photon_sided_voxel's rule and order).
-  auto owner = [&](const double p[3], const int cell[3])
+  auto owner = [&](const double p[3], const int cell[3], size_t cellSlot)
   {
-    if (!separated(p, cell, cell))
+    if (!separated(p, cell, cellSlot, cell))
     {
       return index(cell[0], cell[1], cell[2]);
     }
@@ -428,7 +463,7 @@ void vtkRefractaGridCuts::CountOwnedVolumes()
       tried |= 1 << pick;
       const int to[3] = { cell[0] + pick % 3 - 1, cell[1] + (pick / 3) % 3 - 1,
         cell[2] + pick / 9 - 1 };
-      if (!separated(p, cell, to))
+      if (!separated(p, cell, cellSlot, to))
       {
         return index(to[0], to[1], to[2]);
       }
@@ -467,7 +502,7 @@ void vtkRefractaGridCuts::CountOwnedVolumes()
         for (const auto& offset : offsets)
         {
           const double p[3] = { cell[0] + offset[0], cell[1] + offset[1], cell[2] + offset[2] };
-          const vtkIdType to = owner(p, cell);
+          const vtkIdType to = owner(p, cell, static_cast<size_t>(slot));
           if (to != own)
           {
             moved[slot].push_back(to);
