@@ -83,6 +83,179 @@ bool PlaneInVoxels(const double v[3][3], const double spacing[3], float plane[4]
   plane[3] = static_cast<float>(-offset / norm);
   return true;
 }
+
+// The voxels whose box an opaque triangle may cross, each with those triangles (the rows of the
+// sorted (voxel, triangle) pairs from First[slot] on), and the deposits' rule on them
+// (photon_sided_voxel's, in double): a segment within a few boxes can only meet the triangles
+// noted for them.
+class BoxTriangleIndex
+{
+public:
+  BoxTriangleIndex(std::vector<std::pair<vtkIdType, vtkIdType>>& pairs,
+    const std::vector<double>& opaque, const int dims[3], const double spacing[3])
+    : Pairs(pairs)
+    , Opaque(opaque)
+    , Dims(dims)
+    , Spacing(spacing)
+  {
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    for (size_t k = 0; k < pairs.size(); ++k)
+    {
+      if (k == 0 || pairs[k].first != pairs[k - 1].first)
+      {
+        this->Crossed.push_back(pairs[k].first);
+        this->First.push_back(static_cast<vtkIdType>(k));
+      }
+    }
+    this->First.push_back(static_cast<vtkIdType>(pairs.size()));
+    // Each triangle's plane n . x + d = 0 (n unnormalised): a segment with both ends clearly on
+    // one side cannot meet it, which spares most of the exact tests.
+    this->Planes.resize(opaque.size() / 9 * 4);
+    for (size_t t = 0; t < this->Planes.size() / 4; ++t)
+    {
+      const double* v = opaque.data() + 9 * t;
+      const double e1[3] = { v[3] - v[0], v[4] - v[1], v[5] - v[2] };
+      const double e2[3] = { v[6] - v[0], v[7] - v[1], v[8] - v[2] };
+      double* q = this->Planes.data() + 4 * t;
+      vtkMath::Cross(e1, e2, q);
+      q[3] = -vtkMath::Dot(q, v);
+    }
+  }
+
+  size_t GetNumberOfBoxes() const { return this->Crossed.size(); }
+  vtkIdType GetVoxel(size_t slot) const { return this->Crossed[slot]; }
+
+  // The voxel the point at `offset` from the centre of the box in `slot` (voxel units) deposits
+  // into: its own when no triangle separates it from its centre, else the nearest of the 26
+  // around whose centre none separates from it (ties in index order), else its own.
+  vtkIdType Owner(const double offset[3], size_t slot) const
+  {
+    const vtkIdType own = this->Crossed[slot];
+    const int* dims = this->Dims;
+    const int cell[3] = { static_cast<int>(own % dims[0]),
+      static_cast<int>((own / dims[0]) % dims[1]),
+      static_cast<int>(own / (vtkIdType(dims[0]) * dims[1])) };
+    const double p[3] = { cell[0] + offset[0], cell[1] + offset[1], cell[2] + offset[2] };
+    if (!this->Separated(p, cell, slot, cell))
+    {
+      return own;
+    }
+    int tried = 1 << 13;
+    for (int round = 0; round < 26; ++round)
+    {
+      int pick = -1;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 27; ++k)
+      {
+        const int to[3] = { cell[0] + k % 3 - 1, cell[1] + (k / 3) % 3 - 1, cell[2] + k / 9 - 1 };
+        bool inGrid = true;
+        double d = 0;
+        for (int c = 0; c < 3; ++c)
+        {
+          inGrid = inGrid && to[c] >= 0 && to[c] < dims[c];
+          d += (to[c] - p[c]) * (to[c] - p[c]);
+        }
+        if (!((tried >> k) & 1) && inGrid && d < nearest)
+        {
+          nearest = d;
+          pick = k;
+        }
+      }
+      if (pick < 0)
+      {
+        break;
+      }
+      tried |= 1 << pick;
+      const int to[3] = { cell[0] + pick % 3 - 1, cell[1] + (pick / 3) % 3 - 1,
+        cell[2] + pick / 9 - 1 };
+      if (!this->Separated(p, cell, slot, to))
+      {
+        return this->Index(to[0], to[1], to[2]);
+      }
+    }
+    return own;
+  }
+
+private:
+  vtkIdType Index(int i, int j, int k) const
+  {
+    return i + vtkIdType(this->Dims[0]) * (j + vtkIdType(this->Dims[1]) * k);
+  }
+
+  // Whether a triangle noted for the box in `slot` meets the segment origin + t direction, t in
+  // (0, 1.001] (a touch within 0.1% beyond its end counts, as refracta_opaque_between asks it).
+  bool Meets(size_t slot, const double origin[3], const double direction[3]) const
+  {
+    for (vtkIdType r = this->First[slot]; r < this->First[slot + 1]; ++r)
+    {
+      const vtkIdType triangle = this->Pairs[r].second;
+      const double* q = this->Planes.data() + 4 * triangle;
+      const double s0 = vtkMath::Dot(q, origin) + q[3];
+      const double along = vtkMath::Dot(q, direction);
+      const double s1 = s0 + 1.001 * along;
+      const double tolerance = 1e-9 * (std::fabs(q[3]) + std::fabs(s0) + std::fabs(along));
+      if ((s0 > tolerance && s1 > tolerance) || (s0 < -tolerance && s1 < -tolerance))
+      {
+        continue;
+      }
+      const double* t = this->Opaque.data() + 9 * triangle;
+      double hit[3];
+      if (vtkRefractaBVH::IntersectTriangle(origin, direction, t, t + 3, t + 6, 1.001, hit))
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // Whether an opaque triangle separates voxel coordinates p (in the box of voxel cell, crossed
+  // slot `cellSlot`) from voxel to's centre: the segment lies in the boxes of the voxels between.
+  bool Separated(const double p[3], const int cell[3], size_t cellSlot, const int to[3]) const
+  {
+    double origin[3], direction[3];
+    int lo[3], hi[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      origin[c] = p[c] * this->Spacing[c];
+      direction[c] = (to[c] - p[c]) * this->Spacing[c];
+      lo[c] = std::min(cell[c], to[c]);
+      hi[c] = std::max(cell[c], to[c]);
+    }
+    for (int k = lo[2]; k <= hi[2]; ++k)
+    {
+      for (int j = lo[1]; j <= hi[1]; ++j)
+      {
+        for (int i = lo[0]; i <= hi[0]; ++i)
+        {
+          if (i == cell[0] && j == cell[1] && k == cell[2])
+          {
+            if (this->Meets(cellSlot, origin, direction))
+            {
+              return true;
+            }
+            continue;
+          }
+          const vtkIdType v = this->Index(i, j, k);
+          const auto at = std::lower_bound(this->Crossed.begin(), this->Crossed.end(), v);
+          if (at != this->Crossed.end() && *at == v &&
+            this->Meets(static_cast<size_t>(at - this->Crossed.begin()), origin, direction))
+          {
+            return true;
+          }
+        }
+      }
+    }
+    return false;
+  }
+
+  const std::vector<std::pair<vtkIdType, vtkIdType>>& Pairs;
+  const std::vector<double>& Opaque;
+  const int* Dims;
+  const double* Spacing;
+  std::vector<vtkIdType> Crossed, First;
+  std::vector<double> Planes;
+};
 }
 
 //------------------------------------------------------------------------------
@@ -333,143 +506,7 @@ void vtkRefractaGridCuts::CountOwnedVolumes()
     return;
   }
   this->VolumesCounted = true;
-  const int* dims = this->Dims;
-  const double* h = this->Spacing;
-  // The voxels whose box a triangle may cross, each with those triangles (rows of `pairs` from
-  // first[slot] on): a point of any other box sees its centre, and a segment within a few boxes
-  // can only meet the triangles noted for them.
-  std::vector<std::pair<vtkIdType, vtkIdType>>& pairs = this->BoxTriangles;
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  std::vector<vtkIdType> crossed, first;
-  for (size_t k = 0; k < pairs.size(); ++k)
-  {
-    if (k == 0 || pairs[k].first != pairs[k - 1].first)
-    {
-      crossed.push_back(pairs[k].first);
-      first.push_back(static_cast<vtkIdType>(k));
-    }
-  }
-  first.push_back(static_cast<vtkIdType>(pairs.size()));
-  auto index = [&](int i, int j, int k)
-  { return i + vtkIdType(dims[0]) * (j + vtkIdType(dims[1]) * k); };
-  // Each triangle's plane n . x + d = 0 (n unnormalised): a segment with both ends clearly on one
-  // side cannot meet it, which spares most of the exact tests.
-  std::vector<double> planes(this->Opaque.size() / 9 * 4);
-  for (size_t t = 0; t < planes.size() / 4; ++t)
-  {
-    const double* v = this->Opaque.data() + 9 * t;
-    const double e1[3] = { v[3] - v[0], v[4] - v[1], v[5] - v[2] };
-    const double e2[3] = { v[6] - v[0], v[7] - v[1], v[8] - v[2] };
-    double* q = planes.data() + 4 * t;
-    vtkMath::Cross(e1, e2, q);
-    q[3] = -vtkMath::Dot(q, v);
-  }
-  // Whether a triangle noted for the box in `slot` meets the segment origin + t direction, t in
-  // (0, 1.001] (a touch within 0.1% beyond its end counts, as refracta_opaque_between asks it).
-  auto meets = [&](size_t slot, const double origin[3], const double direction[3])
-  {
-    for (vtkIdType r = first[slot]; r < first[slot + 1]; ++r)
-    {
-      const double* q = planes.data() + 4 * pairs[r].second;
-      const double s0 = vtkMath::Dot(q, origin) + q[3];
-      const double along = vtkMath::Dot(q, direction);
-      const double s1 = s0 + 1.001 * along;
-      const double tolerance = 1e-9 * (std::fabs(q[3]) + std::fabs(s0) + std::fabs(along));
-      if ((s0 > tolerance && s1 > tolerance) || (s0 < -tolerance && s1 < -tolerance))
-      {
-        continue;
-      }
-      const double* t = this->Opaque.data() + 9 * pairs[r].second;
-      double hit[3];
-      if (vtkRefractaBVH::IntersectTriangle(origin, direction, t, t + 3, t + 6, 1.001, hit))
-      {
-        return true;
-      }
-    }
-    return false;
-  };
-  // Whether an opaque triangle separates voxel coordinates p (in the box of voxel cell, crossed
-  // slot `cellSlot`) from voxel to's centre: the segment lies in the boxes of the voxels between.
-  auto separated = [&](const double p[3], const int cell[3], size_t cellSlot, const int to[3])
-  {
-    double origin[3], direction[3];
-    int lo[3], hi[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      origin[c] = p[c] * h[c];
-      direction[c] = (to[c] - p[c]) * h[c];
-      lo[c] = std::min(cell[c], to[c]);
-      hi[c] = std::max(cell[c], to[c]);
-    }
-    for (int k = lo[2]; k <= hi[2]; ++k)
-    {
-      for (int j = lo[1]; j <= hi[1]; ++j)
-      {
-        for (int i = lo[0]; i <= hi[0]; ++i)
-        {
-          const vtkIdType v = index(i, j, k);
-          if (i == cell[0] && j == cell[1] && k == cell[2])
-          {
-            if (meets(cellSlot, origin, direction))
-            {
-              return true;
-            }
-            continue;
-          }
-          const auto at = std::lower_bound(crossed.begin(), crossed.end(), v);
-          if (at != crossed.end() && *at == v &&
-            meets(static_cast<size_t>(at - crossed.begin()), origin, direction))
-          {
-            return true;
-          }
-        }
-      }
-    }
-    return false;
-  };
-  // The voxel a point p in voxel `cell`'s box deposits into (photon_sided_voxel's rule and order).
-  auto owner = [&](const double p[3], const int cell[3], size_t cellSlot)
-  {
-    if (!separated(p, cell, cellSlot, cell))
-    {
-      return index(cell[0], cell[1], cell[2]);
-    }
-    int tried = 1 << 13;
-    for (int round = 0; round < 26; ++round)
-    {
-      int pick = -1;
-      double nearest = std::numeric_limits<double>::infinity();
-      for (int k = 0; k < 27; ++k)
-      {
-        const int to[3] = { cell[0] + k % 3 - 1, cell[1] + (k / 3) % 3 - 1, cell[2] + k / 9 - 1 };
-        bool inGrid = true;
-        double d = 0;
-        for (int c = 0; c < 3; ++c)
-        {
-          inGrid = inGrid && to[c] >= 0 && to[c] < dims[c];
-          d += (to[c] - p[c]) * (to[c] - p[c]);
-        }
-        if (!((tried >> k) & 1) && inGrid && d < nearest)
-        {
-          nearest = d;
-          pick = k;
-        }
-      }
-      if (pick < 0)
-      {
-        break;
-      }
-      tried |= 1 << pick;
-      const int to[3] = { cell[0] + pick % 3 - 1, cell[1] + (pick / 3) % 3 - 1,
-        cell[2] + pick / 9 - 1 };
-      if (!separated(p, cell, cellSlot, to))
-      {
-        return index(to[0], to[1], to[2]);
-      }
-    }
-    return index(cell[0], cell[1], cell[2]);
-  };
+  const BoxTriangleIndex boxes(this->BoxTriangles, this->Opaque, this->Dims, this->Spacing);
   // 64 points per box from the R3 sequence (Roberts 2018: frac(1/2 + k alpha), alpha_a =
   // phi3^-a, phi3 the plastic number): a grid of 4 x 4 x 4 puts only 4 distinct coordinates on
   // each axis, so an axis-aligned wall's share of a box was counted to a quarter; these 64 points
@@ -487,23 +524,19 @@ void vtkRefractaGridCuts::CountOwnedVolumes()
       offsets[k][a] = u - std::floor(u) - 0.5;
     }
   }
-  // Per crossed voxel, the voxels its box's points deposit into instead (in parallel: each slot
-  // is written by one thread), then summed into the owned volumes (in boxes) that are not 1.
-  std::vector<std::vector<vtkIdType>> moved(crossed.size());
-  vtkSMPTools::For(0, static_cast<vtkIdType>(crossed.size()),
+  // Only the points of a box a triangle may cross can be separated from its centre. Per such box,
+  // the voxels its points deposit into instead (in parallel: each slot is written by one thread),
+  // then summed into the owned volumes (in boxes) that are not 1.
+  std::vector<std::vector<vtkIdType>> moved(boxes.GetNumberOfBoxes());
+  vtkSMPTools::For(0, static_cast<vtkIdType>(moved.size()),
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType slot = begin; slot < end; ++slot)
       {
-        const vtkIdType own = crossed[slot];
-        const int cell[3] = { static_cast<int>(own % dims[0]),
-          static_cast<int>((own / dims[0]) % dims[1]),
-          static_cast<int>(own / (vtkIdType(dims[0]) * dims[1])) };
         for (const auto& offset : offsets)
         {
-          const double p[3] = { cell[0] + offset[0], cell[1] + offset[1], cell[2] + offset[2] };
-          const vtkIdType to = owner(p, cell, static_cast<size_t>(slot));
-          if (to != own)
+          const vtkIdType to = boxes.Owner(offset, static_cast<size_t>(slot));
+          if (to != boxes.GetVoxel(static_cast<size_t>(slot)))
           {
             moved[slot].push_back(to);
           }
@@ -511,11 +544,11 @@ void vtkRefractaGridCuts::CountOwnedVolumes()
       }
     });
   std::map<vtkIdType, double> owned;
-  for (size_t slot = 0; slot < crossed.size(); ++slot)
+  for (size_t slot = 0; slot < moved.size(); ++slot)
   {
     for (const vtkIdType to : moved[slot])
     {
-      owned.emplace(crossed[slot], 1.0).first->second -= share;
+      owned.emplace(boxes.GetVoxel(slot), 1.0).first->second -= share;
       owned.emplace(to, 1.0).first->second += share;
     }
   }
