@@ -129,7 +129,7 @@ __kernel void radiance_normalize(__global float* direction, const uint count)
 // radiance_scale_voxels: one work-item per listed voxel, values[voxel] *= scale: the owned volumes
 // of the sided deposits (vtkRefractaGridCuts::GetScaledVoxels: deposits gathered from a volume
 // other than the voxel's own box become power per unit volume again), before the smoothing.
-__kernel void radiance_scale_voxels(__global float* values, __global const uint* voxels,
+__kernel void radiance_scale_voxels(__global float* values, __global const ulong* voxels,
   __global const float* scales, const uint count)
 {
   const size_t id = get_global_id(0);

@@ -819,7 +819,8 @@ private:
   bool ResolveMultipleScattering(Internals& run);
 #ifndef __VTK_WRAP__
   // Fixed-point deposits (3 per voxel from `offset` longs into `fixed`, voxel v's at offset +
-  // stride v) into power per unit volume in `values`, smoothed with Smoothing; with
+  // stride v) into power per unit volume in `values` (near opaque surfaces per unit of the owned
+  // volume, vtkRefractaGridCuts::GetVolumeScales, as every field), smoothed with Smoothing; with
   // `directions`, the direction sums (from `directionOffset` into `directionFixed`, the same
   // stride) smoothed the same way into unit mean directions, or with `unit` false into sums per
   // photon scale (each voxel's sum over its values' channel sum times the voxel's volume is then

@@ -114,8 +114,10 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
     {
       return false;
     }
-    // Deposits near opaque surfaces per unit of the volume they came from (the owned volumes).
-    if (!unit && run.NumberOfScaledVoxels > 0 &&
+    // Deposits near opaque surfaces per unit of the volume they came from (the owned volumes):
+    // every field, as each is a sum over the same pieces (the direction sums' smoothing then
+    // weighs them as it weighs the values).
+    if (run.NumberOfScaledVoxels > 0 &&
       (!ctx->Check(vtkOpenCLSetKernelArgs(scale.Get(), a.Get(), run.ScaledVoxels.Get(),
                      run.VolumeScales.Get(), run.NumberOfScaledVoxels),
          "clSetKernelArg(radiance_scale_voxels)", this) ||

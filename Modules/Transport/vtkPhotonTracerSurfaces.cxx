@@ -298,10 +298,10 @@ bool vtkPhotonTracer::UploadGridCuts(Internals& run)
   if (run.Cuts && !run.Cuts->GetScaledVoxels().empty())
   {
     const std::vector<vtkIdType>& scaled = run.Cuts->GetScaledVoxels();
-    const std::vector<cl_uint> voxels(scaled.begin(), scaled.end());
+    const std::vector<cl_ulong> voxels(scaled.begin(), scaled.end());
     const std::vector<float>& scales = run.Cuts->GetVolumeScales();
     run.ScaledVoxels =
-      alloc.Make(in, voxels.size() * sizeof(cl_uint), voxels.data(), "voxels of scaled volume");
+      alloc.Make(in, voxels.size() * sizeof(cl_ulong), voxels.data(), "voxels of scaled volume");
     run.VolumeScales =
       alloc.Make(in, scales.size() * sizeof(float), scales.data(), "their volume scales");
     if (!run.ScaledVoxels || !run.VolumeScales)
