@@ -17,8 +17,19 @@
 //   [1] axis: travel direction (directional) or spot axis (spot), w = cos of the cone (< -1.5: none)
 //   [2] colour x intensity (irradiance E for directional, intensity I for positional), w = exponent
 //   [3] x = extent (sphere radius, grid-local units; sin of the angular radius for directional),
-//       y = quadrature directions for an extended light (>= 1)
+//       y = quadrature directions for an extended light (>= 1), z = the light's lobe (below)
+//
+// Lobes (-DLR_LOBES=K, K >= 2): the lights fall into K groups, and each group's S1 and mean
+// direction are stored apart as well as the sum over all lights, because the view pass shades S1
+// with the phase function about one mean direction: right for light from one side, wrong where
+// two lights cross (their mean points between them). Every output is then LR_BLOCKS blocks of one
+// field each (3 floats per voxel, sample or point): block 0 the sum of all lights (Radiance,
+// RadianceDirection), block 1 + k lobe k (vtkRefractaLightingVolume::RadianceLobeName(k)).
 #define LR_LIGHT_FLOAT4S 4
+#ifndef LR_LOBES
+#define LR_LOBES 1
+#endif
+#define LR_BLOCKS (LR_LOBES > 1 ? LR_LOBES + 1 : 1)
 #define LR_MACRO 8 /* voxels per macro-cell edge: empty-space skipping */
 #define LR_DEEP 40.0f /* optical depth past which a ray is dark (e^-40) */
 #define LR_GOLDEN_ANGLE 2.39996323f
@@ -223,22 +234,35 @@ inline float3 lr_light_fluence(const lr_scene* s, __global const float4* light, 
   return colour * sum * weight;
 }
 
-// phi and flux (see the head of the file) of all lights at x.
-inline float3 lr_evaluate(const lr_scene* s, __global const float4* lights, int lightCount,
-  float3 x, float minDistance, float3* flux)
+// The block (head of the file) that light `light`'s light joins besides block 0.
+inline int lr_lobe_block(__global const float4* light)
 {
-  float3 phi = (float3)(0.0f);
-  float3 f = (float3)(0.0f);
+  return LR_LOBES > 1 ? 1 + clamp((int)light[3].z, 0, LR_LOBES - 1) : 0;
+}
+
+// phi and flux (see the head of the file) at x of every block: of all lights, then of each lobe.
+inline void lr_evaluate(const lr_scene* s, __global const float4* lights, int lightCount,
+  float3 x, float minDistance, float3* phi, float3* flux)
+{
+  for (int b = 0; b < LR_BLOCKS; ++b)
+  {
+    phi[b] = flux[b] = (float3)(0.0f);
+  }
   for (int l = 0; l < lightCount; ++l)
   {
+    __global const float4* light = lights + LR_LIGHT_FLOAT4S * l;
     float3 travel;
-    const float3 e = lr_light_fluence(
-      s, lights + LR_LIGHT_FLOAT4S * l, x, minDistance, &travel, (float3)(0.0f));
-    phi += e;
-    f += (e.x + e.y + e.z) * travel;
+    const float3 e = lr_light_fluence(s, light, x, minDistance, &travel, (float3)(0.0f));
+    const float3 f = (e.x + e.y + e.z) * travel;
+    phi[0] += e;
+    flux[0] += f;
+    const int b = lr_lobe_block(light);
+    if (b > 0)
+    {
+      phi[b] += e;
+      flux[b] += f;
+    }
   }
-  *flux = f;
-  return phi;
 }
 
 #define LR_SCENE_ARGS                                                                              \
@@ -273,19 +297,36 @@ inline lr_scene lr_make_scene(__global const float* extinction, __global const f
   lr_make_scene(extinction, macro, dims, macroDims, spacing, nodes, triangles, nodeCount, frame0, \
     frame1, frame2, surfaceEpsilon)
 
-// The lighting volume's arrays from phi and flux at one voxel: S1 = sigma_s phi, the unit mean
-// direction (zero where nothing scatters or no light arrives).
-inline void lr_store(__global const float* scattering, size_t v, float3 phi, float3 flux,
+// S1 and its unit mean direction (zero where nothing scatters or no light arrives) at entry `at`
+// of every block (`entries` per block) from each block's S1 and flux.
+inline void lr_store_blocks(const float3* s1, const float3* flux, size_t at, size_t entries,
   __global float* radiance, __global float* direction)
 {
-  const float3 s1 = vload3(v, scattering) * fmax(phi, (float3)(0.0f));
-  const float len = length(flux);
-  vstore3(s1, v, radiance);
-  vstore3(len > 0.0f && (s1.x + s1.y + s1.z) > 0.0f ? flux / len : (float3)(0.0f), v, direction);
+  for (int b = 0; b < LR_BLOCKS; ++b)
+  {
+    const float len = length(flux[b]);
+    const size_t e = at + (size_t)b * entries;
+    vstore3(s1[b], e, radiance);
+    vstore3(len > 0.0f && (s1[b].x + s1[b].y + s1[b].z) > 0.0f ? flux[b] / len : (float3)(0.0f),
+      e, direction);
+  }
+}
+
+// The lighting volume's arrays from phi and flux at voxel v: S1 = sigma_s phi per block.
+inline void lr_store(__global const float* scattering, size_t v, size_t voxelCount,
+  const float3* phi, const float3* flux, __global float* radiance, __global float* direction)
+{
+  const float3 sc = vload3(v, scattering);
+  float3 s1[LR_BLOCKS];
+  for (int b = 0; b < LR_BLOCKS; ++b)
+  {
+    s1[b] = sc * fmax(phi[b], (float3)(0.0f));
+  }
+  lr_store_blocks(s1, flux, v, voxelCount, radiance, direction);
 }
 
 // Per-voxel light rays: every voxel that scatters marches one ray per light (and quadrature
-// direction) to it.
+// direction) to it. `radiance` and `direction` hold LR_BLOCKS blocks of voxelCount entries.
 __kernel void light_rays_voxels(LR_SCENE_ARGS, __global const float* scattering,
   __global const float4* lights, const int lightCount, const float minDistance,
   __global float* radiance, __global float* direction, const ulong voxelCount)
@@ -296,7 +337,11 @@ __kernel void light_rays_voxels(LR_SCENE_ARGS, __global const float* scattering,
     return;
   }
   const float3 sc = vload3(v, scattering);
-  float3 phi = (float3)(0.0f), flux = (float3)(0.0f);
+  float3 phi[LR_BLOCKS], flux[LR_BLOCKS];
+  for (int b = 0; b < LR_BLOCKS; ++b)
+  {
+    phi[b] = flux[b] = (float3)(0.0f);
+  }
   if (sc.x > 0.0f || sc.y > 0.0f || sc.z > 0.0f)
   {
     const lr_scene s = LR_MAKE_SCENE();
@@ -304,9 +349,9 @@ __kernel void light_rays_voxels(LR_SCENE_ARGS, __global const float* scattering,
     const int j = (int)((v / (size_t)dims.x) % (size_t)dims.y);
     const int k = (int)(v / ((size_t)dims.x * (size_t)dims.y));
     const float3 x = (float3)((float)i, (float)j, (float)k) * spacing.xyz;
-    phi = lr_evaluate(&s, lights, lightCount, x, minDistance, &flux);
+    lr_evaluate(&s, lights, lightCount, x, minDistance, phi, flux);
   }
-  lr_store(scattering, v, phi, flux, radiance, direction);
+  lr_store(scattering, v, voxelCount, phi, flux, radiance, direction);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -486,7 +531,8 @@ inline float3 lr_box_light(const lr_scene* s, __global const float* albedo,
 }
 
 // S1 and the direction at the sharp voxels listed in `voxels` (their linear indices): the box
-// mean of sigma_s phi over all lights; boxRadiance[v'] and boxDirection[v'] by list position.
+// mean of sigma_s phi over all lights (and each lobe's); boxRadiance[v'] and boxDirection[v'] by
+// list position, in LR_BLOCKS blocks of `count` entries.
 __kernel void light_rays_boxes(LR_SCENE_ARGS, __global const float* albedo,
   __global const float4* lights, const int lightCount, const float minDistance,
   __global const ulong* voxels, __global float* boxRadiance, __global float* boxDirection,
@@ -503,22 +549,31 @@ __kernel void light_rays_boxes(LR_SCENE_ARGS, __global const float* albedo,
   const int j = (int)((v / (size_t)dims.x) % (size_t)dims.y);
   const int k = (int)(v / ((size_t)dims.x * (size_t)dims.y));
   const float3 lo = ((float3)((float)i, (float)j, (float)k) - 0.5f) * spacing.xyz;
-  float3 s1 = (float3)(0.0f), flux = (float3)(0.0f);
+  float3 s1[LR_BLOCKS], flux[LR_BLOCKS];
+  for (int b = 0; b < LR_BLOCKS; ++b)
+  {
+    s1[b] = flux[b] = (float3)(0.0f);
+  }
   for (int l = 0; l < lightCount; ++l)
   {
+    __global const float4* light = lights + LR_LIGHT_FLOAT4S * l;
     float3 travel;
-    const float3 e =
-      lr_box_light(&s, albedo, lights + LR_LIGHT_FLOAT4S * l, lo, minDistance, &travel);
-    s1 += e;
-    flux += (e.x + e.y + e.z) * travel;
+    const float3 e = lr_box_light(&s, albedo, light, lo, minDistance, &travel);
+    const float3 f = (e.x + e.y + e.z) * travel;
+    s1[0] += e;
+    flux[0] += f;
+    const int b = lr_lobe_block(light);
+    if (b > 0)
+    {
+      s1[b] += e;
+      flux[b] += f;
+    }
   }
-  const float len = length(flux);
-  vstore3(s1, n, boxRadiance);
-  vstore3(len > 0.0f && (s1.x + s1.y + s1.z) > 0.0f ? flux / len : (float3)(0.0f), n, boxDirection);
+  lr_store_blocks(s1, flux, n, count, boxRadiance, boxDirection);
 }
 
 // phi and flux at arbitrary grid-local points (the samples of the interpolation, the points of
-// their gradients and of their error metric).
+// their gradients and of their error metric), in LR_BLOCKS blocks of pointCount entries.
 __kernel void light_rays_points(LR_SCENE_ARGS, __global const float4* points, const int pointCount,
   __global const float4* lights, const int lightCount, const float minDistance,
   __global float4* phiOut, __global float4* fluxOut)
@@ -529,10 +584,13 @@ __kernel void light_rays_points(LR_SCENE_ARGS, __global const float4* points, co
     return;
   }
   const lr_scene s = LR_MAKE_SCENE();
-  float3 flux;
-  const float3 phi = lr_evaluate(&s, lights, lightCount, points[p].xyz, minDistance, &flux);
-  phiOut[p] = (float4)(phi, 0.0f);
-  fluxOut[p] = (float4)(flux, 0.0f);
+  float3 phi[LR_BLOCKS], flux[LR_BLOCKS];
+  lr_evaluate(&s, lights, lightCount, points[p].xyz, minDistance, phi, flux);
+  for (int b = 0; b < LR_BLOCKS; ++b)
+  {
+    phiOut[(size_t)b * pointCount + p] = (float4)(phi[b], 0.0f);
+    fluxOut[(size_t)b * pointCount + p] = (float4)(flux[b], 0.0f);
+  }
 }
 
 // The direct irradiance (RGB) on surfaces: at each grid-local point with its unit normal, the
@@ -575,7 +633,9 @@ __kernel void light_rays_surface_points(LR_SCENE_ARGS, __global const float4* po
 // level's vertices (offset levelOffset[k], sizes levelSize[k]) to a sample index or -1. Each voxel
 // sums over the vertices whose valid sphere holds it: the sum the paper's splats accumulate, read
 // here by the voxel (a gather) so that no float atomics are needed and the result is deterministic.
-// samples: 8 float4 per sample: phi, flux, dphi/dx, dphi/dy, dphi/dz, dflux/dx, dflux/dy, dflux/dz.
+// samples: 8 float4 per sample and block (LR_BLOCKS, the blocks of one sample together): phi,
+// flux, dphi/dx, dphi/dy, dphi/dz, dflux/dx, dflux/dy, dflux/dz. The outputs hold LR_BLOCKS blocks
+// of voxelCount entries.
 // A voxel that no valid sphere covers is computed by its own light rays and counted (uncovered).
 __kernel void light_rays_interpolate(LR_SCENE_ARGS, __global const float* scattering,
   __global const float4* lights, const int lightCount, const float minDistance,
@@ -590,7 +650,11 @@ __kernel void light_rays_interpolate(LR_SCENE_ARGS, __global const float* scatte
     return;
   }
   const float3 sc = vload3(v, scattering);
-  float3 phi = (float3)(0.0f), flux = (float3)(0.0f);
+  float3 phi[LR_BLOCKS], flux[LR_BLOCKS];
+  for (int b = 0; b < LR_BLOCKS; ++b)
+  {
+    phi[b] = flux[b] = (float3)(0.0f);
+  }
   if (sc.x > 0.0f || sc.y > 0.0f || sc.z > 0.0f)
   {
     const int i = (int)(v % (size_t)dims.x);
@@ -629,9 +693,14 @@ __kernel void light_rays_interpolate(LR_SCENE_ARGS, __global const float* scatte
             }
             // W = R / |x - x_j|, bounded where x sits on the sample (its own value then rules).
             const float w = radius / fmax(dist, 1e-4f * radius);
-            __global const float4* sj = samples + 8 * (size_t)id;
-            phi += w * (sj[0].xyz + dx.x * sj[2].xyz + dx.y * sj[3].xyz + dx.z * sj[4].xyz);
-            flux += w * (sj[1].xyz + dx.x * sj[5].xyz + dx.y * sj[6].xyz + dx.z * sj[7].xyz);
+            for (int bl = 0; bl < LR_BLOCKS; ++bl)
+            {
+              __global const float4* sj = samples + 8 * ((size_t)id * LR_BLOCKS + bl);
+              phi[bl] +=
+                w * (sj[0].xyz + dx.x * sj[2].xyz + dx.y * sj[3].xyz + dx.z * sj[4].xyz);
+              flux[bl] +=
+                w * (sj[1].xyz + dx.x * sj[5].xyz + dx.y * sj[6].xyz + dx.z * sj[7].xyz);
+            }
             weightSum += w;
           }
         }
@@ -639,15 +708,18 @@ __kernel void light_rays_interpolate(LR_SCENE_ARGS, __global const float* scatte
     }
     if (weightSum > 0.0f)
     {
-      phi /= weightSum;
-      flux /= weightSum;
+      for (int b = 0; b < LR_BLOCKS; ++b)
+      {
+        phi[b] /= weightSum;
+        flux[b] /= weightSum;
+      }
     }
     else
     {
       const lr_scene s = LR_MAKE_SCENE();
-      phi = lr_evaluate(&s, lights, lightCount, x, minDistance, &flux);
+      lr_evaluate(&s, lights, lightCount, x, minDistance, phi, flux);
       atomic_inc(uncovered);
     }
   }
-  lr_store(scattering, v, phi, flux, radiance, direction);
+  lr_store(scattering, v, voxelCount, phi, flux, radiance, direction);
 }

@@ -28,7 +28,8 @@
 // through the path (T_exit L_bg(d_exit) summed over its legs, w = 0), kept out of an exposure.
 //
 // Options (-D): REFRACTA_CURVED, REFRACTA_PARALLEL (parallel projection), REFRACTA_HAS_SINGLE
-// (Radiance + RadianceDirection + Anisotropy given), REFRACTA_HAS_MULTIPLE (MultipleScattering
+// (Radiance + RadianceDirection + Anisotropy given; with REFRACTA_RADIANCE_LOBES=K both hold K
+// lobes' fields one after the other, vtkRefractaLightingVolume::RadianceLobeName), REFRACTA_HAS_MULTIPLE (MultipleScattering
 // given; with REFRACTA_MULTIPLE_DIRECTION its flux over its fluence follows it in `multiple`, 3
 // floats per voxel after S_ms's), REFRACTA_HAS_EMISSION, REFRACTA_HAS_ENVIRONMENT (equirectangular background image),
 // REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length), REFRACTA_INDEX_WEIGHT (sources
@@ -363,13 +364,28 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
     refracta_view_sided_weights(st, dims, spacing, u, REFRACTA_VIEW_SIDE_ARGS, sidedWeights);
 #endif
 #ifdef REFRACTA_HAS_SINGLE
-  const float3 s1 = REFRACTA_VIEW_LIGHT3(radiance);
   const float g = refracta_view_sample1(anisotropy, st);
+#ifdef REFRACTA_RADIANCE_LOBES
+  // S1 in lobes (the lights grouped by direction), each shaded about its own mean direction:
+  // light from two sides is not shaded along the mean between them.
+  const size_t lobeValues = 3 * (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  for (int lobe = 0; lobe < REFRACTA_RADIANCE_LOBES; ++lobe)
+  {
+    const float3 s1 = REFRACTA_VIEW_LIGHT3(radiance + lobe * lobeValues);
+    if (s1.x + s1.y + s1.z > 0.0f)
+    {
+      q += refracta_view_single(
+        s1, REFRACTA_VIEW_LIGHT3(radianceDirection + lobe * lobeValues), d, g);
+    }
+  }
+#else
+  const float3 s1 = REFRACTA_VIEW_LIGHT3(radiance);
   if (s1.x + s1.y + s1.z > 0.0f)
   {
     // w_o = -d (towards the camera).
     q += refracta_view_single(s1, REFRACTA_VIEW_LIGHT3(radianceDirection), d, g);
   }
+#endif
   if (causticSub > 1) // a run-time choice: no kernel variant of its own
   {
     float3 focused = (float3)(0.0f);

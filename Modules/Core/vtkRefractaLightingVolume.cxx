@@ -74,6 +74,51 @@ const char* vtkRefractaLightingVolume::LatticeSourceDirectionName(vtkDataSet* li
 }
 
 //------------------------------------------------------------------------------
+const char* vtkRefractaLightingVolume::RadianceLobeName(int k)
+{
+  static const char* const names[MAXIMUM_RADIANCE_LOBES] = { "RadianceLobe0", "RadianceLobe1",
+    "RadianceLobe2", "RadianceLobe3" };
+  return k >= 0 && k < MAXIMUM_RADIANCE_LOBES ? names[k] : nullptr;
+}
+
+const char* vtkRefractaLightingVolume::RadianceLobeDirectionName(int k)
+{
+  static const char* const names[MAXIMUM_RADIANCE_LOBES] = { "RadianceLobeDirection0",
+    "RadianceLobeDirection1", "RadianceLobeDirection2", "RadianceLobeDirection3" };
+  return k >= 0 && k < MAXIMUM_RADIANCE_LOBES ? names[k] : nullptr;
+}
+
+int vtkRefractaLightingVolume::GetNumberOfRadianceLobes(vtkDataSet* lighting)
+{
+  vtkPointData* pd = lighting ? lighting->GetPointData() : nullptr;
+  int k = 0;
+  while (pd && k < MAXIMUM_RADIANCE_LOBES && pd->GetArray(RadianceLobeName(k)) &&
+    pd->GetArray(RadianceLobeDirectionName(k)))
+  {
+    ++k;
+  }
+  return k >= 2 ? k : 0;
+}
+
+void vtkRefractaLightingVolume::PassSingleScattering(vtkDataSet* from, vtkDataSet* to)
+{
+  vtkPointData* in = from->GetPointData();
+  vtkPointData* out = to->GetPointData();
+  for (const char* name : { RadianceName(), RadianceDirectionName() })
+  {
+    if (vtkDataArray* a = in->GetArray(name))
+    {
+      out->AddArray(a);
+    }
+  }
+  for (int k = 0; k < GetNumberOfRadianceLobes(from); ++k)
+  {
+    out->AddArray(in->GetArray(RadianceLobeName(k)));
+    out->AddArray(in->GetArray(RadianceLobeDirectionName(k)));
+  }
+}
+
+//------------------------------------------------------------------------------
 int vtkRefractaLightingVolume::GetVolumeCausticSubdivision(vtkDataSet* lighting, vtkIdType* bricks)
 {
   vtkFieldData* fd = lighting ? lighting->GetFieldData() : nullptr;

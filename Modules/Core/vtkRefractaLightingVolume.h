@@ -21,6 +21,13 @@
  *   collimated; zero where none). The view pass then shades S_ms as a fraction f travelling along
  *   it (the phase function) and the rest isotropic; without it, all isotropic.
  *
+ * - `RadianceLobe<k>` and `RadianceLobeDirection<k>` (3 each, k = 0 .. K - 1, K >= 2, optional;
+ *   RadianceLobeName(k)): the same two fields for the lights of lobe k alone
+ *   (vtkLightRaySingleScattering::MaximumRadianceLobes); the lobes' S1 sum to `Radiance`. Where
+ *   they are present the view pass shades each lobe with the phase function about its own
+ *   direction, so that lights from different sides are not shaded along their mean; every other
+ *   reader takes `Radiance` and `RadianceDirection` as before.
+ *
  * The lattice's source is `Radiance` (S1), or `MultipleScatteringSource` where the photon pass
  * carried the first k orders itself (LatticeSourceName()); then the lattice's S_ms is added to
  * the photons' `MultipleScattering` (orders up to k).
@@ -85,6 +92,36 @@ public:
   }
   static const char* MultipleScatteringDirectionName() { return "MultipleScatteringDirection"; }
   ///@}
+
+  /**
+   * The most lobes S1 is kept in (see the class description).
+   */
+  enum
+  {
+    MAXIMUM_RADIANCE_LOBES = 4
+  };
+
+  ///@{
+  /**
+   * Names of lobe k's S1 and mean direction ("RadianceLobe0", "RadianceLobeDirection0", ...);
+   * nullptr for k outside [0, MAXIMUM_RADIANCE_LOBES).
+   */
+  static const char* RadianceLobeName(int k);
+  static const char* RadianceLobeDirectionName(int k);
+  ///@}
+
+  /**
+   * The number of lobes `lighting` carries: K when it has both arrays of lobes 0 .. K - 1 and
+   * K >= 2, else 0 (a single lobe is `Radiance` itself). The arrays' shapes are not checked.
+   */
+  static int GetNumberOfRadianceLobes(vtkDataSet* lighting);
+
+  /**
+   * Adds the single-scattering arrays of `from` (Radiance, RadianceDirection and the lobes, those
+   * present) to the point data of `to`, sharing them: what a stage that computes S_ms on top of
+   * S1 passes on.
+   */
+  static void PassSingleScattering(vtkDataSet* from, vtkDataSet* to);
 
   ///@{
   /**

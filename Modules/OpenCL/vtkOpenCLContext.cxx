@@ -600,12 +600,15 @@ bool vtkOpenCLContext::WriteBuffer(
 }
 
 //------------------------------------------------------------------------------
-bool vtkOpenCLContext::ReadBuffer(cl_mem buffer, size_t bytes, void* data, vtkObject* reporter)
+bool vtkOpenCLContext::ReadBuffer(
+  cl_mem buffer, size_t bytes, void* data, vtkObject* reporter, size_t offset)
 {
   return bytes == 0 ||
     this->Enqueue("clEnqueueReadBuffer", "[read]", bytes, reporter,
-      [&](cl_event* event) {
-        return clEnqueueReadBuffer(this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, event);
+      [&](cl_event* event)
+      {
+        return clEnqueueReadBuffer(
+          this->Queue, buffer, CL_TRUE, offset, bytes, data, 0, nullptr, event);
       });
 }
 

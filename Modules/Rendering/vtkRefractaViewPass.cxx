@@ -325,6 +325,7 @@ bool vtkRefractaViewPass::Render(vtkCamera* camera, int width, int height, vtkMa
   variant.IndexVaries = static_cast<bool>(in.Index);
   variant.UniformIndex = in.UniformIndex;
   variant.Single = in.HasSingle;
+  variant.RadianceLobes = in.RadianceLobes;
   variant.Multiple = in.HasMultiple;
   variant.MultipleDirection = in.HasMultipleDirection;
   variant.Emission = in.HasEmission;

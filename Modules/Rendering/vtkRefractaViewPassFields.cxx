@@ -177,6 +177,10 @@ std::string KernelOptions(const KernelVariant& v)
     options += scale.str();
   }
   flag(v.Single, "REFRACTA_HAS_SINGLE");
+  if (v.Single && v.RadianceLobes >= 2)
+  {
+    options += " -DREFRACTA_RADIANCE_LOBES=" + std::to_string(v.RadianceLobes);
+  }
   flag(v.Multiple, "REFRACTA_HAS_MULTIPLE");
   flag(v.Multiple && v.MultipleDirection, "REFRACTA_MULTIPLE_DIRECTION");
   flag(v.Emission, "REFRACTA_HAS_EMISSION");

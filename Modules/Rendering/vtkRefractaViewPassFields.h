@@ -56,6 +56,7 @@ struct KernelVariant
   bool IndexVaries = false;    // REFRACTA_INDEX_WEIGHT (sources / n^2 per step)
   double UniformIndex = 1;     // else REFRACTA_SOURCE_SCALE = 1 / n^2 when n != 1
   bool Single = false;         // REFRACTA_HAS_SINGLE
+  int RadianceLobes = 0;       // REFRACTA_RADIANCE_LOBES=K (K >= 2: S1 in K lobes)
   bool Multiple = false;       // REFRACTA_HAS_MULTIPLE
   bool MultipleDirection = false; // REFRACTA_MULTIPLE_DIRECTION (F / phi after S_ms)
   bool Emission = false;       // REFRACTA_HAS_EMISSION

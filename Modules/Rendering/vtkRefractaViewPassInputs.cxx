@@ -268,6 +268,7 @@ bool vtkRefractaViewPass::SetMedium(vtkImageData* medium)
   // A new medium invalidates the lighting volume's upload (it must match the grid).
   in.Lighting = nullptr;
   in.HasSingle = in.HasMultiple = in.HasMultipleDirection = false;
+  in.RadianceLobes = 0;
   in.Radiance.Reset();
   in.RadianceDirection.Reset();
   in.Multiple.Reset();
@@ -296,6 +297,7 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     }
     in.Lighting = nullptr;
     in.HasSingle = in.HasMultiple = in.HasMultipleDirection = false;
+    in.RadianceLobes = 0;
     in.Radiance.Reset();
     in.RadianceDirection.Reset();
     in.Multiple.Reset();
@@ -355,6 +357,20 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
                   "(the mean travel direction of the light, 3 components).");
     return false;
   }
+  // S1 in lobes: each lobe's S1 and direction (the view pass then reads those, not the sum).
+  std::vector<vtkDataArray*> lobes, lobeDirections;
+  for (int k = 0; radiance && k < vtkRefractaLightingVolume::GetNumberOfRadianceLobes(lighting);
+       ++k)
+  {
+    const char* name = vtkRefractaLightingVolume::RadianceLobeName(k);
+    const char* directionName = vtkRefractaLightingVolume::RadianceLobeDirectionName(k);
+    lobes.push_back(pd->GetArray(name));
+    lobeDirections.push_back(pd->GetArray(directionName));
+    if (!check(lobes.back(), name, true) || !check(lobeDirections.back(), directionName, false))
+    {
+      return false;
+    }
+  }
   if ((radiance &&
         (!check(radiance, vtkRefractaLightingVolume::RadianceName(), true) ||
           !check(direction, vtkRefractaLightingVolume::RadianceDirectionName(), false))) ||
@@ -369,50 +385,60 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
   in.HasSingle = radiance != nullptr;
   in.HasMultiple = multiple != nullptr;
   in.HasMultipleDirection = multipleDirection != nullptr;
+  in.RadianceLobes = static_cast<int>(lobes.size());
   in.Radiance.Reset();
   in.RadianceDirection.Reset();
   in.Multiple.Reset();
   in.LightingFlags.assign(static_cast<size_t>(n), 0);
   in.OccupancyDirty = true;
   this->LastLightingArraysShared = 0;
-  // One field on the device: the copy a light pass kept there, else an upload (3 floats per
-  // voxel either way); `mark`: its nonzero voxels are sources for the skipping. With `after`,
-  // the upload of both, `after`'s values following the field's (MultipleScattering and its
-  // direction, which the kernel reads in one buffer with REFRACTA_MULTIPLE_DIRECTION).
-  std::vector<float> values, following;
-  auto field =
-    [&](vtkDataArray* array, bool mark, vtkOpenCLBuffer& buffer, vtkDataArray* after = nullptr)
+  // Fields on the device in one buffer, one after the other (3 floats per voxel each): a single
+  // field's copy that a light pass kept there, else an upload. The first `marked` fields' nonzero
+  // voxels are sources for the skipping. Several: S1's lobes (REFRACTA_RADIANCE_LOBES), or
+  // MultipleScattering and its direction (REFRACTA_MULTIPLE_DIRECTION).
+  std::vector<float> values, next;
+  auto fields = [&](
+                  const std::vector<vtkDataArray*>& arrays, size_t marked, vtkOpenCLBuffer& buffer)
   {
-    buffer = after ? vtkOpenCLBuffer() : context->GetDeviceArrays()->Share(array);
+    buffer = arrays.size() == 1 ? context->GetDeviceArrays()->Share(arrays[0]) : vtkOpenCLBuffer();
     if (buffer) // only float arrays have device copies
     {
       ++this->LastLightingArraysShared;
-      if (mark)
+      if (marked > 0)
       {
         MarkNonzero(
-          vtkFloatArray::FastDownCast(array)->GetPointer(0), 3, SourceFlag, in.LightingFlags);
+          vtkFloatArray::FastDownCast(arrays[0])->GetPointer(0), 3, SourceFlag, in.LightingFlags);
       }
       return true;
     }
-    FetchFloats(array, 3, values);
-    if (mark)
+    values.clear();
+    for (size_t f = 0; f < arrays.size(); ++f)
     {
-      MarkNonzero(values, 3, SourceFlag, in.LightingFlags);
-    }
-    if (after)
-    {
-      FetchFloats(after, 3, following);
-      values.insert(values.end(), following.begin(), following.end());
+      FetchFloats(arrays[f], 3, next);
+      if (f < marked)
+      {
+        MarkNonzero(next, 3, SourceFlag, in.LightingFlags);
+      }
+      values.insert(values.end(), next.begin(), next.end());
     }
     buffer = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
-      values.data(), array->GetName(), this);
+      values.data(), arrays[0]->GetName(), this);
     return static_cast<bool>(buffer);
   };
+  if (lobes.empty())
+  {
+    lobes = { radiance };
+    lobeDirections = { direction };
+  }
   // RadianceDirection and MultipleScatteringDirection are stored in the grid-local frame
   // (vtkPhotonTracer, Physics.md).
   if ((in.HasSingle &&
-        (!field(radiance, true, in.Radiance) || !field(direction, false, in.RadianceDirection))) ||
-    (in.HasMultiple && !field(multiple, true, in.Multiple, multipleDirection)))
+        (!fields(lobes, lobes.size(), in.Radiance) ||
+          !fields(lobeDirections, 0, in.RadianceDirection))) ||
+    (in.HasMultiple &&
+      !fields(multipleDirection ? std::vector<vtkDataArray*>{ multiple, multipleDirection }
+                                : std::vector<vtkDataArray*>{ multiple },
+        1, in.Multiple)))
   {
     return false;
   }

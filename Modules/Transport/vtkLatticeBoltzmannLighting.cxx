@@ -205,8 +205,6 @@ int vtkLatticeBoltzmannLighting::RequestData(
       return 0;
     }
   }
-  vtkDataArray* radiance =
-    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName());
   vtkDataArray* direction =
     lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
   vtkDataArray* sourceDirection = photons->GetPointData()->GetArray(
@@ -248,11 +246,7 @@ int vtkLatticeBoltzmannLighting::RequestData(
   }
 
   output->CopyStructure(medium);
-  output->GetPointData()->AddArray(radiance);
-  if (direction)
-  {
-    output->GetPointData()->AddArray(direction);
-  }
+  vtkRefractaLightingVolume::PassSingleScattering(lighting, output);
   output->GetPointData()->AddArray(ms);
   output->GetFieldData()->PassData(lighting->GetFieldData());
   vtkNew<vtkIntArray> iterations;

@@ -100,10 +100,12 @@ bool vtkLightRaySingleScattering::RunBoxMeans(Internals& run)
     ctx->CreateBuffer(in, run.M.Albedo.size() * sizeof(float), run.M.Albedo.data(), "albedo", this);
   vtkOpenCLBuffer list =
     ctx->CreateBuffer(in, count * sizeof(cl_ulong), voxels.data(), "sharp voxels", this);
+  // Blocks of `count` entries: all lights, then each lobe (light_rays.cl).
+  const size_t values = 3 * count * run.Blocks();
   vtkOpenCLBuffer radiance =
-    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, 3 * count * sizeof(float), nullptr, "box means", this);
+    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, values * sizeof(float), nullptr, "box means", this);
   vtkOpenCLBuffer direction = ctx->CreateBuffer(
-    CL_MEM_WRITE_ONLY, 3 * count * sizeof(float), nullptr, "box mean directions", this);
+    CL_MEM_WRITE_ONLY, values * sizeof(float), nullptr, "box mean directions", this);
   vtkOpenCLKernel kernel = ctx->CreateKernel(run.Program, "light_rays_boxes", this);
   const float minDistance = static_cast<float>(run.MinimumDistance);
   const cl_ulong n = count;
@@ -119,18 +121,21 @@ bool vtkLightRaySingleScattering::RunBoxMeans(Internals& run)
   {
     return true; // RequestData leaves the output empty
   }
-  std::vector<float> means(3 * count), directions(3 * count);
+  std::vector<float> means(values), directions(values);
   if (!ctx->ReadBuffer(radiance.Get(), means.size() * sizeof(float), means.data(), this) ||
     !ctx->ReadBuffer(direction.Get(), directions.size() * sizeof(float), directions.data(), this))
   {
     return false;
   }
-  float* out = run.Radiance->GetPointer(0);
-  float* outDirection = run.Direction->GetPointer(0);
-  for (size_t e = 0; e < count; ++e)
+  for (int b = 0; b < run.Blocks(); ++b)
   {
-    std::copy_n(&means[3 * e], 3, out + 3 * voxels[e]);
-    std::copy_n(&directions[3 * e], 3, outDirection + 3 * voxels[e]);
+    float* out = run.BlockValues(b, false);
+    float* outDirection = run.BlockValues(b, true);
+    for (size_t e = 0; e < count; ++e)
+    {
+      std::copy_n(&means[3 * (b * count + e)], 3, out + 3 * voxels[e]);
+      std::copy_n(&directions[3 * (b * count + e)], 3, outDirection + 3 * voxels[e]);
+    }
   }
   this->BoxMeanSeconds = Seconds(start);
   return true;

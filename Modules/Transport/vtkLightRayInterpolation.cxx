@@ -233,7 +233,9 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
   std::vector<Level> levels =
     MakeLevels(m, this->CoarsestGridResolution, this->MaximumGridResolution);
   const ScatteringCounter counter(m, run.Scattering);
-  std::vector<cl_float4> samples; // 8 float4 per final sample (light_rays_interpolate)
+  const int blocks = run.Blocks();
+  const size_t record = 8 * static_cast<size_t>(blocks); // float4 per sample and its lobes
+  std::vector<cl_float4> samples; // `record` float4 per final sample (light_rays_interpolate)
   std::vector<Candidate> current;
   {
     const Level& g1 = levels[0];
@@ -317,11 +319,12 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
         errorPoint[6 * j + q] = pointOf[w];
       }
     }
-    std::vector<float> phi, flux;
-    if (!this->EvaluatePoints(run, points, nullptr, run.LightCount, phi, flux))
+    std::vector<std::vector<float>> phiBlocks, fluxBlocks;
+    if (!this->EvaluatePoints(run, points, nullptr, run.LightCount, phiBlocks, fluxBlocks))
     {
       return false;
     }
+    const std::vector<float>& phi = phiBlocks[0]; // all lights
     if (k == 0)
     {
       // epsilon relative to the brightest source sigma_s phi seen at G1, times R_1^3.
@@ -349,11 +352,12 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
         {
           std::copy_n(&points[4 * PointsPerSample * j], 4, &centres[4 * j]);
         }
-        std::vector<float> tauPhi, tauFlux;
-        if (!this->EvaluatePoints(run, centres, viewer, 1, tauPhi, tauFlux))
+        std::vector<std::vector<float>> tauBlocks, tauFlux;
+        if (!this->EvaluatePoints(run, centres, viewer, 1, tauBlocks, tauFlux))
         {
           return false;
         }
+        const std::vector<float>& tauPhi = tauBlocks[0];
         for (size_t j = 0; j < current.size(); ++j)
         {
           double d2 = 0;
@@ -373,13 +377,15 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
     std::vector<Candidate> children;
     for (size_t j = 0; j < current.size(); ++j)
     {
-      const float* L = &phi[4 * PointsPerSample * j];
-      const float* F = &flux[4 * PointsPerSample * j];
       const float* centre = &points[4 * PointsPerSample * j];
-      cl_float4 record[8];
+      std::vector<cl_float4> records(record); // all lights, then each lobe
       double vertex[3];
       level.Position(current[j].Vertex, vertex);
-      MakeSampleRecord(centre, L, F, vertex, record);
+      for (int b = 0; b < blocks; ++b)
+      {
+        MakeSampleRecord(centre, &phiBlocks[b][4 * PointsPerSample * j],
+          &fluxBlocks[b][4 * PointsPerSample * j], vertex, &records[8 * b]);
+      }
       bool split = false;
       if (!finest)
       {
@@ -399,10 +405,10 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
           double worst = 0;
           for (int c = 0; c < 3; ++c)
           {
-            double estimate = record[0].s[c];
+            double estimate = records[0].s[c];
             for (int a = 0; a < 3; ++a)
             {
-              estimate += (y[a] - vertex[a]) * record[2 + a].s[c];
+              estimate += (y[a] - vertex[a]) * records[2 + a].s[c];
             }
             worst = std::max(worst, std::fabs(estimate - phi[4 * at + c]) * sc[c]);
           }
@@ -446,8 +452,8 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
         }
         continue;
       }
-      level.VertexSample[current[j].Vertex] = static_cast<int>(samples.size() / 8);
-      samples.insert(samples.end(), record, record + 8);
+      level.VertexSample[current[j].Vertex] = static_cast<int>(samples.size() / record);
+      samples.insert(samples.end(), records.begin(), records.end());
       double x[3];
       level.Position(current[j].Vertex, x);
       this->SamplePositions->InsertNextTuple(x);
@@ -456,7 +462,7 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
     }
     current = std::move(children);
   }
-  this->NumberOfSamples = static_cast<int>(samples.size() / 8);
+  this->NumberOfSamples = static_cast<int>(samples.size() / record);
   this->SamplingSeconds = Seconds(start);
 
   // Eq. 4 at every voxel.
@@ -475,7 +481,7 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
   }
   if (samples.empty())
   {
-    samples.resize(8, Float4(0, 0, 0));
+    samples.resize(record, Float4(0, 0, 0));
   }
   vtkOpenCLContext* ctx = run.Context;
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
@@ -493,10 +499,11 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
   const int zero = 0;
   vtkOpenCLBuffer uncovered = ctx->CreateBuffer(
     CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(int), &zero, "uncovered count", this);
+  const size_t outputBytes = blocks * 3 * voxels * sizeof(float);
   vtkOpenCLBuffer radiance =
-    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, 3 * voxels * sizeof(float), nullptr, "radiance", this);
+    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, outputBytes, nullptr, "radiance", this);
   vtkOpenCLBuffer direction =
-    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, 3 * voxels * sizeof(float), nullptr, "direction", this);
+    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, outputBytes, nullptr, "direction", this);
   vtkOpenCLKernel kernel = ctx->CreateKernel(run.Program, "light_rays_interpolate", this);
   const int levelCount = static_cast<int>(levels.size());
   const float minDistance = static_cast<float>(run.MinimumDistance);
@@ -517,10 +524,7 @@ bool vtkLightRaySingleScattering::RunInterpolation(Internals& run)
   {
     return true;
   }
-  if (!ctx->ReadBuffer(
-        radiance.Get(), 3 * voxels * sizeof(float), run.Radiance->GetPointer(0), this) ||
-    !ctx->ReadBuffer(
-      direction.Get(), 3 * voxels * sizeof(float), run.Direction->GetPointer(0), this) ||
+  if (!run.ReadBlocks(radiance.Get(), direction.Get(), this) ||
     !ctx->ReadBuffer(uncovered.Get(), sizeof(int), &uncoveredCount, this))
   {
     return false;

@@ -24,6 +24,7 @@
 #include "vtkTypeInt64Array.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 using namespace vtkPhotonTracerDetail;
@@ -165,6 +166,7 @@ int vtkLightRaySingleScattering::RequestData(
   this->NumberOfEvaluatedPoints = this->NumberOfBoxMeanVoxels = 0;
   this->BoxMeanSeconds = 0;
   this->LastRunAborted = false;
+  this->LastNumberOfLobes = 1;
   this->SamplesPerLevel.clear();
   this->SamplePositions->SetNumberOfTuples(0);
   this->SampleLevels->SetNumberOfTuples(0);
@@ -183,6 +185,8 @@ int vtkLightRaySingleScattering::RequestData(
   {
     return 0;
   }
+  this->AssignLobes(run);
+  run.AllocateOutput();
   const bool trivial = run.LightCount == 0 || !run.AnyScattering;
   if (trivial)
   {
@@ -190,21 +194,13 @@ int vtkLightRaySingleScattering::RequestData(
     vtkWarningMacro(<< (run.LightCount == 0 ? "No lights (or none switched on with power)"
                                             : "Nothing in the medium scatters (sigma_s = 0)")
                     << ": the single-scattering source is zero everywhere.");
-    const size_t values = 3 * run.M.Voxels;
     for (vtkFloatArray* a : { run.Radiance.Get(), run.Direction.Get() })
     {
-      a->SetNumberOfComponents(3);
-      a->SetNumberOfTuples(static_cast<vtkIdType>(run.M.Voxels));
-      std::fill_n(a->GetPointer(0), values, 0.0f);
+      std::fill_n(a->GetPointer(0), 3 * run.M.Voxels, 0.0f);
     }
   }
   else
   {
-    for (vtkFloatArray* a : { run.Radiance.Get(), run.Direction.Get() })
-    {
-      a->SetNumberOfComponents(3);
-      a->SetNumberOfTuples(static_cast<vtkIdType>(run.M.Voxels));
-    }
     if (!this->Upload(run) ||
       !(this->Method == INTERPOLATED ? this->RunInterpolation(run) : this->RunLightRays(run)) ||
       (this->SharpVoxelBoxMeans && !run.Aborted && !this->RunBoxMeans(run)))
@@ -408,6 +404,91 @@ bool vtkLightRaySingleScattering::SetUpSurfaces(Internals& run)
 }
 
 //------------------------------------------------------------------------------
+// Lobes only where they change the image: two lights or more, and a voxel that scatters with
+// g != 0 (an isotropic phase function does not look at the direction).
+void vtkLightRaySingleScattering::AssignLobes(Internals& run)
+{
+  const Medium& m = run.M;
+  bool anisotropic = false;
+  for (size_t v = 0; v < m.Voxels && !anisotropic && !m.Anisotropy.empty(); ++v)
+  {
+    anisotropic = m.Anisotropy[v] != 0.0f &&
+      (run.Scattering[3 * v] > 0 || run.Scattering[3 * v + 1] > 0 || run.Scattering[3 * v + 2] > 0);
+  }
+  const int lights = run.LightCount;
+  run.Lobes = anisotropic ? std::max(1, std::min(this->MaximumRadianceLobes, lights)) : 1;
+  this->LastNumberOfLobes = run.Lobes;
+  if (run.Lobes < 2)
+  {
+    return;
+  }
+  // Each light's travel direction at the medium's centre and its strength there.
+  double centre[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    centre[a] = 0.5 * (m.Lo[a] + m.Hi[a]);
+  }
+  std::vector<std::array<double, 3>> travel(lights);
+  std::vector<double> strength(lights);
+  for (int l = 0; l < lights; ++l)
+  {
+    const cl_float4* light = &run.Lights[4 * static_cast<size_t>(l)];
+    const bool positional = light[0].s[3] > 0.5f;
+    double r2 = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      travel[l][a] = positional ? centre[a] - light[0].s[a] : light[1].s[a];
+      r2 += positional ? travel[l][a] * travel[l][a] : 0.0;
+    }
+    if (vtkMath::Normalize(travel[l].data()) == 0.0)
+    {
+      travel[l] = { 0.0, 0.0, -1.0 }; // a light at the centre: any direction
+    }
+    strength[l] = std::max({ light[2].s[0], light[2].s[1], light[2].s[2] }) /
+      (positional ? std::max(r2, run.MinimumDistance * run.MinimumDistance) : 1.0);
+  }
+  // Seeds: the strongest light, then each time the light farthest in angle from every seed.
+  std::vector<int> seeds = { static_cast<int>(
+    std::max_element(strength.begin(), strength.end()) - strength.begin()) };
+  auto nearestSeed = [&](int l, double* cosine)
+  {
+    int best = 0;
+    *cosine = -2.0;
+    for (int s = 0; s < static_cast<int>(seeds.size()); ++s)
+    {
+      const double c = vtkMath::Dot(travel[l].data(), travel[seeds[s]].data());
+      if (c > *cosine)
+      {
+        *cosine = c;
+        best = s;
+      }
+    }
+    return best;
+  };
+  while (static_cast<int>(seeds.size()) < run.Lobes)
+  {
+    int farthest = -1;
+    double lowest = 2.0;
+    for (int l = 0; l < lights; ++l)
+    {
+      double c;
+      nearestSeed(l, &c);
+      if (std::find(seeds.begin(), seeds.end(), l) == seeds.end() && c < lowest)
+      {
+        lowest = c;
+        farthest = l;
+      }
+    }
+    seeds.push_back(farthest);
+  }
+  for (int l = 0; l < lights; ++l)
+  {
+    double c;
+    run.Lights[4 * static_cast<size_t>(l) + 3].s[2] = static_cast<float>(nearestSeed(l, &c));
+  }
+}
+
+//------------------------------------------------------------------------------
 bool vtkLightRaySingleScattering::Upload(Internals& run)
 {
   vtkOpenCLContext* ctx = this->Context ? this->Context.Get() : vtkOpenCLContext::GetDefault();
@@ -421,8 +502,13 @@ bool vtkLightRaySingleScattering::Upload(Internals& run)
   run.Context = ctx;
   // Node-plane cuts where the photon pass makes them (LoadMedium decides for both): the same
   // optical depths.
-  run.Program = ctx->GetProgram({ "refracta_common.cl", "refracta_surfaces.cl", "light_rays.cl" },
-    run.M.NodeCuts ? "-DLR_NODE_CUTS=1" : "", this);
+  std::string options = run.M.NodeCuts ? "-DLR_NODE_CUTS=1" : "";
+  if (run.Lobes > 1)
+  {
+    options += " -DLR_LOBES=" + std::to_string(run.Lobes);
+  }
+  run.Program = ctx->GetProgram(
+    { "refracta_common.cl", "refracta_surfaces.cl", "light_rays.cl" }, options, this);
   if (!run.Program)
   {
     return false;
@@ -463,10 +549,10 @@ bool vtkLightRaySingleScattering::RunLightRays(Internals& run)
   vtkOpenCLContext* ctx = run.Context;
   const auto start = Clock::now();
   const size_t voxels = run.M.Voxels;
-  vtkOpenCLBuffer radiance =
-    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, 3 * voxels * sizeof(float), nullptr, "radiance", this);
+  const size_t bytes = run.Blocks() * 3 * voxels * sizeof(float);
+  vtkOpenCLBuffer radiance = ctx->CreateBuffer(CL_MEM_WRITE_ONLY, bytes, nullptr, "radiance", this);
   vtkOpenCLBuffer direction =
-    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, 3 * voxels * sizeof(float), nullptr, "direction", this);
+    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, bytes, nullptr, "direction", this);
   vtkOpenCLKernel kernel = ctx->CreateKernel(run.Program, "light_rays_voxels", this);
   const cl_ulong count = voxels;
   const float minDistance = static_cast<float>(run.MinimumDistance);
@@ -482,10 +568,7 @@ bool vtkLightRaySingleScattering::RunLightRays(Internals& run)
   {
     return true;
   }
-  if (!ctx->ReadBuffer(
-        radiance.Get(), 3 * voxels * sizeof(float), run.Radiance->GetPointer(0), this) ||
-    !ctx->ReadBuffer(
-      direction.Get(), 3 * voxels * sizeof(float), run.Direction->GetPointer(0), this))
+  if (!run.ReadBlocks(radiance.Get(), direction.Get(), this))
   {
     return false;
   }
@@ -529,12 +612,14 @@ bool vtkLightRaySingleScattering::RunChunked(
 
 //------------------------------------------------------------------------------
 bool vtkLightRaySingleScattering::EvaluatePoints(Internals& run, const std::vector<float>& points,
-  const void* lights, int lightCount, std::vector<float>& phi, std::vector<float>& flux)
+  const void* lights, int lightCount, std::vector<std::vector<float>>& phi,
+  std::vector<std::vector<float>>& flux)
 {
   vtkOpenCLContext* ctx = run.Context;
   const int count = static_cast<int>(points.size() / 4);
-  phi.assign(4 * static_cast<size_t>(count), 0.0f);
-  flux.assign(4 * static_cast<size_t>(count), 0.0f);
+  const int blocks = run.Blocks();
+  phi.assign(blocks, std::vector<float>(4 * static_cast<size_t>(count), 0.0f));
+  flux.assign(blocks, std::vector<float>(4 * static_cast<size_t>(count), 0.0f));
   if (count == 0)
   {
     return true;
@@ -547,20 +632,27 @@ bool vtkLightRaySingleScattering::EvaluatePoints(Internals& run, const std::vect
     : ctx->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
         4 * sizeof(cl_float4) * std::max(lightCount, 1), lights, "view light", this);
   cl_mem lightMem = lights == nullptr ? run.LightBuffer.Get() : lightBuffer.Get();
-  vtkOpenCLBuffer phiOut = ctx->CreateBuffer(CL_MEM_WRITE_ONLY, bytes, nullptr, "sample phi", this);
+  vtkOpenCLBuffer phiOut =
+    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, blocks * bytes, nullptr, "sample phi", this);
   vtkOpenCLBuffer fluxOut =
-    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, bytes, nullptr, "sample flux", this);
+    ctx->CreateBuffer(CL_MEM_WRITE_ONLY, blocks * bytes, nullptr, "sample flux", this);
   vtkOpenCLKernel kernel = ctx->CreateKernel(run.Program, "light_rays_points", this);
   const float minDistance = static_cast<float>(run.MinimumDistance);
   if (!in || !phiOut || !fluxOut || !kernel || !lightMem ||
     !ctx->Check(run.SetArgs(kernel.Get(), in.Get(), count, lightMem, lightCount, minDistance,
                   phiOut.Get(), fluxOut.Get()),
       "clSetKernelArg(light_rays_points)", this) ||
-    !Run1D(ctx, kernel.Get(), static_cast<size_t>(count), "light_rays_points", this) ||
-    !ctx->ReadBuffer(phiOut.Get(), bytes, phi.data(), this) ||
-    !ctx->ReadBuffer(fluxOut.Get(), bytes, flux.data(), this))
+    !Run1D(ctx, kernel.Get(), static_cast<size_t>(count), "light_rays_points", this))
   {
     return false;
+  }
+  for (int b = 0; b < blocks; ++b)
+  {
+    if (!ctx->ReadBuffer(phiOut.Get(), bytes, phi[b].data(), this, b * bytes) ||
+      !ctx->ReadBuffer(fluxOut.Get(), bytes, flux[b].data(), this, b * bytes))
+    {
+      return false;
+    }
   }
   this->NumberOfEvaluatedPoints += count;
   return true;
@@ -575,6 +667,13 @@ void vtkLightRaySingleScattering::WriteOutput(Internals& run, vtkImageData* outp
   output->GetPointData()->AddArray(run.Radiance);
   output->GetPointData()->SetScalars(run.Radiance);
   output->GetPointData()->AddArray(run.Direction);
+  for (int k = 0; k < static_cast<int>(run.LobeRadiance.size()); ++k)
+  {
+    run.LobeRadiance[k]->SetName(vtkRefractaLightingVolume::RadianceLobeName(k));
+    run.LobeDirection[k]->SetName(vtkRefractaLightingVolume::RadianceLobeDirectionName(k));
+    output->GetPointData()->AddArray(run.LobeRadiance[k]);
+    output->GetPointData()->AddArray(run.LobeDirection[k]);
+  }
   vtkFieldData* fd = output->GetFieldData();
   vtkNew<vtkStringArray> method;
   method->SetName("SingleScatteringMethod");
@@ -602,6 +701,8 @@ void vtkLightRaySingleScattering::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Surfaces: " << (this->Surfaces ? "set" : "none") << "\n";
   os << indent << "LightRadius: " << this->LightRadius << "\n";
   os << indent << "DirectionalLightAngularRadius: " << this->DirectionalLightAngularRadius << "\n";
+  os << indent << "MaximumRadianceLobes: " << this->MaximumRadianceLobes << "\n";
+  os << indent << "LastNumberOfLobes: " << this->LastNumberOfLobes << "\n";
   os << indent << "LightQuadrature: " << this->LightQuadrature << "\n";
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
   os << indent << "CoarsestGridResolution: " << this->CoarsestGridResolution << "\n";

@@ -9,6 +9,7 @@
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPhotonTracerInternals.h" // Medium, LoadMedium, Float4, Run1D
+#include "vtkSmartPointer.h"
 
 #include <vector>
 
@@ -31,7 +32,60 @@ struct vtkLightRaySingleScattering::Internals
   double SurfaceFrame[3][4] = {}; // grid-local -> surface frame, the rows of Frame in double
   float SurfaceEpsilon = 0;
   vtkNew<vtkFloatArray> Radiance, Direction;
+  // The lobes (MaximumRadianceLobes; light_rays.cl's LR_LOBES): 1 (none stored), or K >= 2 with
+  // each lobe's S1 and direction in LobeRadiance[k] and LobeDirection[k].
+  int Lobes = 1;
+  std::vector<vtkSmartPointer<vtkFloatArray>> LobeRadiance, LobeDirection;
   bool Aborted = false; // AbortExecute was seen: stop, empty output, no error
+
+  // The blocks of light_rays.cl's outputs: all lights, then each lobe (one without lobes).
+  int Blocks() const { return this->Lobes > 1 ? this->Lobes + 1 : 1; }
+  // Block b's S1 (or its direction) among the output arrays.
+  vtkFloatArray* Block(int b, bool direction)
+  {
+    return b == 0 ? (direction ? this->Direction.Get() : this->Radiance.Get())
+                  : (direction ? this->LobeDirection : this->LobeRadiance)[b - 1].Get();
+  }
+  float* BlockValues(int b, bool direction) { return this->Block(b, direction)->GetPointer(0); }
+  // Sizes the output arrays (3 components, every voxel) for Blocks() blocks.
+  void AllocateOutput()
+  {
+    this->LobeRadiance.resize(this->Lobes > 1 ? this->Lobes : 0);
+    this->LobeDirection.resize(this->LobeRadiance.size());
+    for (auto* arrays : { &this->LobeRadiance, &this->LobeDirection })
+    {
+      for (auto& a : *arrays)
+      {
+        a = vtkSmartPointer<vtkFloatArray>::New();
+      }
+    }
+    for (int b = 0; b < this->Blocks(); ++b)
+    {
+      for (bool direction : { false, true })
+      {
+        vtkFloatArray* a = this->Block(b, direction);
+        a->SetNumberOfComponents(3);
+        a->SetNumberOfTuples(static_cast<vtkIdType>(this->M.Voxels));
+      }
+    }
+  }
+  // Reads every block of a per-voxel output (`radiance`, `direction`: Blocks() blocks of 3
+  // floats per voxel) into the output arrays.
+  bool ReadBlocks(cl_mem radiance, cl_mem direction, vtkObject* reporter)
+  {
+    const size_t bytes = 3 * this->M.Voxels * sizeof(float);
+    for (int b = 0; b < this->Blocks(); ++b)
+    {
+      if (!this->Context->ReadBuffer(
+            radiance, bytes, this->BlockValues(b, false), reporter, b * bytes) ||
+        !this->Context->ReadBuffer(
+          direction, bytes, this->BlockValues(b, true), reporter, b * bytes))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
 
   // Sets the scene arguments (LR_SCENE_ARGS of light_rays.cl) and then `rest`.
   template <typename... Rest>

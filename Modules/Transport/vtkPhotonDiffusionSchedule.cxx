@@ -263,13 +263,7 @@ int vtkPhotonDiffusionSchedule::RequestData(
   }
 
   output->CopyStructure(medium);
-  output->GetPointData()->AddArray(
-    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceName()));
-  if (vtkDataArray* direction =
-        lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName()))
-  {
-    output->GetPointData()->AddArray(direction);
-  }
+  vtkRefractaLightingVolume::PassSingleScattering(lighting, output);
   output->GetPointData()->AddArray(ms);
   vtkFieldData* fd = output->GetFieldData();
   fd->PassData(lighting->GetFieldData());
