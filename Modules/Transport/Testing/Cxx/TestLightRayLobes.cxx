@@ -1,0 +1,269 @@
+// vtkLightRaySingleScattering's lobes (MaximumRadianceLobes): each group of lights' S1 and mean
+// direction kept apart, so that the view pass can shade lights from different sides each about
+// its own direction. The lobes must sum to Radiance, hold exactly what their lights alone give,
+// point along their own lights, group lights by direction when there are more lights than lobes,
+// survive the interpolation, and appear only where the phase function looks at the direction.
+#include "PhotonTestUtilities.h"
+#include "vtkLightRaySingleScattering.h"
+#include "vtkRefractaLightingVolume.h"
+#include "vtkRefractaMedium.h"
+#include "vtkTypeInt64Array.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+using namespace photontest;
+
+namespace
+{
+constexpr int N = 24;
+
+// A homogeneous ball (sigma_t `sigma` per voxel, albedo 0.8) in an n^3 grid off the origin, with
+// anisotropy g everywhere.
+vtkSmartPointer<vtkImageData> Ball(double g, double sigma = 0.15)
+{
+  const double c = 0.5 * (N - 1), radius = 0.45 * N;
+  auto medium = MakeMedium(
+    N, N, N, 1.0,
+    [&](double x, double y, double z)
+    {
+      Voxel v;
+      if ((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c) <= radius * radius)
+      {
+        v.Extinction = { sigma, sigma, sigma };
+        v.Albedo = { 0.8, 0.8, 0.8 };
+      }
+      return v;
+    },
+    false);
+  medium->SetOrigin(3.0, -2.0, 5.0); // grid-local directions do not depend on the origin
+  vtkNew<vtkFloatArray> anisotropy;
+  anisotropy->SetName(vtkRefractaMedium::AnisotropyName());
+  anisotropy->SetNumberOfTuples(medium->GetNumberOfPoints());
+  anisotropy->FillValue(static_cast<float>(g));
+  medium->GetPointData()->AddArray(anisotropy);
+  return medium;
+}
+
+// World position of the grid's centre.
+std::array<double, 3> Centre(vtkImageData* medium)
+{
+  const double* o = medium->GetOrigin();
+  const double c = 0.5 * (N - 1);
+  return { o[0] + c, o[1] + c, o[2] + c };
+}
+
+std::array<double, 3> Offset(const std::array<double, 3>& p, double dx, double dy, double dz)
+{
+  return { p[0] + dx, p[1] + dy, p[2] + dz };
+}
+
+vtkSmartPointer<vtkImageData> RunLobes(vtkImageData* medium,
+  const std::vector<vtkSmartPointer<vtkLight>>& lights, int maximumLobes = 2,
+  int method = vtkLightRaySingleScattering::LIGHT_RAYS, int* lobes = nullptr)
+{
+  vtkNew<vtkLightRaySingleScattering> pass;
+  for (const auto& light : lights)
+  {
+    pass->AddLight(light);
+  }
+  pass->SetMaximumRadianceLobes(maximumLobes);
+  pass->SetMethod(method);
+  pass->SetInputData(medium);
+  pass->Update();
+  if (lobes)
+  {
+    *lobes = pass->GetLastNumberOfLobes();
+  }
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->DeepCopy(pass->GetOutput());
+  return out;
+}
+
+const float* Lobe(vtkImageData* out, int k, bool direction = false)
+{
+  return FloatPointer(out,
+    direction ? vtkRefractaLightingVolume::RadianceLobeDirectionName(k)
+              : vtkRefractaLightingVolume::RadianceLobeName(k));
+}
+
+// sqrt(sum (a - b)^2 / sum b^2) over 3 floats per voxel.
+double RelativeRms(const float* a, const float* b)
+{
+  double diff = 0, ref = 0;
+  for (size_t i = 0; i < 3 * static_cast<size_t>(N) * N * N; ++i)
+  {
+    diff += (a[i] - b[i]) * static_cast<double>(a[i] - b[i]);
+    ref += static_cast<double>(b[i]) * b[i];
+  }
+  return std::sqrt(diff / std::max(ref, 1e-300));
+}
+
+// Largest |a - b| over the largest |b|, over 3 floats per voxel.
+double RelativeDifference(const float* a, const float* b)
+{
+  double worst = 0, scale = 0;
+  for (size_t i = 0; i < 3 * static_cast<size_t>(N) * N * N; ++i)
+  {
+    worst = std::max(worst, std::fabs(static_cast<double>(a[i]) - b[i]));
+    scale = std::max(scale, std::fabs(static_cast<double>(b[i])));
+  }
+  return scale > 0 ? worst / scale : worst;
+}
+}
+
+// A sun from +x and a point light at -x, -z (the point light the stronger at the centre, so lobe 0
+// by the seeding rule): two lobes, summing to Radiance, each what its light alone gives, pointing
+// along that light's travel direction.
+TEST(LightRayLobes, LobesSumToRadianceAndFollowTheirLight)
+{
+  auto medium = Ball(0.5);
+  const auto c = Centre(medium);
+  const auto lamp = Offset(c, -20.0, 0.0, -15.0);
+  auto sun = Directional(Offset(c, 30.0, 5.0, 0.0), c, 1.0);
+  auto point = Positional(lamp, c, 180.0, 0.0, 2000.0); // 2000 / 625 = 3.2 at the centre
+  int lobes = 0;
+  auto both = RunLobes(medium, { sun, point }, 2, vtkLightRaySingleScattering::LIGHT_RAYS, &lobes);
+  ASSERT_EQ(lobes, 2);
+  ASSERT_EQ(vtkRefractaLightingVolume::GetNumberOfRadianceLobes(both), 2);
+  auto pointAlone = RunLobes(medium, { point });
+  auto sunAlone = RunLobes(medium, { sun });
+  EXPECT_EQ(vtkRefractaLightingVolume::GetNumberOfRadianceLobes(sunAlone), 0) << "one light";
+  EXPECT_LT(RelativeDifference(Lobe(both, 0), Radiance(pointAlone)), 1e-6);
+  EXPECT_LT(RelativeDifference(Lobe(both, 1), Radiance(sunAlone)), 1e-6);
+  std::vector<float> sum(3 * static_cast<size_t>(N) * N * N);
+  for (size_t i = 0; i < sum.size(); ++i)
+  {
+    sum[i] = Lobe(both, 0)[i] + Lobe(both, 1)[i];
+  }
+  EXPECT_LT(RelativeDifference(sum.data(), Radiance(both)), 1e-6);
+  // Directions: the sun's is constant, the lamp's points away from it; Radiance's is between.
+  double sunTravel[3] = { -30.0, -5.0, 0.0 };
+  vtkMath::Normalize(sunTravel);
+  const double* o = medium->GetOrigin();
+  int lit = 0;
+  double worstSun = 0, worstLamp = 0, mixed = 1;
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+      {
+        const size_t v = i + N * (j + static_cast<size_t>(N) * k);
+        if (Lobe(both, 0)[3 * v] <= 0 || Lobe(both, 1)[3 * v] <= 0)
+        {
+          continue;
+        }
+        ++lit;
+        double away[3] = { o[0] + i - lamp[0], o[1] + j - lamp[1], o[2] + k - lamp[2] };
+        vtkMath::Normalize(away);
+        const float* dLamp = Lobe(both, 0, true) + 3 * v;
+        const float* dSun = Lobe(both, 1, true) + 3 * v;
+        const float* dMean = Direction(both) + 3 * v;
+        worstLamp =
+          std::max(worstLamp, 1.0 - (away[0] * dLamp[0] + away[1] * dLamp[1] + away[2] * dLamp[2]));
+        worstSun = std::max(worstSun,
+          1.0 - (sunTravel[0] * dSun[0] + sunTravel[1] * dSun[1] + sunTravel[2] * dSun[2]));
+        mixed = std::min(
+          mixed, static_cast<double>(dMean[0] * dSun[0] + dMean[1] * dSun[1] + dMean[2] * dSun[2]));
+      }
+  EXPECT_GT(lit, 4000);
+  EXPECT_LT(worstSun, 1e-6) << "the sun's lobe points along the sun";
+  EXPECT_LT(worstLamp, 1e-5) << "the lamp's lobe points away from the lamp";
+  EXPECT_LT(mixed, 0.5) << "Radiance's mean direction is far from either light's somewhere";
+}
+
+// A dense ball (2 optical depths per voxel): its surface voxels get box means, per lobe too,
+// each exactly what its light alone gives.
+TEST(LightRayLobes, BoxMeansKeepTheLobes)
+{
+  auto medium = Ball(0.5, 2.0);
+  const auto c = Centre(medium);
+  auto sun = Directional(Offset(c, 30.0, 5.0, 0.0), c, 1.0);
+  auto point = Positional(Offset(c, -20.0, 0.0, -15.0), c, 180.0, 0.0, 2000.0);
+  int lobes = 0;
+  auto both = RunLobes(medium, { sun, point }, 2, vtkLightRaySingleScattering::LIGHT_RAYS, &lobes);
+  ASSERT_EQ(lobes, 2);
+  auto boxes =
+    vtkTypeInt64Array::SafeDownCast(both->GetFieldData()->GetAbstractArray("BoxMeanVoxels"));
+  ASSERT_NE(boxes, nullptr);
+  EXPECT_GT(boxes->GetValue(0), 1000);
+  EXPECT_LT(RelativeDifference(Lobe(both, 0), Radiance(RunLobes(medium, { point }))), 1e-6);
+  EXPECT_LT(RelativeDifference(Lobe(both, 1), Radiance(RunLobes(medium, { sun }))), 1e-6);
+}
+
+// Lobes only where the phase function looks at the direction: not over an isotropic medium, not
+// with one light, not with MaximumRadianceLobes 1. Radiance is the same with and without them.
+TEST(LightRayLobes, NoLobesWhereTheyChangeNothing)
+{
+  auto isotropic = Ball(0.0);
+  const auto c = Centre(isotropic);
+  const std::vector<vtkSmartPointer<vtkLight>> lights = { Directional(Offset(c, 30, 0, 0), c, 1.0),
+    Directional(Offset(c, -30, 0, 0), c, 1.0) };
+  int lobes = 0;
+  auto out = RunLobes(isotropic, lights, 2, vtkLightRaySingleScattering::LIGHT_RAYS, &lobes);
+  EXPECT_EQ(lobes, 1);
+  EXPECT_EQ(vtkRefractaLightingVolume::GetNumberOfRadianceLobes(out), 0);
+  EXPECT_EQ(out->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceLobeName(0)), nullptr);
+  auto forward = Ball(0.7);
+  auto one = RunLobes(forward, lights, 1, vtkLightRaySingleScattering::LIGHT_RAYS, &lobes);
+  EXPECT_EQ(lobes, 1);
+  EXPECT_EQ(vtkRefractaLightingVolume::GetNumberOfRadianceLobes(one), 0);
+  auto two = RunLobes(forward, lights, 2, vtkLightRaySingleScattering::LIGHT_RAYS, &lobes);
+  EXPECT_EQ(lobes, 2);
+  EXPECT_EQ(RelativeDifference(Radiance(one), Radiance(two)), 0.0);
+  EXPECT_EQ(RelativeDifference(Direction(one), Direction(two)), 0.0);
+}
+
+// Three suns, two of them 10 degrees apart from +x and one from -x, into two lobes: the close pair
+// shares a lobe (with the sum of their light), the opposite sun has the other one.
+TEST(LightRayLobes, MoreLightsThanLobesAreGroupedByDirection)
+{
+  auto medium = Ball(0.5);
+  const auto c = Centre(medium);
+  const double t = vtkMath::RadiansFromDegrees(10.0);
+  auto a = Directional(Offset(c, 30, 0, 0), c, 1.0);
+  auto b = Directional(Offset(c, 30 * std::cos(t), 30 * std::sin(t), 0), c, 0.8);
+  auto opposite = Directional(Offset(c, -30, 0, 0), c, 0.5);
+  int lobes = 0;
+  auto out =
+    RunLobes(medium, { a, opposite, b }, 2, vtkLightRaySingleScattering::LIGHT_RAYS, &lobes);
+  ASSERT_EQ(lobes, 2);
+  auto pair = RunLobes(medium, { a, b });
+  auto alone = RunLobes(medium, { opposite });
+  EXPECT_LT(RelativeDifference(Lobe(out, 0), Radiance(pair)), 1e-6) << "a and b: the first lobe";
+  EXPECT_LT(RelativeDifference(Lobe(out, 1), Radiance(alone)), 1e-6) << "the opposite sun";
+}
+
+// The interpolation interpolates every lobe with the samples' weights: the lobes sum to its
+// Radiance and each is about as close to the light rays' lobe as the sum is to theirs.
+TEST(LightRayLobes, InterpolationKeepsTheLobes)
+{
+  auto medium = Ball(0.5);
+  const auto c = Centre(medium);
+  const std::vector<vtkSmartPointer<vtkLight>> lights = { Directional(Offset(c, 30, 8, 0), c, 1.0),
+    Positional(Offset(c, -6, -20, 10), c, 180.0, 0.0, 900.0) };
+  auto exact = RunLobes(medium, lights);
+  int lobes = 0;
+  auto interpolated =
+    RunLobes(medium, lights, 2, vtkLightRaySingleScattering::INTERPOLATED, &lobes);
+  ASSERT_EQ(lobes, 2);
+  std::vector<float> sum(3 * static_cast<size_t>(N) * N * N);
+  for (size_t i = 0; i < sum.size(); ++i)
+  {
+    sum[i] = Lobe(interpolated, 0)[i] + Lobe(interpolated, 1)[i];
+  }
+  EXPECT_LT(RelativeDifference(sum.data(), Radiance(interpolated)), 1e-5);
+  // The ball's sharp edge at 24^3 costs the interpolation a few percent (its finest grid has 2
+  // voxels per cell): measured RMS 4.4% on Radiance, 4.7% and 5.7% on the lobes.
+  const double total = RelativeRms(Radiance(interpolated), Radiance(exact));
+  std::cout << "Radiance: RMS " << total << "\n";
+  EXPECT_LT(total, 0.06);
+  for (int k = 0; k < 2; ++k)
+  {
+    const double error = RelativeRms(Lobe(interpolated, k), Lobe(exact, k));
+    std::cout << "lobe " << k << ": RMS " << error << "\n";
+    EXPECT_LT(error, 1.5 * total) << "lobe " << k << " interpolated worse than the sum";
+  }
+}
