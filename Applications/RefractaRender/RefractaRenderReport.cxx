@@ -394,8 +394,12 @@ void PrintSummary(const json& report)
                  "underestimated; a finer grid (medium.grid.dimensions) resolves it\n";
   }
   const json& method = report["plan"]["single_scattering_method"];
+  // S1 in lobes (vtkLightRaySingleScattering::MaximumRadianceLobes): lights from different sides
+  // each shaded about their own direction.
+  const int lobes = static_cast<int>(report["light_pass"].value("RadianceLobes", 1.0));
   std::cout << "  single    " << method["chosen"].get<std::string>() << " ("
-            << method["reason"].get<std::string>() << ")\n";
+            << method["reason"].get<std::string>() << ")"
+            << (lobes > 1 ? ", S1 in " + std::to_string(lobes) + " lobes of lights" : "") << "\n";
   std::cout << "  quality   preset " << quality["preset"].get<std::string>() << ": "
             << quality["photons"].get<int>() << " photons, photon min step "
             << quality["photon_min_step"].get<double>() << ", octree eps "

@@ -2,9 +2,11 @@
 
 #include "vtkEffectPlan.h"
 #include "vtkLatticeBoltzmannSolver.h"
+#include "vtkLightRaySingleScattering.h"
 #include "vtkNew.h"
 #include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaRenderPipeline.h"
 #include "vtkRefractaViewPass.h"
 
@@ -81,7 +83,8 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
       "photon_min_step", "octree_tolerance", "photon_smoothing", "multiple_scattering",
       "multiple_scattering_tolerance", "multiple_scattering_block_size",
       "multiple_scattering_method", "scattering_orders", "tolerance", "single_scattering_method",
-      "volume_caustic", "glass_supersampling", "glass_grazing_cosine", "direct_surface_light" });
+      "volume_caustic", "glass_supersampling", "glass_grazing_cosine", "direct_surface_light",
+      "radiance_lobes" });
   int preset;
   std::tie(s.Preset, preset) = Choice(quality, "preset", q, "none", Presets);
   const bool hasPreset = preset != NoPreset;
@@ -103,6 +106,8 @@ void ReadQuality(const json& scene, vtkRefractaRenderPipeline* pipeline, RenderS
     hasPreset ? plan->GetRecommendedOctreeTolerance() : 0.005, 0.0, 1.0);
   s.PhotonSmoothing = Boolean(quality, "photon_smoothing", q, true);
   s.VolumeCaustic = Integer(quality, "volume_caustic", q, 4, 1, 8);
+  s.RadianceLobes =
+    Integer(quality, "radiance_lobes", q, 2, 1, vtkRefractaLightingVolume::MAXIMUM_RADIANCE_LOBES);
   s.GlassSupersampling = Integer(quality, "glass_supersampling", q, 3, 1, 8);
   s.GlassGrazingCosine = Number(quality, "glass_grazing_cosine", q, 0.5, 0.0, 1.0);
   s.MultipleScattering = Boolean(quality, "multiple_scattering", q, true);
@@ -190,6 +195,7 @@ void ApplySettings(const RenderSettings& s, vtkRefractaImageRenderer* renderer)
   pipeline->SetOctreeTolerance(s.OctreeTolerance);
   tracer->SetSmoothing(s.PhotonSmoothing);
   tracer->SetVolumeCausticSubdivision(s.VolumeCaustic);
+  pipeline->GetLightRays()->SetMaximumRadianceLobes(s.RadianceLobes);
   pipeline->GetLatticeSolver()->SetTolerance(s.LatticeTolerance);
   pipeline->GetLatticeSolver()->SetBlockSize(s.LatticeBlockSize);
   pipeline->GetLatticeSolver()->SetLattice(s.Lattice);
@@ -214,7 +220,8 @@ json QualityReport(const RenderSettings& s)
   return { { "photons", s.Photons }, { "seed", s.Seed }, { "view_step", s.ViewStep },
     { "ray_mode", s.RayModeName }, { "transmittance_cutoff", s.TransmittanceCutoff },
     { "photon_min_step", s.PhotonMinStep }, { "photon_smoothing", s.PhotonSmoothing },
-    { "volume_caustic", s.VolumeCaustic }, { "glass_supersampling", s.GlassSupersampling },
+    { "volume_caustic", s.VolumeCaustic }, { "radiance_lobes", s.RadianceLobes },
+    { "glass_supersampling", s.GlassSupersampling },
     { "glass_grazing_cosine", s.GlassGrazingCosine },
     { "multiple_scattering", s.MultipleScattering },
     { "single_scattering_method", s.SingleScatteringMethodName },

@@ -690,6 +690,7 @@ void vtkLightRaySingleScattering::WriteOutput(Internals& run, vtkImageData* outp
   addCount("EvaluatedPoints", this->NumberOfEvaluatedPoints);
   addCount("UncoveredVoxels", this->NumberOfUncoveredVoxels);
   addCount("BoxMeanVoxels", this->NumberOfBoxMeanVoxels);
+  addCount("RadianceLobes", run.Lobes);
 }
 
 //------------------------------------------------------------------------------

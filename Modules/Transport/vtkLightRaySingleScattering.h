@@ -22,7 +22,8 @@
  *   RadianceLobeDirectionName(k), S1 and mean direction of the lights of lobe k (they sum to
  *   `Radiance`), which the view pass shades each about its own direction.
  * Field data: `SingleScatteringMethod` (string: light_rays or interpolated), `NumberOfSamples`,
- * `EvaluatedPoints` (points at which light rays were marched), `UncoveredVoxels`.
+ * `EvaluatedPoints` (points at which light rays were marched), `UncoveredVoxels`, `BoxMeanVoxels`,
+ * `RadianceLobes` (the lobes made, 1: none).
  *
  * Method LIGHT_RAYS (the paper's per-voxel baseline, Kajiya and Von Herzen's first pass): for
  * every voxel that scatters and every light, a straight ray from the voxel centre to the light;

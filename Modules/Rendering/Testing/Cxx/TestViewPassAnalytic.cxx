@@ -102,8 +102,15 @@ Scene MakeScene(bool rotated)
 // `index`: the medium's uniform refractive index; sources count 1 / n^2 (basic radiance).
 // `msFlux` (grid-local, length f <= 1): MultipleScatteringDirection, the fraction f of S_ms shaded
 // with the phase function about it, the rest isotropic (nullptr: all isotropic).
+// `lobes`: S1 in lobes, fraction k of S1 about direction k (grid-local), instead of all of it
+// about the scene's direction.
+struct Lobe
+{
+  double Fraction;
+  double Direction[3];
+};
 std::vector<double> Expected(const Scene& scene, vtkCamera* camera, int w, int h,
-  double index = 1.0, const double* msFlux = nullptr)
+  double index = 1.0, const double* msFlux = nullptr, const std::vector<Lobe>& lobes = {})
 {
   vtkRefractaViewPass::RayFrame f;
   EXPECT_TRUE(vtkRefractaViewPass::ComputeRayFrame(camera, scene.Medium, nullptr, w, h, f));
@@ -132,14 +139,22 @@ std::vector<double> Expected(const Scene& scene, vtkCamera* camera, int w, int h
         t1 = std::min(t1, std::max(ta, tb));
       }
       const double chord = std::max(t1 - t0, 0.0);
-      const double cosTheta = -vtkMath::Dot(scene.LightDirLocal, d);
+      double phase = HG(-vtkMath::Dot(scene.LightDirLocal, d), G);
+      if (!lobes.empty())
+      {
+        phase = 0;
+        for (const Lobe& lobe : lobes)
+        {
+          phase += lobe.Fraction * HG(-vtkMath::Dot(lobe.Direction, d), G);
+        }
+      }
       const double f = msFlux ? vtkMath::Norm(msFlux) : 0.0;
       const double msPhase =
         (1 - f) / (4 * vtkMath::Pi()) + (f > 0 ? f * HG(-vtkMath::Dot(msFlux, d) / f, G) : 0.0);
       double meanT = 0;
       for (int c = 0; c < 3; ++c)
       {
-        const double q = (Eps[c] + HG(cosTheta, G) * S1[c] + msPhase * Sms[c]) / (index * index);
+        const double q = (Eps[c] + phase * S1[c] + msPhase * Sms[c]) / (index * index);
         const double tr = std::exp(-Sigma[c] * chord);
         result[(i + size_t(w) * j) * 4 + c] = q * (1 - tr) / Sigma[c] + tr * Background[c];
         meanT += tr / 3;
@@ -255,6 +270,36 @@ TEST(ViewPassAnalytic, MultipleScatteringWithAFluxMatchesTheClosedForm)
     renderer->Update();
     CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36, 1.0, flux),
       rotated ? "rotated parallel, S_ms with a flux" : "parallel, S_ms with a flux");
+  }
+}
+
+// S1 in two lobes (vtkRefractaLightingVolume::RadianceLobeName), 70% of it along one direction and
+// 30% along a nearly opposite one: each shaded about its own direction (Radiance, their sum, and
+// RadianceDirection, their mean, are then not read for the shading).
+TEST(ViewPassAnalytic, RadianceLobesMatchTheClosedForm)
+{
+  std::vector<Lobe> lobes = { { 0.7, { 0.3, -0.8, 0.52 } }, { 0.3, { -0.4, 0.7, -0.3 } } };
+  for (Lobe& lobe : lobes)
+  {
+    vtkMath::Normalize(lobe.Direction);
+  }
+  for (bool rotated : { false, true })
+  {
+    Scene scene = MakeScene(rotated);
+    for (int k = 0; k < 2; ++k)
+    {
+      const double f = lobes[k].Fraction;
+      const double* d = lobes[k].Direction;
+      refracta_test::AddConstant(scene.Lighting, vtkRefractaLightingVolume::RadianceLobeName(k), 3,
+        f * S1[0], f * S1[1], f * S1[2]);
+      refracta_test::AddConstant(scene.Lighting,
+        vtkRefractaLightingVolume::RadianceLobeDirectionName(k), 3, d[0], d[1], d[2]);
+    }
+    vtkNew<vtkCamera> camera;
+    auto renderer = ObliqueRenderer(scene, camera);
+    renderer->Update();
+    CheckImage(renderer->GetOutput(), Expected(scene, camera, 48, 36, 1.0, nullptr, lobes),
+      rotated ? "rotated perspective, S1 in lobes" : "perspective, S1 in lobes");
   }
 }
 
@@ -425,6 +470,24 @@ TEST(ViewPassAnalytic, BadInputsAreReported)
     ->SetValue(7, std::nanf(""));
   renderer->Update();
   EXPECT_NE(errors->GetErrorMessage().find("invalid value"), std::string::npos);
+  errors->Clear();
+
+  // A lobe's S1 negative: an error naming it.
+  vtkNew<vtkImageData> badLobe;
+  badLobe->DeepCopy(scene.Lighting);
+  for (int k = 0; k < 2; ++k)
+  {
+    refracta_test::AddConstant(
+      badLobe, vtkRefractaLightingVolume::RadianceLobeName(k), 3, k == 1 ? -1.0 : 0.5, 0.5, 0.5);
+    refracta_test::AddConstant(
+      badLobe, vtkRefractaLightingVolume::RadianceLobeDirectionName(k), 3, 0, 0, 1);
+  }
+  renderer->SetLightingData(badLobe);
+  renderer->Update();
+  EXPECT_NE(errors->GetErrorMessage().find(vtkRefractaLightingVolume::RadianceLobeName(1)),
+    std::string::npos)
+    << errors->GetErrorMessage();
+  EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 0);
   errors->Clear();
 
   // MultipleScatteringDirection with 2 components, then with a NaN: errors naming it.
