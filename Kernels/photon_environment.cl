@@ -47,7 +47,8 @@ __kernel void photon_generate_environment(__global float4* photonPos, __global f
   __global const float4* texels, __global const float* marginal,
   __global const float* conditional, const int width, const int height, const float4 right,
   const float4 up, const float4 front, const float4 sphere, const float powerScale,
-  const float4 boxLo, const float4 boxHi, const uint rotation1, const uint rotation2)
+  const float4 boxLo, const float4 boxHi, const uint rotation1, const uint rotation2,
+  const float lobe)
 {
   const uint i = (uint)get_global_id(0);
   if (i >= count)
@@ -93,5 +94,5 @@ __kernel void photon_generate_environment(__global float4* photonPos, __global f
   const uint o = offset + i;
   photonPos[o] = (float4)(start, 0.0f);
   photonDir[o] = (float4)(dir, 0.0f);
-  photonPower[o] = (float4)(power, 0.0f);
+  photonPower[o] = (float4)(power, lobe); // w: S1's lobe of the photon (photon_trace.cl)
 }

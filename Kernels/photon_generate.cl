@@ -37,7 +37,7 @@ __kernel void photon_generate(__global float4* photonPos, __global float4* photo
   const float4 origin, const float4 axis, const float4 basis1, const float4 basis2,
   const float4 spot, const float4 params, const float4 intensity, const float4 boxLo,
   const float4 boxHi, const uint rotation1, const uint rotation2, const float extent,
-  const float lead)
+  const float lead, const float lobe)
 {
   const uint w = (uint)get_global_id(0);
   if (w >= count)
@@ -117,5 +117,5 @@ __kernel void photon_generate(__global float4* photonPos, __global float4* photo
   }
   photonPos[o] = (float4)(start, 0.0f);
   photonDir[o] = (float4)(dir, 0.0f);
-  photonPower[o] = (float4)(power, 0.0f);
+  photonPower[o] = (float4)(power, lobe); // w: S1's lobe of the photon (photon_trace.cl)
 }

@@ -64,6 +64,7 @@ __kernel void photon_march(__global const float4* photonPos, __global const floa
   {
     return;
   }
+  ps.lobe = (int)photonPower[id].w;
   ps.bodies = surfaceBodies;
   photon_set_sides(&ps, cutLinks, surfaceNodes, surfaceNodeCount, surfaceTriangles,
     (__global const int*)surfaceInfo, frame0, frame1, frame2, spacing);
@@ -217,6 +218,7 @@ __kernel void photon_march_chunk(__global const float4* photonPos,
     photon_init_analog(&ps, anisotropy, multiple, as_int(s[4].w));
     ps.body = as_int(s[6].w);
   }
+  ps.lobe = (int)photonPower[id].w;
   ps.bodies = surfaceBodies;
   photon_set_sides(&ps, cutLinks, surfaceNodes, surfaceNodeCount, surfaceTriangles,
     (__global const int*)surfaceInfo, frame0, frame1, frame2, spacing);

@@ -13,7 +13,9 @@
 // and the scattered part is deposited into that voxel's Radiance accumulator (with the piece's
 // direction weighted by it into the RadianceDirection accumulator): `deposits` holds six cl_long
 // per voxel, deposits[6 v + c] the scattered power (RGB) and deposits[6 v + 3 + c] the direction
-// sums (xyz), fixed point. Termination: the photon
+// sums (xyz), fixed point; with S1 in lobes (REFRACTA_LOBES = K > 1) K more blocks of six per
+// voxel follow, a photon from a light of lobe k (photonPower.w) depositing into block 1 + k as
+// well. Termination: the photon
 // leaves the domain (escaped), Russian roulette below REFRACTA_ROULETTE x its initial power (killed;
 // survivors are boosted by 1/q and the boost is tallied so the books close), the step cap
 // REFRACTA_MAX_STEPS (its power is tallied as remaining), or a non-finite state (never expected; counted).
@@ -115,6 +117,9 @@
 #ifndef REFRACTA_EXT_STEP_LIMIT
 #define REFRACTA_EXT_STEP_LIMIT 0.0f
 #endif
+#ifndef REFRACTA_LOBES
+#define REFRACTA_LOBES 1 /* S1's lobes: > 1, `deposits` holds a block per lobe after S1's */
+#endif
 #ifndef REFRACTA_ROULETTE
 #define REFRACTA_ROULETTE 0.001f
 #endif
@@ -159,6 +164,7 @@ typedef struct
   uint interfaces; // dielectric interface events (REFRACTA_MAX_INTERFACES ends a trapped photon)
   int caustic;     // met a dielectric interface since the light or its last diffuse event
   int dead;
+  int lobe;                                // S1's lobe of its light (REFRACTA_LOBES)
   int order;                               // scatterings since the light or the last surface
   int collided;                            // analog: scattered in the last piece
   float collisionDistance;                 // analog: from the start of that piece (world units)
@@ -569,12 +575,23 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
     // One voxel's six accumulators share a cache line (the first touch of a voxel's line is most
     // of a deposit's cost on a CPU: two lines per piece cost 12% more of the default scene's pass).
     volatile __global long* acc = deposits + 6 * target;
-    refracta_atomic_add_fixed(acc, sc.x);
-    refracta_atomic_add_fixed(acc + 1, sc.y);
-    refracta_atomic_add_fixed(acc + 2, sc.z);
-    refracta_atomic_add_fixed(acc + 3, w * direction.x);
-    refracta_atomic_add_fixed(acc + 4, w * direction.y);
-    refracta_atomic_add_fixed(acc + 5, w * direction.z);
+#if REFRACTA_LOBES > 1
+    // S1 in lobes: the same deposit in the block of the photon's lobe too (the blocks after the
+    // first, vtkRefractaLightingVolume::RadianceLobeName), so that the view pass can shade each
+    // group of lights about its own direction.
+    for (int block = 0; block < 2; ++block)
+    {
+#endif
+      refracta_atomic_add_fixed(acc, sc.x);
+      refracta_atomic_add_fixed(acc + 1, sc.y);
+      refracta_atomic_add_fixed(acc + 2, sc.z);
+      refracta_atomic_add_fixed(acc + 3, w * direction.x);
+      refracta_atomic_add_fixed(acc + 4, w * direction.y);
+      refracta_atomic_add_fixed(acc + 5, w * direction.z);
+#if REFRACTA_LOBES > 1
+      acc += 6 * (size_t)(1 + ps->lobe) * ((size_t)dims.x * (size_t)dims.y * (size_t)dims.z);
+    }
+#endif
   }
 #if REFRACTA_ANALOG
   if (ps->order >= REFRACTA_ANALOG_ORDERS)

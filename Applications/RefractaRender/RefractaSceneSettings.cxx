@@ -2,7 +2,6 @@
 
 #include "vtkEffectPlan.h"
 #include "vtkLatticeBoltzmannSolver.h"
-#include "vtkLightRaySingleScattering.h"
 #include "vtkNew.h"
 #include "vtkPhotonTracer.h"
 #include "vtkRefractaImageRenderer.h"
@@ -195,7 +194,8 @@ void ApplySettings(const RenderSettings& s, vtkRefractaImageRenderer* renderer)
   pipeline->SetOctreeTolerance(s.OctreeTolerance);
   tracer->SetSmoothing(s.PhotonSmoothing);
   tracer->SetVolumeCausticSubdivision(s.VolumeCaustic);
-  pipeline->GetLightRays()->SetMaximumRadianceLobes(s.RadianceLobes);
+  tracer->SetMaximumRadianceLobes(s.RadianceLobes); // the light rays take the tracer's
+
   pipeline->GetLatticeSolver()->SetTolerance(s.LatticeTolerance);
   pipeline->GetLatticeSolver()->SetBlockSize(s.LatticeBlockSize);
   pipeline->GetLatticeSolver()->SetLattice(s.Lattice);

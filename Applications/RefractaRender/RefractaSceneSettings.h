@@ -40,8 +40,7 @@ struct RenderSettings
   int Lattice = 6;                                   // 6 (D3Q6) or 18 (D3Q18)
   int ScatteringOrders = 0; // quality.scattering_orders: the split's k (0: the plan's choice)
   int VolumeCaustic = 4;    // quality.volume_caustic: vtkPhotonTracer::VolumeCausticSubdivision
-  int RadianceLobes =
-    2; // quality.radiance_lobes: vtkLightRaySingleScattering::MaximumRadianceLobes
+  int RadianceLobes = 2;    // quality.radiance_lobes: vtkPhotonTracer::MaximumRadianceLobes
   int GlassSupersampling = 3; // quality.glass_supersampling: DielectricSupersampling of the view
   double GlassGrazingCosine = 0.5; // quality.glass_grazing_cosine: DielectricGrazingCosine
 };

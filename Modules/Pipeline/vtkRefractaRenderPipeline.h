@@ -196,8 +196,9 @@ public:
    * (AUTOMATIC_METHOD (default), PHOTONS, LIGHT_RAYS, INTERPOLATED); the plan records the method
    * it chose and why (vtkEffectPlan::GetChosenSingleScatteringMethod, field data
    * `PlanSingleScatteringMethod`). LIGHT_RAYS and INTERPOLATED run GetLightRays()
-   * (vtkLightRaySingleScattering, with the photon tracer's LightRadius and
-   * DirectionalLightAngularRadius) and, with multiple scattering, vtkLatticeBoltzmannLighting on
+   * (vtkLightRaySingleScattering, with the photon tracer's LightRadius,
+   * DirectionalLightAngularRadius and MaximumRadianceLobes: set those on GetPhotonTracer()) and,
+   * with multiple scattering, vtkLatticeBoltzmannLighting on
    * its output (with the lattice solver's Tolerance and BlockSize).
    */
   void SetSingleScatteringMethod(int method);
@@ -424,7 +425,7 @@ protected:
   bool FailPlanOnce(const std::string& message);
   bool RunLighting();
   vtkAlgorithm* PrepareLightRays(vtkPhotonTracer* tracer, int method);
-  // The light rays see the lights, surfaces, placement and light extents the photons saw.
+  // The light rays see the lights, surfaces, placement, light extents and lobes the photons saw.
   void ConfigureLightRays(vtkPhotonTracer* tracer);
   // Adds the direct surface light the photons left out to in.Lighting's SurfaceIrradiance.
   bool AddDirectSurfaceLight(vtkPhotonTracer* tracer);

@@ -37,6 +37,7 @@ void vtkRefractaRenderPipeline::ConfigureLightRays(vtkPhotonTracer* tracer)
   rays->SetMediumToWorld(in.PropMatrix);
   rays->SetLightRadius(tracer->GetLightRadius());
   rays->SetDirectionalLightAngularRadius(tracer->GetDirectionalLightAngularRadius());
+  rays->SetMaximumRadianceLobes(tracer->GetMaximumRadianceLobes());
 }
 
 //------------------------------------------------------------------------------

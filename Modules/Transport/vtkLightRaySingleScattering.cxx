@@ -404,19 +404,14 @@ bool vtkLightRaySingleScattering::SetUpSurfaces(Internals& run)
 }
 
 //------------------------------------------------------------------------------
-// Lobes only where they change the image: two lights or more, and a voxel that scatters with
+// Lobes only where they change the image: two lights or more over a medium that scatters with
 // g != 0 (an isotropic phase function does not look at the direction).
 void vtkLightRaySingleScattering::AssignLobes(Internals& run)
 {
   const Medium& m = run.M;
-  bool anisotropic = false;
-  for (size_t v = 0; v < m.Voxels && !anisotropic && !m.Anisotropy.empty(); ++v)
-  {
-    anisotropic = m.Anisotropy[v] != 0.0f &&
-      (run.Scattering[3 * v] > 0 || run.Scattering[3 * v + 1] > 0 || run.Scattering[3 * v + 2] > 0);
-  }
   const int lights = run.LightCount;
-  run.Lobes = anisotropic ? std::max(1, std::min(this->MaximumRadianceLobes, lights)) : 1;
+  run.Lobes =
+    lights >= 2 && ScattersAnisotropically(m) ? std::min(this->MaximumRadianceLobes, lights) : 1;
   this->LastNumberOfLobes = run.Lobes;
   if (run.Lobes < 2)
   {
@@ -434,57 +429,22 @@ void vtkLightRaySingleScattering::AssignLobes(Internals& run)
   {
     const cl_float4* light = &run.Lights[4 * static_cast<size_t>(l)];
     const bool positional = light[0].s[3] > 0.5f;
-    double r2 = 0;
     for (int a = 0; a < 3; ++a)
     {
       travel[l][a] = positional ? centre[a] - light[0].s[a] : light[1].s[a];
-      r2 += positional ? travel[l][a] * travel[l][a] : 0.0;
     }
-    if (vtkMath::Normalize(travel[l].data()) == 0.0)
+    const double r2 = positional ? Dot(travel[l].data(), travel[l].data()) : 1.0;
+    if (!Normalize(travel[l].data()))
     {
       travel[l] = { 0.0, 0.0, -1.0 }; // a light at the centre: any direction
     }
     strength[l] = std::max({ light[2].s[0], light[2].s[1], light[2].s[2] }) /
-      (positional ? std::max(r2, run.MinimumDistance * run.MinimumDistance) : 1.0);
+      std::max(r2, run.MinimumDistance * run.MinimumDistance);
   }
-  // Seeds: the strongest light, then each time the light farthest in angle from every seed.
-  std::vector<int> seeds = { static_cast<int>(
-    std::max_element(strength.begin(), strength.end()) - strength.begin()) };
-  auto nearestSeed = [&](int l, double* cosine)
-  {
-    int best = 0;
-    *cosine = -2.0;
-    for (int s = 0; s < static_cast<int>(seeds.size()); ++s)
-    {
-      const double c = vtkMath::Dot(travel[l].data(), travel[seeds[s]].data());
-      if (c > *cosine)
-      {
-        *cosine = c;
-        best = s;
-      }
-    }
-    return best;
-  };
-  while (static_cast<int>(seeds.size()) < run.Lobes)
-  {
-    int farthest = -1;
-    double lowest = 2.0;
-    for (int l = 0; l < lights; ++l)
-    {
-      double c;
-      nearestSeed(l, &c);
-      if (std::find(seeds.begin(), seeds.end(), l) == seeds.end() && c < lowest)
-      {
-        lowest = c;
-        farthest = l;
-      }
-    }
-    seeds.push_back(farthest);
-  }
+  const std::vector<int> lobe = GroupLightsByDirection(travel, strength, run.Lobes);
   for (int l = 0; l < lights; ++l)
   {
-    double c;
-    run.Lights[4 * static_cast<size_t>(l) + 3].s[2] = static_cast<float>(nearestSeed(l, &c));
+    run.Lights[4 * static_cast<size_t>(l) + 3].s[2] = static_cast<float>(lobe[l]);
   }
 }
 

@@ -199,10 +199,11 @@ public:
    * function about one mean direction per voxel: right for the light of one light, wrong where
    * lights from different sides cross (their mean points between them; two lights at g = 0.5,
    * Refracta.SingleScatteringAgainstReference: -14% over the image, -23% in places). So each
-   * lobe, a group of lights, gets its own S1 and mean direction: one light per lobe where there
-   * are no more lights than lobes (then exact), else the lights grouped by their travel direction
-   * at the medium's centre (the lobes' first lights spread as far apart in angle as they go, the
-   * strongest first; every other light joins the lobe nearest in angle). Lobes are made only
+   * lobe, a group of lights, gets its own S1 and mean direction: lobe k is light k (of those
+   * switched on with power) where there are no more lights than lobes (then exact), else the
+   * lights grouped by their travel direction at the medium's centre (the lobes' first lights
+   * spread as far apart in angle as they go, the strongest first; every other light joins the
+   * lobe nearest in angle). Lobes are made only
    * where they change the image: two or more lights, and some scattering voxel with anisotropy
    * g != 0 (the phase function is isotropic otherwise). Cost: 6 floats per voxel and lobe on the
    * host and the device, and the view pass reads every lobe. GetLastNumberOfLobes(): the lobes of

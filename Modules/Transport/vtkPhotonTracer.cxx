@@ -258,6 +258,10 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
   {
     options << " -DREFRACTA_ANALOG_ORDERS=" << run.SplitOrders;
   }
+  if (run.Lobes > 1)
+  {
+    options << " -DREFRACTA_LOBES=" << run.Lobes;
+  }
   run.Trace = ctx->GetProgram(
     { "refracta_atomics.cl", "refracta_common.cl", "photon_tallies.cl", "refracta_surfaces.cl",
       "photon_trace.cl", "photon_surfaces.cl", "photon_march.cl", "photon_generate.cl",
@@ -328,7 +332,8 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
             Float4(ls.Basis1), Float4(ls.Basis2), Float4(ls.SpotAxis, ls.SpotCos), params,
             Float4(ls.Colour[0] / unit, ls.Colour[1] / unit, ls.Colour[2] / unit),
             Float4(run.EmitLo), Float4(run.EmitHi), r1, r2, static_cast<cl_float>(ls.Extent),
-            static_cast<cl_float>(ls.Lead)),
+            static_cast<cl_float>(ls.Lead),
+            static_cast<cl_float>(run.LightLobes[&ls - lights.data()])),
           "clSetKernelArg(photon_generate)", this) ||
       !Run1D(ctx, generate.Get(), count, "photon_generate", this))
     {
@@ -369,8 +374,9 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
   vtkOpenCLBuffer& tallies = run.Tallies;
   vtkOpenCLBuffer& counters = run.Counters;
   const auto start = Clock::now();
-  // Six per voxel (RGB power, then the direction sums): one cache line per deposit.
-  const size_t accumulators = m.Scatters ? voxels * 6 : 1;
+  // Six per voxel (RGB power, then the direction sums): one cache line per deposit; with S1 in
+  // lobes a block of them for all of S1, then one per lobe.
+  const size_t accumulators = m.Scatters ? voxels * 6 * run.DepositBlocks() : 1;
   if (!run.ReusedMedium)
   {
     std::vector<float> grey;
@@ -572,6 +578,7 @@ int vtkPhotonTracer::RequestData(
   this->LastSkippedDirectSurfaceLight = false;
   this->UsedScatteringOrders = 0;
   this->EnvironmentPhotons = 0;
+  this->LastNumberOfLobes = 1;
   this->LastRunAborted = false;
   // The last run's device copies of its output go before this run allocates its own.
   this->GetContext()->GetDeviceArrays()->ForgetOwner(this);
@@ -589,6 +596,7 @@ int vtkPhotonTracer::RequestData(
   {
     return 0;
   }
+  this->AssignLobes(run);
   this->SharePhotons(run);
   if (!this->InitializeDevice(run) || !this->PlanMemory(run) || !this->BuildOctreeStage(run) ||
     !this->GeneratePhotons(run) || !this->MarchPhotons(run) || !this->ResolveRadiance(run) ||

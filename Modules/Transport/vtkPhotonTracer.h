@@ -99,6 +99,7 @@
 
 #include "RefractaTransportModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
+#include "vtkRefractaLightingVolume.h" // for MAXIMUM_RADIANCE_LOBES
 #include "vtkSmartPointer.h" // for members
 
 #ifndef __VTK_WRAP__
@@ -433,6 +434,23 @@ public:
 
   ///@{
   /**
+   * The most lobes S1 is kept in (default 2, 1 to vtkRefractaLightingVolume::
+   * MAXIMUM_RADIANCE_LOBES; 1: `Radiance` alone), as vtkLightRaySingleScattering's
+   * MaximumRadianceLobes: with two lights or more over a medium that scatters with g != 0, the S1
+   * of each group of lights (lobe k: light k while there are no more lights than lobes, the sky
+   * counting as a light, else the lights grouped by direction) also goes to its own accumulators,
+   * resolved into RadianceLobeName(k) and RadianceLobeDirectionName(k), so that the view pass
+   * shades each about its own direction. The volume caustic's bricks keep one direction. Cost: 48
+   * bytes per voxel and lobe on the device while tracing, 24 in the output, and a second
+   * deposit per piece of a photon from a light. GetLastNumberOfLobes(): the last run's (1: none).
+   */
+  vtkSetClampMacro(MaximumRadianceLobes, int, 1, vtkRefractaLightingVolume::MAXIMUM_RADIANCE_LOBES);
+  vtkGetMacro(MaximumRadianceLobes, int);
+  vtkGetMacro(LastNumberOfLobes, int);
+  ///@}
+
+  ///@{
+  /**
    * Most fine voxels of the volume caustic's bricks (default 2^20: 64 MiB on the device while
    * tracing). A run uses the largest c' <= VolumeCausticSubdivision whose bricks fit (no volume
    * caustic if none does).
@@ -739,6 +757,8 @@ protected:
   int CausticSubdivision = 4;
   vtkIdType MaximumNumberOfCausticTexels = vtkIdType(1) << 22;
   int LastCausticSubdivision = 1;
+  int MaximumRadianceLobes = 2;
+  int LastNumberOfLobes = 1;
   int VolumeCausticSubdivision = 4;
   vtkIdType MaximumNumberOfVolumeCausticVoxels = vtkIdType(1) << 20;
   double VolumeCausticPiecesPerFineVoxel = 4.0;
@@ -861,6 +881,8 @@ private:
   bool ReportProgress(Internals& run, double progress);
   // The stages of RequestData, in order; each returns false after reporting an error.
   bool SetUpLights(Internals& run);
+  // Groups the lights into S1's lobes (MaximumRadianceLobes): run.Lobes and run.LightLobes.
+  void AssignLobes(Internals& run);
   void SharePhotons(Internals& run);
   bool InitializeDevice(Internals& run);
   bool PlanMemory(Internals& run);

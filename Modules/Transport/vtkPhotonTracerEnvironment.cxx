@@ -216,12 +216,12 @@ bool vtkPhotonTracer::GenerateEnvironmentPhotons(
   const cl_uint count = ls.Photons;
   const cl_int width = env.Size[0], height = env.Size[1];
   const cl_float powerScale = static_cast<float>(env.PowerFactor / (count * run.Unit));
-  if (!ctx->Check(
-        vtkOpenCLSetKernelArgs(generate.Get(), run.Pos.Get(), run.Dirs.Get(), run.Power.Get(),
-          static_cast<cl_uint>(offset), count, texelBuffer.Get(), marginal.Get(), conditional.Get(),
-          width, height, Float4(env.Right), Float4(env.Up), Float4(env.Front),
-          Float4(env.Centre, env.Radius), powerScale, Float4(run.EmitLo), Float4(run.EmitHi),
-          static_cast<cl_uint>(r1), static_cast<cl_uint>(r2)),
+  if (!ctx->Check(vtkOpenCLSetKernelArgs(generate.Get(), run.Pos.Get(), run.Dirs.Get(),
+                    run.Power.Get(), static_cast<cl_uint>(offset), count, texelBuffer.Get(),
+                    marginal.Get(), conditional.Get(), width, height, Float4(env.Right),
+                    Float4(env.Up), Float4(env.Front), Float4(env.Centre, env.Radius), powerScale,
+                    Float4(run.EmitLo), Float4(run.EmitHi), static_cast<cl_uint>(r1),
+                    static_cast<cl_uint>(r2), static_cast<cl_float>(run.LightLobes[light])),
         "clSetKernelArg(photon_generate_environment)", this) ||
     !Run1D(ctx, generate.Get(), count, "photon_generate_environment", this))
   {

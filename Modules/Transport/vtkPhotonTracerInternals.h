@@ -246,6 +246,18 @@ struct PhotonStreams
 
 // Reads the medium's arrays (defaults for missing ones), the plan facts and the proxy box.
 void LoadMedium(vtkImageData* image, bool useProxy, Medium& m);
+
+// Whether some voxel of `m` scatters (sigma_t albedo > 0 in a channel) with anisotropy g != 0:
+// only then does the direction of the light matter to the view pass's phase function.
+bool ScattersAnisotropically(const Medium& m);
+
+// S1's lobes (vtkRefractaLightingVolume::RadianceLobeName): the lobe of each light, given each
+// light's unit travel direction at the medium and its strength there, into `lobes` groups. One
+// light per lobe while there are no more lights than lobes; else the strongest light seeds lobe 0,
+// each further seed is the light farthest in angle from every seed (the lowest largest cosine),
+// and every light joins the seed nearest in angle (ties: the first).
+std::vector<int> GroupLightsByDirection(
+  const std::vector<std::array<double, 3>>& travel, const std::vector<double>& strength, int lobes);
 // `rgb` (3 values per voxel) as the device takes it: itself with 3 channels, its first channel
 // (copied into `grey`) with 1.
 const std::vector<float>& DeviceChannels(
@@ -351,6 +363,14 @@ struct vtkPhotonTracer::Internals
   std::vector<cl_long> Tally, Count;
   vtkNew<vtkFloatArray> Radiance;
   vtkNew<vtkFloatArray> Direction;
+  // S1's lobes (vtkPhotonTracer::MaximumRadianceLobes): 1 (none), or K >= 2 with each light's
+  // lobe (index as in Lights), `Deposits` then K more blocks of six per voxel after the first,
+  // and each lobe's resolved S1 and direction.
+  int Lobes = 1;
+  std::vector<int> LightLobes;
+  std::vector<vtkSmartPointer<vtkFloatArray>> LobeRadiance, LobeDirection;
+  // The blocks of six accumulators per voxel in `Deposits`: all of S1, then each lobe's.
+  size_t DepositBlocks() const { return this->Lobes > 1 ? this->Lobes + 1 : 1; }
   double Progress = 0.0;     // last value reported, so that progress never goes back
   bool Aborted = false;      // the run stopped because AbortExecute was set
   bool ReusedMedium = false; // M and the medium's buffers came from the MediumCache

@@ -241,3 +241,41 @@ bool vtkPhotonTracer::SetUpLights(Internals& run)
   }
   return this->SetUpEnvironment(run);
 }
+
+//------------------------------------------------------------------------------
+// Lobes only where they change the image: two lights or more (the sky counting as one) over a
+// medium that scatters with g != 0. A light's direction is its travel direction towards the box
+// the lights aim at (the sky's: down its up axis), its strength the power it sends there.
+void vtkPhotonTracer::AssignLobes(Internals& run)
+{
+  const auto& lights = run.Lights;
+  const int count = static_cast<int>(lights.size());
+  run.Lobes = count >= 2 && run.M.Scatters && ScattersAnisotropically(run.M)
+    ? std::min(this->MaximumRadianceLobes, count)
+    : 1;
+  this->LastNumberOfLobes = run.Lobes;
+  run.LightLobes.assign(count, 0);
+  if (run.Lobes < 2)
+  {
+    return;
+  }
+  std::vector<std::array<double, 3>> travel(count);
+  std::vector<double> strength(count);
+  for (int l = 0; l < count; ++l)
+  {
+    const LightSetup& ls = lights[l];
+    for (int c = 0; c < 3; ++c)
+    {
+      const double position = ls.Origin[c] - ls.Lead * ls.Axis[c];
+      travel[l][c] = ls.Environment ? -run.Env.Up[c]
+        : ls.Positional             ? 0.5 * (run.EmitLo[c] + run.EmitHi[c]) - position
+                                    : ls.Axis[c];
+    }
+    if (!Normalize(travel[l].data()))
+    {
+      travel[l] = { 0.0, 0.0, -1.0 }; // a light at the centre: any direction
+    }
+    strength[l] = ls.Bound;
+  }
+  run.LightLobes = GroupLightsByDirection(travel, strength, run.Lobes);
+}

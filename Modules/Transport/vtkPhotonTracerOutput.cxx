@@ -47,6 +47,24 @@ bool vtkPhotonTracer::ResolveRadiance(Internals& run)
   {
     return false;
   }
+  // S1's lobes: the blocks of six per voxel after the first.
+  run.LobeRadiance.clear();
+  run.LobeDirection.clear();
+  for (int k = 0; run.M.Scatters && k < run.Lobes && run.Lobes > 1; ++k)
+  {
+    auto values = vtkSmartPointer<vtkFloatArray>::New();
+    auto directions = vtkSmartPointer<vtkFloatArray>::New();
+    values->SetName(vtkRefractaLightingVolume::RadianceLobeName(k));
+    directions->SetName(vtkRefractaLightingVolume::RadianceLobeDirectionName(k));
+    const size_t block = 6 * run.M.Voxels * (1 + k);
+    if (!this->ResolveDeposits(
+          run, run.Deposits.Get(), block, run.Deposits.Get(), block + 3, 6, values, directions))
+    {
+      return false;
+    }
+    run.LobeRadiance.push_back(values);
+    run.LobeDirection.push_back(directions);
+  }
   this->SmoothingSeconds = Seconds(start);
   this->PeakDeviceMemoryBytes = run.Alloc.Bytes;
   return true;
@@ -194,6 +212,11 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
   output->GetPointData()->AddArray(run.Radiance);
   output->GetPointData()->SetScalars(run.Radiance);
   output->GetPointData()->AddArray(run.Direction);
+  for (size_t k = 0; k < run.LobeRadiance.size(); ++k)
+  {
+    output->GetPointData()->AddArray(run.LobeRadiance[k]);
+    output->GetPointData()->AddArray(run.LobeDirection[k]);
+  }
   vtkFieldData* fd = output->GetFieldData();
   auto addCount = [&](const char* name, long long value)
   {
@@ -215,6 +238,7 @@ void vtkPhotonTracer::WriteOutput(Internals& run, vtkImageData* output)
   addCount("SurfaceHits", count[PHOTON_COUNTER_SURFACE_HITS]);
   addCount("InterfaceReflections", count[PHOTON_COUNTER_INTERFACE_REFLECTIONS]);
   addCount("InterfaceTransmissions", count[PHOTON_COUNTER_INTERFACE_TRANSMISSIONS]);
+  addCount("RadianceLobes", static_cast<long long>(std::max<size_t>(1, run.LobeRadiance.size())));
   auto energy = [&](int t, int c) { return static_cast<double>(tally[3 * t + c]) / scale; };
   auto addEnergy = [&](const char* name, const std::array<double, 3>& v)
   {

@@ -229,6 +229,76 @@ bool SteepExtinctionKinks(const Medium& m)
 }
 }
 
+bool ScattersAnisotropically(const Medium& m)
+{
+  for (size_t v = 0; v < m.Voxels && v < m.Anisotropy.size(); ++v)
+  {
+    if (m.Anisotropy[v] != 0.0f)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        if (m.Extinction[3 * v + c] > 0.0f && m.Albedo[3 * v + c] > 0.0f)
+        {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+std::vector<int> GroupLightsByDirection(
+  const std::vector<std::array<double, 3>>& travel, const std::vector<double>& strength, int lobes)
+{
+  const int lights = static_cast<int>(travel.size());
+  std::vector<int> lobe(lights, 0);
+  if (lights <= lobes)
+  {
+    std::iota(lobe.begin(), lobe.end(), 0);
+    return lobe;
+  }
+  std::vector<int> seeds = { static_cast<int>(
+    std::max_element(strength.begin(), strength.end()) - strength.begin()) };
+  // The seed nearest to light l in angle (largest cosine), and that cosine.
+  auto nearest = [&](int l, double& cosine)
+  {
+    int best = 0;
+    cosine = -2.0;
+    for (int s = 0; s < static_cast<int>(seeds.size()); ++s)
+    {
+      const double c = Dot(travel[l].data(), travel[seeds[s]].data());
+      if (c > cosine)
+      {
+        cosine = c;
+        best = s;
+      }
+    }
+    return best;
+  };
+  while (static_cast<int>(seeds.size()) < lobes)
+  {
+    int farthest = -1;
+    double lowest = 2.0;
+    for (int l = 0; l < lights; ++l)
+    {
+      double c;
+      nearest(l, c);
+      if (c < lowest && std::find(seeds.begin(), seeds.end(), l) == seeds.end())
+      {
+        lowest = c;
+        farthest = l;
+      }
+    }
+    seeds.push_back(farthest);
+  }
+  for (int l = 0; l < lights; ++l)
+  {
+    double c;
+    lobe[l] = nearest(l, c);
+  }
+  return lobe;
+}
+
 void LoadMedium(vtkImageData* image, bool useProxy, Medium& m)
 {
   image->GetDimensions(m.Dims);
@@ -572,7 +642,7 @@ bool vtkPhotonTracer::PlanMemory(Internals& run)
     plan->AddDeviceBuffer(photons, "photon state (chunked march)", p * 128, photonSetting);
     plan->AddDeviceBuffer(photons, "photon status (chunked march)", p * 16, photonSetting);
   }
-  const double accumulators = m.Scatters ? v * 6 * 8 : 8;
+  const double accumulators = m.Scatters ? v * 6 * 8 * run.DepositBlocks() : 8;
   plan->AddDeviceBuffer(grid, "radiance and direction accumulators", accumulators, gridSetting);
   // Analog scattering: every order with surfaces (the lattice knows none), the first
   // ScatteringOrders ones for the first-collision split (vtkPhotonTracer.h).
@@ -596,7 +666,8 @@ bool vtkPhotonTracer::PlanMemory(Internals& run)
     // Each resolved field (ResolveDeposits: Radiance, its direction, S_ms, its direction or the
     // split's source and its direction) and its smoothed copy. They are made one field at a time,
     // so this is an upper bound, like the allocator's count it is compared with.
-    const int fields = 2 + (run.Analog ? (run.SplitOrders > 0 ? 3 : 2) : 0);
+    const int fields =
+      2 + (run.Analog ? (run.SplitOrders > 0 ? 3 : 2) : 0) + (run.Lobes > 1 ? 2 * run.Lobes : 0);
     plan->AddDeviceBuffer(
       grid, "resolved fields", fields * (this->Smoothing ? 2 : 1) * v * 12, gridSetting);
   }
@@ -615,7 +686,8 @@ bool vtkPhotonTracer::PlanMemory(Internals& run)
   // Host: the medium's float copies (index, gradient, extinction, albedo) and the two outputs.
   plan->AddHostMemory(
     grid, "medium copies", v * 4 * (1 + 3 + 3 + (m.HasGradient ? 3 : 0)), gridSetting);
-  plan->AddHostMemory(grid, "Radiance and RadianceDirection", v * 12 * 2, gridSetting);
+  plan->AddHostMemory(grid, "Radiance and RadianceDirection (and each lobe's)",
+    v * 12 * 2 * run.DepositBlocks(), gridSetting);
   // The photon order (kept between runs) and, while it is sorted, a code per photon.
   plan->AddHostMemory(photons, "photon streams and their sort", p * 8, photonSetting);
   this->PlannedDeviceMemoryBytes =

@@ -164,7 +164,7 @@ bool vtkPhotonTracer::PlaceVolumeCausticBricks(
   run.BrickBuffer = alloc.Make(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(int),
     run.Bricks.data(), "volume caustic bricks");
   run.FineFixed = alloc.Make(CL_MEM_READ_WRITE, fineBytes, nullptr, "volume caustic accumulators");
-  const size_t accumulatorBytes = voxels * 6 * sizeof(cl_long); // run.Deposits
+  const size_t accumulatorBytes = voxels * 6 * run.DepositBlocks() * sizeof(cl_long); // Deposits
   return run.BrickBuffer && run.FineFixed &&
     ctx->ZeroBuffer(run.FineFixed.Get(), fineBytes, this) &&
     ctx->ZeroBuffer(run.Deposits.Get(), accumulatorBytes, this) &&

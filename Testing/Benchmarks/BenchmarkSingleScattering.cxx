@@ -5,16 +5,20 @@
 // from one run.
 //
 // Usage: BenchmarkSingleScattering [--sizes 64,128] [--lights 1,8,32,64] [--repeats 3]
-//          [--max-photons 4194304] [--photon-lights 1] [--csv file] [--box-means 1]
+//          [--max-photons 4194304] [--photon-lights 1] [--csv file] [--box-means 1] [--lobes 1]
 // --box-means 1 instead times the light rays with and without their box means at sharp voxels
 // (vtkLightRaySingleScattering::SharpVoxelBoxMeans) on dense media of 1 optical depth per voxel
 // (the lower half of the grid, a ball of radius 0.35) under a sun: what the box means cost.
+// --lobes 1 instead times what S1's lobes cost (vtkLightRaySingleScattering::MaximumRadianceLobes
+// 1, 2 and 4) on the cloud (g = 0.6) under --lights lights (those >= 2): the light rays, the
+// interpolation, and the view pass (vtkRefractaImageRenderer, 512 x 512, the light rays' output).
 // The photon search doubles the photon count from 2^14 until its RMS distance to the light rays
 // is at most the interpolation's (or --max-photons); it runs for the light counts in
 // --photon-lights only (its cost does not grow with the lights, only its error target moves).
 #include "RefractaBenchmark.h"
 #include "RefractaScenes.h"
 
+#include "vtkCamera.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -24,6 +28,7 @@
 #include "vtkOpenCLContext.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPointData.h"
+#include "vtkRefractaImageRenderer.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 
@@ -155,9 +160,76 @@ void TimeBoxMeans(const std::vector<int>& sizes, int repeats)
   }
 }
 
+// S1 in 1, 2 and 4 lobes: the light rays, the interpolation and the view pass, medians of
+// `repeats`, with the ratios to one lobe.
+void TimeLobes(const std::vector<int>& sizes, const std::vector<int>& lightCounts, int repeats)
+{
+  std::printf("%5s %6s %6s %10s %12s %10s %12s\n", "grid", "lights", "lobes", "rays [s]",
+    "interp [s]", "view [s]", "vs 1 lobe");
+  for (int n : sizes)
+  {
+    refracta::scenes::Scene scene = refracta::scenes::HeterogeneousCloud(n);
+    for (int count : lightCounts)
+    {
+      if (count < 2)
+      {
+        continue;
+      }
+      double first[3] = { 0, 0, 0 };
+      for (int lobes : { 1, 2, 4 })
+      {
+        vtkNew<vtkLightRaySingleScattering> rays, interpolated;
+        interpolated->SetMethodToInterpolated();
+        for (auto& light : Lights(scene, count))
+        {
+          rays->AddLight(light);
+          interpolated->AddLight(light);
+        }
+        double seconds[3];
+        int made = 1;
+        for (vtkLightRaySingleScattering* pass : { rays.Get(), interpolated.Get() })
+        {
+          pass->SetMaximumRadianceLobes(lobes);
+          pass->SetInputData(scene.Medium);
+          pass->Update(); // untimed: the kernels' compilation
+          seconds[pass == interpolated.Get() ? 1 : 0] = refracta::bench::MedianSeconds(repeats,
+            [&]
+            {
+              pass->Modified();
+              pass->Update();
+            });
+          made = pass->GetLastNumberOfLobes();
+        }
+        vtkNew<vtkRefractaImageRenderer> view;
+        view->SetInputData(scene.Medium);
+        view->SetLightingData(rays->GetOutput());
+        view->SetCamera(scene.Camera);
+        view->SetImageSize(512, 512);
+        view->Update(); // untimed
+        int frame = 0;
+        seconds[2] = refracta::bench::MedianSeconds(repeats,
+          [&]
+          {
+            // A camera move: the view pass runs again (an unchanged render is reused).
+            scene.Camera->Azimuth(++frame % 2 ? 1.0 : -1.0);
+            view->Update();
+          });
+        if (lobes == 1)
+        {
+          std::copy(seconds, seconds + 3, first);
+        }
+        std::printf("%5d %6d %6d %10.3f %12.3f %10.3f   %.2f %.2f %.2f\n", n, count, made,
+          seconds[0], seconds[1], seconds[2], seconds[0] / first[0], seconds[1] / first[1],
+          seconds[2] / first[2]);
+        std::fflush(stdout);
+      }
+    }
+  }
+}
+
 int main(int argc, char* argv[])
 {
-  bool boxMeans = false;
+  bool boxMeans = false, lobes = false;
   std::vector<int> sizes = { 64, 128 };
   std::vector<int> lightCounts = { 1, 8, 32, 64 };
   std::vector<int> photonLights = { 1 };
@@ -181,6 +253,8 @@ int main(int argc, char* argv[])
       csv = value;
     else if (key == "--box-means")
       boxMeans = std::atoi(value.c_str()) != 0;
+    else if (key == "--lobes")
+      lobes = std::atoi(value.c_str()) != 0;
     else
     {
       std::cerr << "Unknown option " << key << "\n";
@@ -198,6 +272,11 @@ int main(int argc, char* argv[])
   if (boxMeans)
   {
     TimeBoxMeans(sizes, repeats);
+    return 0;
+  }
+  if (lobes)
+  {
+    TimeLobes(sizes, lightCounts, repeats);
     return 0;
   }
   std::ostringstream table;

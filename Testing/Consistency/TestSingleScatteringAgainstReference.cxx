@@ -193,7 +193,7 @@ Image RenderPipeline(
   vtkNew<vtkRefractaImageRenderer> renderer;
   vtkRefractaRenderPipeline* pipeline = renderer->GetPipeline();
   pipeline->GetLightRays()->SetSharpVoxelBoxMeans(boxMeans);
-  pipeline->GetLightRays()->SetMaximumRadianceLobes(lobes);
+  pipeline->GetPhotonTracer()->SetMaximumRadianceLobes(lobes); // the light rays take it too
   pipeline->SetMultipleScattering(false);
   pipeline->SetSingleScatteringMethod(method);
   pipeline->GetPhotonTracer()->SetLightRadius(LIGHT_RADIUS);
@@ -270,17 +270,17 @@ TEST(SingleScatteringAgainstReference, ForwardScatteringCloudUnderSun)
   CheckMethods(LitCloud(0.5, false), 2048, { 0.02, 0.06, 0.15 });
 }
 
-// Forward scattering (g = 0.5) under the sun and the point light, from different sides: the light
-// rays keep each light's S1 and direction in a lobe of its own (MaximumRadianceLobes 2), which the
-// view pass shades about its own direction. Measured (smallest B, bias): light rays 0%, -0.7%;
-// the interpolation 1.7%, -2.7%; with one lobe (the mean direction of both lights) the light rays
-// need 19.0% (bias -14.4%) and must fail B. Photons keep one direction per voxel: 20.0%, bias
-// -12.8% (Documentation/Physics.md, "Lights from different sides"); B 25% for them guards against
-// regressions with the known error stated.
+// Forward scattering (g = 0.5) under the sun and the point light, from different sides: every
+// method keeps each light's S1 and direction in a lobe of its own (MaximumRadianceLobes 2), which
+// the view pass shades about its own direction (Documentation/Physics.md, "Lights from different
+// sides"). Measured (smallest B, bias): light rays 0%, -0.7%; the interpolation 1.7%, -2.7%;
+// photons 3.2%, +1.4% (smoothed; 0.1%, +0.8% unsmoothed). With one lobe (the mean direction of
+// both lights) the light rays need 19.0% (bias -14.4%; photons 20.0%, -12.8%) and must fail B.
+// B: 2%, 6%, 15%.
 TEST(SingleScatteringAgainstReference, ForwardScatteringCloudUnderTwoLights)
 {
   const Scene scene = LitCloud(0.5);
-  CheckMethods(scene, 2048, { 0.02, 0.06, 0.25 });
+  CheckMethods(scene, 2048, { 0.02, 0.06, 0.15 });
   const Regions ref = Pool(RenderReference(scene, 2048));
   EXPECT_GT(FailedRegions(RenderPipeline(scene, vtkEffectPlan::LIGHT_RAYS, true, true, 1), ref,
               0.02, "light rays, one lobe"),
