@@ -1,10 +1,13 @@
-// vtkLightRaySingleScattering's lobes (MaximumRadianceLobes): each group of lights' S1 and mean
-// direction kept apart, so that the view pass can shade lights from different sides each about
-// its own direction. The lobes must sum to Radiance, hold exactly what their lights alone give,
-// point along their own lights, group lights by direction when there are more lights than lobes,
-// survive the interpolation, and appear only where the phase function looks at the direction.
+// S1's lobes (MaximumRadianceLobes of vtkLightRaySingleScattering and vtkPhotonTracer): each group
+// of lights' S1 and mean direction kept apart, so that the view pass can shade lights from
+// different sides each about its own direction. The light rays' lobes must sum to Radiance, hold
+// exactly what their lights alone give, point along their own lights, group lights by direction
+// when there are more lights than lobes, survive the interpolation and the box means, and appear
+// only where the phase function looks at the direction; the photons' lobes must sum to their
+// Radiance, point along their lights and agree with the light rays' lobes within their noise.
 #include "PhotonTestUtilities.h"
 #include "vtkLightRaySingleScattering.h"
+#include "vtkPhotonTracer.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 #include "vtkTypeInt64Array.h"
@@ -267,4 +270,106 @@ TEST(LightRayLobes, InterpolationKeepsTheLobes)
     std::cout << "lobe " << k << ": RMS " << error << "\n";
     EXPECT_LT(error, 1.5 * total) << "lobe " << k << " interpolated worse than the sum";
   }
+}
+
+// The photons' lobes: the sun and the point light of the first test, 2^18 photons (smoothed, as
+// the pipeline runs them). Lobe k holds the photons of light k: the lobes sum to Radiance (the same
+// deposits, resolved by the same linear steps), the sun's lobe points along the sun, the lamp's
+// away from the lamp, and each lobe is as close to the light rays' lobe as the photons' Radiance is
+// to theirs (measured RMS 18.4% and 20.4% against 19.9%: the ball's edge, where the photons give
+// box means and the light rays centre values, and the smoothing; swapped, 95% and 355%).
+TEST(PhotonLobes, LobesSumToRadianceFollowTheirLightAndMatchTheLightRays)
+{
+  auto medium = Ball(0.5);
+  const auto c = Centre(medium);
+  const auto lamp = Offset(c, -20.0, 0.0, -15.0);
+  auto sun = Directional(Offset(c, 30.0, 5.0, 0.0), c, 1.0);
+  auto point = Positional(lamp, c, 180.0, 0.0, 2000.0);
+  vtkNew<vtkPhotonTracer> tracer;
+  tracer->AddLight(sun);
+  tracer->AddLight(point);
+  tracer->SetNumberOfPhotons(1 << 18);
+  tracer->SetInputData(medium);
+  tracer->Update();
+  ASSERT_EQ(tracer->GetLastNumberOfLobes(), 2);
+  vtkImageData* photons = tracer->GetOutput();
+  ASSERT_EQ(vtkRefractaLightingVolume::GetNumberOfRadianceLobes(photons), 2);
+  std::vector<float> sum(3 * static_cast<size_t>(N) * N * N);
+  for (size_t i = 0; i < sum.size(); ++i)
+  {
+    sum[i] = Lobe(photons, 0)[i] + Lobe(photons, 1)[i];
+  }
+  EXPECT_LT(RelativeDifference(sum.data(), Radiance(photons)), 1e-5);
+  double sunTravel[3] = { -30.0, -5.0, 0.0 };
+  vtkMath::Normalize(sunTravel);
+  double peak = 0;
+  for (size_t i = 0; i < sum.size(); ++i)
+  {
+    peak = std::max(peak, static_cast<double>(Lobe(photons, 1)[i]));
+  }
+  const double* o = medium->GetOrigin();
+  double worstSun = 0, worstLamp = 0;
+  int compared = 0;
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+      {
+        const size_t v = i + N * (j + static_cast<size_t>(N) * k);
+        if (Lobe(photons, 0)[3 * v] <= 0 || Lobe(photons, 1)[3 * v] < 0.01 * peak)
+        {
+          continue;
+        }
+        ++compared;
+        double away[3] = { o[0] + i - lamp[0], o[1] + j - lamp[1], o[2] + k - lamp[2] };
+        vtkMath::Normalize(away);
+        const float* dSun = Lobe(photons, 0, true) + 3 * v;
+        const float* dLamp = Lobe(photons, 1, true) + 3 * v;
+        worstSun = std::max(worstSun,
+          1.0 - (sunTravel[0] * dSun[0] + sunTravel[1] * dSun[1] + sunTravel[2] * dSun[2]));
+        worstLamp =
+          std::max(worstLamp, 1.0 - (away[0] * dLamp[0] + away[1] * dLamp[1] + away[2] * dLamp[2]));
+      }
+  EXPECT_GT(compared, 4000);
+  EXPECT_LT(worstSun, 1e-5) << "the sun's lobe points along the sun";
+  EXPECT_LT(worstLamp, 0.01) << "the lamp's lobe points away from the lamp (within 8 degrees)";
+  auto rays = RunLobes(medium, { sun, point });
+  const double total = RelativeRms(Radiance(photons), Radiance(rays));
+  std::cout << "photon Radiance: RMS " << total << " of the light rays'\n";
+  EXPECT_LT(total, 0.25);
+  for (int k = 0; k < 2; ++k)
+  {
+    const double error = RelativeRms(Lobe(photons, k), Lobe(rays, k));
+    const double swapped = RelativeRms(Lobe(photons, k), Lobe(rays, 1 - k));
+    std::cout << "photon lobe " << k << ": RMS " << error << " of the light rays' lobe, " << swapped
+              << " of the other\n";
+    EXPECT_LT(error, 1.25 * total) << "lobe " << k;
+    EXPECT_GT(swapped, 0.5) << "lobe " << k;
+  }
+  // The chunked march (the interleaved lattice's) resumes each photon with its lobe: its lobes sum
+  // to its Radiance, and differ from the whole march's as little as its Radiance does (its
+  // straight walks are cut into segments, so the pieces, and the roulette, differ).
+  vtkNew<vtkImageData> whole;
+  whole->DeepCopy(photons);
+  tracer->SetStepsPerChunk(3);
+  tracer->Update();
+  vtkImageData* chunked = tracer->GetOutput();
+  ASSERT_EQ(vtkRefractaLightingVolume::GetNumberOfRadianceLobes(chunked), 2);
+  const double moved = RelativeRms(Radiance(chunked), Radiance(whole));
+  for (int k = 0; k < 2; ++k)
+  {
+    const double lobeMoved = RelativeRms(Lobe(chunked, k), Lobe(whole, k));
+    std::cout << "chunked: Radiance RMS " << moved << ", lobe " << k << " " << lobeMoved << "\n";
+    EXPECT_LT(lobeMoved, 2 * moved + 0.01) << "chunked lobe " << k;
+  }
+  for (size_t i = 0; i < sum.size(); ++i)
+  {
+    sum[i] = Lobe(chunked, 0)[i] + Lobe(chunked, 1)[i];
+  }
+  EXPECT_LT(RelativeDifference(sum.data(), Radiance(chunked)), 1e-5);
+  tracer->SetStepsPerChunk(0);
+  // An isotropic medium: no lobes.
+  tracer->SetInputData(Ball(0.0));
+  tracer->Update();
+  EXPECT_EQ(tracer->GetLastNumberOfLobes(), 1);
+  EXPECT_EQ(vtkRefractaLightingVolume::GetNumberOfRadianceLobes(tracer->GetOutput()), 0);
 }
