@@ -394,7 +394,7 @@ void PrintSummary(const json& report)
                  "underestimated; a finer grid (medium.grid.dimensions) resolves it\n";
   }
   const json& method = report["plan"]["single_scattering_method"];
-  // S1 in lobes (vtkLightRaySingleScattering::MaximumRadianceLobes): lights from different sides
+  // S1 in lobes (vtkPhotonTracer::MaximumRadianceLobes): lights from different sides
   // each shaded about their own direction.
   const int lobes = static_cast<int>(report["light_pass"].value("RadianceLobes", 1.0));
   std::cout << "  single    " << method["chosen"].get<std::string>() << " ("

@@ -23,10 +23,10 @@
  *
  * - `RadianceLobe<k>` and `RadianceLobeDirection<k>` (3 each, k = 0 .. K - 1, K >= 2, optional;
  *   RadianceLobeName(k)): the same two fields for the lights of lobe k alone
- *   (vtkLightRaySingleScattering::MaximumRadianceLobes); the lobes' S1 sum to `Radiance`. Where
- *   they are present the view pass shades each lobe with the phase function about its own
- *   direction, so that lights from different sides are not shaded along their mean; every other
- *   reader takes `Radiance` and `RadianceDirection` as before.
+ *   (vtkPhotonTracer and vtkLightRaySingleScattering::MaximumRadianceLobes); the lobes' S1 sum
+ *   to `Radiance`. Where they are present the view pass shades each lobe with the phase function
+ *   about its own direction, so that lights from different sides are not shaded along their
+ *   mean; every other reader takes `Radiance` and `RadianceDirection` as before.
  *
  * The lattice's source is `Radiance` (S1), or `MultipleScatteringSource` where the photon pass
  * carried the first k orders itself (LatticeSourceName()); then the lattice's S_ms is added to

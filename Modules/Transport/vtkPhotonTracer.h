@@ -14,6 +14,9 @@
  *   power per unit volume scattered out of it (sigma_s is inside it);
  * - `RadianceDirection` (3): the power-weighted mean travel direction of the deposits, unit
  *   length (zero where nothing was deposited), in the grid-local frame;
+ * - with two lights or more over an anisotropic medium, the same two fields per lobe of lights
+ *   (MaximumRadianceLobes: vtkRefractaLightingVolume::RadianceLobeName(k),
+ *   RadianceLobeDirectionName(k));
  * and field data: `NumberOfPhotons` (generated), `PhotonsMarched`, `PhotonsMissed` (generated but
  * carrying no power into the volume: missed the box or fell outside a spot's cone), `TotalSteps`,
  * `TotalVoxelPieces` (voxel crossings deposited), `TerminatedEscaped`, `TerminatedRoulette`,
