@@ -240,28 +240,42 @@ inline int lr_lobe_block(__global const float4* light)
   return LR_LOBES > 1 ? 1 + clamp((int)light[3].z, 0, LR_LOBES - 1) : 0;
 }
 
+// Zero values and fluxes in every block.
+inline void lr_clear_blocks(float3* value, float3* flux)
+{
+  for (int b = 0; b < LR_BLOCKS; ++b)
+  {
+    value[b] = flux[b] = (float3)(0.0f);
+  }
+}
+
+// Adds one light's value `e` (fluence or S1, RGB) travelling along `travel` to block 0 and to its
+// lobe's block: the value, and the flux weighted by its channel sum.
+inline void lr_add_light(
+  __global const float4* light, float3 e, float3 travel, float3* value, float3* flux)
+{
+  const float3 f = (e.x + e.y + e.z) * travel;
+  value[0] += e;
+  flux[0] += f;
+  const int b = lr_lobe_block(light);
+  if (b > 0)
+  {
+    value[b] += e;
+    flux[b] += f;
+  }
+}
+
 // phi and flux (see the head of the file) at x of every block: of all lights, then of each lobe.
 inline void lr_evaluate(const lr_scene* s, __global const float4* lights, int lightCount,
   float3 x, float minDistance, float3* phi, float3* flux)
 {
-  for (int b = 0; b < LR_BLOCKS; ++b)
-  {
-    phi[b] = flux[b] = (float3)(0.0f);
-  }
+  lr_clear_blocks(phi, flux);
   for (int l = 0; l < lightCount; ++l)
   {
     __global const float4* light = lights + LR_LIGHT_FLOAT4S * l;
     float3 travel;
     const float3 e = lr_light_fluence(s, light, x, minDistance, &travel, (float3)(0.0f));
-    const float3 f = (e.x + e.y + e.z) * travel;
-    phi[0] += e;
-    flux[0] += f;
-    const int b = lr_lobe_block(light);
-    if (b > 0)
-    {
-      phi[b] += e;
-      flux[b] += f;
-    }
+    lr_add_light(light, e, travel, phi, flux);
   }
 }
 
@@ -338,10 +352,7 @@ __kernel void light_rays_voxels(LR_SCENE_ARGS, __global const float* scattering,
   }
   const float3 sc = vload3(v, scattering);
   float3 phi[LR_BLOCKS], flux[LR_BLOCKS];
-  for (int b = 0; b < LR_BLOCKS; ++b)
-  {
-    phi[b] = flux[b] = (float3)(0.0f);
-  }
+  lr_clear_blocks(phi, flux);
   if (sc.x > 0.0f || sc.y > 0.0f || sc.z > 0.0f)
   {
     const lr_scene s = LR_MAKE_SCENE();
@@ -550,24 +561,13 @@ __kernel void light_rays_boxes(LR_SCENE_ARGS, __global const float* albedo,
   const int k = (int)(v / ((size_t)dims.x * (size_t)dims.y));
   const float3 lo = ((float3)((float)i, (float)j, (float)k) - 0.5f) * spacing.xyz;
   float3 s1[LR_BLOCKS], flux[LR_BLOCKS];
-  for (int b = 0; b < LR_BLOCKS; ++b)
-  {
-    s1[b] = flux[b] = (float3)(0.0f);
-  }
+  lr_clear_blocks(s1, flux);
   for (int l = 0; l < lightCount; ++l)
   {
     __global const float4* light = lights + LR_LIGHT_FLOAT4S * l;
     float3 travel;
     const float3 e = lr_box_light(&s, albedo, light, lo, minDistance, &travel);
-    const float3 f = (e.x + e.y + e.z) * travel;
-    s1[0] += e;
-    flux[0] += f;
-    const int b = lr_lobe_block(light);
-    if (b > 0)
-    {
-      s1[b] += e;
-      flux[b] += f;
-    }
+    lr_add_light(light, e, travel, s1, flux);
   }
   lr_store_blocks(s1, flux, n, count, boxRadiance, boxDirection);
 }
@@ -651,10 +651,7 @@ __kernel void light_rays_interpolate(LR_SCENE_ARGS, __global const float* scatte
   }
   const float3 sc = vload3(v, scattering);
   float3 phi[LR_BLOCKS], flux[LR_BLOCKS];
-  for (int b = 0; b < LR_BLOCKS; ++b)
-  {
-    phi[b] = flux[b] = (float3)(0.0f);
-  }
+  lr_clear_blocks(phi, flux);
   if (sc.x > 0.0f || sc.y > 0.0f || sc.z > 0.0f)
   {
     const int i = (int)(v % (size_t)dims.x);

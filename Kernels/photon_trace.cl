@@ -14,8 +14,8 @@
 // direction weighted by it into the RadianceDirection accumulator): `deposits` holds six cl_long
 // per voxel, deposits[6 v + c] the scattered power (RGB) and deposits[6 v + 3 + c] the direction
 // sums (xyz), fixed point; with S1 in lobes (REFRACTA_LOBES = K > 1) K more blocks of six per
-// voxel follow, a photon from a light of lobe k (photonPower.w) depositing into block 1 + k as
-// well. Termination: the photon
+// voxel follow, a photon from a light of lobe k (photonPower.w) depositing into block 1 + k
+// instead (the host sums them into the first block, radiance_sum_lobes). Termination: the photon
 // leaves the domain (escaped), Russian roulette below REFRACTA_ROULETTE x its initial power (killed;
 // survivors are boosted by 1/q and the boost is tallied so the books close), the step cap
 // REFRACTA_MAX_STEPS (its power is tallied as remaining), or a non-finite state (never expected; counted).
@@ -574,24 +574,21 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
   {
     // One voxel's six accumulators share a cache line (the first touch of a voxel's line is most
     // of a deposit's cost on a CPU: two lines per piece cost 12% more of the default scene's pass).
+#if REFRACTA_LOBES > 1
+    // S1 in lobes: into the block of the photon's lobe (the blocks after the first,
+    // vtkRefractaLightingVolume::RadianceLobeName), which the host sums into the first
+    // (radiance_sum_lobes) before anything reads it.
+    volatile __global long* acc = deposits + 6 * ((size_t)(1 + ps->lobe) * ((size_t)dims.x *
+      (size_t)dims.y * (size_t)dims.z) + target);
+#else
     volatile __global long* acc = deposits + 6 * target;
-#if REFRACTA_LOBES > 1
-    // S1 in lobes: the same deposit in the block of the photon's lobe too (the blocks after the
-    // first, vtkRefractaLightingVolume::RadianceLobeName), so that the view pass can shade each
-    // group of lights about its own direction.
-    for (int block = 0; block < 2; ++block)
-    {
 #endif
-      refracta_atomic_add_fixed(acc, sc.x);
-      refracta_atomic_add_fixed(acc + 1, sc.y);
-      refracta_atomic_add_fixed(acc + 2, sc.z);
-      refracta_atomic_add_fixed(acc + 3, w * direction.x);
-      refracta_atomic_add_fixed(acc + 4, w * direction.y);
-      refracta_atomic_add_fixed(acc + 5, w * direction.z);
-#if REFRACTA_LOBES > 1
-      acc += 6 * (size_t)(1 + ps->lobe) * ((size_t)dims.x * (size_t)dims.y * (size_t)dims.z);
-    }
-#endif
+    refracta_atomic_add_fixed(acc, sc.x);
+    refracta_atomic_add_fixed(acc + 1, sc.y);
+    refracta_atomic_add_fixed(acc + 2, sc.z);
+    refracta_atomic_add_fixed(acc + 3, w * direction.x);
+    refracta_atomic_add_fixed(acc + 4, w * direction.y);
+    refracta_atomic_add_fixed(acc + 5, w * direction.z);
   }
 #if REFRACTA_ANALOG
   if (ps->order >= REFRACTA_ANALOG_ORDERS)

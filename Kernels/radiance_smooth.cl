@@ -26,6 +26,24 @@
 //   Symmetric and row-stochastic still, so conservation and constants hold.
 // radiance_normalize: one work-item per voxel; unit direction, or zero where nothing arrived.
 
+// radiance_sum_lobes: one work-item per accumulator of a block (6 per voxel): S1's lobes (the
+// blocks 1 .. lobes after block 0, `count` accumulators each, vtkPhotonTracer::
+// MaximumRadianceLobes) summed into block 0, which the photons then leave empty: all of S1.
+__kernel void radiance_sum_lobes(__global long* fixedPoint, const ulong count, const int lobes)
+{
+  const size_t id = get_global_id(0);
+  if (id >= count)
+  {
+    return;
+  }
+  long sum = 0;
+  for (int k = 1; k <= lobes; ++k)
+  {
+    sum += fixedPoint[(size_t)k * count + id];
+  }
+  fixedPoint[id] = sum;
+}
+
 __kernel void radiance_resolve(__global const long* fixedPoint, const ulong first,
   const uint stride, const float factor, __global float* out, const uint count)
 {

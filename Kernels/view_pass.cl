@@ -28,8 +28,8 @@
 // through the path (T_exit L_bg(d_exit) summed over its legs, w = 0), kept out of an exposure.
 //
 // Options (-D): REFRACTA_CURVED, REFRACTA_PARALLEL (parallel projection), REFRACTA_HAS_SINGLE
-// (Radiance + RadianceDirection + Anisotropy given; with REFRACTA_RADIANCE_LOBES=K both hold K
-// lobes' fields one after the other, vtkRefractaLightingVolume::RadianceLobeName), REFRACTA_HAS_MULTIPLE (MultipleScattering
+// (Radiance + RadianceDirection + Anisotropy given; with REFRACTA_RADIANCE_LOBES=K `radiance` holds
+// per voxel K lobes' S1 and direction, vtkRefractaLightingVolume::RadianceLobeName), REFRACTA_HAS_MULTIPLE (MultipleScattering
 // given; with REFRACTA_MULTIPLE_DIRECTION its flux over its fluence follows it in `multiple`, 3
 // floats per voxel after S_ms's), REFRACTA_HAS_EMISSION, REFRACTA_HAS_ENVIRONMENT (equirectangular background image),
 // REFRACTA_HAS_DEPTH_LIMIT (per-pixel maximum path length), REFRACTA_INDEX_WEIGHT (sources
@@ -367,15 +367,38 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
   const float g = refracta_view_sample1(anisotropy, st);
 #ifdef REFRACTA_RADIANCE_LOBES
   // S1 in lobes (the lights grouped by direction), each shaded about its own mean direction:
-  // light from two sides is not shaded along the mean between them.
-  const size_t lobeValues = 3 * (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
+  // light from two sides is not shaded along the mean between them. `radiance` holds per voxel
+  // each lobe's S1 and direction (6 floats a lobe), read with one set of corner weights.
+  float w[8];
+#ifdef REFRACTA_SIDED_LOOKUPS
+  if (sided)
+  {
+    for (int k = 0; k < 8; ++k)
+    {
+      w[k] = sidedWeights[k];
+    }
+  }
+  else
+#endif
+  {
+    for (int k = 0; k < 8; ++k)
+    {
+      w[k] = ((k & 1) ? st->fx : 1.0f - st->fx) * ((k & 2) ? st->fy : 1.0f - st->fy) *
+        ((k & 4) ? st->fz : 1.0f - st->fz);
+    }
+  }
   for (int lobe = 0; lobe < REFRACTA_RADIANCE_LOBES; ++lobe)
   {
-    const float3 s1 = REFRACTA_VIEW_LIGHT3(radiance + lobe * lobeValues);
+    float3 s1 = (float3)(0.0f), mean = (float3)(0.0f);
+    for (int k = 0; k < 8; ++k)
+    {
+      __global const float* at = radiance + 6 * (st->c[k] * REFRACTA_RADIANCE_LOBES + lobe);
+      s1 += w[k] * vload3(0, at);
+      mean += w[k] * vload3(1, at);
+    }
     if (s1.x + s1.y + s1.z > 0.0f)
     {
-      q += refracta_view_single(
-        s1, REFRACTA_VIEW_LIGHT3(radianceDirection + lobe * lobeValues), d, g);
+      q += refracta_view_single(s1, mean, d, g); // w_o = -d (towards the camera)
     }
   }
 #else

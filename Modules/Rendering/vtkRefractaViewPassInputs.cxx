@@ -425,16 +425,37 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
       values.data(), arrays[0]->GetName(), this);
     return static_cast<bool>(buffer);
   };
-  if (lobes.empty())
+  // S1 in lobes: one buffer holding each voxel's lobes one after the other, each its S1 and its
+  // direction (6 floats), so that the kernel reads a corner's lobes from one cache line (four
+  // separate fields made the view pass 1.5 times slower with two lobes).
+  auto interleavedLobes = [&]()
   {
-    lobes = { radiance };
-    lobeDirections = { direction };
-  }
+    const size_t count = lobes.size();
+    values.assign(6 * count * static_cast<size_t>(n), 0.0f);
+    for (size_t lobe = 0; lobe < count; ++lobe)
+    {
+      for (int part = 0; part < 2; ++part)
+      {
+        FetchFloats(part == 0 ? lobes[lobe] : lobeDirections[lobe], 3, next);
+        if (part == 0)
+        {
+          MarkNonzero(next, 3, SourceFlag, in.LightingFlags);
+        }
+        for (vtkIdType v = 0; v < n; ++v)
+        {
+          std::copy_n(&next[3 * v], 3, &values[6 * (v * count + lobe) + 3 * part]);
+        }
+      }
+    }
+    in.Radiance = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
+      values.data(), "RadianceLobes", this);
+    return static_cast<bool>(in.Radiance);
+  };
   // RadianceDirection and MultipleScatteringDirection are stored in the grid-local frame
   // (vtkPhotonTracer, Physics.md).
-  if ((in.HasSingle &&
-        (!fields(lobes, lobes.size(), in.Radiance) ||
-          !fields(lobeDirections, 0, in.RadianceDirection))) ||
+  if ((in.HasSingle && !lobes.empty() && !interleavedLobes()) ||
+    (in.HasSingle && lobes.empty() &&
+      (!fields({ radiance }, 1, in.Radiance) || !fields({ direction }, 0, in.RadianceDirection))) ||
     (in.HasMultiple &&
       !fields(multipleDirection ? std::vector<vtkDataArray*>{ multiple, multipleDirection }
                                 : std::vector<vtkDataArray*>{ multiple },

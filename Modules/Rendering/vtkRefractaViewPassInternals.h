@@ -48,8 +48,9 @@ struct vtkRefractaViewPass::Internals
   bool HasSingle = false;
   bool HasMultiple = false;
   bool HasMultipleDirection = false; // then Multiple holds S_ms and after it F / phi_ms
-  // S1 in lobes (vtkRefractaLightingVolume::RadianceLobeName): their count K >= 2, Radiance and
-  // RadianceDirection then holding lobe 0's field, lobe 1's after it, ...; 0: one field each.
+  // S1 in lobes (vtkRefractaLightingVolume::RadianceLobeName): their count K >= 2, Radiance then
+  // holding per voxel each lobe's S1 and direction (6 K floats) and RadianceDirection none; 0:
+  // Radiance and RadianceDirection, one field each.
   int RadianceLobes = 0;
   vtkOpenCLBuffer Radiance, RadianceDirection, Multiple;
   // The volume caustic: c (1: none), each voxel's brick, the fine S1 and directions.

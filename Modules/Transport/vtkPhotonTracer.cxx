@@ -489,7 +489,9 @@ bool vtkPhotonTracer::MarchPhotons(Internals& run)
       }
       stillActive = count;
       ++this->NumberOfChunks;
-      if (this->Callback && !this->Callback(deposits.Get(), radianceFactor, 1.0 / scale, count))
+      if (this->Callback &&
+        (!this->SumLobeDeposits(run) ||
+          !this->Callback(deposits.Get(), radianceFactor, 1.0 / scale, count)))
       {
         vtkErrorMacro("The chunk callback failed after chunk " << this->NumberOfChunks << ".");
         return false;

@@ -444,8 +444,9 @@ public:
    * counting as a light, else the lights grouped by direction) also goes to its own accumulators,
    * resolved into RadianceLobeName(k) and RadianceLobeDirectionName(k), so that the view pass
    * shades each about its own direction. The volume caustic's bricks keep one direction. Cost: 48
-   * bytes per voxel and lobe on the device while tracing, 24 in the output, and a second
-   * deposit per piece of a photon from a light. GetLastNumberOfLobes(): the last run's (1: none).
+   * bytes per voxel and lobe on the device while tracing (a photon deposits into its lobe's
+   * accumulators, summed into Radiance's after the march), 24 in the output.
+   * GetLastNumberOfLobes(): the last run's (1: none).
    */
   vtkSetClampMacro(MaximumRadianceLobes, int, 1, vtkRefractaLightingVolume::MAXIMUM_RADIANCE_LOBES);
   vtkGetMacro(MaximumRadianceLobes, int);
@@ -886,6 +887,8 @@ private:
   bool SetUpLights(Internals& run);
   // Groups the lights into S1's lobes (MaximumRadianceLobes): run.Lobes and run.LightLobes.
   void AssignLobes(Internals& run);
+  // With lobes: the deposits' first block (all of S1) as the sum of the lobes' blocks.
+  bool SumLobeDeposits(Internals& run);
   void SharePhotons(Internals& run);
   bool InitializeDevice(Internals& run);
   bool PlanMemory(Internals& run);

@@ -25,10 +25,35 @@
 using namespace vtkPhotonTracerDetail;
 
 //------------------------------------------------------------------------------
+// With S1 in lobes the photons deposit into their lobe's block only: the first block, all of S1,
+// is their sum, made before anything reads it.
+bool vtkPhotonTracer::SumLobeDeposits(Internals& run)
+{
+  if (run.Lobes < 2 || !run.M.Scatters)
+  {
+    return true;
+  }
+  vtkOpenCLContext* ctx = run.Context;
+  cl_program program = ctx->GetProgram({ "refracta_common.cl", "radiance_smooth.cl" }, "", this);
+  vtkOpenCLKernel sum =
+    program ? ctx->CreateKernel(program, "radiance_sum_lobes", this) : vtkOpenCLKernel();
+  const cl_ulong count = 6 * static_cast<cl_ulong>(run.M.Voxels);
+  const cl_int lobes = run.Lobes;
+  return sum &&
+    ctx->Check(vtkOpenCLSetKernelArgs(sum.Get(), run.Deposits.Get(), count, lobes),
+      "clSetKernelArg(radiance_sum_lobes)", this) &&
+    Run1D(ctx, sum.Get(), count, "radiance_sum_lobes", this);
+}
+
+//------------------------------------------------------------------------------
 // Stage 4: resolve, smooth, normalise.
 bool vtkPhotonTracer::ResolveRadiance(Internals& run)
 {
   const auto start = Clock::now();
+  if (!this->SumLobeDeposits(run))
+  {
+    return false;
+  }
   vtkFloatArray* radiance = run.Radiance;
   vtkFloatArray* direction = run.Direction;
   radiance->SetName(vtkRefractaLightingVolume::RadianceName());

@@ -9,15 +9,17 @@
 // --box-means 1 instead times the light rays with and without their box means at sharp voxels
 // (vtkLightRaySingleScattering::SharpVoxelBoxMeans) on dense media of 1 optical depth per voxel
 // (the lower half of the grid, a ball of radius 0.35) under a sun: what the box means cost.
-// --lobes 1 instead times what S1's lobes cost (vtkLightRaySingleScattering::MaximumRadianceLobes
-// 1, 2 and 4) on the cloud (g = 0.6) under --lights lights (those >= 2): the light rays, the
-// interpolation, and the view pass (vtkRefractaImageRenderer, 512 x 512, the light rays' output).
+// --lobes 1 instead times what S1's lobes cost (MaximumRadianceLobes 1, 2 and 4) on the cloud
+// (g = 0.6) under --lights lights (those >= 2): the light rays, the interpolation, the photon pass
+// (2^18 photons; its march alone in brackets) and the view pass (vtkRefractaImageRenderer,
+// 512 x 512, of the light rays' output, a camera move per frame).
 // The photon search doubles the photon count from 2^14 until its RMS distance to the light rays
 // is at most the interpolation's (or --max-photons); it runs for the light counts in
 // --photon-lights only (its cost does not grow with the lights, only its error target moves).
 #include "RefractaBenchmark.h"
 #include "RefractaScenes.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCamera.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -33,10 +35,12 @@
 #include "vtkRefractaMedium.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -160,12 +164,28 @@ void TimeBoxMeans(const std::vector<int>& sizes, int repeats)
   }
 }
 
-// S1 in 1, 2 and 4 lobes: the light rays, the interpolation and the view pass, medians of
-// `repeats`, with the ratios to one lobe.
+// Seconds of one call of `work`.
+double Timed(const std::function<void()>& work)
+{
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double Median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+// S1 in 1, 2 and 4 lobes: the light rays, the interpolation, the photons and the view pass, the
+// three settings alternated within each repeat (so that a drift of the shared machine falls on
+// all alike), medians of `repeats`, with the ratios to one lobe.
 void TimeLobes(const std::vector<int>& sizes, const std::vector<int>& lightCounts, int repeats)
 {
-  std::printf("%5s %6s %6s %10s %12s %10s %12s\n", "grid", "lights", "lobes", "rays [s]",
-    "interp [s]", "view [s]", "vs 1 lobe");
+  std::printf("%5s %6s %6s %10s %12s %20s %10s   %s\n", "grid", "lights", "lobes", "rays [s]",
+    "interp [s]", "photons (march) [s]", "view [s]", "vs 1 lobe: rays interp photons view");
+  const int settings[3] = { 1, 2, 4 };
   for (int n : sizes)
   {
     refracta::scenes::Scene scene = refracta::scenes::HeterogeneousCloud(n);
@@ -175,52 +195,74 @@ void TimeLobes(const std::vector<int>& sizes, const std::vector<int>& lightCount
       {
         continue;
       }
-      double first[3] = { 0, 0, 0 };
-      for (int lobes : { 1, 2, 4 })
+      struct Setting
       {
-        vtkNew<vtkLightRaySingleScattering> rays, interpolated;
-        interpolated->SetMethodToInterpolated();
+        vtkNew<vtkLightRaySingleScattering> Rays, Interpolated;
+        vtkNew<vtkPhotonTracer> Tracer;
+        vtkNew<vtkRefractaImageRenderer> View;
+        std::vector<double> Seconds[4], Marching;
+      } runs[3];
+      for (int s = 0; s < 3; ++s)
+      {
+        Setting& r = runs[s];
+        r.Interpolated->SetMethodToInterpolated();
         for (auto& light : Lights(scene, count))
         {
-          rays->AddLight(light);
-          interpolated->AddLight(light);
+          r.Rays->AddLight(light);
+          r.Interpolated->AddLight(light);
+          r.Tracer->AddLight(light);
         }
-        double seconds[3];
-        int made = 1;
-        for (vtkLightRaySingleScattering* pass : { rays.Get(), interpolated.Get() })
+        r.Tracer->SetNumberOfPhotons(1 << 18);
+        r.Tracer->SetMaximumRadianceLobes(settings[s]);
+        for (vtkLightRaySingleScattering* pass : { r.Rays.Get(), r.Interpolated.Get() })
         {
-          pass->SetMaximumRadianceLobes(lobes);
+          pass->SetMaximumRadianceLobes(settings[s]);
           pass->SetInputData(scene.Medium);
           pass->Update(); // untimed: the kernels' compilation
-          seconds[pass == interpolated.Get() ? 1 : 0] = refracta::bench::MedianSeconds(repeats,
-            [&]
-            {
-              pass->Modified();
-              pass->Update();
-            });
-          made = pass->GetLastNumberOfLobes();
         }
-        vtkNew<vtkRefractaImageRenderer> view;
-        view->SetInputData(scene.Medium);
-        view->SetLightingData(rays->GetOutput());
-        view->SetCamera(scene.Camera);
-        view->SetImageSize(512, 512);
-        view->Update(); // untimed
-        int frame = 0;
-        seconds[2] = refracta::bench::MedianSeconds(repeats,
-          [&]
-          {
-            // A camera move: the view pass runs again (an unchanged render is reused).
-            scene.Camera->Azimuth(++frame % 2 ? 1.0 : -1.0);
-            view->Update();
-          });
-        if (lobes == 1)
+        r.Tracer->SetInputData(scene.Medium);
+        r.Tracer->Update(); // untimed
+        r.View->SetInputData(scene.Medium);
+        r.View->SetLightingData(r.Rays->GetOutput());
+        r.View->SetCamera(scene.Camera);
+        r.View->SetImageSize(512, 512);
+        r.View->Update(); // untimed
+      }
+      for (int repeat = 0; repeat < repeats; ++repeat)
+      {
+        for (Setting& r : runs)
         {
-          std::copy(seconds, seconds + 3, first);
+          vtkAlgorithm* const passes[3] = { r.Rays, r.Interpolated, r.Tracer };
+          for (vtkAlgorithm* pass : passes)
+          {
+            const int column = pass == r.Rays.Get() ? 0 : pass == r.Interpolated.Get() ? 1 : 3;
+            r.Seconds[column].push_back(Timed(
+              [&]
+              {
+                pass->Modified();
+                pass->Update();
+              }));
+          }
+          r.Marching.push_back(r.Tracer->GetMarchingSeconds());
+          // A camera move: the view pass runs again (an unchanged render is reused).
+          scene.Camera->Azimuth(repeat % 2 ? 1.0 : -1.0);
+          r.Seconds[2].push_back(Timed([&] { r.View->Update(); }));
         }
-        std::printf("%5d %6d %6d %10.3f %12.3f %10.3f   %.2f %.2f %.2f\n", n, count, made,
-          seconds[0], seconds[1], seconds[2], seconds[0] / first[0], seconds[1] / first[1],
-          seconds[2] / first[2]);
+      }
+      double first[4];
+      for (int s = 0; s < 3; ++s)
+      {
+        Setting& r = runs[s];
+        double seconds[4];
+        for (int c = 0; c < 4; ++c)
+        {
+          seconds[c] = Median(r.Seconds[c]);
+          first[c] = s == 0 ? seconds[c] : first[c];
+        }
+        std::printf("%5d %6d %6d %10.3f %12.3f %11.3f (%6.3f) %10.3f   %.2f %.2f %.2f %.2f\n", n,
+          count, r.Rays->GetLastNumberOfLobes(), seconds[0], seconds[1], seconds[3],
+          Median(r.Marching), seconds[2], seconds[0] / first[0], seconds[1] / first[1],
+          seconds[3] / first[3], seconds[2] / first[2]);
         std::fflush(stdout);
       }
     }
