@@ -394,8 +394,8 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
   this->LastLightingArraysShared = 0;
   // Fields on the device in one buffer, one after the other (3 floats per voxel each): a single
   // field's copy that a light pass kept there, else an upload. The first `marked` fields' nonzero
-  // voxels are sources for the skipping. Several: S1's lobes (REFRACTA_RADIANCE_LOBES), or
-  // MultipleScattering and its direction (REFRACTA_MULTIPLE_DIRECTION).
+  // voxels are sources for the skipping. Two: MultipleScattering and its direction, which the
+  // kernel reads in one buffer with REFRACTA_MULTIPLE_DIRECTION.
   std::vector<float> values, next;
   auto fields = [&](
                   const std::vector<vtkDataArray*>& arrays, size_t marked, vtkOpenCLBuffer& buffer)
@@ -426,8 +426,8 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
     return static_cast<bool>(buffer);
   };
   // S1 in lobes: one buffer holding each voxel's lobes one after the other, each its S1 and its
-  // direction (6 floats), so that the kernel reads a corner's lobes from one cache line (four
-  // separate fields made the view pass 1.5 times slower with two lobes).
+  // direction (6 floats), so that the kernel reads a corner's lobes from one cache line instead
+  // of one per field (REFRACTA_RADIANCE_LOBES).
   auto interleavedLobes = [&]()
   {
     const size_t count = lobes.size();
