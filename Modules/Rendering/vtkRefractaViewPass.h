@@ -54,6 +54,9 @@
  * `RadianceDirection` (3, unit, in the grid-local frame), and/or `MultipleScattering` (S_ms, RGB),
  * optionally with `MultipleScatteringDirection` (its flux over its fluence F / phi_ms, grid-local,
  * length f <= 1: f S_ms is shaded with the phase function about F, the rest isotropically).
+ * With S1 in lobes (vtkRefractaLightingVolume::RadianceLobeName(k) and
+ * RadianceLobeDirectionName(k), complete pairs for k = 0 .. K - 1, K >= 2) each lobe is shaded
+ * about its own direction instead of `Radiance` about `RadianceDirection`.
  *
  * Surfaces (SetSurfaces()): opaque two-sided Lambertian triangles (vtkRefractaSurfaceSet, world
  * coordinates) inside, behind, under or around the medium. A view ray, curved in the medium and
@@ -316,14 +319,16 @@ public:
    * `Radiance`, `RadianceDirection` and `MultipleScattering` are taken from their device copies
    * where the light passes kept them in this context (vtkOpenCLDeviceArrays; the render
    * pipeline's DeviceHandOff) and uploaded otherwise; the host arrays are still checked and scanned
-   * for the empty-space skipping either way.
+   * for the empty-space skipping either way. S1's lobes are always uploaded, interleaved per
+   * voxel (each lobe's S1, then its direction). Lobe arrays that are not complete pairs 0 .. K - 1
+   * with K >= 2 are an error.
    * Returns false after an error.
    */
   bool SetLighting(vtkImageData* lighting);
 
   /**
    * How many of the lighting volume's arrays the last upload of one took from their device
-   * copies instead of uploading them (0 to 3).
+   * copies instead of uploading them (0 to 3; with S1 in lobes 0 or 1).
    */
   vtkGetMacro(LastLightingArraysShared, int);
 

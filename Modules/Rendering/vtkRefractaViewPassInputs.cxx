@@ -357,10 +357,28 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
                   "(the mean travel direction of the light, 3 components).");
     return false;
   }
-  // S1 in lobes: each lobe's S1 and direction (the view pass then reads those, not the sum).
+  // S1 in lobes: each lobe's S1 and direction (the view pass then reads those, not the sum), in
+  // complete pairs 0 .. K - 1, K >= 2; any other lobe array would be dropped from the image.
+  const int lobeCount = vtkRefractaLightingVolume::GetNumberOfRadianceLobes(lighting);
+  for (int k = lobeCount; k < vtkRefractaLightingVolume::MAXIMUM_RADIANCE_LOBES; ++k)
+  {
+    for (const char* name : { vtkRefractaLightingVolume::RadianceLobeName(k),
+           vtkRefractaLightingVolume::RadianceLobeDirectionName(k) })
+    {
+      if (pd->GetArray(name))
+      {
+        vtkErrorMacro("The lighting volume has '"
+          << name << "' but " << (lobeCount > 0 ? "only " : "not ") << lobeCount
+          << " complete lobes: S1's lobes come as pairs 'RadianceLobe<k>' and "
+             "'RadianceLobeDirection<k>' for k = 0 .. K - 1, K >= 2 (at most "
+          << static_cast<int>(vtkRefractaLightingVolume::MAXIMUM_RADIANCE_LOBES)
+          << "), or not at all.");
+        return false;
+      }
+    }
+  }
   std::vector<vtkDataArray*> lobes, lobeDirections;
-  for (int k = 0; radiance && k < vtkRefractaLightingVolume::GetNumberOfRadianceLobes(lighting);
-       ++k)
+  for (int k = 0; radiance && k < lobeCount; ++k)
   {
     const char* name = vtkRefractaLightingVolume::RadianceLobeName(k);
     const char* directionName = vtkRefractaLightingVolume::RadianceLobeDirectionName(k);

@@ -410,8 +410,9 @@ void vtkLightRaySingleScattering::AssignLobes(Internals& run)
 {
   const Medium& m = run.M;
   const int lights = run.LightCount;
-  run.Lobes =
-    lights >= 2 && ScattersAnisotropically(m) ? std::min(this->MaximumRadianceLobes, lights) : 1;
+  run.Lobes = lights >= 2 && run.AnyScattering && ScattersAnisotropically(m)
+    ? std::min(this->MaximumRadianceLobes, lights)
+    : 1;
   this->LastNumberOfLobes = run.Lobes;
   if (run.Lobes < 2)
   {
@@ -433,13 +434,15 @@ void vtkLightRaySingleScattering::AssignLobes(Internals& run)
     {
       travel[l][a] = positional ? centre[a] - light[0].s[a] : light[1].s[a];
     }
-    const double r2 = positional ? Dot(travel[l].data(), travel[l].data()) : 1.0;
+    const double r2 = Dot(travel[l].data(), travel[l].data());
     if (!Normalize(travel[l].data()))
     {
       travel[l] = { 0.0, 0.0, -1.0 }; // a light at the centre: any direction
     }
-    strength[l] = std::max({ light[2].s[0], light[2].s[1], light[2].s[2] }) /
-      std::max(r2, run.MinimumDistance * run.MinimumDistance);
+    // Irradiance E for a directional light, intensity I / r^2 for a positional one.
+    const double colour = std::max({ light[2].s[0], light[2].s[1], light[2].s[2] });
+    strength[l] =
+      positional ? colour / std::max(r2, run.MinimumDistance * run.MinimumDistance) : colour;
   }
   const std::vector<int> lobe = GroupLightsByDirection(travel, strength, run.Lobes);
   for (int l = 0; l < lights; ++l)

@@ -851,7 +851,7 @@ private:
   // the mean direction weighted by power, its length the flux over the fluence).
   bool ResolveDeposits(Internals& run, cl_mem fixed, size_t offset, cl_mem directionFixed,
     size_t directionOffset, size_t stride, vtkFloatArray* values, vtkFloatArray* directions,
-    bool unit = true);
+    bool unit = true, bool keep = true);
   // The smoothing's three axis passes (radiance_smooth_axis) from `a` into `b` (`a` is scratch).
   bool SmoothAxes(Internals& run, cl_kernel filter, cl_mem a, cl_mem b);
 #endif

@@ -81,9 +81,10 @@ bool vtkPhotonTracer::ResolveRadiance(Internals& run)
     auto directions = vtkSmartPointer<vtkFloatArray>::New();
     values->SetName(vtkRefractaLightingVolume::RadianceLobeName(k));
     directions->SetName(vtkRefractaLightingVolume::RadianceLobeDirectionName(k));
+    // No device copies kept: the view pass interleaves the lobes on the host.
     const size_t block = 6 * run.M.Voxels * (1 + k);
-    if (!this->ResolveDeposits(
-          run, run.Deposits.Get(), block, run.Deposits.Get(), block + 3, 6, values, directions))
+    if (!this->ResolveDeposits(run, run.Deposits.Get(), block, run.Deposits.Get(), block + 3, 6,
+          values, directions, true, false))
     {
       return false;
     }
@@ -98,7 +99,7 @@ bool vtkPhotonTracer::ResolveRadiance(Internals& run)
 //------------------------------------------------------------------------------
 bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offset,
   cl_mem directionFixed, size_t directionOffset, size_t stride, vtkFloatArray* values,
-  vtkFloatArray* directions, bool unit)
+  vtkFloatArray* directions, bool unit, bool keep)
 {
   Medium& m = run.M;
   vtkOpenCLContext* ctx = run.Context;
@@ -138,8 +139,8 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
   {
     auto make = [&](bool result)
     {
-      return alloc.Make(
-        CL_MEM_READ_WRITE, bytes, nullptr, out->GetName(), result && this->KeepDeviceCopies);
+      return alloc.Make(CL_MEM_READ_WRITE, bytes, nullptr, out->GetName(),
+        result && keep && this->KeepDeviceCopies);
     };
     vtkOpenCLBuffer a = make(!this->Smoothing);
     vtkOpenCLBuffer b;
@@ -185,7 +186,7 @@ bool vtkPhotonTracer::ResolveDeposits(Internals& run, cl_mem fixed, size_t offse
       return false;
     }
     out->Modified(); // its values are new: so is any copy of them
-    if (this->KeepDeviceCopies)
+    if (keep && this->KeepDeviceCopies)
     {
       ctx->GetDeviceArrays()->Remember(out, result, this);
     }

@@ -489,6 +489,17 @@ TEST(ViewPassAnalytic, BadInputsAreReported)
     << errors->GetErrorMessage();
   EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 0);
   errors->Clear();
+  // An incomplete set: lobe 2's S1 without its direction would drop out of the image.
+  refracta_test::AddConstant(
+    badLobe, vtkRefractaLightingVolume::RadianceLobeName(1), 3, 0.5, 0.5, 0.5);
+  refracta_test::AddConstant(
+    badLobe, vtkRefractaLightingVolume::RadianceLobeName(2), 3, 0.1, 0.1, 0.1);
+  renderer->Update();
+  EXPECT_NE(errors->GetErrorMessage().find(vtkRefractaLightingVolume::RadianceLobeName(2)),
+    std::string::npos)
+    << errors->GetErrorMessage();
+  EXPECT_EQ(renderer->GetOutput()->GetNumberOfPoints(), 0);
+  errors->Clear();
 
   // MultipleScatteringDirection with 2 components, then with a NaN: errors naming it.
   const char* msDirection = vtkRefractaLightingVolume::MultipleScatteringDirectionName();
