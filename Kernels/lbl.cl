@@ -470,6 +470,45 @@ __kernel void lbl_scattered(
   }
 }
 
+// The direction of the multiple-scattering source (lbl_scattered): the net flux of the light
+// being scattered over its scattered power, F / S = sum_i w_i e_i / sum_i w_i with w_i =
+// a (1 - T_i) f_i summed over the channels and e_i the unit vector along lattice direction i in
+// the grid's frame (c_i scaled by the spacing), as 3 floats per voxel (a VTK array). Its length is
+// the mean cosine of that light about F (0 isotropic, 1 collimated along a lattice direction);
+// zero where nothing scatters. One work-item per voxel, global (nx, ny, nz).
+__kernel void lbl_scattered_flux(__global const float* state, __global const float* coef,
+  __global float* out, const int4 dims, const float4 spacing)
+{
+  const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
+  if (x >= dims.x || y >= dims.y || z >= dims.z)
+  {
+    return;
+  }
+  const size_t n = lbl_voxels(dims);
+  const size_t v = refracta_voxel_index(dims, x, y, z);
+  float fx = 0.0f, fy = 0.0f, fz = 0.0f, total = 0.0f;
+  #pragma unroll
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    const float a = coef[(LBL_COEF_ALBEDO + ch) * n + v];
+    #pragma unroll
+    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
+    {
+      const float w = a * (1.0f - coef[(lbl_class[i] * 3 + ch) * n + v]) * state[(i * 3 + ch) * n + v];
+      const float3 e = normalize((float3)((float)lbl_cx[i] * spacing.x,
+        (float)lbl_cy[i] * spacing.y, (float)lbl_cz[i] * spacing.z));
+      fx += w * e.x;
+      fy += w * e.y;
+      fz += w * e.z;
+      total += w;
+    }
+  }
+  const float inv = total > 0.0f ? 1.0f / total : 0.0f;
+  out[3 * v] = fx * inv;
+  out[3 * v + 1] = fy * inv;
+  out[3 * v + 2] = fz * inv;
+}
+
 // Plain copy (the memory-bandwidth reference of the benchmark): b[i] = a[i], float4 per item.
 __kernel void lbl_copy(__global const float4* a, __global float4* b, const ulong count)
 {

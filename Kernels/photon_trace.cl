@@ -59,11 +59,11 @@
 // and an empty surface set) for the first-collision split (vtkPhotonTracer::ScatteringOrders k):
 // a photon scatters analogically while its order is below REFRACTA_ANALOG_ORDERS = k; at order k
 // it still deposits into `multiple`, but what it scatters is also handed to the lattice (books:
-// `scattered`; the accumulators after S_ms in `multiple`: 3 per voxel for the source, then 3 for
-// its direction sums) and it flies on with the unscattered part only, as without analog
-// scattering; the lattice then carries the orders above k from that smoother source. Without the
-// split (every order by photons), `multiple` holds six per voxel, S_ms and its direction sums
-// (weighted by the deposit's channel sum), as `deposits` does.
+// `scattered`; the accumulators after S_ms's in `multiple`: 3 per voxel for the source, then 3
+// for its direction sums) and it flies on with the unscattered part only, as without analog
+// scattering; the lattice then carries the orders above k from that smoother source. `multiple`
+// starts with six per voxel, S_ms and its direction sums (weighted by the deposit's channel sum),
+// as `deposits` does: the flux over the fluence that shades S_ms.
 //
 // Glass bodies (REFRACTA_INTERFACES): a dielectric surface with an inside medium (the `bodies`
 // table of refracta_surfaces.cl) fills its inside with that homogeneous medium. A photon carries
@@ -405,8 +405,8 @@ inline void photon_hand_to_lattice(
     return;
   }
   const size_t voxels = (size_t)dims.x * (size_t)dims.y * (size_t)dims.z;
-  volatile __global long* source = ps->multiple + 3 * voxels + 3 * voxel;
-  volatile __global long* sourceDirection = ps->multiple + 6 * voxels + 3 * voxel;
+  volatile __global long* source = ps->multiple + 6 * voxels + 3 * voxel;
+  volatile __global long* sourceDirection = ps->multiple + 9 * voxels + 3 * voxel;
   refracta_atomic_add_fixed(source, sc.x);
   refracta_atomic_add_fixed(source + 1, sc.y);
   refracta_atomic_add_fixed(source + 2, sc.z);
@@ -546,17 +546,13 @@ inline void photon_piece(photon_state* ps, float3 mid, float length, float3 dire
   {
     if (w > 0.0f)
     {
-#if REFRACTA_ANALOG_ORDERS == 0x7fffffff
-      // Every order by photons: S_ms's direction sums follow it (its flux over its fluence, the
-      // view pass's phase function for the multiply scattered light), in the same cache line
-      // (six per voxel, as `deposits`).
+      // S_ms's direction sums follow it (its flux over its fluence, the view pass's phase
+      // function for the multiply scattered light), in the same cache line (six per voxel, as
+      // `deposits`).
       volatile __global long* acc = ps->multiple + 6 * target;
       refracta_atomic_add_fixed(acc + 3, w * direction.x);
       refracta_atomic_add_fixed(acc + 4, w * direction.y);
       refracta_atomic_add_fixed(acc + 5, w * direction.z);
-#else
-      volatile __global long* acc = ps->multiple + 3 * target;
-#endif
       refracta_atomic_add_fixed(acc, sc.x);
       refracta_atomic_add_fixed(acc + 1, sc.y);
       refracta_atomic_add_fixed(acc + 2, sc.z);

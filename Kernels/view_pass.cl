@@ -430,11 +430,7 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
   const float3 flux =
     REFRACTA_VIEW_LIGHT3(multiple + 3 * ((size_t)dims.x * (size_t)dims.y * (size_t)dims.z));
   const float f = fmin(length(flux), 1.0f);
-  q += (1.0f - f) * REFRACTA_INV_4PI * ms;
-  if (f > 0.0f)
-  {
-    q += refracta_view_single(f * ms, flux, d, refracta_view_sample1(anisotropy, st));
-  }
+  q += refracta_view_single(ms, flux, d, f * refracta_view_sample1(anisotropy, st));
 #else
   q += REFRACTA_INV_4PI * REFRACTA_VIEW_LIGHT3(multiple);
 #endif

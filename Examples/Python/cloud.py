@@ -14,9 +14,11 @@ multiple scattering (the Lattice-Boltzmann pass added). The PNG shows them side 
 single, right multiple, at the same exposure (Reinhard tone mapping).
 
 Smoke check: light scattered more than once only adds energy, so with multiple scattering the
-cloud is brighter (mean radiance over the cloud > 1.2x), and it lifts most where single
-scattering is weakest: on the side facing away from the sun the gain is larger than on the sunlit
-side.
+cloud is brighter (mean radiance over the cloud > 1.2x), and it lifts the sunlit side and the side
+facing away from the sun about equally: the path-traced reference (vtkReferenceRenderer, 256
+samples per pixel, at 48) gains x5.74 on the sunlit side and x5.81 on the other, as forward
+scattering carries the light through the cloud. The two gains must agree within 15% (shading the
+multiply scattered light as isotropic, as before its direction was kept, gave x5.38 and x6.87).
 """
 import argparse
 
@@ -123,4 +125,5 @@ print("cloud pixels %d: mean radiance single %.4g, multiple %.4g (x%.2f)" %
 print("gain on the sunlit side x%.2f, on the side away from the sun x%.2f" % (lit_gain, shadow_gain))
 assert cloud.sum() > 0.1 * width * height, "the cloud must cover a good part of the image"
 assert total_gain > 1.2, "multiple scattering must add light"
-assert shadow_gain > lit_gain, "multiple scattering must lift the side away from the sun the most"
+assert abs(shadow_gain / lit_gain - 1) < 0.15, \
+    "multiple scattering must lift both sides about equally (forward scattering carries it across)"

@@ -589,13 +589,14 @@ bool vtkOpenCLContext::InjectedFault(const char* call, vtkObject* reporter)
 
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::WriteBuffer(
-  cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter)
+  cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter, size_t offset)
 {
   return bytes == 0 ||
     this->Enqueue("clEnqueueWriteBuffer", "[write]", bytes, reporter,
-      [&](cl_event* event) {
+      [&](cl_event* event)
+      {
         return clEnqueueWriteBuffer(
-          this->Queue, buffer, CL_TRUE, 0, bytes, data, 0, nullptr, event);
+          this->Queue, buffer, CL_TRUE, offset, bytes, data, 0, nullptr, event);
       });
 }
 
@@ -627,13 +628,14 @@ bool vtkOpenCLContext::ZeroBuffer(cl_mem buffer, size_t bytes, vtkObject* report
 
 //------------------------------------------------------------------------------
 bool vtkOpenCLContext::CopyBuffer(
-  cl_mem source, cl_mem destination, size_t bytes, vtkObject* reporter)
+  cl_mem source, cl_mem destination, size_t bytes, vtkObject* reporter, size_t destinationOffset)
 {
   return bytes == 0 ||
     this->Enqueue("clEnqueueCopyBuffer", "[copy]", bytes, reporter,
-      [&](cl_event* event) {
+      [&](cl_event* event)
+      {
         return clEnqueueCopyBuffer(
-          this->Queue, source, destination, 0, 0, bytes, 0, nullptr, event);
+          this->Queue, source, destination, 0, destinationOffset, bytes, 0, nullptr, event);
       });
 }
 

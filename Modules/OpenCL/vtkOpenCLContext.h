@@ -337,15 +337,17 @@ public:
 
   ///@{
   /**
-   * Blocking transfers (a read from `offset` bytes into the buffer), a zero fill and a
-   * device-side copy of the first `bytes` of `source` to `destination` (enqueued like a kernel),
-   * reporting errors; return true on success.
+   * Blocking transfers (a write or read at `offset` bytes into the buffer), a zero fill and a
+   * device-side copy of the first `bytes` of `source` to `destination` from `destinationOffset`
+   * bytes on (enqueued like a kernel), reporting errors; return true on success.
    */
-  bool WriteBuffer(cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter = nullptr);
+  bool WriteBuffer(cl_mem buffer, size_t bytes, const void* data, vtkObject* reporter = nullptr,
+    size_t offset = 0);
   bool ReadBuffer(
     cl_mem buffer, size_t bytes, void* data, vtkObject* reporter = nullptr, size_t offset = 0);
   bool ZeroBuffer(cl_mem buffer, size_t bytes, vtkObject* reporter = nullptr);
-  bool CopyBuffer(cl_mem source, cl_mem destination, size_t bytes, vtkObject* reporter = nullptr);
+  bool CopyBuffer(cl_mem source, cl_mem destination, size_t bytes, vtkObject* reporter = nullptr,
+    size_t destinationOffset = 0);
   ///@}
 
   /**

@@ -411,37 +411,56 @@ bool vtkRefractaViewPass::SetLighting(vtkImageData* lighting)
   in.OccupancyDirty = true;
   this->LastLightingArraysShared = 0;
   // Fields on the device in one buffer, one after the other (3 floats per voxel each): a single
-  // field's copy that a light pass kept there, else an upload. The first `marked` fields' nonzero
-  // voxels are sources for the skipping. Two: MultipleScattering and its direction, which the
-  // kernel reads in one buffer with REFRACTA_MULTIPLE_DIRECTION.
+  // field's copy that a light pass kept there, else an upload; several fields gathered into one
+  // buffer, each copied on the device from its copy there or uploaded. The first `marked` fields'
+  // nonzero voxels are sources for the skipping. Two: MultipleScattering and its direction,
+  // which the kernel reads in one buffer with REFRACTA_MULTIPLE_DIRECTION.
   std::vector<float> values, next;
+  const size_t fieldBytes = 3 * static_cast<size_t>(n) * sizeof(float);
   auto fields = [&](
                   const std::vector<vtkDataArray*>& arrays, size_t marked, vtkOpenCLBuffer& buffer)
   {
-    buffer = arrays.size() == 1 ? context->GetDeviceArrays()->Share(arrays[0]) : vtkOpenCLBuffer();
-    if (buffer) // only float arrays have device copies
+    std::vector<vtkOpenCLBuffer> copies; // only float arrays have device copies
+    for (vtkDataArray* a : arrays)
     {
-      ++this->LastLightingArraysShared;
-      if (marked > 0)
-      {
-        MarkNonzero(
-          vtkFloatArray::FastDownCast(arrays[0])->GetPointer(0), 3, SourceFlag, in.LightingFlags);
-      }
-      return true;
+      copies.push_back(context->GetDeviceArrays()->Share(a));
     }
-    values.clear();
+    const bool taken = copies.size() == 1 && copies[0]; // the one field's copy is the buffer
+    buffer = taken ? std::move(copies[0])
+                   : context->CreateBuffer(CL_MEM_READ_ONLY, fieldBytes * arrays.size(), nullptr,
+                       arrays[0]->GetName(), this);
+    if (!buffer)
+    {
+      return false;
+    }
     for (size_t f = 0; f < arrays.size(); ++f)
     {
-      FetchFloats(arrays[f], 3, next);
+      const bool onDevice = taken || copies[f];
+      const float* host = nullptr;
+      if (onDevice)
+      {
+        ++this->LastLightingArraysShared;
+        host = vtkFloatArray::FastDownCast(arrays[f])->GetPointer(0);
+      }
+      else
+      {
+        FetchFloats(arrays[f], 3, next);
+        host = next.data();
+      }
+      const bool placed = taken ||
+        (onDevice
+            ? context->CopyBuffer(copies[f].Get(), buffer.Get(), fieldBytes, this, f * fieldBytes)
+            : context->WriteBuffer(buffer.Get(), fieldBytes, host, this, f * fieldBytes));
+      if (!placed)
+      {
+        return false;
+      }
       if (f < marked)
       {
-        MarkNonzero(next, 3, SourceFlag, in.LightingFlags);
+        MarkNonzero(host, 3, SourceFlag, in.LightingFlags);
       }
-      values.insert(values.end(), next.begin(), next.end());
     }
-    buffer = context->CreateBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * 4,
-      values.data(), arrays[0]->GetName(), this);
-    return static_cast<bool>(buffer);
+    return true;
   };
   // S1 in lobes: one buffer holding each voxel's lobes one after the other, each its S1 and its
   // direction (6 floats), so that the kernel reads a corner's lobes from one cache line instead

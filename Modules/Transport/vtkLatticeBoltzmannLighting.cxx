@@ -19,6 +19,7 @@
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
 #include "vtkRefractaSettings.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <cmath>
@@ -240,14 +241,39 @@ int vtkLatticeBoltzmannLighting::RequestData(
       return solved == 0 ? 1 : 0;
     }
   }
+  // The direction of the light S_ms scatters: the photons' where they carried every order, else
+  // the lattice's own flux (with the split merged with the photons' orders').
+  vtkDataArray* photonDirection =
+    photons->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
+  vtkSmartPointer<vtkDataArray> msDirection;
   if (everyOrder)
   {
     vtkRefractaLightingVolume::AddPhotonMultipleScattering(photons, ms);
+    msDirection = photonDirection;
+  }
+  else
+  {
+    vtkNew<vtkFloatArray> flux;
+    flux->SetName(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
+    vtkDataArray* photonMs = split
+      ? photons->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName())
+      : nullptr;
+    if (!solver->ComputeMultipleScatteringDirection(flux, photonMs ? ms.GetPointer() : nullptr,
+          photonMs, photonMs ? photonDirection : nullptr))
+    {
+      output->Initialize();
+      return 0;
+    }
+    msDirection = flux;
   }
 
   output->CopyStructure(medium);
   vtkRefractaLightingVolume::PassSingleScattering(lighting, output);
   output->GetPointData()->AddArray(ms);
+  if (msDirection)
+  {
+    output->GetPointData()->AddArray(msDirection);
+  }
   output->GetFieldData()->PassData(lighting->GetFieldData());
   vtkNew<vtkIntArray> iterations;
   iterations->SetName("LatticeBoltzmannIterations");

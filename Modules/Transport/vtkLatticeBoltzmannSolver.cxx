@@ -111,6 +111,7 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
       return false;
     }
     this->Dims[a] = dims[a];
+    this->Spacing[a] = spacing[a];
   }
   const size_t n = static_cast<size_t>(dims[0]) * dims[1] * dims[2];
   this->NumberOfVoxels = static_cast<vtkIdType>(n);
@@ -363,13 +364,15 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   this->StepKernel = context->CreateKernel(program, "lbl_step", this);
   this->ProbeKernel = context->CreateKernel(program, "lbl_probes", this);
   this->ScatteredKernel = context->CreateKernel(program, "lbl_scattered", this);
+  this->ScatteredFluxKernel = context->CreateKernel(program, "lbl_scattered_flux", this);
   this->SourceKernel = context->CreateKernel(program, "lbl_source_from_fixed", this);
   this->RestrictKernel = context->CreateKernel(program, "lbl_restrict_source", this);
   this->ProlongKernel = context->CreateKernel(program, "lbl_prolong_state", this);
   this->FieldSourceKernel = context->CreateKernel(program, "lbl_source_from_fields", this);
   this->AddKernel = context->CreateKernel(program, "lbl_add", this);
-  if (!this->StepKernel || !this->ProbeKernel || !this->ScatteredKernel || !this->SourceKernel ||
-    !this->RestrictKernel || !this->ProlongKernel || !this->FieldSourceKernel || !this->AddKernel)
+  if (!this->StepKernel || !this->ProbeKernel || !this->ScatteredKernel ||
+    !this->ScatteredFluxKernel || !this->SourceKernel || !this->RestrictKernel ||
+    !this->ProlongKernel || !this->FieldSourceKernel || !this->AddKernel)
   {
     return false;
   }

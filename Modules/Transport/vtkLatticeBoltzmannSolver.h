@@ -459,6 +459,22 @@ public:
   bool ComputeMultipleScattering(vtkFloatArray* out, vtkDataArray* addend);
 
   /**
+   * The direction of the light S_ms scatters (MultipleScatteringDirection of
+   * vtkRefractaLightingVolume): per voxel the net flux of the light the lattice scatters there
+   * over its scattered power, F / S = sum_i w_i c_i / |c_i| / sum_i w_i with w_i = a (1 - T_i)
+   * f_i over the directions i and the channels, into `out` (3 components in the grid's frame,
+   * resized to one tuple per voxel). Its length is that light's mean cosine about F: 0 where it
+   * is isotropic, 1 where it is collimated along a lattice direction, zero where nothing
+   * scatters. The view pass shades S_ms about it (Physics.md, "The direction of multiple
+   * scattering"). With the first-collision split give `total` (S_ms of the lattice and the
+   * photons, ComputeMultipleScattering()'s result with its addend), `photons` (the photons' part)
+   * and `photonDirection` (its flux over its fluence; null: isotropic): each voxel's direction is
+   * then the two parts' directions weighted by their scattered power (channel sums).
+   */
+  bool ComputeMultipleScatteringDirection(vtkFloatArray* out, vtkDataArray* total = nullptr,
+    vtkDataArray* photons = nullptr, vtkDataArray* photonDirection = nullptr);
+
+  /**
    * Step-length class of each direction and the lengths (filled by Initialize()).
    */
   const std::vector<double>& GetClassLengths() const
@@ -510,6 +526,13 @@ protected:
 #ifndef __VTK_WRAP__
   // S_ms into a new device buffer (lbl_scattered), not read back.
   bool ComputeMultipleScatteringOnDevice(vtkOpenCLBuffer& result);
+  // The split's direction: the lattice's (in `lattice`) and the photons' weighted by their parts
+  // of `total` (ComputeMultipleScatteringDirection()).
+  static void MergePhotonDirection(vtkFloatArray* lattice, vtkDataArray* total,
+    vtkDataArray* photons, vtkDataArray* photonDirection);
+  // Runs a read-out kernel (state, coefficients -> 3 floats per voxel) into a new buffer.
+  bool RunVoxelReadOut(
+    vtkOpenCLKernel& kernel, const char* name, const char* bufferName, vtkOpenCLBuffer& result);
 #endif
   // Coarse start (vtkLatticeBoltzmannSolverCoarseStart.cxx).
   void RestrictMedium(const int dims[3], const double spacing[3], const float* extinction,
@@ -573,6 +596,7 @@ protected:
 
   vtkSmartPointer<vtkOpenCLContext> Context;
   int Dims[4] = { 0, 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 }; // of the grid Initialize() was given
   int NumberOfBlocks[4] = { 0, 0, 0, 0 };
   vtkIdType NumberOfVoxels = 0;
   std::vector<int> DirectionClass;
@@ -602,6 +626,7 @@ protected:
   vtkOpenCLKernel StateInterfaceKernel; // lbl_block_state_interface
   vtkOpenCLKernel ProbeKernel;
   vtkOpenCLKernel ScatteredKernel;
+  vtkOpenCLKernel ScatteredFluxKernel; // lbl_scattered_flux
   vtkOpenCLKernel SourceKernel;
   vtkOpenCLKernel FieldSourceKernel; // lbl_source_from_fields
   vtkOpenCLKernel AddKernel;         // lbl_add

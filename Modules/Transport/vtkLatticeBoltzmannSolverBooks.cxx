@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 using refracta_lbm::Cx;
 using refracta_lbm::Cy;
@@ -110,6 +111,13 @@ bool vtkLatticeBoltzmannSolver::ComputeMultipleScattering(float* out)
 //------------------------------------------------------------------------------
 bool vtkLatticeBoltzmannSolver::ComputeMultipleScatteringOnDevice(vtkOpenCLBuffer& result)
 {
+  return this->RunVoxelReadOut(this->ScatteredKernel, "lbl_scattered", "LBL S_ms", result);
+}
+
+//------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::RunVoxelReadOut(
+  vtkOpenCLKernel& kernel, const char* name, const char* bufferName, vtkOpenCLBuffer& result)
+{
   if (!this->BuildKernels())
   {
     return false;
@@ -117,7 +125,7 @@ bool vtkLatticeBoltzmannSolver::ComputeMultipleScatteringOnDevice(vtkOpenCLBuffe
   vtkOpenCLContext* context = this->GetContext();
   const size_t n = static_cast<size_t>(this->NumberOfVoxels);
   result =
-    context->CreateBuffer(CL_MEM_READ_WRITE, 3 * n * sizeof(float), nullptr, "LBL S_ms", this);
+    context->CreateBuffer(CL_MEM_READ_WRITE, 3 * n * sizeof(float), nullptr, bufferName, this);
   if (!result)
   {
     return false;
@@ -125,10 +133,10 @@ bool vtkLatticeBoltzmannSolver::ComputeMultipleScatteringOnDevice(vtkOpenCLBuffe
   const cl_int4 dims = { { this->Dims[0], this->Dims[1], this->Dims[2], 0 } };
   const size_t global[3] = { size_t(this->Dims[0]), size_t(this->Dims[1]), size_t(this->Dims[2]) };
   const size_t local[3] = { LocalRow(this->Dims[0]), 1, 1 };
-  return context->Check(vtkOpenCLSetKernelArgs(this->ScatteredKernel.Get(), this->CurrentState(),
+  return context->Check(vtkOpenCLSetKernelArgs(kernel.Get(), this->CurrentState(),
                           this->Coefficients.Get(), result.Get(), dims),
-           "clSetKernelArg(lbl_scattered)", this) &&
-    context->RunKernel(this->ScatteredKernel.Get(), 3, global, local, "lbl_scattered", this);
+           (std::string("clSetKernelArg(") + name + ")").c_str(), this) &&
+    context->RunKernel(kernel.Get(), 3, global, local, name, this);
 }
 
 //------------------------------------------------------------------------------

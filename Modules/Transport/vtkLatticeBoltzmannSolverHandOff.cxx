@@ -1,6 +1,6 @@
 // The lattice's side of the lighting volume's device hand-off (vtkOpenCLDeviceArrays): its
 // source from point arrays, taken from their device copies where the context holds them, and its
-// S_ms into a point array whose device copy it keeps for the view pass.
+// S_ms into a point array whose device copy it keeps for the view pass, and S_ms's direction.
 #include "vtkLatticeBoltzmannSolver.h"
 #include "vtkLatticeBoltzmannSolverInternals.h"
 
@@ -12,7 +12,10 @@
 #include "vtkPointData.h"
 #include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaMedium.h"
+#include "vtkSMPTools.h"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace
@@ -163,4 +166,83 @@ bool vtkLatticeBoltzmannSolver::ComputeMultipleScattering(vtkFloatArray* out, vt
     copies->Remember(out, result.Get(), this);
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::ComputeMultipleScatteringDirection(
+  vtkFloatArray* out, vtkDataArray* total, vtkDataArray* photons, vtkDataArray* photonDirection)
+{
+  const vtkIdType n = this->NumberOfVoxels;
+  if (!out)
+  {
+    vtkErrorMacro("ComputeMultipleScatteringDirection() needs an output array.");
+    return false;
+  }
+  if (!HasVoxelTriples(total, n, true, this) || !HasVoxelTriples(photons, n, true, this) ||
+    !HasVoxelTriples(photonDirection, n, true, this) || (photons && !total))
+  {
+    return false;
+  }
+  if (!this->BuildKernels())
+  {
+    return false;
+  }
+  // The lattice directions' unit vectors in the grid's frame take the spacing.
+  const cl_float4 spacing = { { static_cast<float>(this->Spacing[0]),
+    static_cast<float>(this->Spacing[1]), static_cast<float>(this->Spacing[2]), 0.0f } };
+  vtkOpenCLBuffer result;
+  if (!this->GetContext()->Check(
+        clSetKernelArg(this->ScatteredFluxKernel.Get(), 4, sizeof(spacing), &spacing),
+        "clSetKernelArg(lbl_scattered_flux)", this) ||
+    !this->RunVoxelReadOut(
+      this->ScatteredFluxKernel, "lbl_scattered_flux", "LBL S_ms direction", result))
+  {
+    return false;
+  }
+  out->SetNumberOfComponents(3);
+  out->SetNumberOfTuples(n);
+  if (!this->GetContext()->ReadBuffer(
+        result.Get(), 3 * static_cast<size_t>(n) * sizeof(float), out->GetPointer(0), this))
+  {
+    return false;
+  }
+  if (photons)
+  {
+    MergePhotonDirection(out, total, photons, photonDirection);
+  }
+  out->Modified();
+  if (!photons && this->KeepDeviceCopies)
+  {
+    this->GetContext()->GetDeviceArrays()->Remember(out, result.Get(), this);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkLatticeBoltzmannSolver::MergePhotonDirection(
+  vtkFloatArray* lattice, vtkDataArray* total, vtkDataArray* photons, vtkDataArray* photonDirection)
+{
+  float* f = lattice->GetPointer(0);
+  vtkSMPTools::For(0, lattice->GetNumberOfTuples(),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType v = begin; v < end; ++v)
+      {
+        double all = 0, mine = 0;
+        for (int c = 0; c < 3; ++c)
+        {
+          all += total->GetComponent(v, c);
+          mine += photons->GetComponent(v, c);
+        }
+        // The lattice's part is what the total holds beyond the photons' (>= 0 up to rounding).
+        const double theirs = std::max(0.0, all - mine);
+        const double sum = theirs + mine;
+        for (int c = 0; c < 3; ++c)
+        {
+          const double p = photonDirection ? photonDirection->GetComponent(v, c) : 0.0;
+          const double merged = sum > 0 ? (theirs * f[3 * v + c] + mine * p) / sum : 0.0;
+          f[3 * v + c] = std::isfinite(merged) ? static_cast<float>(merged) : 0.0f;
+        }
+      }
+    });
 }

@@ -262,9 +262,24 @@ int vtkPhotonDiffusionSchedule::RequestData(
     this->PhotonShare = std::min(0.95, std::max(0.05, marching / (marching + finalSolve)));
   }
 
+  // S_ms's direction: the lattice's flux, with the split merged with the photons' orders'.
+  vtkNew<vtkFloatArray> msDirection;
+  msDirection->SetName(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
+  vtkDataArray* photonMs =
+    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName());
+  if (!solver->ComputeMultipleScatteringDirection(msDirection, photonMs ? ms.GetPointer() : nullptr,
+        photonMs,
+        lighting->GetPointData()->GetArray(
+          vtkRefractaLightingVolume::MultipleScatteringDirectionName())))
+  {
+    output->Initialize();
+    return 0;
+  }
+
   output->CopyStructure(medium);
   vtkRefractaLightingVolume::PassSingleScattering(lighting, output);
   output->GetPointData()->AddArray(ms);
+  output->GetPointData()->AddArray(msDirection);
   vtkFieldData* fd = output->GetFieldData();
   fd->PassData(lighting->GetFieldData());
   vtkNew<vtkIntArray> iterations;

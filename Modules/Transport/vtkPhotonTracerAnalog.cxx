@@ -17,14 +17,6 @@ using namespace vtkPhotonTracerDetail;
 
 namespace
 {
-// Fixed-point accumulators per voxel: with the split S_ms (3 per voxel), then the lattice's source
-// (3 per voxel) and its direction sums (3 per voxel) (photon_hand_to_lattice), each in a block of
-// its own; else S_ms and its direction sums interleaved, six per voxel (one cache line a deposit).
-size_t AccumulatorsPerVoxel(int splitOrders)
-{
-  return splitOrders > 0 ? 9 : 6;
-}
-
 // S_ms's direction sums (per photon scale) into F / phi_ms: over the channel sum of S_ms times
 // the voxel's volume (the deposits' weight), at most unit length (rounding), zero where none.
 void FluxOverFluence(vtkFloatArray* multiple, vtkFloatArray* direction, double volume)
@@ -80,7 +72,7 @@ bool vtkPhotonTracer::UploadAnalogScattering(Internals& run)
   g.resize(voxels, 0.0f); // a medium kept from a run before this member existed has none
   run.AnisotropyBuffer = alloc.Make(
     CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(float), g.data(), "anisotropy");
-  const size_t bytes = voxels * AccumulatorsPerVoxel(run.SplitOrders) * sizeof(cl_long);
+  const size_t bytes = voxels * MultipleAccumulatorsPerVoxel(run.SplitOrders) * sizeof(cl_long);
   run.MultipleFixed = alloc.Make(CL_MEM_READ_WRITE, bytes, nullptr, "S_ms accumulator");
   run.MultipleBytes = bytes;
   return run.AnisotropyBuffer && run.MultipleFixed &&
@@ -95,29 +87,25 @@ bool vtkPhotonTracer::ResolveMultipleScattering(Internals& run)
     return true;
   }
   const size_t voxels = run.M.Voxels;
+  // S_ms with its flux over its fluence (the orders the photons carried).
   run.Multiple->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
-  if (run.SplitOrders == 0)
-  {
-    // Every order by photons: S_ms with its flux over its fluence.
-    run.MultipleDirection->SetName(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
-    if (!this->ResolveDeposits(run, run.MultipleFixed.Get(), 0, run.MultipleFixed.Get(), 3, 6,
-          run.Multiple, run.MultipleDirection, false))
-    {
-      return false;
-    }
-    FluxOverFluence(
-      run.Multiple, run.MultipleDirection, run.M.Spacing[0] * run.M.Spacing[1] * run.M.Spacing[2]);
-    // The device holds the raw sums: no copy of the array to hand on.
-    run.Context->GetDeviceArrays()->Forget(run.MultipleDirection);
-    return true;
-  }
-  if (!this->ResolveDeposits(run, run.MultipleFixed.Get(), 0, nullptr, 0, 3, run.Multiple, nullptr))
+  run.MultipleDirection->SetName(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
+  if (!this->ResolveDeposits(run, run.MultipleFixed.Get(), 0, run.MultipleFixed.Get(), 3, 6,
+        run.Multiple, run.MultipleDirection, false))
   {
     return false;
+  }
+  FluxOverFluence(
+    run.Multiple, run.MultipleDirection, run.M.Spacing[0] * run.M.Spacing[1] * run.M.Spacing[2]);
+  // The device holds the raw sums: no copy of the array to hand on.
+  run.Context->GetDeviceArrays()->Forget(run.MultipleDirection);
+  if (run.SplitOrders == 0)
+  {
+    return true;
   }
   run.LatticeSource->SetName(vtkRefractaLightingVolume::MultipleScatteringSourceName());
   run.LatticeSourceDirection->SetName(
     vtkRefractaLightingVolume::MultipleScatteringSourceDirectionName());
-  return this->ResolveDeposits(run, run.MultipleFixed.Get(), 3 * voxels, run.MultipleFixed.Get(),
-    6 * voxels, 3, run.LatticeSource, run.LatticeSourceDirection);
+  return this->ResolveDeposits(run, run.MultipleFixed.Get(), 6 * voxels, run.MultipleFixed.Get(),
+    9 * voxels, 3, run.LatticeSource, run.LatticeSourceDirection);
 }

@@ -78,6 +78,15 @@ inline uint32_t SplitMix(uint64_t& state)
   return static_cast<uint32_t>((z ^ (z >> 31)) >> 32);
 }
 
+// Fixed-point S_ms accumulators per voxel (photon_trace.cl): S_ms and its direction sums
+// interleaved, six per voxel (one cache line a deposit); with the first-collision split then the
+// lattice's source (3 per voxel) and its direction sums (3 per voxel), each a block of its own
+// (photon_hand_to_lattice).
+inline size_t MultipleAccumulatorsPerVoxel(int splitOrders)
+{
+  return splitOrders > 0 ? 12 : 6;
+}
+
 inline double Dot(const double a[3], const double b[3])
 {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];

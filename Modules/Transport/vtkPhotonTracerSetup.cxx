@@ -653,21 +653,21 @@ bool vtkPhotonTracer::PlanMemory(Internals& run)
   if (run.Analog)
   {
     plan->AddDeviceBuffer(grid, "anisotropy", v * 4, gridSetting);
-    // S_ms, then the split's source and its direction sums, or S_ms's direction sums.
+    // S_ms and its direction sums, then the split's source and its direction sums.
     plan->AddDeviceBuffer(grid,
-      run.SplitOrders > 0 ? "S_ms and lattice source accumulators"
+      run.SplitOrders > 0 ? "S_ms, direction and lattice source accumulators"
                           : "S_ms and direction accumulators",
-      v * (run.SplitOrders > 0 ? 9 : 6) * 8, gridSetting);
+      v * MultipleAccumulatorsPerVoxel(run.SplitOrders) * 8, gridSetting);
     plan->AddHostMemory(
-      grid, "MultipleScattering", v * 12 * (run.SplitOrders > 0 ? 3 : 2), gridSetting);
+      grid, "MultipleScattering", v * 12 * (run.SplitOrders > 0 ? 4 : 2), gridSetting);
   }
   if (m.Scatters)
   {
-    // Each resolved field (ResolveDeposits: Radiance, its direction, S_ms, its direction or the
+    // Each resolved field (ResolveDeposits: Radiance, its direction, S_ms, its direction and the
     // split's source and its direction) and its smoothed copy. They are made one field at a time,
     // so this is an upper bound, like the allocator's count it is compared with.
     const int fields =
-      2 + (run.Analog ? (run.SplitOrders > 0 ? 3 : 2) : 0) + (run.Lobes > 1 ? 2 * run.Lobes : 0);
+      2 + (run.Analog ? (run.SplitOrders > 0 ? 4 : 2) : 0) + (run.Lobes > 1 ? 2 * run.Lobes : 0);
     plan->AddDeviceBuffer(
       grid, "resolved fields", fields * (this->Smoothing ? 2 : 1) * v * 12, gridSetting);
   }

@@ -413,10 +413,7 @@ void vtkPhotonTracer::WriteSurfaceOutput(Internals& run, vtkImageData* output)
   if (run.Analog)
   {
     output->GetPointData()->AddArray(run.Multiple);
-    if (run.SplitOrders == 0)
-    {
-      output->GetPointData()->AddArray(run.MultipleDirection);
-    }
+    output->GetPointData()->AddArray(run.MultipleDirection);
   }
   if (run.SplitOrders > 0)
   {

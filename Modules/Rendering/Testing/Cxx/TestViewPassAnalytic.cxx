@@ -3,8 +3,8 @@
 // seen by straight rays, has per pixel
 //   L = Q (1 - exp(-sigma l)) / sigma + exp(-sigma l) L_bg,
 //   Q = eps + p_HG(g, dot(dir, -d)) S1 + S_ms / (4 pi)
-// (with a MultipleScatteringDirection F of length f: (1 - f) S_ms / (4 pi) + f p_HG(g,
-// dot(F / f, -d)) S_ms),
+// (with a MultipleScatteringDirection F of length f: p_HG(g f, dot(F / f, -d)) S_ms, the phase
+// function applied to light spread as p_HG(f) about F),
 // with l the chord of the pixel's ray through the box [-s/2, (N - 1/2) s] (computed here in
 // double precision). Because the kernel integrates each step exactly for a constant medium, the
 // answer must hold for any step length, with perspective and parallel cameras, a rotated and
@@ -100,8 +100,8 @@ Scene MakeScene(bool rotated)
 
 // Expected RGBA for every pixel, in double, from the same camera frame definition.
 // `index`: the medium's uniform refractive index; sources count 1 / n^2 (basic radiance).
-// `msFlux` (grid-local, length f <= 1): MultipleScatteringDirection, the fraction f of S_ms shaded
-// with the phase function about it, the rest isotropic (nullptr: all isotropic).
+// `msFlux` (grid-local, length f <= 1): MultipleScatteringDirection, S_ms shaded with the phase
+// function of anisotropy g f about it (nullptr: all isotropic).
 // `lobes`: S1 in lobes, fraction k of S1 about direction k (grid-local), instead of all of it
 // about the scene's direction.
 struct Lobe
@@ -150,7 +150,7 @@ std::vector<double> Expected(const Scene& scene, vtkCamera* camera, int w, int h
       }
       const double f = msFlux ? vtkMath::Norm(msFlux) : 0.0;
       const double msPhase =
-        (1 - f) / (4 * vtkMath::Pi()) + (f > 0 ? f * HG(-vtkMath::Dot(msFlux, d) / f, G) : 0.0);
+        f > 0 ? HG(-vtkMath::Dot(msFlux, d) / f, G * f) : 1 / (4 * vtkMath::Pi());
       double meanT = 0;
       for (int c = 0; c < 3; ++c)
       {
@@ -243,10 +243,9 @@ TEST(ViewPassAnalytic, HomogeneousCubeMatchesClosedForm)
   }
 }
 
-// MultipleScatteringDirection (the photons' F / phi_ms, length f = 0.6 here): the view pass
-// shades f S_ms with the phase function about it and (1 - f) S_ms isotropically, on the plain
-// and the rotated, far-off grid, with a perspective and a parallel camera. (An isotropic S_ms,
-// f = 0, is the cube above.)
+// MultipleScatteringDirection (F / phi_ms, length f = 0.6 here): the view pass shades S_ms with
+// the phase function of anisotropy g f about it, on the plain and the rotated, far-off grid, with
+// a perspective and a parallel camera. (An isotropic S_ms, f = 0, is the cube above.)
 TEST(ViewPassAnalytic, MultipleScatteringWithAFluxMatchesTheClosedForm)
 {
   double flux[3] = { -0.5, 0.2, 0.7 };
