@@ -24,7 +24,8 @@
 // Then out_i goes to f_i(r + c_i). Leaving the grid: vacuum (REFRACTA_LBL_BOUNDARY 0: the power escapes)
 // or mirror (REFRACTA_LBL_BOUNDARY 1: it comes back into f_opp(i)(r)).
 //
-// Build options (-D): REFRACTA_LBL_Q (6 or 18 directions), REFRACTA_LBL_NCLASS (number of distinct step lengths),
+// Build options (-D): REFRACTA_LBL_Q (6 or 18 directions), REFRACTA_LBL_SX, _SY, _SZ (the grid's spacing
+// over its largest, for the directions' unit vectors in the grid's frame), REFRACTA_LBL_NCLASS (number of distinct step lengths),
 // REFRACTA_LBL_CLASSES (brace list: the length class of each direction), REFRACTA_LBL_BOUNDARY (0 vacuum,
 // 1 mirror), REFRACTA_LBL_SOURCE_PHASE (0: the source is isotropic; 1: it is distributed over the
 // directions by the HG phase function around the source direction), and for the blocked kernels
@@ -49,12 +50,29 @@
 #ifndef REFRACTA_LBL_SOURCE_PHASE
 #define REFRACTA_LBL_SOURCE_PHASE 0
 #endif
+#ifndef REFRACTA_LBL_SX
+#define REFRACTA_LBL_SX 1.0f
+#define REFRACTA_LBL_SY 1.0f
+#define REFRACTA_LBL_SZ 1.0f
+#endif
 
 // Directions come in opposite pairs (2k, 2k + 1), so opp(i) = i ^ 1.
 __constant int lbl_cx[18] = { 1, -1, 0, 0, 0, 0, 1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0 };
 __constant int lbl_cy[18] = { 0, 0, 1, -1, 0, 0, 1, -1, -1, 1, 0, 0, 0, 0, 1, -1, 1, -1 };
 __constant int lbl_cz[18] = { 0, 0, 0, 0, 1, -1, 0, 0, 0, 0, 1, -1, -1, 1, 1, -1, -1, 1 };
 __constant int lbl_class[REFRACTA_LBL_Q] = REFRACTA_LBL_CLASSES;
+
+// Lattice direction i's unit vector in the grid's frame (c_i scaled by the spacing), as scalars:
+// constants once the loop over i is unrolled.
+#define LBL_EX(i) (lbl_cx[i] * REFRACTA_LBL_SX * lbl_inverse_length(i))
+#define LBL_EY(i) (lbl_cy[i] * REFRACTA_LBL_SY * lbl_inverse_length(i))
+#define LBL_EZ(i) (lbl_cz[i] * REFRACTA_LBL_SZ * lbl_inverse_length(i))
+__attribute__((always_inline)) inline float lbl_inverse_length(int i)
+{
+  const float x = lbl_cx[i] * REFRACTA_LBL_SX, y = lbl_cy[i] * REFRACTA_LBL_SY,
+              z = lbl_cz[i] * REFRACTA_LBL_SZ;
+  return rsqrt(x * x + y * y + z * z);
+}
 
 // Number of voxels of a grid of dims (x, y, z).
 inline size_t lbl_voxels(int4 dims)
@@ -81,10 +99,9 @@ __attribute__((always_inline)) inline void lbl_source_weights(
   #pragma unroll
   for (int i = 0; i < REFRACTA_LBL_Q; ++i)
   {
-    // cos between the source direction and unit lattice direction c_i (|c_i| = 1 or sqrt 2).
-    const float c = (float)lbl_cx[i] * dx + (float)lbl_cy[i] * dy + (float)lbl_cz[i] * dz;
-    const float norm = i < 6 ? 1.0f : 0.70710678118654752f;
-    w[i] = refracta_hg_phase(c * inv * norm, g);
+    // cos between the source direction (grid frame) and lattice direction i's unit vector there.
+    const float c = LBL_EX(i) * dx + LBL_EY(i) * dy + LBL_EZ(i) * dz;
+    w[i] = refracta_hg_phase(c * inv, g);
     sum += w[i];
   }
   const float scale = 1.0f / sum;
@@ -472,12 +489,12 @@ __kernel void lbl_scattered(
 
 // The direction of the multiple-scattering source (lbl_scattered): the net flux of the light
 // being scattered over its scattered power, F / S = sum_i w_i e_i / sum_i w_i with w_i =
-// a (1 - T_i) f_i summed over the channels and e_i the unit vector along lattice direction i in
-// the grid's frame (c_i scaled by the spacing), as 3 floats per voxel (a VTK array). Its length is
-// the mean cosine of that light about F (0 isotropic, 1 collimated along a lattice direction);
-// zero where nothing scatters. One work-item per voxel, global (nx, ny, nz).
-__kernel void lbl_scattered_flux(__global const float* state, __global const float* coef,
-  __global float* out, const int4 dims, const float4 spacing)
+// a (1 - T_i) f_i summed over the channels and e_i lattice direction i's unit vector in the
+// grid's frame, as 3 floats per voxel (a VTK array). Its length is the mean cosine of that light
+// about F (0 isotropic, 1 collimated along a lattice direction); zero where nothing scatters.
+// One work-item per voxel, global (nx, ny, nz).
+__kernel void lbl_scattered_flux(
+  __global const float* state, __global const float* coef, __global float* out, const int4 dims)
 {
   const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
   if (x >= dims.x || y >= dims.y || z >= dims.z)
@@ -495,11 +512,9 @@ __kernel void lbl_scattered_flux(__global const float* state, __global const flo
     for (int i = 0; i < REFRACTA_LBL_Q; ++i)
     {
       const float w = a * (1.0f - coef[(lbl_class[i] * 3 + ch) * n + v]) * state[(i * 3 + ch) * n + v];
-      const float3 e = normalize((float3)((float)lbl_cx[i] * spacing.x,
-        (float)lbl_cy[i] * spacing.y, (float)lbl_cz[i] * spacing.z));
-      fx += w * e.x;
-      fy += w * e.y;
-      fz += w * e.z;
+      fx += w * LBL_EX(i);
+      fy += w * LBL_EY(i);
+      fz += w * LBL_EZ(i);
       total += w;
     }
   }

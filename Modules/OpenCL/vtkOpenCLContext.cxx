@@ -108,6 +108,15 @@ vtkOpenCLContext* vtkOpenCLContext::GetDefault()
 }
 
 //------------------------------------------------------------------------------
+std::string vtkOpenCLContext::FloatLiteral(double value)
+{
+  std::ostringstream s;
+  s.precision(9);
+  s << std::scientific << static_cast<float>(value) << "f";
+  return s.str();
+}
+
+//------------------------------------------------------------------------------
 double vtkOpenCLContext::ChooseFixedPointScale(double largestSum)
 {
   if (!(largestSum > 0.0) || !std::isfinite(largestSum))

@@ -201,6 +201,12 @@ public:
    */
   static double ChooseFixedPointScale(double largestSum);
 
+  /**
+   * A float literal for a -D build option ("1.25000000e+00f") that the OpenCL compiler reads back
+   * as the same float as static_cast<float>(value).
+   */
+  static std::string FloatLiteral(double value);
+
   ///@{
   /**
    * On-disk binary cache. The directory defaults as described above; UseBinaryCache (default

@@ -4,6 +4,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMath.h"
+#include "vtkOpenCLContext.h"
 #include "vtkPointData.h"
 #include "vtkRefractaEnvironmentMap.h"
 #include "vtkRefractaGridFrame.h"
@@ -171,10 +172,8 @@ std::string KernelOptions(const KernelVariant& v)
   flag(v.IndexVaries, "REFRACTA_INDEX_WEIGHT");
   if (!v.IndexVaries && v.UniformIndex != 1.0)
   {
-    std::ostringstream scale;
-    scale.precision(9);
-    scale << " -DREFRACTA_SOURCE_SCALE=" << 1.0 / (v.UniformIndex * v.UniformIndex) << "f";
-    options += scale.str();
+    options += " -DREFRACTA_SOURCE_SCALE=" +
+      vtkOpenCLContext::FloatLiteral(1.0 / (v.UniformIndex * v.UniformIndex));
   }
   flag(v.Single, "REFRACTA_HAS_SINGLE");
   if (v.Single && v.RadianceLobes >= 2)

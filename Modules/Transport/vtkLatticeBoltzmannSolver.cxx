@@ -351,6 +351,15 @@ bool vtkLatticeBoltzmannSolver::BuildKernels()
   }
   options << "} -DREFRACTA_LBL_BOUNDARY=" << this->Boundary
           << " -DREFRACTA_LBL_SOURCE_PHASE=" << this->SourceDistribution;
+  // The directions' unit vectors in the grid's frame (the source's phase function, S_ms's
+  // direction) take the spacing's shape; Initialize() sets it and always rebuilds.
+  const double largest = std::max({ this->Spacing[0], this->Spacing[1], this->Spacing[2] });
+  const char* axis[3] = { "X", "Y", "Z" };
+  for (int a = 0; a < 3; ++a)
+  {
+    options << " -DREFRACTA_LBL_S" << axis[a] << "="
+            << vtkOpenCLContext::FloatLiteral(this->Spacing[a] / largest);
+  }
   if (blocked)
   {
     options << " -DREFRACTA_LBL_B=" << this->BlockSize

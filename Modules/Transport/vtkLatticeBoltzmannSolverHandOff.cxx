@@ -183,19 +183,9 @@ bool vtkLatticeBoltzmannSolver::ComputeMultipleScatteringDirection(
   {
     return false;
   }
-  if (!this->BuildKernels())
-  {
-    return false;
-  }
-  // The lattice directions' unit vectors in the grid's frame take the spacing.
-  const cl_float4 spacing = { { static_cast<float>(this->Spacing[0]),
-    static_cast<float>(this->Spacing[1]), static_cast<float>(this->Spacing[2]), 0.0f } };
   vtkOpenCLBuffer result;
-  if (!this->GetContext()->Check(
-        clSetKernelArg(this->ScatteredFluxKernel.Get(), 4, sizeof(spacing), &spacing),
-        "clSetKernelArg(lbl_scattered_flux)", this) ||
-    !this->RunVoxelReadOut(
-      this->ScatteredFluxKernel, "lbl_scattered_flux", "LBL S_ms direction", result))
+  if (!this->RunVoxelReadOut(
+        this->ScatteredFluxKernel, "lbl_scattered_flux", "LBL S_ms direction", result))
   {
     return false;
   }

@@ -212,16 +212,18 @@ bool vtkPhotonTracer::GeneratePhotons(Internals& run)
           << " -DREFRACTA_NODE_CUTS=" << m.NodeCuts
           << " -DREFRACTA_GREY_EXTINCTION=" << (m.ExtinctionChannels == 1)
           << " -DREFRACTA_GREY_ALBEDO=" << (m.AlbedoChannels == 1)
-          << " -DREFRACTA_MIN_STEP=" << FloatLiteral(this->MinimumStep)
-          << " -DREFRACTA_MAX_STEP=" << FloatLiteral(this->MaximumStep) << " -DREFRACTA_CAP_STEP="
-          << FloatLiteral(std::min(this->SecondaryStepLimit, this->MaximumStep))
-          << " -DREFRACTA_FIXED_STEP=" << FloatLiteral(this->FixedStep)
+          << " -DREFRACTA_MIN_STEP=" << vtkOpenCLContext::FloatLiteral(this->MinimumStep)
+          << " -DREFRACTA_MAX_STEP=" << vtkOpenCLContext::FloatLiteral(this->MaximumStep)
+          << " -DREFRACTA_CAP_STEP="
+          << vtkOpenCLContext::FloatLiteral(std::min(this->SecondaryStepLimit, this->MaximumStep))
+          << " -DREFRACTA_FIXED_STEP=" << vtkOpenCLContext::FloatLiteral(this->FixedStep)
           << " -DREFRACTA_MAX_STEPS=" << this->MaximumNumberOfSteps
           << " -DREFRACTA_MAX_INTERFACES=" << this->MaximumNumberOfInterfaceEvents
-          << " -DREFRACTA_EXT_STEP_LIMIT=" << FloatLiteral(this->ExtinctionStepLimit)
-          << " -DREFRACTA_ROULETTE=" << FloatLiteral(this->RouletteThreshold)
-          << " -DREFRACTA_MAX_TURN=" << FloatLiteral(this->MaximumTurn)
-          << " -DREFRACTA_STEP_TOLERANCE=" << FloatLiteral(this->StepTolerance)
+          << " -DREFRACTA_EXT_STEP_LIMIT="
+          << vtkOpenCLContext::FloatLiteral(this->ExtinctionStepLimit)
+          << " -DREFRACTA_ROULETTE=" << vtkOpenCLContext::FloatLiteral(this->RouletteThreshold)
+          << " -DREFRACTA_MAX_TURN=" << vtkOpenCLContext::FloatLiteral(this->MaximumTurn)
+          << " -DREFRACTA_STEP_TOLERANCE=" << vtkOpenCLContext::FloatLiteral(this->StepTolerance)
           << " -DREFRACTA_MAX_HALVINGS=" << (this->StepTolerance > 0 ? MaximumHalvings : 0);
   const bool interfaces = run.Surfaces && run.Surfaces->GetNumberOfDielectricTriangles() > 0;
   // The analog events (run.Analog, decided with the memory plan) live in the surfaces' event loop,

@@ -36,15 +36,6 @@ inline double Seconds(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// A float literal for -D options that the OpenCL compiler reads back as the same float.
-inline std::string FloatLiteral(double value)
-{
-  std::ostringstream s;
-  s.precision(9);
-  s << std::scientific << static_cast<float>(value) << "f";
-  return s.str();
-}
-
 inline cl_int4 Int4(const int d[3])
 {
   cl_int4 v;

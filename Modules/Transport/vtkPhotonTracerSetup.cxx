@@ -7,6 +7,7 @@
 #include "vtkImageData.h"
 #include "vtkMediumValidator.h"
 #include "vtkNew.h"
+#include "vtkOpenCLContext.h"
 #include "vtkOpenCLMemoryPlan.h"
 #include "vtkPointData.h"
 #include "vtkRefractaMedium.h"
@@ -382,8 +383,8 @@ bool Run1D(vtkOpenCLContext* ctx, cl_kernel kernel, size_t count, const char* la
 bool RunOctree(vtkOpenCLContext* ctx, vtkObject* reporter, Allocator& alloc, cl_mem nBuffer,
   const int dims[3], double eps, double eps2, vtkOpenCLBuffer& octree)
 {
-  const std::string options =
-    "-DREFRACTA_EPS=" + FloatLiteral(eps) + " -DREFRACTA_EPS2=" + FloatLiteral(eps2);
+  const std::string options = "-DREFRACTA_EPS=" + vtkOpenCLContext::FloatLiteral(eps) +
+    " -DREFRACTA_EPS2=" + vtkOpenCLContext::FloatLiteral(eps2);
   cl_program program = ctx->GetProgram(
     { "refracta_atomics.cl", "refracta_common.cl", "photon_octree.cl" }, options, reporter);
   if (!program)
