@@ -424,8 +424,9 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
 #ifdef REFRACTA_HAS_MULTIPLE
 #ifdef REFRACTA_MULTIPLE_DIRECTION
   // The multiply scattered light's flux over its fluence F / phi (length f, stored after S_ms in
-  // the same buffer): a fraction f of it travels along F (the phase function), the rest is
-  // isotropic; exact for a collimated and an isotropic field, right to first order between.
+  // the same buffer): the light taken as spread about F as a Henyey-Greenstein lobe of mean
+  // cosine f, which the medium's p_HG(g) scatters into exactly p_HG(g f) about F (the family is
+  // closed under convolution about one axis); exact for a collimated and an isotropic field.
   const float3 ms = REFRACTA_VIEW_LIGHT3(multiple);
   const float3 flux =
     REFRACTA_VIEW_LIGHT3(multiple + 3 * ((size_t)dims.x * (size_t)dims.y * (size_t)dims.z));

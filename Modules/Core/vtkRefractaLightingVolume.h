@@ -10,16 +10,16 @@
  * - `RadianceDirection` (3): mean travel direction of that light, unit vector in the grid-local
  *   frame (zero where none).
  * - `MultipleScattering` (3): S_ms = sigma_s phi_ms, power per unit volume scattered out of the
- *   diffuse field, isotropic (RGB, >= 0; vtkLatticeBoltzmannLighting, or the photons' analog
- *   scattering).
+ *   diffuse field (RGB, >= 0; vtkLatticeBoltzmannLighting, or the photons' analog scattering).
  * - `MultipleScatteringSource` (3, first-collision split only, vtkPhotonTracer::ScatteringOrders
  *   k): power per unit volume scattered by light scattered k times, the lattice's source.
  * - `MultipleScatteringSourceDirection` (3): mean travel direction of that light (unit, or zero).
- * - `MultipleScatteringDirection` (3, photons carrying every order only: analog scattering with
- *   surfaces): the mean travel direction of the multiply scattered light weighted by its power,
- *   i.e. its net flux over its fluence, F / phi_ms (length f in [0, 1]: 0 isotropic, 1
- *   collimated; zero where none). The view pass then shades S_ms as a fraction f travelling along
- *   it (the phase function) and the rest isotropic; without it, all isotropic.
+ * - `MultipleScatteringDirection` (3): the mean travel direction of the multiply scattered light
+ *   weighted by its power, i.e. its net flux over its fluence, F / phi_ms (length f in [0, 1]:
+ *   0 isotropic, 1 collimated; zero where none), from the photons' deposits (every order, or the
+ *   split's orders up to k) and from the lattice's distributions (the two merged by power with
+ *   the split). The view pass shades S_ms with the phase function of anisotropy g f about it
+ *   (light spread as a Henyey-Greenstein lobe of mean cosine f); without it, isotropic.
  *
  * - `RadianceLobe<k>` and `RadianceLobeDirection<k>` (3 each, k = 0 .. K - 1, K >= 2, optional;
  *   RadianceLobeName(k)): the same two fields for the lights of lobe k alone

@@ -19,14 +19,18 @@
 // overhead of building the occupancy and choosing the plain kernel).
 // Part 4: curved rays through a small glass ball (n 1.33, faint absorption) in the same grid,
 // skipping off and on, and the image differences set beside those of a 1e-6 camera move.
-// Medians of --runs runs (default 3; part 2 and 3 interleave the runs of every setting and of the
-// fixed-point mapper); CSV to --csv (default benchmark_view_pass.csv).
+// Part 5 (ms): the cost of shading multiple scattering about its direction: the same scene's
+// lighting volume with the lattice's S_ms (vtkLatticeBoltzmannLighting, which gives
+// MultipleScatteringDirection), the view pass with and without that array (the kernel reads 12
+// more bytes per voxel corner), the runs interleaved.
+// Medians of --runs runs (default 3; parts 2, 3 and 5 interleave the runs of every setting and of
+// the fixed-point mapper); CSV to --csv (default benchmark_view_pass.csv).
 //
 // usage: BenchmarkViewPass [--sizes 256,512,1024] [--medium 128] [--runs 3] [--photons 65536]
-//                          [--compare-size 512] [--cell-size 8] [--parts view,ea,small,glass]
-//                          [--csv FILE]
+//                          [--compare-size 512] [--cell-size 8]
+//                          [--parts view,ea,small,glass,ms] [--csv FILE]
 // --parts: which parts run (default all): view (part 1), ea (the emission-absorption ball of
-// part 2), small (part 3's small object), glass (part 4).
+// part 2), small (part 3's small object), glass (part 4), ms (part 5).
 // --cell-size: vtkRefractaViewPass::MacroCellSize (voxels) for every Refracta row.
 // Part 2 needs an X server (xvfb-run with Debian's VTK).
 #include "RefractaBenchmark.h"
@@ -37,12 +41,14 @@
 #include "vtkFixedPointVolumeRayCastMapper.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLatticeBoltzmannLighting.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkOpenCLContext.h"
 #include "vtkPhotonTracer.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkRefractaLightingVolume.h"
 #include "vtkRefractaRenderWindowCheck.h"
 #include "vtkRefractaViewPass.h"
 #include "vtkRenderWindow.h"
@@ -163,7 +169,7 @@ int main(int argc, char* argv[])
   std::vector<int> sizes = { 256, 512, 1024 };
   int n = 128, runs = 3, photons = 65536, compareSize = 512, cellSize = 8;
   std::string csv = "benchmark_view_pass.csv";
-  std::string parts = "view,ea,small,glass";
+  std::string parts = "view,ea,small,glass,ms";
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -188,7 +194,7 @@ int main(int argc, char* argv[])
     {
       std::cerr << "usage: BenchmarkViewPass [--sizes 256,512,1024] [--medium 128] [--runs 3] "
                    "[--photons 65536] [--compare-size 512] [--cell-size 8] "
-                   "[--parts view,ea,small,glass] [--csv FILE]\n";
+                   "[--parts view,ea,small,glass,ms] [--csv FILE]\n";
       return 2;
     }
   }
@@ -264,6 +270,64 @@ int main(int argc, char* argv[])
         }
       }
     }
+  }
+
+  // ---- Part 5: multiple scattering shaded about its direction, or as isotropic.
+  if (runs_part("ms"))
+  {
+    refracta::scenes::Scene scene = refracta::scenes::GlassSphereInFog(n);
+    vtkNew<vtkPhotonTracer> tracer;
+    tracer->SetInputData(scene.Medium);
+    for (auto& light : scene.Lights)
+    {
+      tracer->AddLight(light);
+    }
+    tracer->SetNumberOfPhotons(photons);
+    vtkNew<vtkLatticeBoltzmannLighting> lattice;
+    lattice->SetInputData(scene.Medium);
+    lattice->SetLightingConnection(tracer->GetOutputPort());
+    lattice->Update();
+    vtkNew<vtkImageData> isotropic;
+    isotropic->ShallowCopy(lattice->GetOutput());
+    isotropic->GetPointData()->RemoveArray(
+      vtkRefractaLightingVolume::MultipleScatteringDirectionName());
+    vtkImageData* lightings[2] = { isotropic, lattice->GetOutput() };
+    vtkNew<vtkRefractaViewPass> passes[2];
+    std::vector<double> seconds[2];
+    const int w = sizes.front();
+    for (int r = -1; r < runs; ++r) // run -1: the warm-up (compilation)
+    {
+      for (int k = 0; k < 2; ++k)
+      {
+        if ((r < 0 &&
+              (!passes[k]->SetMedium(scene.Medium) || !passes[k]->SetLighting(lightings[k]))) ||
+          !passes[k]->Render(scene.Camera, w, w, nullptr, nullptr, hdr))
+        {
+          return 1;
+        }
+        if (r >= 0)
+        {
+          seconds[k].push_back(passes[k]->GetLastSeconds());
+        }
+      }
+    }
+    const double iso = refracta::bench::Median(seconds[0]);
+    const double directed = refracta::bench::Median(seconds[1]);
+    for (int k = 0; k < 2; ++k)
+    {
+      const double median = k == 0 ? iso : directed;
+      const double steps = passes[k]->GetLastTotalSteps();
+      table.AddRow({ k == 0 ? "S_ms isotropic" : "S_ms about its direction",
+        passes[k]->GetLastCurved() ? "curved" : "straight",
+        std::to_string(w) + "x" + std::to_string(w), passes[k]->GetLastSkipping() ? "on" : "off",
+        refracta::bench::Table::Format(passes[k]->GetLastActiveCellFraction()),
+        refracta::bench::Table::Format(median * 1e3),
+        refracta::bench::Table::Format(steps / (double(w) * w)),
+        refracta::bench::Table::Format(steps / median / 1e6),
+        k == 0 ? "" : refracta::bench::Table::Format(directed / iso) });
+    }
+    std::cout << "  S_ms about its direction " << directed * 1e3 << " ms, isotropic " << iso * 1e3
+              << " ms (x" << directed / iso << ")\n";
   }
 
   // ---- Part 2 and 3: emission-absorption against vtkFixedPointVolumeRayCastMapper, for the
@@ -548,8 +612,9 @@ int main(int argc, char* argv[])
     summary.push_back(line.str());
   }
 
-  table.Print("BenchmarkViewPass (ratio = vtkFixedPointVolumeRayCastMapper time / this time; "
-              "skip = whether the skipping kernel ran; active = macro cells marched)");
+  table.Print("BenchmarkViewPass (ratio = vtkFixedPointVolumeRayCastMapper time / this time; for "
+              "S_ms about its direction: its time / the isotropic one's; skip = whether the "
+              "skipping kernel ran; active = macro cells marched)");
   for (const std::string& line : summary)
   {
     std::cout << line << "\n";
