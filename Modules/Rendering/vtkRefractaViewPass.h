@@ -53,7 +53,8 @@
  * The lighting volume must be on the medium's grid and carry `Radiance` (S1, RGB) with
  * `RadianceDirection` (3, unit, in the grid-local frame), and/or `MultipleScattering` (S_ms, RGB),
  * optionally with `MultipleScatteringDirection` (its flux over its fluence F / phi_ms, grid-local,
- * length f <= 1: f S_ms is shaded with the phase function about F, the rest isotropically).
+ * length f <= 1: S_ms is shaded with the phase function of anisotropy g f about F, light spread
+ * as a Henyey-Greenstein lobe of mean cosine f; without it, isotropically).
  * With S1 in lobes (vtkRefractaLightingVolume::RadianceLobeName(k) and
  * RadianceLobeDirectionName(k), complete pairs for k = 0 .. K - 1, K >= 2) each lobe is shaded
  * about its own direction instead of `Radiance` about `RadianceDirection`.

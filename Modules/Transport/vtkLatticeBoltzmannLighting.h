@@ -21,8 +21,11 @@
  *
  * Output: the grid of the lighting volume with `Radiance` and `RadianceDirection` passed through
  * (single scattering), the new `MultipleScattering` (RGB) S_ms = sigma_s phi_ms, the power per
- * unit volume scattered out of the diffuse field (second and higher orders, taken as isotropic by
- * the view pass), the lighting volume's field data, and the field data
+ * unit volume scattered out of the diffuse field (second and higher orders), its
+ * `MultipleScatteringDirection` (3: the flux of that light over its fluence, from the lattice's
+ * distributions, vtkLatticeBoltzmannSolver::ComputeMultipleScatteringDirection, merged with the
+ * photons' orders' with the split; the photons' own where they carried every order), about which
+ * the view pass shades S_ms, the lighting volume's field data, and the field data
  * `LatticeBoltzmannIterations` (int), `LatticeBoltzmannResidual` (double, relative change per
  * step at the last check) and `LatticeBoltzmannConverged` (int, 0 or 1).
  *
