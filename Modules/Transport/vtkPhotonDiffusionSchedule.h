@@ -27,7 +27,8 @@
  * passes on different multiprocessors at once; on a CPU device both share the same cores).
  *
  * Output: as vtkLatticeBoltzmannLighting (`Radiance`, `RadianceDirection`,
- * `MultipleScattering` and its `MultipleScatteringDirection`; the tracer's field data; `LatticeBoltzmannIterations`, `...Residual`,
+ * `MultipleScattering` and its `MultipleScatteringDirection`; the tracer's field data;
+ * `LatticeBoltzmannIterations`, `...Residual`,
  * `...Converged`), plus field data `ScheduleMode` (0 sequential, 1 interleaved),
  * `ScheduleChunks`, `ScheduleDiffusionStepsDuringMarching`, `ScheduleMarchingSeconds` (photon
  * pass including the interleaved diffusion), `ScheduleFinalSolveSeconds` and
