@@ -53,6 +53,7 @@
 #include "vtkRefractaViewPass.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
 #include "vtkTransferFunctionMedium.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -162,6 +163,19 @@ private:
   vtkNew<vtkFixedPointVolumeRayCastMapper> Mapper;
   vtkNew<vtkVolume> Volume;
 };
+
+// The photon pass on a scene's medium and lights (not run yet).
+vtkSmartPointer<vtkPhotonTracer> PhotonPass(const refracta::scenes::Scene& scene, int photons)
+{
+  auto tracer = vtkSmartPointer<vtkPhotonTracer>::New();
+  tracer->SetInputData(scene.Medium);
+  for (auto& light : scene.Lights)
+  {
+    tracer->AddLight(light);
+  }
+  tracer->SetNumberOfPhotons(photons);
+  return tracer;
+}
 }
 
 int main(int argc, char* argv[])
@@ -217,13 +231,7 @@ int main(int argc, char* argv[])
   if (runs_part("view"))
   {
     refracta::scenes::Scene scene = refracta::scenes::GlassSphereInFog(n);
-    vtkNew<vtkPhotonTracer> tracer;
-    tracer->SetInputData(scene.Medium);
-    for (auto& light : scene.Lights)
-    {
-      tracer->AddLight(light);
-    }
-    tracer->SetNumberOfPhotons(photons);
+    auto tracer = PhotonPass(scene, photons);
     tracer->Update();
     vtkNew<vtkRefractaViewPass> pass;
     pass->SetMacroCellSize(cellSize);
@@ -276,13 +284,7 @@ int main(int argc, char* argv[])
   if (runs_part("ms"))
   {
     refracta::scenes::Scene scene = refracta::scenes::GlassSphereInFog(n);
-    vtkNew<vtkPhotonTracer> tracer;
-    tracer->SetInputData(scene.Medium);
-    for (auto& light : scene.Lights)
-    {
-      tracer->AddLight(light);
-    }
-    tracer->SetNumberOfPhotons(photons);
+    auto tracer = PhotonPass(scene, photons);
     vtkNew<vtkLatticeBoltzmannLighting> lattice;
     lattice->SetInputData(scene.Medium);
     lattice->SetLightingConnection(tracer->GetOutputPort());

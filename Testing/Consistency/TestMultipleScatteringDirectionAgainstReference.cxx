@@ -206,15 +206,20 @@ void Check(const Scene& s, const Regions& ref, const Method& m)
     << m.Name << ": shaded as isotropic it passes too: the test cannot see the direction";
 }
 
-const Method LatticeD3Q6 = { "lattice D3Q6", vtkEffectPlan::LATTICE_ONLY, 6, 0.0 };
-const Method LatticeD3Q18 = { "lattice D3Q18", vtkEffectPlan::LATTICE_ONLY, 18, 0.0 };
-const Method Photons = { "photons, every order", vtkEffectPlan::PHOTONS_EVERY_ORDER, 6, 0.0 };
-const Method Split = { "split, D3Q6", vtkEffectPlan::FIRST_COLLISION_SPLIT, 6, 0.0 };
-
-Method WithBudget(Method m, double b)
+// Every method on the ball lit from behind or from the front, each within its budget B
+// (lattice D3Q6, lattice D3Q18, the split with D3Q6, photons carrying every order).
+void CheckEveryMethod(bool back, const double (&budget)[4])
 {
-  m.Budget = b;
-  return m;
+  const Method methods[4] = { { "lattice D3Q6", vtkEffectPlan::LATTICE_ONLY, 6, budget[0] },
+    { "lattice D3Q18", vtkEffectPlan::LATTICE_ONLY, 18, budget[1] },
+    { "split, D3Q6", vtkEffectPlan::FIRST_COLLISION_SPLIT, 6, budget[2] },
+    { "photons, every order", vtkEffectPlan::PHOTONS_EVERY_ORDER, 6, budget[3] } };
+  const Scene s = LitBall(back);
+  const Regions ref = RenderReference(s, 2048);
+  for (const Method& m : methods)
+  {
+    Check(s, ref, m);
+  }
 }
 } // namespace
 
@@ -226,12 +231,7 @@ Method WithBudget(Method m, double b)
 // first few times and the lobe p_HG(f) about F is too narrow (Physics.md). B: the measured + 5%.
 TEST(MultipleScatteringDirectionAgainstReference, ForwardScatteringBallLitFromBehind)
 {
-  const Scene s = LitBall(true);
-  const Regions ref = RenderReference(s, 2048);
-  Check(s, ref, WithBudget(LatticeD3Q6, 0.36));
-  Check(s, ref, WithBudget(LatticeD3Q18, 0.31));
-  Check(s, ref, WithBudget(Split, 0.38));
-  Check(s, ref, WithBudget(Photons, 0.38));
+  CheckEveryMethod(true, { 0.36, 0.31, 0.38, 0.38 });
 }
 
 // From the front: most of the light scatters away from the camera. Measured as above: lattice
@@ -240,10 +240,5 @@ TEST(MultipleScatteringDirectionAgainstReference, ForwardScatteringBallLitFromBe
 // the light along the lattice's axes, not along the light. B: the measured + 5%.
 TEST(MultipleScatteringDirectionAgainstReference, ForwardScatteringBallLitFromTheFront)
 {
-  const Scene s = LitBall(false);
-  const Regions ref = RenderReference(s, 2048);
-  Check(s, ref, WithBudget(LatticeD3Q6, 0.58));
-  Check(s, ref, WithBudget(LatticeD3Q18, 0.17));
-  Check(s, ref, WithBudget(Split, 0.17));
-  Check(s, ref, WithBudget(Photons, 0.14));
+  CheckEveryMethod(false, { 0.58, 0.17, 0.17, 0.14 });
 }
