@@ -518,10 +518,12 @@ __kernel void lbl_scattered_flux(
       total += w;
     }
   }
-  const float inv = total > 0.0f ? 1.0f / total : 0.0f;
-  out[3 * v] = fx * inv;
-  out[3 * v + 1] = fy * inv;
-  out[3 * v + 2] = fz * inv;
+  // Each component over the total (never larger than it): 1 / total would overflow for a total
+  // below FLT_MIN (deep shadow), and 0 * inf is NaN.
+  const bool some = total > 0.0f;
+  out[3 * v] = some ? fx / total : 0.0f;
+  out[3 * v + 1] = some ? fy / total : 0.0f;
+  out[3 * v + 2] = some ? fz / total : 0.0f;
 }
 
 // Plain copy (the memory-bandwidth reference of the benchmark): b[i] = a[i], float4 per item.

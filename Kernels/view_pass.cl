@@ -363,8 +363,10 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
   const bool sided =
     refracta_view_sided_weights(st, dims, spacing, u, REFRACTA_VIEW_SIDE_ARGS, sidedWeights);
 #endif
-#ifdef REFRACTA_HAS_SINGLE
+#if defined(REFRACTA_HAS_SINGLE) || defined(REFRACTA_MULTIPLE_DIRECTION)
   const float g = refracta_view_sample1(anisotropy, st);
+#endif
+#ifdef REFRACTA_HAS_SINGLE
 #ifdef REFRACTA_RADIANCE_LOBES
   // S1 in lobes (the lights grouped by direction), each shaded about its own mean direction:
   // light from two sides is not shaded along the mean between them. `radiance` holds per voxel
@@ -431,7 +433,7 @@ inline float3 refracta_view_source(const refracta_view_stencil* st, float3 u, fl
   const float3 flux =
     REFRACTA_VIEW_LIGHT3(multiple + 3 * ((size_t)dims.x * (size_t)dims.y * (size_t)dims.z));
   const float f = fmin(length(flux), 1.0f);
-  q += refracta_view_single(ms, flux, d, f * refracta_view_sample1(anisotropy, st));
+  q += refracta_view_single(ms, flux, d, f * g);
 #else
   q += REFRACTA_INV_4PI * REFRACTA_VIEW_LIGHT3(multiple);
 #endif

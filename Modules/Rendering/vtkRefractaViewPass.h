@@ -329,7 +329,8 @@ public:
 
   /**
    * How many of the lighting volume's arrays the last upload of one took from their device
-   * copies instead of uploading them (0 to 3; with S1 in lobes 0 or 1).
+   * copies instead of uploading them (0 to 4: Radiance, RadianceDirection, MultipleScattering
+   * and MultipleScatteringDirection; with S1 in lobes 0 to 2).
    */
   vtkGetMacro(LastLightingArraysShared, int);
 

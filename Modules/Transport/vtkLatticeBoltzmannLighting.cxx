@@ -210,7 +210,9 @@ int vtkLatticeBoltzmannLighting::RequestData(
     lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::RadianceDirectionName());
   vtkDataArray* sourceDirection = photons->GetPointData()->GetArray(
     vtkRefractaLightingVolume::LatticeSourceDirectionName(photons));
-  for (vtkDataArray* d : { direction, sourceDirection })
+  vtkDataArray* photonDirection =
+    photons->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
+  for (vtkDataArray* d : { direction, sourceDirection, photonDirection })
   {
     if (d && (d->GetNumberOfComponents() != 3 || d->GetNumberOfTuples() != n))
     {
@@ -243,8 +245,6 @@ int vtkLatticeBoltzmannLighting::RequestData(
   }
   // The direction of the light S_ms scatters: the photons' where they carried every order, else
   // the lattice's own flux (with the split merged with the photons' orders').
-  vtkDataArray* photonDirection =
-    photons->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
   vtkSmartPointer<vtkDataArray> msDirection;
   if (everyOrder)
   {
@@ -255,11 +255,8 @@ int vtkLatticeBoltzmannLighting::RequestData(
   {
     vtkNew<vtkFloatArray> flux;
     flux->SetName(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
-    vtkDataArray* photonMs = split
-      ? photons->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName())
-      : nullptr;
-    if (!solver->ComputeMultipleScatteringDirection(flux, photonMs ? ms.GetPointer() : nullptr,
-          photonMs, photonMs ? photonDirection : nullptr))
+    if (!solver->ComputeMultipleScatteringDirection(
+          flux, split ? ms.GetPointer() : nullptr, split ? photons : nullptr))
     {
       output->Initialize();
       return 0;

@@ -270,6 +270,7 @@ bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
   }
   plan->AddDeviceBuffer(grid, "probes", probes * 3 * 4 * 2, "ProbeSpacing");
   plan->AddDeviceBuffer(grid, "multiple-scattering output", 3 * v * 4, gridSetting);
+  plan->AddDeviceBuffer(grid, "multiple-scattering direction output", 3 * v * 4, gridSetting);
   // The coarse start's grids hold the same buffers at 1/8, 1/64, ... of the voxels.
   double coarseShare = 0;
   for (int d[3] = { this->Dims[0], this->Dims[1], this->Dims[2] }; this->CoarseStartApplies(d);)

@@ -54,6 +54,7 @@
 #endif
 
 class vtkDataArray;
+class vtkDataSet;
 class vtkFloatArray;
 class vtkImageData;
 class vtkOpenCLContext;
@@ -467,12 +468,14 @@ public:
    * is isotropic, 1 where it is collimated along a lattice direction, zero where nothing
    * scatters. The view pass shades S_ms about it (Physics.md, "The direction of multiple
    * scattering"). With the first-collision split give `total` (S_ms of the lattice and the
-   * photons, ComputeMultipleScattering()'s result with its addend), `photons` (the photons' part)
-   * and `photonDirection` (its flux over its fluence; null: isotropic): each voxel's direction is
-   * then the two parts' directions weighted by their scattered power (channel sums).
+   * photons, ComputeMultipleScattering()'s result with its addend) and `photons` (the photon
+   * pass's output: its `MultipleScattering` is the photons' part, its
+   * `MultipleScatteringDirection` their flux over their fluence, isotropic where missing): each
+   * voxel's direction is then the two parts' directions weighted by their scattered power
+   * (channel sums). A `total` or photon array of the wrong shape is an error.
    */
-  bool ComputeMultipleScatteringDirection(vtkFloatArray* out, vtkDataArray* total = nullptr,
-    vtkDataArray* photons = nullptr, vtkDataArray* photonDirection = nullptr);
+  bool ComputeMultipleScatteringDirection(
+    vtkFloatArray* out, vtkDataArray* total = nullptr, vtkDataSet* photons = nullptr);
 
   /**
    * Step-length class of each direction and the lengths (filled by Initialize()).

@@ -5,6 +5,7 @@
 #include "vtkLatticeBoltzmannSolverInternals.h"
 
 #include "vtkDataArray.h"
+#include "vtkDataSet.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkOpenCLContext.h"
@@ -170,7 +171,7 @@ bool vtkLatticeBoltzmannSolver::ComputeMultipleScattering(vtkFloatArray* out, vt
 
 //------------------------------------------------------------------------------
 bool vtkLatticeBoltzmannSolver::ComputeMultipleScatteringDirection(
-  vtkFloatArray* out, vtkDataArray* total, vtkDataArray* photons, vtkDataArray* photonDirection)
+  vtkFloatArray* out, vtkDataArray* total, vtkDataSet* photonOrders)
 {
   const vtkIdType n = this->NumberOfVoxels;
   if (!out)
@@ -178,8 +179,20 @@ bool vtkLatticeBoltzmannSolver::ComputeMultipleScatteringDirection(
     vtkErrorMacro("ComputeMultipleScatteringDirection() needs an output array.");
     return false;
   }
+  vtkPointData* pd = photonOrders ? photonOrders->GetPointData() : nullptr;
+  vtkDataArray* photons =
+    pd ? pd->GetArray(vtkRefractaLightingVolume::MultipleScatteringName()) : nullptr;
+  vtkDataArray* photonDirection =
+    pd ? pd->GetArray(vtkRefractaLightingVolume::MultipleScatteringDirectionName()) : nullptr;
+  if (photonOrders && (!photons || !total))
+  {
+    vtkErrorMacro("The split's direction needs the photons' `"
+      << vtkRefractaLightingVolume::MultipleScatteringName()
+      << "` and the total S_ms (ComputeMultipleScattering()'s output).");
+    return false;
+  }
   if (!HasVoxelTriples(total, n, true, this) || !HasVoxelTriples(photons, n, true, this) ||
-    !HasVoxelTriples(photonDirection, n, true, this) || (photons && !total))
+    !HasVoxelTriples(photonDirection, n, true, this))
   {
     return false;
   }

@@ -265,12 +265,9 @@ int vtkPhotonDiffusionSchedule::RequestData(
   // S_ms's direction: the lattice's flux, with the split merged with the photons' orders'.
   vtkNew<vtkFloatArray> msDirection;
   msDirection->SetName(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
-  vtkDataArray* photonMs =
-    lighting->GetPointData()->GetArray(vtkRefractaLightingVolume::MultipleScatteringName());
-  if (!solver->ComputeMultipleScatteringDirection(msDirection, photonMs ? ms.GetPointer() : nullptr,
-        photonMs,
-        lighting->GetPointData()->GetArray(
-          vtkRefractaLightingVolume::MultipleScatteringDirectionName())))
+  const bool split = vtkRefractaLightingVolume::HasPhotonMultipleScattering(lighting);
+  if (!solver->ComputeMultipleScatteringDirection(
+        msDirection, split ? ms.GetPointer() : nullptr, split ? lighting : nullptr))
   {
     output->Initialize();
     return 0;

@@ -206,8 +206,8 @@ public:
    * point array vtkRefractaLightingVolume::MultipleScatteringName() (S_ms, power per unit
    * volume, smoothed like Radiance), which then replaces the lattice's, with its flux over its
    * fluence in MultipleScatteringDirectionName() (the deposits' directions weighted by their
-   * power, smoothed alike; length <= 1; every order by photons only, not with ScatteringOrders'
-   * split), which the view pass shades with the phase function. The books stay exact per
+   * power, smoothed alike; length <= 1; with ScatteringOrders' split that of the orders up to
+   * k), about which the view pass shades S_ms. The books stay exact per
    * photon: Emitted = Absorbed + Surface + Escaped + Remaining, with EnergyScattered 0 (nothing
    * is handed on to a lattice). See Documentation/Physics.md, "Surfaces and multiple scattering".
    */

@@ -20,6 +20,7 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkRefractaLightingVolume.h"
+#include "vtkSmartPointer.h"
 #include "vtkTestErrorObserver.h"
 
 #include <gtest/gtest.h>
@@ -143,6 +144,50 @@ TEST(LatticeBoltzmannDirection, IsotropicFieldHasNoFlux)
   }
 }
 
+// Light too weak for 1 / S (a source of 1e-38, below FLT_MIN where it scatters): finite, at most
+// unit length, everywhere.
+TEST(LatticeBoltzmannDirection, DeepShadowStaysFinite)
+{
+  const Grid grid = { { 8, 8, 8 }, { 1, 1, 1 } };
+  const double x[3] = { 1, 0, 0 };
+  auto solver = vtkSmartPointer<vtkLatticeBoltzmannSolver>::New();
+  const size_t n = grid.N();
+  const std::vector<float> extinction(3 * n, 0.5f), albedo(3 * n, 0.5f), g(n, 0.9f);
+  ASSERT_TRUE(
+    solver->Initialize(grid.Dims, grid.Spacing, extinction.data(), albedo.data(), g.data()));
+  std::vector<float> s1(3 * n, 1e-38f), d(3 * n, 0.0f);
+  for (size_t v = 0; v < n; ++v)
+  {
+    d[3 * v] = static_cast<float>(x[0]);
+  }
+  ASSERT_TRUE(solver->SetSource(s1.data(), d.data()));
+  solver->SetMaximumIterations(64);
+  solver->Solve();
+  vtkNew<vtkFloatArray> f;
+  ASSERT_TRUE(solver->ComputeMultipleScatteringDirection(f));
+  for (vtkIdType v = 0; v < f->GetNumberOfTuples(); ++v)
+  {
+    double t[3];
+    f->GetTuple(v, t);
+    ASSERT_TRUE(std::isfinite(t[0]) && std::isfinite(t[1]) && std::isfinite(t[2])) << v;
+    ASSERT_LE(vtkMath::Norm(t), 1.0 + 1e-5) << v;
+  }
+}
+
+// The photon orders of a split on the solver's grid: their S_ms and, unless null, its direction.
+vtkSmartPointer<vtkImageData> PhotonOrders(vtkDataArray* ms, vtkDataArray* direction)
+{
+  auto orders = vtkSmartPointer<vtkImageData>::New();
+  ms->SetName(vtkRefractaLightingVolume::MultipleScatteringName());
+  orders->GetPointData()->AddArray(ms);
+  if (direction)
+  {
+    direction->SetName(vtkRefractaLightingVolume::MultipleScatteringDirectionName());
+    orders->GetPointData()->AddArray(direction);
+  }
+  return orders;
+}
+
 // The split: the lattice's and the photons' directions weighted by their parts of the total.
 TEST(LatticeBoltzmannDirection, SplitWeighsThePartsByTheirPower)
 {
@@ -154,8 +199,8 @@ TEST(LatticeBoltzmannDirection, SplitWeighsThePartsByTheirPower)
   ASSERT_TRUE(solver->ComputeMultipleScatteringDirection(lattice));
   ASSERT_TRUE(solver->ComputeMultipleScattering(ms, nullptr));
   const vtkIdType n = ms->GetNumberOfTuples();
-  // The photons' part: along +y, with power `share` times the lattice's (so the total holds the
-  // lattice's and the photons').
+  // The photons' part: along +y (f = 0.5), with power `share` times the lattice's (so the total
+  // holds the lattice's and the photons').
   for (const double share : { 0.0, 1.0 })
   {
     vtkNew<vtkFloatArray> photons, photonDirection, total, merged;
@@ -174,8 +219,8 @@ TEST(LatticeBoltzmannDirection, SplitWeighsThePartsByTheirPower)
         photonDirection->SetComponent(v, c, c == 1 ? 0.5 : 0.0);
       }
     }
-    ASSERT_TRUE(
-      solver->ComputeMultipleScatteringDirection(merged, total, photons, photonDirection));
+    ASSERT_TRUE(solver->ComputeMultipleScatteringDirection(
+      merged, total, PhotonOrders(photons, photonDirection)));
     for (vtkIdType v = 0; v < n; v += 37)
     {
       const double w = share / (1 + share); // the photons' weight
@@ -185,13 +230,15 @@ TEST(LatticeBoltzmannDirection, SplitWeighsThePartsByTheirPower)
     }
   }
   // Without the photons' direction their part counts as isotropic.
-  vtkNew<vtkFloatArray> merged, total;
+  vtkNew<vtkFloatArray> merged, total, photons;
   total->DeepCopy(ms);
+  photons->DeepCopy(ms);
   for (vtkIdType i = 0; i < total->GetNumberOfValues(); ++i)
   {
     total->SetValue(i, 2 * ms->GetValue(i));
   }
-  ASSERT_TRUE(solver->ComputeMultipleScatteringDirection(merged, total, ms, nullptr));
+  ASSERT_TRUE(
+    solver->ComputeMultipleScatteringDirection(merged, total, PhotonOrders(photons, nullptr)));
   EXPECT_NEAR(merged->GetComponent(n / 2, 0), 0.5 * lattice->GetComponent(n / 2, 0), 1e-5);
 }
 
@@ -205,14 +252,26 @@ TEST(LatticeBoltzmannDirection, BadArgumentsAreErrors)
   EXPECT_FALSE(solver->ComputeMultipleScatteringDirection(nullptr));
   EXPECT_TRUE(errors->GetError());
   errors->Clear();
-  vtkNew<vtkFloatArray> out, shortArray;
+  vtkNew<vtkFloatArray> out, shortArray, full;
   shortArray->SetNumberOfComponents(3);
   shortArray->SetNumberOfTuples(5);
-  EXPECT_FALSE(solver->ComputeMultipleScatteringDirection(out, shortArray, shortArray, nullptr));
+  full->SetNumberOfComponents(3);
+  full->SetNumberOfTuples(static_cast<vtkIdType>(grid.N()));
+  full->FillValue(1.0f);
+  // Photons of the wrong shape; photons without a total; a total without S_ms in the photons.
+  EXPECT_FALSE(
+    solver->ComputeMultipleScatteringDirection(out, full, PhotonOrders(shortArray, nullptr)));
+  EXPECT_TRUE(errors->GetError());
+  errors->Clear();
+  EXPECT_FALSE(
+    solver->ComputeMultipleScatteringDirection(out, nullptr, PhotonOrders(full, nullptr)));
+  EXPECT_TRUE(errors->GetError());
+  errors->Clear();
+  vtkNew<vtkImageData> empty;
+  EXPECT_FALSE(solver->ComputeMultipleScatteringDirection(out, full, empty));
   EXPECT_TRUE(errors->GetError());
 }
 
-// The filter's output carries the lattice's direction where the lattice carried S_ms.
 TEST(LatticeBoltzmannDirection, FilterOutputsIt)
 {
   vtkNew<vtkImageData> medium;
