@@ -207,13 +207,14 @@ void Check(const Scene& s, const Regions& ref, const Method& m)
 }
 
 // Every method on the ball lit from behind or from the front, each within its budget B
-// (lattice D3Q6, lattice D3Q18, the split with D3Q6, photons carrying every order).
-void CheckEveryMethod(bool back, const double (&budget)[4])
+// (lattice D3Q6, lattice D3Q18, photons carrying every order). The split, which merges the two
+// (RefractaTransport.LatticeBoltzmannDirection checks the merge), measured 32.3% from behind and
+// 11.5% from the front here; it is left out to keep the default suite within its time.
+void CheckEveryMethod(bool back, const double (&budget)[3])
 {
-  const Method methods[4] = { { "lattice D3Q6", vtkEffectPlan::LATTICE_ONLY, 6, budget[0] },
+  const Method methods[3] = { { "lattice D3Q6", vtkEffectPlan::LATTICE_ONLY, 6, budget[0] },
     { "lattice D3Q18", vtkEffectPlan::LATTICE_ONLY, 18, budget[1] },
-    { "split, D3Q6", vtkEffectPlan::FIRST_COLLISION_SPLIT, 6, budget[2] },
-    { "photons, every order", vtkEffectPlan::PHOTONS_EVERY_ORDER, 6, budget[3] } };
+    { "photons, every order", vtkEffectPlan::PHOTONS_EVERY_ORDER, 6, budget[2] } };
   const Scene s = LitBall(back);
   const Regions ref = RenderReference(s, 2048);
   for (const Method& m : methods)
@@ -227,11 +228,11 @@ void CheckEveryMethod(bool back, const double (&budget)[4])
 // the CPU; the smallest B with no region failed, bias; shaded as isotropic): lattice D3Q6 30.7%,
 // -14.9% (60.2%, -54.9%); D3Q18 25.4%, +0.4% (58.0%, -54.6%); the split (D3Q6, k = 7) 32.3%,
 // +10.7% (58.8%, -52.8%); photons carrying every order (2^18) 32.6%, +11.3% (58.6%, -52.4%). The
-// largest region errors are at the limb the light enters by, where the light is scattered the
-// first few times and the lobe p_HG(f) about F is too narrow (Physics.md). B: the measured + 5%.
+// largest region errors are at the limb the light enters by, where the light has scattered only a
+// few times and is narrower than the lobe p_HG(f) about F (Physics.md). B: the measured + 5%.
 TEST(MultipleScatteringDirectionAgainstReference, ForwardScatteringBallLitFromBehind)
 {
-  CheckEveryMethod(true, { 0.36, 0.31, 0.38, 0.38 });
+  CheckEveryMethod(true, { 0.36, 0.31, 0.38 });
 }
 
 // From the front: most of the light scatters away from the camera. Measured as above: lattice
@@ -240,5 +241,5 @@ TEST(MultipleScatteringDirectionAgainstReference, ForwardScatteringBallLitFromBe
 // the light along the lattice's axes, not along the light. B: the measured + 5%.
 TEST(MultipleScatteringDirectionAgainstReference, ForwardScatteringBallLitFromTheFront)
 {
-  CheckEveryMethod(false, { 0.58, 0.17, 0.17, 0.14 });
+  CheckEveryMethod(false, { 0.58, 0.17, 0.14 });
 }

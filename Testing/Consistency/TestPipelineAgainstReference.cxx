@@ -7,7 +7,8 @@
 // 2. an emission-absorption medium (the cloud's density, no scattering, no lights), 32^3: the
 //    pipeline has no Monte Carlo and no model error there, so the tolerance is tight;
 // 3. the dense high-albedo cube of the accuracy benchmark (optical depth 24, albedo 0.99/0.97),
-//    48^3 (see "Resolutions" below for why not coarser).
+//    48^3 (see "Resolutions" below for why not coarser); about 50 s on 2 cores, so it runs as
+//    Refracta.PipelineAgainstReferenceDenseCube under the label `long`.
 // For each scene two statistics over the values (pixel x channel) that see the medium (the
 // reference's standard error is > 1e-6 of its value; background pixels are exact in both):
 // (a) per value: |pipeline - reference| <= K_SIGMA * SE_ref + b * max(|reference|, RMS_ref),

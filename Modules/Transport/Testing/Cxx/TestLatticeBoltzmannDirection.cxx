@@ -129,7 +129,7 @@ TEST(LatticeBoltzmannDirection, IsotropicFieldHasNoFlux)
   for (int lattice : { 6, 18 })
   {
     auto solver =
-      Solve(grid, lattice, 0.5, 0.9, 0.6, nullptr, vtkLatticeBoltzmannSolver::REFLECTIVE);
+      Solve(grid, lattice, 0.5, 0.5, 0.6, nullptr, vtkLatticeBoltzmannSolver::REFLECTIVE);
     ASSERT_NE(solver, nullptr);
     vtkNew<vtkFloatArray> f, ms;
     ASSERT_TRUE(solver->ComputeMultipleScattering(ms, nullptr));
