@@ -461,6 +461,14 @@ __kernel void lbl_probes(__global const float* state, __global const uint* probe
   }
 }
 
+// The power of channel ch that collides in voxel v (of n) coming along direction i, (1 - T_i) f_i:
+// what the read-outs below sum (the albedo's share of it scatters).
+__attribute__((always_inline)) inline float lbl_collided(
+  __global const float* state, __global const float* coef, size_t n, size_t v, int i, int ch)
+{
+  return (1.0f - coef[(lbl_class[i] * 3 + ch) * n + v]) * state[(i * 3 + ch) * n + v];
+}
+
 // The multiple-scattering source S_ms = sigma_s phi_ms: the power per unit volume that the diffuse
 // field loses to scattering in each voxel, a sum_i (1 - T_i) f_i, interleaved RGB (a VTK array).
 // One work-item per voxel, global (nx, ny, nz).
@@ -481,7 +489,7 @@ __kernel void lbl_scattered(
     #pragma unroll
     for (int i = 0; i < REFRACTA_LBL_Q; ++i)
     {
-      sum += (1.0f - coef[(lbl_class[i] * 3 + ch) * n + v]) * state[(i * 3 + ch) * n + v];
+      sum += lbl_collided(state, coef, n, v, i, ch);
     }
     out[v * 3 + ch] = coef[(LBL_COEF_ALBEDO + ch) * n + v] * sum;
   }
@@ -511,7 +519,7 @@ __kernel void lbl_scattered_flux(
     #pragma unroll
     for (int i = 0; i < REFRACTA_LBL_Q; ++i)
     {
-      const float w = a * (1.0f - coef[(lbl_class[i] * 3 + ch) * n + v]) * state[(i * 3 + ch) * n + v];
+      const float w = a * lbl_collided(state, coef, n, v, i, ch);
       fx += w * LBL_EX(i);
       fy += w * LBL_EY(i);
       fz += w * LBL_EZ(i);
