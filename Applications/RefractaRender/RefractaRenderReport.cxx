@@ -211,6 +211,7 @@ json LightPassReport(vtkRefractaRenderPipeline* pipeline, int lightCount)
         ? "blocks of " + std::to_string(solver->GetBlockSize()) + "^3"
         : std::string(solver->GetBlockSize() > 0 ? "global (the device has no on-chip local memory)"
                                                  : "global");
+      ms["lattice"] = "D3Q" + std::to_string(solver->GetLattice());
       ms["seconds"] = report.value("ScheduleFinalSolveSeconds", 0.0);
       // The coarse start's steps (all coarser grids) and their cost in steps of the full grid.
       ms["coarse_start_steps"] = solver->GetCoarseStartSteps();
@@ -305,7 +306,8 @@ void PrintLightPass(const json& light)
               << ms["reason"].get<std::string>() << ")";
     if (ms.contains("iterations"))
     {
-      std::cout << "; Lattice-Boltzmann " << ms["iterations"].get<double>() << " iterations";
+      std::cout << "; Lattice-Boltzmann " << ms["lattice"].get<std::string>() << ", "
+                << ms["iterations"].get<double>() << " iterations";
       if (ms["coarse_start_steps"].get<int>() > 0)
       {
         std::cout << " after a coarse start (" << ms["coarse_start_steps"].get<int>()

@@ -41,19 +41,22 @@ const ChoiceTable<int> EffectModes = { { "auto", vtkEffectPlan::AUTOMATIC },
   { "on", vtkEffectPlan::FORCE_ON }, { "off", vtkEffectPlan::FORCE_OFF } };
 
 // quality.multiple_scattering_method: the plan's method (vtkEffectPlan::MultipleScatteringMethod)
-// and the Lattice-Boltzmann lattice (vtkLatticeBoltzmannSolver) it runs on.
+// and the Lattice-Boltzmann lattice it runs on (vtkEffectPlan::LatticeDirections: 0 lets the plan
+// choose).
 struct MultipleScatteringChoice
 {
   int Method;
   int Lattice;
 };
 const ChoiceTable<MultipleScatteringChoice> MultipleScatteringMethods = {
-  { "auto", { vtkEffectPlan::AUTOMATIC_MULTIPLE_METHOD, vtkLatticeBoltzmannSolver::D3Q6 } },
+  { "auto", { vtkEffectPlan::AUTOMATIC_MULTIPLE_METHOD, vtkEffectPlan::AUTOMATIC_LATTICE } },
+  { "lbl", { vtkEffectPlan::LATTICE_ONLY, vtkEffectPlan::AUTOMATIC_LATTICE } },
   { "lbl_d3q6", { vtkEffectPlan::LATTICE_ONLY, vtkLatticeBoltzmannSolver::D3Q6 } },
   { "lbl_d3q18", { vtkEffectPlan::LATTICE_ONLY, vtkLatticeBoltzmannSolver::D3Q18 } },
+  { "split", { vtkEffectPlan::FIRST_COLLISION_SPLIT, vtkEffectPlan::AUTOMATIC_LATTICE } },
   { "split_d3q6", { vtkEffectPlan::FIRST_COLLISION_SPLIT, vtkLatticeBoltzmannSolver::D3Q6 } },
   { "split_d3q18", { vtkEffectPlan::FIRST_COLLISION_SPLIT, vtkLatticeBoltzmannSolver::D3Q18 } },
-  { "photons", { vtkEffectPlan::PHOTONS_EVERY_ORDER, vtkLatticeBoltzmannSolver::D3Q6 } }
+  { "photons", { vtkEffectPlan::PHOTONS_EVERY_ORDER, vtkEffectPlan::AUTOMATIC_LATTICE } }
 };
 
 // The keys of "scene.effects", in vtkEffectPlan's effect order.
@@ -198,7 +201,7 @@ void ApplySettings(const RenderSettings& s, vtkRefractaImageRenderer* renderer)
 
   pipeline->GetLatticeSolver()->SetTolerance(s.LatticeTolerance);
   pipeline->GetLatticeSolver()->SetBlockSize(s.LatticeBlockSize);
-  pipeline->GetLatticeSolver()->SetLattice(s.Lattice);
+  pipeline->SetLattice(s.Lattice);
   renderer->SetImageSize(s.Width, s.Height);
   renderer->SetExposure(s.Exposure);
   renderer->SetToneMapping(s.ToneMapping);

@@ -330,6 +330,10 @@ std::string vtkEffectPlan::GetSummary() const
     {
       s << " (k = " << this->ChosenOrders << ")";
     }
+    if (this->ChosenMultipleMethod != PHOTONS_EVERY_ORDER)
+    {
+      s << " on D3Q" << this->ChosenLattice;
+    }
   }
   return s.str();
 }
@@ -461,5 +465,5 @@ void vtkEffectPlan::PrintSelf(ostream& os, vtkIndent indent)
      << ", ScatteringOrders: " << this->ScatteringOrders
      << ", LatticeDirections: " << this->LatticeDirections << "; chosen "
      << GetMultipleScatteringMethodName(this->ChosenMultipleMethod) << ", k " << this->ChosenOrders
-     << " (" << this->MultipleReason << ")\n";
+     << ", D3Q" << this->ChosenLattice << " (" << this->MultipleReason << ")\n";
 }

@@ -52,10 +52,61 @@ double vtkEffectPlan::GetRayEffectAnisotropy(int lattice, int orders)
 }
 
 //------------------------------------------------------------------------------
+void vtkEffectPlan::SetLatticeDirections(int directions)
+{
+  if (directions != AUTOMATIC_LATTICE && directions != 6 && directions != 18)
+  {
+    vtkErrorMacro(
+      "LatticeDirections " << directions << " is not supported: use 0 (automatic), 6 or 18.");
+    return;
+  }
+  if (this->LatticeDirections != directions)
+  {
+    this->LatticeDirections = directions;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+std::string vtkEffectPlan::DecideLattice(vtkSceneAnalysis* analysis)
+{
+  std::ostringstream why;
+  const double g = analysis->GetMeanAnisotropy();
+  if (this->LatticeDirections != AUTOMATIC_LATTICE)
+  {
+    this->ChosenLattice = this->LatticeDirections;
+    why << "D3Q" << this->ChosenLattice << " forced";
+  }
+  else if (g >= D3Q18Anisotropy && !this->D3Q18FitsInMemory)
+  {
+    this->ChosenLattice = 6;
+    why << "D3Q6: the medium's mean |g| " << g << " >= " << D3Q18Anisotropy
+        << " calls for D3Q18, but its lattice (3x D3Q6's memory) does not fit the device";
+  }
+  else if (g >= D3Q18Anisotropy)
+  {
+    // Measured against the path-traced reference (vtkEffectPlan.h): from g = 0.6 on, D3Q6's
+    // image error grows to 1.5x and more of D3Q18's, 5x at 0.8.
+    this->ChosenLattice = 18;
+    why << "D3Q18: the medium's mean |g| " << g << " >= " << D3Q18Anisotropy
+        << ", where D3Q6's six directions would pull the multiply scattered light's direction "
+           "onto the grid's axes";
+  }
+  else
+  {
+    this->ChosenLattice = 6;
+    why << "D3Q6: the medium's mean |g| " << g << " < " << D3Q18Anisotropy
+        << ", where D3Q18 (about 4x the time) is hardly closer to the reference";
+  }
+  return why.str();
+}
+
+//------------------------------------------------------------------------------
 void vtkEffectPlan::DecideMultipleScatteringMethod(vtkSceneAnalysis* analysis)
 {
   std::ostringstream why;
   this->ChosenOrders = 0;
+  this->ChosenLattice = this->LatticeDirections == 18 ? 18 : 6;
   if (!this->Enabled[MULTIPLE_SCATTERING])
   {
     this->ChosenMultipleMethod = LATTICE_ONLY;
@@ -86,16 +137,19 @@ void vtkEffectPlan::DecideMultipleScatteringMethod(vtkSceneAnalysis* analysis)
     return;
   }
   const int method = this->MultipleScatteringMethod;
-  if (method == LATTICE_ONLY || method == PHOTONS_EVERY_ORDER)
+  if (method == PHOTONS_EVERY_ORDER)
   {
     this->ChosenMultipleMethod = method;
-    this->ChosenOrders = method == PHOTONS_EVERY_ORDER ? -1 : 0;
-    why << "forced";
-    if (method == LATTICE_ONLY)
-    {
-      why << " (ray-effect anisotropy up to " << GetRayEffectAnisotropy(this->LatticeDirections, 0)
-          << " around point lights)";
-    }
+    this->ChosenOrders = -1;
+    this->MultipleReason = "forced";
+    return;
+  }
+  const std::string lattice = this->DecideLattice(analysis);
+  if (method == LATTICE_ONLY)
+  {
+    this->ChosenMultipleMethod = method;
+    why << "forced (ray-effect anisotropy up to " << GetRayEffectAnisotropy(this->ChosenLattice, 0)
+        << " around point lights); " << lattice;
     this->MultipleReason = why.str();
     return;
   }
@@ -111,7 +165,8 @@ void vtkEffectPlan::DecideMultipleScatteringMethod(vtkSceneAnalysis* analysis)
     // orders) and cheaper.
     this->ChosenMultipleMethod = LATTICE_ONLY;
     this->MultipleReason = "no light inside the medium and no refraction that could focus its "
-                           "light, so no concentrated source to draw ray effects";
+                           "light, so no concentrated source to draw ray effects; " +
+      lattice;
     return;
   }
   this->ChosenMultipleMethod = FIRST_COLLISION_SPLIT;
@@ -123,8 +178,8 @@ void vtkEffectPlan::DecideMultipleScatteringMethod(vtkSceneAnalysis* analysis)
   else
   {
     int k = 1;
-    while (k < MaximumChosenOrders &&
-      GetRayEffectAnisotropy(this->LatticeDirections, k) > this->Tolerance)
+    while (
+      k < MaximumChosenOrders && GetRayEffectAnisotropy(this->ChosenLattice, k) > this->Tolerance)
     {
       ++k;
     }
@@ -147,9 +202,10 @@ void vtkEffectPlan::DecideMultipleScatteringMethod(vtkSceneAnalysis* analysis)
           << analysis->GetMaximumDisplacementInVoxels() << " voxels of displacement)";
     }
     why << ", k = " << k << ": the smallest k whose measured ray-effect anisotropy with D3Q"
-        << this->LatticeDirections << " (" << GetRayEffectAnisotropy(this->LatticeDirections, k)
+        << this->ChosenLattice << " (" << GetRayEffectAnisotropy(this->ChosenLattice, k)
         << ") is within the tolerance " << this->Tolerance
         << (k == MaximumChosenOrders ? " or the largest the plan chooses" : "");
   }
+  why << "; " << lattice;
   this->MultipleReason = why.str();
 }

@@ -38,7 +38,7 @@ struct MediumFields
 {
   int Dims[3];
   double Spacing[3];
-  std::vector<float> N, SigmaT, Albedo, Emission, GradN;
+  std::vector<float> N, SigmaT, Albedo, Anisotropy, Emission, GradN;
 
   size_t Index(int i, int j, int k) const
   {
@@ -53,6 +53,7 @@ struct MediumFields
     this->N = vtkRefractaMedium::ReadArray(image, vtkRefractaMedium::REFRACTIVE_INDEX);
     this->SigmaT = vtkRefractaMedium::ReadArray(image, vtkRefractaMedium::EXTINCTION);
     this->Albedo = vtkRefractaMedium::ReadArray(image, vtkRefractaMedium::ALBEDO);
+    this->Anisotropy = vtkRefractaMedium::ReadArray(image, vtkRefractaMedium::ANISOTROPY);
     this->Emission = vtkRefractaMedium::ReadArray(image, vtkRefractaMedium::EMISSION);
     if (image->GetPointData()->GetArray(vtkRefractaMedium::RefractiveIndexGradientName()))
     {
@@ -139,6 +140,8 @@ struct VoxelFacts
   double AlbedoMax = std::numeric_limits<double>::lowest();
   double EmissionMax = 0.0;
   double SigmaTMax = 0.0;
+  double Scattering = 0.0;            // sum of sigma_s (mean over the channels)
+  double AnisotropicScattering = 0.0; // sum of sigma_s |g|
   bool Scatters = false;
   vtkIdType Occupied = 0;
 };
@@ -312,6 +315,7 @@ struct vtkSceneAnalysis::MediumCache
   double RefractiveIndexRange[2] = { 1.0, 1.0 };
   double AlbedoRange[2] = { 0.0, 0.0 };
   bool HasScattering = false;
+  double MeanAnisotropy = 0.0;
   double MaximumEmission = 0.0;
   double OccupiedFraction = 0.0;
   double AxisOpticalThickness[3] = { 0.0, 0.0, 0.0 };
@@ -402,6 +406,7 @@ void vtkSceneAnalysis::Reset()
   this->LightOpticalThickness.assign(this->Lights.size(), 0.0);
   this->AlbedoRange[0] = this->AlbedoRange[1] = 0.0;
   this->HasScattering = this->HasEmission = false;
+  this->MeanAnisotropy = 0.0;
   this->MaximumEmission = this->OccupiedFraction = 0.0;
   this->NumberOfPoweredLights = this->NumberOfLightsInsideMedium = 0;
   this->NumberOfSurfaces = this->NumberOfInterfaceSurfaces = 0;
@@ -472,6 +477,7 @@ bool vtkSceneAnalysis::Analyze()
   std::copy(cache.AlbedoRange, cache.AlbedoRange + 2, this->AlbedoRange);
   std::copy(cache.AxisOpticalThickness, cache.AxisOpticalThickness + 3, this->AxisOpticalThickness);
   this->HasScattering = cache.HasScattering;
+  this->MeanAnisotropy = cache.MeanAnisotropy;
   this->MaximumEmission = cache.MaximumEmission;
   this->HasEmission = cache.MaximumEmission > 0.0;
   this->OccupiedFraction = cache.OccupiedFraction;
@@ -531,10 +537,12 @@ bool vtkSceneAnalysis::ScanMedium()
         facts.NMin = std::min(facts.NMin, n);
         facts.NMax = std::max(facts.NMax, n);
         bool occupied = n > 1.0;
+        double sigmaS = 0.0;
         for (int c = 0; c < 3; ++c)
         {
           const double sigmaT = fields.SigmaT[3 * p + c];
           const double albedo = fields.Albedo[3 * p + c];
+          sigmaS += sigmaT * albedo / 3.0;
           const double emission = fields.Emission[3 * p + c];
           if (sigmaT > 0.0)
           {
@@ -551,6 +559,8 @@ bool vtkSceneAnalysis::ScanMedium()
           occupied = occupied || emission > 0.0;
         }
         facts.Occupied += occupied ? 1 : 0;
+        facts.Scattering += sigmaS;
+        facts.AnisotropicScattering += sigmaS * std::abs(fields.Anisotropy[p]);
       }
     });
   VoxelFacts all;
@@ -563,6 +573,8 @@ bool vtkSceneAnalysis::ScanMedium()
     all.EmissionMax = std::max(all.EmissionMax, f.EmissionMax);
     all.SigmaTMax = std::max(all.SigmaTMax, f.SigmaTMax);
     all.Scatters = all.Scatters || f.Scatters;
+    all.Scattering += f.Scattering;
+    all.AnisotropicScattering += f.AnisotropicScattering;
     all.Occupied += f.Occupied;
   }
   cache.RefractiveIndexRange[0] = all.NMin;
@@ -574,6 +586,7 @@ bool vtkSceneAnalysis::ScanMedium()
     cache.AlbedoRange[1] = all.AlbedoMax;
   }
   cache.HasScattering = all.Scatters;
+  cache.MeanAnisotropy = all.Scattering > 0.0 ? all.AnisotropicScattering / all.Scattering : 0.0;
   cache.MaximumEmission = all.EmissionMax;
   cache.OccupiedFraction = static_cast<double>(all.Occupied) / numberOfVoxels;
 
@@ -597,6 +610,7 @@ bool vtkSceneAnalysis::ScanMedium()
   // The light probes need only the extinction: free the rest.
   std::vector<float>().swap(fields.N);
   std::vector<float>().swap(fields.Albedo);
+  std::vector<float>().swap(fields.Anisotropy);
   std::vector<float>().swap(fields.Emission);
   std::vector<float>().swap(fields.GradN);
   cache.Medium = this->Medium;
@@ -667,6 +681,7 @@ void vtkSceneAnalysis::RecordInFieldData(vtkFieldData* fieldData) const
   }
   fieldData->AddArray(toward);
   add("AnalysisAlbedoRange", { this->AlbedoRange[0], this->AlbedoRange[1] });
+  add("AnalysisMeanAnisotropy", { this->MeanAnisotropy });
   add("AnalysisMaximumEmission", { this->MaximumEmission });
   add("AnalysisOccupiedFraction", { this->OccupiedFraction });
   add("AnalysisNumberOfPoweredLights", { static_cast<double>(this->NumberOfPoweredLights) });
@@ -688,10 +703,10 @@ std::string vtkSceneAnalysis::GetSummary() const
     << this->MaximumDisplacementInVoxels << " voxels), tau <= " << this->MaximumOpticalThickness
     << ", tau_s <= " << this->MaximumScatteringThickness
     << ", voxel tau <= " << this->MaximumVoxelOpticalDepth << ", albedo in ["
-    << this->AlbedoRange[0] << ", " << this->AlbedoRange[1] << "], emission "
-    << (this->HasEmission ? "yes" : "no") << ", occupied " << 100.0 * this->OccupiedFraction
-    << "%, " << this->NumberOfPoweredLights << " powered light(s), " << this->NumberOfSurfaces
-    << " surface(s)";
+    << this->AlbedoRange[0] << ", " << this->AlbedoRange[1] << "], mean |g| "
+    << this->MeanAnisotropy << ", emission " << (this->HasEmission ? "yes" : "no") << ", occupied "
+    << 100.0 * this->OccupiedFraction << "%, " << this->NumberOfPoweredLights
+    << " powered light(s), " << this->NumberOfSurfaces << " surface(s)";
   if (this->NumberOfInterfaceSurfaces > 0)
   {
     s << " (" << this->NumberOfInterfaceSurfaces << " dielectric)";

@@ -162,6 +162,14 @@ public:
   ///@}
 
   /**
+   * How anisotropic the medium's scattering is: the mean of |g| (Anisotropy) weighted by the
+   * scattering coefficient, sum sigma_s |g| / sum sigma_s over the voxels (sigma_s the mean over
+   * the RGB channels of albedo * sigma_t); 0 where nothing scatters. vtkEffectPlan chooses the
+   * lattice by it.
+   */
+  vtkGetMacro(MeanAnisotropy, double);
+
+  /**
    * Fraction of voxels that differ from vacuum (n > 1, extinction > 0 or emission > 0).
    */
   vtkGetMacro(OccupiedFraction, double);
@@ -253,6 +261,7 @@ protected:
   std::vector<double> LightOpticalThickness;
   double AlbedoRange[2] = { 0.0, 0.0 };
   bool HasScattering = false;
+  double MeanAnisotropy = 0.0;
   bool HasEmission = false;
   double MaximumEmission = 0.0;
   double OccupiedFraction = 0.0;

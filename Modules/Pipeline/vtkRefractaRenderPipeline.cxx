@@ -326,6 +326,16 @@ int vtkRefractaRenderPipeline::GetScatteringOrders()
   return this->Internal->Plan->GetScatteringOrders();
 }
 
+void vtkRefractaRenderPipeline::SetLattice(int directions)
+{
+  this->Internal->Plan->SetLatticeDirections(directions);
+}
+
+int vtkRefractaRenderPipeline::GetLattice()
+{
+  return this->Internal->Plan->GetLatticeDirections();
+}
+
 vtkLightRaySingleScattering* vtkRefractaRenderPipeline::GetLightRays()
 {
   return this->Internal->LightRays;

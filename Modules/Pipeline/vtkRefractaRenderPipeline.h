@@ -213,14 +213,19 @@ public:
    * PHOTONS_EVERY_ORDER) and vtkEffectPlan::SetScatteringOrders (the split's k; default 0: the
    * plan's choice by the tolerance). The plan records what it chose and why (field data
    * `PlanMultipleScatteringMethod`); the photon tracer then carries that many orders
-   * (vtkPhotonTracer::ScatteringOrders) and the lattice (GetLatticeSolver(), whose Lattice the plan
-   * is told) the rest. With light rays for single scattering the photons still run for the orders
-   * they carry (vtkLatticeBoltzmannLighting's port 2).
+   * (vtkPhotonTracer::ScatteringOrders) and the lattice (GetLatticeSolver()) the rest. With light
+   * rays for single scattering the photons still run for the orders they carry
+   * (vtkLatticeBoltzmannLighting's port 2). SetLattice: vtkEffectPlan::SetLatticeDirections,
+   * the lattice the solver runs on: vtkEffectPlan::AUTOMATIC_LATTICE (0, default: D3Q18 where the
+   * medium scatters strongly forward or backward, mean |g| >= 0.6, else D3Q6), 6 or 18; every
+   * render sets GetLatticeSolver()'s Lattice to the plan's choice, so set it here, not there.
    */
   void SetMultipleScatteringMethod(int method);
   int GetMultipleScatteringMethod();
   void SetScatteringOrders(int orders);
   int GetScatteringOrders();
+  void SetLattice(int directions);
+  int GetLattice();
   ///@}
   vtkLatticeBoltzmannSolver* GetLatticeSolver();
   vtkRefractaViewPass* GetViewPass();

@@ -227,7 +227,11 @@ bool vtkRefractaRenderPipeline::RunPlan()
   {
     in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, vtkEffectPlan::FORCE_OFF);
   }
-  in.Plan->SetLatticeDirections(this->GetLatticeSolver()->GetLattice());
+  // The automatic lattice's D3Q18 only where the device holds it (3x D3Q6's state).
+  in.Plan->SetD3Q18FitsInMemory(
+    in.Plan->GetLatticeDirections() != vtkEffectPlan::AUTOMATIC_LATTICE ||
+    this->GetLatticeSolver()->FitsInMemory(
+      vtkLatticeBoltzmannSolver::D3Q18, in.Medium->GetDimensions()));
   const bool decided = in.Analysis->Analyze() && in.Plan->Decide(in.Analysis);
   in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, userMode);
   if (!decided)
@@ -235,6 +239,7 @@ bool vtkRefractaRenderPipeline::RunPlan()
     vtkErrorMacro("The scene analysis failed (see the error above).");
     return false;
   }
+  this->GetLatticeSolver()->SetLattice(in.Plan->GetChosenLatticeDirections());
 
   // Prune the medium only when it or a light-independent decision changed, so that a light
   // move keeps the medium the view pass and the photon pass already hold.

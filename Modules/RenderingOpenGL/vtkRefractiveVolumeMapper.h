@@ -200,7 +200,9 @@ public:
    * How multiple scattering is computed: vtkRefractaRenderPipeline::SetMultipleScatteringMethod
    * (vtkEffectPlan::AUTOMATIC_MULTIPLE_METHOD (default), LATTICE_ONLY, FIRST_COLLISION_SPLIT,
    * PHOTONS_EVERY_ORDER) and SetScatteringOrders (the split's k; default 0: the plan's choice).
-   * SetLattice chooses the Lattice-Boltzmann lattice (6 (default) or 18 directions).
+   * SetLattice chooses the Lattice-Boltzmann lattice: 0 (default, the plan's choice: D3Q18 where
+   * the medium scatters strongly forward or backward, see vtkEffectPlan::SetLatticeDirections),
+   * 6 or 18 directions.
    */
   void SetMultipleScatteringMethod(int method);
   int GetMultipleScatteringMethod();

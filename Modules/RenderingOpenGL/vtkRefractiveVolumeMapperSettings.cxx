@@ -228,13 +228,13 @@ int vtkRefractiveVolumeMapper::GetScatteringOrders()
 
 void vtkRefractiveVolumeMapper::SetLattice(int directions)
 {
-  this->Internal->Pipeline->GetLatticeSolver()->SetLattice(directions);
+  this->Internal->Pipeline->SetLattice(directions);
   this->Modified();
 }
 
 int vtkRefractiveVolumeMapper::GetLattice()
 {
-  return this->Internal->Pipeline->GetLatticeSolver()->GetLattice();
+  return this->Internal->Pipeline->GetLattice();
 }
 
 void vtkRefractiveVolumeMapper::ReleaseGraphicsResources(vtkWindow*)

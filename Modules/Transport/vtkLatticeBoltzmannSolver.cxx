@@ -235,28 +235,57 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
 //------------------------------------------------------------------------------
 bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
 {
-  const double v = static_cast<double>(this->NumberOfVoxels);
+  vtkNew<vtkOpenCLMemoryPlan> plan;
+  this->FillMemoryPlan(plan, this->Lattice, this->Dims, planes);
+  this->PlannedDeviceMemoryBytes = plan->GetDeviceBytes();
+  this->PlannedHostMemoryBytes = plan->GetHostBytes();
+  if (!plan->Fits(this->GetContext()))
+  {
+    vtkErrorMacro(<< plan->GetMessage());
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkLatticeBoltzmannSolver::FitsInMemory(int lattice, const int dims[3])
+{
+  vtkOpenCLContext* context = this->GetContext();
+  if ((lattice != D3Q6 && lattice != D3Q18) || !context->Initialize())
+  {
+    return false;
+  }
+  this->DeviceHasLocalMemory = context->HasDedicatedLocalMemory();
+  vtkNew<vtkOpenCLMemoryPlan> plan;
+  this->FillMemoryPlan(plan, lattice, dims, (lattice == D3Q18 ? 6 : 3) * 3 + 4);
+  return plan->Fits(context);
+}
+
+//------------------------------------------------------------------------------
+void vtkLatticeBoltzmannSolver::FillMemoryPlan(
+  vtkOpenCLMemoryPlan* plan, int lattice, const int dims[3], size_t planes) const
+{
+  const double v = static_cast<double>(dims[0]) * dims[1] * dims[2];
   std::ostringstream gridText;
-  gridText << "grid " << this->Dims[0] << " x " << this->Dims[1] << " x " << this->Dims[2];
+  gridText << "grid " << dims[0] << " x " << dims[1] << " x " << dims[2];
   const std::string grid = gridText.str(), gridSetting = "the grid size";
   const std::string stateSetting =
-    this->Lattice == D3Q18 ? "the grid size or Lattice (18 -> 6)" : gridSetting;
-  vtkNew<vtkOpenCLMemoryPlan> plan;
+    lattice == D3Q18 ? "the grid size or Lattice (18 -> 6)" : gridSetting;
   plan->Reset("Lattice-Boltzmann solver");
   plan->AddDeviceBuffer(grid, "coefficients", static_cast<double>(planes) * v * 4, gridSetting);
   plan->AddDeviceBuffer(grid, "source", 6 * v * 4, gridSetting);
   for (const char* what : { "lattice state", "lattice state (next)" })
   {
-    plan->AddDeviceBuffer(grid, what, (this->Lattice * 3 * v + 1) * 4, stateSetting);
+    plan->AddDeviceBuffer(grid, what, (lattice * 3 * v + 1) * 4, stateSetting);
   }
-  if (this->UseBlocks())
+  if (this->UseBlocksOn(lattice))
   {
     // Interface buffers between blocks: 6 faces of b x b voxels, 3 channels, per block.
     const int b = this->BlockSize;
     double blocks = 1;
     for (int a = 0; a < 3; ++a)
     {
-      blocks *= (this->Dims[a] + b - 1) / b;
+      blocks *= (dims[a] + b - 1) / b;
     }
     for (const char* what : { "block interfaces", "block interfaces (next)" })
     {
@@ -266,14 +295,14 @@ bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
   double probes = MaxSourceProbes;
   for (int a = 0; a < 3; ++a)
   {
-    probes *= (this->Dims[a] + this->ProbeSpacing - 1) / this->ProbeSpacing + 1;
+    probes *= (dims[a] + this->ProbeSpacing - 1) / this->ProbeSpacing + 1;
   }
   plan->AddDeviceBuffer(grid, "probes", probes * 3 * 4 * 2, "ProbeSpacing");
   plan->AddDeviceBuffer(grid, "multiple-scattering output", 3 * v * 4, gridSetting);
   plan->AddDeviceBuffer(grid, "multiple-scattering direction output", 3 * v * 4, gridSetting);
   // The coarse start's grids hold the same buffers at 1/8, 1/64, ... of the voxels.
   double coarseShare = 0;
-  for (int d[3] = { this->Dims[0], this->Dims[1], this->Dims[2] }; this->CoarseStartApplies(d);)
+  for (int d[3] = { dims[0], dims[1], dims[2] }; this->CoarseStartApplies(d);)
   {
     coarseShare = coarseShare / 8 + 1.0 / 8;
     for (int& e : d)
@@ -289,7 +318,7 @@ bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
   // Host: the coefficients kept for the absorption sums, the state read back for the energy
   // books, the output, and the source's staging (kept between solves).
   plan->AddHostMemory(grid, "coefficient copy", static_cast<double>(planes) * v * 4, gridSetting);
-  plan->AddHostMemory(grid, "state read-back", this->Lattice * 3 * v * 4, stateSetting);
+  plan->AddHostMemory(grid, "state read-back", lattice * 3 * v * 4, stateSetting);
   plan->AddHostMemory(grid, "MultipleScattering", 3 * v * 4, gridSetting);
   plan->AddHostMemory(grid, "source staging", 6 * v * 4, gridSetting);
   if (coarseShare > 0)
@@ -298,14 +327,6 @@ bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
     plan->AddHostMemory(grid, "coarse-start grids",
       coarseShare * plan->GetHostBytes() + 7.0 * 4 * v / 8, "CoarseStart (off)");
   }
-  this->PlannedDeviceMemoryBytes = plan->GetDeviceBytes();
-  this->PlannedHostMemoryBytes = plan->GetHostBytes();
-  if (!plan->Fits(this->GetContext()))
-  {
-    vtkErrorMacro(<< plan->GetMessage());
-    return false;
-  }
-  return true;
 }
 
 double vtkLatticeBoltzmannSolver::GetAllocatedDeviceMemoryBytes() const

@@ -58,6 +58,7 @@ class vtkDataSet;
 class vtkFloatArray;
 class vtkImageData;
 class vtkOpenCLContext;
+class vtkOpenCLMemoryPlan;
 
 class REFRACTATRANSPORT_EXPORT vtkLatticeBoltzmannSolver : public vtkObject
 {
@@ -503,6 +504,14 @@ public:
   ///@}
 
   /**
+   * Whether a grid of `dims` voxels on `lattice` (6 or 18) would fit the context's limits, by the
+   * plan Initialize() makes, nothing allocated and no error reported (the coefficient planes
+   * counted at their most: three step-length classes per lattice shell). vtkRefractaRenderPipeline
+   * asks it before its effect plan's automatic D3Q18 runs.
+   */
+  bool FitsInMemory(int lattice, const int dims[3]);
+
+  /**
    * Number of voxels of the initialized grid.
    */
   vtkIdType GetNumberOfVoxels() const
@@ -516,10 +525,17 @@ protected:
 
   bool UseBlocks() const
   {
-    return this->BlockSize > 0 && this->Lattice == D3Q6 &&
+    return this->UseBlocksOn(this->Lattice);
+  }
+  bool UseBlocksOn(int lattice) const
+  {
+    return this->BlockSize > 0 && lattice == D3Q6 &&
       (this->BlockPolicy == ALWAYS_BLOCKS || this->DeviceHasLocalMemory);
   }
   bool PlanMemory(size_t coefficientPlanes);
+  // The buffers of a grid of `dims` voxels on `lattice` with `coefficientPlanes` planes.
+  void FillMemoryPlan(
+    vtkOpenCLMemoryPlan* plan, int lattice, const int dims[3], size_t coefficientPlanes) const;
   bool BuildKernels();
   bool ReadProbes(std::vector<float>& values);
   bool SetProbes(const std::vector<cl_uint>& extra);

@@ -155,6 +155,17 @@ int vtkRefractaPluginLighting::GetMultipleScatteringMethod()
   return this->Pipeline->GetMultipleScatteringMethod();
 }
 
+void vtkRefractaPluginLighting::SetLattice(int directions)
+{
+  this->Pipeline->SetLattice(directions);
+  this->Modified();
+}
+
+int vtkRefractaPluginLighting::GetLattice()
+{
+  return this->Pipeline->GetLattice();
+}
+
 void vtkRefractaPluginLighting::SetScatteringOrders(int orders)
 {
   this->Pipeline->SetScatteringOrders(orders);

@@ -107,12 +107,15 @@ public:
   /**
    * How multiple scattering is computed (vtkEffectPlan::MultipleScatteringMethod: 0 auto
    * (default), 1 the lattice alone, 2 the first-collision split, 3 photons carrying every order)
-   * and the split's k (ScatteringOrders, 0: the plan's choice), the pipeline's settings.
+   * the split's k (ScatteringOrders, 0: the plan's choice) and the lattice (Lattice: 0 the plan's
+   * choice (default), 6 or 18 directions), the pipeline's settings.
    */
   void SetMultipleScatteringMethod(int method);
   int GetMultipleScatteringMethod();
   void SetScatteringOrders(int orders);
   int GetScatteringOrders();
+  void SetLattice(int directions);
+  int GetLattice();
   ///@}
 
   /**

@@ -60,7 +60,7 @@ std::vector<double> RenderPipeline(
   tracer->SetSecondaryTolerance(knobs.SecondaryTolerance);
   pipeline->GetLatticeSolver()->SetTolerance(knobs.LatticeTolerance);
   pipeline->GetLatticeSolver()->SetBlockSize(knobs.BlockSize);
-  pipeline->GetLatticeSolver()->SetLattice(knobs.Lattice);
+  pipeline->SetLattice(knobs.Lattice);
   if (knobs.ScatteringOrders > -2)
   {
     const int k = knobs.ScatteringOrders;

@@ -710,7 +710,7 @@ TEST(EffectPlan, MultipleScatteringMethodFollowsTheToleranceAndTheLattice)
   plan->SetScatteringOrders(2);
   Plan(fog, sun, plan, analysis);
   EXPECT_EQ(plan->GetChosenScatteringOrders(), 2);
-  EXPECT_STREQ(plan->GetMultipleScatteringMethodReason(), "k = 2 forced");
+  EXPECT_STREQ(plan->GetMultipleScatteringMethodReason(), "k = 2 forced; D3Q6 forced");
   EXPECT_EQ(vtkEffectPlan::GetMultipleScatteringMethodFromName("split"),
     vtkEffectPlan::FIRST_COLLISION_SPLIT);
   EXPECT_EQ(vtkEffectPlan::GetMultipleScatteringMethodFromName("d3q7"), -1);

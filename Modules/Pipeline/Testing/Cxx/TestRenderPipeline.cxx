@@ -10,6 +10,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLatticeBoltzmannLighting.h"
+#include "vtkLatticeBoltzmannSolver.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
@@ -383,6 +384,48 @@ TEST(RenderPipeline, SameImageAsThePassesWiredByHand)
   }
   EXPECT_GT(maximum, 0.0);
   EXPECT_LE(difference, 1e-5 * maximum);
+}
+
+// The lattice the solver runs is the plan's: D3Q18 for a strongly forward-scattering medium
+// (mean |g| >= vtkEffectPlan::D3Q18Anisotropy), D3Q6 once the medium is nearly isotropic or where
+// the device cannot hold D3Q18's state (a simulated 2 MiB allocation limit: 24^3 voxels need
+// 3.0 MB per D3Q18 state, 1.0 MB per D3Q6 one); a forced lattice is the solver's whatever the
+// medium.
+TEST(RenderPipeline, LatticeIsThePlansChoice)
+{
+  auto medium = Fog();
+  vtkNew<vtkFloatArray> g;
+  g->SetName("Anisotropy");
+  g->SetNumberOfTuples(medium->GetNumberOfPoints());
+  g->FillValue(0.8f);
+  medium->GetPointData()->AddArray(g);
+  auto pipeline = MakePipeline(medium, Sun(), Front());
+  pipeline->SetMultipleScatteringMethod(vtkEffectPlan::LATTICE_ONLY);
+  EXPECT_EQ(pipeline->GetLattice(), vtkEffectPlan::AUTOMATIC_LATTICE);
+  ASSERT_TRUE(pipeline->Render(16, 16));
+  EXPECT_EQ(pipeline->GetLatticeSolver()->GetLattice(), 18);
+
+  g->FillValue(0.3f);
+  medium->Modified();
+  ASSERT_TRUE(pipeline->Render(16, 16));
+  EXPECT_EQ(pipeline->GetLatticeSolver()->GetLattice(), 6);
+  pipeline->SetLattice(18);
+  ASSERT_TRUE(pipeline->Render(16, 16));
+  EXPECT_EQ(pipeline->GetLatticeSolver()->GetLattice(), 18);
+
+  vtkNew<vtkOpenCLContext> small;
+  ASSERT_TRUE(small->Initialize());
+  small->SetSimulatedMaximumAllocationBytes(2 << 20);
+  g->FillValue(0.8f);
+  medium->Modified();
+  pipeline->SetContext(small);
+  pipeline->SetLattice(vtkEffectPlan::AUTOMATIC_LATTICE);
+  ASSERT_TRUE(pipeline->Render(16, 16));
+  EXPECT_EQ(pipeline->GetLatticeSolver()->GetLattice(), 6);
+  EXPECT_NE(std::string(pipeline->GetEffectPlan()->GetMultipleScatteringMethodReason())
+              .find("does not fit the device"),
+    std::string::npos)
+    << pipeline->GetEffectPlan()->GetMultipleScatteringMethodReason();
 }
 
 // The lighting volume handed on on the device (photon pass -> lattice -> view pass, no upload of

@@ -658,6 +658,17 @@ TEST(LatticeBoltzmann, MemoryBeyondTheDeviceLimitsIsNamed)
   ASSERT_TRUE(context->Initialize());
   // D3Q18 state: 18 x 3 floats x 7680 voxels = 1.6 MB per copy; D3Q6: 0.55 MB.
   context->SetSimulatedMaximumAllocationBytes(1 << 20);
+  {
+    // The same plan asked beforehand (the pipeline's automatic lattice), quietly.
+    vtkNew<vtkLatticeBoltzmannSolver> solver;
+    vtkNew<vtkTest::ErrorObserver> errors;
+    solver->AddObserver(vtkCommand::ErrorEvent, errors);
+    solver->SetContext(context);
+    EXPECT_FALSE(solver->FitsInMemory(vtkLatticeBoltzmannSolver::D3Q18, m.Dims));
+    EXPECT_TRUE(solver->FitsInMemory(vtkLatticeBoltzmannSolver::D3Q6, m.Dims));
+    EXPECT_FALSE(solver->FitsInMemory(7, m.Dims));
+    EXPECT_TRUE(errors->GetErrorMessage().empty()) << errors->GetErrorMessage();
+  }
   for (int lattice : { vtkLatticeBoltzmannSolver::D3Q18, vtkLatticeBoltzmannSolver::D3Q6 })
   {
     vtkNew<vtkLatticeBoltzmannSolver> solver;
