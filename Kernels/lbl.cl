@@ -83,40 +83,82 @@ inline size_t lbl_voxels(int4 dims)
 #define LBL_COEF_ALBEDO (REFRACTA_LBL_NCLASS * 3)
 #define LBL_COEF_G (REFRACTA_LBL_NCLASS * 3 + 3)
 
-// Source weights over the directions for voxel v (sum 1).
-__attribute__((always_inline)) inline void lbl_source_weights(
-  __global const float* src, size_t n, size_t v, float g, float* w)
+// How voxel v's source is spread over the directions: w_i = lbl_source_weight(i, shape), sum 1.
+// With REFRACTA_LBL_SOURCE_PHASE the HG phase about the source's direction, normalised over the
+// directions (uniform without a direction, |d| <= 1e-6), else uniform. The kernels evaluate w_i
+// where they use it rather than keep Q of them live (which spilled PoCL's vectorised loops).
+typedef struct
 {
+  float X, Y, Z; // the source's unit direction in the grid's frame (0 without a direction)
+  float G;       // the voxel's anisotropy
+  float Scale;   // 1 / the phase summed over the directions (0 without a direction)
+  float Uniform; // 1 / Q without a direction, else 0
+} lbl_source_shape;
+
+// The HG phase from the source's direction into lattice direction i up to its constant factor
+// (1 - g^2) / (4 pi), which the normalisation removes: d^-3/2 with d = 1 + g^2 - 2 g cos in the
+// form without cancellation near g = 1 (refracta_hg_phase's), by one reciprocal square root.
+__attribute__((always_inline)) inline float lbl_source_phase(int i, const lbl_source_shape* s)
+{
+  // cos between the source direction and lattice direction i's unit vector (grid frame).
+  const float c = LBL_EX(i) * s->X + LBL_EY(i) * s->Y + LBL_EZ(i) * s->Z;
+  const float g = s->G;
+  const float d = g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * (1.0f - c)
+                            : (1.0f + g) * (1.0f + g) - 2.0f * g * (1.0f + c);
+  // |g| <= 0.9999 keeps d >= 1e-8; the floor keeps d^-3/2 finite whatever g.
+  const float r = native_rsqrt(fmax(d, 1e-12f));
+  return r * r * r;
+}
+
+__attribute__((always_inline)) inline lbl_source_shape lbl_source_shape_at(
+  __global const float* src, size_t n, size_t v, float g)
+{
+  lbl_source_shape s;
+  s.X = s.Y = s.Z = 0.0f;
+  s.G = g;
+  s.Scale = 0.0f;
+  s.Uniform = 1.0f / (float)REFRACTA_LBL_Q;
 #if REFRACTA_LBL_SOURCE_PHASE
   // Scalar arithmetic and no branch (no float3 builtins, whose vector results, and no early
-  // return, which keep PoCL from vectorising the work-item loop). Without a direction (|d| <=
-  // 1e-6) the weights are uniform.
+  // return, which keep PoCL from vectorising the work-item loop).
   const float dx = src[3 * n + v], dy = src[4 * n + v], dz = src[5 * n + v];
   const float len = sqrt(dx * dx + dy * dy + dz * dz);
   const bool directed = len > 1e-6f;
   const float inv = directed ? 1.0f / len : 0.0f;
+  s.X = dx * inv;
+  s.Y = dy * inv;
+  s.Z = dz * inv;
   float sum = 0.0f;
   #pragma unroll
   for (int i = 0; i < REFRACTA_LBL_Q; ++i)
   {
-    // cos between the source direction (grid frame) and lattice direction i's unit vector there.
-    const float c = LBL_EX(i) * dx + LBL_EY(i) * dy + LBL_EZ(i) * dz;
-    w[i] = refracta_hg_phase(c * inv, g);
-    sum += w[i];
+    sum += lbl_source_phase(i, &s);
   }
-  const float scale = 1.0f / sum;
-  #pragma unroll
-  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
-  {
-    w[i] = directed ? w[i] * scale : 1.0f / (float)REFRACTA_LBL_Q;
-  }
-#else
-  #pragma unroll
-  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
-  {
-    w[i] = 1.0f / (float)REFRACTA_LBL_Q;
-  }
+  s.Scale = directed ? 1.0f / sum : 0.0f;
+  s.Uniform = directed ? 0.0f : s.Uniform;
 #endif
+  return s;
+}
+
+__attribute__((always_inline)) inline float lbl_source_weight(int i, const lbl_source_shape* s)
+{
+#if REFRACTA_LBL_SOURCE_PHASE
+  return lbl_source_phase(i, s) * s->Scale + s->Uniform;
+#else
+  return s->Uniform;
+#endif
+}
+
+// The weights of lbl_source_weight as an array (the blocked kernel's form).
+__attribute__((always_inline)) inline void lbl_source_weights(
+  __global const float* src, size_t n, size_t v, float g, float* w)
+{
+  const lbl_source_shape shape = lbl_source_shape_at(src, n, v, g);
+  #pragma unroll
+  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
+  {
+    w[i] = lbl_source_weight(i, &shape);
+  }
 }
 
 // x / Q correctly rounded. OpenCL lets '/' be 2.5 ulp off and NVIDIA's driver uses that: the
@@ -130,26 +172,38 @@ __attribute__((always_inline)) inline float lbl_divide_by_q(float x)
   return fma(fma(-q, (float)REFRACTA_LBL_Q, x), inverse, q);
 }
 
+// The isotropic share of the collision, w_i a (1 - |g|) sum_j (1 - T_j) f_j (see the header), from
+// the collided sum.
+__attribute__((always_inline)) inline float lbl_isotropic_share(float a, float g, float collided)
+{
+  return lbl_divide_by_q(a * (1.0f - fmax(g, 0.0f) - fmax(-g, 0.0f)) * collided);
+}
+
+// out_i of the collision (see the header) from f_i, f_opp(i), their T, the isotropic share and
+// the source q w_i.
+__attribute__((always_inline)) inline float lbl_collide_direction(float fi, float fo, float ti,
+  float to, float a, float g, float iso, float qw)
+{
+  return ti * fi + a * fmax(g, 0.0f) * ((1.0f - ti) * fi) + a * fmax(-g, 0.0f) * ((1.0f - to) * fo) +
+    iso + qw;
+}
+
 // Collision of one channel: fin -> out (see the header).
 __attribute__((always_inline)) inline void lbl_collide(
   const float* fin, float* out, const float* t, float a, float g, float q, const float* wsrc)
 {
-  const float gf = fmax(g, 0.0f);
-  const float gb = fmax(-g, 0.0f);
-  float collided[REFRACTA_LBL_Q];
   float sum = 0.0f;
   #pragma unroll
   for (int j = 0; j < REFRACTA_LBL_Q; ++j)
   {
-    collided[j] = (1.0f - t[lbl_class[j]]) * fin[j];
-    sum += collided[j];
+    sum += (1.0f - t[lbl_class[j]]) * fin[j];
   }
-  const float iso = lbl_divide_by_q(a * (1.0f - gf - gb) * sum);
+  const float iso = lbl_isotropic_share(a, g, sum);
   #pragma unroll
   for (int i = 0; i < REFRACTA_LBL_Q; ++i)
   {
-    out[i] = t[lbl_class[i]] * fin[i] + a * gf * collided[i] + a * gb * collided[i ^ 1] + iso +
-      q * wsrc[i];
+    out[i] = lbl_collide_direction(
+      fin[i], fin[i ^ 1], t[lbl_class[i]], t[lbl_class[i ^ 1]], a, g, iso, q * wsrc[i]);
   }
 }
 
@@ -170,46 +224,53 @@ __kernel void lbl_step(__global const float* fcur, __global float* fnext,
   const size_t n = lbl_voxels(dims);
   const size_t v = refracta_voxel_index(dims, x, y, z);
   const float g = coef[LBL_COEF_G * n + v];
-  float wsrc[REFRACTA_LBL_Q];
-  lbl_source_weights(src, n, v, g, wsrc);
-  long offset[REFRACTA_LBL_Q];
-  bool inGrid[REFRACTA_LBL_Q];
-  #pragma unroll
-  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
-  {
-    const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
-    inGrid[i] = tx >= 0 && ty >= 0 && tz >= 0 && tx < dims.x && ty < dims.y && tz < dims.z;
-    offset[i] = (long)lbl_cx[i] + (long)dims.x * ((long)lbl_cy[i] + (long)dims.y * lbl_cz[i]);
-  }
+  const lbl_source_shape shape = lbl_source_shape_at(src, n, v, g);
+  // Two passes over the directions, the second reading f_i again (from the cache) and evaluating
+  // w_i where it is used rather than keeping Q values live: with D3Q18 the arrays of the one-pass
+  // form spilled PoCL's vectorised work-item loop to the stack (25 ms a step at 64^3 on 2 cores,
+  // 6.5x D3Q6's for 2.5x its bytes). First the collided sums of the three channels.
+  float t[3][REFRACTA_LBL_NCLASS], a[3], iso[3];
   #pragma unroll
   for (int ch = 0; ch < 3; ++ch)
   {
-    float t[REFRACTA_LBL_NCLASS];
     #pragma unroll
     for (int c = 0; c < REFRACTA_LBL_NCLASS; ++c)
     {
-      t[c] = coef[(c * 3 + ch) * n + v];
+      t[ch][c] = coef[(c * 3 + ch) * n + v];
     }
-    const float a = coef[(LBL_COEF_ALBEDO + ch) * n + v];
-    float fin[REFRACTA_LBL_Q], out[REFRACTA_LBL_Q];
+    a[ch] = coef[(LBL_COEF_ALBEDO + ch) * n + v];
+    float sum = 0.0f;
     #pragma unroll
-    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
+    for (int j = 0; j < REFRACTA_LBL_Q; ++j)
     {
-      fin[i] = fcur[(i * 3 + ch) * n + v];
+      sum += (1.0f - t[ch][lbl_class[j]]) * fcur[(size_t)(j * 3 + ch) * n + v];
     }
-    lbl_collide(fin, out, t, a, g, src[ch * n + v], wsrc);
-    // Branch-free stores (so that the work-item loop vectorises): a packet leaving the grid is
-    // written to its mirror entry (REFRACTA_LBL_BOUNDARY 1) or to a scratch float past the state's end.
+    iso[ch] = lbl_isotropic_share(a[ch], g, sum);
+  }
+  // Then each direction's three channels, streamed to r + c_i. Branch-free stores (so that the
+  // work-item loop vectorises): a packet leaving the grid is written to its mirror entry
+  // (REFRACTA_LBL_BOUNDARY 1) or to a scratch float past the state's end.
+  #pragma unroll
+  for (int i = 0; i < REFRACTA_LBL_Q; ++i)
+  {
+    const float w = lbl_source_weight(i, &shape);
+    const int tx = x + lbl_cx[i], ty = y + lbl_cy[i], tz = z + lbl_cz[i];
+    const bool inGrid = tx >= 0 && ty >= 0 && tz >= 0 && tx < dims.x && ty < dims.y && tz < dims.z;
+    const long offset =
+      (long)lbl_cx[i] + (long)dims.x * ((long)lbl_cy[i] + (long)dims.y * lbl_cz[i]);
     #pragma unroll
-    for (int i = 0; i < REFRACTA_LBL_Q; ++i)
+    for (int ch = 0; ch < 3; ++ch)
     {
-      const size_t inside = (size_t)(i * 3 + ch) * n + v + (size_t)offset[i];
+      const float out = lbl_collide_direction(fcur[(size_t)(i * 3 + ch) * n + v],
+        fcur[(size_t)((i ^ 1) * 3 + ch) * n + v], t[ch][lbl_class[i]], t[ch][lbl_class[i ^ 1]],
+        a[ch], g, iso[ch], src[ch * n + v] * w);
+      const size_t inside = (size_t)(i * 3 + ch) * n + v + (size_t)offset;
 #if REFRACTA_LBL_BOUNDARY == 1
       const size_t outside = (size_t)((i ^ 1) * 3 + ch) * n + v;
 #else
       const size_t outside = (size_t)REFRACTA_LBL_Q * 3 * n;
 #endif
-      fnext[inGrid[i] ? inside : outside] = out[i];
+      fnext[inGrid ? inside : outside] = out;
     }
   }
 }

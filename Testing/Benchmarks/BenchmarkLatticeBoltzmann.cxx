@@ -8,7 +8,9 @@
 // per step, lattice updates per second (voxels x steps / s), the effective bytes per second of
 // the update (state read + write, coefficients, source) and its ratio to the bandwidth of a plain
 // OpenCL copy kernel over buffers of the state's size. Figures are medians of --repeats runs
-// (default 3). Writes CSV to --csv (default lbl_benchmark.csv).
+// (default 3). Writes CSV to --csv (default lbl_benchmark.csv). --lattices 6,18 adds D3Q18 (global
+// only: it never runs in blocks), whose update reads and writes 18 x 3 floats and 2 length
+// classes' T.
 //
 // --table1 N runs instead the paper's Table I experiment on an N^3 medium entirely filled
 // (sigma_t h = 0.5, albedo 0.9, a sphere of index 1.2 in the middle so that rays curve; a
@@ -22,7 +24,8 @@
 // coarse correction.
 //
 // Usage: BenchmarkLatticeBoltzmann [--large] [--sizes 32,64] [--repeats N] [--csv file]
-//        [--max-steps N] [--isotropic] [--global-only] [--table1 N [--persistent]]
+//        [--max-steps N] [--isotropic] [--global-only] [--lattices 6,18]
+//        [--table1 N [--persistent]]
 #include "RefractaBenchmark.h"
 
 #include "vtkDataArray.h"
@@ -260,6 +263,7 @@ double CopyBandwidth(vtkOpenCLContext* context, size_t bytes, int repeats)
 int main(int argc, char* argv[])
 {
   std::vector<int> sizes = { 64, 128 };
+  std::vector<int> lattices = { 6 };
   int repeats = 3;
   int maxSteps = 5000;
   bool isotropic = false;
@@ -276,6 +280,10 @@ int main(int argc, char* argv[])
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc)
     {
       sizes = refracta::bench::ParseIntList(argv[++i]);
+    }
+    else if (!std::strcmp(argv[i], "--lattices") && i + 1 < argc)
+    {
+      lattices = refracta::bench::ParseIntList(argv[++i]);
     }
     else if (!std::strcmp(argv[i], "--isotropic"))
     {
@@ -324,116 +332,122 @@ int main(int argc, char* argv[])
     return RunTable1(table1, repeats, persistent, csv);
   }
   std::ofstream out(csv);
-  out << "size,albedo,schedule,steps,converged,seconds,ms_per_step,mlups,effective_GBps,"
+  out << "size,lattice,albedo,schedule,steps,converged,seconds,ms_per_step,mlups,effective_GBps,"
          "copy_GBps,ratio\n";
   std::string coarseRows;
-  std::printf("\n| size | albedo | schedule | steps | converged | ms/step | M updates/s | "
-              "effective GB/s | copy GB/s | ratio |\n|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+    "\n| size | lattice | albedo | schedule | steps | converged | ms/step | M updates/s | "
+    "effective GB/s | copy GB/s | ratio |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int n : sizes)
-  {
-    const int dims[3] = { n, n, n };
-    const double spacing[3] = { 1, 1, 1 };
-    const size_t voxels = size_t(n) * n * n;
-    const double sigmaT = 0.5;
-    // D3Q6, one length class: state 6 x 3 floats read and written, 3 T + 3 albedo + g, 3 + 3
-    // source values (phase-function source).
-    const double bytesPerUpdate = (2.0 * 18 + 7 + 6) * 4;
-    const double copy = CopyBandwidth(context, 18 * voxels * sizeof(float), repeats);
-    for (double albedo : { 0.5, 0.9, 0.99 })
+    for (int lattice : lattices)
     {
-      std::vector<float> ext(voxels * 3, float(sigmaT)), alb(voxels * 3, float(albedo)),
-        g(voxels, 0.0f), s1(voxels * 3), dir(voxels * 3, 0.0f);
-      for (size_t v = 0; v < voxels; ++v)
+      const int dims[3] = { n, n, n };
+      const double spacing[3] = { 1, 1, 1 };
+      const size_t voxels = size_t(n) * n * n;
+      const double sigmaT = 0.5;
+      // State Q x 3 floats read and written; per length class (D3Q6 one, D3Q18 two on cubic voxels)
+      // 3 T, then 3 albedo + g; 3 + 3 source values (phase-function source).
+      const int classes = lattice == 18 ? 2 : 1;
+      const double bytesPerUpdate = (2.0 * 3 * lattice + 3 * classes + 4 + 6) * 4;
+      const double copy =
+        CopyBandwidth(context, size_t(3 * lattice) * voxels * sizeof(float), repeats);
+      for (double albedo : { 0.5, 0.9, 0.99 })
       {
-        const int x = static_cast<int>(v % n);
-        for (int c = 0; c < 3; ++c)
+        std::vector<float> ext(voxels * 3, float(sigmaT)), alb(voxels * 3, float(albedo)),
+          g(voxels, 0.0f), s1(voxels * 3), dir(voxels * 3, 0.0f);
+        for (size_t v = 0; v < voxels; ++v)
         {
-          s1[v * 3 + c] = float(albedo * sigmaT * std::exp(-sigmaT * x));
-        }
-        dir[v * 3] = 1.0f;
-      }
-      for (int blocked : { 0, 1 })
-      {
-        if (blocked && globalOnly)
-        {
-          continue;
-        }
-        // Cold (CoarseStart off: every step on this grid, the bandwidth rows), then with the
-        // coarse start (the class default) against the cold answer.
-        SolveRuns cold, coarse;
-        std::vector<float> coldOutput, coarseOutput;
-        for (bool coarseStart : { false, true })
-        {
-          SolveRuns& runs = coarseStart ? coarse : cold;
-          for (int r = -1; r < repeats; ++r) // r = -1: warm-up (kernel builds), not timed
+          const int x = static_cast<int>(v % n);
+          for (int c = 0; c < 3; ++c)
           {
-            vtkNew<vtkLatticeBoltzmannSolver> solver;
-            solver->SetCoarseStart(coarseStart);
-            solver->SetBlockSize(blocked ? 4 : 0);
-            solver->SetBlockPolicy(vtkLatticeBoltzmannSolver::ALWAYS_BLOCKS);
-            solver->SetStepsPerExchange(4);
-            // The warm-up only builds the kernels (a few steps).
-            solver->SetMaximumIterations(r < 0 ? 8 : maxSteps);
-            if (isotropic)
+            s1[v * 3 + c] = float(albedo * sigmaT * std::exp(-sigmaT * x));
+          }
+          dir[v * 3] = 1.0f;
+        }
+        for (int blocked : { 0, 1 })
+        {
+          if (blocked && (globalOnly || lattice == 18))
+          {
+            continue;
+          }
+          // Cold (CoarseStart off: every step on this grid, the bandwidth rows), then with the
+          // coarse start (the class default) against the cold answer.
+          SolveRuns cold, coarse;
+          std::vector<float> coldOutput, coarseOutput;
+          for (bool coarseStart : { false, true })
+          {
+            SolveRuns& runs = coarseStart ? coarse : cold;
+            for (int r = -1; r < repeats; ++r) // r = -1: warm-up (kernel builds), not timed
             {
-              solver->SetSourceDistribution(vtkLatticeBoltzmannSolver::ISOTROPIC_SOURCE);
-            }
-            if (!solver->Initialize(dims, spacing, ext.data(), alb.data(), g.data()) ||
-              !solver->SetSource(s1.data(), dir.data()))
-            {
-              return 1;
-            }
-            const double t0 = Now();
-            if (!solver->Solve())
-            {
-              return 1;
-            }
-            if (r >= 0)
-            {
-              runs.Seconds.push_back(Now() - t0);
-            }
-            runs.Steps = solver->GetIterations();
-            runs.CoarseSteps = solver->GetCoarseStartSteps();
-            runs.CoarseCost = solver->GetCoarseStartCost();
-            runs.Converged = solver->GetConverged();
-            std::vector<float>& output = coarseStart ? coarseOutput : coldOutput;
-            output.resize(voxels * 3);
-            if (r == repeats - 1 && !solver->ComputeMultipleScattering(output.data()))
-            {
-              return 1;
+              vtkNew<vtkLatticeBoltzmannSolver> solver;
+              solver->SetLattice(lattice);
+              solver->SetCoarseStart(coarseStart);
+              solver->SetBlockSize(blocked ? 4 : 0);
+              solver->SetBlockPolicy(vtkLatticeBoltzmannSolver::ALWAYS_BLOCKS);
+              solver->SetStepsPerExchange(4);
+              // The warm-up only builds the kernels (a few steps).
+              solver->SetMaximumIterations(r < 0 ? 8 : maxSteps);
+              if (isotropic)
+              {
+                solver->SetSourceDistribution(vtkLatticeBoltzmannSolver::ISOTROPIC_SOURCE);
+              }
+              if (!solver->Initialize(dims, spacing, ext.data(), alb.data(), g.data()) ||
+                !solver->SetSource(s1.data(), dir.data()))
+              {
+                return 1;
+              }
+              const double t0 = Now();
+              if (!solver->Solve())
+              {
+                return 1;
+              }
+              if (r >= 0)
+              {
+                runs.Seconds.push_back(Now() - t0);
+              }
+              runs.Steps = solver->GetIterations();
+              runs.CoarseSteps = solver->GetCoarseStartSteps();
+              runs.CoarseCost = solver->GetCoarseStartCost();
+              runs.Converged = solver->GetConverged();
+              std::vector<float>& output = coarseStart ? coarseOutput : coldOutput;
+              output.resize(voxels * 3);
+              if (r == repeats - 1 && !solver->ComputeMultipleScattering(output.data()))
+              {
+                return 1;
+              }
             }
           }
+          const int steps = cold.Steps;
+          const bool converged = cold.Converged;
+          const double t = Median(cold.Seconds);
+          const double mlups = double(voxels) * steps / t / 1e6;
+          const double effective = mlups * 1e6 * bytesPerUpdate;
+          const char* schedule = blocked ? "blocks b=4 m=4" : "global";
+          std::printf("| %d^3 | D3Q%d | %.2f | %s | %d | %s | %.2f | %.1f | %.2f | %.2f | %.3f |\n",
+            n, lattice, albedo, schedule, steps, converged ? "yes" : "no", 1e3 * t / steps, mlups,
+            effective / 1e9, copy / 1e9, effective / copy);
+          std::fflush(stdout);
+          out << n << "," << lattice << "," << albedo << "," << schedule << "," << steps << ","
+              << converged << "," << t << "," << 1e3 * t / steps << "," << mlups << ","
+              << effective / 1e9 << "," << copy / 1e9 << "," << effective / copy << "\n";
+          const double coarseSeconds = Median(coarse.Seconds);
+          char row[512];
+          std::snprintf(row, sizeof(row),
+            "| %d^3 | D3Q%d | %.2f | %s | %d | %.4f | %d + %d coarse (%.1f) | %s | %.4f | %.2f | "
+            "%.2e |\n",
+            n, lattice, albedo, schedule, cold.Steps, t, coarse.Steps, coarse.CoarseSteps,
+            coarse.CoarseCost, coarse.Converged ? "yes" : "no", coarseSeconds, t / coarseSeconds,
+            MaxDifferenceOverPeak(coarseOutput, coldOutput));
+          coarseRows += row;
         }
-        const int steps = cold.Steps;
-        const bool converged = cold.Converged;
-        const double t = Median(cold.Seconds);
-        const double mlups = double(voxels) * steps / t / 1e6;
-        const double effective = mlups * 1e6 * bytesPerUpdate;
-        const char* schedule = blocked ? "blocks b=4 m=4" : "global";
-        std::printf("| %d^3 | %.2f | %s | %d | %s | %.2f | %.1f | %.2f | %.2f | %.3f |\n", n,
-          albedo, schedule, steps, converged ? "yes" : "no", 1e3 * t / steps, mlups,
-          effective / 1e9, copy / 1e9, effective / copy);
-        std::fflush(stdout);
-        out << n << "," << albedo << "," << schedule << "," << steps << "," << converged << "," << t
-            << "," << 1e3 * t / steps << "," << mlups << "," << effective / 1e9 << "," << copy / 1e9
-            << "," << effective / copy << "\n";
-        const double coarseSeconds = Median(coarse.Seconds);
-        char row[512];
-        std::snprintf(row, sizeof(row),
-          "| %d^3 | %.2f | %s | %d | %.4f | %d + %d coarse (%.1f) | %s | %.4f | %.2f | %.2e |\n", n,
-          albedo, schedule, cold.Steps, t, coarse.Steps, coarse.CoarseSteps, coarse.CoarseCost,
-          coarse.Converged ? "yes" : "no", coarseSeconds, t / coarseSeconds,
-          MaxDifferenceOverPeak(coarseOutput, coldOutput));
-        coarseRows += row;
       }
-    }
   }
   std::printf(
     "\nCoarse start (vtkLatticeBoltzmannSolver::CoarseStart, the default) against the "
     "cold start above, same run; steps on this grid + on the coarser ones (their cost "
     "in steps of this grid); the difference of S_ms over its peak:\n\n"
-    "| size | albedo | schedule | cold steps | cold s | coarse-start steps | converged | "
-    "s | speed-up | max S_ms difference / peak |\n|---|---|---|---|---|---|---|---|---|---|\n"
+    "| size | lattice | albedo | schedule | cold steps | cold s | coarse-start steps | converged | "
+    "s | speed-up | max S_ms difference / peak |\n|---|---|---|---|---|---|---|---|---|---|---|\n"
     "%s",
     coarseRows.c_str());
   std::printf("\nCSV written to %s\n", csv.c_str());

@@ -14,6 +14,10 @@ of multiple scattering", has the table.
 Usage (from the build tree, with the Python modules on PYTHONPATH):
   python3 ms_direction.py [--size 32] [--spp 4096] [--turn] [--lights back,front,side]
                           [--anisotropy 0.8] [--methods d3q6,d3q18,split,photons] [--directed-only]
+  python3 ms_direction.py --time-grid 64 [--runs 3] [--anisotropy 0.8]
+--anisotropy g sets the ball's g (Physics.md, "The plan's lattice", has the sweep); --time-grid N
+times instead a light move of the ball on N^3 voxels (the lattice alone, lit from behind, a 64 x 64
+image) with D3Q6 and D3Q18, alternated within each run, and prints the medians and their ratio.
 """
 import argparse, math, time
 import numpy as np
@@ -30,7 +34,11 @@ parser.add_argument("--lights", default="back,front,side")
 parser.add_argument("--anisotropy", type=float, default=0.8)
 parser.add_argument("--methods", default="d3q6,d3q18,split,photons")
 parser.add_argument("--directed-only", action="store_true", help="leave out the isotropic columns")
+parser.add_argument("--time-grid", type=int, default=0)
+parser.add_argument("--runs", type=int, default=3)
 args = parser.parse_args()
+if args.time_grid:
+    args.size = args.time_grid
 N, PIXELS, G = args.size, 32, args.anisotropy
 
 def medium():
@@ -103,6 +111,26 @@ def stats(img, ref, se):
 
 E = refracta.vtkEffectPlan
 m = medium()
+
+def time_light_move(lattice):
+    """Seconds of a light move (the lattice's solve from the new S1 and the view pass)."""
+    r = renderer(m, "back"); p = r.GetPipeline()
+    p.SetMultipleScatteringMethod(E.LATTICE_ONLY); p.SetLattice(lattice); r.SetImageSize(64, 64)
+    r.Update()
+    l = r.GetPipeline().GetLights().GetItemAsObject(0)
+    l.SetPosition(0.5 + 3 * math.sin(0.7), 0.5, 0.5 - 3 * math.cos(0.7)); r.Modified()
+    t = time.perf_counter(); r.Update()
+    return time.perf_counter() - t
+
+if args.time_grid:
+    times = {6: [], 18: []}
+    for run in range(args.runs):
+        for lattice in (6, 18):
+            times[lattice].append(time_light_move(lattice))
+    med = {k: sorted(v)[len(v) // 2] for k, v in times.items()}
+    print(f"{N}^3, g = {G}, light move, medians of {args.runs} (alternated): D3Q6 {med[6]:.2f} s, "
+          f"D3Q18 {med[18]:.2f} s, ratio {med[18] / med[6]:.2f}")
+    raise SystemExit(0)
 every = {"d3q6": ("lattice D3Q6", E.LATTICE_ONLY, 6, 0), "d3q18": ("lattice D3Q18", E.LATTICE_ONLY, 18, 0),
          "split": ("split D3Q6, k = 7", E.FIRST_COLLISION_SPLIT, 6, 7),
          "photons": ("photons, every order", E.PHOTONS_EVERY_ORDER, 6, 0)}
