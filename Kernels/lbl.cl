@@ -85,8 +85,8 @@ inline size_t lbl_voxels(int4 dims)
 
 // How voxel v's source is spread over the directions: w_i = lbl_source_weight(i, shape), sum 1.
 // With REFRACTA_LBL_SOURCE_PHASE the HG phase about the source's direction, normalised over the
-// directions (uniform without a direction, |d| <= 1e-6), else uniform. The kernels evaluate w_i
-// where they use it rather than keep Q of them live (which spilled PoCL's vectorised loops).
+// directions (uniform without a direction, |d| <= 1e-6), else uniform. lbl_step evaluates w_i
+// where it uses it rather than keep Q of them live.
 typedef struct
 {
   float X, Y, Z; // the source's unit direction in the grid's frame (0 without a direction)
@@ -226,9 +226,9 @@ __kernel void lbl_step(__global const float* fcur, __global float* fnext,
   const float g = coef[LBL_COEF_G * n + v];
   const lbl_source_shape shape = lbl_source_shape_at(src, n, v, g);
   // Two passes over the directions, the second reading f_i again (from the cache) and evaluating
-  // w_i where it is used rather than keeping Q values live: with D3Q18 the arrays of the one-pass
-  // form spilled PoCL's vectorised work-item loop to the stack (25 ms a step at 64^3 on 2 cores,
-  // 6.5x D3Q6's for 2.5x its bytes). First the collided sums of the three channels.
+  // w_i where it is used rather than keeping Q values of each live: measured 1.2x (D3Q18) to 1.3x
+  // (D3Q6) faster a step than the one-pass form on PoCL, 2 cores (Benchmarks.md, "The lattice's
+  // step"). First the collided sums of the three channels.
   float t[3][REFRACTA_LBL_NCLASS], a[3], iso[3];
   #pragma unroll
   for (int ch = 0; ch < 3; ++ch)
