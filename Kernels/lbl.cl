@@ -105,8 +105,10 @@ __attribute__((always_inline)) inline float lbl_source_phase(int i, const lbl_so
   const float g = s->G;
   const float d = g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * (1.0f - c)
                             : (1.0f + g) * (1.0f + g) - 2.0f * g * (1.0f + c);
-  // |g| <= 0.9999 keeps d >= 1e-8; the floor keeps d^-3/2 finite whatever g.
-  const float r = native_rsqrt(fmax(d, 1e-12f));
+  // d's least value is (1 - |g|)^2 (cos = +-1; rounding of cos could take d below it); the
+  // second floor keeps d^-3/2 and the sum of Q of them finite for |g| within a float of 1.
+  const float least = fmax((1.0f - fabs(g)) * (1.0f - fabs(g)), 1e-20f);
+  const float r = native_rsqrt(fmax(d, least));
   return r * r * r;
 }
 

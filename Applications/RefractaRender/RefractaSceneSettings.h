@@ -37,7 +37,7 @@ struct RenderSettings
   double LatticeTolerance = 1e-4;
   int LatticeBlockSize = 4;
   std::string MultipleScatteringMethodName = "auto"; // quality.multiple_scattering_method
-  int Lattice = 6;                                   // 6 (D3Q6) or 18 (D3Q18)
+  int Lattice = 0;                                   // 0 (the plan's choice), 6 or 18
   int ScatteringOrders = 0; // quality.scattering_orders: the split's k (0: the plan's choice)
   int VolumeCaustic = 4;    // quality.volume_caustic: vtkPhotonTracer::VolumeCausticSubdivision
   int RadianceLobes = 2;    // quality.radiance_lobes: vtkPhotonTracer::MaximumRadianceLobes

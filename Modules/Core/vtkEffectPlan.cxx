@@ -434,6 +434,10 @@ void vtkEffectPlan::RecordInFieldData(vtkFieldData* fieldData) const
   multiple->InsertNextValue(GetMultipleScatteringMethodName(this->ChosenMultipleMethod));
   multiple->InsertNextValue(this->MultipleReason);
   fieldData->AddArray(multiple);
+  vtkNew<vtkIntArray> lattice;
+  lattice->SetName("PlanLatticeDirections");
+  lattice->InsertNextValue(this->ChosenLattice);
+  fieldData->AddArray(lattice);
 }
 
 //------------------------------------------------------------------------------
@@ -463,7 +467,8 @@ void vtkEffectPlan::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MultipleScatteringMethod: "
      << GetMultipleScatteringMethodName(this->MultipleScatteringMethod)
      << ", ScatteringOrders: " << this->ScatteringOrders
-     << ", LatticeDirections: " << this->LatticeDirections << "; chosen "
+     << ", LatticeDirections: " << this->LatticeDirections
+     << ", D3Q18FitsInMemory: " << this->D3Q18FitsInMemory << "; chosen "
      << GetMultipleScatteringMethodName(this->ChosenMultipleMethod) << ", k " << this->ChosenOrders
      << ", D3Q" << this->ChosenLattice << " (" << this->MultipleReason << ")\n";
 }

@@ -198,21 +198,25 @@ public:
   int GetChosenMultipleScatteringMethod() const { return this->ChosenMultipleMethod; }
   int GetChosenScatteringOrders() const { return this->ChosenOrders; }
   int GetChosenLatticeDirections() const { return this->ChosenLattice; }
-  static constexpr int AUTOMATIC_LATTICE = 0;
+  const char* GetMultipleScatteringMethodReason() const { return this->MultipleReason.c_str(); }
+  static const char* GetMultipleScatteringMethodName(int method);
+  static int GetMultipleScatteringMethodFromName(const char* name); // -1: unknown
+  enum LatticeChoice
+  {
+    AUTOMATIC_LATTICE = 0 ///< LatticeDirections: the plan chooses D3Q6 or D3Q18
+  };
   static constexpr double D3Q18Anisotropy = 0.6;
   ///@}
 
   ///@{
   /**
-   * Whether the device can hold the D3Q18 lattice for this medium (default true; the pipeline
-   * sets it from vtkLatticeBoltzmannSolver::FitsInMemory before Decide()). Where it cannot, the
-   * automatic lattice stays D3Q6 and the reason says why.
+   * Whether the device can hold the D3Q18 lattice for this medium (default true): an input of
+   * the next Decide(), not a setting (it does not modify the plan), which the pipeline sets from
+   * vtkLatticeBoltzmannSolver::FitsInMemory. Where it cannot, the automatic lattice stays D3Q6
+   * and the reason says why.
    */
-  vtkSetMacro(D3Q18FitsInMemory, bool);
+  void SetD3Q18FitsInMemory(bool fits) { this->D3Q18FitsInMemory = fits; }
   vtkGetMacro(D3Q18FitsInMemory, bool);
-  const char* GetMultipleScatteringMethodReason() const { return this->MultipleReason.c_str(); }
-  static const char* GetMultipleScatteringMethodName(int method);
-  static int GetMultipleScatteringMethodFromName(const char* name); // -1: unknown
   ///@}
 
   /**

@@ -217,8 +217,9 @@ public:
    * rays for single scattering the photons still run for the orders they carry
    * (vtkLatticeBoltzmannLighting's port 2). SetLattice: vtkEffectPlan::SetLatticeDirections,
    * the lattice the solver runs on: vtkEffectPlan::AUTOMATIC_LATTICE (0, default: D3Q18 where the
-   * medium scatters strongly forward or backward, mean |g| >= 0.6, else D3Q6), 6 or 18; every
-   * render sets GetLatticeSolver()'s Lattice to the plan's choice, so set it here, not there.
+   * medium scatters strongly forward or backward, mean |g| >= 0.6, else D3Q6), 6 or 18; each
+   * light pass sets GetLatticeSolver()'s Lattice to the plan's choice (field data
+   * `PlanLatticeDirections`), so set it here, not there.
    */
   void SetMultipleScatteringMethod(int method);
   int GetMultipleScatteringMethod();

@@ -111,7 +111,7 @@ vtkAlgorithm* vtkRefractaRenderPipeline::PrepareLightRays(vtkPhotonTracer* trace
   }
   vtkLatticeBoltzmannLighting* lattice = in.LightRayLattice;
   lattice->SetContext(in.GetContext());
-  lattice->SetLattice(this->GetLatticeSolver()->GetLattice());
+  lattice->SetLattice(in.Plan->GetChosenLatticeDirections());
   lattice->SetTolerance(this->GetLatticeSolver()->GetTolerance());
   lattice->SetBlockSize(this->GetLatticeSolver()->GetBlockSize());
   lattice->SetKeepDeviceCopies(this->DeviceHandOff);
@@ -227,19 +227,22 @@ bool vtkRefractaRenderPipeline::RunPlan()
   {
     in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, vtkEffectPlan::FORCE_OFF);
   }
-  // The automatic lattice's D3Q18 only where the device holds it (3x D3Q6's state).
-  in.Plan->SetD3Q18FitsInMemory(
-    in.Plan->GetLatticeDirections() != vtkEffectPlan::AUTOMATIC_LATTICE ||
+  const bool analysed = in.Analysis->Analyze();
+  // The automatic lattice's D3Q18 only where the device holds it (3x D3Q6's state); asked only
+  // where the plan would choose it.
+  const bool askMemory = analysed &&
+    in.Plan->GetLatticeDirections() == vtkEffectPlan::AUTOMATIC_LATTICE &&
+    in.Analysis->GetMeanAnisotropy() >= vtkEffectPlan::D3Q18Anisotropy;
+  in.Plan->SetD3Q18FitsInMemory(!askMemory ||
     this->GetLatticeSolver()->FitsInMemory(
-      vtkLatticeBoltzmannSolver::D3Q18, in.Medium->GetDimensions()));
-  const bool decided = in.Analysis->Analyze() && in.Plan->Decide(in.Analysis);
+      vtkLatticeBoltzmannSolver::D3Q18, in.Medium->GetDimensions(), in.Medium->GetSpacing()));
+  const bool decided = analysed && in.Plan->Decide(in.Analysis);
   in.Plan->SetEffectMode(vtkEffectPlan::MULTIPLE_SCATTERING, userMode);
   if (!decided)
   {
     vtkErrorMacro("The scene analysis failed (see the error above).");
     return false;
   }
-  this->GetLatticeSolver()->SetLattice(in.Plan->GetChosenLatticeDirections());
 
   // Prune the medium only when it or a light-independent decision changed, so that a light
   // move keeps the medium the view pass and the photon pass already hold.
@@ -298,6 +301,8 @@ bool vtkRefractaRenderPipeline::RunLighting()
   {
     vtkPhotonTracer* tracer = in.Schedule->GetPhotonTracer();
     tracer->SetKeepDeviceCopies(this->DeviceHandOff);
+    // The lattice the plan chose, whatever was set on the solver itself.
+    in.Schedule->GetSolver()->SetLattice(in.Plan->GetChosenLatticeDirections());
     in.Schedule->GetSolver()->SetKeepDeviceCopies(this->DeviceHandOff);
     tracer->SetLights(in.DataLights);
     tracer->SetSurfaces(surfaces ? in.SceneSurfaces : nullptr);

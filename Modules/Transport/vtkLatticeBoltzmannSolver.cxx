@@ -24,6 +24,36 @@ using refracta_lbm::Cy;
 using refracta_lbm::Cz;
 using refracta_lbm::LocalRow;
 
+namespace
+{
+// The distinct step lengths |c_i spacing| of the lattice's q directions, and each direction's
+// class (index into them): directions of one length share one transmittance.
+std::vector<double> StepLengthClasses(int q, const double spacing[3], std::vector<int>& classOf)
+{
+  std::vector<double> lengths;
+  classOf.assign(q, 0);
+  for (int i = 0; i < q; ++i)
+  {
+    const double len = std::sqrt(std::pow(Cx[i] * spacing[0], 2) + std::pow(Cy[i] * spacing[1], 2) +
+      std::pow(Cz[i] * spacing[2], 2));
+    auto it = std::find(lengths.begin(), lengths.end(), len);
+    if (it == lengths.end())
+    {
+      lengths.push_back(len);
+      it = lengths.end() - 1;
+    }
+    classOf[i] = static_cast<int>(it - lengths.begin());
+  }
+  return lengths;
+}
+
+// Planes of the coefficient buffer: T per length class and channel, albedo per channel, g.
+size_t CoefficientPlanes(size_t lengthClasses)
+{
+  return lengthClasses * 3 + 4;
+}
+}
+
 //------------------------------------------------------------------------------
 vtkLatticeBoltzmannSolver::vtkLatticeBoltzmannSolver()
 {
@@ -118,24 +148,11 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
   const int q = this->Lattice;
 
   // Step-length classes: directions with the same length share one transmittance.
-  this->DirectionClass.assign(q, 0);
-  this->ClassLengths.clear();
-  for (int i = 0; i < q; ++i)
-  {
-    const double len = std::sqrt(std::pow(Cx[i] * spacing[0], 2) + std::pow(Cy[i] * spacing[1], 2) +
-      std::pow(Cz[i] * spacing[2], 2));
-    auto it = std::find(this->ClassLengths.begin(), this->ClassLengths.end(), len);
-    if (it == this->ClassLengths.end())
-    {
-      this->ClassLengths.push_back(len);
-      it = this->ClassLengths.end() - 1;
-    }
-    this->DirectionClass[i] = static_cast<int>(it - this->ClassLengths.begin());
-  }
+  this->ClassLengths = StepLengthClasses(q, spacing, this->DirectionClass);
   const int nclass = static_cast<int>(this->ClassLengths.size());
 
   // Coefficients, planar: T per class and channel, albedo per channel, g.
-  const size_t planes = static_cast<size_t>(nclass) * 3 + 4;
+  const size_t planes = CoefficientPlanes(nclass);
   if (!this->PlanMemory(planes))
   {
     return false;
@@ -236,7 +253,7 @@ bool vtkLatticeBoltzmannSolver::Initialize(const int dims[3], const double spaci
 bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
 {
   vtkNew<vtkOpenCLMemoryPlan> plan;
-  this->FillMemoryPlan(plan, this->Lattice, this->Dims, planes);
+  this->FillMemoryPlan(plan, this->Lattice, this->Dims, planes, this->UseBlocks());
   this->PlannedDeviceMemoryBytes = plan->GetDeviceBytes();
   this->PlannedHostMemoryBytes = plan->GetHostBytes();
   if (!plan->Fits(this->GetContext()))
@@ -248,22 +265,25 @@ bool vtkLatticeBoltzmannSolver::PlanMemory(size_t planes)
 }
 
 //------------------------------------------------------------------------------
-bool vtkLatticeBoltzmannSolver::FitsInMemory(int lattice, const int dims[3])
+bool vtkLatticeBoltzmannSolver::FitsInMemory(
+  int lattice, const int dims[3], const double spacing[3])
 {
   vtkOpenCLContext* context = this->GetContext();
   if ((lattice != D3Q6 && lattice != D3Q18) || !context->Initialize())
   {
     return false;
   }
-  this->DeviceHasLocalMemory = context->HasDedicatedLocalMemory();
+  std::vector<int> classOf;
+  const size_t planes = CoefficientPlanes(StepLengthClasses(lattice, spacing, classOf).size());
   vtkNew<vtkOpenCLMemoryPlan> plan;
-  this->FillMemoryPlan(plan, lattice, dims, (lattice == D3Q18 ? 6 : 3) * 3 + 4);
+  this->FillMemoryPlan(
+    plan, lattice, dims, planes, this->UseBlocksOn(lattice, context->HasDedicatedLocalMemory()));
   return plan->Fits(context);
 }
 
 //------------------------------------------------------------------------------
 void vtkLatticeBoltzmannSolver::FillMemoryPlan(
-  vtkOpenCLMemoryPlan* plan, int lattice, const int dims[3], size_t planes) const
+  vtkOpenCLMemoryPlan* plan, int lattice, const int dims[3], size_t planes, bool blocks) const
 {
   const double v = static_cast<double>(dims[0]) * dims[1] * dims[2];
   std::ostringstream gridText;
@@ -278,7 +298,7 @@ void vtkLatticeBoltzmannSolver::FillMemoryPlan(
   {
     plan->AddDeviceBuffer(grid, what, (lattice * 3 * v + 1) * 4, stateSetting);
   }
-  if (this->UseBlocksOn(lattice))
+  if (blocks)
   {
     // Interface buffers between blocks: 6 faces of b x b voxels, 3 channels, per block.
     const int b = this->BlockSize;

@@ -504,12 +504,13 @@ public:
   ///@}
 
   /**
-   * Whether a grid of `dims` voxels on `lattice` (6 or 18) would fit the context's limits, by the
-   * plan Initialize() makes, nothing allocated and no error reported (the coefficient planes
-   * counted at their most: three step-length classes per lattice shell). vtkRefractaRenderPipeline
-   * asks it before its effect plan's automatic D3Q18 runs.
+   * Whether a grid of `dims` voxels of `spacing` on `lattice` (6 or 18) would fit the context's
+   * limits, by the plan Initialize() makes, nothing allocated and nothing reported (false also for
+   * another lattice or without a device). The lattice alone is counted, not the other passes'
+   * buffers beside it. vtkRefractaRenderPipeline asks it before its effect plan's automatic D3Q18
+   * runs.
    */
-  bool FitsInMemory(int lattice, const int dims[3]);
+  bool FitsInMemory(int lattice, const int dims[3], const double spacing[3]);
 
   /**
    * Number of voxels of the initialized grid.
@@ -525,17 +526,18 @@ protected:
 
   bool UseBlocks() const
   {
-    return this->UseBlocksOn(this->Lattice);
+    return this->UseBlocksOn(this->Lattice, this->DeviceHasLocalMemory);
   }
-  bool UseBlocksOn(int lattice) const
+  bool UseBlocksOn(int lattice, bool deviceHasLocalMemory) const
   {
     return this->BlockSize > 0 && lattice == D3Q6 &&
-      (this->BlockPolicy == ALWAYS_BLOCKS || this->DeviceHasLocalMemory);
+      (this->BlockPolicy == ALWAYS_BLOCKS || deviceHasLocalMemory);
   }
   bool PlanMemory(size_t coefficientPlanes);
-  // The buffers of a grid of `dims` voxels on `lattice` with `coefficientPlanes` planes.
-  void FillMemoryPlan(
-    vtkOpenCLMemoryPlan* plan, int lattice, const int dims[3], size_t coefficientPlanes) const;
+  // The buffers of a grid of `dims` voxels on `lattice` with `coefficientPlanes` planes, in
+  // blocks or not.
+  void FillMemoryPlan(vtkOpenCLMemoryPlan* plan, int lattice, const int dims[3],
+    size_t coefficientPlanes, bool blocks) const;
   bool BuildKernels();
   bool ReadProbes(std::vector<float>& values);
   bool SetProbes(const std::vector<cl_uint>& extra);

@@ -284,6 +284,14 @@ int main(int argc, char* argv[])
     else if (!std::strcmp(argv[i], "--lattices") && i + 1 < argc)
     {
       lattices = refracta::bench::ParseIntList(argv[++i]);
+      for (int lattice : lattices)
+      {
+        if (lattice != 6 && lattice != 18)
+        {
+          std::fprintf(stderr, "--lattices takes 6 and/or 18, not %d\n", lattice);
+          return 1;
+        }
+      }
     }
     else if (!std::strcmp(argv[i], "--isotropic"))
     {
@@ -338,8 +346,9 @@ int main(int argc, char* argv[])
   std::printf(
     "\n| size | lattice | albedo | schedule | steps | converged | ms/step | M updates/s | "
     "effective GB/s | copy GB/s | ratio |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (int n : sizes)
-    for (int lattice : lattices)
+  for (const int n : sizes)
+  {
+    for (const int lattice : lattices)
     {
       const int dims[3] = { n, n, n };
       const double spacing[3] = { 1, 1, 1 };
@@ -441,6 +450,7 @@ int main(int argc, char* argv[])
           coarseRows += row;
         }
       }
+    }
   }
   std::printf(
     "\nCoarse start (vtkLatticeBoltzmannSolver::CoarseStart, the default) against the "

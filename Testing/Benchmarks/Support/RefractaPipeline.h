@@ -29,9 +29,10 @@ struct PipelineKnobs
   double ViewStep = 1.0;            ///< vtkRefractaImageRenderer::StepSize (voxels)
   /// Multiple scattering: the orders the photons carry (vtkPhotonTracer::ScatteringOrders): 0 the
   /// lattice alone, k > 0 the first-collision split, -1 every order; -2 (default) the plan's
-  /// automatic choice. Lattice: its directions (6 or 18; 0, the default, the plan's choice).
+  /// automatic choice. Lattice: its directions, 6 (default: the lattice the tables of
+  /// Benchmarks.md were measured with) or 18; 0 the plan's choice.
   int ScatteringOrders = -2;
-  int Lattice = 0;
+  int Lattice = 6;
   int ImageWidth = 64;
   int ImageHeight = 64;
 };

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 namespace
@@ -116,6 +117,10 @@ TEST(EffectPlan, AutomaticLatticeFollowsTheAnisotropy)
       << plan->GetMultipleScatteringMethodReason();
     EXPECT_NE(plan->GetSummary().find(expected == 18 ? "on D3Q18" : "on D3Q6"), std::string::npos)
       << plan->GetSummary();
+    vtkNew<vtkFieldData> fd;
+    plan->RecordInFieldData(fd);
+    ASSERT_NE(fd->GetArray("PlanLatticeDirections"), nullptr);
+    EXPECT_EQ(fd->GetArray("PlanLatticeDirections")->GetComponent(0, 0), expected);
   }
 }
 

@@ -88,6 +88,17 @@ vtkSmartPointer<vtkImageData> Fog()
   return image;
 }
 
+// An Anisotropy array of `g` everywhere added to `medium`; the medium keeps it.
+vtkFloatArray* AddAnisotropy(vtkImageData* medium, float g)
+{
+  vtkNew<vtkFloatArray> array;
+  array->SetName("Anisotropy");
+  array->SetNumberOfTuples(medium->GetNumberOfPoints());
+  array->FillValue(g);
+  medium->GetPointData()->AddArray(array);
+  return array;
+}
+
 vtkSmartPointer<vtkLight> Sun()
 {
   auto light = vtkSmartPointer<vtkLight>::New();
@@ -394,14 +405,14 @@ TEST(RenderPipeline, SameImageAsThePassesWiredByHand)
 TEST(RenderPipeline, LatticeIsThePlansChoice)
 {
   auto medium = Fog();
-  vtkNew<vtkFloatArray> g;
-  g->SetName("Anisotropy");
-  g->SetNumberOfTuples(medium->GetNumberOfPoints());
-  g->FillValue(0.8f);
-  medium->GetPointData()->AddArray(g);
+  vtkFloatArray* g = AddAnisotropy(medium, 0.8f);
   auto pipeline = MakePipeline(medium, Sun(), Front());
   pipeline->SetMultipleScatteringMethod(vtkEffectPlan::LATTICE_ONLY);
   EXPECT_EQ(pipeline->GetLattice(), vtkEffectPlan::AUTOMATIC_LATTICE);
+  ASSERT_TRUE(pipeline->Render(16, 16));
+  EXPECT_EQ(pipeline->GetLatticeSolver()->GetLattice(), 18);
+  // The solver's own setting does not outlast the next render: the plan's lattice runs.
+  pipeline->GetLatticeSolver()->SetLattice(6);
   ASSERT_TRUE(pipeline->Render(16, 16));
   EXPECT_EQ(pipeline->GetLatticeSolver()->GetLattice(), 18);
 
@@ -436,12 +447,8 @@ TEST(RenderPipeline, DeviceHandOffGivesTheImageOfTheHostHandOff)
 {
   auto medium = Fog();
   // Forward scattering: the lattice's source is spread around its direction (which an isotropic
-  // phase function would ignore).
-  vtkNew<vtkFloatArray> g;
-  g->SetName("Anisotropy");
-  g->SetNumberOfTuples(medium->GetNumberOfPoints());
-  g->FillValue(0.6f);
-  medium->GetPointData()->AddArray(g);
+  // phase function would ignore); g = 0.6 runs D3Q18 (the plan's lattice).
+  AddAnisotropy(medium, 0.6f);
   auto camera = Front();
   vtkOpenCLDeviceArrays* copies = vtkOpenCLContext::GetDefault()->GetDeviceArrays();
   for (const bool split : { true, false })

@@ -664,9 +664,9 @@ TEST(LatticeBoltzmann, MemoryBeyondTheDeviceLimitsIsNamed)
     vtkNew<vtkTest::ErrorObserver> errors;
     solver->AddObserver(vtkCommand::ErrorEvent, errors);
     solver->SetContext(context);
-    EXPECT_FALSE(solver->FitsInMemory(vtkLatticeBoltzmannSolver::D3Q18, m.Dims));
-    EXPECT_TRUE(solver->FitsInMemory(vtkLatticeBoltzmannSolver::D3Q6, m.Dims));
-    EXPECT_FALSE(solver->FitsInMemory(7, m.Dims));
+    EXPECT_FALSE(solver->FitsInMemory(vtkLatticeBoltzmannSolver::D3Q18, m.Dims, m.Spacing));
+    EXPECT_TRUE(solver->FitsInMemory(vtkLatticeBoltzmannSolver::D3Q6, m.Dims, m.Spacing));
+    EXPECT_FALSE(solver->FitsInMemory(7, m.Dims, m.Spacing));
     EXPECT_TRUE(errors->GetErrorMessage().empty()) << errors->GetErrorMessage();
   }
   for (int lattice : { vtkLatticeBoltzmannSolver::D3Q18, vtkLatticeBoltzmannSolver::D3Q6 })
