@@ -266,6 +266,9 @@ void vtkRefractaPluginLighting::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfPhotons: " << this->QualitySettings.NumberOfPhotons << "\n";
   os << indent << "VolumeCausticSubdivision: "
      << this->Pipeline->GetPhotonTracer()->GetVolumeCausticSubdivision() << "\n";
+  os << indent << "MultipleScatteringMethod: " << this->GetMultipleScatteringMethod()
+     << ", ScatteringOrders: " << this->GetScatteringOrders() << ", Lattice: " << this->GetLattice()
+     << "\n";
   os << indent << "Lights:\n";
   this->Lights->PrintSelf(os, indent.GetNextIndent());
 }
