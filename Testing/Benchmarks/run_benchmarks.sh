@@ -94,6 +94,12 @@ csvget() {
     (fc == "" || $(col[fc]) == fv) && (c in col) { print $(col[c]); exit }' "$1" 2>/dev/null
 }
 
+# Every row's value of column $2 (named in the header) of CSV $1.
+csvcolumn() {
+  awk -F, -v c="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    (c in col) { print $(col[c]) }' "$1" 2>/dev/null
+}
+
 # Each program's headline rows, read from its CSV (columns named in its header).
 summarise() {
   local key="$1" csv="$2" v
@@ -104,9 +110,9 @@ summarise() {
       v=$(awk -F, 'NR > 1 && $2 == "adaptive" { a = $4 / $8 } NR > 1 && $2 == "adaptive-lattice-order" { l = $4 / $8 } END { if (a && l) printf "%.3g", a / l }' "$csv")
       row BenchmarkPhotonTracer "coherent photon order: pieces/s over the lattice order (largest count)" "${v:-n/a}" "x" ;;
     lattice)
-      v=$(awk -F, 'NR > 1 { print $8 }' "$csv" | sort -g | awk '{ a[NR] = $1 } END { if (NR) print a[int((NR + 1) / 2)] }')
+      v=$(csvcolumn "$csv" mlups | sort -g | awk '{ a[NR] = $1 } END { if (NR) print a[int((NR + 1) / 2)] }')
       row BenchmarkLatticeBoltzmann "lattice updates/s (median over rows)" "${v:-n/a}" "M updates/s"
-      v=$(awk -F, 'NR > 1 { print $11 }' "$csv" | sort -g | awk '{ a[NR] = $1 } END { if (NR) print a[int((NR + 1) / 2)] }')
+      v=$(csvcolumn "$csv" ratio | sort -g | awk '{ a[NR] = $1 } END { if (NR) print a[int((NR + 1) / 2)] }')
       row BenchmarkLatticeBoltzmann "fraction of copy bandwidth (median over rows)" "${v:-n/a}" "-" ;;
     table1)
       v=$(csvget "$csv" schedule sequential total_s)
