@@ -85,7 +85,9 @@ public:
 
   ///@{
   /**
-   * Lattice: 6 (D3Q6, default) or 18 (D3Q18). Other values are refused with an error.
+   * Lattice: 6 (D3Q6, default) or 18 (D3Q18). Other values are refused with an error. Inside
+   * vtkRefractaRenderPipeline each light pass sets it to the effect plan's choice (set the
+   * pipeline's Lattice there).
    */
   void SetLattice(int lattice);
   vtkGetMacro(Lattice, int);
