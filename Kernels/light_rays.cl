@@ -73,25 +73,33 @@ inline float3 lr_optical_depth(const lr_scene* s, float3 o, float3 d, float tMax
   float t = t0;
   for (int step = 0; step < cap && t < t1; ++step)
   {
+    // The cell the ray leaves u into (on a face, the one beyond it: floor along d >= 0, ceil - 1
+    // along d < 0), and its exit from u in index units, so that the exit always lies ahead of u.
+    // The exit computed in world units from a rounded cell did not: a ray from a voxel's centre
+    // along its node plane (|d.x| of 1e-16 to 1e-5, as a frame turned by 90 degrees gives) sat
+    // on the plane, took the cell behind it and its exit at the plane itself: steps of `nudge`
+    // until the cap, the optical depth cut short and the image up to 4x too bright.
     const float3 u = (o + d * (t + nudge) - s->lo) / s->spacing.xyz;
-    const int3 v = clamp(convert_int3(floor(u)), (int3)(0), dims - 1);
+    const int3 back = d < (float3)(0.0f);
+    const int3 v =
+      clamp(convert_int3(select(floor(u), ceil(u) - 1.0f, back)), (int3)(0), dims - 1);
     const int3 mv = v / LR_MACRO;
     const float m =
       s->macro[mv.x + s->macroDims.x * (mv.y + s->macroDims.y * (size_t)mv.z)];
 #if LR_NODE_CUTS
     // Half-voxel cells (node planes lie at the voxels' middles), 2 per voxel along an axis.
-    const int3 halves = clamp(convert_int3(floor(2.0f * u)), (int3)(0), 2 * dims - 1);
+    const int3 halves = clamp(
+      convert_int3(select(floor(2.0f * u), ceil(2.0f * u) - 1.0f, back)), (int3)(0), 2 * dims - 1);
     const int3 cellLo = m > 0.0f ? halves : 2 * mv * LR_MACRO;
     const int3 cellHi = m > 0.0f ? halves + 1 : 2 * min((mv + 1) * LR_MACRO, dims);
-    const float3 bound = s->lo +
-      convert_float3(select(cellLo, cellHi, d > (float3)(0.0f))) * (0.5f * s->spacing.xyz);
+    const float3 bound = 0.5f * convert_float3(select(cellLo, cellHi, d > (float3)(0.0f)));
 #else
     const int3 cellLo = m > 0.0f ? v : mv * LR_MACRO;
     const int3 cellHi = m > 0.0f ? v + 1 : min((mv + 1) * LR_MACRO, dims);
-    const float3 bound = s->lo +
-      convert_float3(select(cellLo, cellHi, d > (float3)(0.0f))) * s->spacing.xyz;
+    const float3 bound = convert_float3(select(cellLo, cellHi, d > (float3)(0.0f)));
 #endif
-    const float3 te = select((bound - o) * inv, (float3)(INFINITY), d == (float3)(0.0f));
+    const float3 te = select((t + nudge) + (bound - u) * s->spacing.xyz * inv, (float3)(INFINITY),
+      d == (float3)(0.0f));
     float exitT = fmin(fmin(te.x, te.y), te.z);
     exitT = fmin(fmax(exitT, t + nudge), t1);
     if (m > 0.0f)

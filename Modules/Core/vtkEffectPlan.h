@@ -212,9 +212,11 @@ public:
   /**
    * Whether the device can hold the D3Q18 lattice for this medium (default true): an input of
    * the next Decide(), not a setting (it does not modify the plan), which the pipeline sets from
-   * vtkLatticeBoltzmannSolver::FitsInMemory. Where it cannot, the automatic lattice stays D3Q6
-   * and the reason says why.
+   * vtkLatticeBoltzmannSolver::FitsInMemory where CallsForD3Q18(analysis) says the automatic
+   * lattice would be D3Q18 (LatticeDirections automatic, the analysed medium's mean |g| >=
+   * D3Q18Anisotropy). Where it cannot, the automatic lattice stays D3Q6 and the reason says why.
    */
+  bool CallsForD3Q18(vtkSceneAnalysis* analysis) const;
   void SetD3Q18FitsInMemory(bool fits) { this->D3Q18FitsInMemory = fits; }
   vtkGetMacro(D3Q18FitsInMemory, bool);
   ///@}

@@ -68,6 +68,15 @@ void vtkEffectPlan::SetLatticeDirections(int directions)
 }
 
 //------------------------------------------------------------------------------
+bool vtkEffectPlan::CallsForD3Q18(vtkSceneAnalysis* analysis) const
+{
+  // Measured against the path-traced reference (vtkEffectPlan.h): from g = 0.6 on, D3Q6's image
+  // error grows to 1.5x and more of D3Q18's, 5x at 0.8.
+  return this->LatticeDirections == AUTOMATIC_LATTICE &&
+    analysis->GetMeanAnisotropy() >= D3Q18Anisotropy;
+}
+
+//------------------------------------------------------------------------------
 std::string vtkEffectPlan::DecideLattice(vtkSceneAnalysis* analysis)
 {
   std::ostringstream why;
@@ -77,16 +86,14 @@ std::string vtkEffectPlan::DecideLattice(vtkSceneAnalysis* analysis)
     this->ChosenLattice = this->LatticeDirections;
     why << "D3Q" << this->ChosenLattice << " forced";
   }
-  else if (g >= D3Q18Anisotropy && !this->D3Q18FitsInMemory)
+  else if (this->CallsForD3Q18(analysis) && !this->D3Q18FitsInMemory)
   {
     this->ChosenLattice = 6;
     why << "D3Q6: the medium's mean |g| " << g << " >= " << D3Q18Anisotropy
         << " calls for D3Q18, but its lattice (3x D3Q6's memory) does not fit the device";
   }
-  else if (g >= D3Q18Anisotropy)
+  else if (this->CallsForD3Q18(analysis))
   {
-    // Measured against the path-traced reference (vtkEffectPlan.h): from g = 0.6 on, D3Q6's
-    // image error grows to 1.5x and more of D3Q18's, 5x at 0.8.
     this->ChosenLattice = 18;
     why << "D3Q18: the medium's mean |g| " << g << " >= " << D3Q18Anisotropy
         << ", where D3Q6's six directions would pull the multiply scattered light's direction "

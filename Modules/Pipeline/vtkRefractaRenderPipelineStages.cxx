@@ -230,9 +230,7 @@ bool vtkRefractaRenderPipeline::RunPlan()
   const bool analysed = in.Analysis->Analyze();
   // The automatic lattice's D3Q18 only where the device holds it (3x D3Q6's state); asked only
   // where the plan would choose it.
-  const bool askMemory = analysed &&
-    in.Plan->GetLatticeDirections() == vtkEffectPlan::AUTOMATIC_LATTICE &&
-    in.Analysis->GetMeanAnisotropy() >= vtkEffectPlan::D3Q18Anisotropy;
+  const bool askMemory = analysed && in.Plan->CallsForD3Q18(in.Analysis);
   in.Plan->SetD3Q18FitsInMemory(!askMemory ||
     this->GetLatticeSolver()->FitsInMemory(
       vtkLatticeBoltzmannSolver::D3Q18, in.Medium->GetDimensions(), in.Medium->GetSpacing()));

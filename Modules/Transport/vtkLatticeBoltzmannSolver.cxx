@@ -283,7 +283,7 @@ bool vtkLatticeBoltzmannSolver::FitsInMemory(
 
 //------------------------------------------------------------------------------
 void vtkLatticeBoltzmannSolver::FillMemoryPlan(
-  vtkOpenCLMemoryPlan* plan, int lattice, const int dims[3], size_t planes, bool blocks) const
+  vtkOpenCLMemoryPlan* plan, int lattice, const int dims[3], size_t planes, bool blocked) const
 {
   const double v = static_cast<double>(dims[0]) * dims[1] * dims[2];
   std::ostringstream gridText;
@@ -298,7 +298,7 @@ void vtkLatticeBoltzmannSolver::FillMemoryPlan(
   {
     plan->AddDeviceBuffer(grid, what, (lattice * 3 * v + 1) * 4, stateSetting);
   }
-  if (blocks)
+  if (blocked)
   {
     // Interface buffers between blocks: 6 faces of b x b voxels, 3 channels, per block.
     const int b = this->BlockSize;

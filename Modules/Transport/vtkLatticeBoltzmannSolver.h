@@ -539,7 +539,7 @@ protected:
   // The buffers of a grid of `dims` voxels on `lattice` with `coefficientPlanes` planes, in
   // blocks or not.
   void FillMemoryPlan(vtkOpenCLMemoryPlan* plan, int lattice, const int dims[3],
-    size_t coefficientPlanes, bool blocks) const;
+    size_t coefficientPlanes, bool blocked) const;
   bool BuildKernels();
   bool ReadProbes(std::vector<float>& values);
   bool SetProbes(const std::vector<cl_uint>& extra);

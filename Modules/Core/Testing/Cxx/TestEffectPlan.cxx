@@ -1,5 +1,7 @@
 // Tests of vtkSceneAnalysis (facts with analytic values) and vtkEffectPlan (decisions, the
 // threshold switch, overrides, records).
+#include "EffectPlanTestMedium.h"
+
 #include "vtkCommand.h"
 #include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
@@ -24,54 +26,8 @@
 
 namespace
 {
-// A cube of n^3 voxels of the given spacing; fill(i, j, k, arrays...) sets per-voxel values.
-struct Voxel
-{
-  double N = 1.0;
-  double SigmaT = 0.0;
-  double Albedo = 0.0;
-  double Emission = 0.0;
-};
-
-vtkSmartPointer<vtkImageData> MakeMedium(
-  int nx, int ny, int nz, double spacing, const std::function<Voxel(int, int, int)>& fill)
-{
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(nx, ny, nz);
-  image->SetSpacing(spacing, spacing, spacing);
-  auto make = [&](const char* name, int comps)
-  {
-    vtkNew<vtkFloatArray> a;
-    a->SetName(name);
-    a->SetNumberOfComponents(comps);
-    a->SetNumberOfTuples(image->GetNumberOfPoints());
-    image->GetPointData()->AddArray(a);
-    return a.GetPointer();
-  };
-  vtkFloatArray* n = make("RefractiveIndex", 1);
-  vtkFloatArray* ext = make("Extinction", 3);
-  vtkFloatArray* alb = make("Albedo", 3);
-  vtkFloatArray* emi = make("Emission", 3);
-  for (int k = 0; k < nz; ++k)
-  {
-    for (int j = 0; j < ny; ++j)
-    {
-      for (int i = 0; i < nx; ++i)
-      {
-        const vtkIdType p = i + nx * (j + ny * k);
-        const Voxel v = fill(i, j, k);
-        n->SetValue(p, v.N);
-        for (int c = 0; c < 3; ++c)
-        {
-          ext->SetComponent(p, c, v.SigmaT);
-          alb->SetComponent(p, c, v.Albedo);
-          emi->SetComponent(p, c, v.Emission);
-        }
-      }
-    }
-  }
-  return image;
-}
+using refracta_test::MakeMedium;
+using refracta_test::Voxel;
 
 // A uniform fog of n^3 voxels.
 vtkSmartPointer<vtkImageData> UniformFog(int n, double spacing, double sigmaT, double albedo)

@@ -1,13 +1,13 @@
 // The effect plan's choice of the Lattice-Boltzmann lattice: vtkSceneAnalysis's scattering-weighted
 // mean |g| (an analytic value) and the plan's D3Q6 / D3Q18 decision around its threshold, forced
 // lattices, bad values, the memory guard and the split's k, which follows the chosen lattice.
+#include "EffectPlanTestMedium.h"
+
 #include "vtkEffectPlan.h"
 #include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
-#include "vtkPointData.h"
 #include "vtkSceneAnalysis.h"
 #include "vtkSmartPointer.h"
 #include "vtkTestErrorObserver.h"
@@ -24,30 +24,15 @@ namespace
 vtkSmartPointer<vtkImageData> TwoHalves(
   double sigmaLow, double gLow, double sigmaHigh, double gHigh)
 {
-  const int n = 8;
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(n, n, n);
-  image->SetSpacing(0.1, 0.1, 0.1);
-  vtkNew<vtkFloatArray> ext, alb, ani;
-  ext->SetName("Extinction");
-  ext->SetNumberOfComponents(3);
-  alb->SetName("Albedo");
-  alb->SetNumberOfComponents(3);
-  ani->SetName("Anisotropy");
-  for (vtkIdType p = 0; p < image->GetNumberOfPoints(); ++p)
-  {
-    const bool low = p % n < n / 2;
-    for (int c = 0; c < 3; ++c)
+  return refracta_test::MakeMedium(8, 8, 8, 0.1,
+    [=](int i, int, int)
     {
-      ext->InsertNextValue(static_cast<float>(low ? sigmaLow : sigmaHigh));
-      alb->InsertNextValue(0.9f);
-    }
-    ani->InsertNextValue(static_cast<float>(low ? gLow : gHigh));
-  }
-  image->GetPointData()->AddArray(ext);
-  image->GetPointData()->AddArray(alb);
-  image->GetPointData()->AddArray(ani);
-  return image;
+      refracta_test::Voxel v;
+      v.SigmaT = i < 4 ? sigmaLow : sigmaHigh;
+      v.Anisotropy = i < 4 ? gLow : gHigh;
+      v.Albedo = 0.9;
+      return v;
+    });
 }
 
 vtkSmartPointer<vtkLight> Light(bool inside)

@@ -113,6 +113,37 @@ vtkSmartPointer<vtkImageData> RunPass(vtkLightRaySingleScattering* pass, vtkImag
 }
 }
 
+// A light travelling all but parallel to the voxels' node planes (a component of 1e-16 to 1e-5
+// along x, as a frame turned by 90 degrees gives) lights a ball as one exactly parallel to
+// them. Rays from the voxels' centres then run along a node plane; their march took the cell
+// behind the plane, whose exit was the plane itself, and stopped at its step cap: the fluence up
+// to 4x too high (session 31).
+TEST(LightRays, RaysAlongANodePlaneAreNotCutShort)
+{
+  // A ball of optical diameter 6 (radius 8.4 voxels, soft edge) on 24^3 voxels of unit spacing.
+  const int n = 24;
+  const double c = 0.5 * (n - 1), sy = std::sin(0.6), cz = std::cos(0.6);
+  auto medium = MakeMedium(n, n, n, 1.0,
+    [&](double x, double y, double z)
+    {
+      const double r = std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
+      return Homogeneous(0.357 * std::min(1.0, std::max(0.0, (8.4 - r) / 1.2)), 0.99);
+    });
+  auto lit = [&](double ex)
+  {
+    vtkNew<vtkLightRaySingleScattering> pass;
+    pass->AddLight(Directional({ c - 30 * ex, c + 30 * sy, c - 30 * cz }, { c, c, c }, 2.0));
+    return RunPass(pass, medium);
+  };
+  auto parallel = lit(0.0);
+  const size_t values = 3 * static_cast<size_t>(n) * n * n;
+  for (const double ex : { 1e-16, -1e-16, 1e-9, 1e-6, -1e-5 })
+  {
+    auto tilted = lit(ex);
+    EXPECT_LT(RelativeRms(Radiance(tilted), Radiance(parallel), values), 1e-4) << "x " << ex;
+  }
+}
+
 // A homogeneous slab (the whole grid) under a directional light along +z:
 // S1(z) = sigma_s E exp(-sigma_t (z - z_entry)), z_entry the face of the box.
 TEST(LightRays, SlabUnderDirectionalLightIsAnalytic)
